@@ -1,0 +1,57 @@
+#pragma once
+// Bricks: full, single-level boxes of leaf cells (exabrick-reference.md 2.1). Every leaf cell is
+// in exactly one brick; values are stored in brick order (x fastest inside a brick).
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "amr/model.h"
+
+namespace amrvk::accel {
+
+struct Brick {
+    glm::ivec3 lower;  // lower corner, voxel space (finest-level units)
+    glm::ivec3 size;   // cells per axis, each in [1, kMaxBrickCells]
+    int32_t level;     // cell width = 1 << level
+    uint32_t begin;    // index of the brick's first cell in brick order
+    int64_t cellWidth() const { return int64_t{1} << level; }
+    uint64_t cellCount() const { return uint64_t(size.x) * uint64_t(size.y) * uint64_t(size.z); }
+    // Strict bounds [lower, lower + size * width), voxel space.
+    amr::Box3l bounds() const;
+};
+
+constexpr int32_t kMaxBrickCells = 127;  // per axis, as exaBuilder's default --max-leaf-width
+
+struct BrickSet {
+    std::vector<Brick> bricks;
+    std::vector<uint32_t> cellIds;  // brick order -> model cell index; kEmptySlot for a hole
+    static constexpr uint32_t kEmptySlot = UINT32_MAX;
+    double buildSeconds = 0;
+    uint64_t memoryBytes() const {
+        return bricks.size() * sizeof(Brick) + cellIds.size() * sizeof(uint32_t);
+    }
+};
+
+// Builds bricks with the exaBuilder SAH-alike kd split: partition at coarse-cell planes where the
+// level set or fullness changes, minimising halfArea(L) * volume(L) * levels(L) + same(R); a node
+// becomes a brick when it is one level, completely filled, and at most kMaxBrickCells per axis.
+BrickSet buildBricks(const amr::Model& model);
+
+// Reads a .bricks file of the ExaBrick builders (records: int3 size, int3 lower, int level,
+// int cellId[size]) and checks it against the model: every cell id valid and used once, ids -1
+// are empty slots, every brick slot at the position of the cell it names.
+BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& model);
+
+// Values of `field` in brick order (NaN for empty slots).
+std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field);
+
+struct BrickStats {
+    uint64_t brickCount = 0, singleCellBricks = 0;
+    double averageCellsPerBrick = 0;
+    uint64_t largestBrickCells = 0;
+};
+BrickStats computeBrickStats(const BrickSet& bricks);
+
+}  // namespace amrvk::accel

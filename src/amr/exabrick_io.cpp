@@ -1,0 +1,101 @@
+// ExaBrick cells + scalars (exabrick-reference.md 1.1, 1.2): raw little-endian records, no header.
+#include <algorithm>
+#include <cstring>
+
+#include "amr/block_structured.h"
+#include "amr/readers.h"
+#include "core/error.h"
+#include "core/file_io.h"
+
+namespace fs = std::filesystem;
+
+namespace amrvk::amr {
+
+namespace {
+fs::path cellsPathOf(const fs::path& path) {
+    if (path.extension() == ".cells") return path;
+    fs::path p = path;
+    p += ".cells";
+    return p;
+}
+// "<base>.scalars" -> "scalars"; "<base>.<name>.scalars" -> "<name>".
+std::vector<std::pair<std::string, fs::path>> findScalarFiles(const fs::path& cellsPath) {
+    std::vector<std::pair<std::string, fs::path>> out;
+    fs::path dir = cellsPath.parent_path();
+    if (dir.empty()) dir = ".";
+    const std::string stem = cellsPath.stem().string();
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (!entry.is_regular_file() || name.size() <= stem.size() + 8) {
+            if (name == stem + ".scalars") out.emplace_back("scalars", entry.path());
+            continue;
+        }
+        if (name.rfind(stem + ".", 0) != 0 || name.substr(name.size() - 8) != ".scalars") continue;
+        std::string middle = name.substr(stem.size() + 1, name.size() - stem.size() - 9);
+        out.emplace_back(middle.empty() ? "scalars" : middle, entry.path());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+}  // namespace
+
+Model readExaBrick(const fs::path& path, const ReadOptions& options) {
+    Model model;
+    model.format = "exabrick";
+    const fs::path cellsPath = cellsPathOf(path);
+    model.source = cellsPath.string();
+    const uint64_t bytes = fileSize(cellsPath);
+    AMRVK_CHECK(bytes > 0, cellsPath.string(), ": empty file (no cells)");
+    AMRVK_CHECK(bytes % sizeof(Cell) == 0, cellsPath.string(), ": size ", bytes,
+                " bytes is not a multiple of the 16-byte cell record (truncated file?)");
+    const uint64_t count = bytes / sizeof(Cell);
+
+    auto scalarFiles = findScalarFiles(cellsPath);
+    std::vector<std::string> available;
+    for (const auto& [name, p] : scalarFiles) available.push_back(name);
+    model.availableFields = available;
+    AMRVK_CHECK(!available.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
+                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(),
+                ".<field>.scalars)");
+    auto selected = selectFields(available, options.fields, model.source);
+
+    BinaryReader cells(cellsPath);
+    cells.readArray(model.cells, count);
+    for (const std::string& name : selected) {
+        const fs::path& p =
+            std::find_if(scalarFiles.begin(), scalarFiles.end(),
+                         [&](const auto& e) { return e.first == name; })->second;
+        uint64_t sbytes = fileSize(p);
+        AMRVK_CHECK(sbytes % sizeof(float) == 0, p.string(), ": size ", sbytes,
+                    " bytes is not a multiple of 4 (truncated float32 file?)");
+        AMRVK_CHECK(sbytes / sizeof(float) == count, p.string(), ": ", sbytes / sizeof(float),
+                    " values but ", cellsPath.filename().string(), " has ", count, " cells");
+        Field f{name, {}};
+        BinaryReader r(p);
+        r.readArray(f.values, count);
+        model.fields.push_back(std::move(f));
+    }
+    return model;
+}
+
+void writeExaBrick(const Model& model, const fs::path& base, bool writeSingleAsPlain) {
+    fs::path cellsPath = base;
+    cellsPath += ".cells";
+    AtomicFileWriter cw(cellsPath);
+    cw.writeSpan(std::span<const Cell>(model.cells));
+    std::vector<AtomicFileWriter> writers;
+    for (const Field& f : model.fields) {
+        AMRVK_CHECK(f.values.size() == model.cells.size(), "field '", f.name, "' has ",
+                    f.values.size(), " values for ", model.cells.size(), " cells");
+        fs::path p = base;
+        p += (writeSingleAsPlain && model.fields.size() == 1) ? ".scalars"
+                                                              : "." + f.name + ".scalars";
+        AtomicFileWriter w(p);
+        w.writeSpan(std::span<const float>(f.values));
+        w.commit();
+    }
+    cw.commit();
+}
+
+}  // namespace amrvk::amr

@@ -1,0 +1,92 @@
+#pragma once
+// The AMR data model: leaf cells in the ExaBrick convention plus named scalar fields.
+//  - Cell.lower is the integer lower corner in finest-level units ("voxel space").
+//  - Cell.level is 0 for the finest possible cells; a cell is (1 << level) units wide and its
+//    lower corner is a multiple of its width (checked by validate()).
+//  - Leaf cells never overlap; together they are the medium. Field values are cell averages.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace amrvk::amr {
+
+struct Cell {
+    glm::ivec3 lower;  // lower corner, finest-level integer units
+    int32_t level;     // width = 1 << level units; 0 = finest
+};
+static_assert(sizeof(Cell) == 16, "Cell must match the 16-byte .cells record");
+
+constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
+
+inline int64_t cellWidth(int32_t level) { return int64_t{1} << level; }
+
+// Half-open integer box [lower, upper) in voxel space; 64-bit so lower + width cannot overflow.
+struct Box3l {
+    glm::i64vec3 lower{0};
+    glm::i64vec3 upper{0};
+    bool empty() const { return upper.x <= lower.x || upper.y <= lower.y || upper.z <= lower.z; }
+    glm::i64vec3 size() const { return upper - lower; }
+    double volume() const {
+        glm::dvec3 s(size());
+        return empty() ? 0.0 : s.x * s.y * s.z;
+    }
+};
+
+struct Field {
+    std::string name;
+    std::vector<float> values;  // one per cell, in cell order
+};
+
+// world = origin + scale * voxel, per axis.
+struct Transform {
+    glm::dvec3 origin{0.0};
+    glm::dvec3 scale{1.0};
+    glm::dvec3 toWorld(glm::dvec3 voxel) const { return origin + scale * voxel; }
+};
+
+struct Model {
+    std::string format;                       // "exabrick", "amrex", "enzo", "chombo", "raw", ...
+    std::string source;                       // path the model was read from
+    std::vector<Cell> cells;                  // leaf cells
+    std::vector<Field> fields;                // loaded fields, each with cells.size() values
+    std::vector<std::string> availableFields; // every field the source offers (loaded or not)
+    Transform voxelToWorld;
+    std::vector<std::pair<std::string, std::string>> attributes;  // source metadata, for info
+
+    uint64_t cellCount() const { return cells.size(); }
+    // Returns the loaded field `name`; throws "unknown field 'X' in SOURCE (available: ...)".
+    const Field& field(std::string_view name) const;
+    // The field an operation uses when the user named none: the first loaded one.
+    const Field& defaultField() const;
+};
+
+struct ModelSummary {
+    Box3l bounds;                          // union of leaf-cell boxes, voxel space
+    int minLevel = 0, maxLevel = 0;
+    std::vector<uint64_t> cellsPerLevel;   // index = level (0 = finest), size maxLevel + 1
+    double leafVolume = 0;                 // sum of cell volumes, voxel units^3
+};
+ModelSummary summarize(const Model& model);
+
+struct FieldStats {
+    float minValue = 0, maxValue = 0;
+    double volumeWeightedMean = 0;  // sum(v * width^3) / sum(width^3)
+};
+FieldStats computeFieldStats(const Model& model, const Field& field);
+
+// What to do with NaN/Inf field values (see docs/formats.md):
+//  Reject: throw "SOURCE: field 'F' has a non-finite value (nan) at cell N".
+//  Drop:   remove those cells (the medium is empty there), consistently for every field.
+enum class NanPolicy { Reject, Drop };
+NanPolicy parseNanPolicy(std::string_view text);
+void applyNanPolicy(Model& model, NanPolicy policy);
+
+// Throws amrvk::Error on: a field whose length differs from the cell count, a level outside
+// [0, kMaxLevel], a cell not aligned to its width, two overlapping cells, an empty model.
+void validate(const Model& model);
+
+}  // namespace amrvk::amr

@@ -1,0 +1,70 @@
+#include <array>
+#include <cstring>
+#include <fstream>
+
+#include "amr/readers.h"
+#include "core/error.h"
+#include "core/file_io.h"
+
+namespace fs = std::filesystem;
+
+namespace amrvk::amr {
+
+namespace {
+bool hasHdf5Magic(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::array<char, 8> magic{};
+    in.read(magic.data(), magic.size());
+    return in && std::memcmp(magic.data(), "\x89HDF\r\n\x1a\n", 8) == 0;
+}
+std::string firstLine(const fs::path& p) {
+    std::ifstream in(p);
+    std::string line;
+    std::getline(in, line);
+    return line;
+}
+}  // namespace
+
+std::string detectFormat(const fs::path& path) {
+    std::error_code ec;
+    const bool exists = fs::exists(path, ec);
+    if (fs::is_directory(path, ec)) {
+        if (fs::exists(path / "Header")) return "amrex";
+        AMRVK_CHECK(false, path.string(), ": directory is not an AMReX plotfile (no Header file)");
+    }
+    const std::string ext = path.extension().string();
+    if (ext == ".cells") return "exabrick";
+    if (ext == ".raw") return "raw";
+    if (ext == ".hierarchy") return "enzo";
+    if (!exists) {
+        fs::path cells = path;
+        cells += ".cells";
+        if (fs::exists(cells)) return "exabrick";
+        AMRVK_CHECK(false, path.string(), ": no such file");
+    }
+    if (path.filename() == "Header" && firstLine(path).rfind("HyperCLaw", 0) == 0) return "amrex";
+    fs::path hierarchy = path;
+    hierarchy += ".hierarchy";
+    if (fs::exists(hierarchy)) return "enzo";
+    if (hasHdf5Magic(path)) return "chombo";
+    AMRVK_CHECK(false, path.string(),
+                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|raw)");
+    return {};
+}
+
+Model readModel(const fs::path& path, const ReadOptions& options) {
+    std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path)
+                                                                            : options.format;
+    Model model;
+    if (format == "exabrick") model = readExaBrick(path, options);
+    else if (format == "amrex") model = readAmrex(path, options);
+    else if (format == "enzo") model = readEnzo(path, options);
+    else if (format == "chombo") model = readChombo(path, options);
+    else if (format == "raw") model = readRaw(path, options);
+    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo or raw)");
+    applyNanPolicy(model, options.nanPolicy);
+    validate(model);
+    return model;
+}
+
+}  // namespace amrvk::amr

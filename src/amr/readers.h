@@ -1,0 +1,42 @@
+#pragma once
+// Reading AMR data of every supported format into an amr::Model.
+#include <glm/glm.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "amr/model.h"
+
+namespace amrvk::amr {
+
+struct ReadOptions {
+    std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | raw
+    std::vector<std::string> fields;  // fields to load; empty = every field of the source
+    NanPolicy nanPolicy = NanPolicy::Reject;
+    // Raw uniform volumes only (dims/type may instead come from a name like vol_64x64x32_uint8.raw):
+    glm::ivec3 rawDims{0};            // voxels per axis
+    std::string rawType;              // uint8 | uint16 | float32 | float64
+    double rawThreshold = 0.0;        // a block becomes one coarse cell when max - min <= threshold
+};
+
+// Detects the format of `path` (file or directory) from names and magic bytes, or throws
+// "PATH: unrecognised AMR format (use --format ...)".
+std::string detectFormat(const std::filesystem::path& path);
+
+// Reads, applies the NaN policy and validates. Throws amrvk::Error with a one-line message.
+Model readModel(const std::filesystem::path& path, const ReadOptions& options);
+
+// Per-format readers: return the model before NaN policy and validation.
+Model readExaBrick(const std::filesystem::path& path, const ReadOptions& options);
+Model readAmrex(const std::filesystem::path& path, const ReadOptions& options);
+Model readEnzo(const std::filesystem::path& path, const ReadOptions& options);
+Model readChombo(const std::filesystem::path& path, const ReadOptions& options);
+Model readRaw(const std::filesystem::path& path, const ReadOptions& options);
+
+// Writes model.cells to "<base>.cells" and each field F to "<base>.F.scalars" (or
+// "<base>.scalars" when writing a single field with writeSingleAsPlain), atomically.
+void writeExaBrick(const Model& model, const std::filesystem::path& base,
+                   bool writeSingleAsPlain = false);
+
+}  // namespace amrvk::amr

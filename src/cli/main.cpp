@@ -1,0 +1,49 @@
+// amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+namespace {
+const char* kUsage =
+    "amrvk - volume path tracing of adaptive-mesh-refinement data\n"
+    "\n"
+    "usage: amrvk <command> [options]   (amrvk <command> --help for its options)\n"
+    "\n"
+    "commands:\n"
+    "  amrvk info <input> [--field NAME] [--json]   describe a data set and build its bricks/ABRs\n"
+    "  amrvk gen <kind> --cells N --seed S -o BASE  write synthetic AMR (.cells/.scalars)\n"
+    "  amrvk convert <input> -o BASE               convert any input to ExaBrick .cells/.scalars\n"
+    "\n"
+    "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
+    "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to override)\n";
+}
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::fputs(kUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? 2 : 0;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    try {
+        if (command == "info") return amrvk::cli::runInfo(args);
+        if (command == "gen") return amrvk::cli::runGen(args);
+        if (command == "convert") return amrvk::cli::runConvert(args);
+        std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
+        return 2;
+    } catch (const amrvk::Error& e) {
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "amrvk %s: error: out of memory\n", command.c_str());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,30 @@
+#pragma once
+// Runtime errors of amrvk: one exception type whose message is one line that names the file,
+// value or limit at fault. main() prints it and exits non-zero.
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace amrvk {
+
+// Concatenates any streamable values into one string.
+template <typename... Args>
+std::string strCat(Args&&... args) {
+    std::ostringstream os;
+    (os << ... << std::forward<Args>(args));
+    return os.str();
+}
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Throws amrvk::Error built from the streamed message when cond is false.
+#define AMRVK_CHECK(cond, ...)                                            \
+    do {                                                                  \
+        if (!(cond)) throw ::amrvk::Error(::amrvk::strCat(__VA_ARGS__)); \
+    } while (0)
+
+}  // namespace amrvk
