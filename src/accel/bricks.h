@@ -44,6 +44,9 @@ BrickSet buildBricks(const amr::Model& model);
 // are empty slots, every brick slot at the position of the cell it names.
 BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& model);
 
+// Writes bricks in the same .bricks format (empty slots as -1), atomically.
+void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks);
+
 // Values of `field` in brick order (NaN for empty slots).
 std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field);
 

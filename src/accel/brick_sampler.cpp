@@ -1,0 +1,107 @@
+#include "accel/brick_sampler.h"
+
+#include <cmath>
+
+namespace amrvk::accel {
+
+void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
+                          double& sumW, double& sumWV) {
+    const double w = double(b.cellWidth());
+    // Cell-centre-aligned coordinates: cell k's centre sits at local = k.
+    glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
+    glm::dvec3 i0 = glm::floor(local);
+    glm::dvec3 f = local - i0;
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::ivec3 bit(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        glm::dvec3 idx = i0 + glm::dvec3(bit);
+        if (idx.x < 0 || idx.y < 0 || idx.z < 0 || idx.x >= b.size.x || idx.y >= b.size.y ||
+            idx.z >= b.size.z)
+            continue;
+        double phi = 1.0;
+        for (int a = 0; a < 3; ++a) phi *= bit[a] ? f[a] : 1.0 - f[a];
+        if (phi <= 0) continue;
+        size_t slot = b.begin + size_t((idx.z * b.size.y + idx.y) * b.size.x + idx.x);
+        float v = brickValues[slot];
+        if (std::isnan(v)) continue;
+        sumW += phi;
+        sumWV += phi * double(v);
+    }
+}
+
+bool halfBoxContains(const HalfBox& box, glm::dvec3 p) {
+    glm::dvec3 lo = box.lower(), hi = box.upper();
+    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+}
+
+std::vector<BoxD> brickDomainBoxes(const BrickSet& bricks) {
+    std::vector<BoxD> boxes;
+    boxes.reserve(bricks.bricks.size());
+    for (const Brick& b : bricks.bricks) {
+        HalfBox d = brickDomain(b);
+        boxes.push_back({d.lower(), d.upper()});
+    }
+    return boxes;
+}
+
+std::vector<BoxD> abrBoxes(const AbrSet& abrs) {
+    std::vector<BoxD> boxes;
+    boxes.reserve(abrs.abrs.size());
+    for (const Abr& a : abrs.abrs) boxes.push_back({a.box.lower(), a.box.upper()});
+    return boxes;
+}
+
+namespace {
+amr::Sample finish(double sumW, double sumWV) {
+    amr::Sample s;
+    s.weightSum = sumW;
+    s.value = sumW > 0 ? sumWV / sumW : 0.0;
+    return s;
+}
+}  // namespace
+
+ExtBrickSampler::ExtBrickSampler(const BrickSet& bricks, std::span<const float> brickValues)
+    : mBricks(bricks), mValues(brickValues) {
+    mDomains.reserve(bricks.bricks.size());
+    for (const Brick& b : bricks.bricks) mDomains.push_back(brickDomain(b));
+    auto boxes = brickDomainBoxes(bricks);
+    mBvh = buildBvh(boxes);
+}
+
+amr::Sample ExtBrickSampler::sample(glm::dvec3 p) const {
+    double sumW = 0, sumWV = 0;
+    mBvh.forEachContaining(p, [&](uint32_t bi) {
+        if (halfBoxContains(mDomains[bi], p))
+            addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
+    });
+    return finish(sumW, sumWV);
+}
+
+AbrSampler::AbrSampler(const AbrSet& abrs, const BrickSet& bricks,
+                       std::span<const float> brickValues)
+    : mAbrs(abrs), mBricks(bricks), mValues(brickValues) {
+    auto boxes = abrBoxes(abrs);
+    mBvh = buildBvh(boxes);
+}
+
+int64_t AbrSampler::findAbr(glm::dvec3 p) const {
+    int64_t found = -1;
+    mBvh.forEachContaining(p, [&](uint32_t ai) {
+        if (found < 0 && halfBoxContains(mAbrs.abrs[ai].box, p)) found = ai;
+    });
+    return found;
+}
+
+amr::Sample AbrSampler::sampleInAbr(const Abr& abr, glm::dvec3 p) const {
+    double sumW = 0, sumWV = 0;
+    for (uint32_t bi : mAbrs.bricksOf(abr))
+        addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
+    return finish(sumW, sumWV);
+}
+
+amr::Sample AbrSampler::sample(glm::dvec3 p) const {
+    int64_t ai = findAbr(p);
+    if (ai < 0) return {};
+    return sampleInAbr(mAbrs.abrs[size_t(ai)], p);
+}
+
+}  // namespace amrvk::accel

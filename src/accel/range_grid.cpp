@@ -1,0 +1,87 @@
+#include "accel/range_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <future>
+
+#include "core/error.h"
+#include "core/stats.h"
+
+namespace amrvk::accel {
+
+glm::ivec3 RangeGrid::cellOf(glm::dvec3 p) const {
+    glm::dvec3 c = glm::floor((p - origin) / cellSize);
+    return glm::clamp(glm::ivec3(glm::clamp(c, glm::dvec3(-1.0), glm::dvec3(dims))), glm::ivec3(0),
+                      dims - 1);
+}
+
+glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest) {
+    glm::dvec3 size(bounds.size());
+    double maxSize = std::max({size.x, size.y, size.z});
+    glm::ivec3 dims;
+    for (int a = 0; a < 3; ++a)
+        dims[a] = std::clamp(int(std::ceil(size[a] * longest / maxSize - 1e-9)), 1, longest);
+    return dims;
+}
+
+glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
+    if (text == "auto") return autoGridDims(bounds);
+    int x = 0, y = 0, z = 0;
+    char c1 = 0, c2 = 0, tail = 0;
+    glm::ivec3 dims;
+    if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &x, &c1, &y, &c2, &z, &tail) == 5 && c1 == 'x' &&
+        c2 == 'x') {
+        dims = {x, y, z};
+    } else if (std::sscanf(text.c_str(), "%d%c", &x, &tail) == 1) {
+        AMRVK_CHECK(x >= 1 && x <= 4096, "--grid ", text, ": macrocells must be in [1, 4096]");
+        return autoGridDims(bounds, x);
+    } else {
+        AMRVK_CHECK(false, "--grid '", text, "': expected auto, N or NxMxK");
+    }
+    for (int a = 0; a < 3; ++a)
+        AMRVK_CHECK(dims[a] >= 1 && dims[a] <= 4096, "--grid ", text,
+                    ": macrocells per axis must be in [1, 4096]");
+    return dims;
+}
+
+RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims) {
+    Timer timer;
+    AMRVK_CHECK(dims.x >= 1 && dims.y >= 1 && dims.z >= 1, "range grid needs at least one macrocell");
+    amr::ModelSummary s = amr::summarize(model);
+    RangeGrid g;
+    g.dims = dims;
+    g.origin = glm::dvec3(s.bounds.lower);
+    g.cellSize = glm::dvec3(s.bounds.size()) / glm::dvec3(dims);
+    const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
+
+    // Two halves of the cells splat into private grids, merged afterwards.
+    auto splat = [&](size_t begin, size_t end) {
+        std::vector<ValueRange> ranges(total);
+        for (size_t i = begin; i < end; ++i) {
+            const amr::Cell& c = model.cells[i];
+            const float v = field.values[i];
+            if (std::isnan(v)) continue;
+            const double w = double(amr::cellWidth(c.level));
+            glm::dvec3 lo = glm::dvec3(c.lower) - 0.5 * w, hi = glm::dvec3(c.lower) + 1.5 * w;
+            glm::ivec3 a = g.cellOf(lo), b = g.cellOf(hi);
+            for (int z = a.z; z <= b.z; ++z)
+                for (int y = a.y; y <= b.y; ++y)
+                    for (int x = a.x; x <= b.x; ++x) ranges[g.index({x, y, z})].extend(v);
+        }
+        return ranges;
+    };
+    const size_t n = model.cells.size();
+    if (n > 200000) {
+        auto first = std::async(std::launch::async, splat, 0, n / 2);
+        g.ranges = splat(n / 2, n);
+        auto other = first.get();
+        for (size_t i = 0; i < total; ++i) g.ranges[i].extend(other[i]);
+    } else {
+        g.ranges = splat(0, n);
+    }
+    g.buildSeconds = timer.seconds();
+    return g;
+}
+
+}  // namespace amrvk::accel

@@ -1,0 +1,59 @@
+#include "amr/sampler.h"
+
+#include <cmath>
+#include <limits>
+
+namespace amrvk::amr {
+
+double tentWeight(const Cell& cell, glm::dvec3 p) {
+    const double w = double(cellWidth(cell.level));
+    glm::dvec3 c = glm::dvec3(cell.lower) + 0.5 * w;
+    double phi = 1.0;
+    for (int a = 0; a < 3; ++a) phi *= std::max(0.0, 1.0 - std::abs(p[a] - c[a]) / w);
+    return phi;
+}
+
+ReferenceSampler::ReferenceSampler(const Model& model, const Field& field)
+    : mModel(model), mField(field), mHash(model.cells) {}
+
+template <typename Visit>
+void ReferenceSampler::forEachContributing(glm::dvec3 p, Visit&& visit) const {
+    for (int32_t level : mHash.levels()) {
+        const double w = double(cellWidth(level));
+        glm::dvec3 k0 = glm::floor(p / w - 0.5);
+        for (int corner = 0; corner < 8; ++corner) {
+            glm::dvec3 k = k0 + glm::dvec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+            glm::dvec3 lower = k * w;
+            if (glm::any(glm::lessThan(lower, glm::dvec3(INT32_MIN))) ||
+                glm::any(glm::greaterThan(lower, glm::dvec3(INT32_MAX))))
+                continue;
+            uint32_t idx = mHash.find(glm::ivec3(lower), level);
+            if (idx == CellHash::kNone) continue;
+            double phi = tentWeight(mModel.cells[idx], p);
+            if (phi > 0 && !std::isnan(mField.values[idx])) visit(idx, phi);
+        }
+    }
+}
+
+Sample ReferenceSampler::sample(glm::dvec3 p) const {
+    double sumW = 0, sumWV = 0;
+    forEachContributing(p, [&](uint32_t idx, double phi) {
+        sumW += phi;
+        sumWV += phi * double(mField.values[idx]);
+    });
+    Sample s;
+    s.weightSum = sumW;
+    s.value = sumW > 0 ? sumWV / sumW : 0.0;
+    return s;
+}
+
+void ReferenceSampler::contributingRange(glm::dvec3 p, float& lo, float& hi) const {
+    lo = std::numeric_limits<float>::infinity();
+    hi = -lo;
+    forEachContributing(p, [&](uint32_t idx, double) {
+        lo = std::min(lo, mField.values[idx]);
+        hi = std::max(hi, mField.values[idx]);
+    });
+}
+
+}  // namespace amrvk::amr

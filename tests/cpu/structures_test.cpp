@@ -1,0 +1,230 @@
+// Bricks, ABRs and macrocell value ranges: structural invariants checked independently
+// (rasterised volumes, brute-force reconstruction), and the .bricks file reader.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <set>
+
+#include "accel/abrs.h"
+#include "accel/brick_sampler.h"
+#include "accel/bricks.h"
+#include "accel/range_grid.h"
+#include "amr/sampler.h"
+#include "core/error.h"
+#include "model_fixtures.h"
+#include "test_data.h"
+
+using namespace amrvk;
+using namespace amrvk::accel;
+
+namespace {
+amr::Model fixture(uint32_t seed) {
+    amr::Model m = test::makeRefinedModel(seed, {5, 4, 3}, 3, 0.4, {-2, 0, 1});
+    test::addRandomField(m, "r", seed + 100);
+    amr::validate(m);
+    return m;
+}
+// Range membership up to float rounding of the double-precision reconstruction (1e-6 relative).
+bool rangeHolds(const ValueRange& r, double v) {
+    double tol = 1e-6 * std::max({1.0, std::abs(double(r.lo)), std::abs(double(r.hi))});
+    return v >= double(r.lo) - tol && v <= double(r.hi) + tol;
+}
+}  // namespace
+
+TEST(Bricks, EveryCellInExactlyOneBrickAtItsPosition) {
+    amr::Model m = fixture(1);
+    BrickSet bs = buildBricks(m);
+    ASSERT_EQ(bs.cellIds.size(), m.cells.size());
+    std::vector<int> seen(m.cells.size(), 0);
+    uint64_t total = 0;
+    for (const Brick& b : bs.bricks) {
+        EXPECT_EQ(b.begin, total);
+        total += b.cellCount();
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(b.size[a], 1);
+            EXPECT_LE(b.size[a], kMaxBrickCells);
+        }
+        for (uint64_t k = 0; k < b.cellCount(); ++k) {
+            uint32_t id = bs.cellIds[b.begin + k];
+            ASSERT_LT(id, m.cells.size());
+            seen[id]++;
+            glm::ivec3 local(int(k % uint64_t(b.size.x)), int(k / uint64_t(b.size.x) % uint64_t(b.size.y)),
+                             int(k / uint64_t(b.size.x * b.size.y)));
+            EXPECT_EQ(m.cells[id].lower, b.lower + local * int(b.cellWidth()));
+            EXPECT_EQ(m.cells[id].level, b.level);
+        }
+    }
+    for (int s : seen) EXPECT_EQ(s, 1);
+}
+
+TEST(Bricks, LargeUniformBlockIsSplitAtTheBrickLimit) {
+    amr::Model m = test::makeRefinedModel(0, {130, 3, 2}, 0, 0.0);
+    test::addField(m, "c", [](glm::dvec3) { return 1.0; });
+    BrickSet bs = buildBricks(m);
+    EXPECT_EQ(bs.bricks.size(), 2u);  // 130 cells need two bricks along x
+    for (const Brick& b : bs.bricks) EXPECT_LE(b.size.x, kMaxBrickCells);
+}
+
+TEST(Bricks, BricksFileRoundTripAndErrors) {
+    amr::Model m = fixture(2);
+    BrickSet bs = buildBricks(m);
+    auto dir = test::scratchDir();
+    writeBricksFile(dir / "m.bricks", bs);
+    BrickSet back = readBricksFile(dir / "m.bricks", m);
+    ASSERT_EQ(back.bricks.size(), bs.bricks.size());
+    EXPECT_EQ(back.cellIds, bs.cellIds);
+
+    // Truncated: the error names the file and the byte count.
+    auto bytes = std::filesystem::file_size(dir / "m.bricks");
+    std::filesystem::copy_file(dir / "m.bricks", dir / "t.bricks");
+    std::filesystem::resize_file(dir / "t.bricks", bytes - 6);
+    try {
+        readBricksFile(dir / "t.bricks", m);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("t.bricks: truncated"), std::string::npos) << e.what();
+    }
+    // A cell id listed twice is rejected.
+    BrickSet dup = bs;
+    dup.cellIds[1] = dup.cellIds[0];
+    writeBricksFile(dir / "d.bricks", dup);
+    EXPECT_THROW(readBricksFile(dir / "d.bricks", m), Error);
+    // Missing file.
+    EXPECT_THROW(readBricksFile(dir / "none.bricks", m), Error);
+}
+
+TEST(Bricks, EmptySlotsFromABricksFileAreSkippedInReconstruction) {
+    // One 2x1x1 brick whose second slot is empty (-1): the value is the first cell's everywhere.
+    amr::Model m;
+    m.source = "one-cell";
+    m.cells.push_back({{0, 0, 0}, 0});
+    m.fields.push_back({"v", {4.0f}});
+    auto dir = test::scratchDir();
+    {
+        std::ofstream out(dir / "h.bricks", std::ios::binary);
+        int32_t rec[9] = {2, 1, 1, 0, 0, 0, 0, 0, -1};
+        out.write(reinterpret_cast<const char*>(rec), sizeof rec);
+    }
+    BrickSet bs = readBricksFile(dir / "h.bricks", m);
+    auto values = brickOrderValues(bs, m.fields[0]);
+    ASSERT_EQ(values.size(), 2u);
+    EXPECT_TRUE(std::isnan(values[1]));
+    ExtBrickSampler s(bs, values);
+    EXPECT_DOUBLE_EQ(s.sample({1.2, 0.5, 0.5}).value, 4.0);
+}
+
+TEST(Abrs, DisjointAndTileTheUnionOfBrickDomains) {
+    amr::Model m = fixture(3);
+    BrickSet bs = buildBricks(m);
+    AbrSet abrs = buildAbrs(bs);
+    ASSERT_FALSE(abrs.abrs.empty());
+    // Rasterise in half-voxel units: every unit voxel of the domain union is in exactly one ABR.
+    HalfBox all{glm::i64vec3(INT64_MAX), glm::i64vec3(INT64_MIN)};
+    for (const Brick& b : bs.bricks) {
+        HalfBox d = brickDomain(b);
+        all.lo = glm::min(all.lo, d.lo);
+        all.hi = glm::max(all.hi, d.hi);
+    }
+    glm::i64vec3 ext = all.hi - all.lo;
+    ASSERT_LT(ext.x * ext.y * ext.z, 20'000'000);
+    auto idx = [&](glm::i64vec3 p) { return size_t(((p.z - all.lo.z) * ext.y + (p.y - all.lo.y)) * ext.x + (p.x - all.lo.x)); };
+    std::vector<uint8_t> inDomain(size_t(ext.x * ext.y * ext.z), 0), inAbr(inDomain.size(), 0);
+    auto fill = [&](const HalfBox& b, std::vector<uint8_t>& grid, bool count) {
+        for (int64_t z = b.lo.z; z < b.hi.z; ++z)
+            for (int64_t y = b.lo.y; y < b.hi.y; ++y)
+                for (int64_t x = b.lo.x; x < b.hi.x; ++x) {
+                    uint8_t& g = grid[idx({x, y, z})];
+                    g = count ? uint8_t(g + 1) : uint8_t(1);
+                }
+    };
+    for (const Brick& b : bs.bricks) fill(brickDomain(b), inDomain, false);
+    double abrVolume = 0;
+    for (const Abr& a : abrs.abrs) {
+        fill(a.box, inAbr, true);
+        abrVolume += a.box.volume();
+    }
+    double unionVolume = 0;
+    for (size_t i = 0; i < inDomain.size(); ++i) {
+        ASSERT_LE(inAbr[i], 1) << "ABRs overlap";
+        ASSERT_EQ(inAbr[i], inDomain[i]) << "ABRs do not tile the domain union";
+        unionVolume += inDomain[i] * 0.125;  // one half-unit voxel = 1/8 voxel^3
+    }
+    EXPECT_DOUBLE_EQ(abrVolume, unionVolume);
+    // The brick list of an ABR is exactly the bricks whose domain overlaps it, sorted.
+    for (const Abr& a : abrs.abrs) {
+        std::vector<uint32_t> expect;
+        for (uint32_t i = 0; i < bs.bricks.size(); ++i) {
+            HalfBox d = brickDomain(bs.bricks[i]);
+            bool overlap = true;
+            for (int k = 0; k < 3; ++k) overlap = overlap && d.lo[k] < a.box.hi[k] && a.box.lo[k] < d.hi[k];
+            if (overlap) expect.push_back(i);
+        }
+        auto got = abrs.bricksOf(a);
+        EXPECT_EQ(std::vector<uint32_t>(got.begin(), got.end()), expect);
+    }
+}
+
+TEST(Abrs, ValueRangesContainReconstructedValues) {
+    amr::Model m = fixture(4);
+    BrickSet bs = buildBricks(m);
+    AbrSet abrs = buildAbrs(bs);
+    auto values = brickOrderValues(bs, m.fields[0]);
+    auto ranges = computeAbrValueRanges(abrs, bs, values);
+    amr::ReferenceSampler ref(m, m.fields[0]);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    size_t checked = 0;
+    for (size_t i = 0; i < abrs.abrs.size(); ++i) {
+        const HalfBox& b = abrs.abrs[i].box;
+        for (int k = 0; k < 40; ++k) {
+            // Interior points and the 8 corners.
+            glm::dvec3 t = k < 8 ? glm::dvec3(k & 1, (k >> 1) & 1, (k >> 2) & 1)
+                                 : glm::dvec3(u(rng), u(rng), u(rng));
+            glm::dvec3 p = b.lower() + (b.upper() - b.lower()) * t;
+            amr::Sample s = ref.sample(p);
+            if (!s.valid()) continue;
+            ++checked;
+            EXPECT_TRUE(rangeHolds(ranges[i], s.value))
+                << "ABR " << i << " range [" << ranges[i].lo << ", " << ranges[i].hi << "] value " << s.value;
+        }
+    }
+    EXPECT_GT(checked, abrs.abrs.size() * 20);
+}
+
+TEST(RangeGrid, RangesContainReconstructedValuesAtAnyResolution) {
+    amr::Model m = fixture(5);
+    amr::ReferenceSampler ref(m, m.fields[0]);
+    amr::Box3l bounds = amr::summarize(m).bounds;
+    for (glm::ivec3 dims : {glm::ivec3(1), glm::ivec3(7, 5, 3), autoGridDims(bounds, 16),
+                            autoGridDims(bounds, 64)}) {
+        RangeGrid g = buildRangeGrid(m, m.fields[0], dims);
+        std::mt19937 rng(uint32_t(dims.x));
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (int k = 0; k < 20000; ++k) {
+            glm::dvec3 p = glm::dvec3(bounds.lower) + glm::dvec3(bounds.size()) * glm::dvec3(u(rng), u(rng), u(rng));
+            if (k % 4 == 0) p = glm::floor(p);  // integer points lie on cell and macrocell faces
+            amr::Sample s = ref.sample(p);
+            if (!s.valid()) continue;
+            // Every macrocell whose closed box contains p must bound the value.
+            glm::dvec3 rel = (p - g.origin) / g.cellSize;
+            glm::ivec3 c0 = glm::clamp(glm::ivec3(glm::ceil(rel) - 1.0), glm::ivec3(0), g.dims - 1);
+            glm::ivec3 c1 = glm::clamp(glm::ivec3(glm::floor(rel)), glm::ivec3(0), g.dims - 1);
+            for (int z = c0.z; z <= c1.z; ++z)
+                for (int y = c0.y; y <= c1.y; ++y)
+                    for (int x = c0.x; x <= c1.x; ++x)
+                        ASSERT_TRUE(rangeHolds(g.ranges[g.index({x, y, z})], s.value))
+                            << "macrocell " << x << "," << y << "," << z << " dims " << dims.x;
+        }
+    }
+}
+
+TEST(RangeGrid, ParsesGridOptions) {
+    amr::Box3l b{{0, 0, 0}, {256, 128, 64}};
+    EXPECT_EQ(parseGridDims("auto", b), glm::ivec3(128, 64, 32));
+    EXPECT_EQ(parseGridDims("32", b), glm::ivec3(32, 16, 8));
+    EXPECT_EQ(parseGridDims("4x5x6", b), glm::ivec3(4, 5, 6));
+    EXPECT_THROW(parseGridDims("0", b), Error);
+    EXPECT_THROW(parseGridDims("4x5", b), Error);
+    EXPECT_THROW(parseGridDims("big", b), Error);
+}

@@ -1,0 +1,61 @@
+#pragma once
+// Small hand-built AMR models for tests: random octree refinement of a block of coarse cells, so
+// level boundaries with jumps of one, two and more levels occur, and simple fields on them.
+#include <functional>
+#include <random>
+
+#include "amr/model.h"
+
+namespace amrvk::test {
+
+// Root cells of level `rootLevel` over rootDims, each refined recursively with probability
+// `refineProbability` per cell down to level 0. Deterministic for a seed.
+inline amr::Model makeRefinedModel(uint32_t seed, glm::ivec3 rootDims, int rootLevel,
+                                   double refineProbability,
+                                   glm::ivec3 originCells = glm::ivec3(0)) {
+    amr::Model m;
+    m.source = "fixture";
+    m.format = "fixture";
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::function<void(glm::ivec3, int)> refine = [&](glm::ivec3 lower, int level) {
+        if (level > 0 && u(rng) < refineProbability) {
+            int half = 1 << (level - 1);
+            for (int c = 0; c < 8; ++c)
+                refine(lower + glm::ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1) * half, level - 1);
+        } else {
+            m.cells.push_back({lower, level});
+        }
+    };
+    const int w = 1 << rootLevel;
+    for (int z = 0; z < rootDims.z; ++z)
+        for (int y = 0; y < rootDims.y; ++y)
+            for (int x = 0; x < rootDims.x; ++x)
+                refine((originCells + glm::ivec3(x, y, z)) * w, rootLevel);
+    return m;
+}
+
+inline glm::dvec3 cellCentre(const amr::Cell& c) {
+    return glm::dvec3(c.lower) + 0.5 * double(amr::cellWidth(c.level));
+}
+
+// Adds a field with value f(cell centre) for every cell.
+inline void addField(amr::Model& m, const std::string& name,
+                     const std::function<double(glm::dvec3)>& f) {
+    amr::Field field{name, {}};
+    field.values.reserve(m.cells.size());
+    for (const amr::Cell& c : m.cells) field.values.push_back(static_cast<float>(f(cellCentre(c))));
+    m.fields.push_back(std::move(field));
+    m.availableFields.push_back(name);
+}
+
+inline void addRandomField(amr::Model& m, const std::string& name, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-3.0f, 7.0f);
+    amr::Field field{name, {}};
+    for (size_t i = 0; i < m.cells.size(); ++i) field.values.push_back(u(rng));
+    m.fields.push_back(std::move(field));
+    m.availableFields.push_back(name);
+}
+
+}  // namespace amrvk::test
