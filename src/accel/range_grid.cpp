@@ -19,6 +19,8 @@ glm::ivec3 RangeGrid::cellOf(glm::dvec3 p) const {
 glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest) {
     glm::dvec3 size(bounds.size());
     double maxSize = std::max({size.x, size.y, size.z});
+    // Never more macrocells than voxel units along the longest axis.
+    longest = int(std::min<double>(longest, std::max(1.0, maxSize)));
     glm::ivec3 dims;
     for (int a = 0; a < 3; ++a)
         dims[a] = std::clamp(int(std::ceil(size[a] * longest / maxSize - 1e-9)), 1, longest);

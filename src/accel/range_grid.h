@@ -24,7 +24,8 @@ struct RangeGrid {
     glm::ivec3 cellOf(glm::dvec3 p) const;
 };
 
-// Grid resolution with `longest` macrocells on the longest axis and cubical-ish cells elsewhere.
+// Grid resolution with `longest` macrocells on the longest axis (at most one per voxel unit) and
+// near-cubical macrocells elsewhere.
 glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest = 128);
 
 // Parses "auto", "N" (N on the longest axis) or "NxMxK". Throws on anything else or N outside [1, 4096].

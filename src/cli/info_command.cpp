@@ -1,46 +1,220 @@
+// amrvk info: describe a data set and build the structures every renderer configuration starts
+// from (bricks, ABRs with value ranges, macrocell value ranges), with sizes and build times.
+#include <cmath>
 #include <cstdio>
 
+#include "accel/abrs.h"
+#include "accel/bricks.h"
+#include "accel/range_grid.h"
 #include "amr/readers.h"
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/read_options.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/progress.h"
+#include "core/stats.h"
 
 namespace amrvk::cli {
 
+namespace {
+
+const char* kInfoHelp =
+    "usage: amrvk info <input> [--field NAME] [--json] [options]\n"
+    "\n"
+    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value\n"
+    "ranges, and macrocell value ranges, and reports the data and the structures: format, voxel and\n"
+    "world bounds, leaf cells per level (level 0 = finest), fields, the field's range and\n"
+    "volume-weighted mean, brick/ABR statistics, bytes per structure and build times.\n"
+    "\n"
+    "options:\n";
+
+std::string mib(uint64_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f MiB", double(bytes) / (1024.0 * 1024.0));
+    return buf;
+}
+
+}  // namespace
+
 int runInfo(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = {
-        {"field", 1, "NAME", "field to analyse (default: the first one)"},
-        {"format", 1, "FMT", "auto|exabrick|amrex|enzo|chombo|raw (default auto)"},
-        {"json", 0, "", "print one JSON object instead of text"},
-    };
+    std::vector<OptionSpec> specs = readOptionSpecs(false);
+    specs.push_back({"grid", 1, "auto|N|NxMxK", "macrocell grid (default auto: 128 on the longest axis)"});
+    specs.push_back({"bricks", 1, "FILE", "use the bricks of an ExaBrick .bricks file instead of building them"});
+    specs.push_back({"json", 0, "", "print one JSON object on stdout instead of text"});
+    specs.push_back({"help", 0, "", "show this help"});
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s%s", kInfoHelp, formatOptions(specs).c_str());
+            return 0;
+        }
     Args args("info", argv, specs, 1, 1);
-    amr::ReadOptions ro;
-    ro.format = args.get("format", "auto");
-    if (args.has("field")) ro.fields = {args.get("field")};
-    amr::Model model = amr::readModel(args.positional()[0], ro);
-    amr::ModelSummary s = amr::summarize(model);
-    std::printf("%s: %llu leaf cells\n", model.source.c_str(),
-                static_cast<unsigned long long>(model.cellCount()));
-    (void)s;
+    amr::ReadOptions ro = readOptionsFrom(args);
+
+    Timer readTimer;
+    amr::Model model;
+    {
+        ProgressStage stage("reading " + args.positional()[0]);
+        model = amr::readModel(args.positional()[0], ro);
+    }
+    const double readSeconds = readTimer.seconds();
+    const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
+    const amr::ModelSummary summary = amr::summarize(model);
+    const amr::FieldStats stats = amr::computeFieldStats(model, field);
+
+    accel::BrickSet bricks;
+    {
+        ProgressStage stage("bricks");
+        bricks = args.has("bricks") ? accel::readBricksFile(args.get("bricks"), model)
+                                    : accel::buildBricks(model);
+    }
+    const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
+    std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
+    accel::AbrSet abrs;
+    std::vector<accel::ValueRange> abrRanges;
+    Timer abrTimer;
+    {
+        ProgressStage stage("active brick regions");
+        abrs = accel::buildAbrs(bricks);
+        abrRanges = accel::computeAbrValueRanges(abrs, bricks, brickValues);
+    }
+    const double abrSeconds = abrTimer.seconds();
+    const glm::ivec3 gridDims = accel::parseGridDims(args.get("grid", "auto"), summary.bounds);
+    accel::RangeGrid grid;
+    {
+        ProgressStage stage("macrocell value ranges");
+        grid = accel::buildRangeGrid(model, field, gridDims);
+    }
+
+    double bricksPerAbr = abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
+    uint32_t maxBricksPerAbr = 0;
+    for (const auto& a : abrs.abrs) maxBricksPerAbr = std::max(maxBricksPerAbr, a.brickCount);
+
+    struct Mem {
+        const char* name;
+        uint64_t bytes;
+    };
+    uint64_t fieldBytes = 0;
+    for (const auto& f : model.fields) fieldBytes += f.values.size() * sizeof(float);
+    const std::vector<Mem> memory = {
+        {"cells", model.cells.size() * sizeof(amr::Cell)},
+        {"fields", fieldBytes},
+        {"bricks", bricks.bricks.size() * sizeof(accel::Brick)},
+        {"brickCellIds", bricks.cellIds.size() * sizeof(uint32_t)},
+        {"brickValues", brickValues.size() * sizeof(float)},
+        {"abrs", abrs.abrs.size() * sizeof(accel::Abr)},
+        {"abrBrickLists", abrs.brickList.size() * sizeof(uint32_t)},
+        {"abrValueRanges", abrRanges.size() * sizeof(accel::ValueRange)},
+        {"macrocellValueRanges", grid.memoryBytes()},
+    };
+    uint64_t totalBytes = 0;
+    for (const auto& m : memory) totalBytes += m.bytes;
+    const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
+    const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
+
+    if (args.has("json")) {
+        JsonWriter j;
+        j.beginObject();
+        j.member("source", model.source).member("format", model.format);
+        j.member("leafCells", model.cellCount());
+        j.key("cellsPerLevel").beginArray();
+        for (uint64_t c : summary.cellsPerLevel) j.value(c);
+        j.endArray();
+        j.member("minLevel", summary.minLevel).member("maxLevel", summary.maxLevel);
+        j.key("fields").beginArray();
+        for (const auto& f : model.availableFields) j.value(f);
+        j.endArray();
+        j.member("field", field.name);
+        j.key("valueRange").beginArray().value(double(stats.minValue)).value(double(stats.maxValue)).endArray();
+        j.member("volumeWeightedMean", stats.volumeWeightedMean);
+        auto vec = [&](const char* k, glm::dvec3 v) {
+            j.key(k).beginArray().value(v.x).value(v.y).value(v.z).endArray();
+        };
+        j.key("voxelBounds").beginObject();
+        vec("lower", glm::dvec3(summary.bounds.lower));
+        vec("upper", glm::dvec3(summary.bounds.upper));
+        j.endObject();
+        j.key("worldBounds").beginObject();
+        vec("lower", worldLo);
+        vec("upper", worldHi);
+        j.endObject();
+        j.member("bricks", brickStats.brickCount);
+        j.member("singleCellBricks", brickStats.singleCellBricks);
+        j.member("averageCellsPerBrick", brickStats.averageCellsPerBrick);
+        j.member("abrs", uint64_t(abrs.abrs.size()));
+        j.member("averageBricksPerAbr", bricksPerAbr);
+        j.member("maxBricksPerAbr", maxBricksPerAbr);
+        j.key("macrocellDims").beginArray().value(gridDims.x).value(gridDims.y).value(gridDims.z).endArray();
+        j.key("memoryBytes").beginObject();
+        for (const auto& m : memory) j.member(m.name, m.bytes);
+        j.member("total", totalBytes);
+        j.endObject();
+        j.key("buildSeconds").beginObject();
+        j.member("read", readSeconds).member("bricks", bricks.buildSeconds);
+        j.member("abrs", abrSeconds).member("macrocells", grid.buildSeconds);
+        j.endObject();
+        j.member("peakResidentBytes", peakResidentBytes());
+        j.key("attributes").beginObject();
+        for (const auto& [k, v] : model.attributes) j.member(k, v);
+        j.endObject();
+        j.endObject();
+        std::printf("%s\n", j.str().c_str());
+        return 0;
+    }
+
+    std::printf("source        %s\n", model.source.c_str());
+    std::printf("format        %s\n", model.format.c_str());
+    for (const auto& [k, v] : model.attributes) std::printf("  %-11s %s\n", k.c_str(), v.c_str());
+    std::string fieldList;
+    for (const auto& f : model.availableFields) fieldList += (fieldList.empty() ? "" : ", ") + f;
+    std::printf("fields        %s\n", fieldList.c_str());
+    std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
+                (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y,
+                (long long)summary.bounds.lower.z, (long long)summary.bounds.upper.x,
+                (long long)summary.bounds.upper.y, (long long)summary.bounds.upper.z);
+    std::printf("world bounds  [%g %g %g] - [%g %g %g]\n", worldLo.x, worldLo.y, worldLo.z,
+                worldHi.x, worldHi.y, worldHi.z);
+    std::printf("leaf cells    %llu on levels %d..%d (0 = finest)\n",
+                (unsigned long long)model.cellCount(), summary.minLevel, summary.maxLevel);
+    for (size_t l = 0; l < summary.cellsPerLevel.size(); ++l)
+        if (summary.cellsPerLevel[l])
+            std::printf("  level %-4zu  %llu cells of width %lld\n", l,
+                        (unsigned long long)summary.cellsPerLevel[l], (long long)amr::cellWidth(int(l)));
+    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", field.name.c_str(),
+                double(stats.minValue), double(stats.maxValue), stats.volumeWeightedMean);
+    std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
+                (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
+                (unsigned long long)brickStats.singleCellBricks,
+                (unsigned long long)brickStats.largestBrickCells, bricks.buildSeconds);
+    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", abrs.abrs.size(),
+                bricksPerAbr, maxBricksPerAbr, abrSeconds);
+    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", gridDims.x, gridDims.y,
+                gridDims.z, grid.buildSeconds);
+    std::printf("memory        %s in all\n", mib(totalBytes).c_str());
+    for (const auto& m : memory) std::printf("  %-20s %s\n", m.name, mib(m.bytes).c_str());
+    std::printf("read time     %.3f s; peak resident memory %s\n", readSeconds,
+                mib(peakResidentBytes()).c_str());
     return 0;
 }
 
 int runConvert(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = {
-        {"output", 1, "BASE", "output base name: writes BASE.cells and BASE.<field>.scalars"},
-        {"field", 1, "NAME", "convert only this field (repeatable)", true},
-        {"format", 1, "FMT", "auto|exabrick|amrex|enzo|chombo|raw (default auto)"},
-    };
+    std::vector<OptionSpec> specs = readOptionSpecs(true);
+    specs.push_back({"output", 1, "BASE", "output base: writes BASE.cells and BASE.<field>.scalars"});
+    specs.push_back({"help", 0, "", "show this help"});
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("usage: amrvk convert <input> -o BASE [options]\n\nWrites the leaf cells of any "
+                        "supported input as ExaBrick BASE.cells plus one BASE.<field>.scalars per field.\n\n"
+                        "options:\n%s",
+                        formatOptions(specs).c_str());
+            return 0;
+        }
     Args args("convert", argv, specs, 1, 1);
-    amr::ReadOptions ro;
-    ro.format = args.get("format", "auto");
-    ro.fields = args.values("field");
-    amr::Model model = amr::readModel(args.positional()[0], ro);
     AMRVK_CHECK(args.has("output"), "amrvk convert: -o BASE is required");
+    amr::Model model = amr::readModel(args.positional()[0], readOptionsFrom(args));
     amr::writeExaBrick(model, args.get("output"));
-    std::printf("wrote %s.cells (%llu cells)\n", args.get("output").c_str(),
-                static_cast<unsigned long long>(model.cellCount()));
+    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", args.get("output").c_str(),
+                static_cast<unsigned long long>(model.cellCount()), model.fields.size());
     return 0;
 }
 
