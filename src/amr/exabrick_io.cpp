@@ -21,19 +21,20 @@ fs::path cellsPathOf(const fs::path& path) {
 // "<base>.scalars" -> "scalars"; "<base>.<name>.scalars" -> "<name>".
 std::vector<std::pair<std::string, fs::path>> findScalarFiles(const fs::path& cellsPath) {
     std::vector<std::pair<std::string, fs::path>> out;
-    fs::path dir = cellsPath.parent_path();
-    if (dir.empty()) dir = ".";
+    const fs::path given = cellsPath.parent_path();
+    const fs::path dir = given.empty() ? fs::path(".") : given;
     const std::string stem = cellsPath.stem().string();
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
         const std::string name = entry.path().filename().string();
+        const fs::path path = given / entry.path().filename();
         if (!entry.is_regular_file() || name.size() <= stem.size() + 8) {
-            if (name == stem + ".scalars") out.emplace_back("scalars", entry.path());
+            if (name == stem + ".scalars") out.emplace_back("scalars", path);
             continue;
         }
         if (name.rfind(stem + ".", 0) != 0 || name.substr(name.size() - 8) != ".scalars") continue;
         std::string middle = name.substr(stem.size() + 1, name.size() - stem.size() - 9);
-        out.emplace_back(middle.empty() ? "scalars" : middle, entry.path());
+        out.emplace_back(middle.empty() ? "scalars" : middle, path);
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Usage: bad_input.sh AMRVK SCRATCH. Each case must print exactly one line on stderr that
+# contains the expected fragment, and exit with status 1.
+set -u
+amrvk="$1"; dir="$2"
+rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
+fail=0
+expect() {  # expect FRAGMENT -- ARGS...
+  local frag="$1"; shift 2
+  "$amrvk" "$@" >out.txt 2>err.txt; local rc=$?
+  local lines; lines=$(wc -l <err.txt)
+  if [ "$rc" != 1 ] || [ "$lines" != 1 ] || ! grep -qF -- "$frag" err.txt; then
+    echo "FAIL: amrvk $* -> rc=$rc, stderr($lines lines): $(cat err.txt)"; fail=1
+  else
+    echo "ok: amrvk $* -> $(cat err.txt)"
+  fi
+}
+cells() { python3 - "$@" <<'PY'
+import struct, sys
+base, spec = sys.argv[1], sys.argv[2]
+cells = [tuple(int(v) for v in c.split(',')) for c in spec.split(';')]
+open(base + '.cells', 'wb').write(b''.join(struct.pack('<4i', *c) for c in cells))
+vals = [float(v) for v in sys.argv[3].split(',')]
+open(base + '.scalars', 'wb').write(struct.pack('<%df' % len(vals), *vals))
+PY
+}
+cells good '0,0,0,1;2,0,0,0;3,0,0,0;2,1,0,0;3,1,0,0' 1,2,3,4,5
+cells mismatch '0,0,0,1;2,0,0,0' 1
+cells misaligned '1,0,0,1' 1
+cells overlap '0,0,0,1;1,1,1,0' 1,2
+cells nan '0,0,0,0;1,0,0,0' 1,nan
+: > empty.cells; : > empty.scalars
+head -c 20 good.cells > trunc.cells; cp good.scalars trunc.scalars
+
+expect "no such file" -- info missing.cells
+expect "empty file" -- info empty.cells
+expect "not a multiple of the 16-byte" -- info trunc.cells
+expect "1 values but" -- info mismatch.cells
+expect "not aligned" -- info misaligned.cells
+expect "overlapping cells" -- info overlap.cells
+expect "non-finite" -- info nan.cells
+expect "unknown field 'rho'" -- info good.cells --field rho
+expect "unknown option '--bogus'" -- info good.cells --bogus
+expect "'x' is not a number" -- info good.cells --grid 4 --threshold x
+expect "--grid 'big'" -- info good.cells --grid big
+expect "cannot write" -- convert good.cells -o /nonexistent-dir/out
+"$amrvk" info nan.cells --nan drop >/dev/null 2>&1 || { echo "FAIL: --nan drop"; fail=1; }
+ls /nonexistent-dir 2>/dev/null && fail=1
+exit $fail
