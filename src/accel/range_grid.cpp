@@ -56,6 +56,7 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
     g.origin = glm::dvec3(s.bounds.lower);
     g.cellSize = glm::dvec3(s.bounds.size()) / glm::dvec3(dims);
     const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
+    const glm::dvec3 eps = 1e-5 * g.cellSize;
 
     // Two halves of the cells splat into private grids, merged afterwards.
     auto splat = [&](size_t begin, size_t end) {
@@ -65,7 +66,9 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
             const float v = field.values[i];
             if (std::isnan(v)) continue;
             const double w = double(amr::cellWidth(c.level));
-            glm::dvec3 lo = glm::dvec3(c.lower) - 0.5 * w, hi = glm::dvec3(c.lower) + 1.5 * w;
+            // Support box, grown by 1e-5 macrocell so that float rounding of sample positions on
+            // the GPU near a macrocell face cannot step outside the conservative range.
+            glm::dvec3 lo = glm::dvec3(c.lower) - 0.5 * w - eps, hi = glm::dvec3(c.lower) + 1.5 * w + eps;
             glm::ivec3 a = g.cellOf(lo), b = g.cellOf(hi);
             for (int z = a.z; z <= b.z; ++z)
                 for (int y = a.y; y <= b.y; ++y)
