@@ -1,0 +1,120 @@
+#version 460
+// One sample per pixel per dispatch: camera ray -> estimator of the chosen mode -> accumulate
+// radiance and its square. Specialization: kMode (ae | ss | ms), kSampler (ext-brick | abr).
+// Traversal: macrocell grid DDA with majorants from majorants.comp.
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#include "lib/common.glsl"
+layout(push_constant, scalar) uniform Push { PushConstants pc; };
+#include "lib/rng.glsl"
+#include "lib/tf.glsl"
+#include "lib/amr_sample.glsl"
+#include "lib/majorant_dda.glsl"
+#include "lib/tracking.glsl"
+#include "lib/phase.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const uint kMode = kModeMs;
+layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;
+
+// Radiance arriving at p from light k (k == lightCount means the ambient environment, sampled
+// through the phase function) times the phase function, with a ratio-tracked shadow ray.
+vec3 lightContribution(RenderParams P, vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, inout Counters c) {
+    float g = P.shading.x;
+    if (k == lightCount) {
+        vec3 wi = sampleHenyeyGreenstein(d, g, rand(rng), rand(rng));  // phase / pdf = 1
+        return P.ambient.rgb * ratioTrack(P, p, wi, kInf, kSampler, rng, c);
+    }
+    LightGpu L = P.lights[k];
+    vec3 wi;
+    float dist;
+    vec3 Le = L.radiance.rgb;
+    if (uint(L.posOrDir.w) == kLightPoint) {
+        vec3 to = L.posOrDir.xyz - p;
+        dist = length(to);
+        if (!(dist > 0.0)) return vec3(0.0);
+        wi = to / dist;
+        Le /= dist * dist;
+    } else {
+        wi = normalize(L.posOrDir.xyz);
+        dist = kInf;
+    }
+    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(P, p, wi, dist, kSampler, rng, c);
+}
+
+vec3 radiance(RenderParams P, vec3 o, vec3 d, inout uint rng, inout Counters c) {
+    float tHit;
+    vec4 tf;
+    if (kMode == kModeAe) {
+        return deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
+    }
+    uint deltaLights = uint(P.shading.y);
+    if (kMode == kModeSs) {
+        if (!deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf)) return P.background.rgb;
+        bool ambientOn = any(greaterThan(P.ambient.rgb, vec3(0.0)));
+        uint n = deltaLights + (ambientOn ? 1u : 0u);
+        if (n == 0u) return vec3(0.0);
+        uint k = min(uint(rand(rng) * float(n)), n - 1u);
+        return tf.rgb * float(n) * lightContribution(P, o + d * tHit, d, k, deltaLights, rng, c);
+    }
+    // Multiple scattering: the environment is reached only by escaping rays; point and
+    // directional lights (never hit by rays) by next-event estimation at every collision.
+    vec3 throughput = vec3(1.0), L = vec3(0.0);
+    for (uint bounce = 0u;; ++bounce) {
+        if (!deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf)) {
+            L += throughput * (bounce == 0u ? P.background.rgb : P.ambient.rgb);
+            break;
+        }
+        if (bounce + 1u >= kMaxBounces) {
+            atomicAdd(UintRW(P.counters).v[kCounterBounceLimitHits], 1u);
+            break;
+        }
+        throughput *= tf.rgb;
+        o += d * tHit;
+        if (deltaLights > 0u) {
+            uint k = min(uint(rand(rng) * float(deltaLights)), deltaLights - 1u);
+            L += throughput * float(deltaLights) * lightContribution(P, o, d, k, deltaLights, rng, c);
+        }
+        float q = max(throughput.r, max(throughput.g, throughput.b));
+        if (!(q > 0.0)) break;
+        if (q < 0.25) {
+            float survive = q / 0.25;
+            if (rand(rng) >= survive) break;
+            throughput /= survive;
+        }
+        d = sampleHenyeyGreenstein(d, P.shading.x, rand(rng), rand(rng));
+    }
+    return L;
+}
+
+void main() {
+    RenderParams P = ParamsRef(pc.params).p;
+    uvec2 pix = gl_GlobalInvocationID.xy;
+    bool inImage = pix.x < P.image.x && pix.y < P.image.y;
+    Counters c = Counters(0u, 0u, 0u, 0u, 0u);
+    uint nanSamples = 0u;
+    if (inImage) {
+        uint pixel = pix.y * P.image.x + pix.x;
+        uint rng = seedRng(pixel, pc.frameIndex, P.image.z);
+        vec2 jitter = vec2(rand(rng), rand(rng));
+        vec3 d = normalize(P.dir00.xyz + (float(pix.x) + jitter.x) * P.du.xyz + (float(pix.y) + jitter.y) * P.dv.xyz);
+        vec3 L = radiance(P, P.eye.xyz, d, rng, c);
+        if (any(isnan(L)) || any(isinf(L))) {
+            L = vec3(0.0);
+            nanSamples = 1u;
+        }
+        Vec4RW acc = Vec4RW(P.accum);
+        acc.v[2u * pixel] += vec4(L, 1.0);
+        acc.v[2u * pixel + 1u] += vec4(L * L, 0.0);
+    }
+    UintRW counters = UintRW(P.counters);
+    uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);
+    uint v3 = subgroupAdd(c.steps), v4 = subgroupAdd(c.violations), v5 = subgroupAdd(nanSamples);
+    if (subgroupElect()) {
+        atomicAdd(counters.v[kCounterDensityLookups], v0);
+        atomicAdd(counters.v[kCounterRealCollisions], v1);
+        atomicAdd(counters.v[kCounterNullCollisions], v2);
+        atomicAdd(counters.v[kCounterTraversalSteps], v3);
+        atomicAdd(counters.v[kCounterMajorantViolations], v4);
+        atomicAdd(counters.v[kCounterNanSamples], v5);
+    }
+}

@@ -1,0 +1,35 @@
+// GPU layouts of the AMR structures (scalar block layout). Coordinates are in local voxel space:
+// voxel space minus RenderParams.localOrigin (integer), so float positions stay small.
+#ifndef AMRVK_AMR_GPU_H
+#define AMRVK_AMR_GPU_H
+#include "interop.h"
+
+AMRVK_NAMESPACE_BEGIN
+
+// One brick: full single-level box of cells; values at brickValues[begin + x + sx*(y + sy*z)].
+struct BrickGpu {
+    ivec4 lowerLevel;  // xyz: lower corner, local voxel units; w: level (cell width 1 << w)
+    ivec4 sizeBegin;   // xyz: cells per axis; w: first value index (brick order)
+};
+AMRVK_STATIC_ASSERT(sizeof(BrickGpu) == 32);
+
+// Node of a software BVH (accel/bvh.h): inner nodes have count 0 and children first, first + 1.
+struct BvhNodeGpu {
+    vec3 lo;     // local voxel units, rounded outward
+    uint first;  // inner: left child; leaf: first slot in the primitive-id array
+    vec3 hi;
+    uint count;  // 0 = inner node, else primitives in the leaf
+};
+AMRVK_STATIC_ASSERT(sizeof(BvhNodeGpu) == 32);
+
+// One active brick region: a box whose overlapping bricks are abrBrickList[brickBegin ...].
+struct AbrGpu {
+    vec3 lo;          // local voxel units (exact: half-integers)
+    uint brickBegin;
+    vec3 hi;
+    uint brickCount;
+};
+AMRVK_STATIC_ASSERT(sizeof(AbrGpu) == 32);
+
+AMRVK_NAMESPACE_END
+#endif

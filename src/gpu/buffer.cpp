@@ -1,0 +1,145 @@
+#include "gpu/buffer.h"
+
+#include <utility>
+
+#include "gpu/vk_check.h"
+
+namespace amrvk::gpu {
+
+Buffer::Buffer(Context& ctx, uint64_t bytes, MemoryKind kind, std::string name,
+               VkBufferUsageFlags extraUsage)
+    : mCtx(&ctx), mSize(bytes), mName(std::move(name)) {
+    AMRVK_CHECK(bytes > 0, "buffer '", mName, "' has size 0");
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = bytes;
+    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | extraUsage;
+    bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    AMRVK_VK_CHECK(vkCreateBuffer(ctx.device(), &bci, nullptr, &mBuffer));
+    try {
+        VkMemoryRequirements req{};
+        vkGetBufferMemoryRequirements(ctx.device(), mBuffer, &req);
+        uint32_t type = kind == MemoryKind::Device
+                            ? ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
+                            : ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT,
+                                                 VK_MEMORY_PROPERTY_HOST_CACHED_BIT |
+                                                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VkPhysicalDeviceMemoryProperties mp{};
+        vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mp);
+        VkMemoryPropertyFlags flags = mp.memoryTypes[type].propertyFlags;
+        VkMemoryAllocateFlagsInfo flagsInfo{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+        flagsInfo.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+        VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flagsInfo};
+        mai.allocationSize = req.size;
+        mai.memoryTypeIndex = type;
+        VkResult r = vkAllocateMemory(ctx.device(), &mai, nullptr, &mMemory);
+        AMRVK_CHECK(r != VK_ERROR_OUT_OF_DEVICE_MEMORY && r != VK_ERROR_OUT_OF_HOST_MEMORY,
+                    "out of GPU memory allocating '", mName, "' (", bytes, " bytes; ",
+                    ctx.memory().currentBytes(), " bytes already in use)");
+        AMRVK_VK_CHECK(r);
+        AMRVK_VK_CHECK(vkBindBufferMemory(ctx.device(), mBuffer, mMemory, 0));
+        if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+            AMRVK_VK_CHECK(vkMapMemory(ctx.device(), mMemory, 0, VK_WHOLE_SIZE, 0, &mMapped));
+            mCoherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
+        }
+        VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+        ai.buffer = mBuffer;
+        mAddress = vkGetBufferDeviceAddress(ctx.device(), &ai);
+        ctx.setDebugName(VK_OBJECT_TYPE_BUFFER, uint64_t(mBuffer), mName);
+        ctx.memory().add(mName, req.size);
+        mAllocated = req.size;
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+Buffer::~Buffer() { release(); }
+
+void Buffer::release() {
+    if (!mCtx) return;
+    if (mBuffer) vkDestroyBuffer(mCtx->device(), mBuffer, nullptr);
+    if (mMemory) vkFreeMemory(mCtx->device(), mMemory, nullptr);
+    if (mAllocated) mCtx->memory().remove(mName, mAllocated);
+    mAllocated = 0;
+    mBuffer = VK_NULL_HANDLE;
+    mMemory = VK_NULL_HANDLE;
+    mMapped = nullptr;
+    mCtx = nullptr;
+}
+
+Buffer::Buffer(Buffer&& o) noexcept
+    : mCtx(std::exchange(o.mCtx, nullptr)),
+      mBuffer(std::exchange(o.mBuffer, VK_NULL_HANDLE)),
+      mMemory(std::exchange(o.mMemory, VK_NULL_HANDLE)),
+      mAddress(std::exchange(o.mAddress, 0)),
+      mSize(std::exchange(o.mSize, 0)),
+      mAllocated(std::exchange(o.mAllocated, 0)),
+      mMapped(std::exchange(o.mMapped, nullptr)),
+      mCoherent(o.mCoherent),
+      mName(std::move(o.mName)) {}
+
+Buffer& Buffer::operator=(Buffer&& o) noexcept {
+    if (this != &o) {
+        release();
+        mCtx = std::exchange(o.mCtx, nullptr);
+        mBuffer = std::exchange(o.mBuffer, VK_NULL_HANDLE);
+        mMemory = std::exchange(o.mMemory, VK_NULL_HANDLE);
+        mAddress = std::exchange(o.mAddress, 0);
+        mSize = std::exchange(o.mSize, 0);
+        mAllocated = std::exchange(o.mAllocated, 0);
+        mMapped = std::exchange(o.mMapped, nullptr);
+        mCoherent = o.mCoherent;
+        mName = std::move(o.mName);
+    }
+    return *this;
+}
+
+void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
+    AMRVK_CHECK(offset + bytes <= mSize, "upload of ", bytes, " bytes at ", offset, " overflows buffer '",
+                mName, "' of ", mSize, " bytes");
+    if (bytes == 0) return;
+    if (mMapped) {
+        std::memcpy(static_cast<char*>(mMapped) + offset, data, bytes);
+        if (!mCoherent) {
+            VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+            range.memory = mMemory;
+            range.size = VK_WHOLE_SIZE;
+            AMRVK_VK_CHECK(vkFlushMappedMemoryRanges(mCtx->device(), 1, &range));
+        }
+        return;
+    }
+    Buffer staging(*mCtx, bytes, MemoryKind::HostRead, mName + ".staging");
+    staging.upload(data, bytes);
+    mCtx->submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferCopy copy{0, offset, bytes};
+        vkCmdCopyBuffer(cmd, staging.handle(), mBuffer, 1, &copy);
+    });
+}
+
+void Buffer::download(void* data, uint64_t bytes) const {
+    AMRVK_CHECK(bytes <= mSize, "download of ", bytes, " bytes from buffer '", mName, "' of ", mSize, " bytes");
+    if (bytes == 0) return;
+    if (mMapped) {
+        if (!mCoherent) {
+            VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+            range.memory = mMemory;
+            range.size = VK_WHOLE_SIZE;
+            AMRVK_VK_CHECK(vkInvalidateMappedMemoryRanges(mCtx->device(), 1, &range));
+        }
+        std::memcpy(data, mMapped, bytes);
+        return;
+    }
+    Buffer staging(*mCtx, bytes, MemoryKind::HostRead, mName + ".readback");
+    mCtx->submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferCopy copy{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, mBuffer, staging.handle(), 1, &copy);
+    });
+    staging.download(data, bytes);
+}
+
+void Buffer::fillZero() {
+    mCtx->submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, mBuffer, 0, VK_WHOLE_SIZE, 0); });
+}
+
+}  // namespace amrvk::gpu

@@ -1,0 +1,78 @@
+#pragma once
+// A named, move-only Vulkan buffer with its own memory, addressed by buffer device address
+// (shaders reach it through a 64-bit pointer, so no descriptor and no 128 MiB binding limit).
+// Device memory is counted per name in the context's MemoryTracker.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+
+namespace amrvk::gpu {
+
+enum class MemoryKind {
+    Device,    // device-local; filled by upload()
+    HostRead,  // host-visible, cached where possible; for readback
+};
+
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(Context& ctx, uint64_t bytes, MemoryKind kind, std::string name,
+           VkBufferUsageFlags extraUsage = 0);
+    ~Buffer();
+    Buffer(Buffer&& other) noexcept;
+    Buffer& operator=(Buffer&& other) noexcept;
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+
+    VkBuffer handle() const { return mBuffer; }
+    VkDeviceAddress address() const { return mAddress; }
+    uint64_t size() const { return mSize; }
+    const std::string& name() const { return mName; }
+    bool valid() const { return mBuffer != VK_NULL_HANDLE; }
+    // Host pointer when the memory is host-visible, else nullptr.
+    void* mapped() const { return mMapped; }
+
+    // Copies bytes into the buffer (directly if mapped, else through a staging buffer).
+    void upload(const void* data, uint64_t bytes, uint64_t offset = 0);
+    template <typename T>
+    void upload(std::span<const T> values) {
+        upload(values.data(), values.size_bytes());
+    }
+    // Copies the buffer's first `bytes` to host memory.
+    void download(void* data, uint64_t bytes) const;
+    template <typename T>
+    std::vector<T> download() const {
+        std::vector<T> out(mSize / sizeof(T));
+        download(out.data(), out.size() * sizeof(T));
+        return out;
+    }
+    void fillZero();
+
+private:
+    void release();
+    Context* mCtx = nullptr;
+    VkBuffer mBuffer = VK_NULL_HANDLE;
+    VkDeviceMemory mMemory = VK_NULL_HANDLE;
+    VkDeviceAddress mAddress = 0;
+    uint64_t mSize = 0;
+    uint64_t mAllocated = 0;  // bytes counted in the MemoryTracker
+    void* mMapped = nullptr;
+    bool mCoherent = true;
+    std::string mName;
+};
+
+// A device buffer holding `values` (at least 4 bytes so empty arrays still have an address).
+template <typename T>
+Buffer makeBuffer(Context& ctx, std::span<const T> values, const std::string& name) {
+    Buffer b(ctx, std::max<uint64_t>(values.size_bytes(), 16), MemoryKind::Device, name);
+    if (!values.empty()) b.upload(values);
+    return b;
+}
+
+}  // namespace amrvk::gpu

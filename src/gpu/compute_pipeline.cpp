@@ -1,0 +1,150 @@
+#include "gpu/compute_pipeline.h"
+
+#include <utility>
+
+#include "gpu/vk_check.h"
+
+namespace amrvk::gpu {
+
+ComputePipeline::ComputePipeline(Context& ctx, const std::vector<uint32_t>& spirv, std::string name,
+                                 uint32_t pushConstantBytes, const std::vector<SpecConstant>& specialization)
+    : mCtx(&ctx), mPushBytes(pushConstantBytes), mName(std::move(name)) {
+    AMRVK_CHECK(!spirv.empty(), "shader '", mName, "' is empty");
+    AMRVK_CHECK(pushConstantBytes <= ctx.limits().maxPushConstantsSize, "shader '", mName, "' pushes ",
+                pushConstantBytes, " bytes; the device allows ", ctx.limits().maxPushConstantsSize);
+    try {
+        VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        mci.codeSize = spirv.size() * sizeof(uint32_t);
+        mci.pCode = spirv.data();
+        AMRVK_VK_CHECK(vkCreateShaderModule(ctx.device(), &mci, nullptr, &mModule));
+        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+        VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        lci.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
+        lci.pPushConstantRanges = &range;
+        AMRVK_VK_CHECK(vkCreatePipelineLayout(ctx.device(), &lci, nullptr, &mLayout));
+        std::vector<VkSpecializationMapEntry> entries;
+        std::vector<uint32_t> data;
+        for (const auto& s : specialization) {
+            entries.push_back({s.id, uint32_t(data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+            data.push_back(s.value);
+        }
+        VkSpecializationInfo si{uint32_t(entries.size()), entries.data(), data.size() * sizeof(uint32_t),
+                                data.data()};
+        VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        pci.stage.module = mModule;
+        pci.stage.pName = "main";
+        pci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
+        pci.layout = mLayout;
+        AMRVK_VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &pci, nullptr, &mPipeline));
+        ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(mPipeline), mName);
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+ComputePipeline::~ComputePipeline() { release(); }
+
+void ComputePipeline::release() {
+    if (!mCtx) return;
+    if (mPipeline) vkDestroyPipeline(mCtx->device(), mPipeline, nullptr);
+    if (mLayout) vkDestroyPipelineLayout(mCtx->device(), mLayout, nullptr);
+    if (mModule) vkDestroyShaderModule(mCtx->device(), mModule, nullptr);
+    mPipeline = VK_NULL_HANDLE;
+    mLayout = VK_NULL_HANDLE;
+    mModule = VK_NULL_HANDLE;
+    mCtx = nullptr;
+}
+
+ComputePipeline::ComputePipeline(ComputePipeline&& o) noexcept
+    : mCtx(std::exchange(o.mCtx, nullptr)),
+      mModule(std::exchange(o.mModule, VK_NULL_HANDLE)),
+      mLayout(std::exchange(o.mLayout, VK_NULL_HANDLE)),
+      mPipeline(std::exchange(o.mPipeline, VK_NULL_HANDLE)),
+      mPushBytes(o.mPushBytes),
+      mName(std::move(o.mName)) {}
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& o) noexcept {
+    if (this != &o) {
+        release();
+        mCtx = std::exchange(o.mCtx, nullptr);
+        mModule = std::exchange(o.mModule, VK_NULL_HANDLE);
+        mLayout = std::exchange(o.mLayout, VK_NULL_HANDLE);
+        mPipeline = std::exchange(o.mPipeline, VK_NULL_HANDLE);
+        mPushBytes = o.mPushBytes;
+        mName = std::move(o.mName);
+    }
+    return *this;
+}
+
+void ComputePipeline::dispatch(VkCommandBuffer cmd, const void* push, uint32_t gx, uint32_t gy,
+                               uint32_t gz) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline);
+    if (mPushBytes) vkCmdPushConstants(cmd, mLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, mPushBytes, push);
+    vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
+                       VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.memoryBarrierCount = 1;
+    di.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &di);
+}
+
+GpuTimer::GpuTimer(Context& ctx, uint32_t maxScopes) : mCtx(ctx), mMax(maxScopes) {
+    VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qci.queryCount = 2 * maxScopes;
+    AMRVK_VK_CHECK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &mPool));
+}
+
+GpuTimer::~GpuTimer() {
+    if (mPool) vkDestroyQueryPool(mCtx.device(), mPool, nullptr);
+}
+
+void GpuTimer::reset(VkCommandBuffer cmd) {
+    vkCmdResetQueryPool(cmd, mPool, 0, 2 * mMax);
+    mNames.clear();
+}
+
+uint32_t GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
+    AMRVK_CHECK(mNames.size() < mMax, "too many timed GPU scopes (", mMax, ")");
+    uint32_t scope = uint32_t(mNames.size());
+    mNames.push_back(name);
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool, 2 * scope);
+    return scope;
+}
+
+void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool, 2 * scope + 1);
+}
+
+std::vector<std::pair<std::string, double>> GpuTimer::results() const {
+    std::vector<std::pair<std::string, double>> out;
+    if (mNames.empty()) return out;
+    std::vector<uint64_t> ticks(2 * mNames.size());
+    AMRVK_VK_CHECK(vkGetQueryPoolResults(mCtx.device(), mPool, 0, uint32_t(ticks.size()),
+                                         ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                         VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double period = double(mCtx.limits().timestampPeriod) * 1e-9;
+    for (size_t i = 0; i < mNames.size(); ++i)
+        out.emplace_back(mNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * period);
+    return out;
+}
+
+double GpuTimer::total(const std::string& name) const {
+    double s = 0;
+    for (const auto& [n, sec] : results())
+        if (n == name) s += sec;
+    return s;
+}
+
+}  // namespace amrvk::gpu

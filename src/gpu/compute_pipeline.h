@@ -1,0 +1,71 @@
+#pragma once
+// A compute pipeline whose only interface is a push-constant block (buffers are reached by
+// device address) plus specialization constants chosen at creation time.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+
+namespace amrvk::gpu {
+
+struct SpecConstant {
+    uint32_t id;
+    uint32_t value;  // bit pattern: uint, int or float
+};
+
+class ComputePipeline {
+public:
+    ComputePipeline() = default;
+    ComputePipeline(Context& ctx, const std::vector<uint32_t>& spirv, std::string name,
+                    uint32_t pushConstantBytes, const std::vector<SpecConstant>& specialization = {});
+    ~ComputePipeline();
+    ComputePipeline(ComputePipeline&& o) noexcept;
+    ComputePipeline& operator=(ComputePipeline&& o) noexcept;
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    const std::string& name() const { return mName; }
+    bool valid() const { return mPipeline != VK_NULL_HANDLE; }
+    // Binds, pushes `push` (exactly pushConstantBytes) and dispatches the given workgroups.
+    void dispatch(VkCommandBuffer cmd, const void* push, uint32_t groupsX, uint32_t groupsY = 1,
+                  uint32_t groupsZ = 1) const;
+
+private:
+    void release();
+    Context* mCtx = nullptr;
+    VkShaderModule mModule = VK_NULL_HANDLE;
+    VkPipelineLayout mLayout = VK_NULL_HANDLE;
+    VkPipeline mPipeline = VK_NULL_HANDLE;
+    uint32_t mPushBytes = 0;
+    std::string mName;
+};
+
+// A compute-to-compute (and compute-to-transfer) memory barrier on the whole device memory.
+void computeBarrier(VkCommandBuffer cmd);
+
+// Named GPU timestamps: scope(cmd, name) ... end(cmd); results in seconds after the submit.
+class GpuTimer {
+public:
+    GpuTimer(Context& ctx, uint32_t maxScopes = 256);
+    ~GpuTimer();
+    GpuTimer(const GpuTimer&) = delete;
+    GpuTimer& operator=(const GpuTimer&) = delete;
+    void reset(VkCommandBuffer cmd);
+    uint32_t begin(VkCommandBuffer cmd, const std::string& name);
+    void end(VkCommandBuffer cmd, uint32_t scope);
+    // (name, seconds) per scope since the last reset; call after the submit completed.
+    std::vector<std::pair<std::string, double>> results() const;
+    // Sum of the seconds of every scope with this name.
+    double total(const std::string& name) const;
+
+private:
+    Context& mCtx;
+    VkQueryPool mPool = VK_NULL_HANDLE;
+    uint32_t mMax;
+    std::vector<std::string> mNames;
+};
+
+}  // namespace amrvk::gpu

@@ -1,0 +1,394 @@
+#include "gpu/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "gpu/vk_check.h"
+
+namespace amrvk::gpu {
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+const char* typeName(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+        default: return "other";
+    }
+}
+
+int typeRank(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+        default: return 4;
+    }
+}
+
+bool hasExtension(const std::vector<VkExtensionProperties>& exts, const char* name) {
+    return std::any_of(exts.begin(), exts.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice pd) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
+    return exts;
+}
+
+bool validationAvailable() {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    return std::any_of(layers.begin(), layers.end(),
+                       [](const VkLayerProperties& l) { return std::strcmp(l.layerName, kValidationLayer) == 0; });
+}
+
+bool instanceExtensionAvailable(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, exts.data());
+    return hasExtension(exts, name);
+}
+
+VkInstance createInstance(bool validation, bool debugUtils) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "amrvk";
+    app.pEngineName = "amrvk";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers, exts;
+    if (validation) layers.push_back(kValidationLayer);
+    if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = uint32_t(layers.size());
+    ci.ppEnabledLayerNames = layers.data();
+    ci.enabledExtensionCount = uint32_t(exts.size());
+    ci.ppEnabledExtensionNames = exts.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult r = vkCreateInstance(&ci, nullptr, &instance);
+    AMRVK_CHECK(r != VK_ERROR_INCOMPATIBLE_DRIVER,
+                "no Vulkan 1.3 driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+    AMRVK_VK_CHECK(r);
+    return instance;
+}
+
+struct Probe {
+    DeviceReport report;
+    uint32_t queueFamily = 0;
+    VkPhysicalDeviceType type{};
+};
+
+Probe probeDevice(VkPhysicalDevice pd, uint32_t index) {
+    Probe p;
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+    vkGetPhysicalDeviceProperties2(pd, &props);
+    VkPhysicalDeviceMemoryProperties mem{};
+    vkGetPhysicalDeviceMemoryProperties(pd, &mem);
+    DeviceReport& r = p.report;
+    r.index = index;
+    r.name = props.properties.deviceName;
+    r.type = typeName(props.properties.deviceType);
+    p.type = props.properties.deviceType;
+    r.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    uint32_t v = props.properties.apiVersion;
+    r.apiVersion = std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+                   "." + std::to_string(VK_API_VERSION_PATCH(v));
+    for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) r.deviceLocalBytes += mem.memoryHeaps[i].size;
+
+    auto exts = deviceExtensions(pd);
+    VkPhysicalDeviceRayQueryFeaturesKHR rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+    bool rqExts = hasExtension(exts, VK_KHR_RAY_QUERY_EXTENSION_NAME) &&
+                  hasExtension(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
+                  hasExtension(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    if (rqExts) {
+        f13.pNext = &rq;
+        rq.pNext = &as;
+    }
+    VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+    if (v >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(pd, &f);
+    r.rayQuery = rqExts && rq.rayQuery && as.accelerationStructure;
+
+    uint32_t qn = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
+    std::vector<VkQueueFamilyProperties> qs(qn);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qs.data());
+    bool compute = false;
+    for (uint32_t i = 0; i < qn && !compute; ++i)
+        if ((qs[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && qs[i].timestampValidBits > 0) {
+            p.queueFamily = i;
+            compute = true;
+        }
+
+    if (v < VK_API_VERSION_1_3) r.rejectReason = "Vulkan " + r.apiVersion + " < 1.3";
+    else if (!f12.bufferDeviceAddress) r.rejectReason = "no bufferDeviceAddress";
+    else if (!f12.scalarBlockLayout) r.rejectReason = "no scalarBlockLayout";
+    else if (!f13.synchronization2) r.rejectReason = "no synchronization2";
+    else if (!f.features.shaderInt64) r.rejectReason = "no shaderInt64";
+    else if (!compute) r.rejectReason = "no compute queue with timestamps";
+    r.usable = r.rejectReason.empty();
+    return p;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    uint32_t n = 0;
+    AMRVK_VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
+    std::vector<VkPhysicalDevice> pds(n);
+    AMRVK_VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, pds.data()));
+    return pds;
+}
+
+}  // namespace
+
+std::vector<DeviceReport> listDevices() {
+    VkInstance instance = createInstance(false, false);
+    std::vector<DeviceReport> out;
+    auto pds = physicalDevices(instance);
+    for (uint32_t i = 0; i < pds.size(); ++i) out.push_back(probeDevice(pds[i], i).report);
+    vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+void MemoryTracker::add(const std::string& name, uint64_t bytes) {
+    std::lock_guard lock(mMutex);
+    mBytes[name] += bytes;
+    mCurrent += bytes;
+    mPeak = std::max(mPeak, mCurrent);
+}
+
+void MemoryTracker::remove(const std::string& name, uint64_t bytes) {
+    std::lock_guard lock(mMutex);
+    auto it = mBytes.find(name);
+    if (it != mBytes.end()) {
+        it->second -= std::min(it->second, bytes);
+        if (it->second == 0) mBytes.erase(it);
+    }
+    mCurrent -= std::min(mCurrent, bytes);
+}
+
+std::map<std::string, uint64_t> MemoryTracker::perResource() const {
+    std::lock_guard lock(mMutex);
+    return mBytes;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* self = static_cast<Context*>(user);
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        ++self->mValidationErrors;
+        self->mLastValidationMessage = data->pMessage ? data->pMessage : "";
+        std::fprintf(stderr, "amrvk: Vulkan validation error: %s\n", self->mLastValidationMessage.c_str());
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        std::fprintf(stderr, "amrvk: Vulkan validation warning: %s\n", data->pMessage ? data->pMessage : "");
+    }
+    return VK_FALSE;
+}
+
+Context::Context(const ContextOptions& options) {
+    bool validation = options.validation;
+    if (const char* env = std::getenv("AMRVK_VALIDATION"); env && std::strcmp(env, "1") == 0) validation = true;
+    if (validation)
+        AMRVK_CHECK(validationAvailable(), "Vulkan validation requested but ", kValidationLayer,
+                    " is not installed (apt-get install vulkan-validationlayers)");
+    mDebugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    mInstance = createInstance(validation, mDebugUtils);
+    try {
+        if (validation && mDebugUtils) {
+            VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+            mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
+                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+            mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+            mci.pfnUserCallback = &Context::onValidationMessage;
+            mci.pUserData = this;
+            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(mInstance, "vkCreateDebugUtilsMessengerEXT"));
+            AMRVK_CHECK(create, "vkCreateDebugUtilsMessengerEXT is not available");
+            AMRVK_VK_CHECK(create(mInstance, &mci, nullptr, &mMessenger));
+        }
+
+        auto pds = physicalDevices(mInstance);
+        AMRVK_CHECK(!pds.empty(), "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+        std::vector<Probe> probes;
+        for (uint32_t i = 0; i < pds.size(); ++i) probes.push_back(probeDevice(pds[i], i));
+        int chosen = -1;
+        auto describe = [](const Probe& p) { return p.report.name + ": " + p.report.rejectReason; };
+        if (!options.device.empty()) {
+            bool numeric = std::all_of(options.device.begin(), options.device.end(), ::isdigit);
+            for (size_t i = 0; i < probes.size() && chosen < 0; ++i) {
+                bool match = numeric ? std::to_string(i) == options.device
+                                     : lower(probes[i].report.name).find(lower(options.device)) != std::string::npos;
+                if (!match) continue;
+                AMRVK_CHECK(probes[i].report.usable, "--device ", options.device, ": ", describe(probes[i]));
+                AMRVK_CHECK(!options.requireRayQuery || probes[i].report.rayQuery, "--device ", options.device,
+                            ": ", probes[i].report.name, " has no VK_KHR_ray_query");
+                chosen = int(i);
+            }
+            AMRVK_CHECK(chosen >= 0, "--device ", options.device, ": no such device (see amrvk devices)");
+        } else {
+            for (size_t i = 0; i < probes.size(); ++i) {
+                const Probe& p = probes[i];
+                if (!p.report.usable || (options.requireRayQuery && !p.report.rayQuery)) continue;
+                if (chosen < 0 || typeRank(p.type) < typeRank(probes[size_t(chosen)].type)) chosen = int(i);
+            }
+            if (chosen < 0) {
+                std::string reasons;
+                for (const auto& p : probes) reasons += (reasons.empty() ? "" : "; ") + describe(p);
+                AMRVK_CHECK(false, "no usable Vulkan device (", reasons, ")");
+            }
+        }
+        const Probe& pick = probes[size_t(chosen)];
+        mPhysical = pds[size_t(chosen)];
+        mReport = pick.report;
+        mQueueFamily = pick.queueFamily;
+        mRayQuery = pick.report.rayQuery;
+        VkPhysicalDeviceProperties props{};
+        vkGetPhysicalDeviceProperties(mPhysical, &props);
+        mLimits = props.limits;
+        vkGetPhysicalDeviceMemoryProperties(mPhysical, &mMemoryProperties);
+
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qci.queueFamilyIndex = mQueueFamily;
+        qci.queueCount = 1;
+        qci.pQueuePriorities = &priority;
+        VkPhysicalDeviceRayQueryFeaturesKHR rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+        VkPhysicalDeviceAccelerationStructureFeaturesKHR as{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+        VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+        VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+        f.features.shaderInt64 = VK_TRUE;
+        f12.bufferDeviceAddress = VK_TRUE;
+        f12.scalarBlockLayout = VK_TRUE;
+        f13.synchronization2 = VK_TRUE;
+        std::vector<const char*> exts;
+        if (mRayQuery) {
+            f13.pNext = &rq;
+            rq.pNext = &as;
+            rq.rayQuery = VK_TRUE;
+            as.accelerationStructure = VK_TRUE;
+            exts = {VK_KHR_RAY_QUERY_EXTENSION_NAME, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                    VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+        }
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f};
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &qci;
+        dci.enabledExtensionCount = uint32_t(exts.size());
+        dci.ppEnabledExtensionNames = exts.data();
+        AMRVK_VK_CHECK(vkCreateDevice(mPhysical, &dci, nullptr, &mDevice));
+        vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
+
+        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        pci.queueFamilyIndex = mQueueFamily;
+        AMRVK_VK_CHECK(vkCreateCommandPool(mDevice, &pci, nullptr, &mCommandPool));
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        AMRVK_VK_CHECK(vkCreateFence(mDevice, &fci, nullptr, &mFence));
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+Context::~Context() { release(); }
+
+void Context::release() {
+    if (mDevice) {
+        vkDeviceWaitIdle(mDevice);
+        if (mFence) vkDestroyFence(mDevice, mFence, nullptr);
+        if (mCommandPool) vkDestroyCommandPool(mDevice, mCommandPool, nullptr);
+        vkDestroyDevice(mDevice, nullptr);
+        mDevice = VK_NULL_HANDLE;
+    }
+    if (mMessenger) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(mInstance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(mInstance, mMessenger, nullptr);
+        mMessenger = VK_NULL_HANDLE;
+    }
+    if (mInstance) {
+        vkDestroyInstance(mInstance, nullptr);
+        mInstance = VK_NULL_HANDLE;
+    }
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = mCommandPool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    AMRVK_VK_CHECK(vkAllocateCommandBuffers(mDevice, &ai, &cmd));
+    struct Free {
+        VkDevice d;
+        VkCommandPool p;
+        VkCommandBuffer c;
+        ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
+    } guard{mDevice, mCommandPool, cmd};
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    AMRVK_VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+    record(cmd);
+    AMRVK_VK_CHECK(vkEndCommandBuffer(cmd));
+    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cbi.commandBuffer = cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &cbi;
+    AMRVK_VK_CHECK(vkResetFences(mDevice, 1, &mFence));
+    AMRVK_VK_CHECK(vkQueueSubmit2(mQueue, 1, &si, mFence));
+    AMRVK_VK_CHECK(vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, UINT64_MAX));
+}
+
+uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                                 VkMemoryPropertyFlags preferred) const {
+    for (int pass = 0; pass < 2; ++pass) {
+        VkMemoryPropertyFlags want = pass == 0 ? (required | preferred) : required;
+        for (uint32_t i = 0; i < mMemoryProperties.memoryTypeCount; ++i)
+            if ((typeBits & (1u << i)) && (mMemoryProperties.memoryTypes[i].propertyFlags & want) == want)
+                return i;
+    }
+    AMRVK_CHECK(false, "no Vulkan memory type with the required properties");
+    return 0;
+}
+
+void Context::setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const {
+    if (!mDebugUtils || !mMessenger) return;
+    static PFN_vkSetDebugUtilsObjectNameEXT setName = nullptr;
+    if (!setName)
+        setName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(mInstance, "vkSetDebugUtilsObjectNameEXT"));
+    if (!setName) return;
+    VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+    ni.objectType = type;
+    ni.objectHandle = handle;
+    ni.pObjectName = name.c_str();
+    setName(mDevice, &ni);
+}
+
+}  // namespace amrvk::gpu

@@ -1,0 +1,103 @@
+#pragma once
+// The Vulkan instance and device amrvk computes on. Knows nothing about AMR.
+//  - Device selection: --device INDEX|NAME, else the first discrete GPU, else integrated, else
+//    any (lavapipe). Every device is reported with type, driver, memory, ray-query support and, if
+//    unusable, why (listDevices()).
+//  - Required: Vulkan 1.3 features bufferDeviceAddress, synchronization2, scalarBlockLayout,
+//    shaderInt64. Optional: rayQuery + accelerationStructure (hasRayQuery()).
+//  - Validation: the Khronos layer with a messenger that counts errors (tests fail on any).
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace amrvk::gpu {
+
+struct ContextOptions {
+    std::string device;       // "" = automatic; a decimal index or a case-insensitive name part
+    bool validation = false;  // also on when AMRVK_VALIDATION=1
+    bool requireRayQuery = false;
+};
+
+struct DeviceReport {
+    uint32_t index = 0;
+    std::string name, type, driver, apiVersion;
+    uint64_t deviceLocalBytes = 0;
+    bool rayQuery = false;
+    bool usable = false;
+    std::string rejectReason;  // empty when usable
+};
+
+// Enumerates every physical device with the reason it cannot be used, if any.
+std::vector<DeviceReport> listDevices();
+
+// Device memory per named resource: current and peak bytes.
+class MemoryTracker {
+public:
+    void add(const std::string& name, uint64_t bytes);
+    void remove(const std::string& name, uint64_t bytes);
+    uint64_t currentBytes() const { return mCurrent; }
+    uint64_t peakBytes() const { return mPeak; }
+    std::map<std::string, uint64_t> perResource() const;
+
+private:
+    mutable std::mutex mMutex;
+    std::map<std::string, uint64_t> mBytes;
+    uint64_t mCurrent = 0, mPeak = 0;
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return mInstance; }
+    VkPhysicalDevice physicalDevice() const { return mPhysical; }
+    VkDevice device() const { return mDevice; }
+    VkQueue queue() const { return mQueue; }
+    uint32_t queueFamily() const { return mQueueFamily; }
+    const DeviceReport& deviceReport() const { return mReport; }
+    const VkPhysicalDeviceLimits& limits() const { return mLimits; }
+    bool hasRayQuery() const { return mRayQuery; }
+    bool validationEnabled() const { return mMessenger != VK_NULL_HANDLE; }
+    uint64_t validationErrors() const { return mValidationErrors; }
+    const std::string& lastValidationMessage() const { return mLastValidationMessage; }
+    MemoryTracker& memory() { return mMemory; }
+
+    // Records with `record`, submits to the queue and waits for completion.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+    uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                            VkMemoryPropertyFlags preferred = 0) const;
+    void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
+
+private:
+    void release();
+    static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+    VkInstance mInstance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT mMessenger = VK_NULL_HANDLE;
+    VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
+    VkDevice mDevice = VK_NULL_HANDLE;
+    VkQueue mQueue = VK_NULL_HANDLE;
+    uint32_t mQueueFamily = 0;
+    VkCommandPool mCommandPool = VK_NULL_HANDLE;
+    VkFence mFence = VK_NULL_HANDLE;
+    VkPhysicalDeviceLimits mLimits{};
+    VkPhysicalDeviceMemoryProperties mMemoryProperties{};
+    DeviceReport mReport;
+    bool mRayQuery = false;
+    bool mDebugUtils = false;
+    uint64_t mValidationErrors = 0;
+    std::string mLastValidationMessage;
+    MemoryTracker mMemory;
+};
+
+}  // namespace amrvk::gpu

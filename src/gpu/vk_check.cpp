@@ -1,0 +1,32 @@
+#include "gpu/vk_check.h"
+
+namespace amrvk::gpu {
+
+const char* resultName(VkResult result) {
+    switch (result) {
+#define AMRVK_CASE(r) \
+    case r: return #r;
+        AMRVK_CASE(VK_SUCCESS)
+        AMRVK_CASE(VK_NOT_READY)
+        AMRVK_CASE(VK_TIMEOUT)
+        AMRVK_CASE(VK_INCOMPLETE)
+        AMRVK_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        AMRVK_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        AMRVK_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        AMRVK_CASE(VK_ERROR_DEVICE_LOST)
+        AMRVK_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        AMRVK_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        AMRVK_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        AMRVK_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        AMRVK_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        AMRVK_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        AMRVK_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        AMRVK_CASE(VK_ERROR_FRAGMENTED_POOL)
+        AMRVK_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        AMRVK_CASE(VK_ERROR_INVALID_SHADER_NV)
+#undef AMRVK_CASE
+        default: return "an unknown VkResult";
+    }
+}
+
+}  // namespace amrvk::gpu
