@@ -13,7 +13,7 @@ struct FieldSample {
     bool inside;      // p lies in a leaf cell (the medium); outside it extinction is 0
 };
 
-void addBrickContribution(RenderParams P, uint brickId, vec3 p, inout float sumW, inout float sumWV,
+void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float sumWV,
                           inout bool inside) {
     BrickGpu b = BrickRef(P.bricks).v[brickId];
     float w = float(1 << b.lowerLevel.w);
@@ -47,12 +47,12 @@ bool boxContains(vec3 lo, vec3 hi, vec3 p) {
 }
 
 // Evaluates the bricks of one ABR (no lookup: used when traversal already knows the ABR).
-FieldSample sampleInAbr(RenderParams P, uint abrId, vec3 p) {
+FieldSample sampleInAbr(uint abrId, vec3 p) {
     AbrGpu a = AbrRef(P.abrs).v[abrId];
     float sumW = 0.0, sumWV = 0.0;
     bool inside = false;
     UintRef list = UintRef(P.abrBrickList);
-    for (uint i = 0; i < a.brickCount; ++i) addBrickContribution(P, list.v[a.brickBegin + i], p, sumW, sumWV, inside);
+    for (uint i = 0; i < a.brickCount; ++i) addBrickContribution(list.v[a.brickBegin + i], p, sumW, sumWV, inside);
     FieldSample s;
     s.weightSum = sumW;
     s.value = sumW > 0.0 ? sumWV / sumW : 0.0;
@@ -60,7 +60,7 @@ FieldSample sampleInAbr(RenderParams P, uint abrId, vec3 p) {
     return s;
 }
 
-FieldSample sampleField(RenderParams P, uint samplerKind, vec3 p) {
+FieldSample sampleField(uint samplerKind, vec3 p) {
     BvhRef nodes = BvhRef(P.samplerNodes);
     UintRef prims = UintRef(P.samplerPrims);
     float sumW = 0.0, sumWV = 0.0;
@@ -79,10 +79,10 @@ FieldSample sampleField(RenderParams P, uint samplerKind, vec3 p) {
         for (uint i = 0; i < n.count; ++i) {
             uint prim = prims.v[n.first + i];
             if (samplerKind == kSamplerExtBrick) {
-                addBrickContribution(P, prim, p, sumW, sumWV, inside);
+                addBrickContribution(prim, p, sumW, sumWV, inside);
             } else {
                 AbrGpu a = AbrRef(P.abrs).v[prim];
-                if (boxContains(a.lo, a.hi, p)) return sampleInAbr(P, prim, p);
+                if (boxContains(a.lo, a.hi, p)) return sampleInAbr(prim, p);
             }
         }
     }

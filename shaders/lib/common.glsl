@@ -22,4 +22,9 @@ layout(buffer_reference, scalar) readonly buffer AbrRef { AbrGpu v[]; };
 
 const float kInf = 1.0 / 0.0;
 
+// The pass's RenderParams, read field by field where used (copying the whole struct into every
+// invocation costs registers). Each entry point sets gParams first.
+ParamsRef gParams;
+#define P (gParams.p)
+
 #endif

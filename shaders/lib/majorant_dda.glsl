@@ -30,7 +30,7 @@ bool clipRay(vec3 lo, vec3 hi, vec3 o, vec3 d, inout float tMin, inout float tMa
     return tMin <= tMax;
 }
 
-bool ddaInit(RenderParams P, vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
+bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
     vec3 lo = P.gridOrigin.xyz;
     vec3 size = P.gridCellSize.xyz;
     ivec3 dims = P.gridDims.xyz;
@@ -59,7 +59,7 @@ bool ddaInit(RenderParams P, vec3 o, vec3 d, float tMin, float tMax, out DdaStat
 }
 
 // Next segment: macrocell index and [t0, t1]; false when the ray has left the grid.
-bool ddaNext(RenderParams P, inout DdaState s, out uint cellIndex, out float t0, out float t1) {
+bool ddaNext(inout DdaState s, out uint cellIndex, out float t0, out float t1) {
     ivec3 dims = P.gridDims.xyz;
     if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
     float tExit = min(min(s.tNext.x, s.tNext.y), s.tNext.z);

@@ -14,41 +14,41 @@ struct Counters {
 };
 
 // Extinction (per voxel unit) and TF colour at local point p.
-float extinctionAt(RenderParams P, vec3 p, uint samplerKind, inout Counters c, out vec4 tfColor) {
+float extinctionAt(vec3 p, uint samplerKind, inout Counters c, out vec4 tfColor) {
     c.lookups++;
-    FieldSample s = sampleField(P, samplerKind, p);
+    FieldSample s = sampleField(samplerKind, p);
     if (!s.inside) {
         tfColor = vec4(0.0);
         return 0.0;
     }
-    tfColor = evalTf(P, s.value);
+    tfColor = evalTf(s.value);
     return tfColor.a * P.boundsHi.w * P.boundsLo.w;
 }
 
-float majorantOf(RenderParams P, uint cell) {
+float majorantOf(uint cell) {
     return FloatRef(P.gridMajorants).v[cell] * P.boundsHi.w * P.boundsLo.w;
 }
 
 // Samples a real collision along o + t d, t in [0, tMax]. Returns true with its distance and TF colour.
-bool deltaTrack(RenderParams P, vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
+bool deltaTrack(vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
                 inout Counters c, out float tHit, out vec4 tfHit) {
     DdaState s;
     tHit = tMax;
     tfHit = vec4(0.0);
-    if (!ddaInit(P, o, d, 0.0, tMax, s)) return false;
+    if (!ddaInit(o, d, 0.0, tMax, s)) return false;
     uint cell;
     float t0, t1;
     uint budget = kMaxTrackingSteps;
-    while (ddaNext(P, s, cell, t0, t1)) {
+    while (ddaNext(s, cell, t0, t1)) {
         c.steps++;
-        float maj = majorantOf(P, cell);
+        float maj = majorantOf(cell);
         if (!(maj > 0.0)) continue;
         float t = t0;
         while (budget-- > 0u) {
             t -= log(1.0 - rand(rng)) / maj;
             if (t >= t1) break;
             vec4 tfc;
-            float sigma = extinctionAt(P, o + d * t, samplerKind, c, tfc);
+            float sigma = extinctionAt(o + d * t, samplerKind, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
             if (rand(rng) * maj < sigma) {
                 c.real++;
@@ -67,24 +67,24 @@ bool deltaTrack(RenderParams P, vec3 o, vec3 d, float tMax, uint samplerKind, in
 }
 
 // Unbiased estimate of the transmittance along o + t d, t in [0, tMax]; Russian roulette below 0.05.
-float ratioTrack(RenderParams P, vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
+float ratioTrack(vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
                  inout Counters c) {
     DdaState s;
-    if (!ddaInit(P, o, d, 0.0, tMax, s)) return 1.0;
+    if (!ddaInit(o, d, 0.0, tMax, s)) return 1.0;
     float tr = 1.0;
     uint cell;
     float t0, t1;
     uint budget = kMaxTrackingSteps;
-    while (ddaNext(P, s, cell, t0, t1)) {
+    while (ddaNext(s, cell, t0, t1)) {
         c.steps++;
-        float maj = majorantOf(P, cell);
+        float maj = majorantOf(cell);
         if (!(maj > 0.0)) continue;
         float t = t0;
         while (budget-- > 0u) {
             t -= log(1.0 - rand(rng)) / maj;
             if (t >= t1) break;
             vec4 tfc;
-            float sigma = extinctionAt(P, o + d * t, samplerKind, c, tfc);
+            float sigma = extinctionAt(o + d * t, samplerKind, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
             tr *= max(0.0, 1.0 - sigma / maj);
             c.nulls++;

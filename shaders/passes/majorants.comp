@@ -8,10 +8,10 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 layout(local_size_x = 64) in;
 
 void main() {
-    RenderParams P = ParamsRef(pc.params).p;
+    gParams = ParamsRef(pc.params);
     uint i = gl_GlobalInvocationID.x;
     uint count = uint(P.gridDims.x * P.gridDims.y * P.gridDims.z);
     if (i >= count) return;
     vec2 range = Vec2Ref(P.gridRanges).v[i];
-    FloatRW(P.gridMajorants).v[i] = tfMaxAlpha(P, range.x, range.y);
+    FloatRW(P.gridMajorants).v[i] = tfMaxAlpha(range.x, range.y);
 }

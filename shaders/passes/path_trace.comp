@@ -18,11 +18,11 @@ layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;
 
 // Radiance arriving at p from light k (k == lightCount means the ambient environment, sampled
 // through the phase function) times the phase function, with a ratio-tracked shadow ray.
-vec3 lightContribution(RenderParams P, vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, inout Counters c) {
+vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, inout Counters c) {
     float g = P.shading.x;
     if (k == lightCount) {
         vec3 wi = sampleHenyeyGreenstein(d, g, rand(rng), rand(rng));  // phase / pdf = 1
-        return P.ambient.rgb * ratioTrack(P, p, wi, kInf, kSampler, rng, c);
+        return P.ambient.rgb * ratioTrack(p, wi, kInf, kSampler, rng, c);
     }
     LightGpu L = P.lights[k];
     vec3 wi;
@@ -38,29 +38,29 @@ vec3 lightContribution(RenderParams P, vec3 p, vec3 d, uint k, uint lightCount, 
         wi = normalize(L.posOrDir.xyz);
         dist = kInf;
     }
-    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(P, p, wi, dist, kSampler, rng, c);
+    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(p, wi, dist, kSampler, rng, c);
 }
 
-vec3 radiance(RenderParams P, vec3 o, vec3 d, inout uint rng, inout Counters c) {
+vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     float tHit;
     vec4 tf;
     if (kMode == kModeAe) {
-        return deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
+        return deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
     }
     uint deltaLights = uint(P.shading.y);
     if (kMode == kModeSs) {
-        if (!deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf)) return P.background.rgb;
+        if (!deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf)) return P.background.rgb;
         bool ambientOn = any(greaterThan(P.ambient.rgb, vec3(0.0)));
         uint n = deltaLights + (ambientOn ? 1u : 0u);
         if (n == 0u) return vec3(0.0);
         uint k = min(uint(rand(rng) * float(n)), n - 1u);
-        return tf.rgb * float(n) * lightContribution(P, o + d * tHit, d, k, deltaLights, rng, c);
+        return tf.rgb * float(n) * lightContribution(o + d * tHit, d, k, deltaLights, rng, c);
     }
     // Multiple scattering: the environment is reached only by escaping rays; point and
     // directional lights (never hit by rays) by next-event estimation at every collision.
     vec3 throughput = vec3(1.0), L = vec3(0.0);
     for (uint bounce = 0u;; ++bounce) {
-        if (!deltaTrack(P, o, d, kInf, kSampler, rng, c, tHit, tf)) {
+        if (!deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf)) {
             L += throughput * (bounce == 0u ? P.background.rgb : P.ambient.rgb);
             break;
         }
@@ -72,7 +72,7 @@ vec3 radiance(RenderParams P, vec3 o, vec3 d, inout uint rng, inout Counters c) 
         o += d * tHit;
         if (deltaLights > 0u) {
             uint k = min(uint(rand(rng) * float(deltaLights)), deltaLights - 1u);
-            L += throughput * float(deltaLights) * lightContribution(P, o, d, k, deltaLights, rng, c);
+            L += throughput * float(deltaLights) * lightContribution(o, d, k, deltaLights, rng, c);
         }
         float q = max(throughput.r, max(throughput.g, throughput.b));
         if (!(q > 0.0)) break;
@@ -87,7 +87,7 @@ vec3 radiance(RenderParams P, vec3 o, vec3 d, inout uint rng, inout Counters c) 
 }
 
 void main() {
-    RenderParams P = ParamsRef(pc.params).p;
+    gParams = ParamsRef(pc.params);
     uvec2 pix = gl_GlobalInvocationID.xy;
     bool inImage = pix.x < P.image.x && pix.y < P.image.y;
     Counters c = Counters(0u, 0u, 0u, 0u, 0u);
@@ -97,7 +97,7 @@ void main() {
         uint rng = seedRng(pixel, pc.frameIndex, P.image.z);
         vec2 jitter = vec2(rand(rng), rand(rng));
         vec3 d = normalize(P.dir00.xyz + (float(pix.x) + jitter.x) * P.du.xyz + (float(pix.y) + jitter.y) * P.dv.xyz);
-        vec3 L = radiance(P, P.eye.xyz, d, rng, c);
+        vec3 L = radiance(P.eye.xyz, d, rng, c);
         if (any(isnan(L)) || any(isinf(L))) {
             L = vec3(0.0);
             nanSamples = 1u;

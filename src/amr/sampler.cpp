@@ -47,6 +47,28 @@ Sample ReferenceSampler::sample(glm::dvec3 p) const {
     return s;
 }
 
+bool ReferenceSampler::insideLeafCell(glm::dvec3 p) const {
+    for (int32_t level : mHash.levels()) {
+        const double w = double(cellWidth(level));
+        glm::dvec3 k = glm::floor(p / w);
+        // A point on a face belongs to the cells on both sides: try the lower neighbours too.
+        for (int c = 0; c < 8; ++c) {
+            glm::dvec3 kk = k - glm::dvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            bool onFace = true;
+            for (int a = 0; a < 3; ++a)
+                if (((c >> a) & 1) && p[a] != k[a] * w) onFace = false;
+            if (!onFace) continue;
+            glm::dvec3 lower = kk * w;
+            if (glm::any(glm::lessThan(lower, glm::dvec3(INT32_MIN))) ||
+                glm::any(glm::greaterThan(lower, glm::dvec3(INT32_MAX))))
+                continue;
+            uint32_t idx = mHash.find(glm::ivec3(lower), level);
+            if (idx != CellHash::kNone && !std::isnan(mField.values[idx])) return true;
+        }
+    }
+    return false;
+}
+
 void ReferenceSampler::contributingRange(glm::dvec3 p, float& lo, float& hi) const {
     lo = std::numeric_limits<float>::infinity();
     hi = -lo;

@@ -25,6 +25,8 @@ public:
     ReferenceSampler(const Model& model, const Field& field);
     // P in voxel space. NaN values (a model loaded with --nan drop has none) are skipped.
     Sample sample(glm::dvec3 p) const;
+    // True when p lies in a leaf cell (closed box), i.e. in the medium.
+    bool insideLeafCell(glm::dvec3 p) const;
     // Range of the values of the cells with positive weight at p (empty: lo > hi).
     void contributingRange(glm::dvec3 p, float& lo, float& hi) const;
 

@@ -8,5 +8,7 @@ namespace amrvk::cli {
 int runInfo(const std::vector<std::string>& args);
 int runGen(const std::vector<std::string>& args);
 int runConvert(const std::vector<std::string>& args);
+int runRender(const std::vector<std::string>& args);
+int runDevices(const std::vector<std::string>& args);
 
 }  // namespace amrvk::cli

@@ -17,6 +17,8 @@ const char* kUsage =
     "  amrvk info <input> [--field NAME] [--json]   describe a data set and build its bricks/ABRs\n"
     "  amrvk gen <kind> --cells N --seed S -o BASE  write synthetic AMR (.cells/.scalars)\n"
     "  amrvk convert <input> -o BASE               convert any input to ExaBrick .cells/.scalars\n"
+    "  amrvk render <input> [-o out.png] [options]  path-trace the data on a Vulkan device\n"
+    "  amrvk devices [--json]                      list Vulkan devices and why any is unusable\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
     "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to override)\n";
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
         if (command == "info") return amrvk::cli::runInfo(args);
         if (command == "gen") return amrvk::cli::runGen(args);
         if (command == "convert") return amrvk::cli::runConvert(args);
+        if (command == "render") return amrvk::cli::runRender(args);
+        if (command == "devices") return amrvk::cli::runDevices(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const amrvk::Error& e) {

@@ -10,17 +10,17 @@ const uint kMaxSegs = 64u;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= tp.rayCount) return;
-    RenderParams P = ParamsRef(tp.params).p;
+    gParams = ParamsRef(tp.params);
     Vec4Ref rays = Vec4Ref(tp.rays);
     vec4 o = rays.v[2u * i], d = rays.v[2u * i + 1u];
     FloatRW out_ = FloatRW(tp.outAddr);
     uint base = i * (1u + 3u * kMaxSegs);
     uint n = 0u;
     DdaState s;
-    if (ddaInit(P, o.xyz, d.xyz, o.w, d.w, s)) {
+    if (ddaInit(o.xyz, d.xyz, o.w, d.w, s)) {
         uint cell;
         float t0, t1;
-        while (n < kMaxSegs && ddaNext(P, s, cell, t0, t1)) {
+        while (n < kMaxSegs && ddaNext(s, cell, t0, t1)) {
             out_.v[base + 1u + 3u * n] = uintBitsToFloat(cell);
             out_.v[base + 2u + 3u * n] = t0;
             out_.v[base + 3u + 3u * n] = t1;

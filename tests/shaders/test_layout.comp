@@ -6,7 +6,7 @@ layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAd
 layout(local_size_x = 1) in;
 
 void main() {
-    RenderParams P = ParamsRef(tp.params).p;
+    gParams = ParamsRef(tp.params);
     UintRW o = UintRW(tp.outAddr);
     uint k = 0u;
     o.v[k++] = floatBitsToUint(P.eye.x);

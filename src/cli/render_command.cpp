@@ -1,0 +1,256 @@
+// amrvk render: path-trace an AMR data set on a Vulkan device; amrvk devices: list devices.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "amr/readers.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/read_options.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "core/progress.h"
+#include "core/stats.h"
+#include "gpu/context.h"
+#include "gpu/shader_library.h"
+#include "render/image_io.h"
+#include "render/renderer.h"
+
+namespace amrvk::cli {
+
+namespace {
+
+const char* kRenderHelp =
+    "usage: amrvk render <input> [options]\n"
+    "\n"
+    "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel\n"
+    "per dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width;\n"
+    "albedo = TF colour. Traversal: macrocell grid DDA; sampling: ext-brick or abr.\n"
+    "\n"
+    "options:\n";
+
+glm::dvec3 vec3Of(const std::vector<std::string>& v, size_t at, const std::string& opt) {
+    return {parseDouble(opt, v[at]), parseDouble(opt, v[at + 1]), parseDouble(opt, v[at + 2])};
+}
+
+void parseSize(const std::string& text, int& w, int& h) {
+    int a = 0, b = 0;
+    char x = 0, tail = 0;
+    int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
+    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384,
+                "--size '", text, "': expected WxH with 1 <= W, H <= 16384");
+    w = a;
+    h = b;
+}
+
+class ProgressBar {
+public:
+    explicit ProgressBar(bool enabled) : mEnabled(enabled) {}
+    void update(uint32_t done, uint32_t total) {
+        if (!mEnabled) return;
+        double now = mTimer.seconds();
+        if (done != total && now - mLast < 0.1) return;
+        mLast = now;
+        int width = 30, filled = int(double(width) * done / total);
+        std::fprintf(stderr, "\ramrvk: render [%.*s%*s] %u/%u spp  %.1f s", filled,
+                     "##############################", width - filled, "", done, total, now);
+        if (done == total) std::fputc('\n', stderr);
+        std::fflush(stderr);
+    }
+
+private:
+    bool mEnabled;
+    Timer mTimer;
+    double mLast = -1;
+};
+
+}  // namespace
+
+int runDevices(const std::vector<std::string>& argv) {
+    std::vector<OptionSpec> specs = {{"json", 0, "", "print a JSON array"}, {"help", 0, "", "show this help"}};
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("usage: amrvk devices [--json]\n\nLists every Vulkan device: index, name, type, driver, "
+                        "device-local memory, ray-query support, and why an unusable one is rejected.\n\n%s",
+                        formatOptions(specs).c_str());
+            return 0;
+        }
+    Args args("devices", argv, specs, 0, 0);
+    auto devices = gpu::listDevices();
+    if (args.has("json")) {
+        JsonWriter j;
+        j.beginArray();
+        for (const auto& d : devices) {
+            j.beginObject().member("index", d.index).member("name", d.name).member("type", d.type);
+            j.member("driver", d.driver).member("apiVersion", d.apiVersion);
+            j.member("deviceLocalBytes", d.deviceLocalBytes).member("rayQuery", d.rayQuery);
+            j.member("usable", d.usable).member("rejectReason", d.rejectReason).endObject();
+        }
+        j.endArray();
+        std::printf("%s\n", j.str().c_str());
+        return 0;
+    }
+    for (const auto& d : devices)
+        std::printf("%u: %s (%s), driver %s, Vulkan %s, %.1f GiB device-local, ray query %s%s\n", d.index,
+                    d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
+                    double(d.deviceLocalBytes) / (1 << 30), d.rayQuery ? "yes" : "no",
+                    d.usable ? "" : (", unusable: " + d.rejectReason).c_str());
+    if (devices.empty()) std::printf("no Vulkan devices\n");
+    return 0;
+}
+
+int runRender(const std::vector<std::string>& argv) {
+    std::vector<OptionSpec> specs = readOptionSpecs(false);
+    auto add = [&](OptionSpec s) { specs.push_back(std::move(s)); };
+    add({"tf", 1, "FILE|PRESET", "transfer function: ParaView preset JSON, .xf, or a preset (ramp, grey, spiky, foggy, constant, empty); default ramp over the field's range"});
+    add({"tf-preset", 1, "NAME", "preset name inside a ParaView JSON file (default: the first)"});
+    add({"tf-range", 2, "LO HI", "map the TF's node range onto [LO, HI] (presets: default the field's range)"});
+    add({"mode", 1, "ae|ss|ms", "absorption+emission, single or multiple scattering (default ms)"});
+    add({"sampler", 1, "ext-brick|abr", "sample reconstruction structure (default ext-brick)"});
+    add({"traversal", 1, "grid-dda", "majorant traversal (default grid-dda)"});
+    add({"grid", 1, "auto|N|NxMxK", "macrocell grid (default auto: 128 on the longest axis)"});
+    add({"spp", 1, "N", "samples per pixel (default 64)"});
+    add({"size", 1, "WxH", "image size (default 512x512)"});
+    add({"camera", 9, "EX EY EZ TX TY TZ UX UY UZ", "eye, target and up in world space (default: three-quarter view)"});
+    add({"fov", 1, "DEG", "vertical field of view (default 40)"});
+    add({"seed", 1, "S", "random seed (default 1)"});
+    add({"density-scale", 1, "S", "multiplies extinction (default 1)"});
+    add({"g", 1, "G", "Henyey-Greenstein asymmetry in [-0.999, 0.999] (default 0)"});
+    add({"ambient", 3, "R G B", "uniform environment radiance (default 1 1 1)"});
+    add({"background", 3, "R G B", "radiance seen by primary rays that escape (default: the ambient)"});
+    add({"light-dir", 6, "X Y Z R G B", "directional light towards X Y Z (world) with radiance R G B (repeatable)", true});
+    add({"light-point", 6, "X Y Z R G B", "point light at X Y Z (world) with intensity R G B (repeatable)", true});
+    add({"output", 1, "FILE", "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float); default amrvk.png"});
+    add({"json", 1, "FILE", "write render statistics as JSON"});
+    add({"device", 1, "INDEX|NAME", "Vulkan device (default: the first discrete GPU, else any)"});
+    add({"shader-dir", 1, "DIR", "load shaders (.spv or .comp) from DIR instead of the embedded ones"});
+    add({"validation", 0, "", "enable the Vulkan validation layer"});
+    add({"help", 0, "", "show this help"});
+    for (const auto& a : argv)
+        if (a == "--help" || a == "-h") {
+            std::printf("%s%s", kRenderHelp, formatOptions(specs).c_str());
+            return 0;
+        }
+    Args args("render", argv, specs, 1, 1);
+    const std::string output = args.get("output", "amrvk.png");
+    {
+        std::string ext = std::filesystem::path(output).extension().string();
+        AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
+                    ": unknown image type (use .png, .exr or .pfm)");
+    }
+    AMRVK_CHECK(args.get("traversal", "grid-dda") == "grid-dda", "--traversal ", args.get("traversal"),
+                ": only grid-dda is available in this version");
+    render::RenderSettings rs;
+    rs.mode = render::parseMode(args.get("mode", "ms"));
+    parseSize(args.get("size", "512x512"), rs.width, rs.height);
+    const int64_t spp = args.getInt("spp", 64);
+    AMRVK_CHECK(spp >= 1 && spp <= (1 << 24), "--spp ", spp, " is outside [1, 2^24]");
+    rs.seed = uint32_t(args.getInt("seed", 1));
+    rs.densityScale = args.getDouble("density-scale", 1.0);
+    AMRVK_CHECK(rs.densityScale >= 0 && std::isfinite(rs.densityScale), "--density-scale must be finite and >= 0");
+    rs.g = args.getDouble("g", 0.0);
+    AMRVK_CHECK(rs.g >= -1 && rs.g <= 1, "--g ", rs.g, " is outside [-1, 1]");
+    if (args.has("ambient")) rs.ambient = vec3Of(args.values("ambient"), 0, "--ambient");
+    if (args.has("background")) rs.background = vec3Of(args.values("background"), 0, "--background");
+    for (const char* kind : {"light-dir", "light-point"}) {
+        auto v = args.values(kind);
+        for (size_t i = 0; i + 5 < v.size(); i += 6)
+            rs.lights.push_back({std::string(kind) == "light-point", vec3Of(v, i, std::string("--") + kind),
+                                 vec3Of(v, i + 3, std::string("--") + kind)});
+    }
+
+    amr::ReadOptions ro = readOptionsFrom(args);
+    amr::Model model;
+    {
+        ProgressStage stage("reading " + args.positional()[0]);
+        model = amr::readModel(args.positional()[0], ro);
+    }
+    const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
+    const render::SamplerKind sampler = render::parseSampler(args.get("sampler", "ext-brick"));
+    Timer buildTimer;
+    render::VolumeScene scene = render::buildVolumeScene(model, field, sampler, args.get("grid", "auto"));
+    const double buildSeconds = buildTimer.seconds();
+
+    const amr::ModelSummary summary = amr::summarize(model);
+    const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
+    const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
+    rs.camera = render::defaultCamera(worldLo, worldHi, args.getDouble("fov", 40.0));
+    if (args.has("camera")) {
+        auto v = args.values("camera");
+        rs.camera.eye = vec3Of(v, 0, "--camera");
+        rs.camera.target = vec3Of(v, 3, "--camera");
+        rs.camera.up = vec3Of(v, 6, "--camera");
+    }
+    float tfLo = scene.valueLo, tfHi = scene.valueHi;
+    if (args.has("tf-range")) {
+        auto v = args.values("tf-range");
+        tfLo = float(parseDouble("--tf-range", v[0]));
+        tfHi = float(parseDouble("--tf-range", v[1]));
+    }
+    render::TransferFunction tf = render::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
+    if (args.has("tf-range")) tf = tf.rescaled(tfLo, tfHi);
+
+    if (args.has("shader-dir")) gpu::setShaderDirectory(args.get("shader-dir"));
+    gpu::ContextOptions co;
+    co.device = args.get("device");
+    co.validation = args.has("validation");
+    gpu::Context ctx(co);
+    render::Renderer renderer(ctx, scene);
+    renderer.setTransferFunction(tf);
+    ProgressBar bar(progressEnabled());
+    Timer wall;
+    render::RenderOutput out = renderer.render(rs, uint32_t(spp), [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    const double wallSeconds = wall.seconds();
+    render::writeImage(output, out.mean);
+    AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
+                " error(s); last: ", ctx.lastValidationMessage());
+
+    glm::dvec3 meanRgb(0.0);
+    for (const auto& p : out.mean.pixels) meanRgb += glm::dvec3(p);
+    meanRgb /= double(out.mean.pixels.size());
+    const auto& c = out.stats.counters;
+    const double paths = double(out.stats.paths);
+    std::printf("wrote %s (%dx%d, %lld spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(),
+                rs.width, rs.height, (long long)spp, render::modeName(rs.mode), render::samplerName(sampler),
+                ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
+                out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
+    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits])
+        std::fprintf(stderr, "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce limit\n",
+                     (unsigned long long)c[shared::kCounterMajorantViolations],
+                     (unsigned long long)c[shared::kCounterNanSamples],
+                     (unsigned long long)c[shared::kCounterBounceLimitHits]);
+    if (args.has("json")) {
+        JsonWriter j;
+        j.beginObject();
+        j.member("input", model.source).member("field", field.name);
+        j.member("device", ctx.deviceReport().name).member("width", rs.width).member("height", rs.height);
+        j.member("spp", spp).member("mode", render::modeName(rs.mode)).member("traversal", "grid-dda");
+        j.member("sampler", render::samplerName(sampler)).member("tf", tf.name());
+        j.member("seconds", out.stats.gpuSeconds).member("wallSeconds", wallSeconds);
+        j.member("pathsPerSecond", out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0);
+        j.member("paths", out.stats.paths);
+        j.member("densityLookups", c[shared::kCounterDensityLookups]);
+        j.member("realCollisions", c[shared::kCounterRealCollisions]);
+        j.member("nullCollisions", c[shared::kCounterNullCollisions]);
+        j.member("traversalSteps", c[shared::kCounterTraversalSteps]);
+        j.member("majorantViolations", c[shared::kCounterMajorantViolations]);
+        j.member("nanSamples", c[shared::kCounterNanSamples]);
+        j.member("bounceLimitHits", c[shared::kCounterBounceLimitHits]);
+        j.member("majorantSeconds", renderer.majorantSeconds());
+        j.member("structureBuildSeconds", buildSeconds);
+        j.member("deviceMemoryBytes", ctx.memory().currentBytes());
+        j.member("deviceMemoryPeakBytes", ctx.memory().peakBytes());
+        j.key("deviceMemoryPerResource").beginObject();
+        for (const auto& [name, bytes] : ctx.memory().perResource()) j.member(name, bytes);
+        j.endObject();
+        j.key("macrocellDims").beginArray().value(scene.grid.dims.x).value(scene.grid.dims.y).value(scene.grid.dims.z).endArray();
+        j.key("meanRGB").beginArray().value(meanRgb.x).value(meanRgb.y).value(meanRgb.z).endArray();
+        j.endObject();
+        writeFileAtomic(args.get("json"), j.str() + "\n");
+    }
+    return 0;
+}
+
+}  // namespace amrvk::cli

@@ -1,0 +1,246 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <span>
+
+#include "core/error.h"
+#include "core/stats.h"
+#include "gpu/shader_library.h"
+#include "shared/amr_gpu.h"
+
+namespace amrvk::shaders {
+std::span<const gpu::EmbeddedShader> passShaders();
+}
+
+namespace amrvk::render {
+
+namespace {
+static_assert(sizeof(accel::BvhNode) == sizeof(shared::BvhNodeGpu));
+static_assert(sizeof(accel::ValueRange) == 2 * sizeof(float));
+
+glm::vec4 v4(glm::dvec3 v, double w = 0.0) { return glm::vec4(float(v.x), float(v.y), float(v.z), float(w)); }
+}  // namespace
+
+std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& s, const amr::Transform& xf) {
+    AMRVK_CHECK(s.lights.size() <= shared::kMaxLights, "at most ", shared::kMaxLights, " lights (got ",
+                s.lights.size(), ")");
+    const double meanScale = std::cbrt(xf.scale.x * xf.scale.y * xf.scale.z);
+    std::vector<VoxelLight> out;
+    for (const Light& L : s.lights) {
+        if (L.point) {
+            out.push_back({true, (L.posOrDir - xf.origin) / xf.scale, L.radiance / (meanScale * meanScale)});
+        } else {
+            AMRVK_CHECK(glm::length(L.posOrDir) > 0, "--light-dir: direction is zero");
+            out.push_back({false, glm::normalize(L.posOrDir / xf.scale), L.radiance});
+        }
+    }
+    return out;
+}
+
+Mode parseMode(const std::string& name) {
+    if (name == "ae") return Mode::Ae;
+    if (name == "ss") return Mode::Ss;
+    if (name == "ms") return Mode::Ms;
+    AMRVK_CHECK(false, "--mode '", name, "': expected ae, ss or ms");
+    return Mode::Ms;
+}
+
+const char* modeName(Mode mode) {
+    switch (mode) {
+        case Mode::Ae: return "ae";
+        case Mode::Ss: return "ss";
+        default: return "ms";
+    }
+}
+
+Renderer::Renderer(gpu::Context& ctx, const VolumeScene& scene) : mCtx(ctx), mScene(scene) {
+    gpu::registerShaders(shaders::passShaders());
+    const glm::ivec3 origin(scene.localOrigin);
+    std::vector<shared::BrickGpu> bricks;
+    bricks.reserve(scene.bricks.bricks.size());
+    for (const accel::Brick& b : scene.bricks.bricks)
+        bricks.push_back({glm::ivec4(b.lower - origin, b.level),
+                          glm::ivec4(b.size, int32_t(b.begin))});
+    mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
+    mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+    mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, scene.samplerBvh.nodes,
+                                                   scene.sampler == SamplerKind::Abr ? "abrBvh" : "brickDomainBvh");
+    mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds,
+                                              scene.sampler == SamplerKind::Abr ? "abrBvhPrims" : "brickDomainBvhPrims");
+    if (scene.abrs) {
+        std::vector<shared::AbrGpu> abrs;
+        abrs.reserve(scene.abrs->abrs.size());
+        const glm::dvec3 o(scene.localOrigin);
+        for (const accel::Abr& a : scene.abrs->abrs)
+            abrs.push_back({glm::vec3(a.box.lower() - o), a.brickBegin, glm::vec3(a.box.upper() - o), a.brickCount});
+        mAbrs = gpu::makeBuffer<shared::AbrGpu>(ctx, abrs, "abrs");
+        mAbrBrickList = gpu::makeBuffer<uint32_t>(ctx, scene.abrs->brickList, "abrBrickLists");
+    }
+    mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid.ranges, "macrocellRanges");
+    mGridMajorants = gpu::Buffer(ctx, std::max<uint64_t>(16, scene.grid.ranges.size() * sizeof(float)),
+                                 gpu::MemoryKind::Device, "macrocellMajorants");
+    mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
+    mParamsBuffer = gpu::Buffer(ctx, sizeof(shared::RenderParams), gpu::MemoryKind::Device, "renderParams");
+
+    mParams.boundsLo = v4(glm::dvec3(0.0), 1.0 / double(amr::cellWidth(scene.minLevel)));
+    mParams.boundsHi = v4(glm::dvec3(scene.bounds.upper - scene.bounds.lower), 1.0);
+    mParams.gridDims = glm::ivec4(scene.grid.dims, 0);
+    mParams.gridOrigin = v4(scene.grid.origin - glm::dvec3(scene.localOrigin));
+    mParams.gridCellSize = v4(scene.grid.cellSize);
+    mParams.bricks = mBricks.address();
+    mParams.brickValues = mBrickValues.address();
+    mParams.samplerNodes = mSamplerNodes.address();
+    mParams.samplerPrims = mSamplerPrims.address();
+    mParams.abrs = mAbrs.valid() ? mAbrs.address() : 0;
+    mParams.abrBrickList = mAbrBrickList.valid() ? mAbrBrickList.address() : 0;
+    mParams.gridRanges = mGridRanges.address();
+    mParams.gridMajorants = mGridMajorants.address();
+    mParams.counters = mCounters.address();
+}
+
+void Renderer::setTransferFunction(const TransferFunction& tf) {
+    const auto& positions = tf.positions();
+    std::vector<glm::vec4> colors = tf.colors();
+    AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
+    mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
+    mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
+    mParams.tfInfo = glm::vec4(float(positions.size()), 0, 0, 0);
+    mParams.tfPositions = mTfPositions.address();
+    mParams.tfColors = mTfColors.address();
+    mParamsBuffer.upload(&mParams, sizeof mParams);
+    if (!mMajorantPipeline.valid())
+        mMajorantPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("majorants"), "majorants",
+                                                 sizeof(shared::PushConstants));
+    const uint32_t count = uint32_t(mScene.grid.ranges.size());
+    gpu::GpuTimer timer(mCtx, 1);
+    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+        timer.reset(cmd);
+        uint32_t scope = timer.begin(cmd, "majorants");
+        shared::PushConstants push{mParamsBuffer.address(), 0, 0};
+        mMajorantPipeline.dispatch(cmd, &push, (count + 63) / 64);
+        timer.end(cmd, scope);
+        gpu::computeBarrier(cmd);
+    });
+    mMajorantSeconds = timer.total("majorants");
+    mHasTf = true;
+}
+
+void Renderer::overrideMajorants(const std::vector<float>& majorants) {
+    AMRVK_CHECK(majorants.size() == mScene.grid.ranges.size(), "overrideMajorants: ", majorants.size(),
+                " values for ", mScene.grid.ranges.size(), " macrocells");
+    mGridMajorants.upload(majorants.data(), majorants.size() * sizeof(float));
+}
+
+std::vector<float> Renderer::downloadMajorants() const {
+    std::vector<float> out(mScene.grid.ranges.size());
+    mGridMajorants.download(out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+const gpu::ComputePipeline& Renderer::pathTracePipeline(Mode mode) {
+    int key = int(mode);
+    auto it = mPathTrace.find(key);
+    if (it != mPathTrace.end()) return it->second;
+    uint32_t modeConst = mode == Mode::Ae ? shared::kModeAe : mode == Mode::Ss ? shared::kModeSs : shared::kModeMs;
+    uint32_t samplerConst = mScene.sampler == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
+    auto [pos, ok] = mPathTrace.emplace(
+        key, gpu::ComputePipeline(mCtx, gpu::loadShader("path_trace"),
+                                  std::string("path_trace.") + modeName(mode) + "." + samplerName(mScene.sampler),
+                                  sizeof(shared::PushConstants), {{0, modeConst}, {1, samplerConst}}));
+    return pos->second;
+}
+
+void Renderer::writeParams(const RenderSettings& s) {
+    AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= 16384 && s.height <= 16384, "--size ", s.width, "x",
+                s.height, " is outside 1..16384");
+    AMRVK_CHECK(s.densityScale >= 0 && std::isfinite(s.densityScale), "--density-scale ", s.densityScale,
+                " must be finite and >= 0");
+    const amr::Transform& xf = mScene.model->voxelToWorld;
+    const glm::dvec3 origin(mScene.localOrigin);
+    RayBasis rb = makeRayBasis(s.camera, s.width, s.height, xf, origin);
+    mParams.eye = v4(rb.eye);
+    mParams.dir00 = v4(rb.dir00);
+    mParams.du = v4(rb.du);
+    mParams.dv = v4(rb.dv);
+    mParams.image = glm::uvec4(uint32_t(s.width), uint32_t(s.height), s.seed, 0u);
+    mParams.boundsHi.w = float(s.densityScale);
+    mParams.ambient = v4(s.ambient);
+    mParams.background = v4(s.background.value_or(s.ambient));
+    mParams.shading = glm::vec4(float(std::clamp(s.g, -0.999, 0.999)), float(s.lights.size()), 0, 0);
+    for (size_t i = 0; i < shared::kMaxLights; ++i) mParams.lights[i] = {};
+    const auto lights = lightsInVoxelSpace(s, xf);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const VoxelLight& L = lights[i];
+        mParams.lights[i] = L.point ? shared::LightGpu{v4(L.posOrDir - origin, shared::kLightPoint), v4(L.radiance)}
+                                    : shared::LightGpu{v4(L.posOrDir, shared::kLightDirectional), v4(L.radiance)};
+    }
+    const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+    if (!mAccum.valid() || s.width != mWidth || s.height != mHeight) {
+        mAccum = gpu::Buffer();
+        mAccum = gpu::Buffer(mCtx, pixels * 2 * sizeof(glm::vec4), gpu::MemoryKind::Device, "accumulation");
+        mWidth = s.width;
+        mHeight = s.height;
+    }
+    mParams.accum = mAccum.address();
+    mParamsBuffer.upload(&mParams, sizeof mParams);
+}
+
+RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
+                              const std::function<void(uint32_t, uint32_t)>& progress) {
+    AMRVK_CHECK(mHasTf, "internal: render() before setTransferFunction()");
+    AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
+    writeParams(settings);
+    const gpu::ComputePipeline& pipeline = pathTracePipeline(settings.mode);
+    mAccum.fillZero();
+    RenderOutput out;
+    out.spp = spp;
+    const uint32_t gx = (uint32_t(settings.width) + 7) / 8, gy = (uint32_t(settings.height) + 7) / 8;
+    gpu::GpuTimer timer(mCtx, 64);
+    uint32_t done = 0, batch = 1;
+    std::array<uint32_t, shared::kCounterCount> counters{};
+    while (done < spp) {
+        const uint32_t n = std::min(batch, spp - done);
+        mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+            gpu::computeBarrier(cmd);
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t scope = timer.begin(cmd, "path_trace");
+                shared::PushConstants push{mParamsBuffer.address(), done + i, 0};
+                pipeline.dispatch(cmd, &push, gx, gy);
+                timer.end(cmd, scope);
+                gpu::computeBarrier(cmd);
+            }
+        });
+        mCounters.download(counters.data(), sizeof counters);
+        uint32_t largest = 0;
+        for (uint32_t k = 0; k < shared::kCounterCount; ++k) {
+            out.stats.counters[k] += counters[k];
+            largest = std::max(largest, counters[k]);
+        }
+        out.stats.gpuSeconds += timer.total("path_trace");
+        done += n;
+        // Grow batches while the 32-bit counters stay far from overflowing.
+        if (largest < (1u << 28) && batch < 64) batch *= 2;
+        else if (largest >= (1u << 30) && batch > 1) batch /= 2;
+        if (progress) progress(done, spp);
+    }
+    out.stats.paths = uint64_t(spp) * uint64_t(settings.width) * uint64_t(settings.height);
+    std::vector<glm::vec4> accum(size_t(settings.width) * size_t(settings.height) * 2);
+    mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
+    out.mean.width = settings.width;
+    out.mean.height = settings.height;
+    out.mean.pixels.resize(accum.size() / 2);
+    out.sumSq.resize(accum.size() / 2);
+    for (size_t i = 0; i < out.mean.pixels.size(); ++i) {
+        glm::vec4 sum = accum[2 * i];
+        float count = sum.w > 0 ? sum.w : 1.0f;
+        out.mean.pixels[i] = glm::vec4(glm::vec3(sum) / count, 1.0f);
+        out.sumSq[i] = accum[2 * i + 1];
+    }
+    return out;
+}
+
+}  // namespace amrvk::render

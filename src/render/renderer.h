@@ -1,0 +1,103 @@
+#pragma once
+// The GPU renderer: uploads one VolumeScene, keeps majorants in step with the transfer function
+// (majorants.comp), and accumulates path-traced samples (path_trace.comp), 1 spp per dispatch.
+#include <array>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/context.h"
+#include "render/camera.h"
+#include "render/image_io.h"
+#include "render/transfer_function.h"
+#include "render/volume_scene.h"
+#include "shared/render_params.h"
+
+namespace amrvk::render {
+
+enum class Mode { Ae, Ss, Ms };
+Mode parseMode(const std::string& name);
+const char* modeName(Mode mode);
+
+struct Light {
+    bool point = false;
+    glm::dvec3 posOrDir{0.0, 0.0, 1.0};  // world position, or world direction towards the light
+    glm::dvec3 radiance{1.0};            // radiance (directional) or intensity (point, 1/d^2 in world units)
+};
+
+// A light in voxel space: point position or unit direction towards the light; radiance
+// (directional) or intensity scaled so that 1/d^2 with d in voxel units equals the world falloff.
+struct VoxelLight {
+    bool point = false;
+    glm::dvec3 posOrDir{0.0};
+    glm::dvec3 radiance{0.0};
+};
+
+struct RenderSettings;
+std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& settings, const amr::Transform& voxelToWorld);
+
+struct RenderSettings {
+    Mode mode = Mode::Ms;
+    int width = 256, height = 256;
+    uint32_t seed = 1;
+    Camera camera;
+    double densityScale = 1.0;
+    double g = 0.0;                      // Henyey-Greenstein asymmetry, clamped to [-0.999, 0.999]
+    glm::dvec3 ambient{1.0};             // environment radiance seen by escaping rays
+    std::optional<glm::dvec3> background;  // seen by escaping primary rays; default = ambient
+    std::vector<Light> lights;           // at most shared::kMaxLights
+};
+
+struct RenderStats {
+    uint64_t paths = 0;
+    double gpuSeconds = 0;  // GPU time of the path-trace dispatches
+    std::array<uint64_t, shared::kCounterCount> counters{};
+    uint64_t counter(uint32_t k) const { return counters[k]; }
+};
+
+struct RenderOutput {
+    Image mean;                      // linear radiance per pixel (rgb), a = 1
+    std::vector<glm::vec4> sumSq;    // per-pixel sum of squared samples (rgb)
+    uint32_t spp = 0;
+    RenderStats stats;
+};
+
+class Renderer {
+public:
+    Renderer(gpu::Context& ctx, const VolumeScene& scene);
+
+    // Uploads the TF and recomputes every macrocell majorant on the GPU.
+    void setTransferFunction(const TransferFunction& tf);
+    // Accumulates `spp` samples per pixel from scratch. `progress(done, total)` after each batch.
+    RenderOutput render(const RenderSettings& settings, uint32_t spp,
+                        const std::function<void(uint32_t, uint32_t)>& progress = {});
+    // Majorant per macrocell as computed on the GPU (for tests and statistics).
+    std::vector<float> downloadMajorants() const;
+    double majorantSeconds() const { return mMajorantSeconds; }
+    // Device address of the RenderParams buffer (valid after setTransferFunction), for test kernels.
+    uint64_t paramsAddress() const { return mParamsBuffer.address(); }
+    // Overwrites the macrocell majorants (tests: deliberate overestimates).
+    void overrideMajorants(const std::vector<float>& majorants);
+    gpu::Context& context() { return mCtx; }
+
+private:
+    void writeParams(const RenderSettings& settings);
+    const gpu::ComputePipeline& pathTracePipeline(Mode mode);
+
+    gpu::Context& mCtx;
+    const VolumeScene& mScene;
+    shared::RenderParams mParams{};
+    gpu::Buffer mBricks, mBrickValues, mSamplerNodes, mSamplerPrims, mAbrs, mAbrBrickList;
+    gpu::Buffer mGridRanges, mGridMajorants, mTfPositions, mTfColors, mAccum, mCounters, mParamsBuffer;
+    gpu::ComputePipeline mMajorantPipeline;
+    std::map<int, gpu::ComputePipeline> mPathTrace;  // created on first use per mode
+    int mWidth = 0, mHeight = 0;
+    double mMajorantSeconds = 0;
+    bool mHasTf = false;
+};
+
+}  // namespace amrvk::render

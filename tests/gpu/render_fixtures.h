@@ -1,0 +1,29 @@
+#pragma once
+// Scenes for GPU tests: simple analytic media and their structures.
+#include <glm/glm.hpp>
+
+#include "amr/model.h"
+#include "render/transfer_function.h"
+
+namespace amrvk::test {
+
+// A box of level-`level` cells over [lower, lower + dims * width) with one field, all values v.
+inline amr::Model makeUniformBox(glm::ivec3 dims, int level, float v, glm::ivec3 lower = glm::ivec3(0)) {
+    amr::Model m;
+    m.source = "uniform-box";
+    m.format = "test";
+    const int w = 1 << level;
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) m.cells.push_back({lower + glm::ivec3(x, y, z) * w, level});
+    m.fields.push_back({"v", std::vector<float>(m.cells.size(), v)});
+    m.availableFields = {"v"};
+    return m;
+}
+
+// Constant albedo and alpha for every value.
+inline render::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
+    return render::TransferFunction({0.0f}, {glm::vec4(albedo, alpha)}, "constant-test");
+}
+
+}  // namespace amrvk::test

@@ -1,0 +1,18 @@
+#version 460
+// Evaluates sampleField at given local-voxel points: out = (value, weightSum, inside) per point.
+#include "lib/common.glsl"
+#include "lib/amr_sample.glsl"
+layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t points; uint64_t outAddr; uint count; uint samplerKind; } tp;
+layout(local_size_x = 32) in;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= tp.count) return;
+    gParams = ParamsRef(tp.params);
+    vec4 p = Vec4Ref(tp.points).v[i];
+    FieldSample s = sampleField(tp.samplerKind, p.xyz);
+    FloatRW o = FloatRW(tp.outAddr);
+    o.v[3u * i] = s.value;
+    o.v[3u * i + 1u] = s.weightSum;
+    o.v[3u * i + 2u] = s.inside ? 1.0 : 0.0;
+}

@@ -1,0 +1,26 @@
+#version 460
+// One tracking estimate per invocation along the ray (origin, direction) over [0, tMax]:
+// out[i] = 1 if delta tracking escapes (else 0), and the ratio-tracking transmittance.
+#include "lib/common.glsl"
+#include "lib/rng.glsl"
+#include "lib/tf.glsl"
+#include "lib/amr_sample.glsl"
+#include "lib/majorant_dda.glsl"
+#include "lib/tracking.glsl"
+layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAddr; vec4 origin; vec4 dir; uint count; uint samplerKind; } tp;
+layout(local_size_x = 64) in;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= tp.count) return;
+    gParams = ParamsRef(tp.params);
+    uint rng = seedRng(i, 0u, 12345u);
+    Counters c = Counters(0u, 0u, 0u, 0u, 0u);
+    float tHit;
+    vec4 tf;
+    bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, tp.samplerKind, rng, c, tHit, tf);
+    float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, tp.samplerKind, rng, c);
+    FloatRW o = FloatRW(tp.outAddr);
+    o.v[2u * i] = hit ? 0.0 : 1.0;
+    o.v[2u * i + 1u] = tr;
+}
