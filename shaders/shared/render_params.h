@@ -31,7 +31,7 @@ AMRVK_CONST uint kCounterBounceLimitHits = 5u;
 AMRVK_CONST uint kCounterNanSamples = 6u;
 AMRVK_CONST uint kCounterCount = 8u;
 
-AMRVK_CONST uint kMaxBounces = 4096u;  // ms path length cap; reported when reached
+AMRVK_CONST uint kMaxBounces = 65536u;  // ms path length cap; paths reaching it are counted
 
 struct LightGpu {
     vec4 posOrDir;  // xyz: point position (local voxel) or direction *towards* the light; w: type

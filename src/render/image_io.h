@@ -1,0 +1,50 @@
+#pragma once
+// Image files: PNG (8-bit sRGB, tone mapped), PFM and OpenEXR (linear float RGB). Every writer
+// goes through AtomicFileWriter, so a failed write leaves no file behind.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace amrvk::render {
+
+// Linear RGB(A) pixels, row 0 = top, x fastest: pixels[x + width * y].
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> pixels;
+
+    Image() = default;
+    Image(int w, int h, glm::vec4 fill = glm::vec4(0.0f))
+        : width(w), height(h), pixels(size_t(w > 0 ? w : 0) * size_t(h > 0 ? h : 0), fill) {}
+    glm::vec4& at(int x, int y) { return pixels[size_t(x) + size_t(width) * size_t(y)]; }
+    const glm::vec4& at(int x, int y) const { return pixels[size_t(x) + size_t(width) * size_t(y)]; }
+};
+
+// 8-bit RGBA pixels as stored in a PNG, row 0 = top.
+struct Image8 {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  // 4 bytes per pixel
+};
+
+// sRGB encoding of a linear value clamped to [0, 1] (NaN -> 0), rounded to 8 bits.
+uint8_t encodeSrgb8(float linear);
+
+// Writes by extension (case-insensitive):
+//   .png  8-bit sRGB RGBA: each linear channel clamped to [0, 1], sRGB curve, alpha 255;
+//   .pfm  linear float RGB, little-endian (scale -1), rows bottom to top as the format requires;
+//   .exr  linear float RGB, uncompressed scanlines, channels B, G, R as FLOAT.
+// The alpha channel is written only to PNG (as 255). Throws for an unknown extension, an image
+// whose size does not match its pixels, or a write failure (leaving no file).
+void writeImage(const std::filesystem::path& path, const Image& image);
+
+// Readers for tests and reference images: PFM (RGB or grey, either byte order), OpenEXR as
+// written by writeImage (single-part scanline, uncompressed, FLOAT channels; R, G, B, A by name,
+// missing colour channels 0, missing A 1), PNG (raw 8-bit RGBA). Alpha of PFM is 1.
+Image readPfm(const std::filesystem::path& path);
+Image readExr(const std::filesystem::path& path);
+Image8 readPng(const std::filesystem::path& path);
+
+}  // namespace amrvk::render

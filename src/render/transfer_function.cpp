@@ -1,0 +1,441 @@
+#include "render/transfer_function.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/file_io.h"
+
+namespace fs = std::filesystem;
+
+namespace amrvk::render {
+
+namespace {
+
+constexpr float kGreyAlbedo = 0.8f;
+constexpr int kMaxXfNodes = 1 << 20;
+constexpr uint64_t kXfHeaderBytes = 8 + 4 + 2 * 4 + 2 * 4 + 4;
+constexpr uint64_t kOldXfBytes = 128 * sizeof(float);
+
+// Throws unless the nodes form a valid transfer function; `where` starts every message.
+void validateNodes(const std::vector<float>& positions, const std::vector<glm::vec4>& colors,
+                   const std::string& where) {
+    AMRVK_CHECK(!positions.empty(), where, ": no nodes");
+    AMRVK_CHECK(positions.size() == colors.size(), where, ": ", positions.size(),
+                " positions but ", colors.size(), " colours");
+    for (size_t i = 0; i < positions.size(); ++i) {
+        AMRVK_CHECK(std::isfinite(positions[i]), where, ": node ", i, " position is not finite (",
+                    positions[i], ")");
+        AMRVK_CHECK(i == 0 || positions[i] >= positions[i - 1], where,
+                    ": positions not ascending at node ", i, " (", positions[i], " after ",
+                    positions[i - 1], ")");
+        const glm::vec4& c = colors[i];
+        for (int k = 0; k < 4; ++k)
+            AMRVK_CHECK(std::isfinite(c[k]), where, ": node ", i, " colour ", "rgba"[k],
+                        " is not finite (", c[k], ")");
+        for (int k = 0; k < 3; ++k)
+            AMRVK_CHECK(c[k] >= 0.0f && c[k] <= 1.0f, where, ": node ", i, " colour ", "rgb"[k],
+                        " = ", c[k], " is outside [0, 1]");
+        AMRVK_CHECK(c.a >= 0.0f, where, ": node ", i, " alpha ", c.a, " is negative");
+    }
+}
+
+void checkRange(float lo, float hi, const std::string& what) {
+    AMRVK_CHECK(std::isfinite(lo) && std::isfinite(hi) && lo <= hi, what, ": range [", lo, ", ",
+                hi, "] is not a finite ascending range");
+}
+
+// Node i of n spaced uniformly over [lo, hi] (both ends exact); double arithmetic, monotone in i.
+float uniformPosition(int i, int n, double lo, double hi) {
+    if (n <= 1 || i == 0) return static_cast<float>(lo);
+    if (i == n - 1) return static_cast<float>(hi);
+    double p = lo + (hi - lo) * (static_cast<double>(i) / (n - 1));
+    return static_cast<float>(std::clamp(p, lo, hi));
+}
+
+// One channel group of a ParaView preset (colour or opacity): nodes at float positions with
+// values in double, linear in between and constant beyond the ends.
+template <typename T>
+struct Channel {
+    std::vector<float> positions;
+    std::vector<T> values;
+
+    // Value at x, which must not be one of the positions.
+    T between(float x) const {
+        if (x < positions.front()) return values.front();
+        if (x > positions.back()) return values.back();
+        size_t k = size_t(std::upper_bound(positions.begin(), positions.end(), x) - positions.begin());
+        double p0 = positions[k - 1], p1 = positions[k];
+        double t = (static_cast<double>(x) - p0) / (p1 - p0);
+        T v = values[k - 1] + t * (values[k] - values[k - 1]);
+        return glm::clamp(v, glm::min(values[k - 1], values[k]), glm::max(values[k - 1], values[k]));
+    }
+};
+
+// Merges colour and opacity nodes into the union of their positions. Where a channel has
+// several nodes at one position (a step) the merged function gets as many nodes there, first
+// with first and last with last, so the step survives.
+void mergeChannels(const Channel<glm::dvec3>& rgb, const Channel<double>& alpha,
+                   std::vector<float>& positions, std::vector<glm::vec4>& colors) {
+    size_t i = 0, j = 0;
+    const size_t nc = rgb.positions.size(), na = alpha.positions.size();
+    while (i < nc || j < na) {
+        float x = std::min(i < nc ? rgb.positions[i] : INFINITY, j < na ? alpha.positions[j] : INFINITY);
+        size_t kc = 0, ka = 0;
+        while (i + kc < nc && rgb.positions[i + kc] == x) ++kc;
+        while (j + ka < na && alpha.positions[j + ka] == x) ++ka;
+        for (size_t k = 0; k < std::max(kc, ka); ++k) {
+            glm::dvec3 c = kc ? rgb.values[i + std::min(k, kc - 1)] : rgb.between(x);
+            double a = ka ? alpha.values[j + std::min(k, ka - 1)] : alpha.between(x);
+            positions.push_back(x);
+            colors.emplace_back(glm::vec3(c), static_cast<float>(a));
+        }
+        i += kc;
+        j += ka;
+    }
+}
+
+// The numbers of array member `key`, which must hold a positive multiple of `stride` numbers.
+std::vector<double> readNumberArray(const nlohmann::json& preset, const char* key, size_t stride,
+                                    const std::string& where) {
+    const nlohmann::json& arr = preset.at(key);
+    AMRVK_CHECK(arr.is_array(), where, ": ", key, " is not an array (it is a ", arr.type_name(), ")");
+    std::vector<double> out;
+    out.reserve(arr.size());
+    for (size_t i = 0; i < arr.size(); ++i) {
+        AMRVK_CHECK(arr[i].is_number(), where, ": ", key, " element ", i, " is a ",
+                    arr[i].type_name(), ", not a number");
+        out.push_back(arr[i].get<double>());
+    }
+    AMRVK_CHECK(!out.empty() && out.size() % stride == 0, where, ": ", key, " has ", out.size(),
+                " numbers, not a positive multiple of ", stride);
+    return out;
+}
+
+// Node positions of a ParaView array: finite as float and non-descending.
+float presetPosition(double x, size_t node, const char* key, const std::string& where,
+                     const std::vector<float>& previous) {
+    float p = static_cast<float>(x);
+    AMRVK_CHECK(std::isfinite(p), where, ": ", key, " node ", node, " position ", x,
+                " is not a finite float");
+    AMRVK_CHECK(previous.empty() || p >= previous.back(), where, ": ", key,
+                " positions not ascending at node ", node, " (", x, " after ", previous.back(), ")");
+    return p;
+}
+
+TransferFunction presetFromJson(const nlohmann::json& preset, const std::string& where,
+                                const std::string& name) {
+    AMRVK_CHECK(preset.contains("RGBPoints"), where, ": no RGBPoints",
+                preset.contains("IndexedColors") ? " (indexed colour maps are not supported)" : "");
+    std::vector<double> rgbPoints = readNumberArray(preset, "RGBPoints", 4, where);
+    Channel<glm::dvec3> rgb;
+    for (size_t i = 0; i < rgbPoints.size() / 4; ++i) {
+        rgb.positions.push_back(presetPosition(rgbPoints[4 * i], i, "RGBPoints", where, rgb.positions));
+        glm::dvec3 c(rgbPoints[4 * i + 1], rgbPoints[4 * i + 2], rgbPoints[4 * i + 3]);
+        for (int k = 0; k < 3; ++k)
+            AMRVK_CHECK(c[k] >= 0.0 && c[k] <= 1.0, where, ": RGBPoints node ", i, " colour ",
+                        "rgb"[k], " = ", c[k], " is outside [0, 1]");
+        rgb.values.push_back(c);
+    }
+    Channel<double> alpha;
+    if (preset.contains("Points")) {
+        std::vector<double> points = readNumberArray(preset, "Points", 4, where);
+        for (size_t i = 0; i < points.size() / 4; ++i) {
+            alpha.positions.push_back(presetPosition(points[4 * i], i, "Points", where, alpha.positions));
+            double a = points[4 * i + 1];
+            AMRVK_CHECK(a >= 0.0 && std::isfinite(static_cast<float>(a)), where, ": Points node ",
+                        i, " opacity ", a, " is negative or not a finite float");
+            alpha.values.push_back(a);
+        }
+    } else {
+        alpha.positions = {rgb.positions.front(), rgb.positions.back()};
+        alpha.values = {0.0, 1.0};
+    }
+    std::vector<float> positions;
+    std::vector<glm::vec4> colors;
+    mergeChannels(rgb, alpha, positions, colors);
+    validateNodes(positions, colors, where);
+    return TransferFunction(positions, colors, name);
+}
+
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s;
+}
+
+std::string lowerExtension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext;
+}
+
+struct PresetNodes {
+    const char* name;
+    std::vector<float> positions;
+    std::vector<glm::vec4> colors;
+};
+
+glm::vec3 hexColor(uint32_t rgb) {
+    return glm::vec3(float((rgb >> 16) & 0xff), float((rgb >> 8) & 0xff), float(rgb & 0xff)) / 255.0f;
+}
+
+const std::vector<PresetNodes>& presetTable() {
+    static const std::vector<PresetNodes> table = [] {
+        std::vector<PresetNodes> t;
+        // viridis at nine evenly spaced stops, alpha equal to the position
+        const uint32_t viridis[] = {0x440154, 0x472d7b, 0x3b528b, 0x2c728e, 0x21908c,
+                                    0x27ad81, 0x5dc863, 0xaadc32, 0xfde725};
+        PresetNodes ramp{"ramp", {}, {}};
+        for (int i = 0; i < 9; ++i) {
+            float x = float(i) / 8.0f;
+            ramp.positions.push_back(x);
+            ramp.colors.emplace_back(hexColor(viridis[i]), x);
+        }
+        t.push_back(std::move(ramp));
+        t.push_back({"grey", {0.0f, 1.0f}, {glm::vec4(glm::vec3(kGreyAlbedo), 0.0f),
+                                            glm::vec4(glm::vec3(kGreyAlbedo), 1.0f)}});
+        const glm::vec3 orange(1.0f, 0.6f, 0.2f);
+        t.push_back({"spiky",
+                     {0.0f, 0.49f, 0.5f, 0.51f, 1.0f},
+                     {glm::vec4(orange, 0.0f), glm::vec4(orange, 0.0f), glm::vec4(orange, 1.0f),
+                      glm::vec4(orange, 0.0f), glm::vec4(orange, 0.0f)}});
+        t.push_back({"foggy", {0.0f, 1.0f}, {glm::vec4(0.8f, 0.85f, 0.95f, 0.05f),
+                                             glm::vec4(0.95f, 0.95f, 1.0f, 0.2f)}});
+        t.push_back({"constant", {0.0f, 1.0f}, {glm::vec4(1.0f), glm::vec4(1.0f)}});
+        t.push_back({"empty", {0.0f, 1.0f}, {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f),
+                                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}});
+        return t;
+    }();
+    return table;
+}
+
+std::string joinedPresetNames() {
+    std::string s;
+    for (const std::string& n : presetNames()) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+}  // namespace
+
+TransferFunction::TransferFunction()
+    : mPositions{0.0f}, mColors{glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}, mName("empty") {}
+
+TransferFunction::TransferFunction(const std::vector<float>& positions,
+                                   const std::vector<glm::vec4>& colors, std::string name)
+    : mName(std::move(name)) {
+    validateNodes(positions, colors, mName);
+    // Keep only the first and last of nodes sharing a position: evaluate never reaches the
+    // others, and maxAlpha must not count them.
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const bool hidden = i > 0 && i + 1 < positions.size() && positions[i - 1] == positions[i] &&
+                            positions[i] == positions[i + 1];
+        if (hidden) continue;
+        mPositions.push_back(positions[i]);
+        mColors.push_back(colors[i]);
+    }
+}
+
+glm::vec4 TransferFunction::evaluate(float v) const {
+    const int n = static_cast<int>(mPositions.size());
+    const float* pos = mPositions.data();
+    if (!(v > pos[0])) return mColors[0];  // also catches NaN
+    if (v >= pos[n - 1]) return mColors[size_t(n - 1)];
+    int lo = 0, hi = n - 1;  // invariant: pos[lo] <= v < pos[hi]
+    while (hi - lo > 1) {
+        int mid = (lo + hi) >> 1;
+        if (pos[mid] <= v) lo = mid;
+        else hi = mid;
+    }
+    float span = pos[hi] - pos[lo];
+    float f = span > 0.0f ? (v - pos[lo]) / span : 1.0f;
+    return glm::mix(mColors[size_t(lo)], mColors[size_t(hi)], f);
+}
+
+float TransferFunction::maxAlpha(float lo, float hi) const {
+    if (lo > hi) return 0.0f;
+    float m = std::max(evaluate(lo).a, evaluate(hi).a);
+    // Nodes with lo <= position <= hi (a NaN end includes every node: conservative).
+    auto first = std::lower_bound(mPositions.begin(), mPositions.end(), lo);
+    auto last = std::upper_bound(mPositions.begin(), mPositions.end(), hi);
+    for (auto it = first; it < last; ++it)
+        m = std::max(m, mColors[size_t(it - mPositions.begin())].a);
+    return m;
+}
+
+TransferFunction TransferFunction::rescaled(float lo, float hi) const {
+    checkRange(lo, hi, mName + ": rescaling");
+    const double a = mPositions.front(), b = mPositions.back();
+    std::vector<float> positions(mPositions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        if (b > a) {
+            double t = (static_cast<double>(mPositions[i]) - a) / (b - a);
+            double p = static_cast<double>(lo) + t * (static_cast<double>(hi) - lo);
+            positions[i] = static_cast<float>(std::clamp(p, double(lo), double(hi)));
+        } else {
+            positions[i] = static_cast<float>(0.5 * (static_cast<double>(lo) + hi));
+        }
+    }
+    if (b > a) {
+        positions.front() = lo;
+        positions.back() = hi;
+    }
+    return TransferFunction(positions, mColors, mName);
+}
+
+const std::vector<std::string>& presetNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const PresetNodes& p : presetTable()) n.emplace_back(p.name);
+        return n;
+    }();
+    return names;
+}
+
+TransferFunction makePreset(std::string_view name, float lo, float hi) {
+    for (const PresetNodes& p : presetTable()) {
+        if (name != p.name) continue;
+        checkRange(lo, hi, strCat("preset '", name, "'"));
+        return TransferFunction(p.positions, p.colors, p.name).rescaled(lo, hi);
+    }
+    AMRVK_CHECK(false, "unknown transfer function preset '", name, "' (presets: ",
+                joinedPresetNames(), ")");
+    return {};
+}
+
+TransferFunction loadParaViewPreset(const fs::path& path, std::string_view presetName) {
+    const std::string file = path.string();
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(readTextFile(path));
+    } catch (const nlohmann::json::exception& e) {
+        std::string msg = e.what();
+        if (size_t close = msg.find("] "); msg.starts_with("[json.exception") && close != std::string::npos)
+            msg = msg.substr(close + 2);
+        AMRVK_CHECK(false, file, ": malformed JSON (", oneLine(msg), ")");
+    }
+    AMRVK_CHECK(doc.is_array() || doc.is_object(), file,
+                ": expected a ParaView preset object or an array of presets, found a ", doc.type_name());
+    std::vector<const nlohmann::json*> presets;
+    if (doc.is_object()) {
+        presets.push_back(&doc);
+    } else {
+        for (const nlohmann::json& p : doc) presets.push_back(&p);
+    }
+    AMRVK_CHECK(!presets.empty(), file, ": no presets (empty array)");
+
+    auto presetLabel = [](const nlohmann::json& p, size_t index) {
+        if (p.is_object() && p.contains("Name") && p["Name"].is_string())
+            return p["Name"].get<std::string>();
+        return strCat("#", index);
+    };
+    size_t chosen = 0;
+    if (!presetName.empty()) {
+        chosen = presets.size();
+        std::string available;
+        for (size_t i = 0; i < presets.size(); ++i) {
+            std::string label = presetLabel(*presets[i], i);
+            if (label == presetName && chosen == presets.size()) chosen = i;
+            if (i < 8) available += (i ? ", " : "") + label;
+            else if (i == 8) available += ", ...";
+        }
+        AMRVK_CHECK(chosen < presets.size(), file, ": no preset named '", presetName, "' (",
+                    presets.size(), " presets: ", available, ")");
+    }
+    const nlohmann::json& preset = *presets[chosen];
+    std::string label = presetLabel(preset, chosen);
+    std::string where = strCat(file, ": preset '", label, "'");
+    AMRVK_CHECK(preset.is_object(), where, ": not a JSON object");
+    return presetFromJson(preset, where, label);
+}
+
+TransferFunction loadXf(const fs::path& path, float dataLo, float dataHi) {
+    const std::string file = path.string();
+    BinaryReader in(path);
+    uint64_t magic = 0;
+    if (in.size() >= sizeof(magic)) in.read(&magic, sizeof(magic));
+    std::vector<float> positions;
+    std::vector<glm::vec4> colors;
+    if (magic == kXfMagic) {
+        float opacityScale = 0, absLo = 0, absHi = 0, relLo = 0, relHi = 0;
+        int32_t n = 0;
+        in.read(&opacityScale, 4);
+        in.read(&absLo, 4);
+        in.read(&absHi, 4);
+        in.read(&relLo, 4);
+        in.read(&relHi, 4);
+        in.read(&n, 4);
+        AMRVK_CHECK(n >= 1 && n <= kMaxXfNodes, file, ": node count N = ", n, " at byte 28 is outside [1, ",
+                    kMaxXfNodes, "]");
+        const uint64_t expected = kXfHeaderBytes + uint64_t(n) * 16;
+        AMRVK_CHECK(in.size() == expected, file, ": size ", in.size(), " bytes, expected ", expected,
+                    " for N = ", n, " nodes");
+        AMRVK_CHECK(std::isfinite(absLo) && std::isfinite(absHi) && absLo <= absHi, file,
+                    ": absDomain [", absLo, ", ", absHi, "] is not a finite ascending range");
+        AMRVK_CHECK(std::isfinite(relLo) && std::isfinite(relHi) && relLo <= relHi, file,
+                    ": relDomain [", relLo, ", ", relHi, "] (percent) is not a finite ascending range");
+        const double scale = std::pow(1.1, static_cast<double>(opacityScale) - 100.0);
+        AMRVK_CHECK(std::isfinite(opacityScale) && std::isfinite(static_cast<float>(scale)), file,
+                    ": opacityScale ", opacityScale, " is out of range (alpha factor 1.1^(v-100))");
+        const double width = static_cast<double>(absHi) - absLo;
+        const double lo = absLo + relLo / 100.0 * width, hi = absLo + relHi / 100.0 * width;
+        std::vector<float> rgba;
+        in.readArray(rgba, uint64_t(n) * 4);
+        for (int i = 0; i < n; ++i) {
+            const float* c = &rgba[size_t(i) * 4];
+            positions.push_back(uniformPosition(i, n, lo, hi));
+            colors.emplace_back(c[0], c[1], c[2], static_cast<float>(c[3] * scale));
+            AMRVK_CHECK(!(c[3] < 0.0f), file, ": node ", i, " alpha ", c[3], " at byte ",
+                        kXfHeaderBytes + uint64_t(i) * 16 + 12, " is negative");
+        }
+    } else {
+        AMRVK_CHECK(in.size() == kOldXfBytes, file, ": not a .xf transfer function: magic 0x", std::hex,
+                    magic, " (expected 0x", kXfMagic, ")", std::dec, " and size ", in.size(),
+                    " bytes (an owlExaBrick alpha table has ", kOldXfBytes, ")");
+        checkRange(dataLo, dataHi, file + ": data");
+        std::vector<float> alpha;
+        in.seek(0);
+        in.readArray(alpha, 128);
+        for (int i = 0; i < 128; ++i) {
+            positions.push_back(uniformPosition(i, 128, dataLo, dataHi));
+            colors.emplace_back(glm::vec3(kGreyAlbedo), alpha[size_t(i)]);
+        }
+    }
+    validateNodes(positions, colors, file);
+    return TransferFunction(positions, colors, path.filename().string());
+}
+
+TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,
+                                      std::string_view presetName) {
+    for (const std::string& name : presetNames())
+        if (spec == name) return makePreset(spec, dataLo, dataHi);
+    const fs::path path(spec);
+    std::error_code ec;
+    AMRVK_CHECK(fs::exists(path, ec), "'", spec,
+                "' is neither a transfer function preset (", joinedPresetNames(),
+                ") nor an existing file");
+    const std::string ext = lowerExtension(path);
+    if (ext == ".xf") return loadXf(path, dataLo, dataHi);
+    if (ext == ".json") return loadParaViewPreset(path, presetName);
+    BinaryReader in(path);
+    std::array<char, 64> head{};
+    const uint64_t headBytes = std::min<uint64_t>(in.size(), head.size());
+    in.read(head.data(), headBytes);
+    uint64_t magic = 0;
+    if (headBytes >= sizeof(magic)) std::memcpy(&magic, head.data(), sizeof(magic));
+    if (magic == kXfMagic) return loadXf(path, dataLo, dataHi);
+    for (uint64_t i = 0; i < headBytes; ++i) {
+        if (std::isspace(static_cast<unsigned char>(head[i]))) continue;
+        if (head[i] == '[' || head[i] == '{') return loadParaViewPreset(path, presetName);
+        break;
+    }
+    AMRVK_CHECK(false, spec, ": unknown transfer function format (expected a .xf file or a ParaView ",
+                "preset .json file)");
+    return {};
+}
+
+}  // namespace amrvk::render

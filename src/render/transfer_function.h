@@ -1,0 +1,98 @@
+#pragma once
+// Transfer function: a piecewise-linear map from a field value to albedo (rgb, in [0,1]) and
+// alpha (>= 0, extinction per finest cell width before densityScale). Nodes sit at ascending
+// positions in field units; two nodes may share a position (a step: the right node wins there);
+// beyond the first/last node the colour is constant. GLSL twin: shaders/lib/tf.glsl.
+// Colours from files and presets are used as albedo as given (no sRGB decoding), as ParaView's
+// path tracers and the ExaBrick tools do.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace amrvk::render {
+
+// Magic of the owlExaStitcher / cuteeOwl / barney `.xf` format.
+inline constexpr uint64_t kXfMagic = 0x0000001235abc000ull;
+
+class TransferFunction {
+public:
+    // One node at 0 with albedo 1 and alpha 0: no extinction anywhere.
+    TransferFunction();
+    // Validates the nodes: same count (>= 1), finite, positions non-descending, rgb in [0,1],
+    // alpha >= 0. Errors name `name`. Of three or more nodes at one position only the first and
+    // last are kept (evaluate never reaches the others).
+    TransferFunction(const std::vector<float>& positions, const std::vector<glm::vec4>& colors,
+                     std::string name = "transfer function");
+
+    // Albedo (rgb) and alpha at field value v, in float exactly as tf.glsl's evalTf computes it
+    // (same binary search, same mix). NaN gives the first colour.
+    glm::vec4 evaluate(float v) const;
+
+    // Majorant of alpha over the value range [lo, hi]: max(alpha(lo), alpha(hi), alpha of every
+    // node with lo <= position <= hi); 0 for an empty range (lo > hi), the maximum of all nodes
+    // for a NaN end. For a continuous TF this is the exact maximum. Unlike a strictly-inside
+    // node test it also counts both sides of a step sitting exactly on an end, so it bounds the
+    // left limit at hi and values that round one ulp past an end. evaluate(v).a for v in
+    // [lo, hi] exceeds it at most by the float rounding of mix (a few ulps).
+    float maxAlpha(float lo, float hi) const;
+
+    // The same nodes with positions mapped linearly from [firstPosition, lastPosition] onto
+    // [lo, hi] (the ends exactly); with all nodes at one position they move to (lo + hi) / 2.
+    TransferFunction rescaled(float lo, float hi) const;
+
+    const std::vector<float>& positions() const { return mPositions; }
+    const std::vector<glm::vec4>& colors() const { return mColors; }
+    size_t nodeCount() const { return mPositions.size(); }
+    float firstPosition() const { return mPositions.front(); }
+    float lastPosition() const { return mPositions.back(); }
+    const std::string& name() const { return mName; }
+
+private:
+    std::vector<float> mPositions;    // field units, non-descending
+    std::vector<glm::vec4> mColors;   // rgb albedo, a = alpha per finest cell width
+    std::string mName;
+};
+
+// Names of the built-in presets: ramp (default), grey, spiky, foggy, constant, empty.
+const std::vector<std::string>& presetNames();
+
+// A built-in preset, defined over [0, 1] and mapped onto the data range [lo, hi]:
+//   ramp     viridis-like albedo, alpha 0 -> 1 linearly over the range;
+//   grey     constant albedo 0.8, alpha 0 -> 1 linearly;
+//   spiky    alpha 0 except one triangular peak of alpha 1 at the middle (half width 1% of the range);
+//   foggy    alpha 0.05 -> 0.2, bright bluish albedo;
+//   constant alpha 1 and albedo 1 everywhere (furnace tests);
+//   empty    alpha 0 everywhere.
+// Throws for an unknown name or a non-finite or reversed range.
+TransferFunction makePreset(std::string_view name, float lo, float hi);
+
+// ParaView colour-map preset JSON: an array of presets or one preset object with "Name",
+// "RGBPoints" [x, r, g, b, ...] and optional "Points" [x, opacity, midpoint, sharpness, ...].
+// Colour and opacity nodes are merged into the union of their positions (each channel evaluated
+// there, which is exact since each is linear between its own nodes). Without "Points", opacity
+// rises linearly 0 -> 1 over the colour range. Midpoint and sharpness are ignored: opacity is
+// always linear between its nodes. An empty presetName picks the first preset in the file.
+TransferFunction loadParaViewPreset(const std::filesystem::path& path,
+                                    std::string_view presetName = {});
+
+// `.xf` transfer function, either format:
+// - magic 0x1235abc000: uint64 magic, float opacityScale, float absDomain[2], float relDomain[2]
+//   (percent), int32 N, float rgba[N][4]. The N nodes are spaced uniformly over
+//   [absLo + relLo/100 (absHi - absLo), absLo + relHi/100 (absHi - absLo)]: relDomain is applied
+//   once (exaStitcher's headless viewer applies it twice, a bug not reproduced here). Alpha is
+//   multiplied by 1.1^(opacityScale - 100) as exaStitcher/cuteeOwl do (file value 100 => 1).
+// - owlExaBrick: exactly 512 bytes, float alpha[128]; albedo grey 0.8, the nodes spaced
+//   uniformly over [dataLo, dataHi].
+TransferFunction loadXf(const std::filesystem::path& path, float dataLo, float dataHi);
+
+// A preset name, or a file: `.xf` (by magic or extension) or ParaView JSON (by extension or a
+// leading '[' / '{'). Presets are mapped onto [dataLo, dataHi]; files keep their own positions.
+// presetName selects a preset inside a ParaView JSON file.
+TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,
+                                      std::string_view presetName = {});
+
+}  // namespace amrvk::render

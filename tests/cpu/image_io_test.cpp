@@ -1,0 +1,201 @@
+// Image output: PFM and EXR round trips are bit-exact, PNG holds the sRGB encoding of the
+// clamped linear values within one step of 8 bits; failures leave no file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <random>
+
+#include "core/error.h"
+#include "render/image_io.h"
+#include "test_data.h"
+
+using namespace amrvk;
+using render::Image;
+
+namespace {
+
+Image randomImage(int w, int h, uint32_t seed, float lo, float hi) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(lo, hi);
+    Image img(w, h);
+    for (glm::vec4& p : img.pixels) p = glm::vec4(u(rng), u(rng), u(rng), u(rng));
+    return img;
+}
+
+std::vector<uint8_t> fileBytes(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+// Every entry of dir, for checking that a failed write left nothing (no temporary either).
+std::vector<std::string> listDir(const std::filesystem::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+template <typename Fn>
+void expectError(Fn&& fn, std::initializer_list<std::string> fragments) {
+    try {
+        fn();
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        std::string msg = e.what();
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        for (const std::string& f : fragments)
+            EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+    }
+}
+
+// Reference sRGB encoding, computed independently in double.
+int srgbByte(double linear) {
+    if (!(linear > 0.0)) return 0;
+    linear = std::min(linear, 1.0);
+    double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+    return int(std::lround(s * 255.0));
+}
+
+void expectRgbBitExact(const Image& a, const Image& b) {
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int k = 0; k < 3; ++k)
+                ASSERT_EQ(std::memcmp(&a.at(x, y)[k], &b.at(x, y)[k], 4), 0)
+                    << "pixel " << x << "," << y << " channel " << k << ": " << a.at(x, y)[k]
+                    << " vs " << b.at(x, y)[k];
+}
+
+}  // namespace
+
+TEST(ImageIo, PfmRoundTripIsExact) {
+    auto dir = test::scratchDir();
+    for (auto [w, h] : {std::pair{1, 1}, {13, 7}, {64, 3}}) {
+        Image img = randomImage(w, h, uint32_t(w * 100 + h), -1e3f, 1e3f);
+        img.at(0, 0) = glm::vec4(std::numeric_limits<float>::infinity(), -0.0f, 1e-40f, 0.5f);
+        writeImage(dir / "a.pfm", img);
+        Image back = render::readPfm(dir / "a.pfm");
+        expectRgbBitExact(img, back);
+        for (const glm::vec4& p : back.pixels) EXPECT_EQ(p.a, 1.0f);
+    }
+}
+
+TEST(ImageIo, PfmStoresRowsBottomToTop) {
+    auto dir = test::scratchDir();
+    Image img(2, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 2; ++x) img.at(x, y) = glm::vec4(float(10 * y + x), 0.0f, 0.0f, 1.0f);
+    writeImage(dir / "rows.pfm", img);
+    std::vector<uint8_t> bytes = fileBytes(dir / "rows.pfm");
+    const std::string header = "PF\n2 3\n-1.0\n";
+    ASSERT_EQ(bytes.size(), header.size() + 2 * 3 * 3 * 4);
+    EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + long(header.size())), header);
+    float first;
+    std::memcpy(&first, &bytes[header.size()], 4);
+    EXPECT_EQ(first, 20.0f);  // the bottom row (y = 2) comes first
+}
+
+TEST(ImageIo, ExrRoundTripIsExact) {
+    auto dir = test::scratchDir();
+    for (auto [w, h] : {std::pair{1, 1}, {13, 7}, {5, 40}}) {
+        Image img = randomImage(w, h, uint32_t(w * 7 + h), -5.0f, 50.0f);
+        writeImage(dir / "a.exr", img);
+        Image back = render::readExr(dir / "a.exr");
+        expectRgbBitExact(img, back);
+        for (const glm::vec4& p : back.pixels) EXPECT_EQ(p.a, 1.0f);  // no A channel written
+        // Header, offset table, then per scanline: y, byte count, B, G, R floats.
+        std::vector<uint8_t> bytes = fileBytes(dir / "a.exr");
+        uint64_t firstOffset, lastOffset;
+        size_t tableStart = 0;
+        for (size_t i = 0; i + 1 < bytes.size(); ++i)
+            if (std::memcmp(&bytes[i], "screenWindowWidth\0float", 24) == 0) tableStart = i + 24 + 4 + 4 + 1;
+        ASSERT_GT(tableStart, 0u);
+        std::memcpy(&firstOffset, &bytes[tableStart], 8);
+        std::memcpy(&lastOffset, &bytes[tableStart + 8 * size_t(h - 1)], 8);
+        EXPECT_EQ(firstOffset, tableStart + 8 * size_t(h));
+        EXPECT_EQ(lastOffset + 8 + uint64_t(w) * 12, bytes.size());
+        int32_t y, count;
+        std::memcpy(&y, &bytes[firstOffset], 4);
+        std::memcpy(&count, &bytes[firstOffset + 4], 4);
+        EXPECT_EQ(y, 0);
+        EXPECT_EQ(count, w * 12);
+        float blue;
+        std::memcpy(&blue, &bytes[firstOffset + 8], 4);
+        EXPECT_EQ(blue, img.at(0, 0).b);
+    }
+}
+
+TEST(ImageIo, PngHoldsSrgbEncodedValues) {
+    auto dir = test::scratchDir();
+    Image img = randomImage(17, 9, 5, -0.2f, 1.3f);
+    img.at(0, 0) = glm::vec4(std::numeric_limits<float>::quiet_NaN(), 0.001f, 0.0031308f, 0.0f);
+    img.at(1, 0) = glm::vec4(0.5f, 0.18f, std::numeric_limits<float>::infinity(), 0.0f);
+    writeImage(dir / "a.png", img);
+    render::Image8 back = render::readPng(dir / "a.png");
+    ASSERT_EQ(back.width, 17);
+    ASSERT_EQ(back.height, 9);
+    ASSERT_EQ(back.rgba.size(), size_t(17 * 9 * 4));
+    for (int y = 0; y < 9; ++y) {
+        for (int x = 0; x < 17; ++x) {
+            const uint8_t* p = &back.rgba[size_t(4 * (x + 17 * y))];
+            for (int k = 0; k < 3; ++k)
+                EXPECT_LE(std::abs(int(p[k]) - srgbByte(img.at(x, y)[k])), 1)
+                    << "pixel " << x << "," << y << " channel " << k << " linear " << img.at(x, y)[k];
+            EXPECT_EQ(p[3], 255);
+        }
+    }
+    EXPECT_EQ(back.rgba[0], 0);      // NaN -> 0
+    EXPECT_EQ(back.rgba[4], 188);    // 0.5 -> 188
+    EXPECT_EQ(back.rgba[5], 118);    // 0.18 -> 118
+    EXPECT_EQ(back.rgba[6], 255);    // +inf -> 1
+    EXPECT_EQ(render::encodeSrgb8(2.0f), 255);
+    EXPECT_EQ(render::encodeSrgb8(-1.0f), 0);
+}
+
+TEST(ImageIo, ExtensionIsCaseInsensitive) {
+    auto dir = test::scratchDir();
+    Image img = randomImage(3, 2, 9, 0.0f, 1.0f);
+    writeImage(dir / "a.PFM", img);
+    expectRgbBitExact(img, render::readPfm(dir / "a.PFM"));
+}
+
+TEST(ImageIo, FailuresLeaveNoFile) {
+    auto dir = test::scratchDir();
+    Image img = randomImage(4, 4, 1, 0.0f, 1.0f);
+    expectError([&] { writeImage(dir / "a.tiff", img); }, {"a.tiff", "unknown image extension '.tiff'"});
+    expectError([&] { writeImage(dir / "noext", img); }, {"noext", "unknown image extension ''"});
+    for (const char* name : {"missing/a.png", "missing/a.pfm", "missing/a.exr"})
+        expectError([&] { writeImage(dir / name, img); }, {name, "cannot write"});
+    // The target is a directory: the temporary is written, the rename fails, nothing remains.
+    std::filesystem::create_directory(dir / "taken.exr");
+    expectError([&] { writeImage(dir / "taken.exr", img); }, {"taken.exr", "cannot rename"});
+    EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.exr"));
+    EXPECT_TRUE(std::filesystem::is_empty(dir / "taken.exr"));
+    Image bad = img;
+    bad.pixels.pop_back();
+    expectError([&] { writeImage(dir / "bad.png", bad); }, {"bad.png", "image 4x4 has 15 pixels"});
+    expectError([&] { writeImage(dir / "empty.pfm", Image()); }, {"empty.pfm", "image size 0x0"});
+    EXPECT_EQ(listDir(dir), std::vector<std::string>{"taken.exr"});
+}
+
+TEST(ImageIo, MalformedFilesAreRejected) {
+    auto dir = test::scratchDir();
+    auto write = [&](const char* name, const std::string& text) {
+        std::ofstream(dir / name, std::ios::binary) << text;
+        return dir / name;
+    };
+    expectError([&] { render::readPfm(write("magic.pfm", "P6\n1 1\n255\nabc")); }, {"magic.pfm", "not a PFM file"});
+    expectError([&] { render::readPfm(write("short.pfm", "PF\n2 2\n-1.0\n0123")); },
+                {"short.pfm", "4 bytes after the header, expected 48"});
+    expectError([&] { render::readPfm(write("size.pfm", "PF\nx 2\n-1.0\n")); }, {"size.pfm", "not a number"});
+    expectError([&] { render::readExr(write("bad.exr", "not an exr file")); }, {"bad.exr", "not an OpenEXR file"});
+    expectError([&] { render::readPng(write("bad.png", "not a png")); }, {"bad.png", "cannot read PNG"});
+    Image img = randomImage(6, 5, 2, 0.0f, 1.0f);
+    writeImage(dir / "cut.exr", img);
+    std::filesystem::resize_file(dir / "cut.exr", std::filesystem::file_size(dir / "cut.exr") - 10);
+    expectError([&] { render::readExr(dir / "cut.exr"); }, {"cut.exr", "truncated"});
+}

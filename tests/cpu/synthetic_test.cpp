@@ -1,0 +1,260 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "amr/cell_hash.h"
+#include "amr/readers.h"
+#include "amr/synthetic.h"
+#include "core/error.h"
+#include "test_data.h"
+
+using namespace amrvk;
+using namespace amrvk::amr;
+namespace fs = std::filesystem;
+
+namespace {
+
+SyntheticParams params(SyntheticKind kind, uint64_t cells, uint64_t seed = 1) {
+    SyntheticParams p;
+    p.kind = kind;
+    p.cells = cells;
+    p.seed = seed;
+    return p;
+}
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path withSuffix(fs::path base, const std::string& suffix) {
+    base += suffix;
+    return base;
+}
+
+void expectWithinFactor(uint64_t got, uint64_t target, double factor) {
+    EXPECT_GE(static_cast<double>(got) * factor, static_cast<double>(target)) << got << " vs " << target;
+    EXPECT_LE(static_cast<double>(got), static_cast<double>(target) * factor) << got << " vs " << target;
+}
+
+// Largest level difference between a leaf and the leaf just outside one of its faces.
+int largestFaceJump(const Model& m) {
+    CellHash hash(m.cells);
+    int best = 0;
+    for (const Cell& c : m.cells) {
+        const int w = 1 << c.level;
+        for (int axis = 0; axis < 3; ++axis) {
+            for (int side = 0; side < 2; ++side) {
+                glm::ivec3 p = c.lower;
+                p[axis] += side ? w : -1;
+                if (p[axis] < 0) continue;
+                for (int32_t level : hash.levels()) {
+                    glm::ivec3 lower = p & glm::ivec3(~((1 << level) - 1));
+                    if (hash.find(lower, level) != CellHash::kNone) {
+                        best = std::max(best, std::abs(level - c.level));
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    return best;
+}
+
+// The leaves tile the domain cube (volume summed in double: relative tolerance).
+void expectFillsDomain(const ModelSummary& s, int rootLevel) {
+    const double domain = std::ldexp(1.0, 3 * rootLevel);
+    EXPECT_NEAR(s.leafVolume, domain, domain * 1e-12);
+}
+
+std::string amrvkBinary() { return std::string(AMRVK_BINARY_DIR) + "/bin/amrvk"; }
+
+}  // namespace
+
+class SyntheticKinds : public ::testing::TestWithParam<SyntheticKind> {};
+
+TEST_P(SyntheticKinds, TenThousandCellsAreValidMultiLevelAndNearTheTarget) {
+    for (uint64_t seed : {1u, 2u, 3u}) {
+        SyntheticStats st;
+        Model m = makeSyntheticModel(params(GetParam(), 10000, seed), &st);
+        m.source = "synthetic";
+        ASSERT_NO_THROW(validate(m));
+        expectWithinFactor(m.cellCount(), 10000, 1.4);
+        EXPECT_EQ(st.cells, m.cellCount());
+        EXPECT_TRUE(st.targetReached);
+        ModelSummary s = summarize(m);
+        EXPECT_EQ(s.minLevel, st.minLevel);
+        EXPECT_EQ(s.maxLevel, st.maxLevel);
+        EXPECT_GE(s.maxLevel - s.minLevel + 1, 3) << "seed " << seed;
+        EXPECT_EQ(s.minLevel, 0) << "the finest level should be reached";
+        // Inside the domain, leaves filling it completely.
+        const int64_t domain = int64_t{1} << st.rootLevel;
+        EXPECT_GE(glm::min(s.bounds.lower.x, glm::min(s.bounds.lower.y, s.bounds.lower.z)), 0);
+        EXPECT_LE(glm::max(s.bounds.upper.x, glm::max(s.bounds.upper.y, s.bounds.upper.z)), domain);
+        expectFillsDomain(s, st.rootLevel);
+        for (float v : m.fields[0].values) {
+            ASSERT_TRUE(std::isfinite(v));
+            ASSERT_GT(v, 0.0f);
+        }
+        EXPECT_EQ(m.fields[0].name, "scalars");
+        EXPECT_EQ(m.availableFields, std::vector<std::string>{"scalars"});
+    }
+}
+
+TEST_P(SyntheticKinds, SameSeedIsIdenticalOtherSeedDiffers) {
+    Model a = makeSyntheticModel(params(GetParam(), 5000, 7));
+    Model b = makeSyntheticModel(params(GetParam(), 5000, 7));
+    Model c = makeSyntheticModel(params(GetParam(), 5000, 8));
+    ASSERT_EQ(a.cellCount(), b.cellCount());
+    EXPECT_EQ(0, std::memcmp(a.cells.data(), b.cells.data(), a.cells.size() * sizeof(Cell)));
+    EXPECT_EQ(a.fields[0].values, b.fields[0].values);
+    const bool sameCells = a.cellCount() == c.cellCount() &&
+                           std::memcmp(a.cells.data(), c.cells.data(), a.cells.size() * sizeof(Cell)) == 0;
+    EXPECT_FALSE(sameCells && a.fields[0].values == c.fields[0].values);
+}
+
+TEST_P(SyntheticKinds, LargerTargetsUseCountingPassesAndLandNearTheTarget) {
+    SyntheticStats st;
+    Model m = makeSyntheticModel(params(GetParam(), 300000, 5), &st);
+    expectWithinFactor(m.cellCount(), 300000, 1.4);
+    EXPECT_TRUE(st.targetReached);
+    ModelSummary s = summarize(m);
+    EXPECT_GE(s.maxLevel - s.minLevel + 1, 4);
+    expectFillsDomain(s, st.rootLevel);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, SyntheticKinds,
+                         ::testing::Values(SyntheticKind::Cloud, SyntheticKind::Shells, SyntheticKind::Teapot),
+                         [](const auto& p) { return std::string(syntheticKindName(p.param)); });
+
+TEST(Synthetic, TeapotIsATinyObjectInAHugeCoarseDomain) {
+    SyntheticStats st;
+    Model m = makeSyntheticModel(params(SyntheticKind::Teapot, 10000, 4), &st);
+    EXPECT_GE(st.rootLevel, 20);
+    ModelSummary s = summarize(m);
+    EXPECT_GE(s.bounds.size().x, int64_t{1} << 16);
+    EXPECT_GE(s.maxLevel - s.minLevel, 12);
+    EXPECT_GE(largestFaceJump(m), 3);
+    // Almost every cell belongs to the object: the stadium is a few dozen cells per level.
+    EXPECT_GT(s.cellsPerLevel[0] + s.cellsPerLevel[1] + s.cellsPerLevel[2], m.cellCount() * 3 / 4);
+}
+
+TEST(Synthetic, SmallAndDegenerateTargets) {
+    for (uint64_t n : {1u, 8u, 100u}) {
+        Model m = makeSyntheticModel(params(SyntheticKind::Shells, n));
+        m.source = "synthetic";
+        EXPECT_NO_THROW(validate(m));
+        EXPECT_LE(m.cellCount(), std::max<uint64_t>(15, 2 * n));
+    }
+    SyntheticParams p = params(SyntheticKind::Cloud, 1000);
+    p.levels = 1;  // a single possible cell
+    EXPECT_EQ(makeSyntheticModel(p).cellCount(), 1u);
+    p.levels = 3;  // at most 64 cells: the target cannot be reached
+    SyntheticStats st;
+    Model m = makeSyntheticModel(p, &st);
+    EXPECT_LE(m.cellCount(), 64u);
+    EXPECT_FALSE(st.targetReached);
+    p.levels = 40;
+    EXPECT_THROW(makeSyntheticModel(p), Error);
+    EXPECT_THROW(parseSyntheticKind("teacup"), Error);
+    EXPECT_EQ(parseSyntheticKind("teapot"), SyntheticKind::Teapot);
+}
+
+TEST(Synthetic, FilesEqualTheInMemoryModelAndAreDeterministic) {
+    const fs::path dir = test::scratchDir();
+    SyntheticParams p = params(SyntheticKind::Cloud, 20000, 11);
+    SyntheticStats st = generateSynthetic(p, dir / "a");
+    generateSynthetic(p, dir / "b");
+    EXPECT_EQ(readBytes(dir / "a.cells"), readBytes(dir / "b.cells"));
+    EXPECT_EQ(readBytes(dir / "a.scalars"), readBytes(dir / "b.scalars"));
+    p.seed = 12;
+    generateSynthetic(p, dir / "c");
+    EXPECT_NE(readBytes(dir / "a.scalars"), readBytes(dir / "c.scalars"));
+    // Nothing but the outputs: no temporary files left behind.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 6);
+
+    Model files = readModel(dir / "a.cells", ReadOptions{});
+    Model memory = makeSyntheticModel(params(SyntheticKind::Cloud, 20000, 11));
+    EXPECT_EQ(st.cells, files.cellCount());
+    EXPECT_EQ(st.bytes, files.cellCount() * 20);
+    ASSERT_EQ(files.cellCount(), memory.cellCount());
+    EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+    EXPECT_EQ(files.field("scalars").values, memory.fields[0].values);
+}
+
+TEST(Synthetic, StreamsMoreThanOneChunkAndReportsProgress) {
+    const fs::path dir = test::scratchDir();
+    SyntheticParams p = params(SyntheticKind::Shells, 1500000, 3);
+    p.field = "density";
+    int calls = 0, writing = 0;
+    p.progress = [&](std::string_view phase, double fraction) {
+        ++calls;
+        writing += phase == "writing";
+        EXPECT_GE(fraction, 0.0);
+        EXPECT_LE(fraction, 1.0);
+    };
+    SyntheticStats st = generateSynthetic(p, dir / "big");
+    EXPECT_GT(writing, 10);
+    EXPECT_GE(calls, writing);
+    EXPECT_GT(st.cells, 1u << 20);
+    expectWithinFactor(st.cells, 1500000, 1.4);
+    EXPECT_EQ(fs::file_size(dir / "big.cells"), st.cells * 16);
+    EXPECT_EQ(fs::file_size(dir / "big.density.scalars"), st.cells * 4);
+    EXPECT_FALSE(fs::exists(dir / "big.scalars"));
+    uint64_t perLevel = 0;
+    for (uint64_t n : st.cellsPerLevel) perLevel += n;
+    EXPECT_EQ(perLevel, st.cells);
+
+    p.progress = nullptr;
+    Model memory = makeSyntheticModel(p);
+    Model files = readModel(dir / "big", ReadOptions{});
+    ASSERT_EQ(files.cellCount(), memory.cellCount());
+    EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+    EXPECT_EQ(files.field("density").values, memory.field("density").values);
+}
+
+TEST(Synthetic, FailedRunLeavesNothing) {
+    const fs::path dir = test::scratchDir();
+    EXPECT_THROW(generateSynthetic(params(SyntheticKind::Cloud, 1000), dir / "missing" / "x"), Error);
+    EXPECT_FALSE(fs::exists(dir / "missing"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+}
+
+TEST(GenCommand, WritesFilesThatReadBackAsTheInMemoryModel) {
+    if (!fs::exists(amrvkBinary())) GTEST_SKIP() << "amrvk binary not built: " << amrvkBinary();
+    const fs::path dir = test::scratchDir();
+    for (const char* kind : {"cloud", "shells", "teapot"}) {
+        const fs::path base = dir / kind;
+        const std::string cmd = amrvkBinary() + " gen " + kind + " --cells 1e4 --seed 5 -o " + base.string() +
+                                " > " + (dir / "out.txt").string() + " 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << readBytes(dir / "out.txt");
+        const std::string out = readBytes(dir / "out.txt");
+        EXPECT_NE(out.find(" cells, levels "), std::string::npos) << out;
+        Model files = readModel(withSuffix(base, ".cells"), ReadOptions{});
+        Model memory = makeSyntheticModel(params(parseSyntheticKind(kind), 10000, 5));
+        ASSERT_EQ(files.cellCount(), memory.cellCount()) << kind;
+        EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+        EXPECT_EQ(files.fields[0].values, memory.fields[0].values);
+    }
+}
+
+TEST(GenCommand, HelpAndErrors) {
+    if (!fs::exists(amrvkBinary())) GTEST_SKIP() << "amrvk binary not built: " << amrvkBinary();
+    const fs::path dir = test::scratchDir();
+    const std::string out = (dir / "out.txt").string();
+    ASSERT_EQ(std::system((amrvkBinary() + " gen --help > " + out + " 2>&1").c_str()), 0);
+    std::string help = readBytes(out);
+    for (const char* word : {"cloud", "shells", "teapot", "--cells", "--seed", "--levels", "--field", "BASE"})
+        EXPECT_NE(help.find(word), std::string::npos) << word;
+    EXPECT_NE(std::system((amrvkBinary() + " gen teacup --cells 100 -o " + (dir / "x").string() + " > " + out +
+                           " 2>&1").c_str()),
+              0);
+    EXPECT_NE(readBytes(out).find("teacup"), std::string::npos);
+    EXPECT_NE(std::system((amrvkBinary() + " gen cloud -o " + (dir / "x").string() + " > " + out + " 2>&1").c_str()), 0);
+    EXPECT_NE(readBytes(out).find("--cells"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "x.cells"));
+}

@@ -1,0 +1,225 @@
+// End-to-end render tests with known answers: white furnace, absorption+emission slab (also at
+// density scales 1e-4 and 1e4, at exajet-like coordinates, with the camera inside), empty TF,
+// the CPU reference integrator on a real data set, and zero majorant violations.
+#include <cmath>
+
+#include "amr/readers.h"
+#include "amr/synthetic.h"
+#include "gpu_fixture.h"
+#include "image_compare.h"
+#include "render/reference_integrator.h"
+#include "render/renderer.h"
+#include "render_fixtures.h"
+#include "test_data.h"
+
+using namespace amrvk;
+
+namespace {
+
+class RenderGpu : public test::GpuTest {
+protected:
+    render::RenderOutput renderGpu(const amr::Model& m, const render::TransferFunction& tf,
+                                   const render::RenderSettings& s, uint32_t spp,
+                                   render::SamplerKind sampler = render::SamplerKind::ExtBrick,
+                                   const std::string& grid = "32") {
+        render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], sampler, grid);
+        render::Renderer r(ctx(), scene);
+        r.setTransferFunction(tf);
+        render::RenderOutput o = r.render(s, spp);
+        EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
+        EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
+        return o;
+    }
+};
+
+// Slab of level-0 cells [0,64) x [0,64) x [zLo, zLo + thickness), viewed straight down the z axis
+// through a narrow field of view, so every ray crosses the top and bottom faces.
+struct Slab {
+    glm::ivec3 lower{0};
+    int thickness = 4;
+    amr::Model model() const { return test::makeUniformBox({64, 64, thickness}, 0, 1.0f, lower); }
+    render::Camera camera(double eyeZ) const {
+        render::Camera c;
+        glm::dvec3 centre = glm::dvec3(lower) + glm::dvec3(32.0, 32.0, 0.0);
+        c.eye = centre + glm::dvec3(0.0, 0.0, eyeZ);
+        c.target = centre;
+        c.up = {0.0, 1.0, 0.0};
+        c.fovYDegrees = 20.0;
+        return c;
+    }
+};
+
+// Expected AE radiance: c (1 - e^(-sigma d)) + bg e^(-sigma d) with d the path length in the slab.
+void expectAeSlab(const render::RenderOutput& o, const render::RenderSettings& s, double sigma, double zTop,
+                  double zBottom, glm::dvec3 c, glm::dvec3 bg, glm::dvec3 origin) {
+    render::RayBasis rb = render::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, origin);
+    const double z = test::sidakZ(1e-4, 3);
+    glm::dvec3 sumDiff(0.0), var(0.0);
+    for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x) {
+            size_t i = size_t(y) * size_t(s.width) + size_t(x);
+            // Expected value averaged over the pixel footprint by 4x4 stratified sub-samples.
+            glm::dvec3 expect(0.0);
+            for (int k = 0; k < 16; ++k) {
+                glm::dvec3 d = glm::normalize(rb.dir00 + (x + (k % 4 + 0.5) / 4) * rb.du + (y + (k / 4 + 0.5) / 4) * rb.dv);
+                double eyeZ = rb.eye.z + origin.z;
+                double top = std::min(zTop, eyeZ);
+                double len = (top - zBottom) / std::abs(d.z);
+                double T = std::exp(-sigma * len);
+                expect += c * (1 - T) + bg * T;
+            }
+            expect /= 16.0;
+            for (int ch = 0; ch < 3; ++ch) {
+                sumDiff[ch] += o.mean.pixels[i][ch] - expect[ch];
+                var[ch] += test::sampleVariance(o, i, ch) / o.spp;
+            }
+        }
+    const double n = double(s.width) * s.height;
+    for (int ch = 0; ch < 3; ++ch) {
+        double meanDiff = sumDiff[ch] / n, sd = std::sqrt(var[ch]) / n;
+        EXPECT_LE(std::abs(meanDiff), z * sd + 2e-6) << "channel " << ch << " sigma " << sigma;
+    }
+}
+
+}  // namespace
+
+TEST_F(RenderGpu, WhiteFurnaceIsExactlyOne) {
+    amr::SyntheticParams p;
+    p.cells = 20000;
+    p.seed = 5;
+    amr::Model m = amr::makeSyntheticModel(p);
+    for (double density : {0.02, 0.1}) {  // optical depths across the cloud of about 5 and 25
+        render::RenderSettings s;
+        s.mode = render::Mode::Ms;
+        s.width = s.height = 32;
+        s.densityScale = density;
+        s.ambient = glm::dvec3(1.0);
+        amr::ModelSummary sum = amr::summarize(m);
+        s.camera = render::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+        render::RenderOutput o = renderGpu(m, test::constantTf(glm::vec3(1.0f), 1.0f), s, 4);
+        EXPECT_EQ(o.stats.counter(shared::kCounterBounceLimitHits), 0u);
+        EXPECT_GT(o.stats.counter(shared::kCounterRealCollisions), o.stats.paths);  // many scatter
+        double mean = 0;
+        for (const auto& px : o.mean.pixels) {
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], 1.0, 1e-5);
+            mean += (px.r + px.g + px.b) / 3.0;
+        }
+        EXPECT_NEAR(mean / double(o.mean.pixels.size()), 1.0, 1e-3);
+    }
+}
+
+TEST_F(RenderGpu, AbsorptionEmissionSlabMatchesTheClosedForm) {
+    Slab slab;
+    amr::Model m = slab.model();
+    const glm::vec3 c(0.9f, 0.5f, 0.2f);
+    const glm::dvec3 bg(0.1, 0.3, 0.6);
+    for (double density : {1e-4, 0.1, 0.5, 1e4}) {
+        render::RenderSettings s;
+        s.mode = render::Mode::Ae;
+        s.width = s.height = 32;
+        s.densityScale = density;
+        s.ambient = bg;
+        s.camera = slab.camera(100.0);
+        render::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
+        expectAeSlab(o, s, density, slab.thickness, 0.0, glm::dvec3(c), bg, glm::dvec3(0.0));
+    }
+}
+
+TEST_F(RenderGpu, HugeCoordinatesAndCameraInsideTheVolume) {
+    // Exajet-like integer extents (corner above 10^6) give the same slab answer.
+    Slab far;
+    far.lower = {1232128, 1259072, 1238336};
+    far.thickness = 8;
+    amr::Model m = far.model();
+    const glm::vec3 c(0.7f, 0.7f, 0.3f);
+    const glm::dvec3 bg(0.2, 0.2, 0.2);
+    render::RenderSettings s;
+    s.mode = render::Mode::Ae;
+    s.width = s.height = 32;
+    s.densityScale = 0.2;
+    s.ambient = bg;
+    s.camera = far.camera(50.0);
+    render::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
+    expectAeSlab(o, s, 0.2, far.lower.z + far.thickness, far.lower.z, glm::dvec3(c), bg, glm::dvec3(0.0));
+    // Camera inside the slab, 3 units above its bottom, looking down.
+    s.camera = far.camera(3.0);
+    s.camera.fovYDegrees = 10.0;
+    o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
+    expectAeSlab(o, s, 0.2, far.lower.z + 3.0, far.lower.z, glm::dvec3(c), bg, glm::dvec3(0.0));
+}
+
+TEST_F(RenderGpu, EmptyTransferFunctionShowsTheBackground) {
+    amr::SyntheticParams p;
+    p.cells = 5000;
+    amr::Model m = amr::makeSyntheticModel(p);
+    amr::ModelSummary sum = amr::summarize(m);
+    for (auto mode : {render::Mode::Ae, render::Mode::Ss, render::Mode::Ms}) {
+        render::RenderSettings s;
+        s.mode = mode;
+        s.width = s.height = 24;
+        s.ambient = glm::dvec3(0.5, 0.25, 1.0);
+        s.background = glm::dvec3(0.3, 0.2, 0.1);
+        s.camera = render::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+        render::RenderOutput o = renderGpu(m, render::makePreset("empty", 0.0f, 1.0f), s, 4);
+        EXPECT_EQ(o.stats.counter(shared::kCounterDensityLookups), 0u);
+        for (const auto& px : o.mean.pixels) {
+            EXPECT_FLOAT_EQ(px.r, 0.3f);
+            EXPECT_FLOAT_EQ(px.g, 0.2f);
+            EXPECT_FLOAT_EQ(px.b, 0.1f);
+        }
+    }
+}
+
+TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
+    AMRVK_REQUIRE_DATA("enzo_tiny_cosmology/DD0018/DD0018");
+    amr::ReadOptions ro;
+    ro.fields = {"Density"};
+    amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", ro);
+    render::TransferFunction tf = render::makePreset("ramp", 0.0f, 3.0f);
+    amr::ModelSummary sum = amr::summarize(m);
+    glm::dvec3 lo = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower));
+    glm::dvec3 hi = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper));
+    render::ReferenceIntegrator cpu(m, m.fields[0], tf);
+    for (auto mode : {render::Mode::Ae, render::Mode::Ss, render::Mode::Ms}) {
+        SCOPED_TRACE(render::modeName(mode));
+        render::RenderSettings s;
+        s.mode = mode;
+        s.width = s.height = 16;
+        s.densityScale = 0.03;  // translucent: the picture depends on the density everywhere
+        s.ambient = glm::dvec3(0.6, 0.7, 0.9);
+        s.background = glm::dvec3(0.05);
+        s.lights.push_back({false, {1.0, 0.5, 2.0}, {2.0, 1.8, 1.5}});
+        s.camera = render::defaultCamera(lo, hi, 30.0);
+        s.camera.fovYDegrees = 18.0;  // the central part, where the medium covers every pixel
+        render::RenderOutput gpu = renderGpu(m, tf, s, 2048);
+        render::RenderOutput ref = cpu.render(s, 768);
+        test::expectSameImage(gpu, ref, 8, std::string("enzo-") + render::modeName(mode));
+    }
+}
+
+TEST_F(RenderGpu, NoMajorantViolationsWithASpikyTfOnRealData) {
+    struct Set {
+        const char* path;
+        const char* field;
+    };
+    for (Set set : {Set{"enzo_tiny_cosmology/DD0018/DD0018", "Density"}, Set{"amrex_pelelm_3d/example_plt_3d", "temp"},
+                    Set{"chombo_mushy_layer_2d/plt025000.2d.hdf5", "Temperature"}}) {
+        if (!std::filesystem::exists(test::dataDir() / set.path)) continue;
+        SCOPED_TRACE(set.path);
+        amr::ReadOptions ro;
+        ro.fields = {set.field};
+        amr::Model m = amr::readModel(test::dataDir() / set.path, ro);
+        amr::FieldStats st = amr::computeFieldStats(m, m.fields[0]);
+        amr::ModelSummary sum = amr::summarize(m);
+        for (auto sampler : {render::SamplerKind::ExtBrick, render::SamplerKind::Abr}) {
+            render::RenderSettings s;
+            s.mode = render::Mode::Ss;
+            s.width = s.height = 32;
+            s.densityScale = 20.0;
+            s.camera = render::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                             m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
+            render::RenderOutput o = renderGpu(m, render::makePreset("spiky", st.minValue, st.maxValue), s, 4, sampler, "auto");
+            EXPECT_GT(o.stats.counter(shared::kCounterDensityLookups), 0u);
+        }
+    }
+}
