@@ -92,8 +92,12 @@ case "$cmd" in
   build) deps; build ;;
   demo)
     deps; build
-    say "demo: amrvk info on the bundled sample (assets/samples/level-boundary)"
-    ./build/bin/amrvk info assets/samples/level-boundary.cells
+    say "demo: the bundled sample (assets/samples/cloud: synthetic turbulent cloud, 32768 cells, 8 levels)"
+    ./build/bin/amrvk info assets/samples/cloud.cells
+    mkdir -p out
+    ./build/bin/amrvk render assets/samples/cloud.cells --mode ms --size 256x256 --spp 16 --grid 64 \
+      --tf ramp --tf-range 0 1 --light-dir 1 -1 2 3 3 3 -o out/demo.png --json out/demo.json
+    say "demo image: $here/out/demo.png (statistics: $here/out/demo.json)"
     ;;
   test)
     deps; build

@@ -1,0 +1,409 @@
+// AMReX plotfile reader: the real PeleLM plotfile (oracles in shared/data/amr/FORMATS.md 6) and
+// small synthetic plotfiles written here for what the real one lacks (2-D, ghost cells, float32,
+// big-endian, raw VisMF versions 2-4, refinement ratio 3).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "amr/model.h"
+#include "amr/readers.h"
+#include "core/error.h"
+#include "test_data.h"
+
+namespace fs = std::filesystem;
+using namespace amrvk;
+using namespace amrvk::amr;
+
+namespace {
+
+const char* kPlotfile = "amrex_pelelm_3d/example_plt_3d";
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected an amrvk::Error";
+    return {};
+}
+
+void expectContains(const std::string& text, const std::string& part) {
+    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+std::string readAll(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream os;
+    os << in.rdbuf();
+    return os.str();
+}
+
+// Writes a fresh (writable) copy of the first `keep` bytes of `src` (all when keep is npos).
+void copyPrefix(const fs::path& src, const fs::path& dst, size_t keep = std::string::npos) {
+    const std::string bytes = readAll(src);
+    fs::create_directories(dst.parent_path());
+    std::ofstream out(dst, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(std::min(keep, bytes.size())));
+}
+
+void copyPlotfile(const fs::path& src, const fs::path& dst) {
+    for (const auto& entry : fs::recursive_directory_iterator(src))
+        if (entry.is_regular_file())
+            copyPrefix(entry.path(), dst / fs::relative(entry.path(), src));
+}
+
+const Cell* findCell(const Model& m, glm::ivec3 lower, int level, size_t* index) {
+    for (size_t i = 0; i < m.cells.size(); ++i)
+        if (m.cells[i].lower == lower && m.cells[i].level == level) {
+            *index = i;
+            return &m.cells[i];
+        }
+    return nullptr;
+}
+
+// ---- synthetic plotfiles ----
+
+struct Synthetic {
+    int dim = 3;
+    int vismfVersion = 1;
+    int realBytes = 8;
+    bool bigEndian = false;
+    int ngrow = 0;
+    bool ngrowAsIntVect = false;
+    int ratio = 2;
+    int levels = 2;  // 1: level 0 only
+};
+
+constexpr float kGhostValue = -7777.0f;
+
+// Value of component c at cell (i,j,k) of level l: exact in float32.
+float synthValue(int level, int comp, int i, int j, int k) {
+    return float(1000 * level + 100 * comp + i + 10 * j) + 0.25f * float(k);
+}
+
+std::string intVect(glm::ivec3 v, int dim) {
+    std::string s = "(" + std::to_string(v.x) + "," + std::to_string(v.y);
+    if (dim == 3) s += "," + std::to_string(v.z);
+    return s + ")";
+}
+
+std::string boxText(glm::ivec3 lo, glm::ivec3 hi, int dim) {
+    return "(" + intVect(lo, dim) + " " + intVect(hi, dim) + " " + intVect(glm::ivec3(0), dim) +
+           ")";
+}
+
+std::string realDescriptor(const Synthetic& s) {
+    std::string format = s.realBytes == 8 ? "(64 11 52 0 1 12 0 1023)" : "(32 8 23 0 1 9 0 127)";
+    std::string order;
+    for (int i = 0; i < s.realBytes; ++i) {
+        if (i) order += " ";
+        order += std::to_string(s.bigEndian ? i + 1 : s.realBytes - i);
+    }
+    const std::string n = std::to_string(s.realBytes);
+    return "((" + n + ", " + format + "),(" + n + ", (" + order + ")))";
+}
+
+void appendReal(std::string& out, double v, const Synthetic& s) {
+    unsigned char b[8];
+    if (s.realBytes == 8)
+        std::memcpy(b, &v, 8);
+    else {
+        float f = static_cast<float>(v);
+        std::memcpy(b, &f, 4);
+    }
+    const size_t n = static_cast<size_t>(s.realBytes);
+    if (s.bigEndian == (std::endian::native == std::endian::little)) std::reverse(b, b + n);
+    out.append(reinterpret_cast<const char*>(b), n);
+}
+
+// Two levels (or level 0 only) on [0, 1]^dim: level 0 is 4^dim cells, level 1 one box of 4^dim
+// cells over level-0 cells 1..2 (with ratio 2). Components "a" and "b(x)".
+void writeSynthetic(const fs::path& dir, const Synthetic& s) {
+    fs::create_directories(dir);
+    const int d = s.dim;
+    const glm::ivec3 one = d == 3 ? glm::ivec3(1) : glm::ivec3(1, 1, 0);
+    const glm::ivec3 lo[2] = {glm::ivec3(0), 2 * one};
+    const glm::ivec3 hi[2] = {3 * one, 5 * one};
+    const glm::ivec3 domainHi[2] = {3 * one, (4 * s.ratio - 1) * one};
+    std::ostringstream h;
+    h << "HyperCLaw-V1.1\n2\na\nb(x)\n" << d << "\n0.5\n" << s.levels - 1 << "\n";
+    for (int a = 0; a < d; ++a) h << "0 ";
+    h << "\n";
+    for (int a = 0; a < d; ++a) h << "1 ";
+    h << "\n";
+    if (s.levels == 2) h << s.ratio << " ";
+    h << "\n";
+    for (int l = 0; l < s.levels; ++l) h << boxText(glm::ivec3(0), domainHi[l], d) << " ";
+    h << "\n";
+    for (int l = 0; l < s.levels; ++l) h << "0 ";
+    h << "\n";
+    for (int l = 0; l < s.levels; ++l) {
+        for (int a = 0; a < d; ++a) h << 0.25 / (l ? s.ratio : 1) << " ";
+        h << "\n";
+    }
+    h << "0\n0\n";
+    for (int l = 0; l < s.levels; ++l) {
+        h << l << " 1 0.5\n0\n";
+        for (int a = 0; a < d; ++a) h << "0 1\n";
+        h << "Level_" << l << "/Cell\n";
+    }
+    std::ofstream(dir / "Header") << h.str();
+
+    for (int l = 0; l < s.levels; ++l) {
+        const fs::path levelDir = dir / ("Level_" + std::to_string(l));
+        fs::create_directories(levelDir);
+        const glm::ivec3 g = s.ngrow * one;
+        const glm::ivec3 flo = lo[l] - g, fhi = hi[l] + g;
+        std::string data;
+        if (s.vismfVersion == 1) data = "FAB " + realDescriptor(s) + boxText(flo, fhi, d) + " 2\n";
+        for (int c = 0; c < 2; ++c)
+            for (int k = flo.z; k <= fhi.z; ++k)
+                for (int j = flo.y; j <= fhi.y; ++j)
+                    for (int i = flo.x; i <= fhi.x; ++i) {
+                        const bool ghost = glm::any(glm::lessThan(glm::ivec3(i, j, k), lo[l])) ||
+                                           glm::any(glm::greaterThan(glm::ivec3(i, j, k), hi[l]));
+                        appendReal(data, ghost ? kGhostValue : synthValue(l, c, i, j, k), s);
+                    }
+        std::ofstream(levelDir / "Cell_D_00000", std::ios::binary) << data;
+
+        std::ostringstream ch;
+        ch << s.vismfVersion << "\n0\n2\n";
+        if (s.ngrowAsIntVect)
+            ch << intVect(s.ngrow * glm::ivec3(1), d) << "\n";
+        else
+            ch << s.ngrow << "\n";
+        ch << "(1 0\n" << boxText(lo[l], hi[l], d) << "\n)\n1\nFabOnDisk: Cell_D_00000 0\n\n";
+        if (s.vismfVersion == 1 || s.vismfVersion == 3)
+            ch << "1,2\n0.0e+00,1.0e+02,\n\n1,2\n1.0e+03,1.1e+03,\n";
+        if (s.vismfVersion == 4) ch << "0.0e+00,1.0e+02,\n1.0e+03,1.1e+03,\n";
+        if (s.vismfVersion >= 2) ch << realDescriptor(s) << "\n";
+        std::ofstream(levelDir / "Cell_H") << ch.str();
+    }
+}
+
+// Checks every leaf of a synthetic plotfile (ratio 2) against synthValue.
+void checkSynthetic(const Model& m, const Synthetic& s) {
+    ASSERT_EQ(m.fields.size(), 2u);
+    EXPECT_EQ(m.fields[0].name, "a");
+    EXPECT_EQ(m.fields[1].name, "b(x)");
+    const size_t fine = s.dim == 3 ? 64 : 16;
+    const size_t coarse = s.dim == 3 ? 64 - 8 : 16 - 4;
+    ModelSummary sum = summarize(m);
+    ASSERT_EQ(sum.cellsPerLevel.size(), 2u);
+    EXPECT_EQ(sum.cellsPerLevel[0], fine);
+    EXPECT_EQ(sum.cellsPerLevel[1], coarse);
+    EXPECT_EQ(sum.bounds.lower, glm::i64vec3(0));
+    EXPECT_EQ(sum.bounds.upper, s.dim == 3 ? glm::i64vec3(8) : glm::i64vec3(8, 8, 2));
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        const Cell& c = m.cells[i];
+        const int l = 1 - c.level;  // AMReX level: 0 coarse, 1 fine
+        const glm::ivec3 idx = c.lower / (c.level ? 2 : 1);
+        if (s.dim == 2) {
+            EXPECT_EQ(c.lower.z, 0);
+        }
+        for (int f = 0; f < 2; ++f)
+            ASSERT_EQ(m.fields[static_cast<size_t>(f)].values[i],
+                      synthValue(l, f, idx.x, idx.y, idx.z))
+                << "cell " << i << " field " << f;
+    }
+    EXPECT_DOUBLE_EQ(m.voxelToWorld.scale.x, 0.125);
+    EXPECT_DOUBLE_EQ(m.voxelToWorld.scale.z, 0.125);
+    EXPECT_NO_THROW(validate(m));
+}
+
+}  // namespace
+
+TEST(AmrexReader, RealPlotfileMatchesOracles) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    ReadOptions o;
+    o.fields = {"temp"};
+    const Model m = readModel(test::dataDir() / kPlotfile, o);
+    EXPECT_EQ(m.format, "amrex");
+    ASSERT_EQ(m.availableFields.size(), 38u);
+    EXPECT_EQ(m.availableFields[5], "temp");
+    EXPECT_EQ(m.availableFields[20], "Y(CH2(S))");
+    ASSERT_EQ(m.fields.size(), 1u);
+
+    // Levels 8^3, 16^3, 32^3 each cover the domain: only the 32^3 finest cells are leaves.
+    const ModelSummary s = summarize(m);
+    EXPECT_EQ(m.cellCount(), 32768u);
+    EXPECT_EQ(s.cellsPerLevel, (std::vector<uint64_t>{32768}));
+    EXPECT_EQ(s.bounds.lower, glm::i64vec3(0));
+    EXPECT_EQ(s.bounds.upper, glm::i64vec3(32));
+    EXPECT_DOUBLE_EQ(s.leafVolume, s.bounds.volume());
+    EXPECT_NO_THROW(validate(m));
+
+    // Domain [0, 0.016]^3; finest dx = 0.002 / 2 / 2.
+    const glm::dvec3 lo = m.voxelToWorld.toWorld(glm::dvec3(s.bounds.lower));
+    const glm::dvec3 hi = m.voxelToWorld.toWorld(glm::dvec3(s.bounds.upper));
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_DOUBLE_EQ(lo[a], 0.0);
+        EXPECT_NEAR(hi[a], 0.016, 1e-15);
+        EXPECT_NEAR(m.voxelToWorld.scale[a], 0.0005, 1e-18);
+    }
+
+    // temp on the finest level (all leaves): 297.99999999999994 ... 1579.8536855390937.
+    const FieldStats st = computeFieldStats(m, m.field("temp"));
+    EXPECT_FLOAT_EQ(st.minValue, static_cast<float>(297.99999999999994));
+    EXPECT_FLOAT_EQ(st.maxValue, static_cast<float>(1579.8536855390937));
+
+    // One value checked against the FAB bytes: finest cell (5, 17, 30).
+    size_t i = 0;
+    ASSERT_NE(findCell(m, {5, 17, 30}, 0, &i), nullptr);
+    EXPECT_FLOAT_EQ(m.fields[0].values[i], static_cast<float>(1579.7857281345207));
+
+    bool hasTime = false;
+    for (const auto& [k, v] : m.attributes)
+        if (k == "time") {
+            hasTime = true;
+            EXPECT_EQ(v, "1.3924182125972017e-08");
+        }
+    EXPECT_TRUE(hasTime);
+}
+
+TEST(AmrexReader, HeaderPathAndAllFields) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    const Model m = readModel(test::dataDir() / kPlotfile / "Header", ReadOptions{});
+    ASSERT_EQ(m.fields.size(), 38u);
+    EXPECT_EQ(m.cellCount(), 32768u);
+    const FieldStats density = computeFieldStats(m, m.field("density"));
+    EXPECT_GT(density.minValue, 0.0f);
+    size_t i = 0;
+    ASSERT_NE(findCell(m, {5, 17, 30}, 0, &i), nullptr);
+    EXPECT_FLOAT_EQ(m.field("density").values[i], static_cast<float>(0.21436366927536127));
+}
+
+TEST(AmrexReader, UnknownFieldListsAvailable) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    ReadOptions o;
+    o.fields = {"temperature"};
+    const std::string msg = errorOf([&] { readAmrex(test::dataDir() / kPlotfile, o); });
+    expectContains(msg, "unknown field 'temperature'");
+    expectContains(msg, "temp, RhoRT");
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
+TEST(AmrexReader, MissingHeaderAndCellHeaderAreReported) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    const fs::path dir = test::scratchDir() / "plt";
+    fs::create_directories(dir);
+    std::string msg = errorOf([&] { readAmrex(dir, {}); });
+    expectContains(msg, "Header");
+    expectContains(msg, "no such file");
+
+    copyPrefix(test::dataDir() / kPlotfile / "Header", dir / "Header");
+    msg = errorOf([&] { readAmrex(dir, {}); });
+    expectContains(msg, (dir / "Level_0" / "Cell_H").string());
+    expectContains(msg, "no such file");
+}
+
+TEST(AmrexReader, TruncatedFabDataIsReported) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    const fs::path dir = test::scratchDir() / "plt";
+    copyPlotfile(test::dataDir() / kPlotfile, dir);
+    const fs::path victim = dir / "Level_2" / "Cell_D_00003";
+    copyPrefix(test::dataDir() / kPlotfile / "Level_2" / "Cell_D_00003", victim,
+               fs::file_size(victim) - 1000);
+    const std::string msg = errorOf([&] { readModel(dir, ReadOptions{}); });
+    expectContains(msg, victim.string());
+    expectContains(msg, "truncated");
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
+TEST(AmrexReader, RoundTripThroughExaBrick) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    ReadOptions o;
+    o.fields = {"temp", "Y(H2)"};
+    const Model m = readModel(test::dataDir() / kPlotfile, o);
+    const fs::path base = test::scratchDir() / "x";
+    writeExaBrick(m, base);
+    ReadOptions back;
+    back.format = "exabrick";
+    back.fields = {"temp", "Y(H2)"};
+    const Model r = readModel(base, back);
+    ASSERT_EQ(r.cells.size(), m.cells.size());
+    EXPECT_EQ(std::memcmp(r.cells.data(), m.cells.data(), m.cells.size() * sizeof(Cell)), 0);
+    ASSERT_EQ(r.fields.size(), 2u);
+    for (size_t f = 0; f < 2; ++f) {
+        EXPECT_EQ(r.fields[f].name, m.fields[f].name);
+        EXPECT_EQ(r.fields[f].values, m.fields[f].values);
+    }
+}
+
+TEST(AmrexReader, SyntheticTwoDimensionalWithGhostCells) {
+    Synthetic s;
+    s.dim = 2;
+    s.ngrow = 1;
+    const fs::path dir = test::scratchDir() / "plt2d";
+    writeSynthetic(dir, s);
+    checkSynthetic(readModel(dir, ReadOptions{}), s);
+}
+
+TEST(AmrexReader, SyntheticFloatBigEndianIntVectGhost) {
+    Synthetic s;
+    s.realBytes = 4;
+    s.bigEndian = true;
+    s.ngrow = 2;
+    s.ngrowAsIntVect = true;
+    const fs::path dir = test::scratchDir() / "plt";
+    writeSynthetic(dir, s);
+    checkSynthetic(readModel(dir, ReadOptions{}), s);
+}
+
+TEST(AmrexReader, SyntheticRawVisMFVersions) {
+    for (int version = 2; version <= 4; ++version) {
+        for (bool big : {false, true}) {
+            SCOPED_TRACE("VisMF version " + std::to_string(version) + (big ? " big" : " little"));
+            Synthetic s;
+            s.vismfVersion = version;
+            s.bigEndian = big;
+            s.ngrow = version == 3 ? 1 : 0;
+            s.dim = version == 4 ? 2 : 3;
+            const fs::path dir =
+                test::scratchDir() / ("plt" + std::to_string(version) + (big ? "be" : "le"));
+            writeSynthetic(dir, s);
+            checkSynthetic(readModel(dir, ReadOptions{}), s);
+        }
+    }
+}
+
+TEST(AmrexReader, SyntheticSingleLevel) {
+    Synthetic s;
+    s.levels = 1;
+    const fs::path dir = test::scratchDir() / "plt";
+    writeSynthetic(dir, s);
+    const Model m = readModel(dir, ReadOptions{});
+    EXPECT_EQ(summarize(m).cellsPerLevel, (std::vector<uint64_t>{64}));
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        const glm::ivec3 p = m.cells[i].lower;
+        ASSERT_EQ(m.fields[1].values[i], synthValue(0, 1, p.x, p.y, p.z)) << "cell " << i;
+    }
+    EXPECT_DOUBLE_EQ(m.voxelToWorld.scale.y, 0.25);
+}
+
+TEST(AmrexReader, NonPowerOfTwoRatioIsRejected) {
+    Synthetic s;
+    s.ratio = 3;
+    const fs::path dir = test::scratchDir() / "plt";
+    writeSynthetic(dir, s);
+    const std::string msg = errorOf([&] { readAmrex(dir, {}); });
+    expectContains(msg, "refinement ratio 3");
+    expectContains(msg, "power of two");
+}
+
+TEST(AmrexReader, SyntheticTruncatedFabIsReported) {
+    Synthetic s;
+    const fs::path dir = test::scratchDir() / "plt";
+    writeSynthetic(dir, s);
+    const fs::path data = dir / "Level_1" / "Cell_D_00000";
+    fs::resize_file(data, fs::file_size(data) - 8);
+    const std::string msg = errorOf([&] { readAmrex(dir, {}); });
+    expectContains(msg, data.string());
+    expectContains(msg, "truncated FAB 0");
+}

@@ -1,0 +1,208 @@
+// Enzo reader on the real enzo_tiny_cosmology DD0018 output (oracles in
+// shared/data/amr/FORMATS.md 6) and on damaged copies of it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "amr/model.h"
+#include "amr/readers.h"
+#include "core/error.h"
+#include "test_data.h"
+
+namespace fs = std::filesystem;
+using namespace amrvk;
+using namespace amrvk::amr;
+
+namespace {
+
+const char* kParam = "enzo_tiny_cosmology/DD0018/DD0018";
+
+fs::path dataPath(const std::string& name) {
+    return test::dataDir() / "enzo_tiny_cosmology" / "DD0018" / name;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected an amrvk::Error";
+    return {};
+}
+
+void expectContains(const std::string& text, const std::string& part) {
+    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+std::string readAll(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream os;
+    os << in.rdbuf();
+    return os.str();
+}
+
+void writeAll(const fs::path& p, const std::string& bytes) {
+    std::ofstream out(p, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// Copies DD0018 and DD0018.hierarchy (the text files) into dir/DD0018/; returns the new
+// parameter file path.
+fs::path copyTextFiles(const fs::path& dir) {
+    fs::create_directories(dir / "DD0018");
+    for (const char* name : {"DD0018", "DD0018.hierarchy"})
+        writeAll(dir / "DD0018" / name, readAll(dataPath(name)));
+    return dir / "DD0018" / "DD0018";
+}
+
+bool nearPrinted(double value, double printed) {
+    return std::abs(value - printed) <= 1e-5 * std::abs(printed);
+}
+
+const std::vector<uint64_t> kLeavesPerLevel = {816, 8330, 20202, 86535, 21619};
+
+}  // namespace
+
+TEST(EnzoReader, RealOutputMatchesOracles) {
+    AMRVK_REQUIRE_DATA(kParam);
+    ReadOptions o;
+    o.fields = {"Density"};
+    const Model m = readModel(test::dataDir() / kParam, o);
+    EXPECT_EQ(m.format, "enzo");
+    EXPECT_EQ(m.source, (test::dataDir() / kParam).string());
+    for (const char* f : {"Density", "x-velocity", "TotalEnergy", "Metal_Density", "Temperature",
+                          "Dark_Matter_Density"})
+        EXPECT_NE(std::find(m.availableFields.begin(), m.availableFields.end(), f),
+                  m.availableFields.end())
+            << f;
+    EXPECT_EQ(m.availableFields.size(), 8u);
+    ASSERT_EQ(m.fields.size(), 1u);
+
+    // All cells per Enzo level 0..4: 32768, 89192, 21256, 8432, 816, every grid nested in one of
+    // the next coarser level, so leaves = cells - (next finer level's cells) / 8. Index 0 = finest
+    // (Enzo level 4, 16^3 finest cells per root cell).
+    const ModelSummary s = summarize(m);
+    EXPECT_EQ(m.cellCount(), 137502u);
+    EXPECT_EQ(s.cellsPerLevel, kLeavesPerLevel);
+    EXPECT_EQ(s.bounds.lower, glm::i64vec3(0));
+    EXPECT_EQ(s.bounds.upper, glm::i64vec3(512));
+    EXPECT_DOUBLE_EQ(s.leafVolume, s.bounds.volume());  // the leaves tile the domain
+    EXPECT_NO_THROW(validate(m));
+
+    // Domain [0, 1]^3 in code units, root 32^3.
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_DOUBLE_EQ(m.voxelToWorld.origin[a], 0.0);
+        EXPECT_DOUBLE_EQ(m.voxelToWorld.scale[a], 1.0 / 512.0);
+    }
+
+    // Density (code units) over all cells 0.0123641 ... 1029.37; both extremes are leaves.
+    const FieldStats st = computeFieldStats(m, m.field("Density"));
+    EXPECT_TRUE(nearPrinted(st.minValue, 0.0123641)) << st.minValue;
+    EXPECT_TRUE(nearPrinted(st.maxValue, 1029.37)) << st.maxValue;
+
+    // Grid 3 (level 1, global start (0, 16, 58), 4x2x6 cells): its value at (x 2, y 1, z 5) is the
+    // leaf of width 8 at finest (16, 136, 504).
+    bool found = false;
+    for (size_t i = 0; i < m.cells.size(); ++i)
+        if (m.cells[i].lower == glm::ivec3(16, 136, 504) && m.cells[i].level == 3) {
+            found = true;
+            EXPECT_NEAR(m.fields[0].values[i], 0.438362f, 1e-6f);
+        }
+    EXPECT_TRUE(found);
+
+    std::map<std::string, std::string> attrs(m.attributes.begin(), m.attributes.end());
+    EXPECT_EQ(attrs["gridsPerLevel"], "2 63 28 15 3");
+    EXPECT_EQ(attrs["CosmologyCurrentRedshift"], "1.1456033320512");
+}
+
+TEST(EnzoReader, HierarchyPathAndAllFields) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const Model m = readModel(dataPath("DD0018.hierarchy"), ReadOptions{});
+    EXPECT_EQ(m.format, "enzo");
+    ASSERT_EQ(m.fields.size(), 8u);
+    EXPECT_EQ(m.fields[0].name, "Density");
+    EXPECT_EQ(summarize(m).cellsPerLevel, kLeavesPerLevel);
+    const FieldStats t = computeFieldStats(m, m.field("Temperature"));
+    EXPECT_GT(t.minValue, 0.0f);
+    EXPECT_GT(t.maxValue, t.minValue);
+}
+
+TEST(EnzoReader, UnknownFieldListsAvailable) {
+    AMRVK_REQUIRE_DATA(kParam);
+    ReadOptions o;
+    o.fields = {"density"};
+    const std::string msg = errorOf([&] { readEnzo(test::dataDir() / kParam, o); });
+    expectContains(msg, "unknown field 'density'");
+    expectContains(msg, "Density, x-velocity");
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
+TEST(EnzoReader, MissingFilesAreReported) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const fs::path dir = test::scratchDir();
+    fs::create_directories(dir / "DD0018");
+    writeAll(dir / "DD0018" / "DD0018", readAll(dataPath("DD0018")));
+    std::string msg = errorOf([&] { readEnzo(dir / "DD0018" / "DD0018", {}); });
+    expectContains(msg, (dir / "DD0018" / "DD0018.hierarchy").string());
+    expectContains(msg, "no such file");
+
+    const fs::path param = copyTextFiles(dir);
+    msg = errorOf([&] { readEnzo(param, {}); });
+    expectContains(msg, (dir / "DD0018" / "DD0018.cpu0000").string());
+    expectContains(msg, "no such file");
+}
+
+TEST(EnzoReader, TruncatedGridFileIsReported) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const fs::path dir = test::scratchDir();
+    const fs::path param = copyTextFiles(dir);
+    writeAll(dir / "DD0018" / "DD0018.cpu0000", readAll(dataPath("DD0018.cpu0000")));
+    const std::string cpu1 = readAll(dataPath("DD0018.cpu0001"));
+    const fs::path victim = dir / "DD0018" / "DD0018.cpu0001";
+    writeAll(victim, cpu1.substr(0, cpu1.size() / 2));
+    const std::string msg = errorOf([&] { readModel(param, ReadOptions{}); });
+    expectContains(msg, victim.string());
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
+TEST(EnzoReader, NonPowerOfTwoRefineByIsRejected) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const fs::path dir = test::scratchDir();
+    const fs::path param = copyTextFiles(dir);
+    std::string text = readAll(param);
+    const std::string key = "RefineBy                       = 2";
+    const size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, key.size(), "RefineBy                       = 3");
+    writeAll(param, text);
+    const std::string msg = errorOf([&] { readEnzo(param, {}); });
+    expectContains(msg, param.string());
+    expectContains(msg, "RefineBy 3 is not a power of two");
+}
+
+TEST(EnzoReader, RoundTripThroughExaBrick) {
+    AMRVK_REQUIRE_DATA(kParam);
+    ReadOptions o;
+    o.fields = {"Density", "Temperature"};
+    const Model m = readModel(test::dataDir() / kParam, o);
+    const fs::path base = test::scratchDir() / "x";
+    writeExaBrick(m, base);
+    ReadOptions back;
+    back.format = "exabrick";
+    back.fields = o.fields;
+    const Model r = readModel(base, back);
+    ASSERT_EQ(r.cells.size(), m.cells.size());
+    EXPECT_EQ(std::memcmp(r.cells.data(), m.cells.data(), m.cells.size() * sizeof(Cell)), 0);
+    ASSERT_EQ(r.fields.size(), 2u);
+    for (size_t f = 0; f < 2; ++f) {
+        EXPECT_EQ(r.fields[f].name, m.fields[f].name);
+        EXPECT_EQ(r.fields[f].values, m.fields[f].values);
+    }
+}
