@@ -101,7 +101,10 @@ case "$cmd" in
     ;;
   test)
     deps; build
-    ctest --test-dir build --output-on-failure -j "$(nproc 2>/dev/null || echo 2)"
+    jobs=$(nproc 2>/dev/null || echo 2)
+    # CPU tests first (no Vulkan), then the GPU tests on lavapipe or any Vulkan device.
+    ctest --test-dir build --output-on-failure -j "$jobs" -L cpu
+    ctest --test-dir build --output-on-failure -j "$jobs" -LE cpu
     ;;
   *) echo "usage: tools/run.sh demo|test|build|deps" >&2; exit 2 ;;
 esac
