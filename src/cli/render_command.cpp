@@ -139,6 +139,14 @@ int runRender(const std::vector<std::string>& argv) {
         std::string ext = std::filesystem::path(output).extension().string();
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
                     ": unknown image type (use .png, .exr or .pfm)");
+        // Fail before the render, not after it, when the outputs cannot be written.
+        for (const std::string& file : {output, args.get("json")}) {
+            if (file.empty()) continue;
+            std::filesystem::path dir = std::filesystem::path(file).parent_path();
+            if (dir.empty()) dir = ".";
+            AMRVK_CHECK(::access(dir.c_str(), W_OK) == 0, file, ": cannot write (directory ", dir.string(),
+                        " is missing or not writable)");
+        }
     }
     AMRVK_CHECK(args.get("traversal", "grid-dda") == "grid-dda", "--traversal ", args.get("traversal"),
                 ": only grid-dda is available in this version");

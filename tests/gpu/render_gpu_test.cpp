@@ -203,7 +203,8 @@ TEST_F(RenderGpu, NoMajorantViolationsWithASpikyTfOnRealData) {
         const char* field;
     };
     for (Set set : {Set{"enzo_tiny_cosmology/DD0018/DD0018", "Density"}, Set{"amrex_pelelm_3d/example_plt_3d", "temp"},
-                    Set{"chombo_mushy_layer_2d/plt025000.2d.hdf5", "Temperature"}}) {
+                    Set{"chombo_mushy_layer_2d/plt025000.2d.hdf5", "Temperature"},
+                    Set{"chombo_mushy_layer_2d/plt000100.2d.hdf5", "Temperature"}}) {
         if (!std::filesystem::exists(test::dataDir() / set.path)) continue;
         SCOPED_TRACE(set.path);
         amr::ReadOptions ro;

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Usage: render.sh AMRVK SOURCE_DIR SCRATCH. The render CLI end to end on the bundled sample:
+# JSON statistics with every documented key, shaders loaded from --shader-dir (compiled from GLSL
+# at run time), each image format, and one-line errors that leave no output behind.
+set -u
+amrvk="$1"; src="$2"; dir="$3"
+rm -rf "$dir"; mkdir -p "$dir"
+sample="$src/assets/samples/cloud.cells"
+fail=0
+check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
+
+common=(--size 16x12 --spp 2 --grid 16 --tf-range 0 1)
+"$amrvk" render "$sample" "${common[@]}" -o "$dir/a.png" --json "$dir/a.json" || fail=1
+check test -s "$dir/a.png"
+check python3 - "$dir/a.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+keys = ["device", "width", "height", "spp", "mode", "traversal", "sampler", "seconds", "pathsPerSecond",
+        "densityLookups", "realCollisions", "nullCollisions", "traversalSteps", "majorantViolations",
+        "deviceMemoryBytes", "deviceMemoryPeakBytes", "meanRGB"]
+missing = [k for k in keys if k not in j]
+assert not missing, missing
+assert j["width"] == 16 and j["height"] == 12 and j["spp"] == 2 and j["mode"] == "ms", j
+assert j["majorantViolations"] == 0 and j["densityLookups"] > 0, j
+assert len(j["meanRGB"]) == 3 and all(0 <= v < 10 for v in j["meanRGB"]), j
+assert j["deviceMemoryPeakBytes"] >= j["deviceMemoryBytes"] > 0, j
+PY
+for ext in exr pfm; do
+  "$amrvk" render "$sample" "${common[@]}" --mode ae --sampler abr -o "$dir/a.$ext" >/dev/null || fail=1
+  check test -s "$dir/a.$ext"
+done
+"$amrvk" render "$sample" "${common[@]}" --mode ss --shader-dir "$src/shaders/passes" -o "$dir/s.pfm" >/dev/null || fail=1
+check test -s "$dir/s.pfm"
+"$amrvk" devices | grep -q "^0: " || { echo "FAIL: amrvk devices lists no device"; fail=1; }
+
+expect() {  # expect FRAGMENT -- ARGS...
+  local frag="$1"; shift 2
+  "$amrvk" "$@" >"$dir/out.txt" 2>"$dir/err.txt"; local rc=$?
+  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/err.txt")" != 1 ] || ! grep -qF -- "$frag" "$dir/err.txt"; then
+    echo "FAIL: amrvk $* -> rc=$rc: $(cat "$dir/err.txt")"; fail=1
+  fi
+}
+expect "--mode 'xyz'" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
+expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
+expect "--size '0x3'" -- render "$sample" --size 0x3 -o "$dir/x.png"
+expect "--sampler 'bvh'" -- render "$sample" "${common[@]}" --sampler bvh -o "$dir/x.png"
+expect "no such device" -- render "$sample" "${common[@]}" --device 99 -o "$dir/x.png"
+expect "cannot write" -- render "$sample" "${common[@]}" -o "$dir/missing-dir/x.png"
+check test ! -e "$dir/x.png"
+check test ! -e "$dir/x.bmp"
+exit $fail
