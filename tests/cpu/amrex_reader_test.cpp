@@ -19,30 +19,11 @@ namespace fs = std::filesystem;
 using namespace amrvk;
 using namespace amrvk::amr;
 
+using namespace amrvk::test;
+
 namespace {
 
 const char* kPlotfile = "amrex_pelelm_3d/example_plt_3d";
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an amrvk::Error";
-    return {};
-}
-
-void expectContains(const std::string& text, const std::string& part) {
-    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
-
-std::string readAll(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream os;
-    os << in.rdbuf();
-    return os.str();
-}
 
 // Writes a fresh (writable) copy of the first `keep` bytes of `src` (all when keep is npos).
 void copyPrefix(const fs::path& src, const fs::path& dst, size_t keep = std::string::npos) {

@@ -11,15 +11,14 @@
 
 #include "amr/model.h"
 #include "core/error.h"
+#include "test_data.h"
 
 using namespace amrvk;
 using namespace amrvk::amr;
 
-namespace {
+using namespace amrvk::test;
 
-void expectContains(const std::string& text, const std::string& part) {
-    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
+namespace {
 
 // One field "v"; every cell of the block holds `value`.
 Block makeBlock(glm::ivec3 lo, glm::ivec3 hi, float value) {
@@ -58,14 +57,8 @@ Model leavesOf(const std::vector<BlockLevel>& levels, bool planar = false) {
 }
 
 // The message appendLeafCells throws for `levels` (a test failure if it throws none).
-std::string errorOf(const std::vector<BlockLevel>& levels, bool planar = false) {
-    try {
-        leavesOf(levels, planar);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an amrvk::Error";
-    return {};
+std::string leafErrorOf(const std::vector<BlockLevel>& levels, bool planar = false) {
+    return errorOf([&] { leavesOf(levels, planar); });
 }
 
 // The value of the leaf containing finest-unit point p (NaN if none).
@@ -162,12 +155,12 @@ TEST(BlockStructured, PlanarSlabCoversInXyOnly) {
     EXPECT_EQ(valueAt(m, {12, 12, 0}), 2.0f);
 
     // Without the planar flag the thin finer blocks cover the thicker cells only partly in z.
-    expectContains(errorOf(levels), "only partly");
+    expectContains(leafErrorOf(levels), "only partly");
 }
 
 TEST(BlockStructured, PlanarBlockMustBeOneCellThick) {
     const std::vector<BlockLevel> levels = {makeLevel(2, {makeBlock({0, 0, 0}, {3, 3, 1}, 0.0f)})};
-    const std::string msg = errorOf(levels, true);
+    const std::string msg = leafErrorOf(levels, true);
     expectContains(msg, "test: level 0 block 0 is 2 cells thick in z");
 }
 
@@ -175,7 +168,7 @@ TEST(BlockStructured, PartialCoverIsRejected) {
     // Level-1 block finest [1, 3): half of level-0 cell 0 and half of level-0 cell 1.
     const std::vector<BlockLevel> levels = {makeLevel(2, {cubeBlock(0, 3, 0.0f)}),
                                             makeLevel(1, {cubeBlock(1, 2, 1.0f)})};
-    const std::string msg = errorOf(levels);
+    const std::string msg = leafErrorOf(levels);
     expectContains(msg, "test: a finer block covers a level 0 cell of block 0 only partly");
     expectContains(msg, "level 1 block 0 of cell width 1 is not aligned to cell width 2");
 }
@@ -184,24 +177,24 @@ TEST(BlockStructured, PartialCoverIsCheckedAgainstTheNextCoarserLevel) {
     // Level 2 finest [7, 9) splits level-1 cells [6, 8) and [8, 10).
     std::vector<BlockLevel> levels = enzoLikeLevels();
     levels[2].blocks = {cubeBlock(7, 8, 2.0f)};
-    const std::string msg = errorOf(levels);
+    const std::string msg = leafErrorOf(levels);
     expectContains(msg, "a finer block covers a level 1 cell of block 0 only partly");
 }
 
 TEST(BlockStructured, NonPowerOfTwoWidthIsRejected) {
     const std::vector<BlockLevel> levels = {makeLevel(3, {cubeBlock(0, 1, 0.0f)}),
                                             makeLevel(1, {cubeBlock(0, 2, 1.0f)})};
-    const std::string msg = errorOf(levels);
+    const std::string msg = leafErrorOf(levels);
     expectContains(msg, "test: level 0 has cell width 3 finest cells, not a power of two");
 }
 
 TEST(BlockStructured, ValueCountMismatchIsRejected) {
     std::vector<BlockLevel> levels = {makeLevel(1, {cubeBlock(0, 1, 0.0f)})};
     levels[0].blocks[0].values[0].pop_back();
-    std::string msg = errorOf(levels);
+    std::string msg = leafErrorOf(levels);
     expectContains(msg, "test: level 0 block 0 has 7 values for 8 cells");
 
     levels[0].blocks[0].values.clear();
-    msg = errorOf(levels);
+    msg = leafErrorOf(levels);
     expectContains(msg, "test: level 0 block 0 has 0 fields, expected 1");
 }

@@ -18,36 +18,12 @@ namespace fs = std::filesystem;
 using namespace amrvk;
 using namespace amrvk::amr;
 
+using namespace amrvk::test;
+
 namespace {
 
 const char* kPlt25000 = "chombo_mushy_layer_2d/plt025000.2d.hdf5";
 const char* kPlt100 = "chombo_mushy_layer_2d/plt000100.2d.hdf5";
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an amrvk::Error";
-    return {};
-}
-
-void expectContains(const std::string& text, const std::string& part) {
-    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
-
-std::string readAll(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream os;
-    os << in.rdbuf();
-    return os.str();
-}
-
-void writeAll(const fs::path& p, const std::string& bytes) {
-    std::ofstream out(p, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
 
 bool nearPrinted(double value, double printed) {
     return std::abs(value - printed) <= 1e-5 * std::abs(printed);

@@ -19,38 +19,14 @@ namespace fs = std::filesystem;
 using namespace amrvk;
 using namespace amrvk::amr;
 
+using namespace amrvk::test;
+
 namespace {
 
 const char* kParam = "enzo_tiny_cosmology/DD0018/DD0018";
 
 fs::path dataPath(const std::string& name) {
     return test::dataDir() / "enzo_tiny_cosmology" / "DD0018" / name;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an amrvk::Error";
-    return {};
-}
-
-void expectContains(const std::string& text, const std::string& part) {
-    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
-
-std::string readAll(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream os;
-    os << in.rdbuf();
-    return os.str();
-}
-
-void writeAll(const fs::path& p, const std::string& bytes) {
-    std::ofstream out(p, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 // Copies DD0018 and DD0018.hierarchy (the text files) into dir/DD0018/; returns the new

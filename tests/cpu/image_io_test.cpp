@@ -15,6 +15,8 @@
 using namespace amrvk;
 using render::Image;
 
+using namespace amrvk::test;
+
 namespace {
 
 Image randomImage(int w, int h, uint32_t seed, float lo, float hi) {
@@ -36,19 +38,6 @@ std::vector<std::string> listDir(const std::filesystem::path& dir) {
     for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
-}
-
-template <typename Fn>
-void expectError(Fn&& fn, std::initializer_list<std::string> fragments) {
-    try {
-        fn();
-        ADD_FAILURE() << "no error";
-    } catch (const Error& e) {
-        std::string msg = e.what();
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-        for (const std::string& f : fragments)
-            EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
-    }
 }
 
 // Reference sRGB encoding, computed independently in double.

@@ -15,6 +15,8 @@
 using namespace amrvk;
 using render::TransferFunction;
 
+using namespace amrvk::test;
+
 namespace {
 
 void writeText(const std::filesystem::path& p, const std::string& text) {
@@ -53,20 +55,6 @@ std::vector<glm::vec4> xfColors(int n) {
         c.emplace_back(t, 1.0f - t, 0.5f, t * t);
     }
     return c;
-}
-
-// Expects fn() to throw amrvk::Error with a one-line message holding every fragment.
-template <typename Fn>
-void expectError(Fn&& fn, std::initializer_list<std::string> fragments) {
-    try {
-        fn();
-        ADD_FAILURE() << "no error";
-    } catch (const Error& e) {
-        std::string msg = e.what();
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-        for (const std::string& f : fragments)
-            EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
-    }
 }
 
 void expectVec4Near(glm::vec4 a, glm::vec4 b, float tol) {
