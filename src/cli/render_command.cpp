@@ -251,7 +251,8 @@ int runRender(const std::vector<std::string>& argv) {
         j.member("deviceMemoryBytes", ctx.memory().currentBytes());
         j.member("deviceMemoryPeakBytes", ctx.memory().peakBytes());
         j.key("deviceMemoryPerResource").beginObject();
-        for (const auto& [name, bytes] : ctx.memory().perResource()) j.member(name, bytes);
+        for (const auto& [name, usage] : ctx.memory().perResource())
+            j.key(name).beginObject().member("current", usage.current).member("peak", usage.peak).endObject();
         j.endObject();
         j.key("macrocellDims").beginArray().value(scene.grid.dims.x).value(scene.grid.dims.y).value(scene.grid.dims.z).endArray();
         j.key("meanRGB").beginArray().value(meanRgb.x).value(meanRgb.y).value(meanRgb.z).endArray();

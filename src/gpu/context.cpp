@@ -174,24 +174,33 @@ std::vector<DeviceReport> listDevices() {
 
 void MemoryTracker::add(const std::string& name, uint64_t bytes) {
     std::lock_guard lock(mMutex);
-    mBytes[name] += bytes;
+    Usage& u = mUsage[name];
+    u.current += bytes;
+    u.peak = std::max(u.peak, u.current);
     mCurrent += bytes;
     mPeak = std::max(mPeak, mCurrent);
 }
 
 void MemoryTracker::remove(const std::string& name, uint64_t bytes) {
     std::lock_guard lock(mMutex);
-    auto it = mBytes.find(name);
-    if (it != mBytes.end()) {
-        it->second -= std::min(it->second, bytes);
-        if (it->second == 0) mBytes.erase(it);
-    }
+    Usage& u = mUsage[name];
+    u.current -= std::min(u.current, bytes);
     mCurrent -= std::min(mCurrent, bytes);
 }
 
-std::map<std::string, uint64_t> MemoryTracker::perResource() const {
+uint64_t MemoryTracker::currentBytes() const {
     std::lock_guard lock(mMutex);
-    return mBytes;
+    return mCurrent;
+}
+
+uint64_t MemoryTracker::peakBytes() const {
+    std::lock_guard lock(mMutex);
+    return mPeak;
+}
+
+std::map<std::string, MemoryTracker::Usage> MemoryTracker::perResource() const {
+    std::lock_guard lock(mMutex);
+    return mUsage;
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(

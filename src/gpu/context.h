@@ -35,18 +35,22 @@ struct DeviceReport {
 // Enumerates every physical device with the reason it cannot be used, if any.
 std::vector<DeviceReport> listDevices();
 
-// Device memory per named resource: current and peak bytes.
+// Device memory per named resource and in total: current and peak bytes.
 class MemoryTracker {
 public:
+    struct Usage {
+        uint64_t current = 0, peak = 0;
+    };
     void add(const std::string& name, uint64_t bytes);
     void remove(const std::string& name, uint64_t bytes);
-    uint64_t currentBytes() const { return mCurrent; }
-    uint64_t peakBytes() const { return mPeak; }
-    std::map<std::string, uint64_t> perResource() const;
+    uint64_t currentBytes() const;
+    uint64_t peakBytes() const;
+    // Every resource name seen so far (freed ones keep their peak with current 0).
+    std::map<std::string, Usage> perResource() const;
 
 private:
     mutable std::mutex mMutex;
-    std::map<std::string, uint64_t> mBytes;
+    std::map<std::string, Usage> mUsage;
     uint64_t mCurrent = 0, mPeak = 0;
 };
 
