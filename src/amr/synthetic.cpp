@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -20,6 +21,10 @@ constexpr uint64_t kBestFirstLeaves = 32768;  // exact count curve up to this ma
 constexpr uint64_t kChunkCells = 1 << 20;     // cells buffered before a write
 constexpr double kTolerance = 1.4;            // accepted count range [N / 1.4, 1.4 N]
 constexpr int kMaxPasses = 40;
+constexpr int kMaxBlockCells = 32;            // largest block edge B
+// B is halved until N >= minBlocks * B^3: 64 blocks, 512 for the teapot, whose stadium alone
+// takes a few hundred leaves (with fewer its object stays unresolved).
+constexpr uint64_t kMinBlocks = 64, kMinTeapotBlocks = 512;
 
 // ---- Hashing: splitmix64 finaliser; all randomness derives from (seed, position, level). ----
 
@@ -297,11 +302,12 @@ private:
     double mMajor = 0, mMinor = 0, mBall = 0;
 };
 
-// Teapot torus major radius in finest units: grows as sqrt(N) so that N cells refine the
-// surface down to level 0 or 1 (refining every touching node to level 0 gives about 2 N).
-double teapotMajorRadius(uint64_t cells, int rootLevel) {
-    double r = 0.17 * std::sqrt(static_cast<double>(std::max<uint64_t>(cells, 8)));
-    return std::min(r, std::ldexp(1.0, rootLevel) / 8.0);
+// Teapot torus major radius in finest-node units for `leaves` target leaves in a domain
+// 2^nodeRootLevel nodes wide: grows as sqrt(leaves) so that they refine the surface down to the
+// finest or next node level (refining every touching node to the finest gives about 2x leaves).
+double teapotMajorRadius(double leaves, int nodeRootLevel) {
+    double r = 0.17 * std::sqrt(std::max(leaves, 8.0));
+    return std::min(r, std::ldexp(1.0, nodeRootLevel) / 8.0);
 }
 
 // ---- Sinks: where the leaves of a depth-first pass go. Each stops the pass past `cap`. ----
@@ -310,15 +316,19 @@ using ProgressFn = std::function<void(std::string_view, double)>;
 
 class SinkBase {
 public:
+    static constexpr bool kCountsOnly = false;  // true: takes whole blocks via countBlock()
+
     SinkBase(uint64_t cap, uint64_t expected, const ProgressFn* progress, std::string phase)
         : mCap(cap), mExpected(std::max<uint64_t>(expected, 1)), mProgress(progress), mPhase(std::move(phase)) {}
     bool stopped() const { return mCount > mCap; }
-    uint64_t count() const { return mCount; }
+    uint64_t count() const { return mCount; }  // cells
 
 protected:
-    void counted() {
-        ++mCount;
-        if ((mCount & 0xFFFF) == 0 && mProgress && *mProgress)
+    // Progress each time the cell count passes a multiple of 65536.
+    void counted(uint64_t cells = 1) {
+        const uint64_t before = mCount;
+        mCount += cells;
+        if ((before >> 16) != (mCount >> 16) && mProgress && *mProgress)
             (*mProgress)(mPhase, std::min(0.99, static_cast<double>(mCount) / static_cast<double>(mExpected)));
     }
     uint64_t mCount = 0;
@@ -331,8 +341,9 @@ private:
 
 class CountSink : public SinkBase {
 public:
+    static constexpr bool kCountsOnly = true;
     using SinkBase::SinkBase;
-    void emit(const Cell&, float) { counted(); }
+    void countBlock(uint64_t cells) { counted(cells); }
 };
 
 class LevelCounter {
@@ -414,11 +425,13 @@ private:
 
 // ---- Traversals ----
 
-// Depth-first pass: node refined iff level > 0 and its effective score >= t.
+// Depth-first pass: node refined iff level > blockShift and its effective score >= t; a leaf
+// node becomes the (1 << blockShift)^3 cells of its complete subtree blockShift levels down.
 template <class Kind, class Sink>
 class DepthFirst {
 public:
-    DepthFirst(const Kind& kind, float threshold, Sink& sink) : mKind(kind), mT(threshold), mSink(sink) {}
+    DepthFirst(const Kind& kind, int blockShift, float threshold, Sink& sink)
+        : mKind(kind), mBlockShift(blockShift), mT(threshold), mSink(sink) {}
     void run() {
         typename Kind::State s{};
         NodeEval e = mKind.root(s);
@@ -428,8 +441,9 @@ public:
 private:
     void visit(glm::ivec3 lower, int level, const typename Kind::State& s, float eff, float value) {
         if (mSink.stopped()) return;
-        if (level == 0 || !(eff >= mT)) {
-            mSink.emit(Cell{lower, level}, value);
+        if (level <= mBlockShift || !(eff >= mT)) {
+            if constexpr (Sink::kCountsOnly) mSink.countBlock(uint64_t{1} << (3 * mBlockShift));
+            else emitBlock(lower, level, s, value, mBlockShift);
             return;
         }
         std::array<typename Kind::State, 8> cs{};
@@ -441,15 +455,32 @@ private:
                   std::min(ce[static_cast<size_t>(c)].score, eff), ce[static_cast<size_t>(c)].value);
     }
 
+    // The node's subtree `depth` levels down, every node refined: its leaves are the cells.
+    void emitBlock(glm::ivec3 lower, int level, const typename Kind::State& s, float value, int depth) {
+        if (depth == 0) {
+            mSink.emit(Cell{lower, level}, value);
+            return;
+        }
+        std::array<typename Kind::State, 8> cs{};
+        std::array<NodeEval, 8> ce{};
+        mKind.refine(lower, level, s, cs.data(), ce.data());
+        const int half = 1 << (level - 1);
+        for (int c = 0; c < 8; ++c)
+            emitBlock(lower + childOffset(c) * half, level - 1, cs[static_cast<size_t>(c)],
+                      ce[static_cast<size_t>(c)].value, depth - 1);
+    }
+
     const Kind& mKind;
+    int mBlockShift;  // log2 B
     float mT;
     Sink& mSink;
 };
 
-// Best-first expansion in decreasing effective score; returns the scores of the expanded nodes
-// (non-increasing). Leaves after k expansions: 1 + 7k. `exhausted`: nothing refinable is left.
+// Best-first expansion in decreasing effective score of the nodes above level blockShift;
+// returns the scores of the expanded nodes (non-increasing). Leaves after k expansions: 1 + 7k.
+// `exhausted`: nothing refinable is left.
 template <class Kind>
-std::vector<float> bestFirstScores(const Kind& kind, uint64_t maxLeaves, bool& exhausted) {
+std::vector<float> bestFirstScores(const Kind& kind, int blockShift, uint64_t maxLeaves, bool& exhausted) {
     struct Entry {
         float eff;
         uint64_t order;  // insertion order: deterministic tie break
@@ -464,7 +495,8 @@ std::vector<float> bestFirstScores(const Kind& kind, uint64_t maxLeaves, bool& e
     uint64_t order = 0;
     typename Kind::State rs{};
     NodeEval re = kind.root(rs);
-    if (kind.rootLevel() > 0 && re.score > 0) heap.push({re.score, order++, {0, 0, 0}, kind.rootLevel(), rs});
+    if (kind.rootLevel() > blockShift && re.score > 0)
+        heap.push({re.score, order++, {0, 0, 0}, kind.rootLevel(), rs});
     std::vector<float> scores;
     uint64_t leaves = 1;
     while (!heap.empty() && leaves + 7 <= maxLeaves) {
@@ -475,7 +507,7 @@ std::vector<float> bestFirstScores(const Kind& kind, uint64_t maxLeaves, bool& e
         std::array<typename Kind::State, 8> cs{};
         std::array<NodeEval, 8> ce{};
         kind.refine(e.lower, e.level, e.state, cs.data(), ce.data());
-        if (e.level == 1) continue;
+        if (e.level == blockShift + 1) continue;
         const int half = 1 << (e.level - 1);
         for (size_t c = 0; c < 8; ++c) {
             float eff = std::min(ce[c].score, e.eff);
@@ -591,33 +623,37 @@ struct FinalPass {
 // Chooses the threshold (see synthetic.h), then calls finalPass(t, cap, minAccept), which runs
 // the writing pass, keeps its result only when it neither passed `cap` nor fell below
 // `minAccept`, and reports what happened; retried with a corrected t until one is kept.
+// All counts are cells, blockCells^3 per leaf.
 template <class Kind, class Final>
-void searchAndGenerate(const Kind& kind, const SyntheticParams& params, SyntheticStats& stats,
-                       Final&& finalPass) {
+void searchAndGenerate(const Kind& kind, int blockShift, const SyntheticParams& params,
+                       SyntheticStats& stats, Final&& finalPass) {
     constexpr uint64_t kUnlimited = std::numeric_limits<uint64_t>::max() - 1;
     const uint64_t target = std::max<uint64_t>(params.cells, 1);
+    const uint64_t leafCells = uint64_t{1} << (3 * blockShift);
+    const uint64_t targetLeaves = std::max<uint64_t>(target / leafCells, 1);
     const uint64_t hiCount = static_cast<uint64_t>(std::floor(static_cast<double>(target) * kTolerance));
     const uint64_t loCount = static_cast<uint64_t>(std::ceil(static_cast<double>(target) / kTolerance));
     ThresholdSearch search;
 
     bool exhausted = false;
-    std::vector<float> scores = bestFirstScores(kind, std::min(target, kBestFirstLeaves), exhausted);
+    std::vector<float> scores =
+        bestFirstScores(kind, blockShift, std::min(targetLeaves, kBestFirstLeaves), exhausted);
     // Exact count at threshold scores[k]: every expanded node with a score >= it.
     auto exactAt = [&](size_t k) {
         size_t n = static_cast<size_t>(std::upper_bound(scores.begin(), scores.end(), scores[k],
                                                         std::greater<float>()) - scores.begin());
-        return Sample{scores[k], 1 + 7 * static_cast<uint64_t>(n), false};
+        return Sample{scores[k], leafCells * (1 + 7 * static_cast<uint64_t>(n)), false};
     };
     double threshold;
     bool exact = true;  // the best-first curve alone decides: accept its count as it is
     if (scores.empty()) {
-        threshold = std::numeric_limits<double>::infinity();  // nothing to refine: one cell
-    } else if (exhausted || target <= kBestFirstLeaves) {
+        threshold = std::numeric_limits<double>::infinity();  // nothing to refine: one block
+    } else if (exhausted || targetLeaves <= kBestFirstLeaves) {
         // The curve covers the target (or all there is): the count nearest N in log scale.
         size_t best = 0;
         double bestDist = std::numeric_limits<double>::infinity();
         for (size_t k = 0; k < scores.size(); ++k) {
-            double d = std::abs(std::log(static_cast<double>(1 + 7 * (k + 1))) -
+            double d = std::abs(std::log(static_cast<double>(leafCells * (1 + 7 * (k + 1)))) -
                                 std::log(static_cast<double>(target)));
             if (d < bestDist) bestDist = d, best = k;
         }
@@ -632,7 +668,7 @@ void searchAndGenerate(const Kind& kind, const SyntheticParams& params, Syntheti
             const double t = search.predict(stage, false);
             CountSink counter(4 * stage, stage, &params.progress,
                               strCat("counting pass ", stats.countingPasses + 1));
-            DepthFirst<Kind, CountSink>(kind, static_cast<float>(t), counter).run();
+            DepthFirst<Kind, CountSink>(kind, blockShift, static_cast<float>(t), counter).run();
             ++stats.countingPasses;
             search.add({t, counter.count(), counter.stopped()});
         }
@@ -676,17 +712,28 @@ std::string_view syntheticKindName(SyntheticKind kind) {
     return "?";
 }
 
-int syntheticRootLevel(const SyntheticParams& params) {
-    if (params.levels != 0) {
-        AMRVK_CHECK(params.levels >= 1 && params.levels <= kMaxLevel + 1, "--levels ", params.levels,
-                    " is outside [1, ", kMaxLevel + 1, "]");
-        return params.levels - 1;
-    }
-    const double n = static_cast<double>(std::max<uint64_t>(params.cells, 8));
+int syntheticBlockCells(const SyntheticParams& params) {
+    const int requested = params.blockCells;
+    AMRVK_CHECK(requested >= 1 && requested <= kMaxBlockCells && (requested & (requested - 1)) == 0,
+                "--block ", requested, " is not a power of two in [1, ", kMaxBlockCells, "]");
+    const uint64_t minBlocks = params.kind == SyntheticKind::Teapot ? kMinTeapotBlocks : kMinBlocks;
+    uint64_t b = static_cast<uint64_t>(requested);
+    while (b > 1 && params.cells < minBlocks * b * b * b) b /= 2;
+    return static_cast<int>(b);
+}
+
+namespace {
+
+int log2Exact(int powerOfTwo) { return std::countr_zero(static_cast<unsigned>(powerOfTwo)); }
+
+// Depth of the node octree in node levels (finest nodes = blocks), before adding blockShift.
+// `leaves`: the target count in blocks.
+int nodeRootLevel(SyntheticKind kind, double leaves, int blockShift) {
+    const double n = std::max(leaves, 8.0);
     int root = 0;
-    switch (params.kind) {
+    switch (kind) {
         // Cloud and shells scores are scale-free, so the depth only caps the refinement; these
-        // put the finest cells at level 0 or 1 (measured for N = 1e3..1e7).
+        // put the finest nodes at the finest or next level (measured for N = 1e3..1e7 with B = 1).
         // Cloud: volume-filling, most cells on the two finest levels.
         case SyntheticKind::Cloud: root = static_cast<int>(std::ceil(std::log2(n) / 3.0)) + 3; break;
         // Shells: surfaces, cells grow as 4^depth; at least 1.5 N possible cells.
@@ -694,24 +741,49 @@ int syntheticRootLevel(const SyntheticParams& params) {
             root = std::max(static_cast<int>(std::lround(std::log2(n) / 2.0 - 0.75)),
                             static_cast<int>(std::ceil(std::log2(1.5 * n) / 3.0)));
             break;
-        // A stadium at least 2^20 wide around an object of radius ~sqrt(N).
+        // A stadium at least 2^20 cells and 2^12 object sizes wide around an object of radius
+        // ~sqrt(leaves) nodes.
         case SyntheticKind::Teapot:
-            root = std::max(20, static_cast<int>(std::ceil(std::log2(4.0 * teapotMajorRadius(params.cells, 30)))) + 12);
+            root = std::max(20 - blockShift,
+                            static_cast<int>(std::ceil(std::log2(4.0 * teapotMajorRadius(leaves, 30)))) + 12);
             break;
     }
-    return std::clamp(root, 3, kMaxLevel);
+    return std::clamp(root, 3, kMaxLevel - blockShift);
+}
+
+// Target count in blocks of `blockCells`^3 cells.
+double targetLeaves(const SyntheticParams& params, int blockCells) {
+    return static_cast<double>(params.cells) / std::ldexp(1.0, 3 * log2Exact(blockCells));
+}
+
+}  // namespace
+
+int syntheticRootLevel(const SyntheticParams& params) {
+    const int block = syntheticBlockCells(params);
+    const int shift = log2Exact(block);
+    if (params.levels != 0) {
+        AMRVK_CHECK(params.levels >= 1 && params.levels <= kMaxLevel + 1 - shift, "--levels ", params.levels,
+                    " is outside [1, ", kMaxLevel + 1 - shift, "] for blocks of ", block, "^3 cells");
+        return params.levels - 1 + shift;
+    }
+    return nodeRootLevel(params.kind, targetLeaves(params, block), shift) + shift;
 }
 
 namespace {
 
-// Calls fn(kind) with the concrete kind object for `params`.
+// Calls fn(kind, blockShift) with the concrete kind object for `params`.
 template <class Fn>
 void withKind(const SyntheticParams& params, Fn&& fn) {
+    const int block = syntheticBlockCells(params);
+    const int shift = log2Exact(block);
     const int root = syntheticRootLevel(params);
     switch (params.kind) {
-        case SyntheticKind::Cloud: fn(CloudKind(params.seed, root)); break;
-        case SyntheticKind::Shells: fn(ShellsKind(params.seed, root)); break;
-        case SyntheticKind::Teapot: fn(TeapotKind(params.seed, root, teapotMajorRadius(params.cells, root))); break;
+        case SyntheticKind::Cloud: fn(CloudKind(params.seed, root), shift); break;
+        case SyntheticKind::Shells: fn(ShellsKind(params.seed, root), shift); break;
+        case SyntheticKind::Teapot:
+            fn(TeapotKind(params.seed, root, teapotMajorRadius(targetLeaves(params, block), root - shift) * block),
+               shift);
+            break;
     }
 }
 
@@ -736,12 +808,13 @@ SyntheticStats generateSynthetic(const SyntheticParams& params, const fs::path& 
     { AtomicFileWriter probe(cellsPath); }  // fail before the search when BASE is not writable
 
     SyntheticStats stats;
+    stats.blockCells = syntheticBlockCells(params);
     stats.rootLevel = syntheticRootLevel(params);
-    withKind(params, [&](const auto& kind) {
+    withKind(params, [&](const auto& kind, int blockShift) {
         using Kind = std::decay_t<decltype(kind)>;
-        searchAndGenerate(kind, params, stats, [&](float t, uint64_t cap, uint64_t minAccept) {
+        searchAndGenerate(kind, blockShift, params, stats, [&](float t, uint64_t cap, uint64_t minAccept) {
             FileSink sink(cellsPath, scalarsPath, cap, params.cells, &params.progress);
-            DepthFirst<Kind, FileSink>(kind, t, sink).run();
+            DepthFirst<Kind, FileSink>(kind, blockShift, t, sink).run();
             if (sink.stopped() || sink.count() < minAccept) return FinalPass{sink.count(), sink.stopped(), false};
             stats.bytes = sink.commit();
             finishStats(stats, sink);
@@ -757,13 +830,14 @@ Model makeSyntheticModel(const SyntheticParams& params, SyntheticStats* statsOut
     const auto start = std::chrono::steady_clock::now();
     checkParams(params);
     SyntheticStats stats;
+    stats.blockCells = syntheticBlockCells(params);
     stats.rootLevel = syntheticRootLevel(params);
     Model model;
-    withKind(params, [&](const auto& kind) {
+    withKind(params, [&](const auto& kind, int blockShift) {
         using Kind = std::decay_t<decltype(kind)>;
-        searchAndGenerate(kind, params, stats, [&](float t, uint64_t cap, uint64_t minAccept) {
+        searchAndGenerate(kind, blockShift, params, stats, [&](float t, uint64_t cap, uint64_t minAccept) {
             MemorySink sink(cap, params.cells, &params.progress);
-            DepthFirst<Kind, MemorySink>(kind, t, sink).run();
+            DepthFirst<Kind, MemorySink>(kind, blockShift, t, sink).run();
             if (sink.stopped() || sink.count() < minAccept) return FinalPass{sink.count(), sink.stopped(), false};
             finishStats(stats, sink);
             model.cells = sink.takeCells();
@@ -778,6 +852,7 @@ Model makeSyntheticModel(const SyntheticParams& params, SyntheticStats* statsOut
     model.attributes = {{"kind", std::string(syntheticKindName(params.kind))},
                         {"seed", std::to_string(params.seed)},
                         {"rootLevel", std::to_string(stats.rootLevel)},
+                        {"blockCells", std::to_string(stats.blockCells)},
                         {"threshold", strCat(stats.threshold)}};
     stats.targetReached = static_cast<double>(stats.cells) * kTolerance >= static_cast<double>(params.cells);
     stats.seconds = secondsSince(start);

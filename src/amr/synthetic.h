@@ -1,20 +1,32 @@
 #pragma once
 // Deterministic procedural AMR data sets ("amrvk gen"), streamed depth-first to disk.
 //
-// Every kind is an octree over the cube [0, 2^rootLevel)^3 of finest-level units. A node is
-// refined when its refinement score (a measure of how much the field varies inside it, made
-// monotone: never larger than its parent's) is >= a threshold t; the leaves are the cells.
-// The cell count is a monotone function of t, so t is chosen for the requested count:
-//  1. best-first expansion (highest score first) up to min(N, 32768) leaves gives the exact
-//     count-versus-threshold curve for small counts in bounded memory;
+// Block-structured like FLASH/PARAMESH or AMReX: every kind is an octree of nodes over the cube
+// [0, 2^rootLevel)^3 of finest-cell units, and every leaf node becomes one full block of B^3
+// same-level cells (B = blockCells, a power of two; cell width = node width / B, so cell level =
+// node level - log2 B and nodes are never narrower than B). Level 0 is the finest cell level.
+// Each cell's value is the field evaluated for that cell exactly as a leaf node of its size
+// would be (the octree is refined log2 B further levels inside the block); B = 1 gives one cell
+// per leaf. Domain depth unless `levels` is given: the B = 1 rule for N / B^3 cells, in node
+// units, plus log2 B (the cell octree for N / B^3 cells with every node widened to a block);
+// the teapot's stadium stays at least 2^20 cells wide.
+// A node is refined when its refinement score (a measure of how much the field varies inside it,
+// made monotone: never larger than its parent's) is >= a threshold t. The cell count is B^3
+// times the leaf count, a monotone function of t, so t is chosen for the requested count:
+//  1. best-first expansion (highest score first) up to min(N / B^3, 32768) leaves gives the
+//     exact count-versus-threshold curve for small counts in bounded memory;
 //  2. depth-first counting passes at 8x, 64x, ... that count, each stopped early once it passes
 //     4x its own target, extend the curve; every new t comes from log-log interpolation between
 //     the nearest measured points, clamped into the bracket of too-many / too-few thresholds;
 //  3. the writing pass itself is the last check: it is abandoned (nothing committed) once it
 //     exceeds 1.4 N cells and retried with a corrected t when it ends outside [N/1.4, 1.4 N].
 //     A measured t whose count already lies in that range is reused as it is (passes are exact).
-// Typical cost: about 1.15 N evaluated cells of counting plus the N written ones.
-// Output: cells in depth-first order (children x fastest, then y, then z), level 0 = finest.
+// Typical cost: counting passes evaluate about 1.15 N / B^3 nodes (block interiors are
+// skipped); the writing pass evaluates about 1.15 N nodes (the blocks' subtrees included).
+// Small targets: B is halved until N >= 64 B^3 (teapot: 512 B^3), enough blocks to land within
+// the factor 1.4 and to span several levels; SyntheticStats::blockCells reports the B used.
+// Output: cells in depth-first order (children x fastest, then y, then z; a block is the
+// depth-first subtree of its leaf node), level 0 = finest.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -40,7 +52,10 @@ struct SyntheticParams {
     SyntheticKind kind = SyntheticKind::Cloud;
     uint64_t cells = 1000000;  // target leaf-cell count; the result lies within a factor 1.4
     uint64_t seed = 1;         // same seed (and other parameters) = byte-identical output
-    int levels = 0;            // octree depth + 1, i.e. domain 2^(levels-1) units; 0 = by kind/N
+    // Number of cell levels the domain allows (cell levels 0..levels-1: the domain is
+    // 2^(levels-1) blocks = 2^(levels-1) * B finest cells wide); 0 = by kind and N.
+    int levels = 0;
+    int blockCells = 8;        // B: cells per block edge, power of two in [1, 32]; 1 = cell octree
     std::string field;         // field name; empty = "scalars" (files BASE.scalars)
     // Called every 65536 cells with the phase ("counting pass K", "writing" or "generating")
     // and its estimated completed fraction in [0, 1); no throttling.
@@ -48,8 +63,9 @@ struct SyntheticParams {
 };
 
 struct SyntheticStats {
-    uint64_t cells = 0;
-    int rootLevel = 0;                    // domain is 2^rootLevel finest units wide
+    uint64_t cells = 0;                   // = blocks * blockCells^3
+    int blockCells = 1;                   // B used: the requested one, or smaller for small N
+    int rootLevel = 0;                    // domain is 2^rootLevel finest cells wide
     int minLevel = 0, maxLevel = 0;       // levels present among the cells
     std::vector<uint64_t> cellsPerLevel;  // index = level, size maxLevel + 1
     uint64_t bytes = 0;                   // bytes written (.cells + .scalars); 0 in memory
@@ -59,7 +75,11 @@ struct SyntheticStats {
     double seconds = 0;                   // wall time of the whole call
 };
 
-// Domain depth used for `params` (the rootLevel of the result).
+// Block edge B used for `params` (the blockCells of the result); throws amrvk::Error when
+// params.blockCells is not a power of two in [1, 32].
+int syntheticBlockCells(const SyntheticParams& params);
+
+// Domain depth used for `params` (the rootLevel of the result, in finest cells).
 int syntheticRootLevel(const SyntheticParams& params);
 
 // Writes BASE.cells and BASE.scalars (or BASE.<field>.scalars) through AtomicFileWriter in

@@ -18,16 +18,22 @@ const std::vector<OptionSpec> kGenSpecs = {
     {"cells", 1, "N", "target leaf-cell count, e.g. 1e6 (result within a factor 1.4; required)"},
     {"seed", 1, "S", "random seed, integer >= 0 (default 1); same seed = identical files"},
     {"output", 1, "BASE", "writes BASE.cells and BASE.scalars (-o BASE; required)"},
-    {"levels", 1, "L", "octree levels: domain 2^(L-1) finest cells wide (default: by kind and N)"},
+    {"block", 1, "B", "cells per block edge: 1, 2, 4, 8, 16 or 32 (default 8); 1 = one cell per leaf"},
+    {"levels", 1, "L", "cell levels 0..L-1: domain 2^(L-1) blocks wide (default: by kind and N)"},
     {"field", 1, "NAME", "field name: writes BASE.NAME.scalars instead of BASE.scalars"},
 };
 
 const char* kGenUsage =
-    "usage: amrvk gen <kind> --cells N [--seed S] -o BASE [--levels L] [--field NAME]\n"
+    "usage: amrvk gen <kind> --cells N [--seed S] -o BASE [--block B] [--levels L] [--field NAME]\n"
     "\n"
     "Writes deterministic synthetic AMR (leaf cells, level 0 = finest) as BASE.cells\n"
     "(16-byte int32 x,y,z,level records) and BASE.scalars (float32, same order), streamed\n"
     "depth-first with bounded memory; nothing is left behind if the run fails.\n"
+    "\n"
+    "The data are block-structured like FLASH or AMReX output: an octree is refined where the\n"
+    "field varies and every leaf is one full aligned block of B^3 same-level cells (--block 1:\n"
+    "every leaf is a single cell). Small targets use a smaller B so that N >= 64 B^3\n"
+    "(teapot: 512 B^3); the summary line reports the B used.\n"
     "\n"
     "kinds:\n"
     "  cloud    turbulent cloud: log-normal density from hashed fractal value noise,\n"
@@ -104,6 +110,10 @@ int runGen(const std::vector<std::string>& argv) {
     const int64_t seed = args.getInt("seed", 1);
     AMRVK_CHECK(seed >= 0, "--seed: ", seed, " must be >= 0");
     params.seed = static_cast<uint64_t>(seed);
+    const int64_t block = args.getInt("block", 8);
+    AMRVK_CHECK(block >= 1 && block <= 32 && (block & (block - 1)) == 0, "--block: ", block,
+                " is not one of 1, 2, 4, 8, 16, 32");
+    params.blockCells = static_cast<int>(block);
     const int64_t levels = args.getInt("levels", 0);
     AMRVK_CHECK(!args.has("levels") || (levels >= 1 && levels <= amr::kMaxLevel + 1), "--levels: ",
                 levels, " is outside [1, ", amr::kMaxLevel + 1, "]");
@@ -122,11 +132,17 @@ int runGen(const std::vector<std::string>& argv) {
     printer.finish();
 
     const std::string scalars = params.field.empty() ? ".scalars" : "." + params.field + ".scalars";
-    std::printf("amrvk gen %s: %llu cells, levels %d-%d (%d levels), domain 2^%d, %.1f MB in %s.cells + "
-                "%s%s, %.2f s\n",
+    const uint64_t blockVolume = static_cast<uint64_t>(st.blockCells) * static_cast<uint64_t>(st.blockCells) *
+                                 static_cast<uint64_t>(st.blockCells);
+    const std::string reduced = st.blockCells == params.blockCells
+                                    ? std::string()
+                                    : strCat(" (reduced from --block ", params.blockCells, ": too few blocks for N)");
+    std::printf("amrvk gen %s: %llu cells, levels %d-%d (%d levels), %llu blocks of %d^3 cells%s, domain 2^%d, "
+                "%.1f MB in %s.cells + %s%s, %.2f s\n",
                 kindName.c_str(), static_cast<unsigned long long>(st.cells), st.minLevel, st.maxLevel,
-                st.maxLevel - st.minLevel + 1, st.rootLevel, static_cast<double>(st.bytes) / 1e6,
-                base.c_str(), base.c_str(), scalars.c_str(), st.seconds);
+                st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume),
+                st.blockCells, reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6, base.c_str(),
+                base.c_str(), scalars.c_str(), st.seconds);
     if (!st.targetReached)
         std::fprintf(stderr,
                      "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -18,12 +19,55 @@ namespace fs = std::filesystem;
 
 namespace {
 
-SyntheticParams params(SyntheticKind kind, uint64_t cells, uint64_t seed = 1) {
+SyntheticParams params(SyntheticKind kind, uint64_t cells, uint64_t seed = 1, int block = 8) {
     SyntheticParams p;
     p.kind = kind;
     p.cells = cells;
     p.seed = seed;
+    p.blockCells = block;
     return p;
+}
+
+// Cell-octree parameters (one cell per leaf), the generator before blocks.
+SyntheticParams cellParams(SyntheticKind kind, uint64_t cells, uint64_t seed = 1) {
+    return params(kind, cells, seed, 1);
+}
+
+// FNV-1a 64 over the cell records, then the values.
+uint64_t digest(const Model& m) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    auto add = [&](const void* data, size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+    };
+    add(m.cells.data(), m.cells.size() * sizeof(Cell));
+    add(m.fields[0].values.data(), m.fields[0].values.size() * sizeof(float));
+    return h;
+}
+
+// Every cell lies in a complete aligned block of block^3 same-level cells, and each block's
+// cells are consecutive in the output. Returns the number of blocks.
+uint64_t expectFullBlocks(const Model& m, int block) {
+    const uint64_t volume = uint64_t(block) * uint64_t(block) * uint64_t(block);
+    EXPECT_EQ(m.cellCount() % volume, 0u);
+    CellHash hash(m.cells);
+    uint64_t blocks = 0, misses = 0;
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        const Cell& c = m.cells[i];
+        const int w = 1 << c.level;
+        const glm::ivec3 origin = c.lower & glm::ivec3(~(block * w - 1));
+        const Cell& first = m.cells[i - i % volume];
+        if (first.lower != origin || first.level != c.level) ++misses;
+        if (c.lower != origin) continue;
+        ++blocks;
+        for (int z = 0; z < block; ++z)
+            for (int y = 0; y < block; ++y)
+                for (int x = 0; x < block; ++x)
+                    if (hash.find(origin + glm::ivec3(x, y, z) * w, c.level) == CellHash::kNone) ++misses;
+    }
+    EXPECT_EQ(misses, 0u);
+    EXPECT_EQ(blocks * volume, m.cellCount());
+    return blocks;
 }
 
 std::string readBytes(const fs::path& p) {
@@ -80,7 +124,7 @@ class SyntheticKinds : public ::testing::TestWithParam<SyntheticKind> {};
 TEST_P(SyntheticKinds, TenThousandCellsAreValidMultiLevelAndNearTheTarget) {
     for (uint64_t seed : {1u, 2u, 3u}) {
         SyntheticStats st;
-        Model m = makeSyntheticModel(params(GetParam(), 10000, seed), &st);
+        Model m = makeSyntheticModel(cellParams(GetParam(), 10000, seed), &st);
         m.source = "synthetic";
         ASSERT_NO_THROW(validate(m));
         expectWithinFactor(m.cellCount(), 10000, 1.4);
@@ -106,9 +150,9 @@ TEST_P(SyntheticKinds, TenThousandCellsAreValidMultiLevelAndNearTheTarget) {
 }
 
 TEST_P(SyntheticKinds, SameSeedIsIdenticalOtherSeedDiffers) {
-    Model a = makeSyntheticModel(params(GetParam(), 5000, 7));
-    Model b = makeSyntheticModel(params(GetParam(), 5000, 7));
-    Model c = makeSyntheticModel(params(GetParam(), 5000, 8));
+    Model a = makeSyntheticModel(params(GetParam(), 50000, 7));
+    Model b = makeSyntheticModel(params(GetParam(), 50000, 7));
+    Model c = makeSyntheticModel(params(GetParam(), 50000, 8));
     ASSERT_EQ(a.cellCount(), b.cellCount());
     EXPECT_EQ(0, std::memcmp(a.cells.data(), b.cells.data(), a.cells.size() * sizeof(Cell)));
     EXPECT_EQ(a.fields[0].values, b.fields[0].values);
@@ -119,7 +163,7 @@ TEST_P(SyntheticKinds, SameSeedIsIdenticalOtherSeedDiffers) {
 
 TEST_P(SyntheticKinds, LargerTargetsUseCountingPassesAndLandNearTheTarget) {
     SyntheticStats st;
-    Model m = makeSyntheticModel(params(GetParam(), 300000, 5), &st);
+    Model m = makeSyntheticModel(cellParams(GetParam(), 300000, 5), &st);
     expectWithinFactor(m.cellCount(), 300000, 1.4);
     EXPECT_TRUE(st.targetReached);
     ModelSummary s = summarize(m);
@@ -133,7 +177,7 @@ INSTANTIATE_TEST_SUITE_P(All, SyntheticKinds,
 
 TEST(Synthetic, TeapotIsATinyObjectInAHugeCoarseDomain) {
     SyntheticStats st;
-    Model m = makeSyntheticModel(params(SyntheticKind::Teapot, 10000, 4), &st);
+    Model m = makeSyntheticModel(cellParams(SyntheticKind::Teapot, 10000, 4), &st);
     EXPECT_GE(st.rootLevel, 20);
     ModelSummary s = summarize(m);
     EXPECT_GE(s.bounds.size().x, int64_t{1} << 16);
@@ -145,12 +189,12 @@ TEST(Synthetic, TeapotIsATinyObjectInAHugeCoarseDomain) {
 
 TEST(Synthetic, SmallAndDegenerateTargets) {
     for (uint64_t n : {1u, 8u, 100u}) {
-        Model m = makeSyntheticModel(params(SyntheticKind::Shells, n));
+        Model m = makeSyntheticModel(cellParams(SyntheticKind::Shells, n));
         m.source = "synthetic";
         EXPECT_NO_THROW(validate(m));
         EXPECT_LE(m.cellCount(), std::max<uint64_t>(15, 2 * n));
     }
-    SyntheticParams p = params(SyntheticKind::Cloud, 1000);
+    SyntheticParams p = cellParams(SyntheticKind::Cloud, 1000);
     p.levels = 1;  // a single possible cell
     EXPECT_EQ(makeSyntheticModel(p).cellCount(), 1u);
     p.levels = 3;  // at most 64 cells: the target cannot be reached
@@ -164,9 +208,120 @@ TEST(Synthetic, SmallAndDegenerateTargets) {
     EXPECT_EQ(parseSyntheticKind("teapot"), SyntheticKind::Teapot);
 }
 
+// Digests of the generator's output computed before block mode existed (x86-64, glibc): block
+// size 1 must reproduce it byte for byte (cells and values; the exact best-first regime and,
+// for 3e5 cells, counting passes).
+TEST(Synthetic, BlockSizeOneReproducesTheCellOctreeGenerator) {
+    struct Case {
+        SyntheticKind kind;
+        uint64_t cells, seed, count, digest;
+    };
+    for (const Case& c : {Case{SyntheticKind::Cloud, 10000, 1, 9997, 0xa3dc5298f65720edull},
+                          Case{SyntheticKind::Shells, 10000, 2, 9997, 0xda4dd219ca034a9full},
+                          Case{SyntheticKind::Teapot, 10000, 3, 9997, 0x1dac193ce179eefeull},
+                          Case{SyntheticKind::Cloud, 300000, 5, 302548, 0x23e63550ff8a49a3ull}}) {
+        SyntheticStats st;
+        Model m = makeSyntheticModel(cellParams(c.kind, c.cells, c.seed), &st);
+        EXPECT_EQ(st.blockCells, 1);
+        EXPECT_EQ(m.cellCount(), c.count) << syntheticKindName(c.kind) << " " << c.cells;
+        EXPECT_EQ(digest(m), c.digest) << syntheticKindName(c.kind) << " " << c.cells;
+    }
+}
+
+class SyntheticBlocks : public ::testing::TestWithParam<SyntheticKind> {};
+
+// Default blocks of 8^3 at a few 1e5 cells: valid, near the target, full aligned blocks,
+// several levels; the same cells as files.
+TEST_P(SyntheticBlocks, EightCubedBlocksAreFullAlignedAndMultiLevel) {
+    // Shells need about 400 blocks for three levels, the teapot 512 for 8^3 blocks.
+    const uint64_t n = GetParam() == SyntheticKind::Cloud    ? 100000
+                       : GetParam() == SyntheticKind::Shells ? 200000
+                                                             : 300000;
+    SyntheticParams p = params(GetParam(), n, 3);
+    EXPECT_EQ(syntheticBlockCells(p), 8);
+    SyntheticStats st;
+    Model m = makeSyntheticModel(p, &st);
+    m.source = "synthetic";
+    ASSERT_NO_THROW(validate(m));
+    EXPECT_EQ(st.blockCells, 8);
+    const std::pair<std::string, std::string> blockAttribute{"blockCells", "8"};
+    EXPECT_NE(std::find(m.attributes.begin(), m.attributes.end(), blockAttribute), m.attributes.end());
+    expectWithinFactor(m.cellCount(), n, 1.4);
+    EXPECT_TRUE(st.targetReached);
+    const uint64_t blocks = expectFullBlocks(m, 8);
+    EXPECT_GE(blocks, 64u);
+    ModelSummary s = summarize(m);
+    EXPECT_EQ(s.minLevel, st.minLevel);
+    EXPECT_EQ(s.maxLevel, st.maxLevel);
+    expectFillsDomain(s, st.rootLevel);
+    EXPECT_LE(st.maxLevel, st.rootLevel - 3) << "cells are an eighth of a node";
+    if (GetParam() == SyntheticKind::Teapot) {
+        EXPECT_GE(st.rootLevel, 20);
+        // Block terms: one cell per block, as wide as the block.
+        Model blockModel;
+        for (const Cell& c : m.cells)
+            if ((c.lower & glm::ivec3((8 << c.level) - 1)) == glm::ivec3(0))
+                blockModel.cells.push_back(Cell{c.lower, c.level + 3});
+        EXPECT_EQ(blockModel.cellCount(), blocks);
+        EXPECT_GE(largestFaceJump(blockModel), 3) << "level jumps between neighbouring blocks";
+        EXPECT_LE(s.minLevel, 1) << "the object is refined to (nearly) the finest level";
+    } else {
+        EXPECT_GE(s.maxLevel - s.minLevel + 1, 3);
+    }
+    for (float v : m.fields[0].values) ASSERT_TRUE(std::isfinite(v) && v > 0.0f);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, SyntheticBlocks,
+                         ::testing::Values(SyntheticKind::Cloud, SyntheticKind::Shells, SyntheticKind::Teapot),
+                         [](const auto& p) { return std::string(syntheticKindName(p.param)); });
+
+TEST(Synthetic, BlocksWithCountingPassesLandNearTheTarget) {
+    // 312500 target blocks of 2^3: past 8x the exact best-first curve, so counting passes run.
+    SyntheticStats st;
+    Model m = makeSyntheticModel(params(SyntheticKind::Cloud, 2500000, 5, 2), &st);
+    EXPECT_GT(st.countingPasses, 0);
+    EXPECT_EQ(st.blockCells, 2);
+    expectWithinFactor(m.cellCount(), 2500000, 1.4);
+    expectFullBlocks(m, 2);
+}
+
+TEST(Synthetic, SmallTargetsShrinkTheBlockAndLevelsCountCellLevels) {
+    struct Case {
+        SyntheticKind kind;
+        uint64_t cells;
+        int block;
+    };
+    for (const Case& c : {Case{SyntheticKind::Cloud, 1000, 2}, Case{SyntheticKind::Shells, 5000, 4},
+                          Case{SyntheticKind::Cloud, 32768, 8}, Case{SyntheticKind::Teapot, 10000, 2},
+                          Case{SyntheticKind::Teapot, 100000, 4}, Case{SyntheticKind::Cloud, 100, 1}}) {
+        SyntheticStats st;
+        Model m = makeSyntheticModel(params(c.kind, c.cells), &st);
+        EXPECT_EQ(st.blockCells, c.block) << syntheticKindName(c.kind) << " " << c.cells;
+        expectWithinFactor(m.cellCount(), c.cells, 1.4);
+        expectFullBlocks(m, c.block);
+    }
+    SyntheticParams p = params(SyntheticKind::Cloud, 100000);
+    p.levels = 3;  // cell levels 0..2: a domain 4 blocks = 32 cells wide, at most 32768 cells
+    SyntheticStats st;
+    Model m = makeSyntheticModel(p, &st);
+    EXPECT_EQ(st.rootLevel, 5);
+    EXPECT_LE(st.maxLevel, 2);
+    EXPECT_EQ(m.cellCount(), 32768u);
+    EXPECT_FALSE(st.targetReached);
+    p.levels = 1;  // a single block
+    EXPECT_EQ(makeSyntheticModel(p).cellCount(), 512u);
+    p.levels = 29;  // 2^28 blocks of 8 cells exceed the 2^30 domain limit
+    EXPECT_THROW(makeSyntheticModel(p), Error);
+    p.levels = 0;
+    for (int bad : {0, 3, 64, -8}) {
+        p.blockCells = bad;
+        EXPECT_THROW(makeSyntheticModel(p), Error) << bad;
+    }
+}
+
 TEST(Synthetic, FilesEqualTheInMemoryModelAndAreDeterministic) {
     const fs::path dir = test::scratchDir();
-    SyntheticParams p = params(SyntheticKind::Cloud, 20000, 11);
+    SyntheticParams p = params(SyntheticKind::Cloud, 40000, 11);
     SyntheticStats st = generateSynthetic(p, dir / "a");
     generateSynthetic(p, dir / "b");
     EXPECT_EQ(readBytes(dir / "a.cells"), readBytes(dir / "b.cells"));
@@ -178,7 +333,8 @@ TEST(Synthetic, FilesEqualTheInMemoryModelAndAreDeterministic) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 6);
 
     Model files = readModel(dir / "a.cells", ReadOptions{});
-    Model memory = makeSyntheticModel(params(SyntheticKind::Cloud, 20000, 11));
+    Model memory = makeSyntheticModel(params(SyntheticKind::Cloud, 40000, 11));
+    EXPECT_EQ(st.blockCells, 8);
     EXPECT_EQ(st.cells, files.cellCount());
     EXPECT_EQ(st.bytes, files.cellCount() * 20);
     ASSERT_EQ(files.cellCount(), memory.cellCount());
@@ -234,6 +390,7 @@ TEST(GenCommand, WritesFilesThatReadBackAsTheInMemoryModel) {
         ASSERT_EQ(std::system(cmd.c_str()), 0) << readBytes(dir / "out.txt");
         const std::string out = readBytes(dir / "out.txt");
         EXPECT_NE(out.find(" cells, levels "), std::string::npos) << out;
+        EXPECT_NE(out.find(" blocks of "), std::string::npos) << out;
         Model files = readModel(withSuffix(base, ".cells"), ReadOptions{});
         Model memory = makeSyntheticModel(params(parseSyntheticKind(kind), 10000, 5));
         ASSERT_EQ(files.cellCount(), memory.cellCount()) << kind;
@@ -248,7 +405,8 @@ TEST(GenCommand, HelpAndErrors) {
     const std::string out = (dir / "out.txt").string();
     ASSERT_EQ(std::system((amrvkBinary() + " gen --help > " + out + " 2>&1").c_str()), 0);
     std::string help = readBytes(out);
-    for (const char* word : {"cloud", "shells", "teapot", "--cells", "--seed", "--levels", "--field", "BASE"})
+    for (const char* word :
+         {"cloud", "shells", "teapot", "--cells", "--seed", "--block", "--levels", "--field", "BASE", "B^3"})
         EXPECT_NE(help.find(word), std::string::npos) << word;
     EXPECT_NE(std::system((amrvkBinary() + " gen teacup --cells 100 -o " + (dir / "x").string() + " > " + out +
                            " 2>&1").c_str()),
@@ -256,5 +414,9 @@ TEST(GenCommand, HelpAndErrors) {
     EXPECT_NE(readBytes(out).find("teacup"), std::string::npos);
     EXPECT_NE(std::system((amrvkBinary() + " gen cloud -o " + (dir / "x").string() + " > " + out + " 2>&1").c_str()), 0);
     EXPECT_NE(readBytes(out).find("--cells"), std::string::npos);
+    EXPECT_NE(std::system((amrvkBinary() + " gen cloud --cells 1e5 --block 3 -o " + (dir / "x").string() + " > " +
+                           out + " 2>&1").c_str()),
+              0);
+    EXPECT_NE(readBytes(out).find("--block"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "x.cells"));
 }

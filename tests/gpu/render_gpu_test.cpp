@@ -88,7 +88,7 @@ TEST_F(RenderGpu, WhiteFurnaceIsExactlyOne) {
     p.cells = 20000;
     p.seed = 5;
     amr::Model m = amr::makeSyntheticModel(p);
-    for (double density : {0.02, 0.1}) {  // optical depths across the cloud of about 5 and 25
+    for (double density : {0.1, 0.5}) {  // from a few scattering events per path to dozens
         render::RenderSettings s;
         s.mode = render::Mode::Ms;
         s.width = s.height = 32;
