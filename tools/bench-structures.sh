@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): time and peak memory of building bricks, ABRs and 128^3 macrocell value
-# ranges for a synthetic cloud. Usage: tools/bench-structures.sh [CELLS] [SEED]
+# ranges for a synthetic cloud. Usage: [BLOCK=8] tools/bench-structures.sh [CELLS] [SEED]
 # Prints the generator summary and one JSON object from `amrvk info --json`; see docs/benchmarks.md.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -9,7 +9,7 @@ amrvk="$here/build/bin/amrvk"
 [ -x "$amrvk" ] || { echo "build first: tools/run.sh build" >&2; exit 1; }
 work="$(mktemp -d "${TMPDIR:-/tmp}/amrvk-bench.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
-"$amrvk" gen cloud --cells "$cells" --seed "$seed" -o "$work/cloud"
+"$amrvk" gen cloud --cells "$cells" --seed "$seed" --block "${BLOCK:-8}" -o "$work/cloud"
 "$amrvk" info "$work/cloud.cells" --grid 128 --json | python3 -c '
 import json, sys
 j = json.load(sys.stdin)
