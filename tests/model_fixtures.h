@@ -1,10 +1,15 @@
 #pragma once
 // Small hand-built AMR models for tests: random octree refinement of a block of coarse cells, so
 // level boundaries with jumps of one, two and more levels occur, and simple fields on them.
+#include <gtest/gtest.h>
+
+#include <cstring>
 #include <functional>
 #include <random>
 
 #include "amr/model.h"
+#include "amr/readers.h"
+#include "test_data.h"
 
 namespace amrvk::test {
 
@@ -56,6 +61,26 @@ inline void addRandomField(amr::Model& m, const std::string& name, uint32_t seed
     for (size_t i = 0; i < m.cells.size(); ++i) field.values.push_back(u(rng));
     m.fields.push_back(std::move(field));
     m.availableFields.push_back(name);
+}
+
+// Writes `m` as ExaBrick .cells/.scalars into the test's scratch directory, reads it back and
+// expects identical cells and field values (names and order included).
+inline void expectExaBrickRoundTrip(const amr::Model& m) {
+    const std::filesystem::path base = scratchDir() / "roundtrip";
+    amr::writeExaBrick(m, base);
+    amr::ReadOptions back;
+    back.format = "exabrick";
+    for (const amr::Field& f : m.fields) back.fields.push_back(f.name);
+    const amr::Model r = amr::readModel(base, back);
+    ASSERT_EQ(r.cells.size(), m.cells.size());
+    EXPECT_EQ(std::memcmp(r.cells.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    ASSERT_EQ(r.fields.size(), m.fields.size());
+    for (size_t f = 0; f < m.fields.size(); ++f) {
+        EXPECT_EQ(r.fields[f].name, m.fields[f].name);
+        EXPECT_EQ(r.fields[f].values, m.fields[f].values);
+    }
+    for (const auto& e : std::filesystem::directory_iterator(base.parent_path()))
+        EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << "temporary file left: " << e.path();
 }
 
 }  // namespace amrvk::test
