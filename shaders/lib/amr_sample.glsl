@@ -65,7 +65,7 @@ FieldSample sampleField(uint samplerKind, vec3 p) {
     UintRef prims = UintRef(P.samplerPrims);
     float sumW = 0.0, sumWV = 0.0;
     bool inside = false;
-    uint stack[64];
+    uint stack[kBvhStackSize];  // small: lavapipe keeps it per lane in memory
     int top = 0;
     stack[top++] = 0u;
     while (top > 0) {

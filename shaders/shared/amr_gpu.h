@@ -13,6 +13,11 @@ struct BrickGpu {
 };
 AMRVK_STATIC_ASSERT(sizeof(BrickGpu) == 32);
 
+// Depth limit of the software BVHs (root = depth 0). Median splits reach it only beyond 2^24
+// leaves; deeper nodes become (larger) leaves. Point queries need a stack of kBvhMaxDepth + 2.
+AMRVK_CONST uint kBvhMaxDepth = 24u;
+AMRVK_CONST uint kBvhStackSize = kBvhMaxDepth + 2u;
+
 // Node of a software BVH (accel/bvh.h): inner nodes have count 0 and children first, first + 1.
 struct BvhNodeGpu {
     vec3 lo;     // local voxel units, rounded outward

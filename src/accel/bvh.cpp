@@ -48,8 +48,8 @@ Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
         const uint32_t n = t.end - t.begin;
         glm::dvec3 ext = chi - clo;
         int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-        // The traversal stack holds 64 entries: depth stays below that.
-        if (n <= maxLeafSize || ext[axis] <= 0 || t.depth >= 60) {
+        // Traversal stacks hold kBvhStackSize entries: depth stays within kBvhMaxDepth.
+        if (n <= maxLeafSize || ext[axis] <= 0 || t.depth >= shared::kBvhMaxDepth) {
             node.first = t.begin;
             node.count = n;
             continue;

@@ -8,6 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "shared/amr_gpu.h"
+
 namespace amrvk::accel {
 
 struct BvhNode {
@@ -39,7 +41,7 @@ Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize = 4);
 template <typename Visit>
 void Bvh::forEachContaining(glm::dvec3 p, Visit&& visit) const {
     if (nodes.empty()) return;
-    uint32_t stack[64];
+    uint32_t stack[shared::kBvhStackSize];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
