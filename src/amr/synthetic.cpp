@@ -199,12 +199,31 @@ private:
     std::array<float, kMaxLevel + 2> mAmp{};
 };
 
-// ---- shells: nested spherical bands, box-filtered to the cell width. ----
-class ShellsKind {
+// Kinds whose node value and score depend on the node alone (no state passed to children):
+// the octree interface in terms of Derived::eval(lower, level).
+template <class Derived>
+class PointwiseKind {
 public:
     struct State {};
 
-    ShellsKind(uint64_t seed, int rootLevel) : mRoot(rootLevel), mInvDomain(std::ldexp(1.0, -rootLevel)) {
+    explicit PointwiseKind(int rootLevel) : mRoot(rootLevel), mInvDomain(std::ldexp(1.0, -rootLevel)) {}
+    int rootLevel() const { return mRoot; }
+    NodeEval root(State&) const { return self().eval({0, 0, 0}, mRoot); }
+    void refine(glm::ivec3 lower, int level, const State&, State*, NodeEval* ce) const {
+        const int half = 1 << (level - 1);
+        for (int c = 0; c < 8; ++c) ce[c] = self().eval(lower + childOffset(c) * half, level - 1);
+    }
+
+protected:
+    const Derived& self() const { return static_cast<const Derived&>(*this); }
+    int mRoot;
+    double mInvDomain;  // 1 / domain width in finest units
+};
+
+// ---- shells: nested spherical bands, box-filtered to the cell width. ----
+class ShellsKind : public PointwiseKind<ShellsKind> {
+public:
+    ShellsKind(uint64_t seed, int rootLevel) : PointwiseKind(rootLevel) {
         SeedStream s(seed);
         mCentre = glm::dvec3(s.range(0.48, 0.52), s.range(0.48, 0.52), s.range(0.48, 0.52));
         for (size_t i = 0; i < kShells; ++i) {
@@ -215,14 +234,9 @@ public:
             mValue[i] = s.range(0.3, 1.0);
         }
     }
-    int rootLevel() const { return mRoot; }
-    NodeEval root(State&) const { return eval({0, 0, 0}, mRoot); }
-    void refine(glm::ivec3 lower, int level, const State&, State*, NodeEval* ce) const {
-        const int half = 1 << (level - 1);
-        for (int c = 0; c < 8; ++c) ce[c] = eval(lower + childOffset(c) * half, level - 1);
-    }
-
 private:
+    friend class PointwiseKind;
+
     static constexpr size_t kShells = 5;
     static constexpr double kBackground = 0.02;
 
@@ -243,8 +257,6 @@ private:
         return {static_cast<float>(score), static_cast<float>(value)};
     }
 
-    int mRoot;
-    double mInvDomain;
     glm::dvec3 mCentre{0.5};
     std::array<double, kShells> mInner{}, mOuter{}, mValue{};
 };
@@ -252,12 +264,9 @@ private:
 // ---- teapot in a stadium: a torus with a ball in its hole, tiny inside a huge domain. ----
 // Only nodes whose circumscribed sphere meets the object's surface refine, so the coarse
 // surroundings stay a handful of cells per level and leaves next to the object jump levels.
-class TeapotKind {
+class TeapotKind : public PointwiseKind<TeapotKind> {
 public:
-    struct State {};
-
-    TeapotKind(uint64_t seed, int rootLevel, double majorRadiusUnits)
-        : mRoot(rootLevel), mInvDomain(std::ldexp(1.0, -rootLevel)) {
+    TeapotKind(uint64_t seed, int rootLevel, double majorRadiusUnits) : PointwiseKind(rootLevel) {
         SeedStream s(seed);
         mCentre = glm::dvec3(s.range(0.3, 0.7), s.range(0.3, 0.7), s.range(0.3, 0.7));
         double cz = s.range(-1.0, 1.0), phi = s.range(0.0, 6.283185307179586);
@@ -267,14 +276,9 @@ public:
         mMinor = 0.35 * mMajor;
         mBall = 0.6 * mMajor;
     }
-    int rootLevel() const { return mRoot; }
-    NodeEval root(State&) const { return eval({0, 0, 0}, mRoot); }
-    void refine(glm::ivec3 lower, int level, const State&, State*, NodeEval* ce) const {
-        const int half = 1 << (level - 1);
-        for (int c = 0; c < 8; ++c) ce[c] = eval(lower + childOffset(c) * half, level - 1);
-    }
-
 private:
+    friend class PointwiseKind;
+
     static constexpr double kTorusValue = 1.0, kBallValue = 0.6;
 
     NodeEval eval(glm::ivec3 lower, int level) const {
@@ -296,8 +300,6 @@ private:
         return {static_cast<float>(score), static_cast<float>(value)};
     }
 
-    int mRoot;
-    double mInvDomain;
     glm::dvec3 mCentre{0.5}, mAxis{0, 0, 1};
     double mMajor = 0, mMinor = 0, mBall = 0;
 };
