@@ -1,23 +1,41 @@
-# amrvk_embed_shaders(TARGET target FUNCTION cppFunctionName SOURCES a.comp b.comp ...)
+# amrvk_embed_shaders(TARGET target FUNCTION cppFunctionName SOURCES a.comp b.comp ...
+#                     [VARIANTS name:source.comp:DEFINE ...])
 # Compiles each compute shader with glslc at build time (include dependencies tracked through
 # depfiles) and embeds the SPIR-V in a static library `target` that defines
 #   std::span<const amrvk::gpu::EmbeddedShader> amrvk::shaders::<cppFunctionName>();
-# Shader names are the file names without extension.
+# Shader names are the file names without extension; a variant compiles `source` again with
+# -DDEFINE under its own name (e.g. a ray-query build that needs a device feature).
 find_program(GLSLC glslc REQUIRED)
 
 function(amrvk_embed_shaders)
-  cmake_parse_arguments(ARG "" "TARGET;FUNCTION" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "" "TARGET;FUNCTION" "SOURCES;VARIANTS" ${ARGN})
   set(outdir ${CMAKE_CURRENT_BINARY_DIR}/${ARG_TARGET})
   file(MAKE_DIRECTORY ${outdir})
   set(incs)
   set(table "")
   set(decls "")
+  set(entries)
   foreach(src ${ARG_SOURCES})
     get_filename_component(name ${src} NAME_WE)
+    list(APPEND entries "${name}|${src}|")
+  endforeach()
+  foreach(v ${ARG_VARIANTS})
+    string(REPLACE ":" "|" v "${v}")
+    list(APPEND entries "${v}")
+  endforeach()
+  foreach(entry ${entries})
+    string(REPLACE "|" ";" parts "${entry}")
+    list(GET parts 0 name)
+    list(GET parts 1 src)
+    list(GET parts 2 define)
+    set(defs)
+    if(define)
+      set(defs -D${define})
+    endif()
     set(inc ${outdir}/${name}.spv.inc)
     add_custom_command(
       OUTPUT ${inc}
-      COMMAND ${GLSLC} --target-env=vulkan1.2 -O -I ${CMAKE_SOURCE_DIR}/shaders
+      COMMAND ${GLSLC} --target-env=vulkan1.2 -O -I ${CMAKE_SOURCE_DIR}/shaders ${defs}
               -MD -MF ${inc}.d -mfmt=c -o ${inc} ${src}
       DEPENDS ${src}
       DEPFILE ${inc}.d

@@ -1,8 +1,10 @@
 // Field reconstruction at a local-voxel-space point (exabrick-reference.md 3.1-3.2): the tent-
 // weighted sum f = sum(phi v) / sum(phi) gathered brick by brick (clamped trilinear over <= 8
-// cells of each brick whose basis domain contains p). Bricks are found by a point query into a
-// software BVH: over brick domains (kSampler == kSamplerExtBrick) or over ABR boxes, whose brick
-// list is then evaluated (kSamplerAbr). Never culled by the transfer function.
+// cells of each brick whose basis domain contains p). Bricks are found by a point query over
+// brick domains (kSamplerExtBrick: every containing brick, summed in ascending id order so both
+// back-ends give identical values) or over ABR boxes (kSamplerAbr: the one ABR containing p under
+// half-open containment lo <= p < hi, then its sorted brick list). Back-ends: software BVH
+// (kBackendSw) or a ray query of length 0 at p (kBackendRq). Never culled by the transfer function.
 // CPU twins: amr/sampler.* (brute force), accel/brick_sampler.* (same paths in double).
 #ifndef AMRVK_AMR_SAMPLE_GLSL
 #define AMRVK_AMR_SAMPLE_GLSL
@@ -12,6 +14,12 @@ struct FieldSample {
     float weightSum;  // 0: p is outside every cell support
     bool inside;      // p lies in a leaf cell (the medium); outside it extinction is 0
 };
+
+// Basis-function domain test: p within the brick's bounds grown by half a cell (closed).
+bool brickDomainContains(BrickGpu b, vec3 p) {
+    vec3 rel = (p - vec3(b.lowerLevel.xyz)) / float(1 << b.lowerLevel.w);
+    return all(greaterThanEqual(rel, vec3(-0.5))) && all(lessThanEqual(rel, vec3(b.sizeBegin.xyz) + 0.5));
+}
 
 void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float sumWV,
                           inout bool inside) {
@@ -42,8 +50,15 @@ void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float su
     if (inBounds) inside = true;
 }
 
-bool boxContains(vec3 lo, vec3 hi, vec3 p) {
-    return all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi));
+// Half-open containment: every point of the union of ABRs lies in exactly one ABR.
+bool abrContains(AbrGpu a, vec3 p) { return all(greaterThanEqual(p, a.lo)) && all(lessThan(p, a.hi)); }
+
+FieldSample finishSample(float sumW, float sumWV, bool inside) {
+    FieldSample s;
+    s.weightSum = sumW;
+    s.value = sumW > 0.0 ? sumWV / sumW : 0.0;
+    s.inside = inside && sumW > 0.0;
+    return s;
 }
 
 // Evaluates the bricks of one ABR (no lookup: used when traversal already knows the ABR).
@@ -53,24 +68,55 @@ FieldSample sampleInAbr(uint abrId, vec3 p) {
     bool inside = false;
     UintRef list = UintRef(P.abrBrickList);
     for (uint i = 0; i < a.brickCount; ++i) addBrickContribution(list.v[a.brickBegin + i], p, sumW, sumWV, inside);
-    FieldSample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0.0 ? sumWV / sumW : 0.0;
-    s.inside = inside && sumW > 0.0;
-    return s;
+    return finishSample(sumW, sumWV, inside);
 }
 
-FieldSample sampleField(uint samplerKind, vec3 p) {
+// Bricks whose domain contains p, kept sorted by id. Beyond kMaxGather (never seen in practice:
+// a point lies in at most 8 domains per level) contributions are added in arrival order.
+const uint kMaxGather = 32u;
+struct BrickGather {
+    uint ids[kMaxGather];
+    uint n;
+    float sumW, sumWV;
+    bool inside;
+};
+
+// Ray queries may report a box more than once: a repeated id is ignored.
+void gatherBrick(inout BrickGather g, uint id, vec3 p) {
+    if (!brickDomainContains(BrickRef(P.bricks).v[id], p)) return;
+    for (uint k = 0u; k < g.n; ++k)
+        if (g.ids[k] == id) return;
+    if (g.n == kMaxGather) {
+        addBrickContribution(id, p, g.sumW, g.sumWV, g.inside);
+        return;
+    }
+    uint i = g.n++;
+    while (i > 0u && g.ids[i - 1u] > id) {
+        g.ids[i] = g.ids[i - 1u];
+        --i;
+    }
+    g.ids[i] = id;
+}
+
+FieldSample finishGather(inout BrickGather g, vec3 p) {
+    for (uint i = 0u; i < g.n; ++i) addBrickContribution(g.ids[i], p, g.sumW, g.sumWV, g.inside);
+    return finishSample(g.sumW, g.sumWV, g.inside);
+}
+
+FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
     BvhRef nodes = BvhRef(P.samplerNodes);
     UintRef prims = UintRef(P.samplerPrims);
-    float sumW = 0.0, sumWV = 0.0;
-    bool inside = false;
+    BrickGather g;
+    g.n = 0u;
+    g.sumW = 0.0;
+    g.sumWV = 0.0;
+    g.inside = false;
     uint stack[kBvhStackSize];  // small: lavapipe keeps it per lane in memory
     int top = 0;
     stack[top++] = 0u;
     while (top > 0) {
         BvhNodeGpu n = nodes.v[stack[--top]];
-        if (!boxContains(n.lo, n.hi, p)) continue;
+        if (!(all(greaterThanEqual(p, n.lo)) && all(lessThanEqual(p, n.hi)))) continue;
         if (n.count == 0u) {
             stack[top++] = n.first + 1u;
             stack[top++] = n.first;
@@ -79,18 +125,48 @@ FieldSample sampleField(uint samplerKind, vec3 p) {
         for (uint i = 0; i < n.count; ++i) {
             uint prim = prims.v[n.first + i];
             if (samplerKind == kSamplerExtBrick) {
-                addBrickContribution(prim, p, sumW, sumWV, inside);
-            } else {
-                AbrGpu a = AbrRef(P.abrs).v[prim];
-                if (boxContains(a.lo, a.hi, p)) return sampleInAbr(prim, p);
+                gatherBrick(g, prim, p);
+            } else if (abrContains(AbrRef(P.abrs).v[prim], p)) {
+                return sampleInAbr(prim, p);
             }
         }
     }
-    FieldSample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0.0 ? sumWV / sumW : 0.0;
-    s.inside = inside && sumW > 0.0;
-    return s;
+    return finishGather(g, p);
+}
+
+#ifdef AMRVK_RAY_QUERY
+// A short ray from p towards +xyz is reported by every box containing p with positive-length
+// overlap, in particular the ABR that holds p under half-open containment (p may lie on its lower
+// faces, which a zero-length ray can miss); boxes merely touching p carry zero weight there.
+// The exact tests decide.
+FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
+    BrickGather g;
+    g.n = 0u;
+    g.sumW = 0.0;
+    g.sumWV = 0.0;
+    g.inside = false;
+    rayQueryEXT rq;
+    rayQueryInitializeEXT(rq, accelerationStructureEXT(P.samplerAccel), gl_RayFlagsNoneEXT, 0xFFu, p, 0.0,
+                          vec3(1.0), 1e-3);
+    while (rayQueryProceedEXT(rq)) {
+        if (rayQueryGetIntersectionTypeEXT(rq, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+        uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, false));
+        if (samplerKind == kSamplerExtBrick) {
+            gatherBrick(g, prim, p);
+        } else if (abrContains(AbrRef(P.abrs).v[prim], p)) {
+            rayQueryTerminateEXT(rq);
+            return sampleInAbr(prim, p);
+        }
+    }
+    return finishGather(g, p);
+}
+#endif
+
+FieldSample sampleField(uint samplerKind, uint backend, vec3 p) {
+#ifdef AMRVK_RAY_QUERY
+    if (backend == kBackendRq) return sampleFieldRq(samplerKind, p);
+#endif
+    return sampleFieldSw(samplerKind, p);
 }
 
 #endif

@@ -19,6 +19,8 @@ layout(buffer_reference, scalar) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, scalar) buffer Vec4RW { vec4 v[]; };
 layout(buffer_reference, scalar) readonly buffer BvhRef { BvhNodeGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer AbrRef { AbrGpu v[]; };
+layout(buffer_reference, scalar) readonly buffer AabbRef { AabbGpu v[]; };
+layout(buffer_reference, scalar) buffer AabbRW { AabbGpu v[]; };
 
 const float kInf = 1.0 / 0.0;
 

@@ -1,5 +1,5 @@
 // Free-flight sampling over majorant segments (Woodcock / delta tracking) and transmittance
-// estimation (ratio tracking, Novak et al. 2014), with the grid-dda traversal. Restarting at each
+// estimation (ratio tracking, Novak et al. 2014), over any traversal (traversal.glsl). Restarting at each
 // segment boundary is valid because exponential free flights are memoryless. Majorant and
 // acceptance test are in the same units (extinction per voxel unit), unlike upstream ExaBrick.
 // CPU twin: render/reference_integrator.cpp (deltaTrack, ratioTrack).
@@ -13,10 +13,13 @@ struct Counters {
     uint lookups, real, nulls, steps, violations;
 };
 
-// Extinction (per voxel unit) and TF colour at local point p.
-float extinctionAt(vec3 p, uint samplerKind, inout Counters c, out vec4 tfColor) {
+// Extinction (per voxel unit) and TF colour at local point p, inside segment box `segmentId`.
+// abr traversal + abr sampler: the segment's ABR is the containing one, so no lookup is needed.
+float extinctionAt(vec3 p, StructureConfig cfg, uint segmentId, inout Counters c, out vec4 tfColor) {
     c.lookups++;
-    FieldSample s = sampleField(samplerKind, p);
+    FieldSample s = (cfg.traversal == kTraversalAbr && cfg.samplerKind == kSamplerAbr)
+                        ? sampleInAbr(segmentId, p)
+                        : sampleField(cfg.samplerKind, cfg.backend, p);
     if (!s.inside) {
         tfColor = vec4(0.0);
         return 0.0;
@@ -25,30 +28,28 @@ float extinctionAt(vec3 p, uint samplerKind, inout Counters c, out vec4 tfColor)
     return tfColor.a * P.boundsHi.w * P.boundsLo.w;
 }
 
-float majorantOf(uint cell) {
-    return FloatRef(P.gridMajorants).v[cell] * P.boundsHi.w * P.boundsLo.w;
-}
+// Extinction per voxel unit from a majorant in alpha units.
+float majorantExtinction(float majAlpha) { return majAlpha * P.boundsHi.w * P.boundsLo.w; }
 
 // Samples a real collision along o + t d, t in [0, tMax]. Returns true with its distance and TF colour.
-bool deltaTrack(vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
+bool deltaTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng,
                 inout Counters c, out float tHit, out vec4 tfHit) {
-    DdaState s;
+    Traversal s;
     tHit = tMax;
     tfHit = vec4(0.0);
-    if (!ddaInit(o, d, 0.0, tMax, s)) return false;
-    uint cell;
-    float t0, t1;
+    if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return false;
+    uint seg;
+    float majAlpha, t0, t1;
     uint budget = kMaxTrackingSteps;
-    while (ddaNext(s, cell, t0, t1)) {
-        c.steps++;
-        float maj = majorantOf(cell);
+    while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
+        float maj = majorantExtinction(majAlpha);
         if (!(maj > 0.0)) continue;
         float t = t0;
         while (budget-- > 0u) {
             t -= log(1.0 - rand(rng)) / maj;
             if (t >= t1) break;
             vec4 tfc;
-            float sigma = extinctionAt(o + d * t, samplerKind, c, tfc);
+            float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
             if (rand(rng) * maj < sigma) {
                 c.real++;
@@ -67,24 +68,23 @@ bool deltaTrack(vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
 }
 
 // Unbiased estimate of the transmittance along o + t d, t in [0, tMax]; Russian roulette below 0.05.
-float ratioTrack(vec3 o, vec3 d, float tMax, uint samplerKind, inout uint rng,
+float ratioTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng,
                  inout Counters c) {
-    DdaState s;
-    if (!ddaInit(o, d, 0.0, tMax, s)) return 1.0;
+    Traversal s;
+    if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return 1.0;
     float tr = 1.0;
-    uint cell;
-    float t0, t1;
+    uint seg;
+    float majAlpha, t0, t1;
     uint budget = kMaxTrackingSteps;
-    while (ddaNext(s, cell, t0, t1)) {
-        c.steps++;
-        float maj = majorantOf(cell);
+    while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
+        float maj = majorantExtinction(majAlpha);
         if (!(maj > 0.0)) continue;
         float t = t0;
         while (budget-- > 0u) {
             t -= log(1.0 - rand(rng)) / maj;
             if (t >= t1) break;
             vec4 tfc;
-            float sigma = extinctionAt(o + d * t, samplerKind, c, tfc);
+            float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
             tr *= max(0.0, 1.0 - sigma / maj);
             c.nulls++;

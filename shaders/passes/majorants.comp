@@ -1,8 +1,9 @@
 #version 460
-// Majorant per macrocell = exact maximum of the TF's alpha over the macrocell's value range
-// (tfMaxAlpha: the same piecewise-linear function the tracker evaluates). Run on every TF change.
+// Majorant per macrocell or traversal box = exact maximum of the TF's alpha over its value range
+// (tfMaxAlpha: the same piecewise-linear function the tracker evaluates). Run on every TF change,
+// once per structure: ranges (vec2[count]) -> majorants (float[count]).
 #include "lib/common.glsl"
-layout(push_constant, scalar) uniform Push { PushConstants pc; };
+layout(push_constant, scalar) uniform Push { StructurePush pc; };
 #include "lib/tf.glsl"
 
 layout(local_size_x = 64) in;
@@ -10,8 +11,7 @@ layout(local_size_x = 64) in;
 void main() {
     gParams = ParamsRef(pc.params);
     uint i = gl_GlobalInvocationID.x;
-    uint count = uint(P.gridDims.x * P.gridDims.y * P.gridDims.z);
-    if (i >= count) return;
-    vec2 range = Vec2Ref(P.gridRanges).v[i];
-    FloatRW(P.gridMajorants).v[i] = tfMaxAlpha(range.x, range.y);
+    if (i >= pc.count) return;
+    vec2 range = Vec2Ref(pc.ranges).v[i];
+    FloatRW(pc.target).v[i] = tfMaxAlpha(range.x, range.y);
 }

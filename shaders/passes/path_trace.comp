@@ -1,20 +1,31 @@
 #version 460
 // One sample per pixel per dispatch: camera ray -> estimator of the chosen mode -> accumulate
-// radiance and its square. Specialization: kMode (ae | ss | ms), kSampler (ext-brick | abr).
-// Traversal: macrocell grid DDA with majorants from majorants.comp.
+// radiance and its square. Specialization: kMode (ae | ss | ms), kSampler (ext-brick | abr),
+// kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
+// Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
+// (-DAMRVK_RAY_QUERY: also the VK_KHR_ray_query back-end; needs the rayQuery feature).
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#ifdef AMRVK_RAY_QUERY
+#extension GL_EXT_ray_query : require
+#endif
 #include "lib/common.glsl"
 layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/rng.glsl"
 #include "lib/tf.glsl"
 #include "lib/amr_sample.glsl"
 #include "lib/majorant_dda.glsl"
+#include "lib/domain_traversal.glsl"
+#include "lib/traversal.glsl"
 #include "lib/tracking.glsl"
 #include "lib/phase.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint kMode = kModeMs;
 layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;
+layout(constant_id = 2) const uint kTraversal = kTraversalGridDda;
+layout(constant_id = 3) const uint kBackend = kBackendSw;
+
+StructureConfig cfg() { return StructureConfig(kSampler, kTraversal, kBackend); }
 
 // Radiance arriving at p from light k (k == lightCount means the ambient environment, sampled
 // through the phase function) times the phase function, with a ratio-tracked shadow ray.
@@ -22,7 +33,7 @@ vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, 
     float g = P.shading.x;
     if (k == lightCount) {
         vec3 wi = sampleHenyeyGreenstein(d, g, rand(rng), rand(rng));  // phase / pdf = 1
-        return P.ambient.rgb * ratioTrack(p, wi, kInf, kSampler, rng, c);
+        return P.ambient.rgb * ratioTrack(p, wi, kInf, cfg(), rng, c);
     }
     LightGpu L = P.lights[k];
     vec3 wi;
@@ -38,18 +49,18 @@ vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, 
         wi = normalize(L.posOrDir.xyz);
         dist = kInf;
     }
-    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(p, wi, dist, kSampler, rng, c);
+    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(p, wi, dist, cfg(), rng, c);
 }
 
 vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     float tHit;
     vec4 tf;
     if (kMode == kModeAe) {
-        return deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
+        return deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
     }
     uint deltaLights = uint(P.shading.y);
     if (kMode == kModeSs) {
-        if (!deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf)) return P.background.rgb;
+        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) return P.background.rgb;
         bool ambientOn = any(greaterThan(P.ambient.rgb, vec3(0.0)));
         uint n = deltaLights + (ambientOn ? 1u : 0u);
         if (n == 0u) return vec3(0.0);
@@ -60,7 +71,7 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     // directional lights (never hit by rays) by next-event estimation at every collision.
     vec3 throughput = vec3(1.0), L = vec3(0.0);
     for (uint bounce = 0u;; ++bounce) {
-        if (!deltaTrack(o, d, kInf, kSampler, rng, c, tHit, tf)) {
+        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) {
             L += throughput * (bounce == 0u ? P.background.rgb : P.ambient.rgb);
             break;
         }

@@ -36,5 +36,13 @@ struct AbrGpu {
 };
 AMRVK_STATIC_ASSERT(sizeof(AbrGpu) == 32);
 
+// An axis-aligned box with the layout of VkAabbPositionsKHR (ray-query BLAS input); local voxel
+// units.
+struct AabbGpu {
+    vec3 lo;
+    vec3 hi;
+};
+AMRVK_STATIC_ASSERT(sizeof(AabbGpu) == 24);
+
 AMRVK_NAMESPACE_END
 #endif

@@ -21,6 +21,23 @@ AMRVK_CONST uint kModeMs = 2u;  // multiple scattering
 AMRVK_CONST uint kSamplerExtBrick = 0u;
 AMRVK_CONST uint kSamplerAbr = 1u;
 
+// Majorant traversals (specialization constant kTraversal). grid-dda steps through the macrocell
+// grid; the others query a set of boxes ("domains", each with a majorant) for the segment that
+// starts at the current t: abr = ABR boxes, brick = strict brick bounds, ext-brick = brick basis
+// domains (they overlap: the majorant is the maximum over the boxes covering t), grid-bvh =
+// non-empty macrocells, kdtree = leaves of the TF-specific kd-tree.
+AMRVK_CONST uint kTraversalGridDda = 0u;
+AMRVK_CONST uint kTraversalGridBvh = 1u;
+AMRVK_CONST uint kTraversalAbr = 2u;
+AMRVK_CONST uint kTraversalBrick = 3u;
+AMRVK_CONST uint kTraversalExtBrick = 4u;
+AMRVK_CONST uint kTraversalKdTree = 5u;
+
+// Back-ends of the box hierarchies (specialization constant kBackend): software BVH in GLSL or
+// VK_KHR_ray_query over an AABB BLAS (only in the path_trace_rq shader variant).
+AMRVK_CONST uint kBackendSw = 0u;
+AMRVK_CONST uint kBackendRq = 1u;
+
 // Per-frame counters (uint32 each, reset per dispatch, summed on the host in 64 bits).
 AMRVK_CONST uint kCounterDensityLookups = 0u;
 AMRVK_CONST uint kCounterRealCollisions = 1u;
@@ -68,6 +85,14 @@ struct RenderParams {
     uint64_t abrBrickList;  // uint[]
     uint64_t gridRanges;    // vec2[] value range per macrocell
     uint64_t gridMajorants; // float[] max alpha per macrocell (majorant pass output)
+    uint64_t samplerAccel;  // TLAS over sampler boxes (rq back-end), else 0
+    uint64_t domainBoxes;   // AabbGpu[] traversal boxes (not for grid-bvh: computed from the grid)
+    uint64_t domainRanges;  // vec2[] value range per traversal box (grid-bvh: = gridRanges)
+    uint64_t domainMajorants; // float[] max alpha per traversal box (grid-bvh: = gridMajorants)
+    uint64_t domainNodes;   // BvhNodeGpu[] over the boxes with majorant > 0 (sw back-end)
+    uint64_t domainPrims;   // uint[] BVH slot -> box id
+    uint64_t domainAccel;   // TLAS over the boxes, culled ones inactive (rq back-end)
+    uvec4 domainInfo;       // x: box count; y: 1 when some box has majorant > 0; zw unused
     uint64_t tfPositions;   // float[]
     uint64_t tfColors;      // vec4[] rgb albedo, a = alpha (extinction per finest cell width)
     uint64_t accum;         // vec4[2 * pixels]: sum and sum of squares of radiance; w = count
@@ -80,6 +105,17 @@ struct PushConstants {
     uint pad;
 };
 AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 16);
+
+// majorants.comp: majorants[i] = max TF alpha over ranges[i] for i < count. domain_aabbs.comp:
+// aabbs[i] = box i, or the point lo when majorants[i] == 0 (ray-query culling).
+struct StructurePush {
+    uint64_t params;     // RenderParams address (TF, grid, domain boxes)
+    uint64_t ranges;     // vec2[] (majorants.comp) or float[] majorants (domain_aabbs.comp)
+    uint64_t target;     // float[] majorants or AabbGpu[]
+    uint count;
+    uint kind;           // domain_aabbs.comp: traversal kind (grid-bvh computes boxes)
+};
+AMRVK_STATIC_ASSERT(sizeof(StructurePush) == 32);
 
 AMRVK_NAMESPACE_END
 #endif

@@ -27,7 +27,8 @@ const char* kRenderHelp =
     "\n"
     "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel\n"
     "per dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width;\n"
-    "albedo = TF colour. Traversal: macrocell grid DDA; sampling: ext-brick or abr.\n"
+    "albedo = TF colour. Every majorant traversal x sample reconstruction structure of the paper is\n"
+    "selectable; box hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq).\n"
     "\n"
     "options:\n";
 
@@ -109,8 +110,11 @@ int runRender(const std::vector<std::string>& argv) {
     add({"tf-range", 2, "LO HI", "map the TF's node range onto [LO, HI] (presets: default the field's range)"});
     add({"mode", 1, "ae|ss|ms", "absorption+emission, single or multiple scattering (default ms)"});
     add({"sampler", 1, "ext-brick|abr", "sample reconstruction structure (default ext-brick)"});
-    add({"traversal", 1, "grid-dda", "majorant traversal (default grid-dda)"});
-    add({"grid", 1, "auto|N|NxMxK", "macrocell grid (default auto: 128 on the longest axis)"});
+    add({"traversal", 1, "grid-dda|grid-bvh|abr|brick|ext-brick|kdtree",
+         "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, brick bounds, brick domains, or the TF-specific kd-tree (default grid-dda)"});
+    add({"backend", 1, "sw|rq|auto", "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it (default auto)"});
+    add({"grid", 1, "auto|N|NxMxK", "macrocell grid of grid-dda and grid-bvh (default auto: 128 on the longest axis)"});
+    add({"kd-leaves", 1, "N", "kdtree: leaves of the kd-tree, rebuilt per TF (default 4096)"});
     add({"spp", 1, "N", "samples per pixel (default 64)"});
     add({"size", 1, "WxH", "image size (default 512x512)"});
     add({"camera", 9, "EX EY EZ TX TY TZ UX UY UZ", "eye, target and up in world space (default: three-quarter view)"});
@@ -148,8 +152,14 @@ int runRender(const std::vector<std::string>& argv) {
                         " is missing or not writable)");
         }
     }
-    AMRVK_CHECK(args.get("traversal", "grid-dda") == "grid-dda", "--traversal ", args.get("traversal"),
-                ": only grid-dda is available in this version");
+    render::StructureConfig config;
+    config.traversal = render::parseTraversal(args.get("traversal", "grid-dda"));
+    config.sampler = render::parseSampler(args.get("sampler", "ext-brick"));
+    config.backend = render::parseBackend(args.get("backend", "auto"));
+    config.grid = args.get("grid", "auto");
+    const int64_t kdLeaves = args.getInt("kd-leaves", 4096);
+    AMRVK_CHECK(kdLeaves >= 1 && kdLeaves <= (int64_t(1) << 24), "--kd-leaves ", kdLeaves, " is outside [1, 2^24]");
+    config.kdLeaves = uint32_t(kdLeaves);
     render::RenderSettings rs;
     rs.mode = render::parseMode(args.get("mode", "ms"));
     parseSize(args.get("size", "512x512"), rs.width, rs.height);
@@ -176,9 +186,15 @@ int runRender(const std::vector<std::string>& argv) {
         model = amr::readModel(args.positional()[0], ro);
     }
     const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
-    const render::SamplerKind sampler = render::parseSampler(args.get("sampler", "ext-brick"));
+    if (args.has("shader-dir")) gpu::setShaderDirectory(args.get("shader-dir"));
+    gpu::ContextOptions co;
+    co.device = args.get("device");
+    co.validation = args.has("validation");
+    co.requireRayQuery = config.backend == render::Backend::Rq;
+    gpu::Context ctx(co);
+    config.backend = render::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     Timer buildTimer;
-    render::VolumeScene scene = render::buildVolumeScene(model, field, sampler, args.get("grid", "auto"));
+    render::VolumeScene scene = render::buildVolumeScene(model, field, config);
     const double buildSeconds = buildTimer.seconds();
 
     const amr::ModelSummary summary = amr::summarize(model);
@@ -200,11 +216,6 @@ int runRender(const std::vector<std::string>& argv) {
     render::TransferFunction tf = render::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
     if (args.has("tf-range")) tf = tf.rescaled(tfLo, tfHi);
 
-    if (args.has("shader-dir")) gpu::setShaderDirectory(args.get("shader-dir"));
-    gpu::ContextOptions co;
-    co.device = args.get("device");
-    co.validation = args.has("validation");
-    gpu::Context ctx(co);
     render::Renderer renderer(ctx, scene);
     renderer.setTransferFunction(tf);
     ProgressBar bar(progressEnabled());
@@ -221,7 +232,7 @@ int runRender(const std::vector<std::string>& argv) {
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
     std::printf("wrote %s (%dx%d, %lld spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(),
-                rs.width, rs.height, (long long)spp, render::modeName(rs.mode), render::samplerName(sampler),
+                rs.width, rs.height, (long long)spp, render::modeName(rs.mode), config.label().c_str(),
                 ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
                 out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
     if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits])
@@ -234,8 +245,9 @@ int runRender(const std::vector<std::string>& argv) {
         j.beginObject();
         j.member("input", model.source).member("field", field.name);
         j.member("device", ctx.deviceReport().name).member("width", rs.width).member("height", rs.height);
-        j.member("spp", spp).member("mode", render::modeName(rs.mode)).member("traversal", "grid-dda");
-        j.member("sampler", render::samplerName(sampler)).member("tf", tf.name());
+        j.member("spp", spp).member("mode", render::modeName(rs.mode));
+        j.member("traversal", render::traversalName(config.traversal)).member("sampler", render::samplerName(config.sampler));
+        j.member("backend", render::backendName(config.backend)).member("tf", tf.name());
         j.member("seconds", out.stats.gpuSeconds).member("wallSeconds", wallSeconds);
         j.member("pathsPerSecond", out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0);
         j.member("paths", out.stats.paths);
@@ -247,14 +259,25 @@ int runRender(const std::vector<std::string>& argv) {
         j.member("nanSamples", c[shared::kCounterNanSamples]);
         j.member("bounceLimitHits", c[shared::kCounterBounceLimitHits]);
         j.member("majorantSeconds", renderer.majorantSeconds());
+        j.member("tfStructureUpdateSeconds", renderer.structureUpdateSeconds());
+        j.member("activeTraversalBoxes", renderer.activeTraversalBoxes());
         j.member("structureBuildSeconds", buildSeconds);
+        j.key("structureBuildSecondsPer").beginObject();
+        j.member("bricks", scene.buildSeconds.bricks).member("abrs", scene.buildSeconds.abrs);
+        j.member("samplerBvh", scene.buildSeconds.samplerBvh).member("macrocells", scene.buildSeconds.grid);
+        j.member("traversalRanges", scene.buildSeconds.domains).member("kdTree", scene.buildSeconds.kdTree);
+        j.endObject();
+        j.key("hostMemoryPerStructure").beginObject();
+        for (const auto& [name, bytes] : scene.hostBytes()) j.member(name, bytes);
+        j.endObject();
         j.member("deviceMemoryBytes", ctx.memory().currentBytes());
         j.member("deviceMemoryPeakBytes", ctx.memory().peakBytes());
         j.key("deviceMemoryPerResource").beginObject();
         for (const auto& [name, usage] : ctx.memory().perResource())
             j.key(name).beginObject().member("current", usage.current).member("peak", usage.peak).endObject();
         j.endObject();
-        j.key("macrocellDims").beginArray().value(scene.grid.dims.x).value(scene.grid.dims.y).value(scene.grid.dims.z).endArray();
+        if (scene.grid)
+            j.key("macrocellDims").beginArray().value(scene.grid->dims.x).value(scene.grid->dims.y).value(scene.grid->dims.z).endArray();
         j.key("meanRGB").beginArray().value(meanRgb.x).value(meanRgb.y).value(meanRgb.z).endArray();
         j.endObject();
         writeFileAtomic(args.get("json"), j.str() + "\n");

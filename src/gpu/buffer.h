@@ -33,6 +33,8 @@ public:
     VkBuffer handle() const { return mBuffer; }
     VkDeviceAddress address() const { return mAddress; }
     uint64_t size() const { return mSize; }
+    // Device bytes allocated for it (>= size()), as counted in ctx.memory().
+    uint64_t allocatedBytes() const { return mAllocated; }
     const std::string& name() const { return mName; }
     bool valid() const { return mBuffer != VK_NULL_HANDLE; }
     // Host pointer when the memory is host-visible, else nullptr.

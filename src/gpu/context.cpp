@@ -275,7 +275,7 @@ Context::Context(const ContextOptions& options) {
         mPhysical = pds[size_t(chosen)];
         mReport = pick.report;
         mQueueFamily = pick.queueFamily;
-        mRayQuery = pick.report.rayQuery;
+        mRayQuery = pick.report.rayQuery && !options.disableRayQuery;
         VkPhysicalDeviceProperties props{};
         vkGetPhysicalDeviceProperties(mPhysical, &props);
         mLimits = props.limits;

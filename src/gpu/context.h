@@ -21,6 +21,7 @@ struct ContextOptions {
     std::string device;       // "" = automatic; a decimal index or a case-insensitive name part
     bool validation = false;  // also on when AMRVK_VALIDATION=1
     bool requireRayQuery = false;
+    bool disableRayQuery = false;  // leave ray queries off even where supported (tests, comparisons)
 };
 
 struct DeviceReport {

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/shader_library.h"
 #include "shared/amr_gpu.h"
@@ -54,7 +55,30 @@ const char* modeName(Mode mode) {
     }
 }
 
-Renderer::Renderer(gpu::Context& ctx, const VolumeScene& scene) : mCtx(ctx), mScene(scene) {
+namespace {
+constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+
+uint32_t traversalConst(TraversalKind t) {
+    switch (t) {
+        case TraversalKind::GridDda: return shared::kTraversalGridDda;
+        case TraversalKind::GridBvh: return shared::kTraversalGridBvh;
+        case TraversalKind::Abr: return shared::kTraversalAbr;
+        case TraversalKind::Brick: return shared::kTraversalBrick;
+        case TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
+        default: return shared::kTraversalKdTree;
+    }
+}
+
+std::string traversalResource(TraversalKind t, const char* what) {
+    return std::string(traversalName(t)) + "Traversal" + what;
+}
+}  // namespace
+
+Renderer::Renderer(gpu::Context& ctx, VolumeScene& scene) : mCtx(ctx), mScene(scene) {
+    const StructureConfig& cfg = scene.config;
+    AMRVK_CHECK(cfg.backend != Backend::Auto, "internal: Renderer needs a resolved back-end");
+    AMRVK_CHECK(cfg.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
+                "' has no VK_KHR_ray_query");
     gpu::registerShaders(shaders::passShaders());
     const glm::ivec3 origin(scene.localOrigin);
     std::vector<shared::BrickGpu> bricks;
@@ -64,10 +88,19 @@ Renderer::Renderer(gpu::Context& ctx, const VolumeScene& scene) : mCtx(ctx), mSc
                           glm::ivec4(b.size, int32_t(b.begin))});
     mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
     mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
-    mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, scene.samplerBvh.nodes,
-                                                   scene.sampler == SamplerKind::Abr ? "abrBvh" : "brickDomainBvh");
-    mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds,
-                                              scene.sampler == SamplerKind::Abr ? "abrBvhPrims" : "brickDomainBvhPrims");
+    const char* samplerStructure = cfg.sampler == SamplerKind::Abr ? "abrSampler" : "brickDomainSampler";
+    if (cfg.backend == Backend::Sw) {
+        mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, scene.samplerBvh.nodes, std::string(samplerStructure) + "Bvh");
+        mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, std::string(samplerStructure) + "BvhPrims");
+    } else {
+        const auto& boxes = scene.samplerBoxes;
+        mSamplerAabbs = gpu::Buffer(ctx, std::max<uint64_t>(16, boxes.size() * sizeof(shared::AabbGpu)),
+                                    gpu::MemoryKind::Device, std::string(samplerStructure) + "Aabbs", kAsInput);
+        if (!boxes.empty()) mSamplerAabbs.upload(boxes.data(), boxes.size() * sizeof(shared::AabbGpu));
+        mSamplerAccel = gpu::AabbAccelerationStructure(ctx, uint32_t(boxes.size()), std::string(samplerStructure) + "Accel");
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { mSamplerAccel.build(cmd, mSamplerAabbs); });
+        mParams.samplerAccel = mSamplerAccel.tlasAddress();
+    }
     if (scene.abrs) {
         std::vector<shared::AbrGpu> abrs;
         abrs.reserve(scene.abrs->abrs.size());
@@ -77,32 +110,111 @@ Renderer::Renderer(gpu::Context& ctx, const VolumeScene& scene) : mCtx(ctx), mSc
         mAbrs = gpu::makeBuffer<shared::AbrGpu>(ctx, abrs, "abrs");
         mAbrBrickList = gpu::makeBuffer<uint32_t>(ctx, scene.abrs->brickList, "abrBrickLists");
     }
-    mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid.ranges, "macrocellRanges");
-    mGridMajorants = gpu::Buffer(ctx, std::max<uint64_t>(16, scene.grid.ranges.size() * sizeof(float)),
-                                 gpu::MemoryKind::Device, "macrocellMajorants");
+    if (scene.grid) {
+        mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid->ranges, "macrocellRanges");
+        mGridMajorants = gpu::Buffer(ctx, std::max<uint64_t>(16, scene.grid->ranges.size() * sizeof(float)),
+                                     gpu::MemoryKind::Device, "macrocellMajorants");
+        mParams.gridDims = glm::ivec4(scene.grid->dims, 0);
+        mParams.gridOrigin = v4(scene.grid->origin - glm::dvec3(scene.localOrigin));
+        mParams.gridCellSize = v4(scene.grid->cellSize);
+        mParams.gridRanges = mGridRanges.address();
+        mParams.gridMajorants = mGridMajorants.address();
+    }
     mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
     mParamsBuffer = gpu::Buffer(ctx, sizeof(shared::RenderParams), gpu::MemoryKind::Device, "renderParams");
 
     mParams.boundsLo = v4(glm::dvec3(0.0), 1.0 / double(amr::cellWidth(scene.minLevel)));
     mParams.boundsHi = v4(glm::dvec3(scene.bounds.upper - scene.bounds.lower), 1.0);
-    mParams.gridDims = glm::ivec4(scene.grid.dims, 0);
-    mParams.gridOrigin = v4(scene.grid.origin - glm::dvec3(scene.localOrigin));
-    mParams.gridCellSize = v4(scene.grid.cellSize);
     mParams.bricks = mBricks.address();
     mParams.brickValues = mBrickValues.address();
-    mParams.samplerNodes = mSamplerNodes.address();
-    mParams.samplerPrims = mSamplerPrims.address();
+    mParams.samplerNodes = mSamplerNodes.valid() ? mSamplerNodes.address() : 0;
+    mParams.samplerPrims = mSamplerPrims.valid() ? mSamplerPrims.address() : 0;
     mParams.abrs = mAbrs.valid() ? mAbrs.address() : 0;
     mParams.abrBrickList = mAbrBrickList.valid() ? mAbrBrickList.address() : 0;
-    mParams.gridRanges = mGridRanges.address();
-    mParams.gridMajorants = mGridMajorants.address();
     mParams.counters = mCounters.address();
+    if (cfg.traversal != TraversalKind::KdTree) uploadDomainBoxes();  // kdtree: per TF
+}
+
+uint32_t Renderer::domainCount() const {
+    if (mScene.config.traversal == TraversalKind::GridBvh) return uint32_t(mScene.grid->ranges.size());
+    return uint32_t(mScene.domains.boxes.size());
+}
+
+// Traversal boxes, their value ranges and majorants, and (rq) the BLAS input and structure.
+void Renderer::uploadDomainBoxes() {
+    const TraversalKind t = mScene.config.traversal;
+    if (t == TraversalKind::GridDda) return;
+    const uint32_t count = domainCount();
+    if (t == TraversalKind::GridBvh) {
+        mParams.domainRanges = mGridRanges.address();
+        mParams.domainMajorants = mGridMajorants.address();
+    } else {
+        mDomainBoxes = gpu::makeBuffer<shared::AabbGpu>(mCtx, mScene.domains.boxes, traversalResource(t, "Boxes"));
+        mDomainRanges = gpu::makeBuffer<accel::ValueRange>(mCtx, mScene.domains.ranges, traversalResource(t, "Ranges"));
+        mDomainMajorants = gpu::Buffer(mCtx, std::max<uint64_t>(16, uint64_t(count) * sizeof(float)),
+                                       gpu::MemoryKind::Device, traversalResource(t, "Majorants"));
+        mParams.domainBoxes = mDomainBoxes.address();
+        mParams.domainRanges = mDomainRanges.address();
+        mParams.domainMajorants = mDomainMajorants.address();
+    }
+    if (mScene.config.backend == Backend::Rq) {
+        mDomainAccel = {};
+        mDomainAabbs = gpu::Buffer(mCtx, std::max<uint64_t>(24, uint64_t(count) * sizeof(shared::AabbGpu)),
+                                   gpu::MemoryKind::Device, traversalResource(t, "Aabbs"), kAsInput);
+        mDomainAccel = gpu::AabbAccelerationStructure(mCtx, count, traversalResource(t, "Accel"));
+        mParams.domainAccel = mDomainAccel.tlasAddress();
+    }
+    mParams.domainInfo = glm::uvec4(count, 0, 0, 0);
+    mActiveMask.clear();
+}
+
+// sw back-end: a BVH over the boxes with majorant > 0, rebuilt only when that set changes.
+void Renderer::updateSwCulling(const std::vector<float>& majorants) {
+    std::vector<uint8_t> mask(majorants.size());
+    for (size_t i = 0; i < majorants.size(); ++i) mask[i] = majorants[i] > 0.0f;
+    if (mask == mActiveMask && mDomainNodes.valid()) return;
+    mActiveMask = std::move(mask);
+    std::vector<accel::BoxD> boxes;
+    std::vector<uint32_t> ids;
+    const bool grid = mScene.config.traversal == TraversalKind::GridBvh;
+    for (uint32_t i = 0; i < mActiveMask.size(); ++i) {
+        if (!mActiveMask[i]) continue;
+        ids.push_back(i);
+        if (grid) {
+            // The shader computes macrocell faces in float; pad the double box so nodes stay conservative.
+            const accel::RangeGrid& g = *mScene.grid;
+            const glm::ivec3 c(int(i % uint32_t(g.dims.x)), int((i / uint32_t(g.dims.x)) % uint32_t(g.dims.y)),
+                               int(i / uint32_t(g.dims.x * g.dims.y)));
+            const glm::dvec3 o = g.origin - glm::dvec3(mScene.localOrigin);
+            const glm::dvec3 lo = o + glm::dvec3(c) * g.cellSize, hi = o + glm::dvec3(c + 1) * g.cellSize;
+            const glm::dvec3 pad = 1e-5 * (glm::abs(lo) + glm::abs(hi) + 1.0);
+            boxes.push_back({lo - pad, hi + pad});
+        } else {
+            const shared::AabbGpu& b = mScene.domains.boxes[i];
+            boxes.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
+        }
+    }
+    const TraversalKind t = mScene.config.traversal;
+    mDomainNodes = gpu::Buffer();
+    mDomainPrims = gpu::Buffer();
+    accel::Bvh bvh = boxes.empty() ? accel::Bvh{} : accel::buildBvh(boxes);
+    for (uint32_t& p : bvh.primIds) p = ids[p];
+    mDomainNodes = gpu::makeBuffer<accel::BvhNode>(mCtx, bvh.nodes, traversalResource(t, "Bvh"));
+    mDomainPrims = gpu::makeBuffer<uint32_t>(mCtx, bvh.primIds, traversalResource(t, "BvhPrims"));
+    mParams.domainNodes = mDomainNodes.address();
+    mParams.domainPrims = mDomainPrims.address();
 }
 
 void Renderer::setTransferFunction(const TransferFunction& tf) {
     const auto& positions = tf.positions();
     std::vector<glm::vec4> colors = tf.colors();
     AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
+    const StructureConfig& cfg = mScene.config;
+    Timer hostTimer;
+    if (cfg.traversal == TraversalKind::KdTree) {
+        mScene.rebuildKdTree([&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); });
+        uploadDomainBoxes();
+    }
     mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
     mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
     mParams.tfInfo = glm::vec4(float(positions.size()), 0, 0, 0);
@@ -111,30 +223,73 @@ void Renderer::setTransferFunction(const TransferFunction& tf) {
     mParamsBuffer.upload(&mParams, sizeof mParams);
     if (!mMajorantPipeline.valid())
         mMajorantPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("majorants"), "majorants",
-                                                 sizeof(shared::PushConstants));
-    const uint32_t count = uint32_t(mScene.grid.ranges.size());
-    gpu::GpuTimer timer(mCtx, 1);
+                                                 sizeof(shared::StructurePush));
+    const bool rq = cfg.backend == Backend::Rq && cfg.traversalUsesBoxes();
+    if (rq && !mAabbPipeline.valid())
+        mAabbPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("domain_aabbs"), "domain_aabbs",
+                                             sizeof(shared::StructurePush));
+    const uint32_t boxCount = cfg.traversalUsesBoxes() ? domainCount() : 0;
+    const bool ownDomainMajorants = cfg.traversalUsesBoxes() && cfg.traversal != TraversalKind::GridBvh;
+    gpu::GpuTimer timer(mCtx, 4);
     mCtx.submitAndWait([&](VkCommandBuffer cmd) {
         timer.reset(cmd);
         uint32_t scope = timer.begin(cmd, "majorants");
-        shared::PushConstants push{mParamsBuffer.address(), 0, 0};
-        mMajorantPipeline.dispatch(cmd, &push, (count + 63) / 64);
+        if (mScene.grid) {
+            const uint32_t n = uint32_t(mScene.grid->ranges.size());
+            shared::StructurePush push{mParamsBuffer.address(), mGridRanges.address(), mGridMajorants.address(), n, 0};
+            mMajorantPipeline.dispatch(cmd, &push, (n + 63) / 64);
+        }
+        if (ownDomainMajorants && boxCount > 0) {
+            shared::StructurePush push{mParamsBuffer.address(), mDomainRanges.address(), mDomainMajorants.address(),
+                                       boxCount, 0};
+            mMajorantPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
+        }
+        gpu::computeBarrier(cmd);
+        if (rq && boxCount > 0) {
+            shared::StructurePush push{mParamsBuffer.address(), mParams.domainMajorants, mDomainAabbs.address(),
+                                       boxCount, traversalConst(cfg.traversal)};
+            mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
+            gpu::computeBarrier(cmd);
+            mDomainAccel.build(cmd, mDomainAabbs);
+        }
         timer.end(cmd, scope);
         gpu::computeBarrier(cmd);
     });
     mMajorantSeconds = timer.total("majorants");
+    if (cfg.traversalUsesBoxes()) {
+        std::vector<float> majorants(boxCount);
+        if (boxCount > 0) {
+            const gpu::Buffer& src = cfg.traversal == TraversalKind::GridBvh ? mGridMajorants : mDomainMajorants;
+            src.download(majorants.data(), majorants.size() * sizeof(float));
+        }
+        mActiveBoxes = uint64_t(std::count_if(majorants.begin(), majorants.end(), [](float m) { return m > 0.0f; }));
+        if (cfg.backend == Backend::Sw) updateSwCulling(majorants);
+        mParams.domainInfo.y = mActiveBoxes > 0 ? 1u : 0u;
+        mParamsBuffer.upload(&mParams, sizeof mParams);
+    }
+    mStructureSeconds = hostTimer.seconds();
     mHasTf = true;
 }
 
 void Renderer::overrideMajorants(const std::vector<float>& majorants) {
-    AMRVK_CHECK(majorants.size() == mScene.grid.ranges.size(), "overrideMajorants: ", majorants.size(),
-                " values for ", mScene.grid.ranges.size(), " macrocells");
+    AMRVK_CHECK(mScene.grid && mScene.config.traversal == TraversalKind::GridDda,
+                "overrideMajorants: grid-dda traversal only");
+    AMRVK_CHECK(majorants.size() == mScene.grid->ranges.size(), "overrideMajorants: ", majorants.size(),
+                " values for ", mScene.grid->ranges.size(), " macrocells");
     mGridMajorants.upload(majorants.data(), majorants.size() * sizeof(float));
 }
 
 std::vector<float> Renderer::downloadMajorants() const {
-    std::vector<float> out(mScene.grid.ranges.size());
+    AMRVK_CHECK(mScene.grid.has_value(), "downloadMajorants: no macrocell grid in this configuration");
+    std::vector<float> out(mScene.grid->ranges.size());
     mGridMajorants.download(out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+std::vector<float> Renderer::downloadDomainMajorants() const {
+    AMRVK_CHECK(mDomainMajorants.valid(), "downloadDomainMajorants: no traversal boxes in this configuration");
+    std::vector<float> out(mScene.domains.boxes.size());
+    if (!out.empty()) mDomainMajorants.download(out.data(), out.size() * sizeof(float));
     return out;
 }
 
@@ -142,12 +297,18 @@ const gpu::ComputePipeline& Renderer::pathTracePipeline(Mode mode) {
     int key = int(mode);
     auto it = mPathTrace.find(key);
     if (it != mPathTrace.end()) return it->second;
+    const StructureConfig& cfg = mScene.config;
     uint32_t modeConst = mode == Mode::Ae ? shared::kModeAe : mode == Mode::Ss ? shared::kModeSs : shared::kModeMs;
-    uint32_t samplerConst = mScene.sampler == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
+    uint32_t samplerConst = cfg.sampler == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
+    uint32_t backendConst = cfg.backend == Backend::Rq ? shared::kBackendRq : shared::kBackendSw;
+    // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
+    const char* shader = cfg.backend == Backend::Rq ? "path_trace_rq" : "path_trace";
     auto [pos, ok] = mPathTrace.emplace(
-        key, gpu::ComputePipeline(mCtx, gpu::loadShader("path_trace"),
-                                  std::string("path_trace.") + modeName(mode) + "." + samplerName(mScene.sampler),
-                                  sizeof(shared::PushConstants), {{0, modeConst}, {1, samplerConst}}));
+        key, gpu::ComputePipeline(mCtx, gpu::loadShader(shader),
+                                  std::string("path_trace.") + modeName(mode) + "." + cfg.label(),
+                                  sizeof(shared::PushConstants),
+                                  {{0, modeConst}, {1, samplerConst}, {2, traversalConst(cfg.traversal)},
+                                   {3, backendConst}}));
     return pos->second;
 }
 

@@ -7,21 +7,17 @@
 
 namespace amrvk::render {
 
-SamplerKind parseSampler(const std::string& name) {
-    if (name == "ext-brick") return SamplerKind::ExtBrick;
-    if (name == "abr") return SamplerKind::Abr;
-    AMRVK_CHECK(false, "--sampler '", name, "': expected ext-brick or abr");
-    return SamplerKind::ExtBrick;
+namespace {
+shared::AabbGpu localBox(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 origin) {
+    // Box faces lie on the half-voxel lattice: exact in float for local coordinates below 2^23.
+    return {glm::vec3(lo - origin), glm::vec3(hi - origin)};
 }
+}  // namespace
 
-const char* samplerName(SamplerKind kind) { return kind == SamplerKind::Abr ? "abr" : "ext-brick"; }
-
-VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
-                             const std::string& gridSpec) {
+VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
     VolumeScene s;
     s.model = &model;
     s.field = &field;
-    s.sampler = sampler;
     amr::ModelSummary summary = amr::summarize(model);
     s.bounds = summary.bounds;
     s.localOrigin = summary.bounds.lower;
@@ -29,37 +25,126 @@ VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, S
     amr::FieldStats stats = amr::computeFieldStats(model, field);
     s.valueLo = stats.minValue;
     s.valueHi = stats.maxValue;
-    {
-        ProgressStage stage("bricks");
-        s.bricks = accel::buildBricks(model);
-        s.brickValues = accel::brickOrderValues(s.bricks, field);
-        s.buildSeconds.bricks = s.bricks.buildSeconds;
-    }
-    const glm::dvec3 origin(s.localOrigin);
-    std::vector<accel::BoxD> boxes;
-    if (sampler == SamplerKind::Abr) {
-        ProgressStage stage("active brick regions");
-        s.abrs = accel::buildAbrs(s.bricks);
-        s.buildSeconds.abrs = s.abrs->buildSeconds;
-        boxes = accel::abrBoxes(*s.abrs);
-    } else {
-        boxes = accel::brickDomainBoxes(s.bricks);
-    }
-    {
-        Timer t;
-        for (auto& b : boxes) {
-            b.lo -= origin;
-            b.hi -= origin;
-        }
-        s.samplerBvh = accel::buildBvh(boxes);
-        s.buildSeconds.bvh = t.seconds();
-    }
-    {
-        ProgressStage stage("macrocell value ranges");
-        s.grid = accel::buildRangeGrid(model, field, accel::parseGridDims(gridSpec, s.bounds));
-        s.buildSeconds.grid = s.grid.buildSeconds;
-    }
+    ProgressStage stage("bricks");
+    s.bricks = accel::buildBricks(model);
+    s.brickValues = accel::brickOrderValues(s.bricks, field);
+    s.buildSeconds.bricks = s.bricks.buildSeconds;
     return s;
+}
+
+void VolumeScene::configure(const StructureConfig& next) {
+    AMRVK_CHECK(next.backend != Backend::Auto, "internal: configure() needs a resolved back-end");
+    const bool rebuildSampler = config.sampler != next.sampler || config.backend != next.backend ||
+                                (samplerBvh.nodes.empty() && samplerBoxes.empty());
+    const bool rebuildGrid = next.usesGrid() && (!grid || config.grid != next.grid);
+    const bool rebuildDomains = next.traversal != config.traversal || domains.boxes.empty();
+    config = next;
+    const glm::dvec3 origin(localOrigin);
+
+    // Free what the new combination does not use.
+    if (!next.usesAbrs()) abrs.reset();
+    if (!next.usesGrid()) grid.reset();
+    // Only the kd-tree keeps the support-range query (it rebuilds per TF); brick ranges use it once.
+    if (next.traversal != TraversalKind::KdTree) supportRanges.query.reset();
+    if (next.traversal != TraversalKind::KdTree) kdTree.reset();
+    if (rebuildDomains || !next.traversalUsesBoxes() || next.traversal == TraversalKind::GridBvh) domains = {};
+    if (rebuildSampler) {
+        samplerBvh = {};
+        samplerBoxes = {};
+    }
+
+    if (next.usesAbrs() && !abrs) {
+        ProgressStage stage("active brick regions");
+        abrs = accel::buildAbrs(bricks);
+        buildSeconds.abrs = abrs->buildSeconds;
+    }
+    if (rebuildSampler) {
+        Timer t;
+        std::vector<accel::BoxD> boxes = next.sampler == SamplerKind::Abr ? accel::abrBoxes(*abrs)
+                                                                         : accel::brickDomainBoxes(bricks);
+        if (next.backend == Backend::Sw) {
+            for (auto& b : boxes) {
+                b.lo -= origin;
+                b.hi -= origin;
+            }
+            samplerBvh = accel::buildBvh(boxes);
+        } else {
+            samplerBoxes.reserve(boxes.size());
+            for (const auto& b : boxes) samplerBoxes.push_back(localBox(b.lo, b.hi, origin));
+        }
+        buildSeconds.samplerBvh = t.seconds();
+    }
+    if (rebuildGrid) {
+        ProgressStage stage("macrocell value ranges");
+        grid = accel::buildRangeGrid(*model, *field, accel::parseGridDims(next.grid, bounds));
+        buildSeconds.grid = grid->buildSeconds;
+    }
+    if (rebuildDomains && (next.traversal == TraversalKind::Abr || next.traversal == TraversalKind::Brick ||
+                           next.traversal == TraversalKind::ExtBrick)) {
+        ProgressStage stage("traversal value ranges");
+        Timer t;
+        domains = {};
+        if (next.traversal == TraversalKind::Abr) {
+            for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(localBox(a.box.lower(), a.box.upper(), origin));
+            domains.ranges = accel::computeAbrValueRanges(*abrs, bricks, brickValues);
+        } else if (next.traversal == TraversalKind::Brick) {
+            const accel::SupportRangeQuery query(bricks, brickValues);
+            for (const accel::Brick& b : bricks.bricks) {
+                amr::Box3l bb = b.bounds();
+                domains.boxes.push_back(localBox(glm::dvec3(bb.lower), glm::dvec3(bb.upper), origin));
+            }
+            domains.ranges = accel::brickBoundsRanges(query, bricks);
+        } else {
+            const accel::SupportRangeQuery query(bricks, brickValues);
+            for (const accel::Brick& b : bricks.bricks) {
+                accel::HalfBox d = accel::brickDomain(b);
+                domains.boxes.push_back(localBox(d.lower(), d.upper(), origin));
+            }
+            domains.ranges = accel::brickDomainRanges(query, bricks);
+        }
+        buildSeconds.domains = t.seconds();
+    }
+}
+
+void VolumeScene::rebuildKdTree(const std::function<float(float, float)>& maxAlpha) {
+    AMRVK_CHECK(config.traversal == TraversalKind::KdTree, "internal: rebuildKdTree without kdtree traversal");
+    if (!supportRanges.query) supportRanges.query.emplace(bricks, brickValues);
+    accel::KdTreeParams params;
+    params.maxLeaves = config.kdLeaves;
+    kdTree = accel::buildKdTree(*supportRanges.query, bounds, maxAlpha, params);
+    buildSeconds.kdTree = kdTree->buildSeconds;
+    const glm::dvec3 origin(localOrigin);
+    domains = {};
+    domains.boxes.reserve(kdTree->leaves.size());
+    for (const accel::BoxD& b : kdTree->leaves) domains.boxes.push_back(localBox(b.lo, b.hi, origin));
+    domains.ranges = kdTree->leafRanges;
+}
+
+std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
+    std::vector<std::pair<std::string, uint64_t>> out;
+    out.emplace_back("bricks", bricks.memoryBytes() + brickValues.size() * sizeof(float));
+    if (abrs) out.emplace_back("abrs", abrs->memoryBytes());
+    if (!samplerBvh.nodes.empty()) out.emplace_back("samplerBvh", samplerBvh.memoryBytes());
+    if (!samplerBoxes.empty()) out.emplace_back("samplerBoxes", samplerBoxes.size() * sizeof(shared::AabbGpu));
+    if (grid) out.emplace_back("macrocells", grid->memoryBytes());
+    if (supportRanges.query) out.emplace_back("supportRangeQuery", supportRanges.query->memoryBytes());
+    if (kdTree) out.emplace_back("kdTree", kdTree->memoryBytes());
+    if (!domains.boxes.empty()) out.emplace_back("traversalBoxes", domains.memoryBytes());
+    return out;
+}
+
+VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, const StructureConfig& config) {
+    VolumeScene s = makeVolumeScene(model, field);
+    s.configure(config);
+    return s;
+}
+
+VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
+                             const std::string& gridSpec) {
+    StructureConfig c;
+    c.sampler = sampler;
+    c.grid = gridSpec;
+    return buildVolumeScene(model, field, c);
 }
 
 }  // namespace amrvk::render

@@ -1,44 +1,87 @@
 #pragma once
 // The CPU-side structures one render configuration needs, and nothing more ("model only what a
-// scene needs"): bricks and brick-order values always; ABRs only for the abr sampler; the
-// sampler's BVH (over brick domains or ABR boxes); the macrocell value-range grid for grid-dda.
-// All coordinates the GPU sees are local voxel space: voxel - localOrigin.
+// scene needs"): bricks and brick-order values always; ABRs for the abr sampler or traversal; the
+// sampler's BVH (sw back-end) or its boxes (rq back-end: the GPU builds the BLAS); the macrocell
+// value-range grid for grid-dda and grid-bvh; traversal boxes with value ranges for abr, brick,
+// ext-brick and kdtree. configure() switches combination, building what is missing and freeing
+// what the new one does not use. All coordinates the GPU sees are local voxel space:
+// voxel - localOrigin.
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "accel/abrs.h"
 #include "accel/bricks.h"
 #include "accel/bvh.h"
+#include "accel/kdtree.h"
 #include "accel/range_grid.h"
+#include "accel/support_range.h"
 #include "amr/model.h"
+#include "render/structure_config.h"
+#include "shared/amr_gpu.h"
 
 namespace amrvk::render {
 
-enum class SamplerKind { ExtBrick, Abr };
-SamplerKind parseSampler(const std::string& name);
-const char* samplerName(SamplerKind kind);
+// Traversal boxes of abr | brick | ext-brick | kdtree (local voxel space) with the value range of
+// every cell whose support touches each box (so the range bounds every sample inside it).
+struct DomainBoxes {
+    std::vector<shared::AabbGpu> boxes;
+    std::vector<accel::ValueRange> ranges;
+    uint64_t memoryBytes() const {
+        return boxes.size() * sizeof(shared::AabbGpu) + ranges.size() * sizeof(accel::ValueRange);
+    }
+};
+
+// The support-range query refers to the scene's own bricks and values, so it must not follow the
+// scene when it moves: a moved scene drops it and builds it again on demand.
+struct SceneSupportRanges {
+    std::optional<accel::SupportRangeQuery> query;
+    SceneSupportRanges() = default;
+    SceneSupportRanges(SceneSupportRanges&&) noexcept {}
+    SceneSupportRanges& operator=(SceneSupportRanges&&) noexcept {
+        query.reset();
+        return *this;
+    }
+};
 
 struct VolumeScene {
     const amr::Model* model = nullptr;
     const amr::Field* field = nullptr;
-    SamplerKind sampler = SamplerKind::ExtBrick;
+    StructureConfig config;
     glm::i64vec3 localOrigin{0};  // voxel space; = lower corner of the data bounds
     amr::Box3l bounds;            // union of leaf cells, voxel space
     int32_t minLevel = 0;         // finest level present; sigma is per (1 << minLevel) voxel units
     float valueLo = 0, valueHi = 0;
     accel::BrickSet bricks;
     std::vector<float> brickValues;
-    std::optional<accel::AbrSet> abrs;  // abr sampler only
-    accel::Bvh samplerBvh;              // boxes in local voxel space
-    accel::RangeGrid grid;              // origin in voxel space (converted on upload)
+    std::optional<accel::AbrSet> abrs;                   // abr sampler or abr traversal
+    accel::Bvh samplerBvh;                               // sw back-end: over brick domains or ABR boxes
+    std::vector<shared::AabbGpu> samplerBoxes;           // rq back-end: the same boxes, BLAS input
+    std::optional<accel::RangeGrid> grid;                // grid-dda, grid-bvh (origin in voxel space)
+    SceneSupportRanges supportRanges;                    // brick, ext-brick, kdtree
+    std::optional<accel::KdTree> kdTree;                 // kdtree (built per TF: rebuildKdTree)
+    DomainBoxes domains;                                 // abr, brick, ext-brick, kdtree traversals
     struct Timing {
-        double bricks = 0, abrs = 0, bvh = 0, grid = 0;
+        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, kdTree = 0;
     } buildSeconds;
+
+    // Builds what `config` needs and frees the rest. config.backend must be resolved (Sw or Rq).
+    void configure(const StructureConfig& config);
+    // kdtree traversal: builds the tree for a TF (maxAlpha = its exact alpha maximum over a
+    // value range) and replaces the traversal boxes with its leaves.
+    void rebuildKdTree(const std::function<float(float, float)>& maxAlpha);
+    // Host bytes per structure currently held (name, bytes).
+    std::vector<std::pair<std::string, uint64_t>> hostBytes() const;
 };
 
+// Bricks and values only; call configure() next.
+VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field);
+VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, const StructureConfig& config);
+// Convenience for the default traversal (grid-dda, sw).
 VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
                              const std::string& gridSpec);
 

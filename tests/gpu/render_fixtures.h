@@ -2,7 +2,12 @@
 // Scenes for GPU tests: simple analytic media and their structures.
 #include <glm/glm.hpp>
 
+#include <utility>
+#include <vector>
+
 #include "amr/model.h"
+#include "gpu/context.h"
+#include "render/structure_config.h"
 #include "render/transfer_function.h"
 
 namespace amrvk::test {
@@ -24,6 +29,21 @@ inline amr::Model makeUniformBox(glm::ivec3 dims, int level, float v, glm::ivec3
 // Constant albedo and alpha for every value.
 inline render::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
     return render::TransferFunction({0.0f}, {glm::vec4(albedo, alpha)}, "constant-test");
+}
+
+// Back-ends this device can run: sw always, rq where the device has VK_KHR_ray_query.
+inline std::vector<render::Backend> availableBackends(const gpu::Context& ctx) {
+    std::vector<render::Backend> out{render::Backend::Sw};
+    if (ctx.hasRayQuery()) out.push_back(render::Backend::Rq);
+    return out;
+}
+
+// Every sampler x available back-end.
+inline std::vector<std::pair<render::SamplerKind, render::Backend>> samplerBackendCombos(const gpu::Context& ctx) {
+    std::vector<std::pair<render::SamplerKind, render::Backend>> out;
+    for (render::SamplerKind s : render::allSamplers())
+        for (render::Backend b : availableBackends(ctx)) out.emplace_back(s, b);
+    return out;
 }
 
 }  // namespace amrvk::test

@@ -1,4 +1,4 @@
-// GPU reconstruction (amr_sample.glsl, both samplers) against the CPU brute-force tent sum at
+// GPU reconstruction (amr_sample.glsl, both samplers, sw and rq back-ends) against the CPU brute-force tent sum at
 // 10^4 points, boundary points included, on Enzo and on a synthetic set with 3+ levels.
 #include <random>
 
@@ -21,9 +21,13 @@ namespace {
 class SamplerGpu : public test::GpuTest {
 protected:
     void compare(const amr::Model& model, const amr::Field& field) {
-        for (auto kind : {render::SamplerKind::ExtBrick, render::SamplerKind::Abr}) {
-            SCOPED_TRACE(render::samplerName(kind));
-            render::VolumeScene scene = render::buildVolumeScene(model, field, kind, "16");
+        for (auto [kind, backend] : test::samplerBackendCombos(ctx())) {
+            SCOPED_TRACE(std::string(render::samplerName(kind)) + "/" + render::backendName(backend));
+            render::StructureConfig config;
+            config.sampler = kind;
+            config.backend = backend;
+            config.grid = "16";
+            render::VolumeScene scene = render::buildVolumeScene(model, field, config);
             render::Renderer renderer(ctx(), scene);
             renderer.setTransferFunction(render::makePreset("ramp", scene.valueLo, scene.valueHi));
             const glm::dvec3 origin(scene.localOrigin);
@@ -47,12 +51,14 @@ protected:
             const uint32_t n = uint32_t(pts.size());
             gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
             gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
-            gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_sample"), "test_sample", 32);
+            const bool rq = backend == render::Backend::Rq;
+            gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_sample_rq" : "test_sample"), "test_sample", 40);
             struct {
                 uint64_t params, points, out;
-                uint32_t count, sampler;
+                uint32_t count, sampler, backend, pad;
             } push{renderer.paramsAddress(), in.address(), out.address(), n,
-                   kind == render::SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick};
+                   kind == render::SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick,
+                   rq ? shared::kBackendRq : shared::kBackendSw, 0};
             ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
             auto got = out.download<float>();
             amr::ReferenceSampler ref(model, field);

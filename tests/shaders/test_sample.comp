@@ -1,8 +1,12 @@
 #version 460
 // Evaluates sampleField at given local-voxel points: out = (value, weightSum, inside) per point.
+// Built twice: test_sample (sw) and test_sample_rq (-DAMRVK_RAY_QUERY, backend from the push).
+#ifdef AMRVK_RAY_QUERY
+#extension GL_EXT_ray_query : require
+#endif
 #include "lib/common.glsl"
 #include "lib/amr_sample.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t points; uint64_t outAddr; uint count; uint samplerKind; } tp;
+layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t points; uint64_t outAddr; uint count; uint samplerKind; uint backend; uint pad; } tp;
 layout(local_size_x = 32) in;
 
 void main() {
@@ -10,7 +14,7 @@ void main() {
     if (i >= tp.count) return;
     gParams = ParamsRef(tp.params);
     vec4 p = Vec4Ref(tp.points).v[i];
-    FieldSample s = sampleField(tp.samplerKind, p.xyz);
+    FieldSample s = sampleField(tp.samplerKind, tp.backend, p.xyz);
     FloatRW o = FloatRW(tp.outAddr);
     o.v[3u * i] = s.value;
     o.v[3u * i + 1u] = s.weightSum;

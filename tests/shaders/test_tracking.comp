@@ -6,8 +6,10 @@
 #include "lib/tf.glsl"
 #include "lib/amr_sample.glsl"
 #include "lib/majorant_dda.glsl"
+#include "lib/domain_traversal.glsl"
+#include "lib/traversal.glsl"
 #include "lib/tracking.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAddr; vec4 origin; vec4 dir; uint count; uint samplerKind; } tp;
+layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAddr; vec4 origin; vec4 dir; uint count; uint samplerKind; uint traversal; uint pad; } tp;
 layout(local_size_x = 64) in;
 
 void main() {
@@ -18,8 +20,8 @@ void main() {
     Counters c = Counters(0u, 0u, 0u, 0u, 0u);
     float tHit;
     vec4 tf;
-    bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, tp.samplerKind, rng, c, tHit, tf);
-    float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, tp.samplerKind, rng, c);
+    bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c, tHit, tf);
+    float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c);
     FloatRW o = FloatRW(tp.outAddr);
     o.v[2u * i] = hit ? 0.0 : 1.0;
     o.v[2u * i + 1u] = tr;

@@ -1,0 +1,41 @@
+#pragma once
+// Which structures a render uses: majorant traversal x sample reconstruction x back-end
+// (paper Section 5; exabrick-reference.md 3-4). Every combination is valid at run time.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace amrvk::render {
+
+enum class SamplerKind { ExtBrick, Abr };
+enum class TraversalKind { GridDda, GridBvh, Abr, Brick, ExtBrick, KdTree };
+// Sw: software BVHs in GLSL. Rq: VK_KHR_ray_query over AABB BLASes. Auto: Rq where the device has it.
+enum class Backend { Sw, Rq, Auto };
+
+SamplerKind parseSampler(const std::string& name);
+const char* samplerName(SamplerKind kind);
+TraversalKind parseTraversal(const std::string& name);
+const char* traversalName(TraversalKind kind);
+Backend parseBackend(const std::string& name);
+const char* backendName(Backend backend);
+std::vector<TraversalKind> allTraversals();
+std::vector<SamplerKind> allSamplers();
+
+struct StructureConfig {
+    SamplerKind sampler = SamplerKind::ExtBrick;
+    TraversalKind traversal = TraversalKind::GridDda;
+    Backend backend = Backend::Sw;  // resolved (Sw or Rq) before a scene is configured
+    std::string grid = "auto";      // macrocells (grid-dda, grid-bvh): auto | N | NxMxK
+    uint32_t kdLeaves = 4096;       // kdtree leaves
+    // Whether the combination uses a BVH (sampler always; traversal unless grid-dda).
+    bool traversalUsesBoxes() const { return traversal != TraversalKind::GridDda; }
+    bool usesGrid() const { return traversal == TraversalKind::GridDda || traversal == TraversalKind::GridBvh; }
+    bool usesAbrs() const { return sampler == SamplerKind::Abr || traversal == TraversalKind::Abr; }
+    std::string label() const;  // e.g. "grid-dda/ext-brick/sw"
+};
+
+// Resolves Backend::Auto: Rq when the device supports ray queries, else Sw; a requested Rq on a
+// device without ray queries is an error naming the device.
+Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName);
+
+}  // namespace amrvk::render

@@ -1,0 +1,360 @@
+// Majorant traversals on the GPU (domain_traversal.glsl, traversal.glsl), checked against brute
+// force over every box: segments are contiguous, front to back, cover the ray's overlap with the
+// data, and each segment's majorant is the maximum over the active boxes containing its points;
+// the sw and rq back-ends give bit-identical segments and reconstructed values; a TF edit that
+// empties regions changes the traversal structure but never a reconstructed value.
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "accel/brick_sampler.h"
+#include "amr/synthetic.h"
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu_fixture.h"
+#include "render/renderer.h"
+#include "render_fixtures.h"
+#include "shared/render_params.h"
+
+using namespace amrvk;
+
+namespace {
+
+constexpr uint32_t kMaxSegments = 512;
+
+struct Segment {
+    uint32_t id;
+    float maj, t0, t1;
+};
+
+struct Ray {
+    glm::vec3 o;
+    glm::vec3 d;
+};
+
+uint32_t traversalConst(render::TraversalKind t) {
+    switch (t) {
+        case render::TraversalKind::GridDda: return shared::kTraversalGridDda;
+        case render::TraversalKind::GridBvh: return shared::kTraversalGridBvh;
+        case render::TraversalKind::Abr: return shared::kTraversalAbr;
+        case render::TraversalKind::Brick: return shared::kTraversalBrick;
+        case render::TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
+        default: return shared::kTraversalKdTree;
+    }
+}
+
+amr::Model threeLevelCloud() {
+    amr::SyntheticParams p;
+    p.kind = amr::SyntheticKind::Cloud;
+    p.cells = 8000;  // 7960 cells on 3 levels, 79 bricks, 4214 ABRs
+    p.seed = 5;
+    p.levels = 5;
+    p.blockCells = 2;
+    return amr::makeSyntheticModel(p);
+}
+
+// Random rays through the data plus the hard cases of the DDA tests: axis-parallel rays on
+// lattice planes (signed zero components), rays starting inside, on faces and at corners.
+std::vector<Ray> testRays(glm::vec3 hi, uint32_t seed) {
+    std::vector<Ray> rays;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 160; ++i) {
+        glm::vec3 target = hi * glm::vec3(u(rng), u(rng), u(rng));
+        glm::vec3 dir = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) - 0.5f);
+        rays.push_back({target - dir * (2.0f * glm::length(hi)), dir});
+    }
+    for (int i = 0; i < 40; ++i) {  // starting inside
+        glm::vec3 o = hi * glm::vec3(u(rng), u(rng), u(rng));
+        rays.push_back({o, glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) - 0.5f)});
+    }
+    const glm::vec3 c = glm::floor(hi * 0.5f);
+    for (float s : {1.0f, -1.0f}) {
+        rays.push_back({glm::vec3(-1.0f, c.y, c.z), glm::vec3(s, 0.0f, -0.0f)});
+        rays.push_back({glm::vec3(c.x, c.y, 0.0f), glm::vec3(-0.0f, 0.0f, s)});
+        rays.push_back({glm::vec3(0.0f, 0.0f, 0.0f), glm::normalize(glm::vec3(s, 1.0f, 1.0f))});
+        rays.push_back({hi, glm::normalize(glm::vec3(-1.0f, -1.0f, s))});
+        rays.push_back({glm::vec3(c.x, -5.0f, 8.0f), glm::vec3(0.0f, s, 0.0f)});
+        rays.push_back({glm::vec3(c.x + 0.5f, c.y, -3.0f), glm::normalize(glm::vec3(0.0f, s, 1.0f))});
+    }
+    return rays;
+}
+
+class TraversalGpu : public test::GpuTest {
+protected:
+    // Segments of every ray (rays in local voxel space, t in [0, inf)).
+    std::vector<std::vector<Segment>> segments(const render::Renderer& r, render::Backend backend,
+                                               const std::vector<Ray>& rays) {
+        const bool rq = backend == render::Backend::Rq;
+        std::vector<glm::vec4> packed;
+        for (const Ray& ray : rays) {
+            packed.emplace_back(ray.o, 0.0f);
+            packed.emplace_back(ray.d, INFINITY);
+        }
+        const uint32_t n = uint32_t(rays.size()), stride = 1 + 4 * kMaxSegments;
+        gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), packed, "rays");
+        gpu::Buffer out(ctx(), uint64_t(n) * stride * 4, gpu::MemoryKind::HostRead, "segments");
+        gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_segments_rq" : "test_segments"), "test_segments", 40);
+        struct {
+            uint64_t params, rays, out;
+            uint32_t count, traversal, backend, maxSegments;
+        } push{const_cast<render::Renderer&>(r).paramsAddress(), in.address(), out.address(), n,
+               traversalConst(r.config().traversal), rq ? shared::kBackendRq : shared::kBackendSw, kMaxSegments};
+        ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
+        auto raw = out.download<uint32_t>();
+        std::vector<std::vector<Segment>> result(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t count = raw[size_t(i) * stride];
+            EXPECT_LE(count, kMaxSegments) << "ray " << i;
+            for (uint32_t k = 0; k < std::min(count, kMaxSegments); ++k) {
+                Segment s;
+                std::memcpy(&s, &raw[size_t(i) * stride + 1 + 4 * k], sizeof s);
+                result[i].push_back(s);
+            }
+        }
+        return result;
+    }
+
+    // Values (value, weightSum, inside) of the renderer's sampler at local points.
+    std::vector<float> samples(const render::Renderer& r, const std::vector<glm::vec4>& pts) {
+        const bool rq = r.config().backend == render::Backend::Rq;
+        const uint32_t n = uint32_t(pts.size());
+        gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
+        gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
+        gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_sample_rq" : "test_sample"), "test_sample", 40);
+        struct {
+            uint64_t params, points, out;
+            uint32_t count, sampler, backend, pad;
+        } push{const_cast<render::Renderer&>(r).paramsAddress(), in.address(), out.address(), n,
+               r.config().sampler == render::SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick,
+               rq ? shared::kBackendRq : shared::kBackendSw, 0};
+        ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
+        return out.download<float>();
+    }
+};
+
+// Boxes of the traversal in local voxel space (double) with their GPU majorants.
+struct BoxSet {
+    std::vector<accel::BoxD> boxes;
+    std::vector<float> maj;
+};
+
+BoxSet traversalBoxes(const render::VolumeScene& scene, const render::Renderer& r) {
+    BoxSet s;
+    if (scene.config.traversal == render::TraversalKind::GridBvh) {
+        const accel::RangeGrid& g = *scene.grid;
+        const glm::dvec3 o = g.origin - glm::dvec3(scene.localOrigin);
+        for (int z = 0; z < g.dims.z; ++z)
+            for (int y = 0; y < g.dims.y; ++y)
+                for (int x = 0; x < g.dims.x; ++x)
+                    s.boxes.push_back({o + glm::dvec3(x, y, z) * g.cellSize, o + glm::dvec3(x + 1, y + 1, z + 1) * g.cellSize});
+        s.maj = r.downloadMajorants();
+    } else {
+        for (const auto& b : scene.domains.boxes) s.boxes.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
+        s.maj = r.downloadDomainMajorants();
+    }
+    return s;
+}
+
+// Brute force: max majorant over active boxes containing p, or -1 when p is within `eps` of a
+// face of an active box (ambiguous in float) ; 0 when no active box contains p.
+double bruteMajorant(const BoxSet& s, glm::dvec3 p, double eps) {
+    double best = 0.0;
+    for (size_t i = 0; i < s.boxes.size(); ++i) {
+        if (!(s.maj[i] > 0.0f)) continue;
+        const auto& b = s.boxes[i];
+        const glm::dvec3 dlo = p - b.lo, dhi = b.hi - p;
+        const double inner = std::min({dlo.x, dlo.y, dlo.z, dhi.x, dhi.y, dhi.z});
+        if (std::abs(inner) <= eps) return -1.0;
+        if (inner > 0) best = std::max(best, double(s.maj[i]));
+    }
+    return best;
+}
+
+// Checks one ray's segments against brute force; returns the number of faults reported.
+int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vector<Segment>& segs) {
+    const glm::dvec3 o(ray.o), d(ray.d);
+    // Clip to the data bounds [0, hi] in double.
+    double tIn = 0.0, tOut = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0) {
+            if (o[a] < 0.0 || o[a] > hi[a]) tOut = -1.0;
+            continue;
+        }
+        double t0 = (0.0 - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+        tIn = std::max(tIn, std::min(t0, t1));
+        tOut = std::min(tOut, std::max(t0, t1));
+    }
+    int faults = 0;
+    auto fault = [&](const std::string& what) {
+        if (faults++ < 3) ADD_FAILURE() << what;
+    };
+    const double eps = 1e-3 * (1.0 + glm::length(o) + std::abs(tOut < INFINITY ? tOut : 0.0));
+    // Probes along the ray: inside a segment the majorant must equal brute force; outside every
+    // segment no active box may contain the point.
+    double prevEnd = -INFINITY;
+    for (const Segment& s : segs) {
+        if (!(s.t1 > s.t0)) fault("empty or reversed segment [" + std::to_string(s.t0) + ", " + std::to_string(s.t1) + "]");
+        if (s.t0 < prevEnd) fault("segments overlap or go backwards");
+        if (prevEnd > -INFINITY && s.t0 > prevEnd) {  // a gap: nothing active inside it
+            const double m = bruteMajorant(boxes, o + d * (0.5 * (prevEnd + s.t0)), eps);
+            if (m > 0.0) fault("gap at t " + std::to_string(prevEnd) + " hides a box with majorant " + std::to_string(m));
+        }
+        if (s.t1 - s.t0 > 4 * eps) {
+            for (double f : {0.5, 0.25, 0.75}) {
+                const double m = bruteMajorant(boxes, o + d * (s.t0 + f * (s.t1 - s.t0)), eps);
+                if (m >= 0.0 && std::abs(m - s.maj) > 1e-7 * std::max(1.0, m))
+                    fault("segment [" + std::to_string(s.t0) + ", " + std::to_string(s.t1) + "] majorant " +
+                          std::to_string(s.maj) + ", brute force " + std::to_string(m));
+            }
+        }
+        prevEnd = s.t1;
+    }
+    // Before the first and after the last segment: no active box within the data bounds.
+    if (tOut > tIn + 4 * eps) {
+        const double first = segs.empty() ? tOut : segs.front().t0, last = segs.empty() ? tOut : segs.back().t1;
+        if (first > tIn + 2 * eps && bruteMajorant(boxes, o + d * (0.5 * (tIn + first)), eps) > 0.0)
+            fault("an active box before the first segment");
+        if (last < tOut - 2 * eps && bruteMajorant(boxes, o + d * (0.5 * (last + tOut)), eps) > 0.0)
+            fault("an active box after the last segment");
+    }
+    return faults;
+}
+
+}  // namespace
+
+TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
+    amr::Model m = threeLevelCloud();
+    const amr::Field& field = m.defaultField();
+    const amr::FieldStats st = amr::computeFieldStats(m, field);
+    // A TF that is zero below the median value: many boxes become empty (culled).
+    const float mid = 0.5f * (st.minValue + st.maxValue);
+    const render::TransferFunction tf({st.minValue, mid, st.maxValue},
+                                      {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "half");
+    for (render::TraversalKind t : render::allTraversals()) {
+        if (t == render::TraversalKind::GridDda) continue;  // tests/gpu/dda_gpu_test.cpp
+        std::vector<std::vector<Segment>> reference;
+        for (render::Backend b : test::availableBackends(ctx())) {
+            render::StructureConfig cfg;
+            cfg.traversal = t;
+            cfg.backend = b;
+            cfg.grid = "12";
+            cfg.kdLeaves = 300;
+            SCOPED_TRACE(cfg.label());
+            render::VolumeScene scene = render::buildVolumeScene(m, field, cfg);
+            render::Renderer r(ctx(), scene);
+            r.setTransferFunction(tf);
+            const BoxSet boxes = traversalBoxes(scene, r);
+            EXPECT_GT(r.activeTraversalBoxes(), 0u);
+            EXPECT_LT(r.activeTraversalBoxes(), boxes.boxes.size()) << "the TF should empty some boxes";
+            const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+            const std::vector<Ray> rays = testRays(glm::vec3(hi), 11);
+            auto segs = segments(r, b, rays);
+            size_t multi = 0;
+            int faults = 0;
+            for (size_t i = 0; i < rays.size() && faults < 10; ++i) {
+                multi += segs[i].size() >= 2;
+                faults += checkRay(boxes, hi, rays[i], segs[i]);
+            }
+            EXPECT_GT(multi, rays.size() / 10) << "rays should cross several boxes";
+            if (reference.empty()) {
+                reference = segs;
+                continue;
+            }
+            // rq against sw: identical lists, bit for bit.
+            size_t diffs = 0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                bool same = segs[i].size() == reference[i].size();
+                for (size_t k = 0; same && k < segs[i].size(); ++k)
+                    same = std::memcmp(&segs[i][k], &reference[i][k], sizeof(Segment)) == 0;
+                if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
+            }
+            EXPECT_EQ(diffs, 0u);
+        }
+    }
+}
+
+TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
+    if (!ctx().hasRayQuery()) GTEST_SKIP() << "device has no VK_KHR_ray_query";
+    amr::Model m = threeLevelCloud();
+    for (render::SamplerKind s : render::allSamplers()) {
+        std::vector<float> values[2];
+        std::vector<glm::vec4> pts;
+        for (render::Backend b : {render::Backend::Sw, render::Backend::Rq}) {
+            render::StructureConfig cfg;
+            cfg.sampler = s;
+            cfg.backend = b;
+            cfg.grid = "8";
+            render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
+            if (pts.empty()) {
+                // Random points plus every corner, edge and face centre of each brick domain.
+                std::mt19937 rng(3);
+                const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+                std::uniform_real_distribution<double> u(0.0, 1.0);
+                for (int i = 0; i < 4000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
+                for (const auto& box : accel::brickDomainBoxes(scene.bricks))
+                    for (int k = 0; k < 27; ++k) {
+                        glm::dvec3 f(k % 3 * 0.5, k / 3 % 3 * 0.5, k / 9 * 0.5);
+                        pts.emplace_back(glm::vec3(box.lo + (box.hi - box.lo) * f - glm::dvec3(scene.localOrigin)), 0.0f);
+                    }
+            }
+            render::Renderer r(ctx(), scene);
+            r.setTransferFunction(render::makePreset("ramp", scene.valueLo, scene.valueHi));
+            values[b == render::Backend::Rq] = samples(r, pts);
+        }
+        SCOPED_TRACE(render::samplerName(s));
+        ASSERT_EQ(values[0].size(), values[1].size());
+        size_t diffs = 0, inside = 0;
+        for (size_t i = 0; i < values[0].size(); i += 3) {
+            inside += values[0][i + 2] != 0.0f;
+            if (std::memcmp(&values[0][i], &values[1][i], 3 * sizeof(float)) != 0 && diffs++ < 5)
+                ADD_FAILURE() << "point (" << pts[i / 3].x << ", " << pts[i / 3].y << ", " << pts[i / 3].z << "): sw "
+                              << values[0][i] << "/" << values[0][i + 1] << ", rq " << values[1][i] << "/"
+                              << values[1][i + 1];
+        }
+        EXPECT_EQ(diffs, 0u);
+        EXPECT_GT(inside, values[0].size() / 6) << "most probes should lie in the medium";
+    }
+}
+
+TEST_F(TraversalGpu, EmptyingTheTfChangesTheStructureNotTheValues) {
+    amr::Model m = threeLevelCloud();
+    const amr::FieldStats st = amr::computeFieldStats(m, m.defaultField());
+    const float q = st.minValue + 0.7f * (st.maxValue - st.minValue);
+    const render::TransferFunction full = render::makePreset("ramp", st.minValue, st.maxValue);
+    const render::TransferFunction sparse({st.minValue, q, st.maxValue},
+                                          {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "top");
+    std::vector<glm::vec4> pts;
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (render::TraversalKind t : render::allTraversals()) {
+        for (render::SamplerKind s : render::allSamplers()) {
+            for (render::Backend b : test::availableBackends(ctx())) {
+                render::StructureConfig cfg;
+                cfg.traversal = t;
+                cfg.sampler = s;
+                cfg.backend = b;
+                cfg.grid = "10";
+                cfg.kdLeaves = 200;
+                SCOPED_TRACE(cfg.label());
+                render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
+                if (pts.empty()) {
+                    const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+                    for (int i = 0; i < 3000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
+                }
+                render::Renderer r(ctx(), scene);
+                r.setTransferFunction(full);
+                const uint64_t activeFull = r.activeTraversalBoxes();
+                const std::vector<float> before = samples(r, pts);
+                r.setTransferFunction(sparse);
+                const std::vector<float> after = samples(r, pts);
+                if (t != render::TraversalKind::GridDda) {
+                    EXPECT_LT(r.activeTraversalBoxes(), activeFull) << "the edit should cull boxes";
+                    EXPECT_GT(r.activeTraversalBoxes(), 0u);
+                }
+                EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0)
+                    << "a TF edit changed reconstructed values";
+            }
+        }
+    }
+}
