@@ -358,7 +358,9 @@ TEST(TransferFunction, ParaViewFileWithSeveralPresets) {
                 {"many.json", "preset 'Broken'", "RGBPoints has 3 numbers"});
 }
 
-TEST(TransferFunction, XfRoundTrip) {
+// Upstream's viewer applies the .xf relDomain twice (exabrick-reference.md 1.6, 8): the nodes
+// must span absDomain narrowed by relDomain exactly once.
+TEST(UpstreamBug_RelDomainAppliedTwice, XfRoundTrip) {
     auto dir = test::scratchDir();
     const std::vector<glm::vec4> rgba = xfColors(128);
     // absDomain [-1, 3], relDomain 25..75 % -> nodes over [0, 2] (applied once); scale 100 -> 1.

@@ -125,6 +125,27 @@ TEST_F(RenderGpu, AbsorptionEmissionSlabMatchesTheClosedForm) {
     }
 }
 
+// Upstream ExaBrick multiplies the majorant by opacityScale in the free-flight step but not in the
+// acceptance test (exabrick-reference.md 4.4), which is right only for scale 1. Here alpha and
+// density scale trade places: every pairing must give the closed form for sigma = alpha * scale.
+using UpstreamBug_OpacityScaleMismatch = RenderGpu;
+TEST_F(UpstreamBug_OpacityScaleMismatch, AcceptanceAndStepUseTheSameScaledMajorant) {
+    Slab slab;
+    amr::Model m = slab.model();
+    const glm::vec3 c(0.6f, 0.8f, 0.4f);
+    const glm::dvec3 bg(0.2, 0.1, 0.5);
+    for (auto [alpha, scale] : {std::pair{0.05f, 4.0}, std::pair{0.8f, 0.25}, std::pair{0.02f, 10.0}}) {
+        render::RenderSettings s;
+        s.mode = render::Mode::Ae;
+        s.width = s.height = 32;
+        s.densityScale = scale;
+        s.ambient = bg;
+        s.camera = slab.camera(100.0);
+        render::RenderOutput o = renderGpu(m, test::constantTf(c, alpha), s, 64);
+        expectAeSlab(o, s, double(alpha) * scale, slab.thickness, 0.0, glm::dvec3(c), bg, glm::dvec3(0.0));
+    }
+}
+
 TEST_F(RenderGpu, HugeCoordinatesAndCameraInsideTheVolume) {
     // Exajet-like integer extents (corner above 10^6) give the same slab answer.
     Slab far;
