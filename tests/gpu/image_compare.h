@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -43,12 +44,12 @@ inline void writeArtifacts(const std::string& tag, const render::Image& a, const
     render::writeImage(dir / (tag + "-difference.pfm"), diff);
 }
 
-// Compares tile means of two renders (both with variance information). alpha: family-wise
-// false-failure probability. A tile passes when |mean_a - mean_b| <= z * sqrt(var_a + var_b) + absTol.
-inline void expectSameImage(const render::RenderOutput& a, const render::RenderOutput& b, int tile,
-                            const std::string& tag, double alpha = 1e-4, double absTol = 1e-6) {
-    ASSERT_EQ(a.mean.width, b.mean.width);
-    ASSERT_EQ(a.mean.height, b.mean.height);
+// Tiles (x channels) whose means differ beyond |mean_a - mean_b| <= z * sqrt(var_a + var_b) + absTol,
+// z Sidak-corrected for family-wise false-failure probability `alpha`. `report` gets one line per
+// differing tile.
+inline int countDifferingTiles(const render::RenderOutput& a, const render::RenderOutput& b, int tile,
+                               double alpha, double absTol,
+                               const std::function<void(const std::string&)>& report = {}) {
     const int w = a.mean.width, h = a.mean.height;
     const int tx = (w + tile - 1) / tile, ty = (h + tile - 1) / tile;
     const double z = sidakZ(alpha, size_t(tx) * size_t(ty) * 3);
@@ -72,10 +73,24 @@ inline void expectSameImage(const render::RenderOutput& a, const render::RenderO
                 double sd = std::sqrt((va + vb) / (double(count) * count));
                 if (std::abs(ma - mb) > z * sd + absTol) {
                     ++failures;
-                    ADD_FAILURE() << tag << ": tile (" << bx << ", " << by << ") channel " << c << ": " << ma
-                                  << " vs " << mb << " (|diff| " << std::abs(ma - mb) << " > " << z << " x " << sd << ")";
+                    if (report)
+                        report("tile (" + std::to_string(bx) + ", " + std::to_string(by) + ") channel " +
+                               std::to_string(c) + ": " + std::to_string(ma) + " vs " + std::to_string(mb) +
+                               " (|diff| " + std::to_string(std::abs(ma - mb)) + " > " + std::to_string(z) + " x " +
+                               std::to_string(sd) + ")");
                 }
             }
+    return failures;
+}
+
+// Compares tile means of two renders (both with variance information). alpha: family-wise
+// false-failure probability. A tile passes when |mean_a - mean_b| <= z * sqrt(var_a + var_b) + absTol.
+inline void expectSameImage(const render::RenderOutput& a, const render::RenderOutput& b, int tile,
+                            const std::string& tag, double alpha = 1e-4, double absTol = 1e-6) {
+    ASSERT_EQ(a.mean.width, b.mean.width);
+    ASSERT_EQ(a.mean.height, b.mean.height);
+    const int failures =
+        countDifferingTiles(a, b, tile, alpha, absTol, [&](const std::string& m) { ADD_FAILURE() << tag << ": " << m; });
     if (failures) writeArtifacts(tag, a.mean, b.mean);
 }
 

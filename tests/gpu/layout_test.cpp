@@ -48,6 +48,12 @@ TEST_F(Layout, SharedStructsMatchBetweenCppAndGlsl) {
     p.brickValues = bb.address();  // the shader reads BrickGpu[1] through this field
     p.samplerNodes = nb.address();
     p.abrs = ab.address();
+    shared::AabbGpu boxes[2] = {{}, {{1, 2, 3.25f}, {4, 5.5f, 6}}};
+    gpu::Buffer xb = gpu::makeBuffer<shared::AabbGpu>(c, boxes, "aabbs");
+    p.domainBoxes = xb.address();
+    p.samplerAccel = 0x0badf00dull;
+    p.domainAccel = 0x1234567800000000ull;
+    p.domainInfo = {31, 1, 0, 0};
     gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
     params.upload(&p, sizeof p);
     gpu::Buffer out(c, 64 * 4, gpu::MemoryKind::HostRead, "out");
@@ -60,6 +66,7 @@ TEST_F(Layout, SharedStructsMatchBetweenCppAndGlsl) {
     std::vector<uint32_t> expect = {bits(1.5f), bits(-2.25f), 640, 99, bits(0.125f), bits(1e4f), 5,
                                     bits(6.5f), bits(17.0f), bits(0.75f), bits(-0.3f), bits(1.0f), bits(42.0f),
                                     0x55667788u, 0x11223344u, 0x99aabbccu, 0xdeadbeefu, 4, 123456, 77, 3,
-                                    bits(3.5f), 11, 12, bits(9.5f)};
+                                    bits(3.5f), 11, 12, bits(9.5f), 0x0badf00du, 0x12345678u, 31, 1,
+                                    bits(3.25f), bits(5.5f)};
     for (size_t i = 0; i < expect.size(); ++i) EXPECT_EQ(got[i], expect[i]) << "field " << i;
 }

@@ -54,6 +54,14 @@ protected:
         render::StructureConfig refCfg;
         refCfg.grid = "16";
         render::RenderOutput ref = renderWith(m, refCfg, tf, base, spp);
+        {
+            // Power: the same comparison must reject a 30% denser medium.
+            render::RenderSettings denser = base;
+            denser.seed = base.seed + 7;
+            denser.densityScale *= 1.3;
+            EXPECT_GT(test::countDifferingTiles(renderWith(m, refCfg, tf, denser, spp), ref, 8, 1e-4, 1e-6), 0)
+                << "the comparison cannot tell a 30% density change";
+        }
         render::RenderSettings s = base;
         s.seed = base.seed + 1;  // independent samples
         for (render::TraversalKind t : render::allTraversals())

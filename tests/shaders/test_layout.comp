@@ -38,4 +38,12 @@ void main() {
     o.v[k++] = a.brickBegin;
     o.v[k++] = a.brickCount;
     o.v[k++] = floatBitsToUint(a.hi.x);
+    // Structure-matrix fields and the AABB layout (VkAabbPositionsKHR).
+    o.v[k++] = uint(P.samplerAccel);
+    o.v[k++] = uint(P.domainAccel >> 32);
+    o.v[k++] = P.domainInfo.x;
+    o.v[k++] = P.domainInfo.y;
+    AabbGpu box = AabbRef(P.domainBoxes).v[1];
+    o.v[k++] = floatBitsToUint(box.lo.z);
+    o.v[k++] = floatBitsToUint(box.hi.y);
 }
