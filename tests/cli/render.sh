@@ -24,7 +24,12 @@ assert j["width"] == 16 and j["height"] == 12 and j["spp"] == 2 and j["mode"] ==
 assert j["majorantViolations"] == 0 and j["densityLookups"] > 0, j
 assert len(j["meanRGB"]) == 3 and all(0 <= v < 10 for v in j["meanRGB"]), j
 assert j["deviceMemoryPeakBytes"] >= j["deviceMemoryBytes"] > 0, j
+assert j["backend"] in ("sw", "rq") and "hostMemoryPerStructure" in j, j
 PY
+# A box traversal with the kd-tree: its build time and per-structure bytes are reported.
+"$amrvk" render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 64 --backend sw -o "$dir/k.png" \
+  --json "$dir/k.json" >/dev/null || fail=1
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["traversal"] == "kdtree" and j["activeTraversalBoxes"] > 0 and j["structureBuildSecondsPer"]["kdTree"] > 0 and j["hostMemoryPerStructure"]["kdTree"] > 0 and j["majorantViolations"] == 0, j' "$dir/k.json"
 for ext in exr pfm; do
   "$amrvk" render "$sample" "${common[@]}" --mode ae --sampler abr -o "$dir/a.$ext" >/dev/null || fail=1
   check test -s "$dir/a.$ext"
@@ -44,6 +49,9 @@ expect "--mode 'xyz'" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.p
 expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
 expect "--size '0x3'" -- render "$sample" --size 0x3 -o "$dir/x.png"
 expect "--sampler 'bvh'" -- render "$sample" "${common[@]}" --sampler bvh -o "$dir/x.png"
+expect "--traversal 'octree'" -- render "$sample" "${common[@]}" --traversal octree -o "$dir/x.png"
+expect "--backend 'cuda'" -- render "$sample" "${common[@]}" --backend cuda -o "$dir/x.png"
+expect "--kd-leaves 0" -- render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 0 -o "$dir/x.png"
 expect "no such device" -- render "$sample" "${common[@]}" --device 99 -o "$dir/x.png"
 expect "cannot write" -- render "$sample" "${common[@]}" -o "$dir/missing-dir/x.png"
 check test ! -e "$dir/x.png"
