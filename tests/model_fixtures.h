@@ -9,9 +9,22 @@
 
 #include "amr/model.h"
 #include "amr/readers.h"
+#include "amr/synthetic.h"
 #include "test_data.h"
 
 namespace amrvk::test {
+
+// A synthetic cloud on exactly three levels: 7960 cells, 79 bricks, 4214 ABRs (cloud, 8000
+// cells, seed 5, 5 allowed levels, 2^3-cell blocks).
+inline amr::Model makeThreeLevelCloud() {
+    amr::SyntheticParams p;
+    p.kind = amr::SyntheticKind::Cloud;
+    p.cells = 8000;
+    p.seed = 5;
+    p.levels = 5;
+    p.blockCells = 2;
+    return amr::makeSyntheticModel(p);
+}
 
 // Root cells of level `rootLevel` over rootDims, each refined recursively with probability
 // `refineProbability` per cell down to level 0. Deterministic for a seed.

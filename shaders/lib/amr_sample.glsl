@@ -81,21 +81,28 @@ struct BrickGather {
     bool inside;
 };
 
+BrickGather newGather() {
+    BrickGather g;
+    g.n = 0u;
+    g.sumW = 0.0;
+    g.sumWV = 0.0;
+    g.inside = false;
+    return g;
+}
+
 // Ray queries may report a box more than once: a repeated id is ignored.
 void gatherBrick(inout BrickGather g, uint id, vec3 p) {
     if (!brickDomainContains(BrickRef(P.bricks).v[id], p)) return;
-    for (uint k = 0u; k < g.n; ++k)
-        if (g.ids[k] == id) return;
+    uint pos = g.n;  // insertion position in the sorted list
+    while (pos > 0u && g.ids[pos - 1u] > id) --pos;
+    if (pos > 0u && g.ids[pos - 1u] == id) return;
     if (g.n == kMaxGather) {
         addBrickContribution(id, p, g.sumW, g.sumWV, g.inside);
         return;
     }
-    uint i = g.n++;
-    while (i > 0u && g.ids[i - 1u] > id) {
-        g.ids[i] = g.ids[i - 1u];
-        --i;
-    }
-    g.ids[i] = id;
+    for (uint i = g.n; i > pos; --i) g.ids[i] = g.ids[i - 1u];
+    g.ids[pos] = id;
+    g.n++;
 }
 
 FieldSample finishGather(inout BrickGather g, vec3 p) {
@@ -106,11 +113,7 @@ FieldSample finishGather(inout BrickGather g, vec3 p) {
 FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
     BvhRef nodes = BvhRef(P.samplerNodes);
     UintRef prims = UintRef(P.samplerPrims);
-    BrickGather g;
-    g.n = 0u;
-    g.sumW = 0.0;
-    g.sumWV = 0.0;
-    g.inside = false;
+    BrickGather g = newGather();
     uint stack[kBvhStackSize];  // small: lavapipe keeps it per lane in memory
     int top = 0;
     stack[top++] = 0u;
@@ -140,11 +143,7 @@ FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
 // faces, which a zero-length ray can miss); boxes merely touching p carry zero weight there.
 // The exact tests decide.
 FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
-    BrickGather g;
-    g.n = 0u;
-    g.sumW = 0.0;
-    g.sumWV = 0.0;
-    g.inside = false;
+    BrickGather g = newGather();
     rayQueryEXT rq;
     rayQueryInitializeEXT(rq, accelerationStructureEXT(P.samplerAccel), gl_RayFlagsNoneEXT, 0xFFu, p, 0.0,
                           vec3(1.0), 1e-3);

@@ -58,17 +58,6 @@ const char* modeName(Mode mode) {
 namespace {
 constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 
-uint32_t traversalConst(TraversalKind t) {
-    switch (t) {
-        case TraversalKind::GridDda: return shared::kTraversalGridDda;
-        case TraversalKind::GridBvh: return shared::kTraversalGridBvh;
-        case TraversalKind::Abr: return shared::kTraversalAbr;
-        case TraversalKind::Brick: return shared::kTraversalBrick;
-        case TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
-        default: return shared::kTraversalKdTree;
-    }
-}
-
 std::string traversalResource(TraversalKind t, const char* what) {
     return std::string(traversalName(t)) + "Traversal" + what;
 }
@@ -247,7 +236,7 @@ void Renderer::setTransferFunction(const TransferFunction& tf) {
         gpu::computeBarrier(cmd);
         if (rq && boxCount > 0) {
             shared::StructurePush push{mParamsBuffer.address(), mParams.domainMajorants, mDomainAabbs.address(),
-                                       boxCount, traversalConst(cfg.traversal)};
+                                       boxCount, shaderConstant(cfg.traversal)};
             mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
             gpu::computeBarrier(cmd);
             mDomainAccel.build(cmd, mDomainAabbs);
@@ -299,16 +288,14 @@ const gpu::ComputePipeline& Renderer::pathTracePipeline(Mode mode) {
     if (it != mPathTrace.end()) return it->second;
     const StructureConfig& cfg = mScene.config;
     uint32_t modeConst = mode == Mode::Ae ? shared::kModeAe : mode == Mode::Ss ? shared::kModeSs : shared::kModeMs;
-    uint32_t samplerConst = cfg.sampler == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
-    uint32_t backendConst = cfg.backend == Backend::Rq ? shared::kBackendRq : shared::kBackendSw;
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
     const char* shader = cfg.backend == Backend::Rq ? "path_trace_rq" : "path_trace";
     auto [pos, ok] = mPathTrace.emplace(
         key, gpu::ComputePipeline(mCtx, gpu::loadShader(shader),
                                   std::string("path_trace.") + modeName(mode) + "." + cfg.label(),
                                   sizeof(shared::PushConstants),
-                                  {{0, modeConst}, {1, samplerConst}, {2, traversalConst(cfg.traversal)},
-                                   {3, backendConst}}));
+                                  {{0, modeConst}, {1, shaderConstant(cfg.sampler)},
+                                   {2, shaderConstant(cfg.traversal)}, {3, shaderConstant(cfg.backend)}}));
     return pos->second;
 }
 

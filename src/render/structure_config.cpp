@@ -1,6 +1,7 @@
 #include "render/structure_config.h"
 
 #include "core/error.h"
+#include "shared/render_params.h"
 
 namespace amrvk::render {
 
@@ -49,6 +50,26 @@ std::vector<TraversalKind> allTraversals() {
     return out;
 }
 std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr}; }
+
+uint32_t shaderConstant(SamplerKind kind) {
+    return kind == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
+}
+
+uint32_t shaderConstant(TraversalKind kind) {
+    switch (kind) {
+        case TraversalKind::GridDda: return shared::kTraversalGridDda;
+        case TraversalKind::GridBvh: return shared::kTraversalGridBvh;
+        case TraversalKind::Abr: return shared::kTraversalAbr;
+        case TraversalKind::Brick: return shared::kTraversalBrick;
+        case TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
+        default: return shared::kTraversalKdTree;
+    }
+}
+
+uint32_t shaderConstant(Backend backend) {
+    AMRVK_CHECK(backend != Backend::Auto, "internal: back-end 'auto' has no shader constant");
+    return backend == Backend::Rq ? shared::kBackendRq : shared::kBackendSw;
+}
 
 std::string StructureConfig::label() const {
     return std::string(traversalName(traversal)) + "/" + samplerName(sampler) + "/" + backendName(backend);

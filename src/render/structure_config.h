@@ -21,6 +21,12 @@ const char* backendName(Backend backend);
 std::vector<TraversalKind> allTraversals();
 std::vector<SamplerKind> allSamplers();
 
+// The specialization-constant values of shaders/shared/render_params.h (kSampler*, kTraversal*,
+// kBackend*); Backend::Auto must be resolved first.
+uint32_t shaderConstant(SamplerKind kind);
+uint32_t shaderConstant(TraversalKind kind);
+uint32_t shaderConstant(Backend backend);
+
 struct StructureConfig {
     SamplerKind sampler = SamplerKind::ExtBrick;
     TraversalKind traversal = TraversalKind::GridDda;

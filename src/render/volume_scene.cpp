@@ -83,7 +83,6 @@ void VolumeScene::configure(const StructureConfig& next) {
                            next.traversal == TraversalKind::ExtBrick)) {
         ProgressStage stage("traversal value ranges");
         Timer t;
-        domains = {};
         if (next.traversal == TraversalKind::Abr) {
             for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(localBox(a.box.lower(), a.box.upper(), origin));
             domains.ranges = accel::computeAbrValueRanges(*abrs, bricks, brickValues);

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "amr/synthetic.h"
 #include "core/error.h"
+#include "model_fixtures.h"
 #include "render/volume_scene.h"
 
 using namespace amrvk;
@@ -16,18 +16,10 @@ bool holds(const render::VolumeScene& s, const std::string& name) {
     return std::any_of(bytes.begin(), bytes.end(), [&](const auto& e) { return e.first == name && e.second > 0; });
 }
 
-amr::Model smallCloud() {
-    amr::SyntheticParams p;
-    p.cells = 8000;
-    p.seed = 5;
-    p.levels = 5;
-    p.blockCells = 2;
-    return amr::makeSyntheticModel(p);
-}
 }  // namespace
 
 TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
-    const amr::Model m = smallCloud();
+    const amr::Model m = test::makeThreeLevelCloud();
     render::VolumeScene s = render::makeVolumeScene(m, m.defaultField());
     render::StructureConfig c;  // grid-dda, ext-brick, sw
     s.configure(c);

@@ -2,6 +2,7 @@
 // Scenes for GPU tests: simple analytic media and their structures.
 #include <glm/glm.hpp>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -35,6 +36,24 @@ inline render::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
 inline std::vector<render::Backend> availableBackends(const gpu::Context& ctx) {
     std::vector<render::Backend> out{render::Backend::Sw};
     if (ctx.hasRayQuery()) out.push_back(render::Backend::Rq);
+    return out;
+}
+
+// Every traversal x sampler x available back-end, with the given grid and kd-tree size.
+inline std::vector<render::StructureConfig> allStructureConfigs(const gpu::Context& ctx, const std::string& grid,
+                                                                uint32_t kdLeaves) {
+    std::vector<render::StructureConfig> out;
+    for (render::TraversalKind t : render::allTraversals())
+        for (render::SamplerKind s : render::allSamplers())
+            for (render::Backend b : availableBackends(ctx)) {
+                render::StructureConfig c;
+                c.traversal = t;
+                c.sampler = s;
+                c.backend = b;
+                c.grid = grid;
+                c.kdLeaves = kdLeaves;
+                out.push_back(c);
+            }
     return out;
 }
 

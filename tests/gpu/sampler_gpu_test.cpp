@@ -57,8 +57,7 @@ protected:
                 uint64_t params, points, out;
                 uint32_t count, sampler, backend, pad;
             } push{renderer.paramsAddress(), in.address(), out.address(), n,
-                   kind == render::SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick,
-                   rq ? shared::kBackendRq : shared::kBackendSw, 0};
+                   render::shaderConstant(kind), render::shaderConstant(backend), 0};
             ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
             auto got = out.download<float>();
             amr::ReferenceSampler ref(model, field);

@@ -8,6 +8,7 @@
 #include "amr/synthetic.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
+#include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "test_data.h"
@@ -68,21 +69,15 @@ protected:
         }
         render::RenderSettings s = base;
         s.seed = base.seed + 1;  // independent samples
-        for (render::TraversalKind t : render::allTraversals())
-            for (render::SamplerKind sampler : render::allSamplers())
-                for (render::Backend b : test::availableBackends(ctx())) {
-                    render::StructureConfig cfg;
-                    cfg.traversal = t;
-                    cfg.sampler = sampler;
-                    cfg.backend = b;
-                    cfg.grid = "16";
-                    cfg.kdLeaves = 256;
-                    SCOPED_TRACE(cfg.label());
-                    render::RenderOutput o = renderWith(m, cfg, tf, s, spp);
-                    // 24 combinations per data set: family-wise 1e-4 each.
-                    test::expectSameImage(o, ref, 8, tag + "-" + traversalName(t) + "-" + samplerName(sampler) + "-" +
-                                                         backendName(b), 1e-4);
-                }
+        for (const render::StructureConfig& cfg : test::allStructureConfigs(ctx(), "16", 256)) {
+            SCOPED_TRACE(cfg.label());
+            render::RenderOutput o = renderWith(m, cfg, tf, s, spp);
+            // 24 combinations per data set: family-wise 1e-4 each.
+            test::expectSameImage(o, ref, 8,
+                                  tag + "-" + traversalName(cfg.traversal) + "-" + samplerName(cfg.sampler) + "-" +
+                                      backendName(cfg.backend),
+                                  1e-4);
+        }
     }
 };
 
@@ -110,13 +105,7 @@ TEST_F(StructureMatrixGpu, EnzoEveryCombinationAgrees) {
 }
 
 TEST_F(StructureMatrixGpu, ThreeLevelCloudEveryCombinationAgrees) {
-    amr::SyntheticParams p;
-    p.kind = amr::SyntheticKind::Cloud;
-    p.cells = 8000;  // 7960 cells on 3 levels, 79 bricks, 4214 ABRs
-    p.seed = 5;
-    p.levels = 5;
-    p.blockCells = 2;
-    amr::Model m = amr::makeSyntheticModel(p);
+    amr::Model m = test::makeThreeLevelCloud();
     ASSERT_EQ(amr::summarize(m).maxLevel - amr::summarize(m).minLevel, 2);
     compareAll(m, settingsFor(m), 24, "cloud3", true);
 }

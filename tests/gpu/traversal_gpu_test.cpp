@@ -8,10 +8,10 @@
 #include <random>
 
 #include "accel/brick_sampler.h"
-#include "amr/synthetic.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "shared/render_params.h"
@@ -31,27 +31,6 @@ struct Ray {
     glm::vec3 o;
     glm::vec3 d;
 };
-
-uint32_t traversalConst(render::TraversalKind t) {
-    switch (t) {
-        case render::TraversalKind::GridDda: return shared::kTraversalGridDda;
-        case render::TraversalKind::GridBvh: return shared::kTraversalGridBvh;
-        case render::TraversalKind::Abr: return shared::kTraversalAbr;
-        case render::TraversalKind::Brick: return shared::kTraversalBrick;
-        case render::TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
-        default: return shared::kTraversalKdTree;
-    }
-}
-
-amr::Model threeLevelCloud() {
-    amr::SyntheticParams p;
-    p.kind = amr::SyntheticKind::Cloud;
-    p.cells = 8000;  // 7960 cells on 3 levels, 79 bricks, 4214 ABRs
-    p.seed = 5;
-    p.levels = 5;
-    p.blockCells = 2;
-    return amr::makeSyntheticModel(p);
-}
 
 // Random rays through the data plus the hard cases of the DDA tests: axis-parallel rays on
 // lattice planes (signed zero components), rays starting inside, on faces and at corners.
@@ -98,8 +77,8 @@ protected:
         struct {
             uint64_t params, rays, out;
             uint32_t count, traversal, backend, maxSegments;
-        } push{const_cast<render::Renderer&>(r).paramsAddress(), in.address(), out.address(), n,
-               traversalConst(r.config().traversal), rq ? shared::kBackendRq : shared::kBackendSw, kMaxSegments};
+        } push{r.paramsAddress(), in.address(), out.address(), n,
+               render::shaderConstant(r.config().traversal), render::shaderConstant(backend), kMaxSegments};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         auto raw = out.download<uint32_t>();
         std::vector<std::vector<Segment>> result(n);
@@ -125,9 +104,8 @@ protected:
         struct {
             uint64_t params, points, out;
             uint32_t count, sampler, backend, pad;
-        } push{const_cast<render::Renderer&>(r).paramsAddress(), in.address(), out.address(), n,
-               r.config().sampler == render::SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick,
-               rq ? shared::kBackendRq : shared::kBackendSw, 0};
+        } push{r.paramsAddress(), in.address(), out.address(), n,
+               render::shaderConstant(r.config().sampler), render::shaderConstant(r.config().backend), 0};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         return out.download<float>();
     }
@@ -224,7 +202,7 @@ int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vect
 }  // namespace
 
 TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
-    amr::Model m = threeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     const amr::Field& field = m.defaultField();
     const amr::FieldStats st = amr::computeFieldStats(m, field);
     // A TF that is zero below the median value: many boxes become empty (culled).
@@ -276,7 +254,7 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
 
 TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
     if (!ctx().hasRayQuery()) GTEST_SKIP() << "device has no VK_KHR_ray_query";
-    amr::Model m = threeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     for (render::SamplerKind s : render::allSamplers()) {
         std::vector<float> values[2];
         std::vector<glm::vec4> pts;
@@ -322,7 +300,7 @@ TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
 // (exabrick-reference.md 3.3). Here only the traversal structure is culled.
 using UpstreamBug_TfCulledSamplingBvh = TraversalGpu;
 TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheValues) {
-    amr::Model m = threeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     const amr::FieldStats st = amr::computeFieldStats(m, m.defaultField());
     const float q = st.minValue + 0.7f * (st.maxValue - st.minValue);
     const render::TransferFunction full = render::makePreset("ramp", st.minValue, st.maxValue);
@@ -331,34 +309,24 @@ TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheVa
     std::vector<glm::vec4> pts;
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (render::TraversalKind t : render::allTraversals()) {
-        for (render::SamplerKind s : render::allSamplers()) {
-            for (render::Backend b : test::availableBackends(ctx())) {
-                render::StructureConfig cfg;
-                cfg.traversal = t;
-                cfg.sampler = s;
-                cfg.backend = b;
-                cfg.grid = "10";
-                cfg.kdLeaves = 200;
-                SCOPED_TRACE(cfg.label());
-                render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
-                if (pts.empty()) {
-                    const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
-                    for (int i = 0; i < 3000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
-                }
-                render::Renderer r(ctx(), scene);
-                r.setTransferFunction(full);
-                const uint64_t activeFull = r.activeTraversalBoxes();
-                const std::vector<float> before = samples(r, pts);
-                r.setTransferFunction(sparse);
-                const std::vector<float> after = samples(r, pts);
-                if (t != render::TraversalKind::GridDda) {
-                    EXPECT_LT(r.activeTraversalBoxes(), activeFull) << "the edit should cull boxes";
-                    EXPECT_GT(r.activeTraversalBoxes(), 0u);
-                }
-                EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0)
-                    << "a TF edit changed reconstructed values";
-            }
+    for (const render::StructureConfig& cfg : test::allStructureConfigs(ctx(), "10", 200)) {
+        SCOPED_TRACE(cfg.label());
+        render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
+        if (pts.empty()) {
+            const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+            for (int i = 0; i < 3000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
         }
+        render::Renderer r(ctx(), scene);
+        r.setTransferFunction(full);
+        const uint64_t activeFull = r.activeTraversalBoxes();
+        const std::vector<float> before = samples(r, pts);
+        r.setTransferFunction(sparse);
+        const std::vector<float> after = samples(r, pts);
+        if (cfg.traversal != render::TraversalKind::GridDda) {
+            EXPECT_LT(r.activeTraversalBoxes(), activeFull) << "the edit should cull boxes";
+            EXPECT_GT(r.activeTraversalBoxes(), 0u);
+        }
+        EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0)
+            << "a TF edit changed reconstructed values";
     }
 }
