@@ -5,7 +5,10 @@
 // back-ends give identical values) or over ABR boxes (kSamplerAbr: the one ABR containing p under
 // half-open containment lo <= p < hi, then its sorted brick list). Back-ends: software BVH
 // (kBackendSw) or a ray query of length 0 at p (kBackendRq). Never culled by the transfer function.
-// CPU twins: amr/sampler.* (brute force), accel/brick_sampler.* (same paths in double).
+// kSamplerDense: the field resampled at the finest cell centres (accel/dense_grid.*), clamped
+// trilinear: the speed-of-light reference for sampling cost, not the AMR reconstruction.
+// CPU twins: amr/sampler.* (brute force), accel/brick_sampler.* (same paths in double),
+// accel/dense_grid.* (sampleDense).
 #ifndef AMRVK_AMR_SAMPLE_GLSL
 #define AMRVK_AMR_SAMPLE_GLSL
 
@@ -13,6 +16,7 @@ struct FieldSample {
     float value;      // reconstructed value (0 when weightSum == 0)
     float weightSum;  // 0: p is outside every cell support
     bool inside;      // p lies in a leaf cell (the medium); outside it extinction is 0
+    int finestLevel;  // finest level among the bricks with weight at p (dvr step); 0 for dense
 };
 
 // Basis-function domain test: p within the brick's bounds grown by half a cell (closed).
@@ -22,7 +26,7 @@ bool brickDomainContains(BrickGpu b, vec3 p) {
 }
 
 void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float sumWV,
-                          inout bool inside) {
+                          inout bool inside, inout int finestLevel) {
     BrickGpu b = BrickRef(P.bricks).v[brickId];
     float w = float(1 << b.lowerLevel.w);
     vec3 lower = vec3(b.lowerLevel.xyz);
@@ -45,6 +49,7 @@ void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float su
         if (isnan(v) || phi <= 0.0) continue;
         sumW += phi;
         sumWV += phi * v;
+        finestLevel = min(finestLevel, b.lowerLevel.w);
     }
     // A point on the brick's bounds belongs to the medium when some cell there has a value.
     if (inBounds) inside = true;
@@ -53,11 +58,14 @@ void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float su
 // Half-open containment: every point of the union of ABRs lies in exactly one ABR.
 bool abrContains(AbrGpu a, vec3 p) { return all(greaterThanEqual(p, a.lo)) && all(lessThan(p, a.hi)); }
 
-FieldSample finishSample(float sumW, float sumWV, bool inside) {
+const int kNoLevel = 1 << 30;
+
+FieldSample finishSample(float sumW, float sumWV, bool inside, int finestLevel) {
     FieldSample s;
     s.weightSum = sumW;
     s.value = sumW > 0.0 ? sumWV / sumW : 0.0;
     s.inside = inside && sumW > 0.0;
+    s.finestLevel = finestLevel;
     return s;
 }
 
@@ -66,9 +74,11 @@ FieldSample sampleInAbr(uint abrId, vec3 p) {
     AbrGpu a = AbrRef(P.abrs).v[abrId];
     float sumW = 0.0, sumWV = 0.0;
     bool inside = false;
+    int level = kNoLevel;
     UintRef list = UintRef(P.abrBrickList);
-    for (uint i = 0; i < a.brickCount; ++i) addBrickContribution(list.v[a.brickBegin + i], p, sumW, sumWV, inside);
-    return finishSample(sumW, sumWV, inside);
+    for (uint i = 0; i < a.brickCount; ++i)
+        addBrickContribution(list.v[a.brickBegin + i], p, sumW, sumWV, inside, level);
+    return finishSample(sumW, sumWV, inside, level);
 }
 
 // Bricks whose domain contains p, kept sorted by id. Beyond kMaxGather (never seen in practice:
@@ -79,6 +89,7 @@ struct BrickGather {
     uint n;
     float sumW, sumWV;
     bool inside;
+    int finestLevel;
 };
 
 BrickGather newGather() {
@@ -87,6 +98,7 @@ BrickGather newGather() {
     g.sumW = 0.0;
     g.sumWV = 0.0;
     g.inside = false;
+    g.finestLevel = kNoLevel;
     return g;
 }
 
@@ -97,7 +109,7 @@ void gatherBrick(inout BrickGather g, uint id, vec3 p) {
     while (pos > 0u && g.ids[pos - 1u] > id) --pos;
     if (pos > 0u && g.ids[pos - 1u] == id) return;
     if (g.n == kMaxGather) {
-        addBrickContribution(id, p, g.sumW, g.sumWV, g.inside);
+        addBrickContribution(id, p, g.sumW, g.sumWV, g.inside, g.finestLevel);
         return;
     }
     for (uint i = g.n; i > pos; --i) g.ids[i] = g.ids[i - 1u];
@@ -106,8 +118,8 @@ void gatherBrick(inout BrickGather g, uint id, vec3 p) {
 }
 
 FieldSample finishGather(inout BrickGather g, vec3 p) {
-    for (uint i = 0u; i < g.n; ++i) addBrickContribution(g.ids[i], p, g.sumW, g.sumWV, g.inside);
-    return finishSample(g.sumW, g.sumWV, g.inside);
+    for (uint i = 0u; i < g.n; ++i) addBrickContribution(g.ids[i], p, g.sumW, g.sumWV, g.inside, g.finestLevel);
+    return finishSample(g.sumW, g.sumWV, g.inside, g.finestLevel);
 }
 
 FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
@@ -161,7 +173,34 @@ FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
 }
 #endif
 
+// Clamped trilinear interpolation of the dense samples; NaN samples (outside the medium) are
+// skipped and the remaining weights renormalised. inside = the sample of the dense cell holding p
+// is a value. CPU twin: accel/dense_grid.cpp (sampleDense).
+FieldSample sampleDense(vec3 p) {
+    FloatRef values = FloatRef(P.denseValues);
+    ivec3 dims = P.denseDims.xyz;
+    vec3 q = (p - P.denseOrigin.xyz) / P.denseOrigin.w;
+    ivec3 cell = clamp(ivec3(floor(q)), ivec3(0), dims - 1);
+    bool inside = !isnan(values.v[cell.x + dims.x * (cell.y + dims.y * cell.z)]);
+    vec3 local = q - 0.5;
+    vec3 i0 = floor(local);
+    vec3 f = local - i0;
+    float sumW = 0.0, sumWV = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        ivec3 bit = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        ivec3 idx = clamp(ivec3(i0) + bit, ivec3(0), dims - 1);
+        vec3 wt = mix(1.0 - f, f, vec3(bit));
+        float phi = wt.x * wt.y * wt.z;
+        float v = values.v[idx.x + dims.x * (idx.y + dims.y * idx.z)];
+        if (isnan(v) || phi <= 0.0) continue;
+        sumW += phi;
+        sumWV += phi * v;
+    }
+    return finishSample(sumW, sumWV, inside, P.denseDims.w);
+}
+
 FieldSample sampleField(uint samplerKind, uint backend, vec3 p) {
+    if (samplerKind == kSamplerDense) return sampleDense(p);
 #ifdef AMRVK_RAY_QUERY
     if (backend == kBackendRq) return sampleFieldRq(samplerKind, p);
 #endif

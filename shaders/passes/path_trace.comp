@@ -18,6 +18,7 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/traversal.glsl"
 #include "lib/tracking.glsl"
 #include "lib/phase.glsl"
+#include "lib/ray_march.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint kMode = kModeMs;
@@ -55,6 +56,7 @@ vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, 
 vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     float tHit;
     vec4 tf;
+    if (kMode == kModeDvr) return rayMarch(o, d, cfg(), rng, c);
     if (kMode == kModeAe) {
         return deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
     }

@@ -16,10 +16,12 @@ AMRVK_CONST uint kLightPoint = 1u;
 AMRVK_CONST uint kModeAe = 0u;  // absorption + emission
 AMRVK_CONST uint kModeSs = 1u;  // single scattering
 AMRVK_CONST uint kModeMs = 2u;  // multiple scattering
+AMRVK_CONST uint kModeDvr = 3u; // ray-marching baseline (ExaBrick's DVR): biased by its step
 
 // Samplers (specialization constant kSampler).
 AMRVK_CONST uint kSamplerExtBrick = 0u;
 AMRVK_CONST uint kSamplerAbr = 1u;
+AMRVK_CONST uint kSamplerDense = 2u;  // uniform finest-level resampling, clamped trilinear (cost floor)
 
 // Majorant traversals (specialization constant kTraversal). grid-dda steps through the macrocell
 // grid; the others query a set of boxes ("domains", each with a majorant) for the segment that
@@ -75,6 +77,13 @@ struct RenderParams {
     vec4 ambient;        // rgb: environment radiance seen by rays that escape
     vec4 background;     // rgb: radiance seen by primary rays that escape
     vec4 shading;        // x: HG g; y: light count (as float); zw unused
+    // dvr: x: step relative to the finest cell width at the sample; y: 1 = gradient shading;
+    // z: opacity at which a ray terminates (0.99); w: ambient term of the shading
+    vec4 dvr;
+    vec4 dvrLight;       // xyz: unit direction towards the shading light (local voxel); w unused
+    // dense sampler: sample (i, j, k) at denseOrigin + (ijk + 0.5) * denseOrigin.w
+    ivec4 denseDims;     // xyz: samples per axis; w: level of the spacing (1 << w)
+    vec4 denseOrigin;    // xyz: local voxel; w: sample spacing (voxel units)
     LightGpu lights[kMaxLights];
     // Buffers (device addresses)
     uint64_t bricks;        // BrickGpu[]
@@ -95,6 +104,7 @@ struct RenderParams {
     uvec4 domainInfo;       // x: box count; y: 1 when some box has majorant > 0; zw unused
     uint64_t tfPositions;   // float[]
     uint64_t tfColors;      // vec4[] rgb albedo, a = alpha (extinction per finest cell width)
+    uint64_t denseValues;   // float[] dense samples, x fastest (NaN: outside the medium), else 0
     uint64_t accum;         // vec4[2 * pixels]: sum and sum of squares of radiance; w = count
     uint64_t counters;      // uint[kCounterCount]
 };

@@ -10,5 +10,6 @@ int runGen(const std::vector<std::string>& args);
 int runConvert(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
 int runDevices(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
 
 }  // namespace amrvk::cli

@@ -18,6 +18,7 @@ const char* kUsage =
     "  amrvk gen <kind> --cells N --seed S -o BASE  write synthetic AMR (.cells/.scalars)\n"
     "  amrvk convert <input> -o BASE               convert any input to ExaBrick .cells/.scalars\n"
     "  amrvk render <input> [-o out.png] [options]  path-trace the data on a Vulkan device\n"
+    "  amrvk bench <input>... -o DIR [options]     benchmark protocol: speed against error, reports\n"
     "  amrvk devices [--json]                      list Vulkan devices and why any is unusable\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
         if (command == "convert") return amrvk::cli::runConvert(args);
         if (command == "render") return amrvk::cli::runRender(args);
         if (command == "devices") return amrvk::cli::runDevices(args);
+        if (command == "bench") return amrvk::cli::runBench(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const amrvk::Error& e) {

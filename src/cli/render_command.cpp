@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "amr/readers.h"
+#include "bench/auto_select.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/read_options.h"
@@ -108,10 +109,13 @@ int runRender(const std::vector<std::string>& argv) {
     add({"tf", 1, "FILE|PRESET", "transfer function: ParaView preset JSON, .xf, or a preset (ramp, grey, spiky, foggy, constant, empty); default ramp over the field's range"});
     add({"tf-preset", 1, "NAME", "preset name inside a ParaView JSON file (default: the first)"});
     add({"tf-range", 2, "LO HI", "map the TF's node range onto [LO, HI] (presets: default the field's range)"});
-    add({"mode", 1, "ae|ss|ms", "absorption+emission, single or multiple scattering (default ms)"});
-    add({"sampler", 1, "ext-brick|abr", "sample reconstruction structure (default ext-brick)"});
-    add({"traversal", 1, "grid-dda|grid-bvh|abr|brick|ext-brick|kdtree",
-         "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, brick bounds, brick domains, or the TF-specific kd-tree (default grid-dda)"});
+    add({"mode", 1, "ae|ss|ms|dvr", "absorption+emission, single or multiple scattering, or the ray-marching baseline dvr (biased by --dt; default ms)"});
+    add({"dt", 1, "DT", "dvr: step as a fraction of the finest cell width at the sample (default 0.5)"});
+    add({"dvr-shading", 0, "", "dvr: gradient shading by the first --light-dir (else a headlight)"});
+    add({"sampler", 1, "ext-brick|abr|dense", "sample reconstruction: brick domains, ABRs, or dense = the field resampled to the finest uniform grid (trilinear; the cost floor; needs a grid traversal) (default ext-brick)"});
+    add({"dense-max-mib", 1, "MIB", "dense: largest dense grid to build (default 2048)"});
+    add({"traversal", 1, "grid-dda|grid-bvh|abr|brick|ext-brick|kdtree|auto",
+         "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, brick bounds, brick domains, or the TF-specific kd-tree (default grid-dda); auto = probe every combination briefly and take the most efficient traversal, sampler, back-end and grid (those given explicitly stay fixed)"});
     add({"backend", 1, "sw|rq|auto", "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it (default auto)"});
     add({"grid", 1, "auto|N|NxMxK", "macrocell grid of grid-dda and grid-bvh (default auto: 128 on the longest axis)"});
     add({"kd-leaves", 1, "N", "kdtree: leaves of the kd-tree, rebuilt per TF (default 4096)"});
@@ -153,19 +157,27 @@ int runRender(const std::vector<std::string>& argv) {
         }
     }
     render::StructureConfig config;
-    config.traversal = render::parseTraversal(args.get("traversal", "grid-dda"));
+    const bool autoChoice = args.get("traversal") == "auto";
+    if (!autoChoice) config.traversal = render::parseTraversal(args.get("traversal", "grid-dda"));
     config.sampler = render::parseSampler(args.get("sampler", "ext-brick"));
     config.backend = render::parseBackend(args.get("backend", "auto"));
     config.grid = args.get("grid", "auto");
     const int64_t kdLeaves = args.getInt("kd-leaves", 4096);
     AMRVK_CHECK(kdLeaves >= 1 && kdLeaves <= (int64_t(1) << 24), "--kd-leaves ", kdLeaves, " is outside [1, 2^24]");
     config.kdLeaves = uint32_t(kdLeaves);
+    const int64_t denseMiB = args.getInt("dense-max-mib", 2048);
+    AMRVK_CHECK(denseMiB >= 1 && denseMiB <= (int64_t(1) << 20), "--dense-max-mib ", denseMiB, " is outside [1, 2^20]");
+    config.denseMaxBytes = uint64_t(denseMiB) << 20;
+    if (!autoChoice) config.validate();
     render::RenderSettings rs;
     rs.mode = render::parseMode(args.get("mode", "ms"));
     parseSize(args.get("size", "512x512"), rs.width, rs.height);
     const int64_t spp = args.getInt("spp", 64);
     AMRVK_CHECK(spp >= 1 && spp <= (1 << 24), "--spp ", spp, " is outside [1, 2^24]");
     rs.seed = uint32_t(args.getInt("seed", 1));
+    rs.dvrStep = args.getDouble("dt", 0.5);
+    AMRVK_CHECK(rs.dvrStep > 0 && rs.dvrStep <= 64, "--dt ", rs.dvrStep, " is outside (0, 64]");
+    rs.dvrShading = args.has("dvr-shading");
     rs.densityScale = args.getDouble("density-scale", 1.0);
     AMRVK_CHECK(rs.densityScale >= 0 && std::isfinite(rs.densityScale), "--density-scale must be finite and >= 0");
     rs.g = args.getDouble("g", 0.0);
@@ -194,8 +206,9 @@ int runRender(const std::vector<std::string>& argv) {
     gpu::Context ctx(co);
     config.backend = render::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     Timer buildTimer;
-    render::VolumeScene scene = render::buildVolumeScene(model, field, config);
-    const double buildSeconds = buildTimer.seconds();
+    render::VolumeScene scene =
+        autoChoice ? render::makeVolumeScene(model, field) : render::buildVolumeScene(model, field, config);
+    double buildSeconds = buildTimer.seconds();
 
     const amr::ModelSummary summary = amr::summarize(model);
     const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
@@ -215,6 +228,25 @@ int runRender(const std::vector<std::string>& argv) {
     }
     render::TransferFunction tf = render::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
     if (args.has("tf-range")) tf = tf.rescaled(tfLo, tfHi);
+    if (autoChoice) {
+        bench::AutoConstraints constraints;
+        if (args.has("sampler")) constraints.sampler = config.sampler;
+        if (args.has("backend") && args.get("backend") != "auto") constraints.backend = config.backend;
+        if (args.has("grid")) constraints.grid = config.grid;
+        bench::AutoChoice choice;
+        {
+            ProgressStage stage("--traversal auto: probing structure combinations");
+            choice = bench::autoSelect(ctx, scene, tf, rs, constraints);
+        }
+        const uint32_t kdLeavesChosen = config.kdLeaves;
+        config = choice.config;
+        config.kdLeaves = kdLeavesChosen;
+        Timer t;
+        scene.configure(config);
+        buildSeconds = t.seconds();
+        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n", config.label().c_str(),
+                     config.usesGrid() ? (" grid " + config.grid).c_str() : "", choice.probes.size(), choice.seconds);
+    }
 
     render::Renderer renderer(ctx, scene);
     renderer.setTransferFunction(tf);
@@ -266,6 +298,7 @@ int runRender(const std::vector<std::string>& argv) {
         j.member("bricks", scene.buildSeconds.bricks).member("abrs", scene.buildSeconds.abrs);
         j.member("samplerBvh", scene.buildSeconds.samplerBvh).member("macrocells", scene.buildSeconds.grid);
         j.member("traversalRanges", scene.buildSeconds.domains).member("kdTree", scene.buildSeconds.kdTree);
+        j.member("denseGrid", scene.buildSeconds.dense);
         j.endObject();
         j.key("hostMemoryPerStructure").beginObject();
         for (const auto& [name, bytes] : scene.hostBytes()) j.member(name, bytes);

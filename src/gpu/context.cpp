@@ -198,6 +198,12 @@ uint64_t MemoryTracker::peakBytes() const {
     return mPeak;
 }
 
+void MemoryTracker::resetPeak() {
+    std::lock_guard lock(mMutex);
+    mPeak = mCurrent;
+    for (auto& [name, usage] : mUsage) usage.peak = usage.current;
+}
+
 std::map<std::string, MemoryTracker::Usage> MemoryTracker::perResource() const {
     std::lock_guard lock(mMutex);
     return mUsage;

@@ -46,6 +46,8 @@ public:
     void remove(const std::string& name, uint64_t bytes);
     uint64_t currentBytes() const;
     uint64_t peakBytes() const;
+    // Starts a new peak measurement: every peak becomes the current usage.
+    void resetPeak();
     // Every resource name seen so far (freed ones keep their peak with current 0).
     std::map<std::string, Usage> perResource() const;
 

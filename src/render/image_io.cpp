@@ -62,28 +62,33 @@ private:
     std::vector<uint8_t> mData;
 };
 
-void writePng(const fs::path& path, const Image& image) {
-    std::vector<uint8_t> rgba(image.pixels.size() * 4);
-    for (size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int k = 0; k < 3; ++k) rgba[4 * i + size_t(k)] = encodeSrgb8(image.pixels[i][k]);
-        rgba[4 * i + 3] = 255;
-    }
+// Encodes 8-bit RGBA pixels (row 0 = top) as PNG and writes them through AtomicFileWriter.
+void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rgba) {
     png_image png;
     std::memset(&png, 0, sizeof(png));
     png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width);
-    png.height = static_cast<png_uint_32>(image.height);
+    png.width = static_cast<png_uint_32>(width);
+    png.height = static_cast<png_uint_32>(height);
     png.format = PNG_FORMAT_RGBA;
     png_alloc_size_t bytes = 0;
-    bool ok = png_image_write_to_memory(&png, nullptr, &bytes, 0, rgba.data(), 0, nullptr) != 0;
+    bool ok = png_image_write_to_memory(&png, nullptr, &bytes, 0, rgba, 0, nullptr) != 0;
     std::vector<uint8_t> encoded(ok ? bytes : 0);
-    if (ok) ok = png_image_write_to_memory(&png, encoded.data(), &bytes, 0, rgba.data(), 0, nullptr) != 0;
+    if (ok) ok = png_image_write_to_memory(&png, encoded.data(), &bytes, 0, rgba, 0, nullptr) != 0;
     std::string message = png.message;
     png_image_free(&png);
     AMRVK_CHECK(ok, path.string(), ": PNG encoding failed (", message, ")");
     AtomicFileWriter out(path);
     out.write(encoded.data(), bytes);
     out.commit();
+}
+
+void writePng(const fs::path& path, const Image& image) {
+    std::vector<uint8_t> rgba(image.pixels.size() * 4);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int k = 0; k < 3; ++k) rgba[4 * i + size_t(k)] = encodeSrgb8(image.pixels[i][k]);
+        rgba[4 * i + 3] = 255;
+    }
+    writePngRgba(path, image.width, image.height, rgba.data());
 }
 
 void writePfm(const fs::path& path, const Image& image) {
@@ -214,6 +219,17 @@ void writeImage(const fs::path& path, const Image& image) {
     if (ext == ".png") writePng(path, image);
     else if (ext == ".pfm") writePfm(path, image);
     else writeExr(path, image);
+}
+
+void writePng8(const fs::path& path, const Image8& image) {
+    AMRVK_CHECK(image.width > 0 && image.height > 0 && image.width <= kMaxDimension &&
+                    image.height <= kMaxDimension,
+                path.string(), ": image size ", image.width, "x", image.height,
+                " is not in [1, ", kMaxDimension, "] per axis");
+    AMRVK_CHECK(image.rgba.size() == size_t(image.width) * size_t(image.height) * 4, path.string(),
+                ": image ", image.width, "x", image.height, " has ", image.rgba.size(),
+                " RGBA bytes");
+    writePngRgba(path, image.width, image.height, image.rgba.data());
 }
 
 Image readPfm(const fs::path& path) {

@@ -40,6 +40,10 @@ uint8_t encodeSrgb8(float linear);
 // whose size does not match its pixels, or a write failure (leaving no file).
 void writeImage(const std::filesystem::path& path, const Image& image);
 
+// Writes 8-bit RGBA pixels to a PNG as they are (no tone mapping, alpha kept). Throws for a size
+// outside [1, 2^20] per axis, rgba.size() != 4 * width * height, or a write failure (leaving no file).
+void writePng8(const std::filesystem::path& path, const Image8& image);
+
 // Readers for tests and reference images: PFM (RGB or grey, either byte order), OpenEXR as
 // written by writeImage (single-part scanline, uncompressed, FLOAT channels; R, G, B, A by name,
 // missing colour channels 0, missing A 1), PNG (raw 8-bit RGBA). Alpha of PFM is 1.

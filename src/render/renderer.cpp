@@ -43,7 +43,8 @@ Mode parseMode(const std::string& name) {
     if (name == "ae") return Mode::Ae;
     if (name == "ss") return Mode::Ss;
     if (name == "ms") return Mode::Ms;
-    AMRVK_CHECK(false, "--mode '", name, "': expected ae, ss or ms");
+    if (name == "dvr") return Mode::Dvr;
+    AMRVK_CHECK(false, "--mode '", name, "': expected ae, ss, ms or dvr");
     return Mode::Ms;
 }
 
@@ -51,6 +52,7 @@ const char* modeName(Mode mode) {
     switch (mode) {
         case Mode::Ae: return "ae";
         case Mode::Ss: return "ss";
+        case Mode::Dvr: return "dvr";
         default: return "ms";
     }
 }
@@ -70,15 +72,23 @@ Renderer::Renderer(gpu::Context& ctx, VolumeScene& scene) : mCtx(ctx), mScene(sc
                 "' has no VK_KHR_ray_query");
     gpu::registerShaders(shaders::passShaders());
     const glm::ivec3 origin(scene.localOrigin);
-    std::vector<shared::BrickGpu> bricks;
-    bricks.reserve(scene.bricks.bricks.size());
-    for (const accel::Brick& b : scene.bricks.bricks)
-        bricks.push_back({glm::ivec4(b.lower - origin, b.level),
-                          glm::ivec4(b.size, int32_t(b.begin))});
-    mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
-    mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+    if (cfg.usesBricks()) {
+        std::vector<shared::BrickGpu> bricks;
+        bricks.reserve(scene.bricks.bricks.size());
+        for (const accel::Brick& b : scene.bricks.bricks)
+            bricks.push_back({glm::ivec4(b.lower - origin, b.level), glm::ivec4(b.size, int32_t(b.begin))});
+        mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
+        mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+    }
     const char* samplerStructure = cfg.sampler == SamplerKind::Abr ? "abrSampler" : "brickDomainSampler";
-    if (cfg.backend == Backend::Sw) {
+    if (cfg.sampler == SamplerKind::Dense) {
+        AMRVK_CHECK(scene.dense.has_value(), "internal: dense sampler without a dense grid");
+        const accel::DenseGrid& d = *scene.dense;
+        mDenseValues = gpu::makeBuffer<float>(ctx, d.values, "denseGrid");
+        mParams.denseValues = mDenseValues.address();
+        mParams.denseDims = glm::ivec4(d.dims, d.level);
+        mParams.denseOrigin = v4(glm::dvec3(d.origin - scene.localOrigin), double(amr::cellWidth(d.level)));
+    } else if (cfg.backend == Backend::Sw) {
         mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, scene.samplerBvh.nodes, std::string(samplerStructure) + "Bvh");
         mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, std::string(samplerStructure) + "BvhPrims");
     } else {
@@ -114,8 +124,8 @@ Renderer::Renderer(gpu::Context& ctx, VolumeScene& scene) : mCtx(ctx), mScene(sc
 
     mParams.boundsLo = v4(glm::dvec3(0.0), 1.0 / double(amr::cellWidth(scene.minLevel)));
     mParams.boundsHi = v4(glm::dvec3(scene.bounds.upper - scene.bounds.lower), 1.0);
-    mParams.bricks = mBricks.address();
-    mParams.brickValues = mBrickValues.address();
+    mParams.bricks = mBricks.valid() ? mBricks.address() : 0;
+    mParams.brickValues = mBrickValues.valid() ? mBrickValues.address() : 0;
     mParams.samplerNodes = mSamplerNodes.valid() ? mSamplerNodes.address() : 0;
     mParams.samplerPrims = mSamplerPrims.valid() ? mSamplerPrims.address() : 0;
     mParams.abrs = mAbrs.valid() ? mAbrs.address() : 0;
@@ -287,7 +297,10 @@ const gpu::ComputePipeline& Renderer::pathTracePipeline(Mode mode) {
     auto it = mPathTrace.find(key);
     if (it != mPathTrace.end()) return it->second;
     const StructureConfig& cfg = mScene.config;
-    uint32_t modeConst = mode == Mode::Ae ? shared::kModeAe : mode == Mode::Ss ? shared::kModeSs : shared::kModeMs;
+    const uint32_t modeConst = mode == Mode::Ae    ? shared::kModeAe
+                               : mode == Mode::Ss  ? shared::kModeSs
+                               : mode == Mode::Dvr ? shared::kModeDvr
+                                                   : shared::kModeMs;
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
     const char* shader = cfg.backend == Backend::Rq ? "path_trace_rq" : "path_trace";
     auto [pos, ok] = mPathTrace.emplace(
@@ -323,6 +336,16 @@ void Renderer::writeParams(const RenderSettings& s) {
         mParams.lights[i] = L.point ? shared::LightGpu{v4(L.posOrDir - origin, shared::kLightPoint), v4(L.radiance)}
                                     : shared::LightGpu{v4(L.posOrDir, shared::kLightDirectional), v4(L.radiance)};
     }
+    AMRVK_CHECK(s.dvrStep > 0 && std::isfinite(s.dvrStep), "--dt ", s.dvrStep, " must be finite and > 0");
+    // dvr shading light: the first directional light, else a headlight along the view direction.
+    glm::dvec3 shadeDir = -glm::dvec3(rb.dir00 + 0.5 * double(s.width) * rb.du + 0.5 * double(s.height) * rb.dv);
+    for (const VoxelLight& L : lights)
+        if (!L.point) {
+            shadeDir = L.posOrDir;
+            break;
+        }
+    mParams.dvr = glm::vec4(float(s.dvrStep), s.dvrShading ? 1.0f : 0.0f, 0.99f, 0.3f);
+    mParams.dvrLight = v4(glm::normalize(shadeDir));
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     if (!mAccum.valid() || s.width != mWidth || s.height != mHeight) {
         mAccum = gpu::Buffer();
@@ -336,6 +359,13 @@ void Renderer::writeParams(const RenderSettings& s) {
 
 RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
                               const std::function<void(uint32_t, uint32_t)>& progress) {
+    return render(settings, spp, progress, {}, {});
+}
+
+RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
+                              const std::function<void(uint32_t, uint32_t)>& progress,
+                              const std::vector<uint32_t>& snapshotSpp,
+                              const std::function<void(const RenderOutput&)>& snapshot) {
     AMRVK_CHECK(mHasTf, "internal: render() before setTransferFunction()");
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
     writeParams(settings);
@@ -346,9 +376,24 @@ RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
     const uint32_t gx = (uint32_t(settings.width) + 7) / 8, gy = (uint32_t(settings.height) + 7) / 8;
     gpu::GpuTimer timer(mCtx, 64);
     uint32_t done = 0, batch = 1;
+    size_t nextSnapshot = 0;
     std::array<uint32_t, shared::kCounterCount> counters{};
+    std::vector<glm::vec4> accum(size_t(settings.width) * size_t(settings.height) * 2);
+    auto readBack = [&](RenderOutput& o) {
+        mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
+        o.mean = Image(settings.width, settings.height);
+        o.sumSq.resize(accum.size() / 2);
+        for (size_t i = 0; i < o.mean.pixels.size(); ++i) {
+            glm::vec4 sum = accum[2 * i];
+            float count = sum.w > 0 ? sum.w : 1.0f;
+            o.mean.pixels[i] = glm::vec4(glm::vec3(sum) / count, 1.0f);
+            o.sumSq[i] = accum[2 * i + 1];
+        }
+    };
     while (done < spp) {
-        const uint32_t n = std::min(batch, spp - done);
+        while (nextSnapshot < snapshotSpp.size() && snapshotSpp[nextSnapshot] <= done) ++nextSnapshot;
+        uint32_t n = std::min(batch, spp - done);
+        if (nextSnapshot < snapshotSpp.size()) n = std::min(n, snapshotSpp[nextSnapshot] - done);
         mCtx.submitAndWait([&](VkCommandBuffer cmd) {
             timer.reset(cmd);
             vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -372,21 +417,17 @@ RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
         // Grow batches while the 32-bit counters stay far from overflowing.
         if (largest < (1u << 28) && batch < 64) batch *= 2;
         else if (largest >= (1u << 30) && batch > 1) batch /= 2;
+        out.stats.paths = uint64_t(done) * uint64_t(settings.width) * uint64_t(settings.height);
+        if (snapshot && nextSnapshot < snapshotSpp.size() && snapshotSpp[nextSnapshot] == done) {
+            RenderOutput partial;
+            partial.spp = done;
+            partial.stats = out.stats;
+            readBack(partial);
+            snapshot(partial);
+        }
         if (progress) progress(done, spp);
     }
-    out.stats.paths = uint64_t(spp) * uint64_t(settings.width) * uint64_t(settings.height);
-    std::vector<glm::vec4> accum(size_t(settings.width) * size_t(settings.height) * 2);
-    mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
-    out.mean.width = settings.width;
-    out.mean.height = settings.height;
-    out.mean.pixels.resize(accum.size() / 2);
-    out.sumSq.resize(accum.size() / 2);
-    for (size_t i = 0; i < out.mean.pixels.size(); ++i) {
-        glm::vec4 sum = accum[2 * i];
-        float count = sum.w > 0 ? sum.w : 1.0f;
-        out.mean.pixels[i] = glm::vec4(glm::vec3(sum) / count, 1.0f);
-        out.sumSq[i] = accum[2 * i + 1];
-    }
+    readBack(out);
     return out;
 }
 

@@ -24,7 +24,8 @@
 
 namespace amrvk::render {
 
-enum class Mode { Ae, Ss, Ms };
+// ae | ss | ms: unbiased path tracing. dvr: the ray-marching baseline (biased by its step).
+enum class Mode { Ae, Ss, Ms, Dvr };
 Mode parseMode(const std::string& name);
 const char* modeName(Mode mode);
 
@@ -55,6 +56,8 @@ struct RenderSettings {
     glm::dvec3 ambient{1.0};             // environment radiance seen by escaping rays
     std::optional<glm::dvec3> background;  // seen by escaping primary rays; default = ambient
     std::vector<Light> lights;           // at most shared::kMaxLights
+    double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
+    bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
 };
 
 struct RenderStats {
@@ -82,6 +85,13 @@ public:
     // Accumulates `spp` samples per pixel from scratch. `progress(done, total)` after each batch.
     RenderOutput render(const RenderSettings& settings, uint32_t spp,
                         const std::function<void(uint32_t, uint32_t)>& progress = {});
+    // The same, also handing out the image after each sample count in `snapshotSpp` (ascending):
+    // `snapshot(out)` sees the mean so far, out.spp samples and the GPU seconds spent so far
+    // (downloads are not timed).
+    RenderOutput render(const RenderSettings& settings, uint32_t spp,
+                        const std::function<void(uint32_t, uint32_t)>& progress,
+                        const std::vector<uint32_t>& snapshotSpp,
+                        const std::function<void(const RenderOutput&)>& snapshot);
     // Majorant per macrocell as computed on the GPU (grid traversals; for tests and statistics).
     std::vector<float> downloadMajorants() const;
     // Majorant per traversal box (abr | brick | ext-brick | kdtree), as computed on the GPU.
@@ -111,6 +121,7 @@ private:
     shared::RenderParams mParams{};
     gpu::Buffer mBricks, mBrickValues, mSamplerNodes, mSamplerPrims, mSamplerAabbs, mAbrs, mAbrBrickList;
     gpu::Buffer mGridRanges, mGridMajorants, mTfPositions, mTfColors, mAccum, mCounters, mParamsBuffer;
+    gpu::Buffer mDenseValues;
     gpu::Buffer mDomainBoxes, mDomainRanges, mDomainMajorants, mDomainNodes, mDomainPrims, mDomainAabbs;
     gpu::AabbAccelerationStructure mSamplerAccel, mDomainAccel;
     gpu::ComputePipeline mMajorantPipeline, mAabbPipeline;

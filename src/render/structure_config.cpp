@@ -10,7 +10,8 @@ struct Named {
     const char* name;
     int value;
 };
-constexpr Named kSamplers[] = {{"ext-brick", int(SamplerKind::ExtBrick)}, {"abr", int(SamplerKind::Abr)}};
+constexpr Named kSamplers[] = {{"ext-brick", int(SamplerKind::ExtBrick)}, {"abr", int(SamplerKind::Abr)},
+                               {"dense", int(SamplerKind::Dense)}};
 constexpr Named kTraversals[] = {{"grid-dda", int(TraversalKind::GridDda)}, {"grid-bvh", int(TraversalKind::GridBvh)},
                                  {"abr", int(TraversalKind::Abr)},          {"brick", int(TraversalKind::Brick)},
                                  {"ext-brick", int(TraversalKind::ExtBrick)}, {"kdtree", int(TraversalKind::KdTree)}};
@@ -52,7 +53,11 @@ std::vector<TraversalKind> allTraversals() {
 std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr}; }
 
 uint32_t shaderConstant(SamplerKind kind) {
-    return kind == SamplerKind::Abr ? shared::kSamplerAbr : shared::kSamplerExtBrick;
+    switch (kind) {
+        case SamplerKind::Abr: return shared::kSamplerAbr;
+        case SamplerKind::Dense: return shared::kSamplerDense;
+        default: return shared::kSamplerExtBrick;
+    }
 }
 
 uint32_t shaderConstant(TraversalKind kind) {
@@ -69,6 +74,11 @@ uint32_t shaderConstant(TraversalKind kind) {
 uint32_t shaderConstant(Backend backend) {
     AMRVK_CHECK(backend != Backend::Auto, "internal: back-end 'auto' has no shader constant");
     return backend == Backend::Rq ? shared::kBackendRq : shared::kBackendSw;
+}
+
+void StructureConfig::validate() const {
+    AMRVK_CHECK(sampler != SamplerKind::Dense || usesGrid(), "--sampler dense needs --traversal grid-dda or grid-bvh ",
+                "(its majorants come from the dense samples), not ", traversalName(traversal));
 }
 
 std::string StructureConfig::label() const {

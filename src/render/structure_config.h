@@ -7,7 +7,9 @@
 
 namespace amrvk::render {
 
-enum class SamplerKind { ExtBrick, Abr };
+// Dense: the field resampled to a uniform finest-level grid (clamped trilinear), the cost floor of
+// sampling; it needs a grid traversal (its majorants come from the dense samples).
+enum class SamplerKind { ExtBrick, Abr, Dense };
 enum class TraversalKind { GridDda, GridBvh, Abr, Brick, ExtBrick, KdTree };
 // Sw: software BVHs in GLSL. Rq: VK_KHR_ray_query over AABB BLASes. Auto: Rq where the device has it.
 enum class Backend { Sw, Rq, Auto };
@@ -19,7 +21,7 @@ const char* traversalName(TraversalKind kind);
 Backend parseBackend(const std::string& name);
 const char* backendName(Backend backend);
 std::vector<TraversalKind> allTraversals();
-std::vector<SamplerKind> allSamplers();
+std::vector<SamplerKind> allSamplers();  // the paper's AMR samplers (not dense)
 
 // The specialization-constant values of shaders/shared/render_params.h (kSampler*, kTraversal*,
 // kBackend*); Backend::Auto must be resolved first.
@@ -33,10 +35,14 @@ struct StructureConfig {
     Backend backend = Backend::Sw;  // resolved (Sw or Rq) before a scene is configured
     std::string grid = "auto";      // macrocells (grid-dda, grid-bvh): auto | N | NxMxK
     uint32_t kdLeaves = 4096;       // kdtree leaves
+    uint64_t denseMaxBytes = uint64_t(2) << 30;  // dense sampler: refuse larger grids
     // Whether the combination uses a BVH (sampler always; traversal unless grid-dda).
     bool traversalUsesBoxes() const { return traversal != TraversalKind::GridDda; }
     bool usesGrid() const { return traversal == TraversalKind::GridDda || traversal == TraversalKind::GridBvh; }
     bool usesAbrs() const { return sampler == SamplerKind::Abr || traversal == TraversalKind::Abr; }
+    bool usesBricks() const { return sampler != SamplerKind::Dense; }  // on the GPU
+    // Throws a one-line error for a combination that cannot run (dense without a grid traversal).
+    void validate() const;
     std::string label() const;  // e.g. "grid-dda/ext-brick/sw"
 };
 

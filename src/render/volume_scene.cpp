@@ -34,9 +34,12 @@ VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
 
 void VolumeScene::configure(const StructureConfig& next) {
     AMRVK_CHECK(next.backend != Backend::Auto, "internal: configure() needs a resolved back-end");
-    const bool rebuildSampler = config.sampler != next.sampler || config.backend != next.backend ||
-                                (samplerBvh.nodes.empty() && samplerBoxes.empty());
-    const bool rebuildGrid = next.usesGrid() && (!grid || config.grid != next.grid);
+    next.validate();
+    const bool denseSampler = next.sampler == SamplerKind::Dense;
+    const bool rebuildSampler = !denseSampler && (config.sampler != next.sampler || config.backend != next.backend ||
+                                                  (samplerBvh.nodes.empty() && samplerBoxes.empty()));
+    const bool rebuildGrid = next.usesGrid() && (!grid || config.grid != next.grid ||
+                                                 (config.sampler == SamplerKind::Dense) != denseSampler);
     const bool rebuildDomains = next.traversal != config.traversal || domains.boxes.empty();
     config = next;
     const glm::dvec3 origin(localOrigin);
@@ -48,9 +51,14 @@ void VolumeScene::configure(const StructureConfig& next) {
     if (next.traversal != TraversalKind::KdTree) supportRanges.query.reset();
     if (next.traversal != TraversalKind::KdTree) kdTree.reset();
     if (rebuildDomains || !next.traversalUsesBoxes() || next.traversal == TraversalKind::GridBvh) domains = {};
-    if (rebuildSampler) {
+    if (rebuildSampler || denseSampler) {
         samplerBvh = {};
         samplerBoxes = {};
+    }
+    if (!denseSampler) dense.reset();
+    if (denseSampler && !dense) {
+        dense = accel::buildDenseGrid(*model, bricks, brickValues, bounds, minLevel, next.denseMaxBytes);
+        buildSeconds.dense = dense->buildSeconds;
     }
 
     if (next.usesAbrs() && !abrs) {
@@ -77,6 +85,11 @@ void VolumeScene::configure(const StructureConfig& next) {
     if (rebuildGrid) {
         ProgressStage stage("macrocell value ranges");
         grid = accel::buildRangeGrid(*model, *field, accel::parseGridDims(next.grid, bounds));
+        if (denseSampler) {
+            Timer t;
+            accel::assignDenseRanges(*dense, *grid);
+            grid->buildSeconds += t.seconds();
+        }
         buildSeconds.grid = grid->buildSeconds;
     }
     if (rebuildDomains && (next.traversal == TraversalKind::Abr || next.traversal == TraversalKind::Brick ||
@@ -126,6 +139,7 @@ std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
     if (!samplerBvh.nodes.empty()) out.emplace_back("samplerBvh", samplerBvh.memoryBytes());
     if (!samplerBoxes.empty()) out.emplace_back("samplerBoxes", samplerBoxes.size() * sizeof(shared::AabbGpu));
     if (grid) out.emplace_back("macrocells", grid->memoryBytes());
+    if (dense) out.emplace_back("denseGrid", dense->memoryBytes());
     if (supportRanges.query) out.emplace_back("supportRangeQuery", supportRanges.query->memoryBytes());
     if (kdTree) out.emplace_back("kdTree", kdTree->memoryBytes());
     if (!domains.boxes.empty()) out.emplace_back("traversalBoxes", domains.memoryBytes());

@@ -3,7 +3,8 @@
 // scene needs"): bricks and brick-order values always; ABRs for the abr sampler or traversal; the
 // sampler's BVH (sw back-end) or its boxes (rq back-end: the GPU builds the BLAS); the macrocell
 // value-range grid for grid-dda and grid-bvh; traversal boxes with value ranges for abr, brick,
-// ext-brick and kdtree. configure() switches combination, building what is missing and freeing
+// ext-brick and kdtree; the dense resampling for the dense sampler (whose macrocell ranges then
+// come from the dense samples). configure() switches combination, building what is missing and freeing
 // what the new one does not use. All coordinates the GPU sees are local voxel space:
 // voxel - localOrigin.
 #include <glm/glm.hpp>
@@ -17,6 +18,7 @@
 #include "accel/abrs.h"
 #include "accel/bricks.h"
 #include "accel/bvh.h"
+#include "accel/dense_grid.h"
 #include "accel/kdtree.h"
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
@@ -62,11 +64,12 @@ struct VolumeScene {
     accel::Bvh samplerBvh;                               // sw back-end: over brick domains or ABR boxes
     std::vector<shared::AabbGpu> samplerBoxes;           // rq back-end: the same boxes, BLAS input
     std::optional<accel::RangeGrid> grid;                // grid-dda, grid-bvh (origin in voxel space)
+    std::optional<accel::DenseGrid> dense;               // dense sampler
     SceneSupportRanges supportRanges;                    // brick, ext-brick, kdtree
     std::optional<accel::KdTree> kdTree;                 // kdtree (built per TF: rebuildKdTree)
     DomainBoxes domains;                                 // abr, brick, ext-brick, kdtree traversals
     struct Timing {
-        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, kdTree = 0;
+        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, kdTree = 0, dense = 0;
     } buildSeconds;
 
     // Builds what `config` needs and frees the rest. config.backend must be resolved (Sw or Rq).

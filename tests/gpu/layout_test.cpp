@@ -54,6 +54,12 @@ TEST_F(Layout, SharedStructsMatchBetweenCppAndGlsl) {
     p.samplerAccel = 0x0badf00dull;
     p.domainAccel = 0x1234567800000000ull;
     p.domainInfo = {31, 1, 0, 0};
+    p.dvr.x = 0.375f;
+    p.dvrLight.z = -0.5f;
+    p.denseDims = {7, 8, 9, 2};
+    p.denseOrigin.w = 4.0f;
+    p.denseValues = 0xfeedface00000000ull;
+    p.accum = 0x00000000c0ffee00ull;
     gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
     params.upload(&p, sizeof p);
     gpu::Buffer out(c, 64 * 4, gpu::MemoryKind::HostRead, "out");
@@ -67,6 +73,7 @@ TEST_F(Layout, SharedStructsMatchBetweenCppAndGlsl) {
                                     bits(6.5f), bits(17.0f), bits(0.75f), bits(-0.3f), bits(1.0f), bits(42.0f),
                                     0x55667788u, 0x11223344u, 0x99aabbccu, 0xdeadbeefu, 4, 123456, 77, 3,
                                     bits(3.5f), 11, 12, bits(9.5f), 0x0badf00du, 0x12345678u, 31, 1,
-                                    bits(3.25f), bits(5.5f)};
+                                    bits(3.25f), bits(5.5f), bits(0.375f), bits(-0.5f), 2, bits(4.0f),
+                                    0xfeedfaceu, 0xc0ffee00u};
     for (size_t i = 0; i < expect.size(); ++i) EXPECT_EQ(got[i], expect[i]) << "field " << i;
 }

@@ -46,4 +46,11 @@ void main() {
     AabbGpu box = AabbRef(P.domainBoxes).v[1];
     o.v[k++] = floatBitsToUint(box.lo.z);
     o.v[k++] = floatBitsToUint(box.hi.y);
+    // dvr and dense-sampler fields.
+    o.v[k++] = floatBitsToUint(P.dvr.x);
+    o.v[k++] = floatBitsToUint(P.dvrLight.z);
+    o.v[k++] = uint(P.denseDims.w);
+    o.v[k++] = floatBitsToUint(P.denseOrigin.w);
+    o.v[k++] = uint(P.denseValues >> 32);
+    o.v[k++] = uint(P.accum);
 }

@@ -1,0 +1,108 @@
+#include "bench/auto_select.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/stats.h"
+
+namespace amrvk::bench {
+
+namespace {
+
+// Mean over pixels of the per-pixel sample variance (rgb averaged).
+double meanSampleVariance(const render::RenderOutput& out) {
+    const double n = out.spp;
+    double sum = 0;
+    for (size_t i = 0; i < out.mean.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double m = out.mean.pixels[i][c];
+            sum += std::max(0.0, (double(out.sumSq[i][c]) - n * m * m) / (n - 1.0));
+        }
+    return out.mean.pixels.empty() ? 0.0 : sum / (3.0 * double(out.mean.pixels.size()));
+}
+
+}  // namespace
+
+AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const render::TransferFunction& tf,
+                      const render::RenderSettings& settings, const AutoConstraints& constraints,
+                      const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
+    AMRVK_CHECK(options.probeSize >= 8 && options.probeSpp >= 2, "internal: probe too small");
+    Timer total;
+    render::RenderSettings rs = settings;
+    rs.width = rs.height = options.probeSize;
+    rs.seed = settings.seed + 7919u;
+
+    std::vector<render::TraversalKind> traversals =
+        constraints.traversal ? std::vector{*constraints.traversal} : render::allTraversals();
+    std::vector<render::SamplerKind> samplers =
+        constraints.sampler ? std::vector{*constraints.sampler} : render::allSamplers();
+    std::vector<render::Backend> backends;
+    if (constraints.backend) backends = {*constraints.backend};
+    else {
+        backends = {render::Backend::Sw};
+        if (ctx.hasRayQuery()) backends.push_back(render::Backend::Rq);
+    }
+
+    AutoChoice choice;
+    double bestEfficiency = -1, bestSecondsPerSpp = 0;
+    auto probe = [&](const render::StructureConfig& config) {
+        AutoProbe p;
+        p.config = config;
+        if (onProbe) onProbe(config.label() + (config.usesGrid() ? " grid " + config.grid : ""));
+        Timer wall;
+        try {
+            scene.configure(config);
+            render::Renderer renderer(ctx, scene);
+            renderer.setTransferFunction(tf);
+            render::RenderOutput warm = renderer.render(rs, 1);
+            if (bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
+                p.secondsPerSpp = warm.stats.gpuSeconds;
+                p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
+                         "x slower than the best";
+            } else {
+                render::RenderOutput out = renderer.render(rs, options.probeSpp);
+                p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
+                p.variance = meanSampleVariance(out);
+                // A black image (variance 0) is scored by speed alone.
+                const double v = p.variance > 0 ? p.variance : 1e-30;
+                p.efficiency = p.secondsPerSpp > 0 ? 1.0 / (v * p.secondsPerSpp) : 0.0;
+            }
+        } catch (const Error& e) {
+            p.note = e.what();
+        }
+        p.wallSeconds = wall.seconds();
+        if (p.efficiency > bestEfficiency) {
+            bestEfficiency = p.efficiency;
+            bestSecondsPerSpp = p.secondsPerSpp;
+            choice.config = p.config;
+        }
+        choice.probes.push_back(p);
+    };
+
+    render::StructureConfig base;
+    base.grid = constraints.grid.value_or("auto");
+    base.kdLeaves = 4096;
+    for (render::TraversalKind t : traversals)
+        for (render::SamplerKind s : samplers)
+            for (render::Backend b : backends) {
+                render::StructureConfig c = base;
+                c.traversal = t;
+                c.sampler = s;
+                c.backend = b;
+                probe(c);
+            }
+    AMRVK_CHECK(bestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
+                choice.probes.empty() ? std::string("none tried") : choice.probes.front().note, ")");
+    if (choice.config.usesGrid() && !constraints.grid) {
+        const render::StructureConfig winner = choice.config;
+        for (const std::string& g : options.gridChoices) {
+            render::StructureConfig c = winner;
+            c.grid = g;
+            probe(c);
+        }
+    }
+    choice.seconds = total.seconds();
+    return choice;
+}
+
+}  // namespace amrvk::bench

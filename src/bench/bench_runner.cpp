@@ -1,0 +1,465 @@
+#include "bench/bench_runner.h"
+
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "amr/readers.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/json.h"
+#include "core/stats.h"
+#include "render/camera.h"
+
+namespace amrvk::bench {
+
+namespace {
+
+using render::Backend;
+using render::Mode;
+using render::SamplerKind;
+using render::StructureConfig;
+using render::TraversalKind;
+
+bool isCpuDevice(const gpu::Context& ctx) { return ctx.deviceReport().type == "CPU"; }
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(9);
+    s << v;
+    return s.str();
+}
+
+std::string vecText(glm::dvec3 v) { return fmt(v.x) + " " + fmt(v.y) + " " + fmt(v.z); }
+
+std::string shellQuote(const std::string& s) {
+    if (s.find_first_of(" \t'\"$\\") == std::string::npos && !s.empty()) return s;
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// Options shared by the reference command line and the cache key.
+std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const render::RenderSettings& rs,
+                         bool explicitCamera, double fov) {
+    std::string s;
+    if (!ds.field.empty()) s += " --field " + shellQuote(ds.field);
+    s += " --tf " + shellQuote(tf) + " --mode " + render::modeName(mode);
+    s += " --size " + std::to_string(rs.width) + "x" + std::to_string(rs.height);
+    s += " --seed " + std::to_string(rs.seed);
+    if (rs.densityScale != 1.0) s += " --density-scale " + fmt(rs.densityScale);
+    if (rs.g != 0.0) s += " --g " + fmt(rs.g);
+    s += " --ambient " + vecText(rs.ambient);
+    if (rs.background) s += " --background " + vecText(*rs.background);
+    for (const render::Light& L : rs.lights)
+        s += std::string(L.point ? " --light-point " : " --light-dir ") + vecText(L.posOrDir) + " " + vecText(L.radiance);
+    if (explicitCamera)
+        s += " --camera " + vecText(rs.camera.eye) + " " + vecText(rs.camera.target) + " " + vecText(rs.camera.up);
+    if (fov != 40.0) s += " --fov " + fmt(fov);
+    return s;
+}
+
+std::string fileTag(const std::string& s) {
+    std::string out;
+    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return out;
+}
+
+std::vector<uint32_t> powersOfTwoUpTo(uint32_t n) {
+    std::vector<uint32_t> out;
+    for (uint32_t k = 1; k < n; k *= 2) out.push_back(k);
+    out.push_back(n);
+    return out;
+}
+
+double efficiency(const RunResult& r) {
+    if (!r.error.empty() || r.curve.empty()) return 0;
+    const ErrorSample& last = r.curve.back();
+    const double mse = last.rmse * last.rmse;
+    return mse > 0 && last.seconds > 0 ? 1.0 / (mse * last.seconds) : 0.0;
+}
+
+class Runner {
+public:
+    Runner(gpu::Context& ctx, const BenchOptions& o, const BenchProgress& progress)
+        : mCtx(ctx), mOpt(o), mProgress(progress) {}
+
+    BenchResults run();
+
+private:
+    size_t countRuns() const;
+    void tick(const std::string& what) {
+        if (mProgress) mProgress(mDone, mTotal, what);
+    }
+    ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, const render::TransferFunction& tf,
+                             Mode mode);
+    RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
+    void finishGroup(size_t first, double target);
+
+    gpu::Context& mCtx;
+    const BenchOptions& mOpt;
+    BenchProgress mProgress;
+    BenchResults mRes;
+    size_t mDone = 0, mTotal = 0;
+    std::vector<Backend> mBackends;
+    // Current group.
+    const BenchDataset* mDs = nullptr;
+    render::VolumeScene* mScene = nullptr;
+    const render::TransferFunction* mTf = nullptr;
+    const render::TransferFunction* mOtherTf = nullptr;
+    std::string mTfName;
+    render::RenderSettings mSettings;
+    ReferenceImage mRef;
+};
+
+size_t Runner::countRuns() const {
+    size_t perGroup = mOpt.traversals.size() * mOpt.samplers.size() * mBackends.size() + (mOpt.dense ? 1 : 0);
+    size_t perTf = mOpt.modes.size() * perGroup;
+    if (!mOpt.dvrSteps.empty()) perTf += mOpt.dvrSteps.size() + 1;
+    size_t sweep = 0;
+    for (TraversalKind t : mOpt.traversals)
+        if (t == TraversalKind::GridDda || t == TraversalKind::GridBvh) sweep += mOpt.gridSweep.size();
+    perTf += mOpt.modes.empty() ? 0 : sweep;
+    return mOpt.datasets.size() * mOpt.tfs.size() * perTf;
+}
+
+ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfName, const render::TransferFunction& tf,
+                                 Mode mode) {
+    const uint32_t spp = mRes.referenceSpp;
+    render::RenderSettings rs = mSettings;
+    rs.mode = mode;
+    rs.seed = mSettings.seed + 1000003u;  // independent of the timed runs
+    const std::filesystem::path dir = mOpt.outDir / "references";
+    std::filesystem::create_directories(dir);
+    const std::string name = fileTag(ds.tag) + "-" + fileTag(tfName) + "-" + render::modeName(mode);
+    const std::filesystem::path meanFile = dir / (name + ".pfm"), varFile = dir / (name + ".variance.pfm"),
+                                infoFile = dir / (name + ".json");
+    const std::string options = sceneOptions(ds, tfName, mode, rs, mOpt.camera.has_value(), mOpt.fovDegrees) +
+                                " --spp " + std::to_string(spp) +
+                                " --traversal grid-dda --sampler ext-brick --backend sw --grid " + mOpt.grid;
+    const std::string command = mOpt.amrvkPath + " render " + shellQuote(ds.input) + options + " -o " +
+                                shellQuote(meanFile.string());
+    const std::string key = std::filesystem::absolute(ds.input).string() + options;
+    ReferenceInfo info{ds.tag, tfName, render::modeName(mode), meanFile.string(), command, spp, 0, 0, false};
+    ReferenceImage ref;
+    ref.spp = spp;
+    if (std::filesystem::exists(meanFile) && std::filesystem::exists(varFile) && std::filesystem::exists(infoFile)) {
+        std::ifstream in(infoFile);
+        std::stringstream text;
+        text << in.rdbuf();
+        if (text.str().find("\"key\":\"" + jsonEscape(key) + "\"") != std::string::npos) {
+            ref.mean = render::readPfm(meanFile);
+            render::Image var = render::readPfm(varFile);
+            if (ref.mean.width == rs.width && ref.mean.height == rs.height && var.pixels.size() == ref.mean.pixels.size()) {
+                for (const glm::vec4& v : var.pixels) ref.meanVariance.insert(ref.meanVariance.end(), {v.r, v.g, v.b});
+                info.cached = true;
+            }
+        }
+    }
+    if (!info.cached) {
+        tick("reference " + name + " (" + std::to_string(spp) + " spp)");
+        StructureConfig c;
+        c.backend = Backend::Sw;
+        c.grid = mOpt.grid;
+        mScene->configure(c);
+        render::Renderer renderer(mCtx, *mScene);
+        renderer.setTransferFunction(tf);
+        render::RenderOutput out = renderer.render(rs, spp, [&](uint32_t d, uint32_t t) {
+            tick("reference " + name + " " + std::to_string(d) + "/" + std::to_string(t) + " spp");
+        });
+        ref.mean = out.mean;
+        ref.meanVariance = varianceOfMean(out.mean, out.sumSq, out.spp);
+        render::Image var(rs.width, rs.height);
+        for (size_t i = 0; i < var.pixels.size(); ++i)
+            var.pixels[i] = glm::vec4(ref.meanVariance[3 * i], ref.meanVariance[3 * i + 1], ref.meanVariance[3 * i + 2], 1);
+        render::writeImage(meanFile, ref.mean);
+        render::writeImage(varFile, var);
+        info.seconds = out.stats.gpuSeconds;
+        JsonWriter j;
+        j.beginObject().member("key", key).member("command", command).member("spp", spp);
+        j.member("gpuSeconds", out.stats.gpuSeconds).member("device", mCtx.deviceReport().name);
+        j.member("variance", varFile.string()).endObject();
+        writeFileAtomic(infoFile, j.str() + "\n");
+    }
+    double v = 0;
+    for (float x : ref.meanVariance) v += x;
+    info.rmseOfReference = ref.meanVariance.empty() ? 0.0 : std::sqrt(v / double(ref.meanVariance.size()));
+    mRes.references.push_back(info);
+    return ref;
+}
+
+RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep) {
+    RunResult r;
+    r.dataset = mDs->tag;
+    r.tf = mTfName;
+    r.mode = render::modeName(mode);
+    r.kind = kind;
+    r.config = config;
+    r.dvrStep = dvrStep;
+    r.width = mSettings.width;
+    r.height = mSettings.height;
+    r.frames = mOpt.frames;
+    std::string what = r.dataset + " " + r.tf + " " + r.mode + " " + config.label() +
+                       (config.usesGrid() ? " grid " + config.grid : "") +
+                       (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "");
+    tick(what + " (build)");
+    const uint64_t validationBefore = mCtx.validationErrors();
+    try {
+        mScene->configure(config);
+        // Build time of every structure this combination uses, whether built now or kept from an
+        // earlier run (the kd-tree is built per TF: it is part of tfStructureSeconds instead).
+        const auto& bs = mScene->buildSeconds;
+        r.buildSeconds = bs.bricks + (config.usesAbrs() ? bs.abrs : 0.0) +
+                         (config.sampler == SamplerKind::Dense ? bs.dense : bs.samplerBvh) +
+                         (config.usesGrid() ? bs.grid : 0.0) +
+                         (config.traversalUsesBoxes() && config.traversal != TraversalKind::GridBvh &&
+                                  config.traversal != TraversalKind::KdTree
+                              ? bs.domains
+                              : 0.0);
+        if (mScene->grid) {
+            const glm::ivec3 d = mScene->grid->dims;
+            r.gridDims = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+        }
+        for (const auto& hb : mScene->hostBytes()) r.hostBytes.push_back(hb);
+        mCtx.memory().resetPeak();
+        render::Renderer renderer(mCtx, *mScene);
+        renderer.setTransferFunction(*mOtherTf);
+        Timer tfTimer;
+        renderer.setTransferFunction(*mTf);  // the TF edit that is timed
+        r.tfUpdateWallSeconds = tfTimer.seconds();
+        r.majorantSeconds = renderer.majorantSeconds();
+        r.tfStructureSeconds = renderer.structureUpdateSeconds();
+        r.deviceBytesAfterBuild = mCtx.memory().currentBytes();
+        for (const auto& [name, usage] : mCtx.memory().perResource())
+            if (usage.current > 0) r.deviceBytesPerResource.emplace_back(name, usage.current);
+        render::RenderSettings rs = mSettings;
+        rs.mode = mode;
+        rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
+        if (mOpt.warmup > 0) {
+            tick(what + " (warm-up)");
+            renderer.render(rs, mOpt.warmup);
+        }
+        render::RenderOutput out = renderer.render(
+            rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
+            powersOfTwoUpTo(mOpt.frames), [&](const render::RenderOutput& partial) {
+                ImageError e = imageError(partial.mean, mRef);
+                r.curve.push_back({partial.spp, partial.stats.gpuSeconds, e.rmse(), e.relMse});
+            });
+        r.deviceBytesPeak = mCtx.memory().peakBytes();
+        r.gpuSeconds = out.stats.gpuSeconds;
+        const double paths = double(out.stats.paths);
+        const auto& c = out.stats.counters;
+        r.fps = r.gpuSeconds > 0 ? double(mOpt.frames) / r.gpuSeconds : 0;
+        r.mPathsPerSecond = r.gpuSeconds > 0 ? paths / r.gpuSeconds * 1e-6 : 0;
+        r.lookupsPerPath = double(c[shared::kCounterDensityLookups]) / paths;
+        r.stepsPerPath = double(c[shared::kCounterTraversalSteps]) / paths;
+        r.realPerPath = double(c[shared::kCounterRealCollisions]) / paths;
+        const double real = double(c[shared::kCounterRealCollisions]);
+        r.nullPerReal = real > 0 ? double(c[shared::kCounterNullCollisions]) / real : 0;
+        r.violations = c[shared::kCounterMajorantViolations];
+        r.nanSamples = c[shared::kCounterNanSamples];
+        std::vector<double> spp, rmse;
+        for (const ErrorSample& e : r.curve) {
+            spp.push_back(e.spp);
+            rmse.push_back(e.rmse);
+        }
+        r.slope = logLogSlope(spp, rmse);
+        AMRVK_CHECK(mCtx.validationErrors() == validationBefore, "Vulkan validation reported ",
+                    mCtx.validationErrors() - validationBefore, " error(s); last: ", mCtx.lastValidationMessage());
+    } catch (const Error& e) {
+        r.error = e.what();
+    }
+    ++mDone;
+    tick(what + " done");
+    return r;
+}
+
+// Target time and dense cost ratio for the runs of one group (same data set, TF and mode).
+void Runner::finishGroup(size_t first, double target) {
+    double densePerPath = 0;
+    for (size_t i = first; i < mRes.runs.size(); ++i) {
+        const RunResult& r = mRes.runs[i];
+        if (r.kind == "dense" && r.error.empty() && r.mPathsPerSecond > 0) densePerPath = 1.0 / r.mPathsPerSecond;
+    }
+    if (!(target > 0)) {
+        for (size_t i = first; i < mRes.runs.size() && !(target > 0); ++i)
+            if (mRes.runs[i].error.empty() && !mRes.runs[i].curve.empty()) target = 0.5 * mRes.runs[i].curve.front().rmse;
+    }
+    for (size_t i = first; i < mRes.runs.size(); ++i) {
+        RunResult& r = mRes.runs[i];
+        if (!r.error.empty()) continue;
+        r.targetRmse = target;
+        // Time grows in proportion to spp within a run, so the spp slope is the time slope.
+        // Extrapolate only along a convergent slope (biased runs flatten out).
+        r.toTarget = timeToTarget(r.curve, target, r.slope && *r.slope < -0.25 ? *r.slope : 0.0);
+        if (densePerPath > 0 && r.mPathsPerSecond > 0) r.costRatioToDense = (1.0 / r.mPathsPerSecond) / densePerPath;
+    }
+}
+
+BenchResults Runner::run() {
+    mBackends = mOpt.backends;
+    if (mBackends.empty()) {
+        mBackends.push_back(Backend::Sw);
+        if (mCtx.hasRayQuery()) mBackends.push_back(Backend::Rq);
+    }
+    for (Backend b : mBackends)
+        AMRVK_CHECK(b != Backend::Rq || mCtx.hasRayQuery(), "--backends rq: device '", mCtx.deviceReport().name,
+                    "' has no VK_KHR_ray_query");
+    const bool cpu = isCpuDevice(mCtx);
+    mRes.device = mCtx.deviceReport().name;
+    mRes.driver = mCtx.deviceReport().driver;
+    mRes.deviceType = mCtx.deviceReport().type;
+    mRes.commandLine = mOpt.commandLine;
+    {
+        std::time_t now = std::time(nullptr);
+        char buf[32];
+        std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+        mRes.date = buf;
+    }
+    mRes.width = mOpt.width > 0 ? mOpt.width : (cpu ? 256 : 1024);
+    mRes.height = mOpt.height > 0 ? mOpt.height : (cpu ? 256 : 1024);
+    mRes.frames = mOpt.frames;
+    mRes.warmup = mOpt.warmup;
+    mRes.referenceSpp = mOpt.referenceSpp > 0 ? mOpt.referenceSpp : (cpu ? 512 : 4096);
+    mTotal = countRuns();
+
+    for (const BenchDataset& ds : mOpt.datasets) {
+        mDs = &ds;
+        tick("reading " + ds.input);
+        amr::ReadOptions ro;
+        if (!ds.field.empty()) ro.fields = {ds.field};
+        amr::Model model = amr::readModel(ds.input, ro);
+        const amr::Field& field = ds.field.empty() ? model.defaultField() : model.field(ds.field);
+        render::VolumeScene scene = render::makeVolumeScene(model, field);
+        mScene = &scene;
+        const amr::ModelSummary summary = amr::summarize(model);
+        DatasetInfo info{ds.tag, ds.input, field.name, model.cellCount(), summary.maxLevel - summary.minLevel + 1, ""};
+        const glm::i64vec3 size = summary.bounds.size();
+        info.bounds = std::to_string(size.x) + "x" + std::to_string(size.y) + "x" + std::to_string(size.z);
+        mRes.datasets.push_back(info);
+
+        mSettings = mOpt.base;
+        mSettings.width = mRes.width;
+        mSettings.height = mRes.height;
+        if (mOpt.camera) mSettings.camera = *mOpt.camera;
+        else
+            mSettings.camera = render::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)),
+                                                     model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)),
+                                                     mOpt.fovDegrees);
+        for (const std::string& tfName : mOpt.tfs) {
+            const render::TransferFunction tf = render::loadTransferFunction(tfName, scene.valueLo, scene.valueHi);
+            // The timed TF edit comes from another preset, so every majorant really changes.
+            const render::TransferFunction other =
+                render::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", scene.valueLo, scene.valueHi);
+            mTf = &tf;
+            mOtherTf = &other;
+            mTfName = tfName;
+            for (Mode mode : mOpt.modes) {
+                mRef = reference(ds, tfName, tf, mode);
+                const size_t first = mRes.runs.size();
+                for (TraversalKind t : mOpt.traversals)
+                    for (SamplerKind s : mOpt.samplers)
+                        for (Backend b : mBackends) {
+                            StructureConfig c;
+                            c.traversal = t;
+                            c.sampler = s;
+                            c.backend = b;
+                            c.grid = mOpt.grid;
+                            c.kdLeaves = mOpt.kdLeaves;
+                            mRes.runs.push_back(measure("matrix", mode, c, 0));
+                        }
+                if (mOpt.dense) {
+                    StructureConfig c;
+                    c.sampler = SamplerKind::Dense;
+                    c.backend = Backend::Sw;
+                    c.grid = mOpt.grid;
+                    c.denseMaxBytes = mOpt.denseMaxBytes;
+                    mRes.runs.push_back(measure("dense", mode, c, 0));
+                }
+                if (mode == mOpt.modes.front()) {
+                    for (TraversalKind t : {TraversalKind::GridDda, TraversalKind::GridBvh}) {
+                        if (std::find(mOpt.traversals.begin(), mOpt.traversals.end(), t) == mOpt.traversals.end()) continue;
+                        for (const std::string& g : mOpt.gridSweep) {
+                            StructureConfig c;
+                            c.traversal = t;
+                            c.backend = Backend::Sw;
+                            c.grid = g;
+                            mRes.runs.push_back(measure("grid-sweep", mode, c, 0));
+                        }
+                    }
+                }
+                finishGroup(first, mOpt.targetRmse);
+                if (mOpt.autoSelect) {
+                    AutoResult a;
+                    a.dataset = ds.tag;
+                    a.tf = tfName;
+                    a.mode = render::modeName(mode);
+                    render::RenderSettings rs = mSettings;
+                    rs.mode = mode;
+                    AutoConstraints constraints;
+                    if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
+                    a.choice = autoSelect(mCtx, scene, tf, rs, constraints, {},
+                                          [&](const std::string& p) { tick("auto probe " + p); });
+                    // The pick's efficiency from the timed runs (a matching matrix or sweep run, else timed now).
+                    const RunResult* pick = nullptr;
+                    const RunResult* best = nullptr;
+                    for (size_t i = first; i < mRes.runs.size(); ++i) {
+                        const RunResult& r = mRes.runs[i];
+                        if (r.kind == "dense" || !r.error.empty()) continue;
+                        if (!best || efficiency(r) > efficiency(*best)) best = &r;
+                        const bool same = r.config.traversal == a.choice.config.traversal &&
+                                          r.config.sampler == a.choice.config.sampler &&
+                                          r.config.backend == a.choice.config.backend &&
+                                          (!r.config.usesGrid() || r.config.grid == a.choice.config.grid);
+                        if (same && !pick) pick = &r;
+                    }
+                    if (!pick) {
+                        ++mTotal;
+                        mRes.runs.push_back(measure("auto", mode, a.choice.config, 0));
+                        finishGroup(mRes.runs.size() - 1, mRes.runs[first].targetRmse);
+                        pick = &mRes.runs.back();
+                        best = nullptr;
+                        for (size_t i = first; i < mRes.runs.size(); ++i) {
+                            const RunResult& r = mRes.runs[i];
+                            if (r.kind == "dense" || !r.error.empty()) continue;
+                            if (!best || efficiency(r) > efficiency(*best)) best = &r;
+                        }
+                    }
+                    a.pickEfficiency = efficiency(*pick);
+                    a.pickFps = pick->fps;
+                    if (best) {
+                        a.bestLabel = best->config.label() + (best->config.usesGrid() ? " grid " + best->config.grid : "");
+                        a.bestEfficiency = efficiency(*best);
+                        a.bestFps = best->fps;
+                    }
+                    mRes.autos.push_back(a);
+                }
+            }
+            if (!mOpt.dvrSteps.empty()) {
+                // The ray-marching baseline against the ae reference, next to unbiased ae tracking.
+                mRef = reference(ds, tfName, tf, Mode::Ae);
+                const size_t first = mRes.runs.size();
+                StructureConfig c;
+                c.backend = Backend::Sw;
+                c.grid = mOpt.grid;
+                mRes.runs.push_back(measure("pt-ae", Mode::Ae, c, 0));
+                for (double dt : mOpt.dvrSteps) mRes.runs.push_back(measure("dvr", Mode::Dvr, c, dt));
+                finishGroup(first, mOpt.targetRmse);
+            }
+        }
+        mScene = nullptr;
+    }
+    return mRes;
+}
+
+}  // namespace
+
+BenchResults runBench(gpu::Context& ctx, const BenchOptions& options, const BenchProgress& progress) {
+    AMRVK_CHECK(!options.datasets.empty(), "bench: no input data set");
+    AMRVK_CHECK(options.frames >= 2, "--frames ", options.frames, " must be at least 2");
+    Runner runner(ctx, options, progress);
+    return runner.run();
+}
+
+}  // namespace amrvk::bench

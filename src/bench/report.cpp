@@ -1,0 +1,429 @@
+#include "bench/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "bench/plot.h"
+#include "core/file_io.h"
+#include "core/json.h"
+
+namespace amrvk::bench {
+
+namespace {
+
+std::string num(double v, int digits = 3) {
+    if (!std::isfinite(v)) return "";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+std::string runLabel(const RunResult& r) {
+    std::string s = r.config.label();
+    if (r.kind == "grid-sweep" || r.kind == "auto") s += " grid " + r.config.grid;
+    if (r.kind == "dvr") s = "dvr dt " + num(r.dvrStep) + " (" + r.config.label() + ")";
+    if (r.kind == "pt-ae") s = "ae tracking (" + r.config.label() + ")";
+    return s;
+}
+
+double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
+
+std::string fileTag(const std::string& s) {
+    std::string out;
+    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return out;
+}
+
+void writeRun(JsonWriter& j, const RunResult& r) {
+    j.beginObject();
+    j.member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("kind", r.kind);
+    j.member("traversal", render::traversalName(r.config.traversal)).member("sampler", render::samplerName(r.config.sampler));
+    j.member("backend", render::backendName(r.config.backend)).member("grid", r.config.grid);
+    j.member("gridDims", r.gridDims).member("kdLeaves", r.config.kdLeaves);
+    if (r.kind == "dvr") j.member("dt", r.dvrStep);
+    j.member("width", r.width).member("height", r.height).member("frames", r.frames);
+    if (!r.error.empty()) {
+        j.member("error", r.error).endObject();
+        return;
+    }
+    j.member("gpuSeconds", r.gpuSeconds).member("fps", r.fps).member("mPathsPerSecond", r.mPathsPerSecond);
+    j.member("lookupsPerPath", r.lookupsPerPath).member("stepsPerPath", r.stepsPerPath);
+    j.member("realCollisionsPerPath", r.realPerPath).member("nullPerRealCollision", r.nullPerReal);
+    j.member("majorantViolations", r.violations).member("nanSamples", r.nanSamples);
+    j.member("structureBuildSeconds", r.buildSeconds).member("majorantUpdateSeconds", r.majorantSeconds);
+    j.member("tfStructureUpdateSeconds", r.tfStructureSeconds).member("tfUpdateWallSeconds", r.tfUpdateWallSeconds);
+    j.member("deviceBytesAfterBuild", r.deviceBytesAfterBuild).member("deviceBytesPeak", r.deviceBytesPeak);
+    j.key("deviceBytesPerResource").beginObject();
+    for (const auto& [name, bytes] : r.deviceBytesPerResource) j.member(name, bytes);
+    j.endObject();
+    j.key("hostBytesPerStructure").beginObject();
+    for (const auto& [name, bytes] : r.hostBytes) j.member(name, bytes);
+    j.endObject();
+    j.key("error").beginArray();
+    for (const ErrorSample& e : r.curve)
+        j.beginObject().member("spp", e.spp).member("seconds", e.seconds).member("rmse", e.rmse).member("relMse", e.relMse).endObject();
+    j.endArray();
+    if (r.slope) j.member("slope", *r.slope);
+    else j.key("slope").null();
+    j.member("targetRmse", r.targetRmse);
+    if (r.toTarget) j.member("secondsToTarget", r.toTarget->seconds).member("toTargetExtrapolated", r.toTarget->extrapolated);
+    else j.key("secondsToTarget").null();
+    if (r.costRatioToDense > 0) j.member("costRatioToDense", r.costRatioToDense);
+    j.endObject();
+}
+
+// Runs of one kind and mode, keyed by row label and column (data set x TF).
+struct Table {
+    std::vector<std::string> rows, cols;
+    std::map<std::pair<std::string, std::string>, const RunResult*> cells;
+};
+
+Table matrixTable(const BenchResults& res, const std::string& mode) {
+    Table t;
+    for (const RunResult& r : res.runs) {
+        if ((r.kind != "matrix" && r.kind != "dense") || r.mode != mode) continue;
+        const std::string row = r.config.label(), col = r.dataset + " " + r.tf;
+        if (std::find(t.rows.begin(), t.rows.end(), row) == t.rows.end()) t.rows.push_back(row);
+        if (std::find(t.cols.begin(), t.cols.end(), col) == t.cols.end()) t.cols.push_back(col);
+        t.cells[{row, col}] = &r;
+    }
+    return t;
+}
+
+// Markdown table, value(run) per cell; larger is better when `higherBetter`. Marks the best three
+// (bold, with rank) and the worst (italic, "worst") per column, among the matrix runs.
+std::string markdownTable(const Table& t, const std::function<double(const RunResult&)>& value, bool higherBetter,
+                          const std::function<std::string(double)>& show) {
+    std::string md = "| traversal / sampler / back-end |";
+    for (const auto& c : t.cols) md += " " + c + " |";
+    md += "\n|---|";
+    for (size_t i = 0; i < t.cols.size(); ++i) md += "---:|";
+    md += "\n";
+    std::map<std::pair<std::string, std::string>, std::string> marks;
+    for (const auto& col : t.cols) {
+        std::vector<std::pair<double, std::string>> vals;
+        for (const auto& row : t.rows) {
+            auto it = t.cells.find({row, col});
+            if (it == t.cells.end() || !it->second->error.empty() || it->second->kind != "matrix") continue;
+            const double v = value(*it->second);
+            if (std::isfinite(v) && v > 0) vals.emplace_back(v, row);
+        }
+        std::sort(vals.begin(), vals.end(), [&](const auto& a, const auto& b) { return higherBetter ? a.first > b.first : a.first < b.first; });
+        for (size_t k = 0; k < vals.size() && k < 3; ++k) marks[{vals[k].second, col}] = "best " + std::to_string(k + 1);
+        if (vals.size() > 3) marks[{vals.back().second, col}] = "worst";
+    }
+    for (const auto& row : t.rows) {
+        md += "| " + row + " |";
+        for (const auto& col : t.cols) {
+            auto it = t.cells.find({row, col});
+            std::string cell;
+            if (it == t.cells.end()) cell = "";
+            else if (!it->second->error.empty()) cell = "failed";
+            else {
+                const double v = value(*it->second);
+                cell = std::isfinite(v) && v > 0 ? show(v) : "n/a";
+                auto m = marks.find({row, col});
+                if (m != marks.end())
+                    cell = m->second == "worst" ? "_" + cell + "_ (worst)" : "**" + cell + "** (" + m->second + ")";
+            }
+            md += " " + cell + " |";
+        }
+        md += "\n";
+    }
+    return md;
+}
+
+std::vector<std::string> modesOf(const BenchResults& res) {
+    std::vector<std::string> modes;
+    for (const RunResult& r : res.runs)
+        if (r.kind == "matrix" && std::find(modes.begin(), modes.end(), r.mode) == modes.end()) modes.push_back(r.mode);
+    return modes;
+}
+
+}  // namespace
+
+std::string resultsJson(const BenchResults& res) {
+    JsonWriter j;
+    j.beginObject();
+    j.member("device", res.device).member("driver", res.driver).member("deviceType", res.deviceType);
+    j.member("commandLine", res.commandLine).member("date", res.date);
+    j.member("width", res.width).member("height", res.height).member("frames", res.frames).member("warmupFrames", res.warmup);
+    j.member("referenceSpp", res.referenceSpp).member("samplesPerFrame", 1);
+    j.key("datasets").beginArray();
+    for (const DatasetInfo& d : res.datasets)
+        j.beginObject().member("tag", d.tag).member("input", d.input).member("field", d.field).member("cells", d.cells)
+            .member("levels", d.levels).member("bounds", d.bounds).endObject();
+    j.endArray();
+    j.key("references").beginArray();
+    for (const ReferenceInfo& r : res.references)
+        j.beginObject().member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("file", r.file)
+            .member("command", r.command).member("spp", r.spp).member("gpuSeconds", r.seconds)
+            .member("rmseOfReference", r.rmseOfReference).member("cached", r.cached).endObject();
+    j.endArray();
+    j.key("runs").beginArray();
+    for (const RunResult& r : res.runs) writeRun(j, r);
+    j.endArray();
+    j.key("auto").beginArray();
+    for (const AutoResult& a : res.autos) {
+        j.beginObject().member("dataset", a.dataset).member("tf", a.tf).member("mode", a.mode);
+        j.member("pick", a.choice.config.label()).member("pickGrid", a.choice.config.grid);
+        j.member("probeSeconds", a.choice.seconds).member("probes", uint64_t(a.choice.probes.size()));
+        j.member("pickEfficiency", a.pickEfficiency).member("bestEfficiency", a.bestEfficiency);
+        j.member("efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0);
+        j.member("pickFps", a.pickFps).member("best", a.bestLabel).member("bestFps", a.bestFps);
+        j.key("probeDetails").beginArray();
+        for (const AutoProbe& p : a.choice.probes)
+            j.beginObject().member("config", p.config.label()).member("grid", p.config.grid)
+                .member("secondsPerSpp", p.secondsPerSpp).member("variance", p.variance)
+                .member("efficiency", p.efficiency).member("wallSeconds", p.wallSeconds).member("note", p.note).endObject();
+        j.endArray();
+        j.endObject();
+    }
+    j.endArray();
+    j.endObject();
+    return j.str() + "\n";
+}
+
+std::string resultsCsv(const BenchResults& res) {
+    std::string csv =
+        "dataset,tf,mode,kind,traversal,sampler,backend,grid,grid_dims,dt,width,height,frames,fps,mpaths_per_s,"
+        "lookups_per_path,steps_per_path,real_per_path,null_per_real,violations,build_s,majorant_update_s,"
+        "tf_structure_s,device_mib_after_build,device_mib_peak,final_spp,final_rmse,final_relmse,slope,target_rmse,"
+        "seconds_to_target,extrapolated,cost_ratio_to_dense,error\n";
+    for (const RunResult& r : res.runs) {
+        std::string err = r.error;
+        std::replace(err.begin(), err.end(), ',', ';');
+        std::replace(err.begin(), err.end(), '"', '\'');
+        csv += r.dataset + "," + r.tf + "," + r.mode + "," + r.kind + "," + render::traversalName(r.config.traversal) + "," +
+               render::samplerName(r.config.sampler) + "," + render::backendName(r.config.backend) + "," + r.config.grid +
+               "," + r.gridDims + "," + (r.kind == "dvr" ? num(r.dvrStep) : "") + "," + std::to_string(r.width) + "," +
+               std::to_string(r.height) + "," + std::to_string(r.frames) + ",";
+        if (r.error.empty()) {
+            const ErrorSample last = r.curve.empty() ? ErrorSample{} : r.curve.back();
+            csv += num(r.fps, 6) + "," + num(r.mPathsPerSecond, 6) + "," + num(r.lookupsPerPath, 6) + "," +
+                   num(r.stepsPerPath, 6) + "," + num(r.realPerPath, 6) + "," + num(r.nullPerReal, 6) + "," +
+                   std::to_string(r.violations) + "," + num(r.buildSeconds, 6) + "," + num(r.majorantSeconds, 6) + "," +
+                   num(r.tfStructureSeconds, 6) + "," + num(mib(r.deviceBytesAfterBuild), 6) + "," +
+                   num(mib(r.deviceBytesPeak), 6) + "," + std::to_string(last.spp) + "," + num(last.rmse, 6) + "," +
+                   num(last.relMse, 6) + "," + (r.slope ? num(*r.slope, 4) : "") + "," + num(r.targetRmse, 6) + "," +
+                   (r.toTarget ? num(r.toTarget->seconds, 6) : "") + "," +
+                   (r.toTarget ? (r.toTarget->extrapolated ? "1" : "0") : "") + "," +
+                   (r.costRatioToDense > 0 ? num(r.costRatioToDense, 4) : "") + ",\n";
+        } else {
+            csv += ",,,,,,,,,,,,,,,,,,,,\"" + err + "\"\n";
+        }
+    }
+    return csv;
+}
+
+std::vector<std::string> writePlots(const BenchResults& res, const std::filesystem::path& dir) {
+    std::vector<std::string> files;
+    // Speed against error per (data set, TF, mode): matrix + dense + auto, and dvr against ae tracking.
+    std::vector<std::tuple<std::string, std::string, std::string, bool>> groups;
+    for (const RunResult& r : res.runs) {
+        const bool dvr = r.kind == "dvr" || r.kind == "pt-ae";
+        if (r.kind == "grid-sweep") continue;
+        auto g = std::make_tuple(r.dataset, r.tf, dvr ? std::string("dvr") : r.mode, dvr);
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+    }
+    for (const auto& [ds, tf, mode, dvr] : groups) {
+        LinePlot p;
+        p.title = ds + ", TF " + tf + ", " + (dvr ? "dvr (step sizes) vs ae tracking" : "mode " + mode) +
+                  ": RMSE vs GPU time, " + std::to_string(res.width) + "x" + std::to_string(res.height);
+        p.xLabel = "GPU seconds";
+        p.yLabel = "RMSE";
+        p.logX = p.logY = true;
+        double t0 = 0, e0 = 0;
+        for (const RunResult& r : res.runs) {
+            const bool inGroup = r.dataset == ds && r.tf == tf && r.kind != "grid-sweep" &&
+                                 (dvr ? (r.kind == "dvr" || r.kind == "pt-ae") : (r.kind != "dvr" && r.kind != "pt-ae" && r.mode == mode));
+            if (!inGroup || !r.error.empty() || r.curve.empty()) continue;
+            PlotSeries s;
+            s.label = runLabel(r);
+            for (const ErrorSample& e : r.curve) {
+                s.x.push_back(e.seconds);
+                s.y.push_back(e.rmse);
+            }
+            if (r.kind == "dense") s.style = LineStyle::Dashed;
+            if (t0 == 0 && r.curve.front().seconds > 0) {
+                t0 = r.curve.front().seconds;
+                e0 = r.curve.front().rmse;
+            }
+            p.series.push_back(std::move(s));
+        }
+        if (p.series.empty()) continue;
+        if (t0 > 0 && e0 > 0) {  // the N^-1/2 guide through the first run's first point
+            PlotSeries guide;
+            guide.label = "slope -1/2";
+            guide.x = {t0, t0 * 1000};
+            guide.y = {e0, e0 / std::sqrt(1000.0)};
+            guide.style = LineStyle::Dashed;
+            guide.markers = false;
+            guide.color = Rgb8{120, 120, 120};
+            p.series.push_back(guide);
+        }
+        const std::string name = "error_" + fileTag(ds) + "_" + fileTag(tf) + "_" + fileTag(mode) + ".png";
+        writeLinePlot(dir / name, p);
+        files.push_back(name);
+    }
+    // Frames/s against macrocell resolution.
+    std::set<std::pair<std::string, std::string>> sweeps;
+    for (const RunResult& r : res.runs)
+        if (r.kind == "grid-sweep") sweeps.insert({r.dataset, r.tf});
+    for (const auto& [ds, tf] : sweeps) {
+        LinePlot p;
+        p.title = ds + ", TF " + tf + ": frames/s vs macrocells on the longest axis";
+        p.xLabel = "macrocells (longest axis)";
+        p.yLabel = "frames/s";
+        p.logX = true;
+        for (const char* t : {"grid-dda", "grid-bvh"}) {
+            PlotSeries s;
+            s.label = t;
+            for (const RunResult& r : res.runs)
+                if (r.kind == "grid-sweep" && r.dataset == ds && r.tf == tf && r.error.empty() &&
+                    render::traversalName(r.config.traversal) == std::string(t)) {
+                    s.x.push_back(std::atof(r.config.grid.c_str()));
+                    s.y.push_back(r.fps);
+                }
+            if (!s.x.empty()) p.series.push_back(s);
+        }
+        const std::string name = "grid_sweep_" + fileTag(ds) + "_" + fileTag(tf) + ".png";
+        writeLinePlot(dir / name, p);
+        files.push_back(name);
+    }
+    // Device memory per combination (first TF and mode of each data set).
+    std::vector<std::string> datasets;
+    for (const RunResult& r : res.runs)
+        if (std::find(datasets.begin(), datasets.end(), r.dataset) == datasets.end()) datasets.push_back(r.dataset);
+    for (const std::string& ds : datasets) {
+        BarChart c;
+        c.title = ds + ": device memory per structure combination";
+        c.yLabel = "MiB";
+        c.logY = true;
+        c.categories = {"after build", "peak while rendering"};
+        std::string tf0, mode0;
+        for (const RunResult& r : res.runs) {
+            if (r.dataset != ds || (r.kind != "matrix" && r.kind != "dense") || !r.error.empty()) continue;
+            if (tf0.empty()) {
+                tf0 = r.tf;
+                mode0 = r.mode;
+            }
+            if (r.tf != tf0 || r.mode != mode0) continue;
+            c.groups.push_back({r.config.label(), {mib(r.deviceBytesAfterBuild), mib(r.deviceBytesPeak)}});
+        }
+        if (c.groups.empty()) continue;
+        const std::string name = "memory_" + fileTag(ds) + ".png";
+        writeBarChart(dir / name, c);
+        files.push_back(name);
+    }
+    return files;
+}
+
+std::string resultsMarkdown(const BenchResults& res, const std::vector<std::string>& plots) {
+    std::string md = "# amrvk bench results\n\n";
+    md += "- device: " + res.device + " (" + res.deviceType + ", driver " + res.driver + ")\n";
+    md += "- command: `" + res.commandLine + "`\n";
+    md += "- date: " + res.date + "\n";
+    md += "- protocol: " + std::to_string(res.width) + "x" + std::to_string(res.height) + ", 1 spp per frame, " +
+          std::to_string(res.warmup) + " warm-up frames, " + std::to_string(res.frames) +
+          " timed frames (GPU timer); references " + std::to_string(res.referenceSpp) + " spp\n";
+    md += "- data sets:";
+    for (const DatasetInfo& d : res.datasets)
+        md += " " + d.tag + " (" + d.input + ", field " + d.field + ", " + std::to_string(d.cells) + " cells, " +
+              std::to_string(d.levels) + " levels, " + d.bounds + ");";
+    md += "\n\n";
+    for (const std::string& mode : modesOf(res)) {
+        Table t = matrixTable(res, mode);
+        md += "## Frames/s, mode " + mode + "\n\nBest three in bold with their rank, the worst in italics (per column).\n\n";
+        md += markdownTable(t, [](const RunResult& r) { return r.fps; }, true, [](double v) { return num(v, 3); });
+        md += "\n## Seconds to the target RMSE, mode " + mode +
+              "\n\nGPU seconds until the RMSE against the reference falls below the group's target (`~`: "
+              "extrapolated along the measured slope; n/a: not reached).\n\n";
+        md += markdownTable(
+            t, [](const RunResult& r) { return r.toTarget ? r.toTarget->seconds : 0.0; }, false, [](double v) { return num(v, 3); });
+        md += "\n## Per-path figures, mode " + mode + "\n\n";
+        md += "| data set | TF | combination | M paths/s | lookups/path | steps/path | null/real | violations | build s | "
+              "TF edit s (GPU + host) | MiB after build / peak | final RMSE | slope | x dense cost |\n";
+        md += "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const RunResult& r : res.runs) {
+            if ((r.kind != "matrix" && r.kind != "dense" && r.kind != "auto") || r.mode != mode) continue;
+            md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | ";
+            if (!r.error.empty()) {
+                md += "failed: " + r.error + " |||||||||||\n";
+                continue;
+            }
+            md += num(r.mPathsPerSecond) + " | " + num(r.lookupsPerPath) + " | " + num(r.stepsPerPath) + " | " +
+                  num(r.nullPerReal) + " | " + std::to_string(r.violations) + " | " + num(r.buildSeconds) + " | " +
+                  num(r.majorantSeconds) + " + " + num(r.tfStructureSeconds) + " | " + num(mib(r.deviceBytesAfterBuild)) +
+                  " / " + num(mib(r.deviceBytesPeak)) + " | " + (r.curve.empty() ? "" : num(r.curve.back().rmse)) +
+                  " | " + (r.slope ? num(*r.slope, 3) : "") + " | " +
+                  (r.costRatioToDense > 0 ? num(r.costRatioToDense, 3) : "") + " |\n";
+        }
+        md += "\n";
+    }
+    bool anyDvr = false;
+    for (const RunResult& r : res.runs) anyDvr |= r.kind == "dvr";
+    if (anyDvr) {
+        md += "## Ray marching (dvr) against unbiased ae tracking\n\nRMSE against the ae reference; dvr's error stops "
+              "falling at its step-size bias.\n\n| data set | TF | run | frames/s | lookups/path | final RMSE | slope | "
+              "seconds to target |\n|---|---|---|---:|---:|---:|---:|---:|\n";
+        for (const RunResult& r : res.runs) {
+            if (r.kind != "dvr" && r.kind != "pt-ae") continue;
+            md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | ";
+            if (!r.error.empty()) {
+                md += "failed: " + r.error + " ||||\n";
+                continue;
+            }
+            md += num(r.fps) + " | " + num(r.lookupsPerPath) + " | " + (r.curve.empty() ? "" : num(r.curve.back().rmse)) +
+                  " | " + (r.slope ? num(*r.slope, 3) : "") + " | " +
+                  (r.toTarget ? (r.toTarget->extrapolated ? "~" : "") + num(r.toTarget->seconds) : "n/a") + " |\n";
+        }
+        md += "\n";
+    }
+    bool anySweep = false;
+    for (const RunResult& r : res.runs) anySweep |= r.kind == "grid-sweep";
+    if (anySweep) {
+        md += "## Grid sweep (frames/s against macrocell resolution)\n\n| data set | TF | traversal | grid | macrocells | "
+              "frames/s | steps/path | null/real |\n|---|---|---|---:|---|---:|---:|---:|\n";
+        for (const RunResult& r : res.runs) {
+            if (r.kind != "grid-sweep") continue;
+            md += "| " + r.dataset + " | " + r.tf + " | " + render::traversalName(r.config.traversal) + " | " + r.config.grid +
+                  " | " + r.gridDims + " | " + (r.error.empty() ? num(r.fps) : "failed") + " | " + num(r.stepsPerPath) +
+                  " | " + num(r.nullPerReal) + " |\n";
+        }
+        md += "\n";
+    }
+    if (!res.autos.empty()) {
+        md += "## --auto\n\nPick from short probes against the best measured combination; efficiency = 1 / (final MSE x "
+              "GPU seconds).\n\n| data set | TF | mode | pick | probe s | best measured | pick / best efficiency | pick / "
+              "best frames/s |\n|---|---|---|---|---:|---|---:|---:|\n";
+        for (const AutoResult& a : res.autos)
+            md += "| " + a.dataset + " | " + a.tf + " | " + a.mode + " | " + a.choice.config.label() + " grid " +
+                  a.choice.config.grid + " | " + num(a.choice.seconds) + " | " + a.bestLabel + " | " +
+                  (a.bestEfficiency > 0 ? num(a.pickEfficiency / a.bestEfficiency) : "") + " | " +
+                  (a.bestFps > 0 ? num(a.pickFps / a.bestFps) : "") + " |\n";
+        md += "\n";
+    }
+    md += "## References\n\n| data set | TF | mode | spp | own RMSE | cached | command |\n|---|---|---|---:|---:|---|---|\n";
+    for (const ReferenceInfo& r : res.references)
+        md += "| " + r.dataset + " | " + r.tf + " | " + r.mode + " | " + std::to_string(r.spp) + " | " +
+              num(r.rmseOfReference) + " | " + (r.cached ? "yes" : "no") + " | `" + r.command + "` |\n";
+    if (!plots.empty()) {
+        md += "\n## Plots\n\n";
+        for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n";
+    }
+    return md;
+}
+
+void writeReports(const BenchResults& results, const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    writeFileAtomic(dir / "results.json", resultsJson(results));
+    writeFileAtomic(dir / "results.csv", resultsCsv(results));
+    const std::vector<std::string> plots = writePlots(results, dir);
+    writeFileAtomic(dir / "results.md", resultsMarkdown(results, plots));
+}
+
+}  // namespace amrvk::bench
