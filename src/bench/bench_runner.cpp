@@ -42,13 +42,14 @@ std::string shellQuote(const std::string& s) {
 
 // Options shared by the reference command line and the cache key.
 std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const render::RenderSettings& rs,
-                         bool explicitCamera, double fov) {
+                         bool explicitCamera, double fov, const std::optional<std::pair<float, float>>& tfRange) {
     std::string s;
     if (!ds.field.empty()) s += " --field " + shellQuote(ds.field);
     s += " --tf " + shellQuote(tf) + " --mode " + render::modeName(mode);
     s += " --size " + std::to_string(rs.width) + "x" + std::to_string(rs.height);
     s += " --seed " + std::to_string(rs.seed);
     if (rs.densityScale != 1.0) s += " --density-scale " + fmt(rs.densityScale);
+    if (tfRange) s += " --tf-range " + fmt(tfRange->first) + " " + fmt(tfRange->second);
     if (rs.g != 0.0) s += " --g " + fmt(rs.g);
     s += " --ambient " + vecText(rs.ambient);
     if (rs.background) s += " --background " + vecText(*rs.background);
@@ -135,7 +136,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     const std::string name = fileTag(ds.tag) + "-" + fileTag(tfName) + "-" + render::modeName(mode);
     const std::filesystem::path meanFile = dir / (name + ".pfm"), varFile = dir / (name + ".variance.pfm"),
                                 infoFile = dir / (name + ".json");
-    const std::string options = sceneOptions(ds, tfName, mode, rs, mOpt.camera.has_value(), mOpt.fovDegrees) +
+    const std::string options = sceneOptions(ds, tfName, mode, rs, mOpt.camera.has_value(), mOpt.fovDegrees, mOpt.tfRange) +
                                 " --spp " + std::to_string(spp) +
                                 " --traversal grid-dda --sampler ext-brick --backend sw --grid " + mOpt.grid;
     const std::string command = mOpt.amrvkPath + " render " + shellQuote(ds.input) + options + " -o " +
@@ -348,10 +349,13 @@ BenchResults Runner::run() {
                                                      model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)),
                                                      mOpt.fovDegrees);
         for (const std::string& tfName : mOpt.tfs) {
-            const render::TransferFunction tf = render::loadTransferFunction(tfName, scene.valueLo, scene.valueHi);
+            const float lo = mOpt.tfRange ? mOpt.tfRange->first : scene.valueLo;
+            const float hi = mOpt.tfRange ? mOpt.tfRange->second : scene.valueHi;
+            render::TransferFunction tf = render::loadTransferFunction(tfName, lo, hi);
+            if (mOpt.tfRange) tf = tf.rescaled(lo, hi);
             // The timed TF edit comes from another preset, so every majorant really changes.
             const render::TransferFunction other =
-                render::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", scene.valueLo, scene.valueHi);
+                render::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", lo, hi);
             mTf = &tf;
             mOtherTf = &other;
             mTfName = tfName;

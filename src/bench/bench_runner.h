@@ -30,6 +30,7 @@ struct BenchDataset {
 struct BenchOptions {
     std::vector<BenchDataset> datasets;
     std::vector<std::string> tfs = {"spiky", "foggy"};  // presets or files
+    std::optional<std::pair<float, float>> tfRange;       // map every TF onto [lo, hi] (default: the field's range)
     std::vector<render::Mode> modes = {render::Mode::Ms};  // unbiased modes of the matrix
     std::vector<render::TraversalKind> traversals = render::allTraversals();
     std::vector<render::SamplerKind> samplers = render::allSamplers();

@@ -81,6 +81,7 @@ int runBench(const std::vector<std::string>& argv) {
     std::vector<OptionSpec> specs = {
         {"output", 1, "DIR", "output directory (created; references are cached in DIR/references)"},
         {"tfs", 1, "LIST", "TF presets or files, comma-separated (default spiky,foggy)"},
+        {"tf-range", 2, "LO HI", "map every TF onto [LO, HI] (default: each field's range)"},
         {"modes", 1, "LIST", "unbiased modes of the matrix: ae,ss,ms (default ms)"},
         {"traversals", 1, "LIST", "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)"},
         {"samplers", 1, "LIST", "subset of ext-brick,abr (default both)"},
@@ -135,6 +136,12 @@ int runBench(const std::vector<std::string>& argv) {
     }
     if (args.has("tfs")) o.tfs = splitList(args.get("tfs"));
     AMRVK_CHECK(!o.tfs.empty(), "--tfs: empty list");
+    if (args.has("tf-range")) {
+        auto v = args.values("tf-range");
+        const float lo = float(parseDouble("--tf-range", v[0])), hi = float(parseDouble("--tf-range", v[1]));
+        AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
+        o.tfRange = std::make_pair(lo, hi);
+    }
     if (args.has("modes")) {
         o.modes.clear();
         for (const auto& m : splitList(args.get("modes"))) {

@@ -37,6 +37,17 @@ done
 "$amrvk" render "$sample" "${common[@]}" --mode ss --shader-dir "$src/shaders/passes" -o "$dir/s.pfm" >/dev/null || fail=1
 check test -s "$dir/s.pfm"
 "$amrvk" devices | grep -q "^0: " || { echo "FAIL: amrvk devices lists no device"; fail=1; }
+# The dvr baseline (with gradient shading), the dense sampler, and the automatic structure choice.
+"$amrvk" render "$sample" "${common[@]}" --mode dvr --dt 0.25 --dvr-shading --light-dir 1 0 0 1 1 1 \
+  -o "$dir/d.pfm" --json "$dir/d.json" >/dev/null || fail=1
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["mode"] == "dvr" and j["densityLookups"] > 0, j' "$dir/d.json"
+"$amrvk" render "$sample" "${common[@]}" --sampler dense --traversal grid-bvh --backend sw -o "$dir/n.pfm" \
+  --json "$dir/n.json" >/dev/null || fail=1
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sampler"] == "dense" and j["majorantViolations"] == 0 and j["hostMemoryPerStructure"]["denseGrid"] > 0 and "denseGrid" in j["deviceMemoryPerResource"] and "bricks" not in j["deviceMemoryPerResource"], j' "$dir/n.json"
+"$amrvk" render "$sample" "${common[@]}" --traversal auto --sampler abr --backend sw -o "$dir/auto.png" \
+  --json "$dir/auto.json" >/dev/null 2>"$dir/auto.err" || fail=1
+check grep -q "traversal auto picked .*/abr/sw" "$dir/auto.err"
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sampler"] == "abr" and j["backend"] == "sw" and j["traversal"] in ("grid-dda","grid-bvh","abr","brick","ext-brick","kdtree"), j' "$dir/auto.json"
 
 expect() {  # expect FRAGMENT -- ARGS...
   local frag="$1"; shift 2
@@ -53,6 +64,9 @@ expect "--traversal 'octree'" -- render "$sample" "${common[@]}" --traversal oct
 expect "--backend 'cuda'" -- render "$sample" "${common[@]}" --backend cuda -o "$dir/x.png"
 expect "--kd-leaves 0" -- render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 0 -o "$dir/x.png"
 expect "no such device" -- render "$sample" "${common[@]}" --device 99 -o "$dir/x.png"
+expect "--dt 0" -- render "$sample" "${common[@]}" --mode dvr --dt 0 -o "$dir/x.png"
+expect "--sampler dense needs --traversal grid-dda or grid-bvh" -- render "$sample" "${common[@]}" --sampler dense --traversal abr -o "$dir/x.png"
+expect "--dense-max-mib" -- render "$sample" "${common[@]}" --sampler dense --dense-max-mib 0 -o "$dir/x.png"
 expect "cannot write" -- render "$sample" "${common[@]}" -o "$dir/missing-dir/x.png"
 check test ! -e "$dir/x.png"
 check test ! -e "$dir/x.bmp"

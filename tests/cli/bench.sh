@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Usage: bench.sh AMRVK SOURCE_DIR SCRATCH. `amrvk bench` end to end on the bundled sample at a tiny
+# size: the reports exist with their keys, the reference is cached with its command, and bad
+# options give one-line errors. (tests/gpu/bench_gpu_test.cpp checks the figures themselves.)
+set -u
+amrvk="$1"; src="$2"; dir="$3"
+rm -rf "$dir"; mkdir -p "$dir"
+sample="$src/assets/samples/cloud.cells"
+fail=0
+check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
+
+tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --traversals grid-dda,abr
+      --samplers ext-brick --backends sw --dvr-steps 1 --grid-sweep 8 --modes ae)
+"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" >"$dir/stdout.txt" || fail=1
+check grep -q "results" "$dir/stdout.txt"
+for f in results.json results.csv results.md error_cloud.cells_foggy_ae.png error_cloud.cells_foggy_dvr.png \
+         grid_sweep_cloud.cells_foggy.png memory_cloud.cells.png; do
+  check test -s "$dir/out/$f"
+done
+check python3 - "$dir/out/results.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["width"] == 16 and j["frames"] == 8 and j["referenceSpp"] == 32, j
+kinds = sorted(r["kind"] for r in j["runs"])
+assert kinds == ["dense", "dvr", "grid-sweep", "matrix", "matrix", "pt-ae"], kinds
+for r in j["runs"]:
+    assert "error" in r and isinstance(r["error"], list) and len(r["error"]) == 4, r   # 1, 2, 4, 8 spp
+    assert r["majorantViolations"] == 0, r
+ref = j["references"][0]
+assert ref["command"].split()[1] == "render" and "--spp 32" in ref["command"], ref
+PY
+# The second run finds the cached reference.
+"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --no-dense --dvr-steps none --grid-sweep none >/dev/null || fail=1
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert all(r["cached"] for r in j["references"]), j["references"]' "$dir/out/results.json"
+
+expect() {  # expect FRAGMENT -- ARGS...
+  local frag="$1"; shift 2
+  "$amrvk" "$@" >"$dir/o.txt" 2>"$dir/e.txt"; local rc=$?
+  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/e.txt")" != 1 ] || ! grep -qF -- "$frag" "$dir/e.txt"; then
+    echo "FAIL: amrvk $* -> rc=$rc: $(cat "$dir/e.txt")"; fail=1
+  fi
+}
+expect "-o DIR is required" -- bench "$sample"
+expect "--frames 1" -- bench "$sample" -o "$dir/x" --frames 1
+expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"
+expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
+expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr
+expect "--dvr-steps: 0" -- bench "$sample" -o "$dir/x" --dvr-steps 0
+exit $fail
