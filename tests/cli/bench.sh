@@ -9,12 +9,12 @@ sample="$src/assets/samples/cloud.cells"
 fail=0
 check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
 
-tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --traversals grid-dda,abr
-      --samplers ext-brick --backends sw --dvr-steps 1 --grid-sweep 8 --modes ae)
-"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" >"$dir/stdout.txt" || fail=1
+tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --samplers ext-brick --backends sw --modes ae)
+"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda,abr --dvr-steps 1 --grid-sweep 8 \
+  >"$dir/stdout.txt" || fail=1
 check grep -q "results" "$dir/stdout.txt"
-for f in results.json results.csv results.md error_cloud.cells_foggy_ae.png error_cloud.cells_foggy_dvr.png \
-         grid_sweep_cloud.cells_foggy.png memory_cloud.cells.png; do
+for f in results.json results.csv results.md error_cloud_cells_foggy_ae.png error_cloud_cells_foggy_dvr.png \
+         grid_sweep_cloud_cells_foggy.png memory_cloud_cells.png; do
   check test -s "$dir/out/$f"
 done
 check python3 - "$dir/out/results.json" <<'PY'
@@ -30,7 +30,8 @@ ref = j["references"][0]
 assert ref["command"].split()[1] == "render" and "--spp 32" in ref["command"], ref
 PY
 # The second run finds the cached reference.
-"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --no-dense --dvr-steps none --grid-sweep none >/dev/null || fail=1
+"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda --no-dense --dvr-steps none \
+  --grid-sweep none >/dev/null || fail=1
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert all(r["cached"] for r in j["references"]), j["references"]' "$dir/out/results.json"
 
 expect() {  # expect FRAGMENT -- ARGS...
