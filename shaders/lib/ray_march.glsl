@@ -44,10 +44,7 @@ vec3 rayMarch(vec3 o, vec3 d, StructureConfig cfg, inout uint rng, inout Counter
             while (t < t1 && T > stopTransmittance) {
                 vec3 p = o + d * t;
                 vec4 tfc;
-                FieldSample fs = (cfg.traversal == kTraversalAbr && cfg.samplerKind == kSamplerAbr)
-                                     ? sampleInAbr(seg, p)
-                                     : sampleField(cfg.samplerKind, cfg.backend, p);
-                c.lookups++;
+                FieldSample fs = sampleInSegment(p, cfg, seg, c);
                 c.real++;
                 if (fs.inside && fs.finestLevel < kNoLevel) h = dt * float(1 << fs.finestLevel);
                 float sigma = 0.0;

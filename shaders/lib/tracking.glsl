@@ -13,13 +13,17 @@ struct Counters {
     uint lookups, real, nulls, steps, violations;
 };
 
-// Extinction (per voxel unit) and TF colour at local point p, inside segment box `segmentId`.
-// abr traversal + abr sampler: the segment's ABR is the containing one, so no lookup is needed.
-float extinctionAt(vec3 p, StructureConfig cfg, uint segmentId, inout Counters c, out vec4 tfColor) {
+// The field at local point p inside segment box `segmentId` (counted as one lookup). abr
+// traversal + abr sampler: the segment's ABR is the containing one, so no search is needed.
+FieldSample sampleInSegment(vec3 p, StructureConfig cfg, uint segmentId, inout Counters c) {
     c.lookups++;
-    FieldSample s = (cfg.traversal == kTraversalAbr && cfg.samplerKind == kSamplerAbr)
-                        ? sampleInAbr(segmentId, p)
-                        : sampleField(cfg.samplerKind, cfg.backend, p);
+    return (cfg.traversal == kTraversalAbr && cfg.samplerKind == kSamplerAbr) ? sampleInAbr(segmentId, p)
+                                                                              : sampleField(cfg.samplerKind, cfg.backend, p);
+}
+
+// Extinction (per voxel unit) and TF colour at local point p, inside segment box `segmentId`.
+float extinctionAt(vec3 p, StructureConfig cfg, uint segmentId, inout Counters c, out vec4 tfColor) {
+    FieldSample s = sampleInSegment(p, cfg, segmentId, c);
     if (!s.inside) {
         tfColor = vec4(0.0);
         return 0.0;

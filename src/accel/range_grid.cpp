@@ -47,14 +47,18 @@ glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
     return dims;
 }
 
-RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims) {
-    Timer timer;
+RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
     AMRVK_CHECK(dims.x >= 1 && dims.y >= 1 && dims.z >= 1, "range grid needs at least one macrocell");
-    amr::ModelSummary s = amr::summarize(model);
     RangeGrid g;
     g.dims = dims;
-    g.origin = glm::dvec3(s.bounds.lower);
-    g.cellSize = glm::dvec3(s.bounds.size()) / glm::dvec3(dims);
+    g.origin = glm::dvec3(bounds.lower);
+    g.cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims);
+    return g;
+}
+
+RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims) {
+    Timer timer;
+    RangeGrid g = rangeGridLayout(amr::summarize(model).bounds, dims);
     const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
     const glm::dvec3 eps = 1e-5 * g.cellSize;
 

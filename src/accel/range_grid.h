@@ -31,6 +31,9 @@ glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest = 128);
 // Parses "auto", "N" (N on the longest axis) or "NxMxK". Throws on anything else or N outside [1, 4096].
 glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds);
 
+// The grid's dims, origin and macrocell size over `bounds`, with no ranges yet.
+RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims);
+
 RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims);
 
 }  // namespace amrvk::accel

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bench/convergence.h"
 #include "core/error.h"
 #include "core/stats.h"
 
@@ -9,16 +10,12 @@ namespace amrvk::bench {
 
 namespace {
 
-// Mean over pixels of the per-pixel sample variance (rgb averaged).
+// Mean over pixels and channels of the per-sample variance (= spp x variance of the mean).
 double meanSampleVariance(const render::RenderOutput& out) {
-    const double n = out.spp;
+    const std::vector<float> v = varianceOfMean(out.mean, out.sumSq, out.spp);
     double sum = 0;
-    for (size_t i = 0; i < out.mean.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double m = out.mean.pixels[i][c];
-            sum += std::max(0.0, (double(out.sumSq[i][c]) - n * m * m) / (n - 1.0));
-        }
-    return out.mean.pixels.empty() ? 0.0 : sum / (3.0 * double(out.mean.pixels.size()));
+    for (float x : v) sum += x;
+    return v.empty() ? 0.0 : sum / double(v.size()) * double(out.spp);
 }
 
 }  // namespace

@@ -61,12 +61,6 @@ std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mod
     return s;
 }
 
-std::string fileTag(const std::string& s) {
-    std::string out;
-    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return out;
-}
-
 std::vector<uint32_t> powersOfTwoUpTo(uint32_t n) {
     std::vector<uint32_t> out;
     for (uint32_t k = 1; k < n; k *= 2) out.push_back(k);
@@ -97,6 +91,7 @@ private:
                              Mode mode);
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
     void finishGroup(size_t first, double target);
+    AutoResult autoGroup(size_t first, Mode mode);
 
     gpu::Context& mCtx;
     const BenchOptions& mOpt;
@@ -298,6 +293,46 @@ void Runner::finishGroup(size_t first, double target) {
     }
 }
 
+// --auto for the group of runs from `first`: its pick against the most efficient timed run. The
+// pick's figures come from a matching timed run, else it is timed now (kind "auto").
+AutoResult Runner::autoGroup(size_t first, Mode mode) {
+    AutoResult a;
+    a.dataset = mDs->tag;
+    a.tf = mTfName;
+    a.mode = render::modeName(mode);
+    render::RenderSettings rs = mSettings;
+    rs.mode = mode;
+    AutoConstraints constraints;
+    if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
+    a.choice = autoSelect(mCtx, *mScene, *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
+    const StructureConfig& c = a.choice.config;
+    auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
+    auto sameAsPick = [&](const RunResult& r) {
+        return r.config.traversal == c.traversal && r.config.sampler == c.sampler && r.config.backend == c.backend &&
+               (!r.config.usesGrid() || r.config.grid == c.grid);
+    };
+    size_t pick = mRes.runs.size();
+    for (size_t i = first; i < mRes.runs.size() && pick == mRes.runs.size(); ++i)
+        if (comparable(mRes.runs[i]) && sameAsPick(mRes.runs[i])) pick = i;
+    if (pick == mRes.runs.size()) {
+        ++mTotal;
+        mRes.runs.push_back(measure("auto", mode, c, 0));
+        finishGroup(pick, mRes.runs[first].targetRmse);
+    }
+    std::optional<size_t> best;
+    for (size_t i = first; i < mRes.runs.size(); ++i)
+        if (comparable(mRes.runs[i]) && (!best || efficiency(mRes.runs[i]) > efficiency(mRes.runs[*best]))) best = i;
+    a.pickEfficiency = efficiency(mRes.runs[pick]);
+    a.pickFps = mRes.runs[pick].fps;
+    if (best) {
+        const RunResult& b = mRes.runs[*best];
+        a.bestLabel = b.config.label() + (b.config.usesGrid() ? " grid " + b.config.grid : "");
+        a.bestEfficiency = efficiency(b);
+        a.bestFps = b.fps;
+    }
+    return a;
+}
+
 BenchResults Runner::run() {
     mBackends = mOpt.backends;
     if (mBackends.empty()) {
@@ -394,51 +429,7 @@ BenchResults Runner::run() {
                     }
                 }
                 finishGroup(first, mOpt.targetRmse);
-                if (mOpt.autoSelect) {
-                    AutoResult a;
-                    a.dataset = ds.tag;
-                    a.tf = tfName;
-                    a.mode = render::modeName(mode);
-                    render::RenderSettings rs = mSettings;
-                    rs.mode = mode;
-                    AutoConstraints constraints;
-                    if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
-                    a.choice = autoSelect(mCtx, scene, tf, rs, constraints, {},
-                                          [&](const std::string& p) { tick("auto probe " + p); });
-                    // The pick's efficiency from the timed runs (a matching matrix or sweep run, else timed now).
-                    const RunResult* pick = nullptr;
-                    const RunResult* best = nullptr;
-                    for (size_t i = first; i < mRes.runs.size(); ++i) {
-                        const RunResult& r = mRes.runs[i];
-                        if (r.kind == "dense" || !r.error.empty()) continue;
-                        if (!best || efficiency(r) > efficiency(*best)) best = &r;
-                        const bool same = r.config.traversal == a.choice.config.traversal &&
-                                          r.config.sampler == a.choice.config.sampler &&
-                                          r.config.backend == a.choice.config.backend &&
-                                          (!r.config.usesGrid() || r.config.grid == a.choice.config.grid);
-                        if (same && !pick) pick = &r;
-                    }
-                    if (!pick) {
-                        ++mTotal;
-                        mRes.runs.push_back(measure("auto", mode, a.choice.config, 0));
-                        finishGroup(mRes.runs.size() - 1, mRes.runs[first].targetRmse);
-                        pick = &mRes.runs.back();
-                        best = nullptr;
-                        for (size_t i = first; i < mRes.runs.size(); ++i) {
-                            const RunResult& r = mRes.runs[i];
-                            if (r.kind == "dense" || !r.error.empty()) continue;
-                            if (!best || efficiency(r) > efficiency(*best)) best = &r;
-                        }
-                    }
-                    a.pickEfficiency = efficiency(*pick);
-                    a.pickFps = pick->fps;
-                    if (best) {
-                        a.bestLabel = best->config.label() + (best->config.usesGrid() ? " grid " + best->config.grid : "");
-                        a.bestEfficiency = efficiency(*best);
-                        a.bestFps = best->fps;
-                    }
-                    mRes.autos.push_back(a);
-                }
+                if (mOpt.autoSelect) mRes.autos.push_back(autoGroup(first, mode));
             }
             if (!mOpt.dvrSteps.empty()) {
                 // The ray-marching baseline against the ae reference, next to unbiased ae tracking.
@@ -458,6 +449,12 @@ BenchResults Runner::run() {
 }
 
 }  // namespace
+
+std::string fileTag(const std::string& s) {
+    std::string out;
+    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return out;
+}
 
 BenchResults runBench(gpu::Context& ctx, const BenchOptions& options, const BenchProgress& progress) {
     AMRVK_CHECK(!options.datasets.empty(), "bench: no input data set");

@@ -31,12 +31,6 @@ std::string runLabel(const RunResult& r) {
 
 double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 
-std::string fileTag(const std::string& s) {
-    std::string out;
-    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return out;
-}
-
 void writeRun(JsonWriter& j, const RunResult& r) {
     j.beginObject();
     j.member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("kind", r.kind);

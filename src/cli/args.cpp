@@ -1,5 +1,7 @@
 #include "cli/args.h"
 
+#include <cstdio>
+
 #include <charconv>
 #include <cstdlib>
 
@@ -95,6 +97,20 @@ int64_t parseInt(const std::string& option, const std::string& text) {
     AMRVK_CHECK(ec == std::errc() && ptr == t.data() + t.size(), option, ": '", text,
                 "' is not an integer");
     return v;
+}
+
+void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
+    int a = 0, b = 0;
+    char x = 0, tail = 0;
+    const int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
+    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384, option, " '", text,
+                "': expected WxH with 1 <= W, H <= 16384");
+    width = a;
+    height = b;
+}
+
+glm::dvec3 parseVec3(const std::string& option, const std::vector<std::string>& v, size_t at) {
+    return {parseDouble(option, v[at]), parseDouble(option, v[at + 1]), parseDouble(option, v[at + 2])};
 }
 
 std::string formatOptions(const std::vector<OptionSpec>& specs) {

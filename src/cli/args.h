@@ -1,6 +1,8 @@
 #pragma once
 // Command-line parsing for amrvk subcommands: --name value... options with fixed arity,
 // flags (arity 0), positionals. Errors are amrvk::Error with a one-line message.
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <map>
 #include <string>
@@ -39,6 +41,11 @@ private:
 // Parses a number; throws "--opt: 'x' is not a number".
 double parseDouble(const std::string& option, const std::string& text);
 int64_t parseInt(const std::string& option, const std::string& text);
+
+// "WxH" with 1 <= W, H <= 16384; throws "OPTION 'text': expected WxH ...".
+void parseSize(const std::string& option, const std::string& text, int& width, int& height);
+// Three numbers v[at], v[at+1], v[at+2] of an option's values.
+glm::dvec3 parseVec3(const std::string& option, const std::vector<std::string>& v, size_t at);
 
 // Renders the option list for --help.
 std::string formatOptions(const std::vector<OptionSpec>& specs);

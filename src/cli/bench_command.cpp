@@ -12,7 +12,6 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/progress.h"
-#include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 
@@ -46,34 +45,6 @@ std::vector<std::string> splitList(const std::string& text) {
         if (!item.empty()) out.push_back(item);
     return out;
 }
-
-glm::dvec3 vec3At(const std::vector<std::string>& v, size_t at, const std::string& opt) {
-    return {parseDouble(opt, v[at]), parseDouble(opt, v[at + 1]), parseDouble(opt, v[at + 2])};
-}
-
-class BenchBar {
-public:
-    explicit BenchBar(bool enabled) : mEnabled(enabled) {}
-    void update(size_t done, size_t total, const std::string& what) {
-        if (!mEnabled) return;
-        const double now = mTimer.seconds();
-        if (now - mLast < 0.2) return;
-        mLast = now;
-        const int width = 24, filled = total > 0 ? int(double(width) * double(done) / double(total)) : 0;
-        std::string text = what.size() > 70 ? what.substr(0, 70) : what;
-        std::fprintf(stderr, "\r\033[Kamrvk: bench [%.*s%*s] %zu/%zu  %6.0f s  %s", filled,
-                     "########################", width - filled, "", done, total, now, text.c_str());
-        std::fflush(stderr);
-    }
-    void finish() {
-        if (mEnabled) std::fprintf(stderr, "\n");
-    }
-
-private:
-    bool mEnabled;
-    Timer mTimer;
-    double mLast = -1;
-};
 
 }  // namespace
 
@@ -168,16 +139,7 @@ int runBench(const std::vector<std::string>& argv) {
             AMRVK_CHECK(k != render::Backend::Auto, "--backends: name sw and/or rq");
             o.backends.push_back(k);
         }
-    if (args.has("size")) {
-        int w = 0, h = 0;
-        char x = 0, tail = 0;
-        const std::string s = args.get("size");
-        AMRVK_CHECK(std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &tail) == 3 && (x == 'x' || x == 'X') && w > 0 &&
-                        h > 0 && w <= 16384 && h <= 16384,
-                    "--size '", s, "': expected WxH with 1 <= W, H <= 16384");
-        o.width = w;
-        o.height = h;
-    }
+    if (args.has("size")) parseSize("--size", args.get("size"), o.width, o.height);
     const int64_t frames = args.getInt("frames", 100), warmup = args.getInt("warmup", 10);
     AMRVK_CHECK(frames >= 2 && frames <= 1 << 20, "--frames ", frames, " is outside [2, 2^20]");
     AMRVK_CHECK(warmup >= 0 && warmup <= 1 << 20, "--warmup ", warmup, " is outside [0, 2^20]");
@@ -217,19 +179,19 @@ int runBench(const std::vector<std::string>& argv) {
     o.autoSelect = args.has("auto");
     o.base.densityScale = args.getDouble("density-scale", 1.0);
     AMRVK_CHECK(o.base.densityScale >= 0 && std::isfinite(o.base.densityScale), "--density-scale must be finite and >= 0");
-    if (args.has("ambient")) o.base.ambient = vec3At(args.values("ambient"), 0, "--ambient");
+    if (args.has("ambient")) o.base.ambient = parseVec3("--ambient", args.values("ambient"), 0);
     auto lights = args.values("light-dir");
     for (size_t i = 0; i + 5 < lights.size(); i += 6)
-        o.base.lights.push_back({false, vec3At(lights, i, "--light-dir"), vec3At(lights, i + 3, "--light-dir")});
+        o.base.lights.push_back({false, parseVec3("--light-dir", lights, i), parseVec3("--light-dir", lights, i + 3)});
     o.base.seed = uint32_t(args.getInt("seed", 1));
     o.fovDegrees = args.getDouble("fov", 40.0);
     AMRVK_CHECK(o.fovDegrees > 0 && o.fovDegrees < 180, "--fov ", o.fovDegrees, " is outside (0, 180)");
     if (args.has("camera")) {
         auto v = args.values("camera");
         render::Camera c;
-        c.eye = vec3At(v, 0, "--camera");
-        c.target = vec3At(v, 3, "--camera");
-        c.up = vec3At(v, 6, "--camera");
+        c.eye = parseVec3("--camera", v, 0);
+        c.target = parseVec3("--camera", v, 3);
+        c.up = parseVec3("--camera", v, 6);
         c.fovYDegrees = o.fovDegrees;
         o.camera = c;
     }
@@ -246,7 +208,7 @@ int runBench(const std::vector<std::string>& argv) {
     co.validation = args.has("validation");
     gpu::Context ctx(co);
 
-    BenchBar bar(progressEnabled());
+    ProgressBar bar("bench", "runs");
     bench::BenchResults results =
         bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
     bar.finish();

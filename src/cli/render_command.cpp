@@ -33,41 +33,6 @@ const char* kRenderHelp =
     "\n"
     "options:\n";
 
-glm::dvec3 vec3Of(const std::vector<std::string>& v, size_t at, const std::string& opt) {
-    return {parseDouble(opt, v[at]), parseDouble(opt, v[at + 1]), parseDouble(opt, v[at + 2])};
-}
-
-void parseSize(const std::string& text, int& w, int& h) {
-    int a = 0, b = 0;
-    char x = 0, tail = 0;
-    int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
-    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384,
-                "--size '", text, "': expected WxH with 1 <= W, H <= 16384");
-    w = a;
-    h = b;
-}
-
-class ProgressBar {
-public:
-    explicit ProgressBar(bool enabled) : mEnabled(enabled) {}
-    void update(uint32_t done, uint32_t total) {
-        if (!mEnabled) return;
-        double now = mTimer.seconds();
-        if (done != total && now - mLast < 0.1) return;
-        mLast = now;
-        int width = 30, filled = int(double(width) * done / total);
-        std::fprintf(stderr, "\ramrvk: render [%.*s%*s] %u/%u spp  %.1f s", filled,
-                     "##############################", width - filled, "", done, total, now);
-        if (done == total) std::fputc('\n', stderr);
-        std::fflush(stderr);
-    }
-
-private:
-    bool mEnabled;
-    Timer mTimer;
-    double mLast = -1;
-};
-
 }  // namespace
 
 int runDevices(const std::vector<std::string>& argv) {
@@ -171,7 +136,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (!autoChoice) config.validate();
     render::RenderSettings rs;
     rs.mode = render::parseMode(args.get("mode", "ms"));
-    parseSize(args.get("size", "512x512"), rs.width, rs.height);
+    parseSize("--size", args.get("size", "512x512"), rs.width, rs.height);
     const int64_t spp = args.getInt("spp", 64);
     AMRVK_CHECK(spp >= 1 && spp <= (1 << 24), "--spp ", spp, " is outside [1, 2^24]");
     rs.seed = uint32_t(args.getInt("seed", 1));
@@ -182,13 +147,13 @@ int runRender(const std::vector<std::string>& argv) {
     AMRVK_CHECK(rs.densityScale >= 0 && std::isfinite(rs.densityScale), "--density-scale must be finite and >= 0");
     rs.g = args.getDouble("g", 0.0);
     AMRVK_CHECK(rs.g >= -1 && rs.g <= 1, "--g ", rs.g, " is outside [-1, 1]");
-    if (args.has("ambient")) rs.ambient = vec3Of(args.values("ambient"), 0, "--ambient");
-    if (args.has("background")) rs.background = vec3Of(args.values("background"), 0, "--background");
+    if (args.has("ambient")) rs.ambient = parseVec3("--ambient", args.values("ambient"), 0);
+    if (args.has("background")) rs.background = parseVec3("--background", args.values("background"), 0);
     for (const char* kind : {"light-dir", "light-point"}) {
         auto v = args.values(kind);
         for (size_t i = 0; i + 5 < v.size(); i += 6)
-            rs.lights.push_back({std::string(kind) == "light-point", vec3Of(v, i, std::string("--") + kind),
-                                 vec3Of(v, i + 3, std::string("--") + kind)});
+            rs.lights.push_back({std::string(kind) == "light-point", parseVec3(std::string("--") + kind, v, i),
+                                 parseVec3(std::string("--") + kind, v, i + 3)});
     }
 
     amr::ReadOptions ro = readOptionsFrom(args);
@@ -216,9 +181,9 @@ int runRender(const std::vector<std::string>& argv) {
     rs.camera = render::defaultCamera(worldLo, worldHi, args.getDouble("fov", 40.0));
     if (args.has("camera")) {
         auto v = args.values("camera");
-        rs.camera.eye = vec3Of(v, 0, "--camera");
-        rs.camera.target = vec3Of(v, 3, "--camera");
-        rs.camera.up = vec3Of(v, 6, "--camera");
+        rs.camera.eye = parseVec3("--camera", v, 0);
+        rs.camera.target = parseVec3("--camera", v, 3);
+        rs.camera.up = parseVec3("--camera", v, 6);
     }
     float tfLo = scene.valueLo, tfHi = scene.valueHi;
     if (args.has("tf-range")) {
@@ -250,9 +215,10 @@ int runRender(const std::vector<std::string>& argv) {
 
     render::Renderer renderer(ctx, scene);
     renderer.setTransferFunction(tf);
-    ProgressBar bar(progressEnabled());
+    ProgressBar bar("render", "spp");
     Timer wall;
     render::RenderOutput out = renderer.render(rs, uint32_t(spp), [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    bar.finish();
     const double wallSeconds = wall.seconds();
     render::writeImage(output, out.mean);
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,6 +21,29 @@ ProgressStage::ProgressStage(std::string name) : mName(std::move(name)), mEnable
 
 ProgressStage::~ProgressStage() {
     if (mEnabled) std::fprintf(stderr, "amrvk: %s done in %.2f s\n", mName.c_str(), mTimer.seconds());
+}
+
+ProgressBar::ProgressBar(std::string name, std::string unit)
+    : mName(std::move(name)), mUnit(std::move(unit)), mEnabled(progressEnabled()) {}
+
+void ProgressBar::update(uint64_t done, uint64_t total, const std::string& detail) {
+    if (!mEnabled) return;
+    const double now = mTimer.seconds();
+    if (done != total && now - mLast < 0.1) return;
+    mLast = now;
+    constexpr int kWidth = 24;
+    const int filled = total > 0 ? int(double(kWidth) * double(std::min(done, total)) / double(total)) : 0;
+    const std::string text = detail.size() > 70 ? detail.substr(0, 70) : detail;
+    std::fprintf(stderr, "\r\033[Kamrvk: %s [%.*s%*s] %llu/%llu %s  %.1f s  %s", mName.c_str(), filled,
+                 "########################", kWidth - filled, "", static_cast<unsigned long long>(done),
+                 static_cast<unsigned long long>(total), mUnit.c_str(), now, text.c_str());
+    std::fflush(stderr);
+    mDrawn = true;
+}
+
+void ProgressBar::finish() {
+    if (mDrawn) std::fputc('\n', stderr);
+    mDrawn = false;
 }
 
 }  // namespace amrvk

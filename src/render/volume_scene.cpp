@@ -84,11 +84,14 @@ void VolumeScene::configure(const StructureConfig& next) {
     }
     if (rebuildGrid) {
         ProgressStage stage("macrocell value ranges");
-        grid = accel::buildRangeGrid(*model, *field, accel::parseGridDims(next.grid, bounds));
-        if (denseSampler) {
+        const glm::ivec3 dims = accel::parseGridDims(next.grid, bounds);
+        if (denseSampler) {  // ranges from the dense samples, not from the cells
             Timer t;
+            grid = accel::rangeGridLayout(bounds, dims);
             accel::assignDenseRanges(*dense, *grid);
-            grid->buildSeconds += t.seconds();
+            grid->buildSeconds = t.seconds();
+        } else {
+            grid = accel::buildRangeGrid(*model, *field, dims);
         }
         buildSeconds.grid = grid->buildSeconds;
     }

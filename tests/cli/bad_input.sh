@@ -5,16 +5,7 @@ set -u
 amrvk="$1"; dir="$2"
 rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
 fail=0
-expect() {  # expect FRAGMENT -- ARGS...
-  local frag="$1"; shift 2
-  "$amrvk" "$@" >out.txt 2>err.txt; local rc=$?
-  local lines; lines=$(wc -l <err.txt)
-  if [ "$rc" != 1 ] || [ "$lines" != 1 ] || ! grep -qF -- "$frag" err.txt; then
-    echo "FAIL: amrvk $* -> rc=$rc, stderr($lines lines): $(cat err.txt)"; fail=1
-  else
-    echo "ok: amrvk $* -> $(cat err.txt)"
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cells() { python3 - "$@" <<'PY'
 import struct, sys
 base, spec = sys.argv[1], sys.argv[2]

@@ -7,7 +7,7 @@ amrvk="$1"; src="$2"; dir="$3"
 rm -rf "$dir"; mkdir -p "$dir"
 sample="$src/assets/samples/cloud.cells"
 fail=0
-check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --samplers ext-brick --backends sw --modes ae)
 "$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda,abr --dvr-steps 1 --grid-sweep 8 \
@@ -34,13 +34,6 @@ PY
   --grid-sweep none >/dev/null || fail=1
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert all(r["cached"] for r in j["references"]), j["references"]' "$dir/out/results.json"
 
-expect() {  # expect FRAGMENT -- ARGS...
-  local frag="$1"; shift 2
-  "$amrvk" "$@" >"$dir/o.txt" 2>"$dir/e.txt"; local rc=$?
-  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/e.txt")" != 1 ] || ! grep -qF -- "$frag" "$dir/e.txt"; then
-    echo "FAIL: amrvk $* -> rc=$rc: $(cat "$dir/e.txt")"; fail=1
-  fi
-}
 expect "-o DIR is required" -- bench "$sample"
 expect "--frames 1" -- bench "$sample" -o "$dir/x" --frames 1
 expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"

@@ -7,7 +7,7 @@ amrvk="$1"; src="$2"; dir="$3"
 rm -rf "$dir"; mkdir -p "$dir"
 sample="$src/assets/samples/cloud.cells"
 fail=0
-check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 common=(--size 16x12 --spp 2 --grid 16 --tf-range 0 1)
 "$amrvk" render "$sample" "${common[@]}" -o "$dir/a.png" --json "$dir/a.json" || fail=1
@@ -49,13 +49,6 @@ check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sam
 check grep -q "traversal auto picked .*/abr/sw" "$dir/auto.err"
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sampler"] == "abr" and j["backend"] == "sw" and j["traversal"] in ("grid-dda","grid-bvh","abr","brick","ext-brick","kdtree"), j' "$dir/auto.json"
 
-expect() {  # expect FRAGMENT -- ARGS...
-  local frag="$1"; shift 2
-  "$amrvk" "$@" >"$dir/out.txt" 2>"$dir/err.txt"; local rc=$?
-  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/err.txt")" != 1 ] || ! grep -qF -- "$frag" "$dir/err.txt"; then
-    echo "FAIL: amrvk $* -> rc=$rc: $(cat "$dir/err.txt")"; fail=1
-  fi
-}
 expect "--mode 'xyz'" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
 expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
 expect "--size '0x3'" -- render "$sample" --size 0x3 -o "$dir/x.png"
