@@ -10,17 +10,17 @@
 #include "core/file_io.h"
 #include "core/json.h"
 #include "core/stats.h"
-#include "render/camera.h"
+#include "scene/camera.h"
 
 namespace amrvk::bench {
 
 namespace {
 
-using render::Backend;
-using render::Mode;
-using render::SamplerKind;
-using render::StructureConfig;
-using render::TraversalKind;
+using scene::Backend;
+using scene::Mode;
+using scene::SamplerKind;
+using scene::StructureConfig;
+using scene::TraversalKind;
 
 bool isCpuDevice(const gpu::Context& ctx) { return ctx.deviceReport().type == "CPU"; }
 
@@ -41,11 +41,11 @@ std::string shellQuote(const std::string& s) {
 }
 
 // Options shared by the reference command line and the cache key.
-std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const render::RenderSettings& rs,
+std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const scene::RenderSettings& rs,
                          bool explicitCamera, double fov, const std::optional<std::pair<float, float>>& tfRange) {
     std::string s;
     if (!ds.field.empty()) s += " --field " + shellQuote(ds.field);
-    s += " --tf " + shellQuote(tf) + " --mode " + render::modeName(mode);
+    s += " --tf " + shellQuote(tf) + " --mode " + scene::modeName(mode);
     s += " --size " + std::to_string(rs.width) + "x" + std::to_string(rs.height);
     s += " --seed " + std::to_string(rs.seed);
     if (rs.densityScale != 1.0) s += " --density-scale " + fmt(rs.densityScale);
@@ -53,7 +53,7 @@ std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mod
     if (rs.g != 0.0) s += " --g " + fmt(rs.g);
     s += " --ambient " + vecText(rs.ambient);
     if (rs.background) s += " --background " + vecText(*rs.background);
-    for (const render::Light& L : rs.lights)
+    for (const scene::Light& L : rs.lights)
         s += std::string(L.point ? " --light-point " : " --light-dir ") + vecText(L.posOrDir) + " " + vecText(L.radiance);
     if (explicitCamera)
         s += " --camera " + vecText(rs.camera.eye) + " " + vecText(rs.camera.target) + " " + vecText(rs.camera.up);
@@ -87,7 +87,7 @@ private:
     void tick(const std::string& what) {
         if (mProgress) mProgress(mDone, mTotal, what);
     }
-    ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, const render::TransferFunction& tf,
+    ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, const scene::TransferFunction& tf,
                              Mode mode);
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
     void finishGroup(size_t first, double target);
@@ -101,11 +101,11 @@ private:
     std::vector<Backend> mBackends;
     // Current group.
     const BenchDataset* mDs = nullptr;
-    render::VolumeScene* mScene = nullptr;
-    const render::TransferFunction* mTf = nullptr;
-    const render::TransferFunction* mOtherTf = nullptr;
+    scene::VolumeScene* mScene = nullptr;
+    const scene::TransferFunction* mTf = nullptr;
+    const scene::TransferFunction* mOtherTf = nullptr;
     std::string mTfName;
-    render::RenderSettings mSettings;
+    scene::RenderSettings mSettings;
     ReferenceImage mRef;
 };
 
@@ -120,15 +120,15 @@ size_t Runner::countRuns() const {
     return mOpt.datasets.size() * mOpt.tfs.size() * perTf;
 }
 
-ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfName, const render::TransferFunction& tf,
+ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfName, const scene::TransferFunction& tf,
                                  Mode mode) {
     const uint32_t spp = mRes.referenceSpp;
-    render::RenderSettings rs = mSettings;
+    scene::RenderSettings rs = mSettings;
     rs.mode = mode;
     rs.seed = mSettings.seed + 1000003u;  // independent of the timed runs
     const std::filesystem::path dir = mOpt.outDir / "references";
     std::filesystem::create_directories(dir);
-    const std::string name = fileTag(ds.tag) + "-" + fileTag(tfName) + "-" + render::modeName(mode);
+    const std::string name = fileTag(ds.tag) + "-" + fileTag(tfName) + "-" + scene::modeName(mode);
     const std::filesystem::path meanFile = dir / (name + ".pfm"), varFile = dir / (name + ".variance.pfm"),
                                 infoFile = dir / (name + ".json");
     const std::string options = sceneOptions(ds, tfName, mode, rs, mOpt.camera.has_value(), mOpt.fovDegrees, mOpt.tfRange) +
@@ -137,7 +137,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     const std::string command = mOpt.amrvkPath + " render " + shellQuote(ds.input) + options + " -o " +
                                 shellQuote(meanFile.string());
     const std::string key = std::filesystem::absolute(ds.input).string() + options;
-    ReferenceInfo info{ds.tag, tfName, render::modeName(mode), meanFile.string(), command, spp, 0, 0, false};
+    ReferenceInfo info{ds.tag, tfName, scene::modeName(mode), meanFile.string(), command, spp, 0, 0, false};
     ReferenceImage ref;
     ref.spp = spp;
     if (std::filesystem::exists(meanFile) && std::filesystem::exists(varFile) && std::filesystem::exists(infoFile)) {
@@ -145,8 +145,8 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         std::stringstream text;
         text << in.rdbuf();
         if (text.str().find("\"key\":\"" + jsonEscape(key) + "\"") != std::string::npos) {
-            ref.mean = render::readPfm(meanFile);
-            render::Image var = render::readPfm(varFile);
+            ref.mean = readPfm(meanFile);
+            Image var = readPfm(varFile);
             if (ref.mean.width == rs.width && ref.mean.height == rs.height && var.pixels.size() == ref.mean.pixels.size()) {
                 for (const glm::vec4& v : var.pixels) ref.meanVariance.insert(ref.meanVariance.end(), {v.r, v.g, v.b});
                 info.cached = true;
@@ -161,16 +161,16 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         mScene->configure(c);
         render::Renderer renderer(mCtx, *mScene);
         renderer.setTransferFunction(tf);
-        render::RenderOutput out = renderer.render(rs, spp, [&](uint32_t d, uint32_t t) {
+        scene::RenderOutput out = renderer.render(rs, spp, [&](uint32_t d, uint32_t t) {
             tick("reference " + name + " " + std::to_string(d) + "/" + std::to_string(t) + " spp");
         });
         ref.mean = out.mean;
-        ref.meanVariance = varianceOfMean(out.mean, out.sumSq, out.spp);
-        render::Image var(rs.width, rs.height);
+        ref.meanVariance = scene::varianceOfMean(out);
+        Image var(rs.width, rs.height);
         for (size_t i = 0; i < var.pixels.size(); ++i)
             var.pixels[i] = glm::vec4(ref.meanVariance[3 * i], ref.meanVariance[3 * i + 1], ref.meanVariance[3 * i + 2], 1);
-        render::writeImage(meanFile, ref.mean);
-        render::writeImage(varFile, var);
+        writeImage(meanFile, ref.mean);
+        writeImage(varFile, var);
         info.seconds = out.stats.gpuSeconds;
         JsonWriter j;
         j.beginObject().member("key", key).member("command", command).member("spp", spp);
@@ -189,7 +189,7 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     RunResult r;
     r.dataset = mDs->tag;
     r.tf = mTfName;
-    r.mode = render::modeName(mode);
+    r.mode = scene::modeName(mode);
     r.kind = kind;
     r.config = config;
     r.dvrStep = dvrStep;
@@ -229,16 +229,16 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.deviceBytesAfterBuild = mCtx.memory().currentBytes();
         for (const auto& [name, usage] : mCtx.memory().perResource())
             if (usage.current > 0) r.deviceBytesPerResource.emplace_back(name, usage.current);
-        render::RenderSettings rs = mSettings;
+        scene::RenderSettings rs = mSettings;
         rs.mode = mode;
         rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
         if (mOpt.warmup > 0) {
             tick(what + " (warm-up)");
             renderer.render(rs, mOpt.warmup);
         }
-        render::RenderOutput out = renderer.render(
+        scene::RenderOutput out = renderer.render(
             rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
-            powersOfTwoUpTo(mOpt.frames), [&](const render::RenderOutput& partial) {
+            powersOfTwoUpTo(mOpt.frames), [&](const scene::RenderOutput& partial) {
                 ImageError e = imageError(partial.mean, mRef);
                 r.curve.push_back({partial.spp, partial.stats.gpuSeconds, e.rmse(), e.relMse});
             });
@@ -299,12 +299,12 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     AutoResult a;
     a.dataset = mDs->tag;
     a.tf = mTfName;
-    a.mode = render::modeName(mode);
-    render::RenderSettings rs = mSettings;
+    a.mode = scene::modeName(mode);
+    scene::RenderSettings rs = mSettings;
     rs.mode = mode;
-    AutoConstraints constraints;
+    render::AutoConstraints constraints;
     if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
-    a.choice = autoSelect(mCtx, *mScene, *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
+    a.choice = render::autoSelect(mCtx, *mScene, *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
     const StructureConfig& c = a.choice.config;
     auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
     auto sameAsPick = [&](const RunResult& r) {
@@ -367,7 +367,7 @@ BenchResults Runner::run() {
         if (!ds.field.empty()) ro.fields = {ds.field};
         amr::Model model = amr::readModel(ds.input, ro);
         const amr::Field& field = ds.field.empty() ? model.defaultField() : model.field(ds.field);
-        render::VolumeScene scene = render::makeVolumeScene(model, field);
+        scene::VolumeScene scene = scene::makeVolumeScene(model, field);
         mScene = &scene;
         const amr::ModelSummary summary = amr::summarize(model);
         DatasetInfo info{ds.tag, ds.input, field.name, model.cellCount(), summary.maxLevel - summary.minLevel + 1, ""};
@@ -380,17 +380,17 @@ BenchResults Runner::run() {
         mSettings.height = mRes.height;
         if (mOpt.camera) mSettings.camera = *mOpt.camera;
         else
-            mSettings.camera = render::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)),
+            mSettings.camera = scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)),
                                                      model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)),
                                                      mOpt.fovDegrees);
         for (const std::string& tfName : mOpt.tfs) {
             const float lo = mOpt.tfRange ? mOpt.tfRange->first : scene.valueLo;
             const float hi = mOpt.tfRange ? mOpt.tfRange->second : scene.valueHi;
-            render::TransferFunction tf = render::loadTransferFunction(tfName, lo, hi);
+            scene::TransferFunction tf = scene::loadTransferFunction(tfName, lo, hi);
             if (mOpt.tfRange) tf = tf.rescaled(lo, hi);
             // The timed TF edit comes from another preset, so every majorant really changes.
-            const render::TransferFunction other =
-                render::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", lo, hi);
+            const scene::TransferFunction other =
+                scene::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", lo, hi);
             mTf = &tf;
             mOtherTf = &other;
             mTfName = tfName;

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/auto_select.h"
+#include "render/auto_select.h"
 #include "bench/convergence.h"
 #include "gpu/context.h"
 #include "render/renderer.h"
@@ -31,10 +31,10 @@ struct BenchOptions {
     std::vector<BenchDataset> datasets;
     std::vector<std::string> tfs = {"spiky", "foggy"};  // presets or files
     std::optional<std::pair<float, float>> tfRange;       // map every TF onto [lo, hi] (default: the field's range)
-    std::vector<render::Mode> modes = {render::Mode::Ms};  // unbiased modes of the matrix
-    std::vector<render::TraversalKind> traversals = render::allTraversals();
-    std::vector<render::SamplerKind> samplers = render::allSamplers();
-    std::vector<render::Backend> backends;  // empty: sw, and rq where the device has it
+    std::vector<scene::Mode> modes = {scene::Mode::Ms};  // unbiased modes of the matrix
+    std::vector<scene::TraversalKind> traversals = scene::allTraversals();
+    std::vector<scene::SamplerKind> samplers = scene::allSamplers();
+    std::vector<scene::Backend> backends;  // empty: sw, and rq where the device has it
     int width = 0, height = 0;             // 0: 1024^2 on a GPU, 256^2 on a CPU device
     uint32_t frames = 100, warmup = 10;
     uint32_t referenceSpp = 0;              // 0: 4096 on a GPU, 512 on a CPU device
@@ -46,8 +46,8 @@ struct BenchOptions {
     std::string grid = "auto";
     uint32_t kdLeaves = 4096;
     uint64_t denseMaxBytes = uint64_t(2) << 30;
-    render::RenderSettings base;            // lights, ambient, density scale, seed, fov
-    std::optional<render::Camera> camera;   // default: each data set's three-quarter view
+    scene::RenderSettings base;            // lights, ambient, density scale, seed, fov
+    std::optional<scene::Camera> camera;   // default: each data set's three-quarter view
     double fovDegrees = 40;
     std::filesystem::path outDir;
     std::string commandLine;
@@ -57,7 +57,7 @@ struct BenchOptions {
 // One timed configuration.
 struct RunResult {
     std::string dataset, tf, mode, kind;  // kind: matrix | dense | dvr | grid-sweep
-    render::StructureConfig config;
+    scene::StructureConfig config;
     std::string gridDims;                 // e.g. "128x128x64" for grid traversals
     double dvrStep = 0;                   // dvr only
     int width = 0, height = 0;
@@ -89,7 +89,7 @@ struct ReferenceInfo {
 
 struct AutoResult {
     std::string dataset, tf, mode;
-    AutoChoice choice;
+    render::AutoChoice choice;
     std::string bestLabel;        // best measured matrix combination (by efficiency)
     double pickEfficiency = 0, bestEfficiency = 0;  // 1 / (final MSE x seconds), from the timed runs
     double pickFps = 0, bestFps = 0;

@@ -10,23 +10,10 @@ namespace {
 constexpr double kRelEpsilon = 0.01;  // relMSE denominator floor (dark pixels)
 }
 
-std::vector<float> varianceOfMean(const render::Image& mean, const std::vector<glm::vec4>& sumSq, uint32_t spp) {
-    AMRVK_CHECK(sumSq.size() == mean.pixels.size() && spp >= 2, "internal: variance needs sums of squares and >= 2 spp");
-    std::vector<float> out(mean.pixels.size() * 3);
-    const double n = spp;
-    for (size_t i = 0; i < mean.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double m = mean.pixels[i][c];
-            const double sampleVar = std::max(0.0, (double(sumSq[i][c]) - n * m * m) / (n - 1.0));
-            out[3 * i + size_t(c)] = float(sampleVar / n);
-        }
-    return out;
-}
-
 double ImageError::rmse() const { return std::sqrt(std::max(0.0, mse)); }
 
-ImageError imageError(const render::Image& image, const ReferenceImage& reference) {
-    const render::Image& ref = reference.mean;
+ImageError imageError(const Image& image, const ReferenceImage& reference) {
+    const Image& ref = reference.mean;
     AMRVK_CHECK(image.width == ref.width && image.height == ref.height, "image ", image.width, "x", image.height,
                 " and reference ", ref.width, "x", ref.height, " differ in size");
     const bool haveVar = reference.meanVariance.size() == ref.pixels.size() * 3;

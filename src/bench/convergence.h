@@ -7,18 +7,15 @@
 #include <optional>
 #include <vector>
 
-#include "render/image_io.h"
+#include "core/image_io.h"
 
 namespace amrvk::bench {
 
 struct ReferenceImage {
-    render::Image mean;
+    Image mean;
     std::vector<float> meanVariance;  // per pixel and channel (3 per pixel): variance of the mean; empty = unknown
     uint32_t spp = 0;
 };
-
-// Per-pixel variance of the mean from an accumulated render (sum of squares, spp samples).
-std::vector<float> varianceOfMean(const render::Image& mean, const std::vector<glm::vec4>& sumSq, uint32_t spp);
 
 struct ImageError {
     double mse = 0;     // mean over pixels and channels of (x - r)^2, minus the reference's variance
@@ -26,7 +23,7 @@ struct ImageError {
     double rmse() const;
 };
 // Throws when the sizes differ.
-ImageError imageError(const render::Image& image, const ReferenceImage& reference);
+ImageError imageError(const Image& image, const ReferenceImage& reference);
 
 // One point of a convergence curve.
 struct ErrorSample {

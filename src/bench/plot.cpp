@@ -118,10 +118,10 @@ public:
         fill({r.x0, r.y0, r.x0, r.y1}, c);
         fill({r.x1, r.y0, r.x1, r.y1}, c);
     }
-    render::Image8 take() { return std::move(mImage); }
+    Image8 take() { return std::move(mImage); }
 
 private:
-    render::Image8 mImage;
+    Image8 mImage;
     Rect mClip;
 };
 
@@ -821,7 +821,7 @@ PlotFrame linePlotFrame(const LinePlot& plot) { return layoutLinePlot(plot).fram
 
 PlotFrame barChartFrame(const BarChart& chart) { return layoutBarChart(chart).frame; }
 
-render::Image8 renderLinePlot(const LinePlot& plot) {
+Image8 renderLinePlot(const LinePlot& plot) {
     const Layout L = layoutLinePlot(plot);
     Canvas cv(plot.width, plot.height);
     drawGrid(cv, L);
@@ -832,7 +832,7 @@ render::Image8 renderLinePlot(const LinePlot& plot) {
     return cv.take();
 }
 
-render::Image8 renderBarChart(const BarChart& chart) {
+Image8 renderBarChart(const BarChart& chart) {
     const Layout L = layoutBarChart(chart);
     Canvas cv(chart.width, chart.height);
     drawGrid(cv, L);
@@ -848,11 +848,11 @@ render::Image8 renderBarChart(const BarChart& chart) {
 }
 
 void writeLinePlot(const std::filesystem::path& png, const LinePlot& plot) {
-    render::writePng8(png, renderLinePlot(plot));
+    writePng8(png, renderLinePlot(plot));
 }
 
 void writeBarChart(const std::filesystem::path& png, const BarChart& chart) {
-    render::writePng8(png, renderBarChart(chart));
+    writePng8(png, renderBarChart(chart));
 }
 
 }  // namespace amrvk::bench

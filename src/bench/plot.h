@@ -1,7 +1,7 @@
 #pragma once
 // Dependency-free charts for benchmark reports: line plots (linear or log axes) and grouped bar
 // charts, rasterised on the CPU into 8-bit RGBA images and written as PNG.
-// Coordinates: pixel (x, y) with row 0 = top, x fastest (render::Image8). Text uses a built-in
+// Coordinates: pixel (x, y) with row 0 = top, x fastest (Image8). Text uses a built-in
 // 5x7 bitmap font with descenders (printable ASCII 32..126; other bytes draw as '?') at scale 2
 // when both sides are >= 400 px, else 1. The legend sits in a data-free corner inside the plot
 // area (top-right first) when small, else right of it (smaller text, columns, shortened labels).
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image_io.h"
+#include "core/image_io.h"
 
 namespace amrvk::bench {
 
@@ -75,10 +75,10 @@ struct PlotFrame {
 PlotFrame linePlotFrame(const LinePlot& plot);
 PlotFrame barChartFrame(const BarChart& chart);
 
-render::Image8 renderLinePlot(const LinePlot& plot);
-render::Image8 renderBarChart(const BarChart& chart);
+Image8 renderLinePlot(const LinePlot& plot);
+Image8 renderBarChart(const BarChart& chart);
 
-// Renders and writes a PNG (render::writePng8): throws on a write failure, leaving no file.
+// Renders and writes a PNG (writePng8): throws on a write failure, leaving no file.
 void writeLinePlot(const std::filesystem::path& png, const LinePlot& plot);
 void writeBarChart(const std::filesystem::path& png, const BarChart& chart);
 

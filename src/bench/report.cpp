@@ -34,8 +34,8 @@ double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 void writeRun(JsonWriter& j, const RunResult& r) {
     j.beginObject();
     j.member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("kind", r.kind);
-    j.member("traversal", render::traversalName(r.config.traversal)).member("sampler", render::samplerName(r.config.sampler));
-    j.member("backend", render::backendName(r.config.backend)).member("grid", r.config.grid);
+    j.member("traversal", scene::traversalName(r.config.traversal)).member("sampler", scene::samplerName(r.config.sampler));
+    j.member("backend", scene::backendName(r.config.backend)).member("grid", r.config.grid);
     j.member("gridDims", r.gridDims).member("kdLeaves", r.config.kdLeaves);
     if (r.kind == "dvr") j.member("dt", r.dvrStep);
     j.member("width", r.width).member("height", r.height).member("frames", r.frames);
@@ -169,7 +169,7 @@ std::string resultsJson(const BenchResults& res) {
         j.member("efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0);
         j.member("pickFps", a.pickFps).member("best", a.bestLabel).member("bestFps", a.bestFps);
         j.key("probeDetails").beginArray();
-        for (const AutoProbe& p : a.choice.probes)
+        for (const render::AutoProbe& p : a.choice.probes)
             j.beginObject().member("config", p.config.label()).member("grid", p.config.grid)
                 .member("secondsPerSpp", p.secondsPerSpp).member("variance", p.variance)
                 .member("efficiency", p.efficiency).member("wallSeconds", p.wallSeconds).member("note", p.note).endObject();
@@ -191,8 +191,8 @@ std::string resultsCsv(const BenchResults& res) {
         std::string err = r.error;
         std::replace(err.begin(), err.end(), ',', ';');
         std::replace(err.begin(), err.end(), '"', '\'');
-        csv += r.dataset + "," + r.tf + "," + r.mode + "," + r.kind + "," + render::traversalName(r.config.traversal) + "," +
-               render::samplerName(r.config.sampler) + "," + render::backendName(r.config.backend) + "," + r.config.grid +
+        csv += r.dataset + "," + r.tf + "," + r.mode + "," + r.kind + "," + scene::traversalName(r.config.traversal) + "," +
+               scene::samplerName(r.config.sampler) + "," + scene::backendName(r.config.backend) + "," + r.config.grid +
                "," + r.gridDims + "," + (r.kind == "dvr" ? num(r.dvrStep) : "") + "," + std::to_string(r.width) + "," +
                std::to_string(r.height) + "," + std::to_string(r.frames) + ",";
         if (r.error.empty()) {
@@ -278,7 +278,7 @@ std::vector<std::string> writePlots(const BenchResults& res, const std::filesyst
             s.label = t;
             for (const RunResult& r : res.runs)
                 if (r.kind == "grid-sweep" && r.dataset == ds && r.tf == tf && r.error.empty() &&
-                    render::traversalName(r.config.traversal) == std::string(t)) {
+                    scene::traversalName(r.config.traversal) == std::string(t)) {
                     s.x.push_back(std::atof(r.config.grid.c_str()));
                     s.y.push_back(r.fps);
                 }
@@ -384,7 +384,7 @@ std::string resultsMarkdown(const BenchResults& res, const std::vector<std::stri
               "frames/s | steps/path | null/real |\n|---|---|---|---:|---|---:|---:|---:|\n";
         for (const RunResult& r : res.runs) {
             if (r.kind != "grid-sweep") continue;
-            md += "| " + r.dataset + " | " + r.tf + " | " + render::traversalName(r.config.traversal) + " | " + r.config.grid +
+            md += "| " + r.dataset + " | " + r.tf + " | " + scene::traversalName(r.config.traversal) + " | " + r.config.grid +
                   " | " + r.gridDims + " | " + (r.error.empty() ? num(r.fps) : "failed") + " | " + num(r.stepsPerPath) +
                   " | " + num(r.nullPerReal) + " |\n";
         }

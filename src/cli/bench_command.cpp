@@ -116,27 +116,27 @@ int runBench(const std::vector<std::string>& argv) {
     if (args.has("modes")) {
         o.modes.clear();
         for (const auto& m : splitList(args.get("modes"))) {
-            render::Mode mode = render::parseMode(m);
-            AMRVK_CHECK(mode != render::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
+            scene::Mode mode = scene::parseMode(m);
+            AMRVK_CHECK(mode != scene::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
             o.modes.push_back(mode);
         }
     }
     if (args.has("traversals")) {
         o.traversals.clear();
-        for (const auto& t : splitList(args.get("traversals"))) o.traversals.push_back(render::parseTraversal(t));
+        for (const auto& t : splitList(args.get("traversals"))) o.traversals.push_back(scene::parseTraversal(t));
     }
     if (args.has("samplers")) {
         o.samplers.clear();
         for (const auto& s : splitList(args.get("samplers"))) {
-            render::SamplerKind k = render::parseSampler(s);
-            AMRVK_CHECK(k != render::SamplerKind::Dense, "--samplers: dense runs by itself (see --no-dense)");
+            scene::SamplerKind k = scene::parseSampler(s);
+            AMRVK_CHECK(k != scene::SamplerKind::Dense, "--samplers: dense runs by itself (see --no-dense)");
             o.samplers.push_back(k);
         }
     }
     if (args.has("backends"))
         for (const auto& b : splitList(args.get("backends"))) {
-            render::Backend k = render::parseBackend(b);
-            AMRVK_CHECK(k != render::Backend::Auto, "--backends: name sw and/or rq");
+            scene::Backend k = scene::parseBackend(b);
+            AMRVK_CHECK(k != scene::Backend::Auto, "--backends: name sw and/or rq");
             o.backends.push_back(k);
         }
     if (args.has("size")) parseSize("--size", args.get("size"), o.width, o.height);
@@ -188,7 +188,7 @@ int runBench(const std::vector<std::string>& argv) {
     AMRVK_CHECK(o.fovDegrees > 0 && o.fovDegrees < 180, "--fov ", o.fovDegrees, " is outside (0, 180)");
     if (args.has("camera")) {
         auto v = args.values("camera");
-        render::Camera c;
+        scene::Camera c;
         c.eye = parseVec3("--camera", v, 0);
         c.target = parseVec3("--camera", v, 3);
         c.up = parseVec3("--camera", v, 6);

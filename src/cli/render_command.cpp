@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "amr/readers.h"
-#include "bench/auto_select.h"
+#include "render/auto_select.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/read_options.h"
@@ -16,7 +16,7 @@
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
-#include "render/image_io.h"
+#include "core/image_io.h"
 #include "render/renderer.h"
 
 namespace amrvk::cli {
@@ -121,11 +121,11 @@ int runRender(const std::vector<std::string>& argv) {
                         " is missing or not writable)");
         }
     }
-    render::StructureConfig config;
+    scene::StructureConfig config;
     const bool autoChoice = args.get("traversal") == "auto";
-    if (!autoChoice) config.traversal = render::parseTraversal(args.get("traversal", "grid-dda"));
-    config.sampler = render::parseSampler(args.get("sampler", "ext-brick"));
-    config.backend = render::parseBackend(args.get("backend", "auto"));
+    if (!autoChoice) config.traversal = scene::parseTraversal(args.get("traversal", "grid-dda"));
+    config.sampler = scene::parseSampler(args.get("sampler", "ext-brick"));
+    config.backend = scene::parseBackend(args.get("backend", "auto"));
     config.grid = args.get("grid", "auto");
     const int64_t kdLeaves = args.getInt("kd-leaves", 4096);
     AMRVK_CHECK(kdLeaves >= 1 && kdLeaves <= (int64_t(1) << 24), "--kd-leaves ", kdLeaves, " is outside [1, 2^24]");
@@ -134,8 +134,8 @@ int runRender(const std::vector<std::string>& argv) {
     AMRVK_CHECK(denseMiB >= 1 && denseMiB <= (int64_t(1) << 20), "--dense-max-mib ", denseMiB, " is outside [1, 2^20]");
     config.denseMaxBytes = uint64_t(denseMiB) << 20;
     if (!autoChoice) config.validate();
-    render::RenderSettings rs;
-    rs.mode = render::parseMode(args.get("mode", "ms"));
+    scene::RenderSettings rs;
+    rs.mode = scene::parseMode(args.get("mode", "ms"));
     parseSize("--size", args.get("size", "512x512"), rs.width, rs.height);
     const int64_t spp = args.getInt("spp", 64);
     AMRVK_CHECK(spp >= 1 && spp <= (1 << 24), "--spp ", spp, " is outside [1, 2^24]");
@@ -167,18 +167,18 @@ int runRender(const std::vector<std::string>& argv) {
     gpu::ContextOptions co;
     co.device = args.get("device");
     co.validation = args.has("validation");
-    co.requireRayQuery = config.backend == render::Backend::Rq;
+    co.requireRayQuery = config.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
-    config.backend = render::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
+    config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     Timer buildTimer;
-    render::VolumeScene scene =
-        autoChoice ? render::makeVolumeScene(model, field) : render::buildVolumeScene(model, field, config);
+    scene::VolumeScene scene =
+        autoChoice ? scene::makeVolumeScene(model, field) : scene::buildVolumeScene(model, field, config);
     double buildSeconds = buildTimer.seconds();
 
     const amr::ModelSummary summary = amr::summarize(model);
     const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
     const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
-    rs.camera = render::defaultCamera(worldLo, worldHi, args.getDouble("fov", 40.0));
+    rs.camera = scene::defaultCamera(worldLo, worldHi, args.getDouble("fov", 40.0));
     if (args.has("camera")) {
         auto v = args.values("camera");
         rs.camera.eye = parseVec3("--camera", v, 0);
@@ -191,17 +191,17 @@ int runRender(const std::vector<std::string>& argv) {
         tfLo = float(parseDouble("--tf-range", v[0]));
         tfHi = float(parseDouble("--tf-range", v[1]));
     }
-    render::TransferFunction tf = render::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
+    scene::TransferFunction tf = scene::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
     if (args.has("tf-range")) tf = tf.rescaled(tfLo, tfHi);
     if (autoChoice) {
-        bench::AutoConstraints constraints;
+        render::AutoConstraints constraints;
         if (args.has("sampler")) constraints.sampler = config.sampler;
         if (args.has("backend") && args.get("backend") != "auto") constraints.backend = config.backend;
         if (args.has("grid")) constraints.grid = config.grid;
-        bench::AutoChoice choice;
+        render::AutoChoice choice;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");
-            choice = bench::autoSelect(ctx, scene, tf, rs, constraints);
+            choice = render::autoSelect(ctx, scene, tf, rs, constraints);
         }
         const uint32_t kdLeavesChosen = config.kdLeaves;
         config = choice.config;
@@ -217,10 +217,10 @@ int runRender(const std::vector<std::string>& argv) {
     renderer.setTransferFunction(tf);
     ProgressBar bar("render", "spp");
     Timer wall;
-    render::RenderOutput out = renderer.render(rs, uint32_t(spp), [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    scene::RenderOutput out = renderer.render(rs, uint32_t(spp), [&](uint32_t d, uint32_t t) { bar.update(d, t); });
     bar.finish();
     const double wallSeconds = wall.seconds();
-    render::writeImage(output, out.mean);
+    writeImage(output, out.mean);
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
 
@@ -230,7 +230,7 @@ int runRender(const std::vector<std::string>& argv) {
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
     std::printf("wrote %s (%dx%d, %lld spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(),
-                rs.width, rs.height, (long long)spp, render::modeName(rs.mode), config.label().c_str(),
+                rs.width, rs.height, (long long)spp, scene::modeName(rs.mode), config.label().c_str(),
                 ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
                 out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
     if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits])
@@ -243,9 +243,9 @@ int runRender(const std::vector<std::string>& argv) {
         j.beginObject();
         j.member("input", model.source).member("field", field.name);
         j.member("device", ctx.deviceReport().name).member("width", rs.width).member("height", rs.height);
-        j.member("spp", spp).member("mode", render::modeName(rs.mode));
-        j.member("traversal", render::traversalName(config.traversal)).member("sampler", render::samplerName(config.sampler));
-        j.member("backend", render::backendName(config.backend)).member("tf", tf.name());
+        j.member("spp", spp).member("mode", scene::modeName(rs.mode));
+        j.member("traversal", scene::traversalName(config.traversal)).member("sampler", scene::samplerName(config.sampler));
+        j.member("backend", scene::backendName(config.backend)).member("tf", tf.name());
         j.member("seconds", out.stats.gpuSeconds).member("wallSeconds", wallSeconds);
         j.member("pathsPerSecond", out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0);
         j.member("paths", out.stats.paths);

@@ -16,6 +16,12 @@ std::span<const gpu::EmbeddedShader> passShaders();
 
 namespace amrvk::render {
 
+using scene::Backend;
+using scene::Mode;
+using scene::StructureConfig;
+using scene::TraversalKind;
+using scene::SamplerKind;
+
 namespace {
 static_assert(sizeof(accel::BvhNode) == sizeof(shared::BvhNodeGpu));
 static_assert(sizeof(accel::ValueRange) == 2 * sizeof(float));
@@ -23,76 +29,42 @@ static_assert(sizeof(accel::ValueRange) == 2 * sizeof(float));
 glm::vec4 v4(glm::dvec3 v, double w = 0.0) { return glm::vec4(float(v.x), float(v.y), float(v.z), float(w)); }
 }  // namespace
 
-std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& s, const amr::Transform& xf) {
-    AMRVK_CHECK(s.lights.size() <= shared::kMaxLights, "at most ", shared::kMaxLights, " lights (got ",
-                s.lights.size(), ")");
-    const double meanScale = std::cbrt(xf.scale.x * xf.scale.y * xf.scale.z);
-    std::vector<VoxelLight> out;
-    for (const Light& L : s.lights) {
-        if (L.point) {
-            out.push_back({true, (L.posOrDir - xf.origin) / xf.scale, L.radiance / (meanScale * meanScale)});
-        } else {
-            AMRVK_CHECK(glm::length(L.posOrDir) > 0, "--light-dir: direction is zero");
-            out.push_back({false, glm::normalize(L.posOrDir / xf.scale), L.radiance});
-        }
-    }
-    return out;
-}
-
-Mode parseMode(const std::string& name) {
-    if (name == "ae") return Mode::Ae;
-    if (name == "ss") return Mode::Ss;
-    if (name == "ms") return Mode::Ms;
-    if (name == "dvr") return Mode::Dvr;
-    AMRVK_CHECK(false, "--mode '", name, "': expected ae, ss, ms or dvr");
-    return Mode::Ms;
-}
-
-const char* modeName(Mode mode) {
-    switch (mode) {
-        case Mode::Ae: return "ae";
-        case Mode::Ss: return "ss";
-        case Mode::Dvr: return "dvr";
-        default: return "ms";
-    }
-}
-
 namespace {
 constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 
 std::string traversalResource(TraversalKind t, const char* what) {
-    return std::string(traversalName(t)) + "Traversal" + what;
+    return std::string(scene::traversalName(t)) + "Traversal" + what;
 }
 }  // namespace
 
-Renderer::Renderer(gpu::Context& ctx, VolumeScene& scene) : mCtx(ctx), mScene(scene) {
-    const StructureConfig& cfg = scene.config;
+Renderer::Renderer(gpu::Context& ctx, scene::VolumeScene& volume) : mCtx(ctx), mScene(volume) {
+    const StructureConfig& cfg = volume.config;
     AMRVK_CHECK(cfg.backend != Backend::Auto, "internal: Renderer needs a resolved back-end");
     AMRVK_CHECK(cfg.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
                 "' has no VK_KHR_ray_query");
     gpu::registerShaders(shaders::passShaders());
-    const glm::ivec3 origin(scene.localOrigin);
+    const glm::ivec3 origin(volume.localOrigin);
     if (cfg.usesBricks()) {
         std::vector<shared::BrickGpu> bricks;
-        bricks.reserve(scene.bricks.bricks.size());
-        for (const accel::Brick& b : scene.bricks.bricks)
+        bricks.reserve(volume.bricks.bricks.size());
+        for (const accel::Brick& b : volume.bricks.bricks)
             bricks.push_back({glm::ivec4(b.lower - origin, b.level), glm::ivec4(b.size, int32_t(b.begin))});
         mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
-        mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+        mBrickValues = gpu::makeBuffer<float>(ctx, volume.brickValues, "brickValues");
     }
     const char* samplerStructure = cfg.sampler == SamplerKind::Abr ? "abrSampler" : "brickDomainSampler";
     if (cfg.sampler == SamplerKind::Dense) {
-        AMRVK_CHECK(scene.dense.has_value(), "internal: dense sampler without a dense grid");
-        const accel::DenseGrid& d = *scene.dense;
+        AMRVK_CHECK(volume.dense.has_value(), "internal: dense sampler without a dense grid");
+        const accel::DenseGrid& d = *volume.dense;
         mDenseValues = gpu::makeBuffer<float>(ctx, d.values, "denseGrid");
         mParams.denseValues = mDenseValues.address();
         mParams.denseDims = glm::ivec4(d.dims, d.level);
-        mParams.denseOrigin = v4(glm::dvec3(d.origin - scene.localOrigin), double(amr::cellWidth(d.level)));
+        mParams.denseOrigin = v4(glm::dvec3(d.origin - volume.localOrigin), double(amr::cellWidth(d.level)));
     } else if (cfg.backend == Backend::Sw) {
-        mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, scene.samplerBvh.nodes, std::string(samplerStructure) + "Bvh");
-        mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, std::string(samplerStructure) + "BvhPrims");
+        mSamplerNodes = gpu::makeBuffer<accel::BvhNode>(ctx, volume.samplerBvh.nodes, std::string(samplerStructure) + "Bvh");
+        mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, volume.samplerBvh.primIds, std::string(samplerStructure) + "BvhPrims");
     } else {
-        const auto& boxes = scene.samplerBoxes;
+        const auto& boxes = volume.samplerBoxes;
         mSamplerAabbs = gpu::Buffer(ctx, std::max<uint64_t>(16, boxes.size() * sizeof(shared::AabbGpu)),
                                     gpu::MemoryKind::Device, std::string(samplerStructure) + "Aabbs", kAsInput);
         if (!boxes.empty()) mSamplerAabbs.upload(boxes.data(), boxes.size() * sizeof(shared::AabbGpu));
@@ -100,30 +72,30 @@ Renderer::Renderer(gpu::Context& ctx, VolumeScene& scene) : mCtx(ctx), mScene(sc
         ctx.submitAndWait([&](VkCommandBuffer cmd) { mSamplerAccel.build(cmd, mSamplerAabbs); });
         mParams.samplerAccel = mSamplerAccel.tlasAddress();
     }
-    if (scene.abrs) {
+    if (volume.abrs) {
         std::vector<shared::AbrGpu> abrs;
-        abrs.reserve(scene.abrs->abrs.size());
-        const glm::dvec3 o(scene.localOrigin);
-        for (const accel::Abr& a : scene.abrs->abrs)
+        abrs.reserve(volume.abrs->abrs.size());
+        const glm::dvec3 o(volume.localOrigin);
+        for (const accel::Abr& a : volume.abrs->abrs)
             abrs.push_back({glm::vec3(a.box.lower() - o), a.brickBegin, glm::vec3(a.box.upper() - o), a.brickCount});
         mAbrs = gpu::makeBuffer<shared::AbrGpu>(ctx, abrs, "abrs");
-        mAbrBrickList = gpu::makeBuffer<uint32_t>(ctx, scene.abrs->brickList, "abrBrickLists");
+        mAbrBrickList = gpu::makeBuffer<uint32_t>(ctx, volume.abrs->brickList, "abrBrickLists");
     }
-    if (scene.grid) {
-        mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid->ranges, "macrocellRanges");
-        mGridMajorants = gpu::Buffer(ctx, std::max<uint64_t>(16, scene.grid->ranges.size() * sizeof(float)),
+    if (volume.grid) {
+        mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, volume.grid->ranges, "macrocellRanges");
+        mGridMajorants = gpu::Buffer(ctx, std::max<uint64_t>(16, volume.grid->ranges.size() * sizeof(float)),
                                      gpu::MemoryKind::Device, "macrocellMajorants");
-        mParams.gridDims = glm::ivec4(scene.grid->dims, 0);
-        mParams.gridOrigin = v4(scene.grid->origin - glm::dvec3(scene.localOrigin));
-        mParams.gridCellSize = v4(scene.grid->cellSize);
+        mParams.gridDims = glm::ivec4(volume.grid->dims, 0);
+        mParams.gridOrigin = v4(volume.grid->origin - glm::dvec3(volume.localOrigin));
+        mParams.gridCellSize = v4(volume.grid->cellSize);
         mParams.gridRanges = mGridRanges.address();
         mParams.gridMajorants = mGridMajorants.address();
     }
     mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
     mParamsBuffer = gpu::Buffer(ctx, sizeof(shared::RenderParams), gpu::MemoryKind::Device, "renderParams");
 
-    mParams.boundsLo = v4(glm::dvec3(0.0), 1.0 / double(amr::cellWidth(scene.minLevel)));
-    mParams.boundsHi = v4(glm::dvec3(scene.bounds.upper - scene.bounds.lower), 1.0);
+    mParams.boundsLo = v4(glm::dvec3(0.0), 1.0 / double(amr::cellWidth(volume.minLevel)));
+    mParams.boundsHi = v4(glm::dvec3(volume.bounds.upper - volume.bounds.lower), 1.0);
     mParams.bricks = mBricks.valid() ? mBricks.address() : 0;
     mParams.brickValues = mBrickValues.valid() ? mBrickValues.address() : 0;
     mParams.samplerNodes = mSamplerNodes.valid() ? mSamplerNodes.address() : 0;
@@ -204,7 +176,7 @@ void Renderer::updateSwCulling(const std::vector<float>& majorants) {
     mParams.domainPrims = mDomainPrims.address();
 }
 
-void Renderer::setTransferFunction(const TransferFunction& tf) {
+void Renderer::setTransferFunction(const scene::TransferFunction& tf) {
     const auto& positions = tf.positions();
     std::vector<glm::vec4> colors = tf.colors();
     AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
@@ -246,7 +218,7 @@ void Renderer::setTransferFunction(const TransferFunction& tf) {
         gpu::computeBarrier(cmd);
         if (rq && boxCount > 0) {
             shared::StructurePush push{mParamsBuffer.address(), mParams.domainMajorants, mDomainAabbs.address(),
-                                       boxCount, shaderConstant(cfg.traversal)};
+                                       boxCount, scene::shaderConstant(cfg.traversal)};
             mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
             gpu::computeBarrier(cmd);
             mDomainAccel.build(cmd, mDomainAabbs);
@@ -305,21 +277,21 @@ const gpu::ComputePipeline& Renderer::pathTracePipeline(Mode mode) {
     const char* shader = cfg.backend == Backend::Rq ? "path_trace_rq" : "path_trace";
     auto [pos, ok] = mPathTrace.emplace(
         key, gpu::ComputePipeline(mCtx, gpu::loadShader(shader),
-                                  std::string("path_trace.") + modeName(mode) + "." + cfg.label(),
+                                  std::string("path_trace.") + scene::modeName(mode) + "." + cfg.label(),
                                   sizeof(shared::PushConstants),
-                                  {{0, modeConst}, {1, shaderConstant(cfg.sampler)},
-                                   {2, shaderConstant(cfg.traversal)}, {3, shaderConstant(cfg.backend)}}));
+                                  {{0, modeConst}, {1, scene::shaderConstant(cfg.sampler)},
+                                   {2, scene::shaderConstant(cfg.traversal)}, {3, scene::shaderConstant(cfg.backend)}}));
     return pos->second;
 }
 
-void Renderer::writeParams(const RenderSettings& s) {
+void Renderer::writeParams(const scene::RenderSettings& s) {
     AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= 16384 && s.height <= 16384, "--size ", s.width, "x",
                 s.height, " is outside 1..16384");
     AMRVK_CHECK(s.densityScale >= 0 && std::isfinite(s.densityScale), "--density-scale ", s.densityScale,
                 " must be finite and >= 0");
     const amr::Transform& xf = mScene.model->voxelToWorld;
     const glm::dvec3 origin(mScene.localOrigin);
-    RayBasis rb = makeRayBasis(s.camera, s.width, s.height, xf, origin);
+    scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, xf, origin);
     mParams.eye = v4(rb.eye);
     mParams.dir00 = v4(rb.dir00);
     mParams.du = v4(rb.du);
@@ -330,16 +302,16 @@ void Renderer::writeParams(const RenderSettings& s) {
     mParams.background = v4(s.background.value_or(s.ambient));
     mParams.shading = glm::vec4(float(std::clamp(s.g, -0.999, 0.999)), float(s.lights.size()), 0, 0);
     for (size_t i = 0; i < shared::kMaxLights; ++i) mParams.lights[i] = {};
-    const auto lights = lightsInVoxelSpace(s, xf);
+    const auto lights = scene::lightsInVoxelSpace(s, xf);
     for (size_t i = 0; i < lights.size(); ++i) {
-        const VoxelLight& L = lights[i];
+        const scene::VoxelLight& L = lights[i];
         mParams.lights[i] = L.point ? shared::LightGpu{v4(L.posOrDir - origin, shared::kLightPoint), v4(L.radiance)}
                                     : shared::LightGpu{v4(L.posOrDir, shared::kLightDirectional), v4(L.radiance)};
     }
     AMRVK_CHECK(s.dvrStep > 0 && std::isfinite(s.dvrStep), "--dt ", s.dvrStep, " must be finite and > 0");
     // dvr shading light: the first directional light, else a headlight along the view direction.
     glm::dvec3 shadeDir = -glm::dvec3(rb.dir00 + 0.5 * double(s.width) * rb.du + 0.5 * double(s.height) * rb.dv);
-    for (const VoxelLight& L : lights)
+    for (const scene::VoxelLight& L : lights)
         if (!L.point) {
             shadeDir = L.posOrDir;
             break;
@@ -357,21 +329,21 @@ void Renderer::writeParams(const RenderSettings& s) {
     mParamsBuffer.upload(&mParams, sizeof mParams);
 }
 
-RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
+scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint32_t spp,
                               const std::function<void(uint32_t, uint32_t)>& progress) {
     return render(settings, spp, progress, {}, {});
 }
 
-RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
+scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint32_t spp,
                               const std::function<void(uint32_t, uint32_t)>& progress,
                               const std::vector<uint32_t>& snapshotSpp,
-                              const std::function<void(const RenderOutput&)>& snapshot) {
+                              const std::function<void(const scene::RenderOutput&)>& snapshot) {
     AMRVK_CHECK(mHasTf, "internal: render() before setTransferFunction()");
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
     writeParams(settings);
     const gpu::ComputePipeline& pipeline = pathTracePipeline(settings.mode);
     mAccum.fillZero();
-    RenderOutput out;
+    scene::RenderOutput out;
     out.spp = spp;
     const uint32_t gx = (uint32_t(settings.width) + 7) / 8, gy = (uint32_t(settings.height) + 7) / 8;
     gpu::GpuTimer timer(mCtx, 64);
@@ -379,9 +351,9 @@ RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
     size_t nextSnapshot = 0;
     std::array<uint32_t, shared::kCounterCount> counters{};
     std::vector<glm::vec4> accum(size_t(settings.width) * size_t(settings.height) * 2);
-    auto readBack = [&](RenderOutput& o) {
+    auto readBack = [&](scene::RenderOutput& o) {
         mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
-        o.mean = Image(settings.width, settings.height);
+        o.mean = amrvk::Image(settings.width, settings.height);
         o.sumSq.resize(accum.size() / 2);
         for (size_t i = 0; i < o.mean.pixels.size(); ++i) {
             glm::vec4 sum = accum[2 * i];
@@ -419,7 +391,7 @@ RenderOutput Renderer::render(const RenderSettings& settings, uint32_t spp,
         else if (largest >= (1u << 30) && batch > 1) batch /= 2;
         out.stats.paths = uint64_t(done) * uint64_t(settings.width) * uint64_t(settings.height);
         if (snapshot && nextSnapshot < snapshotSpp.size() && snapshotSpp[nextSnapshot] == done) {
-            RenderOutput partial;
+            scene::RenderOutput partial;
             partial.spp = done;
             partial.stats = out.stats;
             readBack(partial);

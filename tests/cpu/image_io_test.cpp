@@ -9,11 +9,10 @@
 #include <random>
 
 #include "core/error.h"
-#include "render/image_io.h"
+#include "core/image_io.h"
 #include "test_data.h"
 
 using namespace amrvk;
-using render::Image;
 
 using namespace amrvk::test;
 
@@ -67,7 +66,7 @@ TEST(ImageIo, PfmRoundTripIsExact) {
         Image img = randomImage(w, h, uint32_t(w * 100 + h), -1e3f, 1e3f);
         img.at(0, 0) = glm::vec4(std::numeric_limits<float>::infinity(), -0.0f, 1e-40f, 0.5f);
         writeImage(dir / "a.pfm", img);
-        Image back = render::readPfm(dir / "a.pfm");
+        Image back = readPfm(dir / "a.pfm");
         expectRgbBitExact(img, back);
         for (const glm::vec4& p : back.pixels) EXPECT_EQ(p.a, 1.0f);
     }
@@ -93,7 +92,7 @@ TEST(ImageIo, ExrRoundTripIsExact) {
     for (auto [w, h] : {std::pair{1, 1}, {13, 7}, {5, 40}}) {
         Image img = randomImage(w, h, uint32_t(w * 7 + h), -5.0f, 50.0f);
         writeImage(dir / "a.exr", img);
-        Image back = render::readExr(dir / "a.exr");
+        Image back = readExr(dir / "a.exr");
         expectRgbBitExact(img, back);
         for (const glm::vec4& p : back.pixels) EXPECT_EQ(p.a, 1.0f);  // no A channel written
         // Header, offset table, then per scanline: y, byte count, B, G, R floats.
@@ -124,7 +123,7 @@ TEST(ImageIo, PngHoldsSrgbEncodedValues) {
     img.at(0, 0) = glm::vec4(std::numeric_limits<float>::quiet_NaN(), 0.001f, 0.0031308f, 0.0f);
     img.at(1, 0) = glm::vec4(0.5f, 0.18f, std::numeric_limits<float>::infinity(), 0.0f);
     writeImage(dir / "a.png", img);
-    render::Image8 back = render::readPng(dir / "a.png");
+    Image8 back = readPng(dir / "a.png");
     ASSERT_EQ(back.width, 17);
     ASSERT_EQ(back.height, 9);
     ASSERT_EQ(back.rgba.size(), size_t(17 * 9 * 4));
@@ -141,15 +140,15 @@ TEST(ImageIo, PngHoldsSrgbEncodedValues) {
     EXPECT_EQ(back.rgba[4], 188);    // 0.5 -> 188
     EXPECT_EQ(back.rgba[5], 118);    // 0.18 -> 118
     EXPECT_EQ(back.rgba[6], 255);    // +inf -> 1
-    EXPECT_EQ(render::encodeSrgb8(2.0f), 255);
-    EXPECT_EQ(render::encodeSrgb8(-1.0f), 0);
+    EXPECT_EQ(encodeSrgb8(2.0f), 255);
+    EXPECT_EQ(encodeSrgb8(-1.0f), 0);
 }
 
 TEST(ImageIo, ExtensionIsCaseInsensitive) {
     auto dir = test::scratchDir();
     Image img = randomImage(3, 2, 9, 0.0f, 1.0f);
     writeImage(dir / "a.PFM", img);
-    expectRgbBitExact(img, render::readPfm(dir / "a.PFM"));
+    expectRgbBitExact(img, readPfm(dir / "a.PFM"));
 }
 
 TEST(ImageIo, FailuresLeaveNoFile) {
@@ -177,14 +176,14 @@ TEST(ImageIo, MalformedFilesAreRejected) {
         std::ofstream(dir / name, std::ios::binary) << text;
         return dir / name;
     };
-    expectError([&] { render::readPfm(write("magic.pfm", "P6\n1 1\n255\nabc")); }, {"magic.pfm", "not a PFM file"});
-    expectError([&] { render::readPfm(write("short.pfm", "PF\n2 2\n-1.0\n0123")); },
+    expectError([&] { readPfm(write("magic.pfm", "P6\n1 1\n255\nabc")); }, {"magic.pfm", "not a PFM file"});
+    expectError([&] { readPfm(write("short.pfm", "PF\n2 2\n-1.0\n0123")); },
                 {"short.pfm", "4 bytes after the header, expected 48"});
-    expectError([&] { render::readPfm(write("size.pfm", "PF\nx 2\n-1.0\n")); }, {"size.pfm", "not a number"});
-    expectError([&] { render::readExr(write("bad.exr", "not an exr file")); }, {"bad.exr", "not an OpenEXR file"});
-    expectError([&] { render::readPng(write("bad.png", "not a png")); }, {"bad.png", "cannot read PNG"});
+    expectError([&] { readPfm(write("size.pfm", "PF\nx 2\n-1.0\n")); }, {"size.pfm", "not a number"});
+    expectError([&] { readExr(write("bad.exr", "not an exr file")); }, {"bad.exr", "not an OpenEXR file"});
+    expectError([&] { readPng(write("bad.png", "not a png")); }, {"bad.png", "cannot read PNG"});
     Image img = randomImage(6, 5, 2, 0.0f, 1.0f);
     writeImage(dir / "cut.exr", img);
     std::filesystem::resize_file(dir / "cut.exr", std::filesystem::file_size(dir / "cut.exr") - 10);
-    expectError([&] { render::readExr(dir / "cut.exr"); }, {"cut.exr", "truncated"});
+    expectError([&] { readExr(dir / "cut.exr"); }, {"cut.exr", "truncated"});
 }

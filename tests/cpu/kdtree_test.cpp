@@ -15,7 +15,7 @@
 #include "amr/synthetic.h"
 #include "core/error.h"
 #include "model_fixtures.h"
-#include "render/transfer_function.h"
+#include "scene/transfer_function.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -188,8 +188,8 @@ TEST(KdTree, SpikyPresetOnSyntheticCloud) {
     std::vector<float> v = b.model.fields[0].values;
     std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
     const float median = v[v.size() / 2];
-    const render::TransferFunction tf =
-        render::makePreset("spiky", median - 0.5f * (b.hi - b.lo), median + 0.5f * (b.hi - b.lo));
+    const scene::TransferFunction tf =
+        scene::makePreset("spiky", median - 0.5f * (b.hi - b.lo), median + 0.5f * (b.hi - b.lo));
     const KdTree t =
         buildKdTree(q, b.bounds, [&](float lo, float hi) { return tf.maxAlpha(lo, hi); }, {256});
     EXPECT_EQ(t.leaves.size(), 256u);

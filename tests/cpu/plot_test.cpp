@@ -11,12 +11,11 @@
 
 #include "bench/plot.h"
 #include "core/error.h"
-#include "render/image_io.h"
+#include "core/image_io.h"
 #include "test_data.h"
 
 using namespace amrvk;
 using bench::Rgb8;
-using render::Image8;
 
 namespace {
 
@@ -405,7 +404,7 @@ TEST(PlotIo, WrittenPngMatchesTheRenderAndFailuresLeaveNoFile) {
     plot.logY = true;
     plot.series.push_back(series({1, 2, 3}, {1, 10, 100}, kRed, "s"));
     bench::writeLinePlot(dir / "line.png", plot);
-    const Image8 back = render::readPng(dir / "line.png");
+    const Image8 back = readPng(dir / "line.png");
     const Image8 rendered = bench::renderLinePlot(plot);
     EXPECT_EQ(back.width, plot.width);
     EXPECT_EQ(back.height, plot.height);
@@ -417,7 +416,7 @@ TEST(PlotIo, WrittenPngMatchesTheRenderAndFailuresLeaveNoFile) {
     chart.width = 300;
     chart.height = 200;
     bench::writeBarChart(dir / "bar.png", chart);
-    EXPECT_EQ(render::readPng(dir / "bar.png").rgba, bench::renderBarChart(chart).rgba);
+    EXPECT_EQ(readPng(dir / "bar.png").rgba, bench::renderBarChart(chart).rgba);
 
     test::expectError([&] { bench::writeLinePlot(dir / "missing" / "x.png", plot); }, {"x.png", "cannot write"});
     test::expectError([&] { bench::writeBarChart(dir / "missing" / "y.png", chart); }, {"y.png", "cannot write"});

@@ -9,11 +9,11 @@
 #include <random>
 
 #include "core/error.h"
-#include "render/transfer_function.h"
+#include "scene/transfer_function.h"
 #include "test_data.h"
 
 using namespace amrvk;
-using render::TransferFunction;
+using scene::TransferFunction;
 
 using namespace amrvk::test;
 
@@ -38,7 +38,7 @@ void append(std::vector<uint8_t>& out, T v) {
 
 // The 2080-byte-style `.xf` layout: magic, opacityScale, absDomain, relDomain, N, rgba[N].
 std::vector<uint8_t> xfBytes(float opacityScale, float absLo, float absHi, float relLo, float relHi,
-                             const std::vector<glm::vec4>& rgba, uint64_t magic = render::kXfMagic) {
+                             const std::vector<glm::vec4>& rgba, uint64_t magic = scene::kXfMagic) {
     std::vector<uint8_t> b;
     append(b, magic);
     for (float f : {opacityScale, absLo, absHi, relLo, relHi}) append(b, f);
@@ -250,20 +250,20 @@ TEST(TransferFunction, RescaledMapsTheNodeRange) {
 
 TEST(TransferFunction, Presets) {
     const std::vector<std::string> expected = {"ramp", "grey", "spiky", "foggy", "constant", "empty"};
-    EXPECT_EQ(render::presetNames(), expected);
-    for (const std::string& name : render::presetNames()) {
-        TransferFunction tf = render::makePreset(name, 2.0f, 6.0f);
+    EXPECT_EQ(scene::presetNames(), expected);
+    for (const std::string& name : scene::presetNames()) {
+        TransferFunction tf = scene::makePreset(name, 2.0f, 6.0f);
         EXPECT_EQ(tf.firstPosition(), 2.0f) << name;
         EXPECT_EQ(tf.lastPosition(), 6.0f) << name;
     }
-    TransferFunction ramp = render::makePreset("ramp", 2.0f, 6.0f);
+    TransferFunction ramp = scene::makePreset("ramp", 2.0f, 6.0f);
     EXPECT_EQ(ramp.evaluate(2.0f).a, 0.0f);
     EXPECT_EQ(ramp.evaluate(6.0f).a, 1.0f);
     EXPECT_NEAR(ramp.evaluate(4.0f).a, 0.5f, 1e-6f);
     EXPECT_NEAR(ramp.evaluate(3.0f).a, 0.25f, 1e-6f);
     EXPECT_GT(ramp.evaluate(6.0f).r, ramp.evaluate(2.0f).r);  // dark purple to yellow
 
-    TransferFunction spiky = render::makePreset("spiky", 2.0f, 6.0f);
+    TransferFunction spiky = scene::makePreset("spiky", 2.0f, 6.0f);
     EXPECT_EQ(spiky.evaluate(4.0f).a, 1.0f);
     EXPECT_EQ(spiky.evaluate(2.0f).a, 0.0f);
     EXPECT_EQ(spiky.evaluate(3.9f).a, 0.0f);
@@ -271,19 +271,19 @@ TEST(TransferFunction, Presets) {
     EXPECT_EQ(spiky.maxAlpha(2.0f, 6.0f), 1.0f);
     EXPECT_EQ(spiky.maxAlpha(2.0f, 3.9f), 0.0f);
 
-    TransferFunction foggy = render::makePreset("foggy", 2.0f, 6.0f);
+    TransferFunction foggy = scene::makePreset("foggy", 2.0f, 6.0f);
     for (float v = 1.0f; v <= 7.0f; v += 0.25f) {
         EXPECT_GE(foggy.evaluate(v).a, 0.05f - 1e-7f);
         EXPECT_LE(foggy.evaluate(v).a, 0.2f + 1e-7f);
     }
-    TransferFunction constant = render::makePreset("constant", 2.0f, 6.0f);
+    TransferFunction constant = scene::makePreset("constant", 2.0f, 6.0f);
     for (float v : {-10.0f, 2.0f, 3.3f, 6.0f, 100.0f}) EXPECT_EQ(constant.evaluate(v), glm::vec4(1.0f));
-    EXPECT_EQ(render::makePreset("empty", 2.0f, 6.0f).maxAlpha(-1e30f, 1e30f), 0.0f);
-    EXPECT_EQ(render::makePreset("grey", 0.0f, 1.0f).evaluate(0.5f), glm::vec4(0.8f, 0.8f, 0.8f, 0.5f));
+    EXPECT_EQ(scene::makePreset("empty", 2.0f, 6.0f).maxAlpha(-1e30f, 1e30f), 0.0f);
+    EXPECT_EQ(scene::makePreset("grey", 0.0f, 1.0f).evaluate(0.5f), glm::vec4(0.8f, 0.8f, 0.8f, 0.5f));
 
-    expectError([] { render::makePreset("rainbow", 0.0f, 1.0f); },
+    expectError([] { scene::makePreset("rainbow", 0.0f, 1.0f); },
                 {"unknown transfer function preset 'rainbow'", "ramp", "spiky"});
-    expectError([] { render::makePreset("ramp", 1.0f, 0.0f); }, {"preset 'ramp'", "[1, 0]"});
+    expectError([] { scene::makePreset("ramp", 1.0f, 0.0f); }, {"preset 'ramp'", "[1, 0]"});
 }
 
 TEST(TransferFunction, ParaViewSeparateColourAndOpacityNodes) {
@@ -294,7 +294,7 @@ TEST(TransferFunction, ParaViewSeparateColourAndOpacityNodes) {
         "RGBPoints": [0, 0, 0, 1,   4, 0.5, 0.5, 0.5,   6, 1, 0, 0,   6, 0, 1, 0,   10, 1, 1, 1],
         "Points": [-2, 0.0, 0.5, 0.0,   2, 0.2, 0.5, 0.0,   2, 0.8, 0.5, 0.0,   7, 3.0, 0.5, 0.0]
     }])");
-    TransferFunction tf = render::loadTransferFunction((dir / "cmap.json").string(), 0.0f, 1.0f);
+    TransferFunction tf = scene::loadTransferFunction((dir / "cmap.json").string(), 0.0f, 1.0f);
     EXPECT_EQ(tf.name(), "Test Map");
     EXPECT_EQ(tf.positions(), (std::vector<float>{-2, 0, 2, 2, 4, 6, 6, 7, 10}));
 
@@ -332,7 +332,7 @@ TEST(TransferFunction, ParaViewSeparateColourAndOpacityNodes) {
 TEST(TransferFunction, ParaViewWithoutOpacityRampsOverTheColourRange) {
     auto dir = test::scratchDir();
     writeText(dir / "one.json", R"({"Name": "Solo", "RGBPoints": [-1, 0, 0, 0, 3, 1, 1, 1]})");
-    TransferFunction tf = render::loadParaViewPreset(dir / "one.json");
+    TransferFunction tf = scene::loadParaViewPreset(dir / "one.json");
     EXPECT_EQ(tf.positions(), (std::vector<float>{-1, 3}));
     EXPECT_EQ(tf.evaluate(-1.0f), glm::vec4(0.0f));
     EXPECT_EQ(tf.evaluate(3.0f), glm::vec4(1.0f));
@@ -348,13 +348,13 @@ TEST(TransferFunction, ParaViewFileWithSeveralPresets) {
         {"Name": "Second", "RGBPoints": [0, 0, 1, 0, 2, 0, 1, 0], "Points": [0, 0.5, 0.5, 0, 2, 0.5, 0.5, 0]},
         {"Name": "Broken", "RGBPoints": [0, 1, 0]}
     ])");
-    EXPECT_EQ(render::loadParaViewPreset(dir / "many.json").name(), "First");
-    TransferFunction second = render::loadTransferFunction((dir / "many.json").string(), 0, 1, "Second");
+    EXPECT_EQ(scene::loadParaViewPreset(dir / "many.json").name(), "First");
+    TransferFunction second = scene::loadTransferFunction((dir / "many.json").string(), 0, 1, "Second");
     EXPECT_EQ(second.name(), "Second");
     EXPECT_EQ(second.evaluate(1.0f), glm::vec4(0.0f, 1.0f, 0.0f, 0.5f));
-    expectError([&] { render::loadParaViewPreset(dir / "many.json", "Third"); },
+    expectError([&] { scene::loadParaViewPreset(dir / "many.json", "Third"); },
                 {"many.json", "no preset named 'Third'", "3 presets", "First, Second, Broken"});
-    expectError([&] { render::loadParaViewPreset(dir / "many.json", "Broken"); },
+    expectError([&] { scene::loadParaViewPreset(dir / "many.json", "Broken"); },
                 {"many.json", "preset 'Broken'", "RGBPoints has 3 numbers"});
 }
 
@@ -369,7 +369,7 @@ TEST(UpstreamBug_RelDomainAppliedTwice, XfRoundTrip) {
     writeBytes(dir / "a.xf", bytes);
     writeBytes(dir / "a_without_extension", bytes);
     for (const char* name : {"a.xf", "a_without_extension"}) {
-        TransferFunction tf = render::loadTransferFunction((dir / name).string(), 50.0f, 60.0f);
+        TransferFunction tf = scene::loadTransferFunction((dir / name).string(), 50.0f, 60.0f);
         ASSERT_EQ(tf.nodeCount(), 128u);
         EXPECT_EQ(tf.firstPosition(), 0.0f);
         EXPECT_EQ(tf.lastPosition(), 2.0f);
@@ -380,7 +380,7 @@ TEST(UpstreamBug_RelDomainAppliedTwice, XfRoundTrip) {
     }
     // opacityScale 110 -> alpha times 1.1^10.
     writeBytes(dir / "s.xf", xfBytes(110.0f, 0.0f, 1.0f, 0.0f, 100.0f, rgba));
-    TransferFunction scaled = render::loadXf(dir / "s.xf", 0.0f, 1.0f);
+    TransferFunction scaled = scene::loadXf(dir / "s.xf", 0.0f, 1.0f);
     for (size_t i = 0; i < 128; ++i) {
         EXPECT_NEAR(scaled.colors()[i].a, rgba[i].a * std::pow(1.1, 10.0), 1e-6);
         EXPECT_EQ(glm::vec3(scaled.colors()[i]), glm::vec3(rgba[i]));
@@ -393,7 +393,7 @@ TEST(TransferFunction, OwlExaBrickAlphaTable) {
     for (int i = 0; i < 128; ++i) append(bytes, float(i) / 127.0f);
     ASSERT_EQ(bytes.size(), 512u);
     writeBytes(dir / "old.xf", bytes);
-    TransferFunction tf = render::loadTransferFunction((dir / "old.xf").string(), -4.0f, 4.0f);
+    TransferFunction tf = scene::loadTransferFunction((dir / "old.xf").string(), -4.0f, 4.0f);
     ASSERT_EQ(tf.nodeCount(), 128u);
     EXPECT_EQ(tf.firstPosition(), -4.0f);
     EXPECT_EQ(tf.lastPosition(), 4.0f);
@@ -405,7 +405,7 @@ TEST(TransferFunction, MalformedInputs) {
     auto dir = test::scratchDir();
     auto json = [&](const std::string& name, const std::string& text) {
         writeText(dir / name, text);
-        return [path = dir / name] { render::loadParaViewPreset(path); };
+        return [path = dir / name] { scene::loadParaViewPreset(path); };
     };
     expectError(json("syntax.json", "[{\"RGBPoints\": [0, 1, 1, 1,]}]"), {"syntax.json", "malformed JSON"});
     expectError(json("number.json", "42"), {"number.json", "expected a ParaView preset", "number"});
@@ -429,12 +429,12 @@ TEST(TransferFunction, MalformedInputs) {
                 {"points.json", "Points has 3 numbers"});
     expectError(json("huge.json", "{\"RGBPoints\": [1e300, 1, 1, 1]}"),
                 {"huge.json", "not a finite float"});
-    expectError([&] { render::loadParaViewPreset(dir / "missing.json"); }, {"missing.json", "no such file"});
+    expectError([&] { scene::loadParaViewPreset(dir / "missing.json"); }, {"missing.json", "no such file"});
 
     const std::vector<glm::vec4> rgba = xfColors(128);
     auto xf = [&](const std::string& name, const std::vector<uint8_t>& bytes) {
         writeBytes(dir / name, bytes);
-        return [path = dir / name] { render::loadXf(path, 0.0f, 1.0f); };
+        return [path = dir / name] { scene::loadXf(path, 0.0f, 1.0f); };
     };
     std::vector<uint8_t> badMagic = xfBytes(100, 0, 1, 0, 100, rgba, 0x1234);
     expectError(xf("magic.xf", badMagic), {"magic.xf", "magic 0x1234 (expected 0x1235abc000)", "2080 bytes"});
@@ -462,10 +462,10 @@ TEST(TransferFunction, MalformedInputs) {
     expectError(xf("oldnan.xf", oldNan), {"oldnan.xf", "node 10 colour a is not finite"});
     expectError(xf("tiny.xf", {1, 2, 3}), {"tiny.xf", "not a .xf transfer function", "size 3 bytes"});
 
-    expectError([] { render::loadTransferFunction("no-such-preset-or-file", 0, 1); },
+    expectError([] { scene::loadTransferFunction("no-such-preset-or-file", 0, 1); },
                 {"'no-such-preset-or-file' is neither a transfer function preset", "ramp"});
     writeText(dir / "notes.txt", "hello");
-    expectError([&] { render::loadTransferFunction((dir / "notes.txt").string(), 0, 1); },
+    expectError([&] { scene::loadTransferFunction((dir / "notes.txt").string(), 0, 1); },
                 {"notes.txt", "unknown transfer function format"});
 
     const float inf = std::numeric_limits<float>::infinity();

@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "amr/readers.h"
-#include "render/transfer_function.h"
+#include "scene/transfer_function.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -75,7 +75,7 @@ TEST(UpstreamBug_HalfTexelMajorantRange, MajorantBoundsEveryLookupInTheRange) {
         pos[size_t(i)] = float(i) / float(n - 1);
         col[size_t(i)] = glm::vec4(1.0f, 1.0f, 1.0f, alpha[size_t(i)]);
     }
-    const render::TransferFunction tf(pos, col, "texel-9");
+    const scene::TransferFunction tf(pos, col, "texel-9");
     for (int r = 0; r < 400; ++r) {
         const float lo = 0.05f + 0.0001f * float(r), hi = lo + 0.001f * float(1 + r % 7);
         const float m = tf.maxAlpha(lo, hi);

@@ -6,12 +6,12 @@
 
 #include "core/error.h"
 #include "model_fixtures.h"
-#include "render/volume_scene.h"
+#include "scene/volume_scene.h"
 
 using namespace amrvk;
 
 namespace {
-bool holds(const render::VolumeScene& s, const std::string& name) {
+bool holds(const scene::VolumeScene& s, const std::string& name) {
     const auto bytes = s.hostBytes();
     return std::any_of(bytes.begin(), bytes.end(), [&](const auto& e) { return e.first == name && e.second > 0; });
 }
@@ -20,30 +20,30 @@ bool holds(const render::VolumeScene& s, const std::string& name) {
 
 TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
     const amr::Model m = test::makeThreeLevelCloud();
-    render::VolumeScene s = render::makeVolumeScene(m, m.defaultField());
-    render::StructureConfig c;  // grid-dda, ext-brick, sw
+    scene::VolumeScene s = scene::makeVolumeScene(m, m.defaultField());
+    scene::StructureConfig c;  // grid-dda, ext-brick, sw
     s.configure(c);
     EXPECT_TRUE(holds(s, "bricks") && holds(s, "samplerBvh") && holds(s, "macrocells"));
     EXPECT_FALSE(holds(s, "abrs") || holds(s, "traversalBoxes") || holds(s, "samplerBoxes"));
 
-    c.traversal = render::TraversalKind::Abr;
-    c.sampler = render::SamplerKind::Abr;
-    c.backend = render::Backend::Rq;
+    c.traversal = scene::TraversalKind::Abr;
+    c.sampler = scene::SamplerKind::Abr;
+    c.backend = scene::Backend::Rq;
     s.configure(c);
     EXPECT_TRUE(holds(s, "abrs") && holds(s, "traversalBoxes") && holds(s, "samplerBoxes"));
     EXPECT_FALSE(holds(s, "macrocells") || holds(s, "samplerBvh"));
     EXPECT_EQ(s.domains.boxes.size(), s.abrs->abrs.size());
     EXPECT_EQ(s.samplerBoxes.size(), s.abrs->abrs.size());
 
-    c.traversal = render::TraversalKind::Brick;
-    c.sampler = render::SamplerKind::ExtBrick;
-    c.backend = render::Backend::Sw;
+    c.traversal = scene::TraversalKind::Brick;
+    c.sampler = scene::SamplerKind::ExtBrick;
+    c.backend = scene::Backend::Sw;
     s.configure(c);
     EXPECT_FALSE(holds(s, "abrs") || holds(s, "samplerBoxes") || holds(s, "macrocells"));
     EXPECT_EQ(s.domains.boxes.size(), s.bricks.bricks.size());
     EXPECT_EQ(s.domains.ranges.size(), s.bricks.bricks.size());
 
-    c.traversal = render::TraversalKind::KdTree;
+    c.traversal = scene::TraversalKind::KdTree;
     c.kdLeaves = 64;
     s.configure(c);
     EXPECT_TRUE(s.domains.boxes.empty()) << "kd-tree boxes exist only once a TF is known";
@@ -51,22 +51,22 @@ TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
     EXPECT_TRUE(holds(s, "kdTree") && holds(s, "supportRangeQuery"));
     EXPECT_EQ(s.domains.boxes.size(), 64u);
 
-    c.traversal = render::TraversalKind::GridBvh;
+    c.traversal = scene::TraversalKind::GridBvh;
     s.configure(c);
     EXPECT_FALSE(holds(s, "kdTree") || holds(s, "supportRangeQuery") || holds(s, "traversalBoxes"));
     EXPECT_TRUE(holds(s, "macrocells"));
 }
 
 TEST(VolumeScene, ConfigurationNamesAndErrors) {
-    EXPECT_EQ(render::parseTraversal("kdtree"), render::TraversalKind::KdTree);
-    EXPECT_EQ(std::string(render::traversalName(render::TraversalKind::GridBvh)), "grid-bvh");
-    EXPECT_EQ(render::allTraversals().size(), 6u);
-    EXPECT_THROW(render::parseTraversal("octree"), Error);
-    EXPECT_THROW(render::parseBackend("cuda"), Error);
-    EXPECT_EQ(render::resolveBackend(render::Backend::Auto, true, "gpu"), render::Backend::Rq);
-    EXPECT_EQ(render::resolveBackend(render::Backend::Auto, false, "cpu"), render::Backend::Sw);
+    EXPECT_EQ(scene::parseTraversal("kdtree"), scene::TraversalKind::KdTree);
+    EXPECT_EQ(std::string(scene::traversalName(scene::TraversalKind::GridBvh)), "grid-bvh");
+    EXPECT_EQ(scene::allTraversals().size(), 6u);
+    EXPECT_THROW(scene::parseTraversal("octree"), Error);
+    EXPECT_THROW(scene::parseBackend("cuda"), Error);
+    EXPECT_EQ(scene::resolveBackend(scene::Backend::Auto, true, "gpu"), scene::Backend::Rq);
+    EXPECT_EQ(scene::resolveBackend(scene::Backend::Auto, false, "cpu"), scene::Backend::Sw);
     try {
-        render::resolveBackend(render::Backend::Rq, false, "lavapipe-old");
+        scene::resolveBackend(scene::Backend::Rq, false, "lavapipe-old");
         FAIL() << "rq on a device without ray query must fail";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("lavapipe-old"), std::string::npos);

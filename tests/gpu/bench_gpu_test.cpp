@@ -11,7 +11,7 @@
 #include "bench/report.h"
 #include "gpu_fixture.h"
 #include "model_fixtures.h"
-#include "render/image_io.h"
+#include "core/image_io.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -35,10 +35,10 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     bench::BenchOptions o;
     o.datasets = {{(dir / "cloud.cells").string(), "", "cloud"}};
     o.tfs = {"foggy"};
-    o.modes = {render::Mode::Ae, render::Mode::Ms};
-    o.traversals = {render::TraversalKind::GridDda, render::TraversalKind::Abr};
-    o.samplers = {render::SamplerKind::ExtBrick};
-    o.backends = {render::Backend::Sw};
+    o.modes = {scene::Mode::Ae, scene::Mode::Ms};
+    o.traversals = {scene::TraversalKind::GridDda, scene::TraversalKind::Abr};
+    o.samplers = {scene::SamplerKind::ExtBrick};
+    o.backends = {scene::Backend::Sw};
     o.width = o.height = 32;
     o.frames = 64;
     o.warmup = 2;
@@ -116,9 +116,9 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     ASSERT_EQ(res.autos.size(), 2u);
     for (const bench::AutoResult& a : res.autos) {
         EXPECT_FALSE(a.choice.probes.empty());
-        EXPECT_EQ(a.choice.config.backend, render::Backend::Sw);
-        EXPECT_TRUE(a.choice.config.sampler == render::SamplerKind::ExtBrick ||
-                    a.choice.config.sampler == render::SamplerKind::Abr);
+        EXPECT_EQ(a.choice.config.backend, scene::Backend::Sw);
+        EXPECT_TRUE(a.choice.config.sampler == scene::SamplerKind::ExtBrick ||
+                    a.choice.config.sampler == scene::SamplerKind::Abr);
         EXPECT_NO_THROW(a.choice.config.validate());
         EXPECT_GT(a.pickEfficiency, 0.0);
         EXPECT_LE(a.pickEfficiency, a.bestEfficiency * (1 + 1e-9));
@@ -138,13 +138,13 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     for (const char* png : {"error_cloud_foggy_ae.png", "error_cloud_foggy_ms.png", "error_cloud_foggy_dvr.png",
                             "grid_sweep_cloud_foggy.png", "memory_cloud.png"}) {
         ASSERT_TRUE(std::filesystem::exists(o.outDir / png)) << png;
-        render::Image8 img = render::readPng(o.outDir / png);
+        Image8 img = readPng(o.outDir / png);
         EXPECT_GT(img.width, 0);
     }
 
     // A second run reuses the cached references (same key).
-    o.modes = {render::Mode::Ae};
-    o.traversals = {render::TraversalKind::GridDda};
+    o.modes = {scene::Mode::Ae};
+    o.traversals = {scene::TraversalKind::GridDda};
     o.dvrSteps = {};
     o.gridSweep = {};
     o.dense = false;

@@ -20,28 +20,28 @@ namespace {
 
 class DenseGridGpu : public test::GpuTest {
 protected:
-    render::RenderOutput renderWith(const amr::Model& m, render::SamplerKind sampler, render::TraversalKind t,
-                                    const render::TransferFunction& tf, const render::RenderSettings& s, uint32_t spp) {
-        render::StructureConfig c;
+    scene::RenderOutput renderWith(const amr::Model& m, scene::SamplerKind sampler, scene::TraversalKind t,
+                                    const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
+        scene::StructureConfig c;
         c.sampler = sampler;
         c.traversal = t;
         c.grid = "16";
-        render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], c);
+        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], c);
         render::Renderer r(ctx(), scene);
         r.setTransferFunction(tf);
-        render::RenderOutput o = r.render(s, spp);
+        scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u) << c.label();
         EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u) << c.label();
         return o;
     }
 };
 
-render::RenderSettings smallSettings(const amr::Model& m, render::Mode mode) {
+scene::RenderSettings smallSettings(const amr::Model& m, scene::Mode mode) {
     amr::ModelSummary sum = amr::summarize(m);
-    render::RenderSettings s;
+    scene::RenderSettings s;
     s.mode = mode;
     s.width = s.height = 24;
-    s.camera = render::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+    s.camera = scene::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
     return s;
 }
 
@@ -49,13 +49,13 @@ render::RenderSettings smallSettings(const amr::Model& m, render::Mode mode) {
 
 TEST_F(DenseGridGpu, PointValuesEqualTheCpuDefinition) {
     amr::Model m = test::makeThreeLevelCloud();
-    render::StructureConfig c;
-    c.sampler = render::SamplerKind::Dense;
+    scene::StructureConfig c;
+    c.sampler = scene::SamplerKind::Dense;
     c.grid = "16";
-    render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], c);
+    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], c);
     ASSERT_TRUE(scene.dense.has_value());
     render::Renderer renderer(ctx(), scene);
-    renderer.setTransferFunction(render::makePreset("ramp", scene.valueLo, scene.valueHi));
+    renderer.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
     const glm::dvec3 origin(scene.localOrigin);
     const glm::dvec3 size(scene.bounds.size());
     std::mt19937 rng(3);
@@ -95,38 +95,38 @@ TEST_F(DenseGridGpu, FinestLevelDataGivesTheAmrImage) {
         glm::dvec3 c = glm::dvec3(m.cells[i].lower) + 0.5;
         m.fields[0].values[i] = float(0.5 + 0.5 * std::sin(0.4 * c.x) * std::cos(0.3 * c.y + 0.2 * c.z));
     }
-    const render::TransferFunction tf = render::makePreset("spiky", 0.0f, 1.0f);
-    render::RenderSettings s = smallSettings(m, render::Mode::Ms);
+    const scene::TransferFunction tf = scene::makePreset("spiky", 0.0f, 1.0f);
+    scene::RenderSettings s = smallSettings(m, scene::Mode::Ms);
     s.densityScale = 0.5;
-    render::RenderOutput amrImage = renderWith(m, render::SamplerKind::ExtBrick, render::TraversalKind::GridDda, tf, s, 24);
+    scene::RenderOutput amrImage = renderWith(m, scene::SamplerKind::ExtBrick, scene::TraversalKind::GridDda, tf, s, 24);
     s.seed = 99;  // independent samples
-    for (render::TraversalKind t : {render::TraversalKind::GridDda, render::TraversalKind::GridBvh}) {
-        render::RenderOutput dense = renderWith(m, render::SamplerKind::Dense, t, tf, s, 24);
-        test::expectSameImage(dense, amrImage, 4, std::string("dense-") + render::traversalName(t));
+    for (scene::TraversalKind t : {scene::TraversalKind::GridDda, scene::TraversalKind::GridBvh}) {
+        scene::RenderOutput dense = renderWith(m, scene::SamplerKind::Dense, t, tf, s, 24);
+        test::expectSameImage(dense, amrImage, 4, std::string("dense-") + scene::traversalName(t));
     }
 }
 
 TEST_F(DenseGridGpu, MajorantsHoldOnAThreeLevelCloud) {
     amr::Model m = test::makeThreeLevelCloud();
     amr::FieldStats st = amr::computeFieldStats(m, m.fields[0]);
-    const render::TransferFunction tf = render::makePreset("spiky", st.minValue, st.maxValue);
-    render::RenderSettings s = smallSettings(m, render::Mode::Ae);
+    const scene::TransferFunction tf = scene::makePreset("spiky", st.minValue, st.maxValue);
+    scene::RenderSettings s = smallSettings(m, scene::Mode::Ae);
     s.densityScale = 4;
-    for (render::TraversalKind t : {render::TraversalKind::GridDda, render::TraversalKind::GridBvh}) {
-        render::RenderOutput o = renderWith(m, render::SamplerKind::Dense, t, tf, s, 4);
+    for (scene::TraversalKind t : {scene::TraversalKind::GridDda, scene::TraversalKind::GridBvh}) {
+        scene::RenderOutput o = renderWith(m, scene::SamplerKind::Dense, t, tf, s, 4);
         EXPECT_GT(o.stats.counter(shared::kCounterRealCollisions), 0u);
     }
 }
 
 TEST_F(DenseGridGpu, NeedsAGridTraversalAndRespectsTheMemoryLimit) {
     amr::Model m = test::makeThreeLevelCloud();
-    render::StructureConfig c;
-    c.sampler = render::SamplerKind::Dense;
-    c.traversal = render::TraversalKind::Abr;
-    EXPECT_NE(test::errorOf([&] { render::buildVolumeScene(m, m.fields[0], c); }).find("grid-dda or grid-bvh"),
+    scene::StructureConfig c;
+    c.sampler = scene::SamplerKind::Dense;
+    c.traversal = scene::TraversalKind::Abr;
+    EXPECT_NE(test::errorOf([&] { scene::buildVolumeScene(m, m.fields[0], c); }).find("grid-dda or grid-bvh"),
               std::string::npos);
-    c.traversal = render::TraversalKind::GridDda;
+    c.traversal = scene::TraversalKind::GridDda;
     c.denseMaxBytes = 1024;
-    EXPECT_NE(test::errorOf([&] { render::buildVolumeScene(m, m.fields[0], c); }).find("--dense-max-mib"),
+    EXPECT_NE(test::errorOf([&] { scene::buildVolumeScene(m, m.fields[0], c); }).find("--dense-max-mib"),
               std::string::npos);
 }

@@ -9,14 +9,14 @@
 #include <functional>
 #include <string>
 
-#include "render/image_io.h"
+#include "core/image_io.h"
 #include "render/renderer.h"
 #include "test_data.h"
 
 namespace amrvk::test {
 
 // Per-sample variance estimate of pixel i (unbiased), channel c.
-inline double sampleVariance(const render::RenderOutput& o, size_t i, int c) {
+inline double sampleVariance(const scene::RenderOutput& o, size_t i, int c) {
     const double n = o.spp, mean = o.mean.pixels[i][c], sumSq = o.sumSq[i][c];
     return n > 1 ? std::max(0.0, (sumSq - n * mean * mean) / (n - 1)) : 0.0;
 }
@@ -34,20 +34,20 @@ inline double sidakZ(double alpha, size_t tests) {
     return hi;
 }
 
-inline void writeArtifacts(const std::string& tag, const render::Image& a, const render::Image& b) {
+inline void writeArtifacts(const std::string& tag, const Image& a, const Image& b) {
     auto dir = scratchDir();
-    render::writeImage(dir / (tag + "-actual.pfm"), a);
-    render::writeImage(dir / (tag + "-reference.pfm"), b);
-    render::Image diff(a.width, a.height);
+    writeImage(dir / (tag + "-actual.pfm"), a);
+    writeImage(dir / (tag + "-reference.pfm"), b);
+    Image diff(a.width, a.height);
     for (size_t i = 0; i < diff.pixels.size(); ++i)
         diff.pixels[i] = glm::vec4(glm::abs(glm::vec3(a.pixels[i]) - glm::vec3(b.pixels[i])), 1.0f);
-    render::writeImage(dir / (tag + "-difference.pfm"), diff);
+    writeImage(dir / (tag + "-difference.pfm"), diff);
 }
 
 // Tiles (x channels) whose means differ beyond |mean_a - mean_b| <= z * sqrt(var_a + var_b) + absTol,
 // z Sidak-corrected for family-wise false-failure probability `alpha`. `report` gets one line per
 // differing tile.
-inline int countDifferingTiles(const render::RenderOutput& a, const render::RenderOutput& b, int tile,
+inline int countDifferingTiles(const scene::RenderOutput& a, const scene::RenderOutput& b, int tile,
                                double alpha, double absTol,
                                const std::function<void(const std::string&)>& report = {}) {
     const int w = a.mean.width, h = a.mean.height;
@@ -85,7 +85,7 @@ inline int countDifferingTiles(const render::RenderOutput& a, const render::Rend
 
 // Compares tile means of two renders (both with variance information). alpha: family-wise
 // false-failure probability. A tile passes when |mean_a - mean_b| <= z * sqrt(var_a + var_b) + absTol.
-inline void expectSameImage(const render::RenderOutput& a, const render::RenderOutput& b, int tile,
+inline void expectSameImage(const scene::RenderOutput& a, const scene::RenderOutput& b, int tile,
                             const std::string& tag, double alpha = 1e-4, double absTol = 1e-6) {
     ASSERT_EQ(a.mean.width, b.mean.width);
     ASSERT_EQ(a.mean.height, b.mean.height);

@@ -15,12 +15,12 @@ namespace {
 
 class RayMarchGpu : public test::GpuTest {
 protected:
-    render::RenderOutput renderDvr(const amr::Model& m, const render::TransferFunction& tf,
-                                   const render::RenderSettings& s, uint32_t spp) {
-        render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], render::SamplerKind::ExtBrick, "16");
+    scene::RenderOutput renderDvr(const amr::Model& m, const scene::TransferFunction& tf,
+                                   const scene::RenderSettings& s, uint32_t spp) {
+        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "16");
         render::Renderer r(ctx(), scene);
         r.setTransferFunction(tf);
-        render::RenderOutput o = r.render(s, spp);
+        scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
         return o;
     }
@@ -28,8 +28,8 @@ protected:
 
 // Level-0 slab [0,64)^2 x [0,4), viewed from above through a narrow field of view.
 amr::Model slabModel() { return test::makeUniformBox({64, 64, 4}, 0, 1.0f); }
-render::Camera slabCamera() {
-    render::Camera c;
+scene::Camera slabCamera() {
+    scene::Camera c;
     c.eye = {32.0, 32.0, 100.0};
     c.target = {32.0, 32.0, 0.0};
     c.up = {0.0, 1.0, 0.0};
@@ -39,9 +39,9 @@ render::Camera slabCamera() {
 
 // Image mean against the mean of expected(path length in the slab) over every pixel's footprint
 // (4x4 sub-samples), z-test on the per-pixel variances; returns the expected image mean (rgb avg).
-double expectSlabMean(const render::RenderOutput& o, const render::RenderSettings& s,
+double expectSlabMean(const scene::RenderOutput& o, const scene::RenderSettings& s,
                       const std::function<glm::dvec3(double)>& expected) {
-    render::RayBasis rb = render::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
+    scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
     const double z = test::sidakZ(1e-4, 3);
     glm::dvec3 sumDiff(0.0), var(0.0), sumExpect(0.0);
     for (int y = 0; y < s.height; ++y)
@@ -75,14 +75,14 @@ TEST_F(RayMarchGpu, ConstantSlabMatchesTheJitteredRiemannSum) {
     const double sigma = 0.5;
     double biasCoarse = 0;
     for (double dt : {1.5, 0.125}) {
-        render::RenderSettings s;
-        s.mode = render::Mode::Dvr;
+        scene::RenderSettings s;
+        s.mode = scene::Mode::Dvr;
         s.dvrStep = dt;
         s.width = s.height = 32;
         s.densityScale = sigma;
         s.ambient = bg;
         s.camera = slabCamera();
-        render::RenderOutput o = renderDvr(m, test::constantTf(glm::vec3(c), 1.0f), s, 64);
+        scene::RenderOutput o = renderDvr(m, test::constantTf(glm::vec3(c), 1.0f), s, 64);
         const double h = dt;
         const double dvrMean = expectSlabMean(o, s, [&](double D) {
             const double m_ = std::floor(D / h), f = D / h - m_;
@@ -92,7 +92,7 @@ TEST_F(RayMarchGpu, ConstantSlabMatchesTheJitteredRiemannSum) {
         // The exact absorption+emission answer for the same rays.
         double exactMean = 0;
         {
-            render::RayBasis rb = render::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
+            scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
             for (int y = 0; y < s.height; ++y)
                 for (int x = 0; x < s.width; ++x)
                     for (int k = 0; k < 16; ++k) {
@@ -117,8 +117,8 @@ TEST_F(RayMarchGpu, ConstantSlabMatchesTheJitteredRiemannSum) {
 TEST_F(RayMarchGpu, GradientShadingFollowsTheLambertTerm) {
     amr::Model m = slabModel();
     for (size_t i = 0; i < m.cells.size(); ++i) m.fields[0].values[i] = float(m.cells[i].lower.x) + 0.5f;
-    render::RenderSettings s;
-    s.mode = render::Mode::Dvr;
+    scene::RenderSettings s;
+    s.mode = scene::Mode::Dvr;
     s.dvrShading = true;
     s.width = s.height = 16;
     s.densityScale = 0.2;
@@ -126,11 +126,11 @@ TEST_F(RayMarchGpu, GradientShadingFollowsTheLambertTerm) {
     s.camera = slabCamera();
     s.lights = {{false, {1.0, 0.0, 0.0}, glm::dvec3(1.0)}};
     const auto tf = test::constantTf(glm::vec3(0.8f, 0.6f, 0.4f), 1.0f);
-    render::RenderOutput lit = renderDvr(m, tf, s, 2);
+    scene::RenderOutput lit = renderDvr(m, tf, s, 2);
     s.lights = {{false, {0.0, 1.0, 0.0}, glm::dvec3(1.0)}};
-    render::RenderOutput grazing = renderDvr(m, tf, s, 2);
+    scene::RenderOutput grazing = renderDvr(m, tf, s, 2);
     s.dvrShading = false;
-    render::RenderOutput flat = renderDvr(m, tf, s, 2);
+    scene::RenderOutput flat = renderDvr(m, tf, s, 2);
     for (size_t i = 0; i < lit.mean.pixels.size(); ++i)
         for (int ch = 0; ch < 3; ++ch) {
             ASSERT_GT(flat.mean.pixels[i][ch], 0.01f);

@@ -8,8 +8,8 @@
 
 #include "amr/model.h"
 #include "gpu/context.h"
-#include "render/structure_config.h"
-#include "render/transfer_function.h"
+#include "scene/structure_config.h"
+#include "scene/transfer_function.h"
 
 namespace amrvk::test {
 
@@ -28,25 +28,25 @@ inline amr::Model makeUniformBox(glm::ivec3 dims, int level, float v, glm::ivec3
 }
 
 // Constant albedo and alpha for every value.
-inline render::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
-    return render::TransferFunction({0.0f}, {glm::vec4(albedo, alpha)}, "constant-test");
+inline scene::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
+    return scene::TransferFunction({0.0f}, {glm::vec4(albedo, alpha)}, "constant-test");
 }
 
 // Back-ends this device can run: sw always, rq where the device has VK_KHR_ray_query.
-inline std::vector<render::Backend> availableBackends(const gpu::Context& ctx) {
-    std::vector<render::Backend> out{render::Backend::Sw};
-    if (ctx.hasRayQuery()) out.push_back(render::Backend::Rq);
+inline std::vector<scene::Backend> availableBackends(const gpu::Context& ctx) {
+    std::vector<scene::Backend> out{scene::Backend::Sw};
+    if (ctx.hasRayQuery()) out.push_back(scene::Backend::Rq);
     return out;
 }
 
 // Every traversal x sampler x available back-end, with the given grid and kd-tree size.
-inline std::vector<render::StructureConfig> allStructureConfigs(const gpu::Context& ctx, const std::string& grid,
+inline std::vector<scene::StructureConfig> allStructureConfigs(const gpu::Context& ctx, const std::string& grid,
                                                                 uint32_t kdLeaves) {
-    std::vector<render::StructureConfig> out;
-    for (render::TraversalKind t : render::allTraversals())
-        for (render::SamplerKind s : render::allSamplers())
-            for (render::Backend b : availableBackends(ctx)) {
-                render::StructureConfig c;
+    std::vector<scene::StructureConfig> out;
+    for (scene::TraversalKind t : scene::allTraversals())
+        for (scene::SamplerKind s : scene::allSamplers())
+            for (scene::Backend b : availableBackends(ctx)) {
+                scene::StructureConfig c;
                 c.traversal = t;
                 c.sampler = s;
                 c.backend = b;
@@ -58,10 +58,10 @@ inline std::vector<render::StructureConfig> allStructureConfigs(const gpu::Conte
 }
 
 // Every sampler x available back-end.
-inline std::vector<std::pair<render::SamplerKind, render::Backend>> samplerBackendCombos(const gpu::Context& ctx) {
-    std::vector<std::pair<render::SamplerKind, render::Backend>> out;
-    for (render::SamplerKind s : render::allSamplers())
-        for (render::Backend b : availableBackends(ctx)) out.emplace_back(s, b);
+inline std::vector<std::pair<scene::SamplerKind, scene::Backend>> samplerBackendCombos(const gpu::Context& ctx) {
+    std::vector<std::pair<scene::SamplerKind, scene::Backend>> out;
+    for (scene::SamplerKind s : scene::allSamplers())
+        for (scene::Backend b : availableBackends(ctx)) out.emplace_back(s, b);
     return out;
 }
 

@@ -7,7 +7,7 @@
 #include "amr/synthetic.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
-#include "render/reference_integrator.h"
+#include "scene/reference_integrator.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "test_data.h"
@@ -18,14 +18,14 @@ namespace {
 
 class RenderGpu : public test::GpuTest {
 protected:
-    render::RenderOutput renderGpu(const amr::Model& m, const render::TransferFunction& tf,
-                                   const render::RenderSettings& s, uint32_t spp,
-                                   render::SamplerKind sampler = render::SamplerKind::ExtBrick,
+    scene::RenderOutput renderGpu(const amr::Model& m, const scene::TransferFunction& tf,
+                                   const scene::RenderSettings& s, uint32_t spp,
+                                   scene::SamplerKind sampler = scene::SamplerKind::ExtBrick,
                                    const std::string& grid = "32") {
-        render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], sampler, grid);
+        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], sampler, grid);
         render::Renderer r(ctx(), scene);
         r.setTransferFunction(tf);
-        render::RenderOutput o = r.render(s, spp);
+        scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
         EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
         return o;
@@ -38,8 +38,8 @@ struct Slab {
     glm::ivec3 lower{0};
     int thickness = 4;
     amr::Model model() const { return test::makeUniformBox({64, 64, thickness}, 0, 1.0f, lower); }
-    render::Camera camera(double eyeZ) const {
-        render::Camera c;
+    scene::Camera camera(double eyeZ) const {
+        scene::Camera c;
         glm::dvec3 centre = glm::dvec3(lower) + glm::dvec3(32.0, 32.0, 0.0);
         c.eye = centre + glm::dvec3(0.0, 0.0, eyeZ);
         c.target = centre;
@@ -50,9 +50,9 @@ struct Slab {
 };
 
 // Expected AE radiance: c (1 - e^(-sigma d)) + bg e^(-sigma d) with d the path length in the slab.
-void expectAeSlab(const render::RenderOutput& o, const render::RenderSettings& s, double sigma, double zTop,
+void expectAeSlab(const scene::RenderOutput& o, const scene::RenderSettings& s, double sigma, double zTop,
                   double zBottom, glm::dvec3 c, glm::dvec3 bg, glm::dvec3 origin) {
-    render::RayBasis rb = render::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, origin);
+    scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, origin);
     const double z = test::sidakZ(1e-4, 3);
     glm::dvec3 sumDiff(0.0), var(0.0);
     for (int y = 0; y < s.height; ++y)
@@ -89,14 +89,14 @@ TEST_F(RenderGpu, WhiteFurnaceIsExactlyOne) {
     p.seed = 5;
     amr::Model m = amr::makeSyntheticModel(p);
     for (double density : {0.1, 0.5}) {  // from a few scattering events per path to dozens
-        render::RenderSettings s;
-        s.mode = render::Mode::Ms;
+        scene::RenderSettings s;
+        s.mode = scene::Mode::Ms;
         s.width = s.height = 32;
         s.densityScale = density;
         s.ambient = glm::dvec3(1.0);
         amr::ModelSummary sum = amr::summarize(m);
-        s.camera = render::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
-        render::RenderOutput o = renderGpu(m, test::constantTf(glm::vec3(1.0f), 1.0f), s, 4);
+        s.camera = scene::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+        scene::RenderOutput o = renderGpu(m, test::constantTf(glm::vec3(1.0f), 1.0f), s, 4);
         EXPECT_EQ(o.stats.counter(shared::kCounterBounceLimitHits), 0u);
         EXPECT_GT(o.stats.counter(shared::kCounterRealCollisions), o.stats.paths);  // many scatter
         double mean = 0;
@@ -114,13 +114,13 @@ TEST_F(RenderGpu, AbsorptionEmissionSlabMatchesTheClosedForm) {
     const glm::vec3 c(0.9f, 0.5f, 0.2f);
     const glm::dvec3 bg(0.1, 0.3, 0.6);
     for (double density : {1e-4, 0.1, 0.5, 1e4}) {
-        render::RenderSettings s;
-        s.mode = render::Mode::Ae;
+        scene::RenderSettings s;
+        s.mode = scene::Mode::Ae;
         s.width = s.height = 32;
         s.densityScale = density;
         s.ambient = bg;
         s.camera = slab.camera(100.0);
-        render::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
+        scene::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
         expectAeSlab(o, s, density, slab.thickness, 0.0, glm::dvec3(c), bg, glm::dvec3(0.0));
     }
 }
@@ -135,13 +135,13 @@ TEST_F(UpstreamBug_OpacityScaleMismatch, AcceptanceAndStepUseTheSameScaledMajora
     const glm::vec3 c(0.6f, 0.8f, 0.4f);
     const glm::dvec3 bg(0.2, 0.1, 0.5);
     for (auto [alpha, scale] : {std::pair{0.05f, 4.0}, std::pair{0.8f, 0.25}, std::pair{0.02f, 10.0}}) {
-        render::RenderSettings s;
-        s.mode = render::Mode::Ae;
+        scene::RenderSettings s;
+        s.mode = scene::Mode::Ae;
         s.width = s.height = 32;
         s.densityScale = scale;
         s.ambient = bg;
         s.camera = slab.camera(100.0);
-        render::RenderOutput o = renderGpu(m, test::constantTf(c, alpha), s, 64);
+        scene::RenderOutput o = renderGpu(m, test::constantTf(c, alpha), s, 64);
         expectAeSlab(o, s, double(alpha) * scale, slab.thickness, 0.0, glm::dvec3(c), bg, glm::dvec3(0.0));
     }
 }
@@ -154,13 +154,13 @@ TEST_F(RenderGpu, HugeCoordinatesAndCameraInsideTheVolume) {
     amr::Model m = far.model();
     const glm::vec3 c(0.7f, 0.7f, 0.3f);
     const glm::dvec3 bg(0.2, 0.2, 0.2);
-    render::RenderSettings s;
-    s.mode = render::Mode::Ae;
+    scene::RenderSettings s;
+    s.mode = scene::Mode::Ae;
     s.width = s.height = 32;
     s.densityScale = 0.2;
     s.ambient = bg;
     s.camera = far.camera(50.0);
-    render::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
+    scene::RenderOutput o = renderGpu(m, test::constantTf(c, 1.0f), s, 64);
     expectAeSlab(o, s, 0.2, far.lower.z + far.thickness, far.lower.z, glm::dvec3(c), bg, glm::dvec3(0.0));
     // Camera inside the slab, 3 units above its bottom, looking down.
     s.camera = far.camera(3.0);
@@ -174,14 +174,14 @@ TEST_F(RenderGpu, EmptyTransferFunctionShowsTheBackground) {
     p.cells = 5000;
     amr::Model m = amr::makeSyntheticModel(p);
     amr::ModelSummary sum = amr::summarize(m);
-    for (auto mode : {render::Mode::Ae, render::Mode::Ss, render::Mode::Ms}) {
-        render::RenderSettings s;
+    for (auto mode : {scene::Mode::Ae, scene::Mode::Ss, scene::Mode::Ms}) {
+        scene::RenderSettings s;
         s.mode = mode;
         s.width = s.height = 24;
         s.ambient = glm::dvec3(0.5, 0.25, 1.0);
         s.background = glm::dvec3(0.3, 0.2, 0.1);
-        s.camera = render::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
-        render::RenderOutput o = renderGpu(m, render::makePreset("empty", 0.0f, 1.0f), s, 4);
+        s.camera = scene::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+        scene::RenderOutput o = renderGpu(m, scene::makePreset("empty", 0.0f, 1.0f), s, 4);
         EXPECT_EQ(o.stats.counter(shared::kCounterDensityLookups), 0u);
         for (const auto& px : o.mean.pixels) {
             EXPECT_FLOAT_EQ(px.r, 0.3f);
@@ -196,25 +196,25 @@ TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
     amr::ReadOptions ro;
     ro.fields = {"Density"};
     amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", ro);
-    render::TransferFunction tf = render::makePreset("ramp", 0.0f, 3.0f);
+    scene::TransferFunction tf = scene::makePreset("ramp", 0.0f, 3.0f);
     amr::ModelSummary sum = amr::summarize(m);
     glm::dvec3 lo = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower));
     glm::dvec3 hi = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper));
-    render::ReferenceIntegrator cpu(m, m.fields[0], tf);
-    for (auto mode : {render::Mode::Ae, render::Mode::Ss, render::Mode::Ms}) {
-        SCOPED_TRACE(render::modeName(mode));
-        render::RenderSettings s;
+    scene::ReferenceIntegrator cpu(m, m.fields[0], tf);
+    for (auto mode : {scene::Mode::Ae, scene::Mode::Ss, scene::Mode::Ms}) {
+        SCOPED_TRACE(scene::modeName(mode));
+        scene::RenderSettings s;
         s.mode = mode;
         s.width = s.height = 16;
         s.densityScale = 0.03;  // translucent: the picture depends on the density everywhere
         s.ambient = glm::dvec3(0.6, 0.7, 0.9);
         s.background = glm::dvec3(0.05);
         s.lights.push_back({false, {1.0, 0.5, 2.0}, {2.0, 1.8, 1.5}});
-        s.camera = render::defaultCamera(lo, hi, 30.0);
+        s.camera = scene::defaultCamera(lo, hi, 30.0);
         s.camera.fovYDegrees = 18.0;  // the central part, where the medium covers every pixel
-        render::RenderOutput gpu = renderGpu(m, tf, s, 2048);
-        render::RenderOutput ref = cpu.render(s, 768);
-        test::expectSameImage(gpu, ref, 8, std::string("enzo-") + render::modeName(mode));
+        scene::RenderOutput gpu = renderGpu(m, tf, s, 2048);
+        scene::RenderOutput ref = cpu.render(s, 768);
+        test::expectSameImage(gpu, ref, 8, std::string("enzo-") + scene::modeName(mode));
     }
 }
 
@@ -233,14 +233,14 @@ TEST_F(RenderGpu, NoMajorantViolationsWithASpikyTfOnRealData) {
         amr::Model m = amr::readModel(test::dataDir() / set.path, ro);
         amr::FieldStats st = amr::computeFieldStats(m, m.fields[0]);
         amr::ModelSummary sum = amr::summarize(m);
-        for (auto sampler : {render::SamplerKind::ExtBrick, render::SamplerKind::Abr}) {
-            render::RenderSettings s;
-            s.mode = render::Mode::Ss;
+        for (auto sampler : {scene::SamplerKind::ExtBrick, scene::SamplerKind::Abr}) {
+            scene::RenderSettings s;
+            s.mode = scene::Mode::Ss;
             s.width = s.height = 32;
             s.densityScale = 20.0;
-            s.camera = render::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+            s.camera = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                              m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
-            render::RenderOutput o = renderGpu(m, render::makePreset("spiky", st.minValue, st.maxValue), s, 4, sampler, "auto");
+            scene::RenderOutput o = renderGpu(m, scene::makePreset("spiky", st.minValue, st.maxValue), s, 4, sampler, "auto");
             EXPECT_GT(o.stats.counter(shared::kCounterDensityLookups), 0u);
         }
     }

@@ -22,14 +22,14 @@ class SamplerGpu : public test::GpuTest {
 protected:
     void compare(const amr::Model& model, const amr::Field& field) {
         for (auto [kind, backend] : test::samplerBackendCombos(ctx())) {
-            SCOPED_TRACE(std::string(render::samplerName(kind)) + "/" + render::backendName(backend));
-            render::StructureConfig config;
+            SCOPED_TRACE(std::string(scene::samplerName(kind)) + "/" + scene::backendName(backend));
+            scene::StructureConfig config;
             config.sampler = kind;
             config.backend = backend;
             config.grid = "16";
-            render::VolumeScene scene = render::buildVolumeScene(model, field, config);
+            scene::VolumeScene scene = scene::buildVolumeScene(model, field, config);
             render::Renderer renderer(ctx(), scene);
-            renderer.setTransferFunction(render::makePreset("ramp", scene.valueLo, scene.valueHi));
+            renderer.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
             const glm::dvec3 origin(scene.localOrigin);
             // Points in local voxel space (float): random inside cells, plus box features of bricks.
             std::vector<glm::vec4> pts;
@@ -51,13 +51,13 @@ protected:
             const uint32_t n = uint32_t(pts.size());
             gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
             gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
-            const bool rq = backend == render::Backend::Rq;
+            const bool rq = backend == scene::Backend::Rq;
             gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_sample_rq" : "test_sample"), "test_sample", 40);
             struct {
                 uint64_t params, points, out;
                 uint32_t count, sampler, backend, pad;
             } push{renderer.paramsAddress(), in.address(), out.address(), n,
-                   render::shaderConstant(kind), render::shaderConstant(backend), 0};
+                   scene::shaderConstant(kind), scene::shaderConstant(backend), 0};
             ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
             auto got = out.download<float>();
             amr::ReferenceSampler ref(model, field);

@@ -19,7 +19,7 @@ namespace {
 
 // Spiky TF that the data actually reaches: narrow opaque peaks (and a faint floor) at the 50, 80
 // and 95 % quantiles of the cell values, so real collisions happen on any value distribution.
-render::TransferFunction spikyAtQuantiles(std::vector<float> v) {
+scene::TransferFunction spikyAtQuantiles(std::vector<float> v) {
     std::sort(v.begin(), v.end());
     auto q = [&](double f) { return v[size_t(f * double(v.size() - 1))]; };
     const float span = std::max(q(1.0) - q(0.0), 1e-30f);
@@ -32,17 +32,17 @@ render::TransferFunction spikyAtQuantiles(std::vector<float> v) {
         col.insert(col.end(), {glm::vec4(0.9f, 0.9f, 0.9f, 0.02f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f),
                                glm::vec4(0.9f, 0.9f, 0.9f, 0.02f)});
     }
-    return render::TransferFunction(pos, col, "spiky-quantiles");
+    return scene::TransferFunction(pos, col, "spiky-quantiles");
 }
 
 class StructureMatrixGpu : public test::GpuTest {
 protected:
-    render::RenderOutput renderWith(const amr::Model& m, const render::StructureConfig& cfg,
-                                    const render::TransferFunction& tf, const render::RenderSettings& s, uint32_t spp) {
-        render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], cfg);
+    scene::RenderOutput renderWith(const amr::Model& m, const scene::StructureConfig& cfg,
+                                    const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
+        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
         render::Renderer r(ctx(), scene);
         r.setTransferFunction(tf);
-        render::RenderOutput o = r.render(s, spp);
+        scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u) << cfg.label();
         EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u) << cfg.label();
         EXPECT_GT(o.stats.counter(shared::kCounterRealCollisions), 0u) << cfg.label();
@@ -53,25 +53,25 @@ protected:
     // checkPower: also show that the comparison rejects a 30% denser medium. It does on the cloud;
     // on Enzo and the teapot at this size and spp it does not (few paths scatter under the spiky
     // TF), so there the test guards against gross errors and majorant violations only.
-    void compareAll(const amr::Model& m, const render::RenderSettings& base, uint32_t spp, const std::string& tag,
+    void compareAll(const amr::Model& m, const scene::RenderSettings& base, uint32_t spp, const std::string& tag,
                     bool checkPower = false) {
-        const render::TransferFunction tf = spikyAtQuantiles(m.fields[0].values);
-        render::StructureConfig refCfg;
+        const scene::TransferFunction tf = spikyAtQuantiles(m.fields[0].values);
+        scene::StructureConfig refCfg;
         refCfg.grid = "16";
-        render::RenderOutput ref = renderWith(m, refCfg, tf, base, spp);
+        scene::RenderOutput ref = renderWith(m, refCfg, tf, base, spp);
         if (checkPower) {
             // Power: the same comparison must reject a 30% denser medium.
-            render::RenderSettings denser = base;
+            scene::RenderSettings denser = base;
             denser.seed = base.seed + 7;
             denser.densityScale *= 1.3;
             EXPECT_GT(test::countDifferingTiles(renderWith(m, refCfg, tf, denser, spp), ref, 8, 1e-4, 1e-6), 0)
                 << "the comparison cannot tell a 30% density change";
         }
-        render::RenderSettings s = base;
+        scene::RenderSettings s = base;
         s.seed = base.seed + 1;  // independent samples
-        for (const render::StructureConfig& cfg : test::allStructureConfigs(ctx(), "16", 256)) {
+        for (const scene::StructureConfig& cfg : test::allStructureConfigs(ctx(), "16", 256)) {
             SCOPED_TRACE(cfg.label());
-            render::RenderOutput o = renderWith(m, cfg, tf, s, spp);
+            scene::RenderOutput o = renderWith(m, cfg, tf, s, spp);
             // 24 combinations per data set: family-wise 1e-4 each.
             test::expectSameImage(o, ref, 8,
                                   tag + "-" + traversalName(cfg.traversal) + "-" + samplerName(cfg.sampler) + "-" +
@@ -81,15 +81,15 @@ protected:
     }
 };
 
-render::RenderSettings settingsFor(const amr::Model& m) {
+scene::RenderSettings settingsFor(const amr::Model& m) {
     const amr::ModelSummary sum = amr::summarize(m);
-    render::RenderSettings s;
-    s.mode = render::Mode::Ss;
+    scene::RenderSettings s;
+    s.mode = scene::Mode::Ss;
     s.width = s.height = 24;
     s.densityScale = 4.0;
     s.lights.push_back({false, glm::dvec3(1.0, 2.0, 3.0), glm::dvec3(2.0)});
     s.ambient = glm::dvec3(0.3);
-    s.camera = render::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+    s.camera = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                      m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
     return s;
 }
@@ -125,7 +125,7 @@ TEST_F(StructureMatrixGpu, TeapotFromInsideTheStadiumEveryCombinationAgrees) {
             lo = glm::min(lo, glm::dvec3(c.lower));
             hi = glm::max(hi, glm::dvec3(c.lower) + double(amr::cellWidth(c.level)));
         }
-    render::RenderSettings s = settingsFor(m);
+    scene::RenderSettings s = settingsFor(m);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     s.camera.target = m.voxelToWorld.toWorld(centre);
     s.camera.eye = m.voxelToWorld.toWorld(centre + glm::dvec3(1.2, 0.9, 2.0) * glm::length(hi - lo));

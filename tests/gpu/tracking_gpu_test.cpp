@@ -16,7 +16,7 @@ class TrackingGpu : public test::GpuTest {};
 TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
     // 16^3 level-0 cells, value 1; TF alpha a, density scale 1: sigma = a per voxel unit.
     amr::Model m = test::makeUniformBox({16, 16, 16}, 0, 1.0f);
-    render::VolumeScene scene = render::buildVolumeScene(m, m.fields[0], render::SamplerKind::ExtBrick, "4");
+    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "4");
     render::Renderer renderer(ctx(), scene);
     const uint32_t n = 1u << 16;
     gpu::Buffer out(ctx(), uint64_t(n) * 8, gpu::MemoryKind::HostRead, "tracking");

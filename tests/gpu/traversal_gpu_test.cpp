@@ -62,9 +62,9 @@ std::vector<Ray> testRays(glm::vec3 hi, uint32_t seed) {
 class TraversalGpu : public test::GpuTest {
 protected:
     // Segments of every ray (rays in local voxel space, t in [0, inf)).
-    std::vector<std::vector<Segment>> segments(const render::Renderer& r, render::Backend backend,
+    std::vector<std::vector<Segment>> segments(const render::Renderer& r, scene::Backend backend,
                                                const std::vector<Ray>& rays) {
-        const bool rq = backend == render::Backend::Rq;
+        const bool rq = backend == scene::Backend::Rq;
         std::vector<glm::vec4> packed;
         for (const Ray& ray : rays) {
             packed.emplace_back(ray.o, 0.0f);
@@ -78,7 +78,7 @@ protected:
             uint64_t params, rays, out;
             uint32_t count, traversal, backend, maxSegments;
         } push{r.paramsAddress(), in.address(), out.address(), n,
-               render::shaderConstant(r.config().traversal), render::shaderConstant(backend), kMaxSegments};
+               scene::shaderConstant(r.config().traversal), scene::shaderConstant(backend), kMaxSegments};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         auto raw = out.download<uint32_t>();
         std::vector<std::vector<Segment>> result(n);
@@ -96,7 +96,7 @@ protected:
 
     // Values (value, weightSum, inside) of the renderer's sampler at local points.
     std::vector<float> samples(const render::Renderer& r, const std::vector<glm::vec4>& pts) {
-        const bool rq = r.config().backend == render::Backend::Rq;
+        const bool rq = r.config().backend == scene::Backend::Rq;
         const uint32_t n = uint32_t(pts.size());
         gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
         gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
@@ -105,7 +105,7 @@ protected:
             uint64_t params, points, out;
             uint32_t count, sampler, backend, pad;
         } push{r.paramsAddress(), in.address(), out.address(), n,
-               render::shaderConstant(r.config().sampler), render::shaderConstant(r.config().backend), 0};
+               scene::shaderConstant(r.config().sampler), scene::shaderConstant(r.config().backend), 0};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         return out.download<float>();
     }
@@ -117,9 +117,9 @@ struct BoxSet {
     std::vector<float> maj;
 };
 
-BoxSet traversalBoxes(const render::VolumeScene& scene, const render::Renderer& r) {
+BoxSet traversalBoxes(const scene::VolumeScene& scene, const render::Renderer& r) {
     BoxSet s;
-    if (scene.config.traversal == render::TraversalKind::GridBvh) {
+    if (scene.config.traversal == scene::TraversalKind::GridBvh) {
         const accel::RangeGrid& g = *scene.grid;
         const glm::dvec3 o = g.origin - glm::dvec3(scene.localOrigin);
         for (int z = 0; z < g.dims.z; ++z)
@@ -207,19 +207,19 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
     const amr::FieldStats st = amr::computeFieldStats(m, field);
     // A TF that is zero below the median value: many boxes become empty (culled).
     const float mid = 0.5f * (st.minValue + st.maxValue);
-    const render::TransferFunction tf({st.minValue, mid, st.maxValue},
+    const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
                                       {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "half");
-    for (render::TraversalKind t : render::allTraversals()) {
-        if (t == render::TraversalKind::GridDda) continue;  // tests/gpu/dda_gpu_test.cpp
+    for (scene::TraversalKind t : scene::allTraversals()) {
+        if (t == scene::TraversalKind::GridDda) continue;  // tests/gpu/dda_gpu_test.cpp
         std::vector<std::vector<Segment>> reference;
-        for (render::Backend b : test::availableBackends(ctx())) {
-            render::StructureConfig cfg;
+        for (scene::Backend b : test::availableBackends(ctx())) {
+            scene::StructureConfig cfg;
             cfg.traversal = t;
             cfg.backend = b;
             cfg.grid = "12";
             cfg.kdLeaves = 300;
             SCOPED_TRACE(cfg.label());
-            render::VolumeScene scene = render::buildVolumeScene(m, field, cfg);
+            scene::VolumeScene scene = scene::buildVolumeScene(m, field, cfg);
             render::Renderer r(ctx(), scene);
             r.setTransferFunction(tf);
             const BoxSet boxes = traversalBoxes(scene, r);
@@ -255,15 +255,15 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
 TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
     if (!ctx().hasRayQuery()) GTEST_SKIP() << "device has no VK_KHR_ray_query";
     amr::Model m = test::makeThreeLevelCloud();
-    for (render::SamplerKind s : render::allSamplers()) {
+    for (scene::SamplerKind s : scene::allSamplers()) {
         std::vector<float> values[2];
         std::vector<glm::vec4> pts;
-        for (render::Backend b : {render::Backend::Sw, render::Backend::Rq}) {
-            render::StructureConfig cfg;
+        for (scene::Backend b : {scene::Backend::Sw, scene::Backend::Rq}) {
+            scene::StructureConfig cfg;
             cfg.sampler = s;
             cfg.backend = b;
             cfg.grid = "8";
-            render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
+            scene::VolumeScene scene = scene::buildVolumeScene(m, m.defaultField(), cfg);
             if (pts.empty()) {
                 // Random points plus every corner, edge and face centre of each brick domain.
                 std::mt19937 rng(3);
@@ -277,10 +277,10 @@ TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
                     }
             }
             render::Renderer r(ctx(), scene);
-            r.setTransferFunction(render::makePreset("ramp", scene.valueLo, scene.valueHi));
-            values[b == render::Backend::Rq] = samples(r, pts);
+            r.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
+            values[b == scene::Backend::Rq] = samples(r, pts);
         }
-        SCOPED_TRACE(render::samplerName(s));
+        SCOPED_TRACE(scene::samplerName(s));
         ASSERT_EQ(values[0].size(), values[1].size());
         size_t diffs = 0, inside = 0;
         for (size_t i = 0; i < values[0].size(); i += 3) {
@@ -303,15 +303,15 @@ TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheVa
     amr::Model m = test::makeThreeLevelCloud();
     const amr::FieldStats st = amr::computeFieldStats(m, m.defaultField());
     const float q = st.minValue + 0.7f * (st.maxValue - st.minValue);
-    const render::TransferFunction full = render::makePreset("ramp", st.minValue, st.maxValue);
-    const render::TransferFunction sparse({st.minValue, q, st.maxValue},
+    const scene::TransferFunction full = scene::makePreset("ramp", st.minValue, st.maxValue);
+    const scene::TransferFunction sparse({st.minValue, q, st.maxValue},
                                           {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "top");
     std::vector<glm::vec4> pts;
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (const render::StructureConfig& cfg : test::allStructureConfigs(ctx(), "10", 200)) {
+    for (const scene::StructureConfig& cfg : test::allStructureConfigs(ctx(), "10", 200)) {
         SCOPED_TRACE(cfg.label());
-        render::VolumeScene scene = render::buildVolumeScene(m, m.defaultField(), cfg);
+        scene::VolumeScene scene = scene::buildVolumeScene(m, m.defaultField(), cfg);
         if (pts.empty()) {
             const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
             for (int i = 0; i < 3000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
@@ -322,7 +322,7 @@ TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheVa
         const std::vector<float> before = samples(r, pts);
         r.setTransferFunction(sparse);
         const std::vector<float> after = samples(r, pts);
-        if (cfg.traversal != render::TraversalKind::GridDda) {
+        if (cfg.traversal != scene::TraversalKind::GridDda) {
             EXPECT_LT(r.activeTraversalBoxes(), activeFull) << "the edit should cull boxes";
             EXPECT_GT(r.activeTraversalBoxes(), 0u);
         }

@@ -8,10 +8,11 @@
 
 #include "amr/model.h"
 #include "amr/sampler.h"
-#include "render/renderer.h"
-#include "render/transfer_function.h"
+#include "scene/render_output.h"
+#include "scene/render_settings.h"
+#include "scene/transfer_function.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 // The same RNG as shaders/lib/rng.glsl (a PCG hash), in double for the uniform variates.
 class Rng {
@@ -52,4 +53,4 @@ private:
     double mMaxAlpha = 0;  // global majorant before densityScale / finest width
 };
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

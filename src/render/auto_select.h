@@ -13,13 +13,13 @@
 #include "gpu/context.h"
 #include "render/renderer.h"
 
-namespace amrvk::bench {
+namespace amrvk::render {
 
 // What the user fixed; everything left empty is chosen.
 struct AutoConstraints {
-    std::optional<render::TraversalKind> traversal;
-    std::optional<render::SamplerKind> sampler;
-    std::optional<render::Backend> backend;  // resolved (Sw or Rq) when set
+    std::optional<scene::TraversalKind> traversal;
+    std::optional<scene::SamplerKind> sampler;
+    std::optional<scene::Backend> backend;  // resolved (Sw or Rq) when set
     std::optional<std::string> grid;
 };
 
@@ -31,7 +31,7 @@ struct AutoOptions {
 };
 
 struct AutoProbe {
-    render::StructureConfig config;
+    scene::StructureConfig config;
     double secondsPerSpp = 0;  // GPU seconds per frame at the probe size
     double variance = 0;       // mean per-pixel sample variance (rgb mean)
     double efficiency = 0;     // 1 / (variance x secondsPerSpp); 0 when stopped early or failed
@@ -40,16 +40,16 @@ struct AutoProbe {
 };
 
 struct AutoChoice {
-    render::StructureConfig config;
+    scene::StructureConfig config;
     std::vector<AutoProbe> probes;
     double seconds = 0;  // wall time of all probes
 };
 
 // Probes with the scene's model and field under `tf` and `settings` (mode, camera, lights; size
-// and spp are the probe's). Reconfigures `scene`: configure it again before rendering.
-AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const render::TransferFunction& tf,
-                      const render::RenderSettings& settings, const AutoConstraints& constraints,
+// and spp are the probe's). Reconfigures `volume`: configure it again before rendering.
+AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene::TransferFunction& tf,
+                      const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options = {},
                       const std::function<void(const std::string&)>& onProbe = {});
 
-}  // namespace amrvk::bench
+}  // namespace amrvk::render

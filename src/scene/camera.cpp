@@ -1,10 +1,10 @@
-#include "render/camera.h"
+#include "scene/camera.h"
 
 #include <cmath>
 
 #include "core/error.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 Camera defaultCamera(glm::dvec3 worldLo, glm::dvec3 worldHi, double fovYDegrees) {
     Camera c;
@@ -43,4 +43,4 @@ RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Tr
     return b;
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

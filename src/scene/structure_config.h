@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 // Dense: the field resampled to a uniform finest-level grid (clamped trilinear), the cost floor of
 // sampling; it needs a grid traversal (its majorants come from the dense samples).
@@ -50,4 +50,4 @@ struct StructureConfig {
 // device without ray queries is an error naming the device.
 Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName);
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

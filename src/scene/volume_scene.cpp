@@ -1,11 +1,11 @@
-#include "render/volume_scene.h"
+#include "scene/volume_scene.h"
 
 #include "accel/brick_sampler.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stats.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 namespace {
 shared::AabbGpu localBox(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 origin) {
@@ -163,4 +163,4 @@ VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, S
     return buildVolumeScene(model, field, c);
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

@@ -1,18 +1,17 @@
-#include "bench/auto_select.h"
+#include "render/auto_select.h"
 
 #include <cmath>
 
-#include "bench/convergence.h"
 #include "core/error.h"
 #include "core/stats.h"
 
-namespace amrvk::bench {
+namespace amrvk::render {
 
 namespace {
 
 // Mean over pixels and channels of the per-sample variance (= spp x variance of the mean).
-double meanSampleVariance(const render::RenderOutput& out) {
-    const std::vector<float> v = varianceOfMean(out.mean, out.sumSq, out.spp);
+double meanSampleVariance(const scene::RenderOutput& out) {
+    const std::vector<float> v = scene::varianceOfMean(out);
     double sum = 0;
     for (float x : v) sum += x;
     return v.empty() ? 0.0 : sum / double(v.size()) * double(out.spp);
@@ -20,44 +19,44 @@ double meanSampleVariance(const render::RenderOutput& out) {
 
 }  // namespace
 
-AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const render::TransferFunction& tf,
-                      const render::RenderSettings& settings, const AutoConstraints& constraints,
+AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene::TransferFunction& tf,
+                      const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
     AMRVK_CHECK(options.probeSize >= 8 && options.probeSpp >= 2, "internal: probe too small");
     Timer total;
-    render::RenderSettings rs = settings;
+    scene::RenderSettings rs = settings;
     rs.width = rs.height = options.probeSize;
     rs.seed = settings.seed + 7919u;
 
-    std::vector<render::TraversalKind> traversals =
-        constraints.traversal ? std::vector{*constraints.traversal} : render::allTraversals();
-    std::vector<render::SamplerKind> samplers =
-        constraints.sampler ? std::vector{*constraints.sampler} : render::allSamplers();
-    std::vector<render::Backend> backends;
+    std::vector<scene::TraversalKind> traversals =
+        constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
+    std::vector<scene::SamplerKind> samplers =
+        constraints.sampler ? std::vector{*constraints.sampler} : scene::allSamplers();
+    std::vector<scene::Backend> backends;
     if (constraints.backend) backends = {*constraints.backend};
     else {
-        backends = {render::Backend::Sw};
-        if (ctx.hasRayQuery()) backends.push_back(render::Backend::Rq);
+        backends = {scene::Backend::Sw};
+        if (ctx.hasRayQuery()) backends.push_back(scene::Backend::Rq);
     }
 
     AutoChoice choice;
     double bestEfficiency = -1, bestSecondsPerSpp = 0;
-    auto probe = [&](const render::StructureConfig& config) {
+    auto probe = [&](const scene::StructureConfig& config) {
         AutoProbe p;
         p.config = config;
         if (onProbe) onProbe(config.label() + (config.usesGrid() ? " grid " + config.grid : ""));
         Timer wall;
         try {
-            scene.configure(config);
-            render::Renderer renderer(ctx, scene);
+            volume.configure(config);
+            Renderer renderer(ctx, volume);
             renderer.setTransferFunction(tf);
-            render::RenderOutput warm = renderer.render(rs, 1);
+            scene::RenderOutput warm = renderer.render(rs, 1);
             if (bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
                 p.secondsPerSpp = warm.stats.gpuSeconds;
                 p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
                          "x slower than the best";
             } else {
-                render::RenderOutput out = renderer.render(rs, options.probeSpp);
+                scene::RenderOutput out = renderer.render(rs, options.probeSpp);
                 p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
                 p.variance = meanSampleVariance(out);
                 // A black image (variance 0) is scored by speed alone.
@@ -76,13 +75,13 @@ AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const rende
         choice.probes.push_back(p);
     };
 
-    render::StructureConfig base;
+    scene::StructureConfig base;
     base.grid = constraints.grid.value_or("auto");
     base.kdLeaves = 4096;
-    for (render::TraversalKind t : traversals)
-        for (render::SamplerKind s : samplers)
-            for (render::Backend b : backends) {
-                render::StructureConfig c = base;
+    for (scene::TraversalKind t : traversals)
+        for (scene::SamplerKind s : samplers)
+            for (scene::Backend b : backends) {
+                scene::StructureConfig c = base;
                 c.traversal = t;
                 c.sampler = s;
                 c.backend = b;
@@ -91,9 +90,9 @@ AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const rende
     AMRVK_CHECK(bestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
                 choice.probes.empty() ? std::string("none tried") : choice.probes.front().note, ")");
     if (choice.config.usesGrid() && !constraints.grid) {
-        const render::StructureConfig winner = choice.config;
+        const scene::StructureConfig winner = choice.config;
         for (const std::string& g : options.gridChoices) {
-            render::StructureConfig c = winner;
+            scene::StructureConfig c = winner;
             c.grid = g;
             probe(c);
         }
@@ -102,4 +101,4 @@ AutoChoice autoSelect(gpu::Context& ctx, render::VolumeScene& scene, const rende
     return choice;
 }
 
-}  // namespace amrvk::bench
+}  // namespace amrvk::render

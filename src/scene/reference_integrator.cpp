@@ -1,10 +1,11 @@
-#include "render/reference_integrator.h"
+#include "scene/reference_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 uint32_t Rng::pcgHash(uint32_t v) {
     uint32_t state = v * 747796405u + 2891336453u;
@@ -193,4 +194,4 @@ RenderOutput ReferenceIntegrator::render(const RenderSettings& s, uint32_t spp) 
     return out;
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

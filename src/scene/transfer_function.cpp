@@ -1,4 +1,4 @@
-#include "render/transfer_function.h"
+#include "scene/transfer_function.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 namespace {
 
@@ -438,4 +438,4 @@ TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float
     return {};
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

@@ -1,4 +1,4 @@
-#include "render/image_io.h"
+#include "core/image_io.h"
 
 #include <png.h>
 
@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 
-namespace amrvk::render {
+namespace amrvk {
 
 // PFM and EXR are little-endian; values are written and read with memcpy of native floats.
 static_assert(std::endian::native == std::endian::little, "image_io assumes a little-endian host");
@@ -377,4 +377,4 @@ Image8 readPng(const fs::path& path) {
     return image;
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 // Magic of the owlExaStitcher / cuteeOwl / barney `.xf` format.
 inline constexpr uint64_t kXfMagic = 0x0000001235abc000ull;
@@ -95,4 +95,4 @@ TransferFunction loadXf(const std::filesystem::path& path, float dataLo, float d
 TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,
                                       std::string_view presetName = {});
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

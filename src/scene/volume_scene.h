@@ -23,10 +23,10 @@
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
 #include "amr/model.h"
-#include "render/structure_config.h"
+#include "scene/structure_config.h"
 #include "shared/amr_gpu.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 // Traversal boxes of abr | brick | ext-brick | kdtree (local voxel space) with the value range of
 // every cell whose support touches each box (so the range bounds every sample inside it).
@@ -88,4 +88,4 @@ VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, c
 VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
                              const std::string& gridSpec);
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

@@ -5,7 +5,7 @@
 
 #include "amr/model.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 struct Camera {
     glm::dvec3 eye{0.0}, target{0.0, 0.0, -1.0}, up{0.0, 0.0, 1.0};  // world space
@@ -23,4 +23,4 @@ struct RayBasis {
 RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Transform& voxelToWorld,
                       glm::dvec3 localOrigin);
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

@@ -1,9 +1,9 @@
-#include "render/structure_config.h"
+#include "scene/structure_config.h"
 
 #include "core/error.h"
 #include "shared/render_params.h"
 
-namespace amrvk::render {
+namespace amrvk::scene {
 
 namespace {
 struct Named {
@@ -92,4 +92,4 @@ Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::str
     return requested;
 }
 
-}  // namespace amrvk::render
+}  // namespace amrvk::scene

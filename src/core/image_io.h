@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-namespace amrvk::render {
+namespace amrvk {
 
 // Linear RGB(A) pixels, row 0 = top, x fastest: pixels[x + width * y].
 struct Image {
@@ -51,4 +51,4 @@ Image readPfm(const std::filesystem::path& path);
 Image readExr(const std::filesystem::path& path);
 Image8 readPng(const std::filesystem::path& path);
 
-}  // namespace amrvk::render
+}  // namespace amrvk

@@ -1,0 +1,32 @@
+#pragma once
+// An accumulated Monte Carlo estimate of an image (GPU renderer or CPU reference integrator): the
+// mean, the per-pixel sums of squares, the sample count and the counters of the paths behind it.
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/image_io.h"
+#include "shared/render_params.h"
+
+namespace amrvk::scene {
+
+struct RenderStats {
+    uint64_t paths = 0;
+    double gpuSeconds = 0;  // GPU time of the path-trace dispatches
+    std::array<uint64_t, shared::kCounterCount> counters{};
+    uint64_t counter(uint32_t k) const { return counters[k]; }
+};
+
+struct RenderOutput {
+    Image mean;                      // linear radiance per pixel (rgb), a = 1
+    std::vector<glm::vec4> sumSq;    // per-pixel sum of squared samples (rgb)
+    uint32_t spp = 0;
+    RenderStats stats;
+};
+
+// Per-pixel variance of the mean (3 per pixel, rgb) from the sums of squares; needs spp >= 2.
+std::vector<float> varianceOfMean(const RenderOutput& out);
+
+}  // namespace amrvk::scene

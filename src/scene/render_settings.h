@@ -1,0 +1,52 @@
+#pragma once
+// What a picture depends on besides the data, the TF and the structures: render mode, image size,
+// seed, camera, medium scale and lighting. World space throughout; lightsInVoxelSpace converts
+// the lights for the shaders and the CPU reference.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "amr/model.h"
+#include "scene/camera.h"
+
+namespace amrvk::scene {
+
+// ae | ss | ms: unbiased path tracing. dvr: the ray-marching baseline (biased by its step).
+enum class Mode { Ae, Ss, Ms, Dvr };
+Mode parseMode(const std::string& name);
+const char* modeName(Mode mode);
+
+struct Light {
+    bool point = false;
+    glm::dvec3 posOrDir{0.0, 0.0, 1.0};  // world position, or world direction towards the light
+    glm::dvec3 radiance{1.0};            // radiance (directional) or intensity (point, 1/d^2 in world units)
+};
+
+// A light in voxel space: point position or unit direction towards the light; radiance
+// (directional) or intensity scaled so that 1/d^2 with d in voxel units equals the world falloff.
+struct VoxelLight {
+    bool point = false;
+    glm::dvec3 posOrDir{0.0};
+    glm::dvec3 radiance{0.0};
+};
+
+struct RenderSettings {
+    Mode mode = Mode::Ms;
+    int width = 256, height = 256;
+    uint32_t seed = 1;
+    Camera camera;
+    double densityScale = 1.0;
+    double g = 0.0;                      // Henyey-Greenstein asymmetry, clamped to [-0.999, 0.999]
+    glm::dvec3 ambient{1.0};             // environment radiance seen by escaping rays
+    std::optional<glm::dvec3> background;  // seen by escaping primary rays; default = ambient
+    std::vector<Light> lights;           // at most shared::kMaxLights
+    double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
+    bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
+};
+
+std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& settings, const amr::Transform& voxelToWorld);
+
+}  // namespace amrvk::scene
