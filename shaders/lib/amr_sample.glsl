@@ -21,16 +21,16 @@ struct FieldSample {
 
 // Basis-function domain test: p within the brick's bounds grown by half a cell (closed).
 bool brickDomainContains(BrickGpu b, vec3 p) {
-    vec3 rel = (p - vec3(b.lowerLevel.xyz)) / float(1 << b.lowerLevel.w);
-    return all(greaterThanEqual(rel, vec3(-0.5))) && all(lessThanEqual(rel, vec3(b.sizeBegin.xyz) + 0.5));
+    vec3 rel = (p - vec3(b.lower)) / float(1 << b.level);
+    return all(greaterThanEqual(rel, vec3(-0.5))) && all(lessThanEqual(rel, vec3(b.size) + 0.5));
 }
 
 void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float sumWV,
                           inout bool inside, inout int finestLevel) {
-    BrickGpu b = BrickRef(P.bricks).v[brickId];
-    float w = float(1 << b.lowerLevel.w);
-    vec3 lower = vec3(b.lowerLevel.xyz);
-    vec3 size = vec3(b.sizeBegin.xyz);
+    BrickGpu b = BrickRef(P.scene.bricks).v[brickId];
+    float w = float(1 << b.level);
+    vec3 lower = vec3(b.lower);
+    vec3 size = vec3(b.size);
     vec3 rel = (p - lower) / w;  // position in cells from the brick's lower corner
     // Domain test (bounds grown by half a cell): outside it the brick has no weight at p.
     if (any(lessThan(rel, vec3(-0.5))) || any(greaterThan(rel, size + 0.5))) return;
@@ -38,18 +38,18 @@ void addBrickContribution(uint brickId, vec3 p, inout float sumW, inout float su
     vec3 local = rel - 0.5;
     vec3 i0 = floor(local);
     vec3 f = local - i0;
-    FloatRef values = FloatRef(P.brickValues);
+    FloatRef values = FloatRef(P.scene.brickValues);
     for (int c = 0; c < 8; ++c) {
         ivec3 bit = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
         ivec3 idx = ivec3(i0) + bit;
-        if (any(lessThan(idx, ivec3(0))) || any(greaterThanEqual(idx, b.sizeBegin.xyz))) continue;
+        if (any(lessThan(idx, ivec3(0))) || any(greaterThanEqual(idx, b.size))) continue;
         vec3 wt = mix(1.0 - f, f, vec3(bit));
         float phi = wt.x * wt.y * wt.z;
-        float v = values.v[uint(b.sizeBegin.w) + uint(idx.x + b.sizeBegin.x * (idx.y + b.sizeBegin.y * idx.z))];
+        float v = values.v[b.begin + uint(idx.x + b.size.x * (idx.y + b.size.y * idx.z))];
         if (isnan(v) || phi <= 0.0) continue;
         sumW += phi;
         sumWV += phi * v;
-        finestLevel = min(finestLevel, b.lowerLevel.w);
+        finestLevel = min(finestLevel, b.level);
     }
     // A point on the brick's bounds belongs to the medium when some cell there has a value.
     if (inBounds) inside = true;
@@ -71,11 +71,11 @@ FieldSample finishSample(float sumW, float sumWV, bool inside, int finestLevel) 
 
 // Evaluates the bricks of one ABR (no lookup: used when traversal already knows the ABR).
 FieldSample sampleInAbr(uint abrId, vec3 p) {
-    AbrGpu a = AbrRef(P.abrs).v[abrId];
+    AbrGpu a = AbrRef(P.scene.abrs).v[abrId];
     float sumW = 0.0, sumWV = 0.0;
     bool inside = false;
     int level = kNoLevel;
-    UintRef list = UintRef(P.abrBrickList);
+    UintRef list = UintRef(P.scene.abrBrickList);
     for (uint i = 0; i < a.brickCount; ++i)
         addBrickContribution(list.v[a.brickBegin + i], p, sumW, sumWV, inside, level);
     return finishSample(sumW, sumWV, inside, level);
@@ -104,7 +104,7 @@ BrickGather newGather() {
 
 // Ray queries may report a box more than once: a repeated id is ignored.
 void gatherBrick(inout BrickGather g, uint id, vec3 p) {
-    if (!brickDomainContains(BrickRef(P.bricks).v[id], p)) return;
+    if (!brickDomainContains(BrickRef(P.scene.bricks).v[id], p)) return;
     uint pos = g.n;  // insertion position in the sorted list
     while (pos > 0u && g.ids[pos - 1u] > id) --pos;
     if (pos > 0u && g.ids[pos - 1u] == id) return;
@@ -123,8 +123,8 @@ FieldSample finishGather(inout BrickGather g, vec3 p) {
 }
 
 FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
-    BvhRef nodes = BvhRef(P.samplerNodes);
-    UintRef prims = UintRef(P.samplerPrims);
+    BvhRef nodes = BvhRef(P.scene.samplerNodes);
+    UintRef prims = UintRef(P.scene.samplerPrims);
     BrickGather g = newGather();
     uint stack[kBvhStackSize];  // small: lavapipe keeps it per lane in memory
     int top = 0;
@@ -141,7 +141,7 @@ FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
             uint prim = prims.v[n.first + i];
             if (samplerKind == kSamplerExtBrick) {
                 gatherBrick(g, prim, p);
-            } else if (abrContains(AbrRef(P.abrs).v[prim], p)) {
+            } else if (abrContains(AbrRef(P.scene.abrs).v[prim], p)) {
                 return sampleInAbr(prim, p);
             }
         }
@@ -157,14 +157,14 @@ FieldSample sampleFieldSw(uint samplerKind, vec3 p) {
 FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
     BrickGather g = newGather();
     rayQueryEXT rq;
-    rayQueryInitializeEXT(rq, accelerationStructureEXT(P.samplerAccel), gl_RayFlagsNoneEXT, 0xFFu, p, 0.0,
+    rayQueryInitializeEXT(rq, accelerationStructureEXT(P.scene.samplerAccel), gl_RayFlagsNoneEXT, 0xFFu, p, 0.0,
                           vec3(1.0), 1e-3);
     while (rayQueryProceedEXT(rq)) {
         if (rayQueryGetIntersectionTypeEXT(rq, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
         uint prim = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, false));
         if (samplerKind == kSamplerExtBrick) {
             gatherBrick(g, prim, p);
-        } else if (abrContains(AbrRef(P.abrs).v[prim], p)) {
+        } else if (abrContains(AbrRef(P.scene.abrs).v[prim], p)) {
             rayQueryTerminateEXT(rq);
             return sampleInAbr(prim, p);
         }
@@ -177,9 +177,9 @@ FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
 // skipped and the remaining weights renormalised. inside = the sample of the dense cell holding p
 // is a value. CPU twin: accel/dense_grid.cpp (sampleDense).
 FieldSample sampleDense(vec3 p) {
-    FloatRef values = FloatRef(P.denseValues);
-    ivec3 dims = P.denseDims.xyz;
-    vec3 q = (p - P.denseOrigin.xyz) / P.denseOrigin.w;
+    FloatRef values = FloatRef(P.scene.denseValues);
+    ivec3 dims = P.scene.denseDims;
+    vec3 q = (p - P.scene.denseOrigin) / P.scene.denseSpacing;
     ivec3 cell = clamp(ivec3(floor(q)), ivec3(0), dims - 1);
     bool inside = !isnan(values.v[cell.x + dims.x * (cell.y + dims.y * cell.z)]);
     vec3 local = q - 0.5;
@@ -196,7 +196,7 @@ FieldSample sampleDense(vec3 p) {
         sumW += phi;
         sumWV += phi * v;
     }
-    return finishSample(sumW, sumWV, inside, P.denseDims.w);
+    return finishSample(sumW, sumWV, inside, P.scene.denseLevel);
 }
 
 FieldSample sampleField(uint samplerKind, uint backend, vec3 p) {

@@ -6,6 +6,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
 #include "shared/amr_gpu.h"
+#include "shared/kinds.h"
 #include "shared/render_params.h"
 
 layout(buffer_reference, scalar) readonly buffer ParamsRef { RenderParams p; };
@@ -14,7 +15,7 @@ layout(buffer_reference, scalar) readonly buffer FloatRef { float v[]; };
 layout(buffer_reference, scalar) buffer FloatRW { float v[]; };
 layout(buffer_reference, scalar) readonly buffer UintRef { uint v[]; };
 layout(buffer_reference, scalar) buffer UintRW { uint v[]; };
-layout(buffer_reference, scalar) readonly buffer Vec2Ref { vec2 v[]; };
+layout(buffer_reference, scalar) readonly buffer ValueRangeRef { ValueRangeGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, scalar) buffer Vec4RW { vec4 v[]; };
 layout(buffer_reference, scalar) readonly buffer BvhRef { BvhNodeGpu v[]; };

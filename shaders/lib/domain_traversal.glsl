@@ -6,49 +6,31 @@
 // majorant > 0; where nothing covers t the ray skips to the next entry (majorant 0 there).
 // Back-ends: software BVH over the non-empty boxes (kBackendSw) or a ray query over an AABB BLAS
 // whose culled boxes are inactive (kBackendRq). Both filter candidates with the same exact slab
-// test (domainInterval), so they yield identical segments.
+// test (rayBoxInterval, ray_box.glsl), so they yield identical segments.
 // CPU check: tests/gpu/traversal_gpu_test.cpp compares segments with brute force over all boxes.
 #ifndef AMRVK_DOMAIN_TRAVERSAL_GLSL
 #define AMRVK_DOMAIN_TRAVERSAL_GLSL
 
-// Parametric interval of the ray o + t d inside the box: (entry, exit); entry > exit when they
-// miss. Zero direction components never step (no division by zero); such a ray counts as inside
-// the slab when lo <= o < hi, so a ray lying in the plane of a box's upper face misses it, the
-// convention hardware ray queries follow too (the box beyond that plane, if any, covers it).
-vec2 slabInterval(vec3 lo, vec3 hi, vec3 o, vec3 d) {
-    float e = -kInf, x = kInf;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (o[a] < lo[a] || o[a] >= hi[a]) return vec2(kInf, -kInf);
-            continue;
-        }
-        precise float inv = 1.0 / d[a];
-        precise float t0 = (lo[a] - o[a]) * inv;
-        precise float t1 = (hi[a] - o[a]) * inv;
-        e = max(e, min(t0, t1));
-        x = min(x, max(t0, t1));
-    }
-    return vec2(e, x);
-}
+#include "lib/ray_box.glsl"
 
 // Box of domain `id`, local voxel space. Macrocells are computed from the grid (no storage); the
 // same expression everywhere (precise: no fused multiply-add) so neighbours share faces exactly.
 void domainBox(uint traversal, uint id, out vec3 lo, out vec3 hi) {
     if (traversal == kTraversalGridBvh) {
-        ivec3 dims = P.gridDims.xyz;
+        ivec3 dims = P.scene.gridDims;
         uvec3 c = uvec3(id % uint(dims.x), (id / uint(dims.x)) % uint(dims.y), id / uint(dims.x * dims.y));
-        precise vec3 l = P.gridOrigin.xyz + vec3(c) * P.gridCellSize.xyz;
-        precise vec3 h = P.gridOrigin.xyz + vec3(c + 1u) * P.gridCellSize.xyz;
+        precise vec3 l = P.scene.gridOrigin + vec3(c) * P.scene.gridCellSize;
+        precise vec3 h = P.scene.gridOrigin + vec3(c + 1u) * P.scene.gridCellSize;
         lo = l;
         hi = h;
         return;
     }
-    AabbGpu b = AabbRef(P.domainBoxes).v[id];
+    AabbGpu b = AabbRef(P.majorants.domainBoxes).v[id];
     lo = b.lo;
     hi = b.hi;
 }
 
-float domainMajorant(uint id) { return FloatRef(P.domainMajorants).v[id]; }
+float domainMajorant(uint id) { return FloatRef(P.majorants.domainMajorants).v[id]; }
 
 struct SegmentQuery {
     float end;     // segment end: nearest exit of a covering box or entry of a box ahead
@@ -87,15 +69,15 @@ SegmentQuery newSegmentQuery(float tEnd) {
 
 SegmentQuery querySegmentSw(uint traversal, vec3 o, vec3 d, float t, float tEnd) {
     SegmentQuery q = newSegmentQuery(tEnd);
-    if (P.domainInfo.y == 0u) return q;  // every box culled: no BVH
-    BvhRef nodes = BvhRef(P.domainNodes);
-    UintRef prims = UintRef(P.domainPrims);
+    if (P.majorants.domainAnyActive == 0u) return q;  // every box culled: no BVH
+    BvhRef nodes = BvhRef(P.majorants.domainNodes);
+    UintRef prims = UintRef(P.majorants.domainPrims);
     uint stack[kBvhStackSize];
     float stackEntry[kBvhStackSize];
     int top = 0;
     {
         BvhNodeGpu root = nodes.v[0];
-        vec2 ex = slabInterval(root.lo, root.hi, o, d);
+        vec2 ex = rayBoxInterval(root.lo, root.hi, o, d);
         if (ex.x > ex.y || ex.y <= t) return q;
         stack[top] = 0u;
         stackEntry[top++] = ex.x;
@@ -109,13 +91,13 @@ SegmentQuery querySegmentSw(uint traversal, vec3 o, vec3 d, float t, float tEnd)
                 uint id = prims.v[n.first + i];
                 vec3 lo, hi;
                 domainBox(traversal, id, lo, hi);
-                foldCandidate(id, slabInterval(lo, hi, o, d), t, q);
+                foldCandidate(id, rayBoxInterval(lo, hi, o, d), t, q);
             }
             continue;
         }
         // Test both children now; push the far one first so the near one is visited first.
         BvhNodeGpu a = nodes.v[n.first], b = nodes.v[n.first + 1u];
-        vec2 ea = slabInterval(a.lo, a.hi, o, d), eb = slabInterval(b.lo, b.hi, o, d);
+        vec2 ea = rayBoxInterval(a.lo, a.hi, o, d), eb = rayBoxInterval(b.lo, b.hi, o, d);
         bool hitA = ea.x <= ea.y && ea.y > t && ea.x < q.end;
         bool hitB = eb.x <= eb.y && eb.y > t && eb.x < q.end;
         bool aFirst = ea.x <= eb.x;
@@ -137,16 +119,16 @@ SegmentQuery querySegmentSw(uint traversal, vec3 o, vec3 d, float t, float tEnd)
 // lets the hardware cull boxes that start beyond it.
 SegmentQuery querySegmentRq(uint traversal, vec3 o, vec3 d, float t, float tEnd) {
     SegmentQuery q = newSegmentQuery(tEnd);
-    if (P.domainInfo.y == 0u) return q;
+    if (P.majorants.domainAnyActive == 0u) return q;
     rayQueryEXT rq;
-    rayQueryInitializeEXT(rq, accelerationStructureEXT(P.domainAccel), gl_RayFlagsNoneEXT, 0xFFu, o, t, d, tEnd);
+    rayQueryInitializeEXT(rq, accelerationStructureEXT(P.majorants.domainAccel), gl_RayFlagsNoneEXT, 0xFFu, o, t, d, tEnd);
     while (rayQueryProceedEXT(rq)) {
         if (rayQueryGetIntersectionTypeEXT(rq, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
         uint id = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, false));
         vec3 lo, hi;
         domainBox(traversal, id, lo, hi);
         float before = q.end;
-        foldCandidate(id, slabInterval(lo, hi, o, d), t, q);
+        foldCandidate(id, rayBoxInterval(lo, hi, o, d), t, q);
         if (q.end < before) rayQueryGenerateIntersectionEXT(rq, q.end);
     }
     return q;

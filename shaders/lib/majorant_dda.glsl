@@ -2,9 +2,12 @@
 // [t0, t1] covering the ray's overlap with the grid, each with its macrocell index.
 // Direction components may be +0 or -0 (that axis never steps); the start cell is clamped into
 // the grid, so rays starting on faces, edges or corners, or inside the grid, work.
-// CPU twin: accel/dda.* (the same steps in double precision).
+// The grid is clipped with the shared slab test (ray_box.glsl). CPU twin: accel/dda.h (the same
+// steps, in float bit for bit or in double).
 #ifndef AMRVK_MAJORANT_DDA_GLSL
 #define AMRVK_MAJORANT_DDA_GLSL
+
+#include "lib/ray_box.glsl"
 
 struct DdaState {
     ivec3 cell;
@@ -15,25 +18,10 @@ struct DdaState {
     float tEnd;
 };
 
-// Intersects the ray with the box; returns false when they do not overlap within [tMin, tMax].
-bool clipRay(vec3 lo, vec3 hi, vec3 o, vec3 d, inout float tMin, inout float tMax) {
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return false;
-            continue;
-        }
-        float inv = 1.0 / d[a];
-        float t0 = (lo[a] - o[a]) * inv, t1 = (hi[a] - o[a]) * inv;
-        tMin = max(tMin, min(t0, t1));
-        tMax = min(tMax, max(t0, t1));
-    }
-    return tMin <= tMax;
-}
-
 bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
-    vec3 lo = P.gridOrigin.xyz;
-    vec3 size = P.gridCellSize.xyz;
-    ivec3 dims = P.gridDims.xyz;
+    vec3 lo = P.scene.gridOrigin;
+    vec3 size = P.scene.gridCellSize;
+    ivec3 dims = P.scene.gridDims;
     vec3 hi = lo + size * vec3(dims);
     s.t = tMin;
     s.tEnd = tMax;
@@ -60,7 +48,7 @@ bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
 
 // Next segment: macrocell index and [t0, t1]; false when the ray has left the grid.
 bool ddaNext(inout DdaState s, out uint cellIndex, out float t0, out float t1) {
-    ivec3 dims = P.gridDims.xyz;
+    ivec3 dims = P.scene.gridDims;
     if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
     float tExit = min(min(s.tNext.x, s.tNext.y), s.tNext.z);
     cellIndex = uint(s.cell.x + dims.x * (s.cell.y + dims.y * s.cell.z));

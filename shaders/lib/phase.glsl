@@ -1,7 +1,7 @@
 // Henyey-Greenstein phase function. Directions are propagation directions: cosTheta is between
 // the incoming ray direction and the scattered one (g > 0 scatters forward). |g| < 1e-3 is
 // treated as isotropic; callers keep |g| <= 0.999 (the CLI clamps), so no NaN near |g| = 1.
-// CPU twin: render/reference_integrator.cpp (sampleHenyeyGreenstein, henyeyGreenstein).
+// CPU twin: scene/reference_integrator.cpp (sampleHenyeyGreenstein, henyeyGreenstein).
 #ifndef AMRVK_PHASE_GLSL
 #define AMRVK_PHASE_GLSL
 

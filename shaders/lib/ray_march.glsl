@@ -3,7 +3,7 @@
 // majorant 0 are skipped: empty-space skipping). Step h = dt x the finest cell width among the
 // bricks with weight at the previous sample (ExaBrick: the finest width of the ABR); jittered
 // start (again after each skipped gap); opacity correction alpha' = 1 - exp(-sigma h), i.e.
-// 1 - (1 - alpha)^(h / finest width) in the TF's units; stops at opacity P.dvr.z (0.99).
+// 1 - (1 - alpha)^(h / finest width) in the TF's units; stops at opacity P.shading.dvrOpacityStop (0.99).
 // Biased by h and by the termination; as dt -> 0 it tends to the ae mode's expectation.
 #ifndef AMRVK_RAY_MARCH_GLSL
 #define AMRVK_RAY_MARCH_GLSL
@@ -26,17 +26,17 @@ vec3 fieldGradient(vec3 p, float h, float vc, StructureConfig cfg, inout Counter
     return g;
 }
 
-// Radiance along o + t d: sum of T * alpha' * colour (shaded when P.dvr.y > 0) + T * background.
+// Radiance along o + t d: sum of T * alpha' * colour (shaded when P.shading.dvrShading) + T * background.
 vec3 rayMarch(vec3 o, vec3 d, StructureConfig cfg, inout uint rng, inout Counters c) {
     Traversal s;
     vec3 L = vec3(0.0);
     float T = 1.0;
-    const float dt = P.dvr.x;
-    const float stopTransmittance = 1.0 - P.dvr.z;
+    const float dt = P.shading.dvrStep;
+    const float stopTransmittance = 1.0 - P.shading.dvrOpacityStop;
     if (traversalInit(cfg, o, d, 0.0, kInf, s)) {
         uint seg;
         float majAlpha, t0, t1;
-        float h = dt / P.boundsLo.w;  // dt x the finest cell width of the data set, until a sample says more
+        float h = dt / P.scene.invFinestCellWidth;  // dt x the finest cell width of the data set, until a sample says more
         float t = -1.0;  // next sample; < t0 means a gap was skipped: jitter again
         while (T > stopTransmittance && traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
             if (!(majAlpha > 0.0)) continue;
@@ -50,16 +50,16 @@ vec3 rayMarch(vec3 o, vec3 d, StructureConfig cfg, inout uint rng, inout Counter
                 float sigma = 0.0;
                 if (fs.inside) {
                     tfc = evalTf(fs.value);
-                    sigma = tfc.a * P.boundsHi.w * P.boundsLo.w;
+                    sigma = extinctionOfAlpha(tfc.a);
                 }
                 if (sigma > 0.0) {
                     float alpha = 1.0 - exp(-sigma * h);
                     vec3 colour = tfc.rgb;
-                    if (P.dvr.y > 0.0) {
+                    if (P.shading.dvrShading != 0u) {
                         vec3 g = fieldGradient(p, max(h / dt, 1.0), fs.value, cfg, c);
                         float len = length(g);
-                        float lambert = len > 0.0 ? abs(dot(g / len, P.dvrLight.xyz)) : 1.0;
-                        colour *= P.dvr.w + (1.0 - P.dvr.w) * lambert;
+                        float lambert = len > 0.0 ? abs(dot(g / len, P.shading.dvrLightDir)) : 1.0;
+                        colour *= P.shading.dvrAmbient + (1.0 - P.shading.dvrAmbient) * lambert;
                     }
                     L += T * alpha * colour;
                     T *= 1.0 - alpha;
@@ -68,7 +68,7 @@ vec3 rayMarch(vec3 o, vec3 d, StructureConfig cfg, inout uint rng, inout Counter
             }
         }
     }
-    return L + T * P.background.rgb;
+    return L + T * P.shading.background;
 }
 
 #endif

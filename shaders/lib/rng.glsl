@@ -1,5 +1,5 @@
 // Random numbers: a PCG hash seeds a per-sample state; rand() returns floats in [0, 1) with 24
-// random bits (so 1 - rand() is never 0). CPU twin: render/reference_integrator.cpp (Rng).
+// random bits (so 1 - rand() is never 0). CPU twin: scene/reference_integrator.cpp (Rng).
 #ifndef AMRVK_RNG_GLSL
 #define AMRVK_RNG_GLSL
 

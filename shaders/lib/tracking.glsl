@@ -1,17 +1,29 @@
-// Free-flight sampling over majorant segments (Woodcock / delta tracking) and transmittance
-// estimation (ratio tracking, Novak et al. 2014), over any traversal (traversal.glsl). Restarting at each
-// segment boundary is valid because exponential free flights are memoryless. Majorant and
-// acceptance test are in the same units (extinction per voxel unit), unlike upstream ExaBrick.
-// CPU twin: render/reference_integrator.cpp (deltaTrack, ratioTrack).
+// Free-flight sampling over majorant segments, in the shape of pbrt-v4's SampleT_maj: ONE loop
+// (sampleTmaj) steps exponential distances with each segment's majorant and hands every tentative
+// collision to the estimator the caller chose, which decides what it means:
+//   kEstimatorDelta  delta (Woodcock) tracking: real with probability sigma / majorant, stops there
+//   kEstimatorRatio  ratio tracking (Novak et al. 2014): transmittance *= 1 - sigma / majorant,
+//                    Russian roulette below 0.05
+// Restarting at each segment boundary is valid because exponential free flights are memoryless.
+// Majorant and acceptance test are in the same units (extinction per voxel unit), unlike upstream
+// ExaBrick. A call takes at most P.shading.maxTrackingSteps steps; reaching that cap ends it
+// (delta: no collision, ratio: transmittance 0 — biased) and is counted, never silent.
+// CPU twin: scene/reference_integrator.cpp (sampleTmaj, deltaTrack, ratioTrack).
 #ifndef AMRVK_TRACKING_GLSL
 #define AMRVK_TRACKING_GLSL
 
-const uint kMaxTrackingSteps = 1u << 22;  // per ray; reaching it is counted as a violation
 const float kViolationTolerance = 1.0 + 1e-6;
+const uint kEstimatorDelta = 0u;
+const uint kEstimatorRatio = 1u;
 
 struct Counters {
-    uint lookups, real, nulls, steps, violations;
+    uint lookups, real, nulls, steps, violations, capped;
 };
+
+Counters newCounters() { return Counters(0u, 0u, 0u, 0u, 0u, 0u); }
+
+// Extinction per voxel unit of a TF alpha (or a majorant in alpha units).
+float extinctionOfAlpha(float alpha) { return alpha * P.shading.densityScale * P.scene.invFinestCellWidth; }
 
 // The field at local point p inside segment box `segmentId` (counted as one lookup). abr
 // traversal + abr sampler: the segment's ABR is the containing one, so no search is needed.
@@ -29,80 +41,91 @@ float extinctionAt(vec3 p, StructureConfig cfg, uint segmentId, inout Counters c
         return 0.0;
     }
     tfColor = evalTf(s.value);
-    return tfColor.a * P.boundsHi.w * P.boundsLo.w;
+    return extinctionOfAlpha(tfColor.a);
 }
 
-// Extinction per voxel unit from a majorant in alpha units.
-float majorantExtinction(float majAlpha) { return majAlpha * P.boundsHi.w * P.boundsLo.w; }
+// What an estimator has found so far.
+struct TrackState {
+    bool hit;             // delta: a real collision was sampled
+    float tHit;           // delta: its distance
+    vec4 tfHit;           // delta: the TF colour there
+    float transmittance;  // ratio: the running estimate
+};
 
-// Samples a real collision along o + t d, t in [0, tMax]. Returns true with its distance and TF colour.
-bool deltaTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng,
-                inout Counters c, out float tHit, out vec4 tfHit) {
-    Traversal s;
-    tHit = tMax;
-    tfHit = vec4(0.0);
-    if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return false;
-    uint seg;
-    float majAlpha, t0, t1;
-    uint budget = kMaxTrackingSteps;
-    while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
-        float maj = majorantExtinction(majAlpha);
-        if (!(maj > 0.0)) continue;
-        float t = t0;
-        while (budget-- > 0u) {
-            t -= log(1.0 - rand(rng)) / maj;
-            if (t >= t1) break;
-            vec4 tfc;
-            float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
-            if (sigma > maj * kViolationTolerance) c.violations++;
-            if (rand(rng) * maj < sigma) {
-                c.real++;
-                tHit = t;
-                tfHit = tfc;
-                return true;
-            }
-            c.nulls++;
-        }
-        if (budget == 0u) {
-            c.violations++;
+TrackState newTrackState() { return TrackState(false, kInf, vec4(0.0), 1.0); }
+
+// The estimator's decision at a tentative collision at t (extinction sigma, majorant maj, TF
+// colour tfc). Returns false to stop tracking.
+bool onCollision(uint estimator, float t, float sigma, float maj, vec4 tfc, inout TrackState st, inout uint rng,
+                 inout Counters c) {
+    if (estimator == kEstimatorDelta) {
+        if (rand(rng) * maj < sigma) {
+            c.real++;
+            st.hit = true;
+            st.tHit = t;
+            st.tfHit = tfc;
             return false;
         }
+        c.nulls++;
+        return true;
     }
-    return false;
+    st.transmittance *= max(0.0, 1.0 - sigma / maj);
+    c.nulls++;
+    if (st.transmittance < 0.05) {
+        if (rand(rng) * 0.05 >= st.transmittance) {
+            st.transmittance = 0.0;
+            return false;
+        }
+        st.transmittance = 0.05;
+    }
+    return true;
 }
 
-// Unbiased estimate of the transmittance along o + t d, t in [0, tMax]; Russian roulette below 0.05.
-float ratioTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng,
-                 inout Counters c) {
+// Tracks o + t d over t in [0, tMax] through the traversal's majorant segments.
+void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator, inout TrackState st, inout uint rng,
+                inout Counters c) {
     Traversal s;
-    if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return 1.0;
-    float tr = 1.0;
+    if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return;
     uint seg;
     float majAlpha, t0, t1;
-    uint budget = kMaxTrackingSteps;
+    uint stepsLeft = P.shading.maxTrackingSteps;
     while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
-        float maj = majorantExtinction(majAlpha);
+        float maj = extinctionOfAlpha(majAlpha);
         if (!(maj > 0.0)) continue;
         float t = t0;
-        while (budget-- > 0u) {
+        for (;;) {
+            if (stepsLeft == 0u) {
+                c.capped++;
+                st.hit = false;
+                st.transmittance = 0.0;
+                return;
+            }
+            --stepsLeft;
             t -= log(1.0 - rand(rng)) / maj;
             if (t >= t1) break;
             vec4 tfc;
             float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
-            tr *= max(0.0, 1.0 - sigma / maj);
-            c.nulls++;
-            if (tr < 0.05) {
-                if (rand(rng) * 0.05 >= tr) return 0.0;
-                tr = 0.05;
-            }
-        }
-        if (budget == 0u) {
-            c.violations++;
-            return 0.0;
+            if (!onCollision(estimator, t, sigma, maj, tfc, st, rng, c)) return;
         }
     }
-    return tr;
+}
+
+// Samples a real collision along o + t d, t in [0, tMax]. Returns true with its distance and TF colour.
+bool deltaTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng, inout Counters c, out float tHit,
+                out vec4 tfHit) {
+    TrackState st = newTrackState();
+    sampleTmaj(o, d, tMax, cfg, kEstimatorDelta, st, rng, c);
+    tHit = st.hit ? st.tHit : tMax;
+    tfHit = st.tfHit;
+    return st.hit;
+}
+
+// Unbiased estimate of the transmittance along o + t d, t in [0, tMax].
+float ratioTrack(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng, inout Counters c) {
+    TrackState st = newTrackState();
+    sampleTmaj(o, d, tMax, cfg, kEstimatorRatio, st, rng, c);
+    return st.transmittance;
 }
 
 #endif

@@ -26,7 +26,7 @@ bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, 
     tr.tEnd = tMax;
     if (cfg.traversal == kTraversalGridDda) return ddaInit(o, d, tMin, tMax, tr.dda);
     // The medium lies inside the union of leaf cells: boxes beyond it carry no extinction.
-    return clipRay(vec3(0.0), P.boundsHi.xyz, o, d, tr.t, tr.tEnd);
+    return clipRay(vec3(0.0), P.scene.boundsHi, o, d, tr.t, tr.tEnd);
 }
 
 // Next segment with a box or macrocell; gaps between boxes are skipped (nothing there).
@@ -36,7 +36,7 @@ bool traversalNext(StructureConfig cfg, inout Traversal tr, inout uint steps, ou
     if (cfg.traversal == kTraversalGridDda) {
         if (!ddaNext(tr.dda, id, t0, t1)) return false;
         steps++;
-        majAlpha = FloatRef(P.gridMajorants).v[id];
+        majAlpha = FloatRef(P.majorants.gridMajorants).v[id];
         return true;
     }
     while (tr.t < tr.tEnd) {

@@ -16,7 +16,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= pc.count) return;
     AabbGpu box;
-    domainBox(pc.kind, i, box.lo, box.hi);
-    if (!(FloatRef(pc.ranges).v[i] > 0.0)) box.hi = box.lo;
+    domainBox(pc.traversal, i, box.lo, box.hi);
+    if (!(FloatRef(pc.source).v[i] > 0.0)) box.hi = box.lo;
     AabbRW(pc.target).v[i] = box;
 }

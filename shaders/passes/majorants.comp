@@ -1,7 +1,7 @@
 #version 460
 // Majorant per macrocell or traversal box = exact maximum of the TF's alpha over its value range
 // (tfMaxAlpha: the same piecewise-linear function the tracker evaluates). Run on every TF change,
-// once per structure: ranges (vec2[count]) -> majorants (float[count]).
+// once per structure: ranges (ValueRangeGpu[count]) -> majorants (float[count]).
 #include "lib/common.glsl"
 layout(push_constant, scalar) uniform Push { StructurePush pc; };
 #include "lib/tf.glsl"
@@ -12,6 +12,6 @@ void main() {
     gParams = ParamsRef(pc.params);
     uint i = gl_GlobalInvocationID.x;
     if (i >= pc.count) return;
-    vec2 range = Vec2Ref(pc.ranges).v[i];
-    FloatRW(pc.target).v[i] = tfMaxAlpha(range.x, range.y);
+    ValueRangeGpu range = ValueRangeRef(pc.source).v[i];
+    FloatRW(pc.target).v[i] = tfMaxAlpha(range.lo, range.hi);
 }

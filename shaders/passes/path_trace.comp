@@ -1,6 +1,6 @@
 #version 460
 // One sample per pixel per dispatch: camera ray -> estimator of the chosen mode -> accumulate
-// radiance and its square. Specialization: kMode (ae | ss | ms), kSampler (ext-brick | abr),
+// radiance and its square. Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense),
 // kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
 // Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
 // (-DAMRVK_RAY_QUERY: also the VK_KHR_ray_query back-end; needs the rayQuery feature).
@@ -21,33 +21,33 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/ray_march.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(constant_id = 0) const uint kMode = kModeMs;
-layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;
-layout(constant_id = 2) const uint kTraversal = kTraversalGridDda;
-layout(constant_id = 3) const uint kBackend = kBackendSw;
+layout(constant_id = 0) const uint kMode = kModeMs;            // Mode
+layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;  // SamplerKind
+layout(constant_id = 2) const uint kTraversal = kTraversalGridDda;  // TraversalKind
+layout(constant_id = 3) const uint kBackend = kBackendSw;      // Backend
 
 StructureConfig cfg() { return StructureConfig(kSampler, kTraversal, kBackend); }
 
 // Radiance arriving at p from light k (k == lightCount means the ambient environment, sampled
 // through the phase function) times the phase function, with a ratio-tracked shadow ray.
 vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, inout Counters c) {
-    float g = P.shading.x;
+    float g = P.shading.g;
     if (k == lightCount) {
         vec3 wi = sampleHenyeyGreenstein(d, g, rand(rng), rand(rng));  // phase / pdf = 1
-        return P.ambient.rgb * ratioTrack(p, wi, kInf, cfg(), rng, c);
+        return P.shading.ambient * ratioTrack(p, wi, kInf, cfg(), rng, c);
     }
-    LightGpu L = P.lights[k];
+    LightGpu L = P.shading.lights[k];
     vec3 wi;
     float dist;
-    vec3 Le = L.radiance.rgb;
-    if (uint(L.posOrDir.w) == kLightPoint) {
-        vec3 to = L.posOrDir.xyz - p;
+    vec3 Le = L.radiance;
+    if (L.type == kLightPoint) {
+        vec3 to = L.posOrDir - p;
         dist = length(to);
         if (!(dist > 0.0)) return vec3(0.0);
         wi = to / dist;
         Le /= dist * dist;
     } else {
-        wi = normalize(L.posOrDir.xyz);
+        wi = normalize(L.posOrDir);
         dist = kInf;
     }
     return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(p, wi, dist, cfg(), rng, c);
@@ -58,12 +58,12 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     vec4 tf;
     if (kMode == kModeDvr) return rayMarch(o, d, cfg(), rng, c);
     if (kMode == kModeAe) {
-        return deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf) ? tf.rgb : P.background.rgb;
+        return deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf) ? tf.rgb : P.shading.background;
     }
-    uint deltaLights = uint(P.shading.y);
+    uint deltaLights = P.shading.lightCount;
     if (kMode == kModeSs) {
-        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) return P.background.rgb;
-        bool ambientOn = any(greaterThan(P.ambient.rgb, vec3(0.0)));
+        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) return P.shading.background;
+        bool ambientOn = any(greaterThan(P.shading.ambient, vec3(0.0)));
         uint n = deltaLights + (ambientOn ? 1u : 0u);
         if (n == 0u) return vec3(0.0);
         uint k = min(uint(rand(rng) * float(n)), n - 1u);
@@ -74,7 +74,7 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     vec3 throughput = vec3(1.0), L = vec3(0.0);
     for (uint bounce = 0u;; ++bounce) {
         if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) {
-            L += throughput * (bounce == 0u ? P.background.rgb : P.ambient.rgb);
+            L += throughput * (bounce == 0u ? P.shading.background : P.shading.ambient);
             break;
         }
         if (bounce + 1u >= kMaxBounces) {
@@ -94,7 +94,7 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
             if (rand(rng) >= survive) break;
             throughput /= survive;
         }
-        d = sampleHenyeyGreenstein(d, P.shading.x, rand(rng), rand(rng));
+        d = sampleHenyeyGreenstein(d, P.shading.g, rand(rng), rand(rng));
     }
     return L;
 }
@@ -102,15 +102,15 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
 void main() {
     gParams = ParamsRef(pc.params);
     uvec2 pix = gl_GlobalInvocationID.xy;
-    bool inImage = pix.x < P.image.x && pix.y < P.image.y;
-    Counters c = Counters(0u, 0u, 0u, 0u, 0u);
+    bool inImage = pix.x < P.view.width && pix.y < P.view.height;
+    Counters c = newCounters();
     uint nanSamples = 0u;
     if (inImage) {
-        uint pixel = pix.y * P.image.x + pix.x;
-        uint rng = seedRng(pixel, pc.frameIndex, P.image.z);
+        uint pixel = pix.y * P.view.width + pix.x;
+        uint rng = seedRng(pixel, pc.frameIndex, P.view.seed);
         vec2 jitter = vec2(rand(rng), rand(rng));
-        vec3 d = normalize(P.dir00.xyz + (float(pix.x) + jitter.x) * P.du.xyz + (float(pix.y) + jitter.y) * P.dv.xyz);
-        vec3 L = radiance(P.eye.xyz, d, rng, c);
+        vec3 d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
+        vec3 L = radiance(P.view.eye, d, rng, c);
         if (any(isnan(L)) || any(isinf(L))) {
             L = vec3(0.0);
             nanSamples = 1u;
@@ -122,6 +122,7 @@ void main() {
     UintRW counters = UintRW(P.counters);
     uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);
     uint v3 = subgroupAdd(c.steps), v4 = subgroupAdd(c.violations), v5 = subgroupAdd(nanSamples);
+    uint v6 = subgroupAdd(c.capped);
     if (subgroupElect()) {
         atomicAdd(counters.v[kCounterDensityLookups], v0);
         atomicAdd(counters.v[kCounterRealCollisions], v1);
@@ -129,5 +130,6 @@ void main() {
         atomicAdd(counters.v[kCounterTraversalSteps], v3);
         atomicAdd(counters.v[kCounterMajorantViolations], v4);
         atomicAdd(counters.v[kCounterNanSamples], v5);
+        atomicAdd(counters.v[kCounterTrackingCapHits], v6);
     }
 }

@@ -1,112 +1,125 @@
-// Everything a render or majorant pass reads, in one buffer addressed by device address.
-// Spaces: local voxel space (voxel - localOrigin). Distances along rays are in voxel units;
-// extinction sigma_t = alpha(TF(v)) * densityScale / finestCellWidth per voxel unit, i.e.
+// Everything a render or majorant pass reads, in one buffer addressed by device address, split
+// into blocks by the component that writes them, so each kind of change rewrites only its block:
+//   ViewGpu      camera and image          (Renderer: camera, size, seed)
+//   ShadingGpu   medium scale and lights   (Renderer: lighting, density, phase, dvr)
+//   SceneGpu     TF-independent structures (DeviceScene: one structure combination)
+//   MajorantsGpu TF and TF-dependent data  (MajorantPass: majorants, culled hierarchy, kd-tree)
+// Spaces: local voxel space (voxel - local origin). Distances along rays are in voxel units;
+// extinction sigma_t = alpha(TF(v)) * densityScale * invFinestCellWidth per voxel unit, i.e.
 // alpha * densityScale per finest cell width (architecture.md, "Units and semantics").
+// Layout: scalar block layout; every vec3 starts at a multiple of 16 and is followed by a 4-byte
+// scalar; offsets are asserted below and checked on the GPU (tests/gpu/layout_test.cpp).
 #ifndef AMRVK_RENDER_PARAMS_H
 #define AMRVK_RENDER_PARAMS_H
 #include "interop.h"
+#include "kinds.h"
 
 AMRVK_NAMESPACE_BEGIN
 
 AMRVK_CONST uint kMaxLights = 8u;
-AMRVK_CONST uint kLightDirectional = 0u;
-AMRVK_CONST uint kLightPoint = 1u;
-
-// Render modes (specialization constant kMode).
-AMRVK_CONST uint kModeAe = 0u;  // absorption + emission
-AMRVK_CONST uint kModeSs = 1u;  // single scattering
-AMRVK_CONST uint kModeMs = 2u;  // multiple scattering
-AMRVK_CONST uint kModeDvr = 3u; // ray-marching baseline (ExaBrick's DVR): biased by its step
-
-// Samplers (specialization constant kSampler).
-AMRVK_CONST uint kSamplerExtBrick = 0u;
-AMRVK_CONST uint kSamplerAbr = 1u;
-AMRVK_CONST uint kSamplerDense = 2u;  // uniform finest-level resampling, clamped trilinear (cost floor)
-
-// Majorant traversals (specialization constant kTraversal). grid-dda steps through the macrocell
-// grid; the others query a set of boxes ("domains", each with a majorant) for the segment that
-// starts at the current t: abr = ABR boxes, brick = strict brick bounds, ext-brick = brick basis
-// domains (they overlap: the majorant is the maximum over the boxes covering t), grid-bvh =
-// non-empty macrocells, kdtree = leaves of the TF-specific kd-tree.
-AMRVK_CONST uint kTraversalGridDda = 0u;
-AMRVK_CONST uint kTraversalGridBvh = 1u;
-AMRVK_CONST uint kTraversalAbr = 2u;
-AMRVK_CONST uint kTraversalBrick = 3u;
-AMRVK_CONST uint kTraversalExtBrick = 4u;
-AMRVK_CONST uint kTraversalKdTree = 5u;
-
-// Back-ends of the box hierarchies (specialization constant kBackend): software BVH in GLSL or
-// VK_KHR_ray_query over an AABB BLAS (only in the path_trace_rq shader variant).
-AMRVK_CONST uint kBackendSw = 0u;
-AMRVK_CONST uint kBackendRq = 1u;
 
 // Per-frame counters (uint32 each, reset per dispatch, summed on the host in 64 bits).
 AMRVK_CONST uint kCounterDensityLookups = 0u;
 AMRVK_CONST uint kCounterRealCollisions = 1u;
 AMRVK_CONST uint kCounterNullCollisions = 2u;
 AMRVK_CONST uint kCounterTraversalSteps = 3u;
-AMRVK_CONST uint kCounterMajorantViolations = 4u;
-AMRVK_CONST uint kCounterBounceLimitHits = 5u;
-AMRVK_CONST uint kCounterNanSamples = 6u;
+AMRVK_CONST uint kCounterMajorantViolations = 4u;  // sigma > majorant (1 + 1e-6)
+AMRVK_CONST uint kCounterBounceLimitHits = 5u;     // ms paths stopped at kMaxBounces
+AMRVK_CONST uint kCounterNanSamples = 6u;          // NaN/Inf radiance samples (zeroed)
+AMRVK_CONST uint kCounterTrackingCapHits = 7u;     // tracking stopped at maxTrackingSteps (biased)
 AMRVK_CONST uint kCounterCount = 8u;
 
 AMRVK_CONST uint kMaxBounces = 65536u;  // ms path length cap; paths reaching it are counted
 
 struct LightGpu {
-    vec4 posOrDir;  // xyz: point position (local voxel) or direction *towards* the light; w: type
-    vec4 radiance;  // rgb: radiance (directional) or intensity (point, falls off as 1/d^2)
+    vec3 posOrDir;  // point: position (local voxel); directional: unit direction *towards* the light
+    uint type;      // LightType
+    vec3 radiance;  // directional: radiance; point: intensity (falls off as 1/d^2, d in voxel units)
+    float pad;
 };
 AMRVK_STATIC_ASSERT(sizeof(LightGpu) == 32);
 
-struct RenderParams {
-    // Camera (local voxel space): ray(x, y) = eye + normalize(dir00 + u * du + v * dv).
-    vec4 eye;
-    vec4 dir00;
-    vec4 du;
-    vec4 dv;
-    uvec4 image;         // x: width, y: height, z: seed, w: frame index (sample number)
-    // Data
-    vec4 boundsLo;       // xyz: union of leaf cells, local voxel; w: 1 / finestCellWidth
-    vec4 boundsHi;       // xyz; w: densityScale
-    ivec4 gridDims;      // xyz macrocells; w: unused
-    vec4 gridOrigin;     // xyz local voxel; w unused
-    vec4 gridCellSize;   // xyz voxel units per macrocell
-    // Transfer function: nodes at tfPositions[i] (ascending, field values) with tfColors[i].
-    vec4 tfInfo;         // x: node count (as float), yzw unused
-    // Lighting
-    vec4 ambient;        // rgb: environment radiance seen by rays that escape
-    vec4 background;     // rgb: radiance seen by primary rays that escape
-    vec4 shading;        // x: HG g; y: light count (as float); zw unused
-    // dvr: x: step relative to the finest cell width at the sample; y: 1 = gradient shading;
-    // z: opacity at which a ray terminates (0.99); w: ambient term of the shading
-    vec4 dvr;
-    vec4 dvrLight;       // xyz: unit direction towards the shading light (local voxel); w unused
-    // dense sampler: sample (i, j, k) at denseOrigin + (ijk + 0.5) * denseOrigin.w
-    ivec4 denseDims;     // xyz: samples per axis; w: level of the spacing (1 << w)
-    vec4 denseOrigin;    // xyz: local voxel; w: sample spacing (voxel units)
+// Camera ray through pixel (x, y) with jitter j: eye + normalize(dir00 + (x + jx) du + (y + jy) dv).
+struct ViewGpu {
+    vec3 eye;     // local voxel space
+    uint width;   // pixels
+    vec3 dir00;   // direction to the corner of pixel (0, 0) (top left)
+    uint height;  // pixels
+    vec3 du;      // direction step per pixel to the right
+    uint seed;    // random seed of the image
+    vec3 dv;      // direction step per pixel downwards
+    uint pad;
+};
+AMRVK_STATIC_ASSERT(sizeof(ViewGpu) == 64);
+
+struct ShadingGpu {
+    vec3 ambient;          // environment radiance seen by rays that escape (after a bounce)
+    float g;               // Henyey-Greenstein asymmetry in [-0.999, 0.999]
+    vec3 background;       // radiance seen by primary rays that escape
+    float densityScale;    // multiplies extinction
+    uint lightCount;       // lights[0, lightCount) are in use
+    uint maxTrackingSteps; // per tracking call; reaching it is counted (kCounterTrackingCapHits)
+    float dvrStep;         // dvr: step / finest cell width at the sample
+    uint dvrShading;       // dvr: 1 = gradient shading
+    vec3 dvrLightDir;      // dvr: unit direction towards the shading light (local voxel)
+    float dvrAmbient;      // dvr: ambient term of the shading
+    float dvrOpacityStop;  // dvr: a ray ends at this opacity (0.99)
+    float pad0, pad1, pad2;
     LightGpu lights[kMaxLights];
-    // Buffers (device addresses)
-    uint64_t bricks;        // BrickGpu[]
-    uint64_t brickValues;   // float[] in brick order (NaN = empty slot)
-    uint64_t samplerNodes;  // BvhNodeGpu[] over brick domains (ext-brick) or ABR boxes (abr)
-    uint64_t samplerPrims;  // uint[] BVH slot -> brick id or ABR id
-    uint64_t abrs;          // AbrGpu[]
-    uint64_t abrBrickList;  // uint[]
-    uint64_t gridRanges;    // vec2[] value range per macrocell
-    uint64_t gridMajorants; // float[] max alpha per macrocell (majorant pass output)
-    uint64_t samplerAccel;  // TLAS over sampler boxes (rq back-end), else 0
-    uint64_t domainBoxes;   // AabbGpu[] traversal boxes (not for grid-bvh: computed from the grid)
-    uint64_t domainRanges;  // vec2[] value range per traversal box (grid-bvh: = gridRanges)
-    uint64_t domainMajorants; // float[] max alpha per traversal box (grid-bvh: = gridMajorants)
-    uint64_t domainNodes;   // BvhNodeGpu[] over the boxes with majorant > 0 (sw back-end)
-    uint64_t domainPrims;   // uint[] BVH slot -> box id
-    uint64_t domainAccel;   // TLAS over the boxes, culled ones inactive (rq back-end)
-    uvec4 domainInfo;       // x: box count; y: 1 when some box has majorant > 0; zw unused
-    uint64_t tfPositions;   // float[]
-    uint64_t tfColors;      // vec4[] rgb albedo, a = alpha (extinction per finest cell width)
-    uint64_t denseValues;   // float[] dense samples, x fastest (NaN: outside the medium), else 0
-    uint64_t accum;         // vec4[2 * pixels]: sum and sum of squares of radiance; w = count
-    uint64_t counters;      // uint[kCounterCount]
+};
+AMRVK_STATIC_ASSERT(sizeof(ShadingGpu) == 80 + 32 * kMaxLights);
+
+struct SceneGpu {
+    vec3 boundsHi;              // the union of leaf cells is [0, boundsHi] (local voxel)
+    float invFinestCellWidth;   // 1 / (1 << finest level): extinction per voxel unit per unit alpha
+    ivec3 gridDims;             // macrocells per axis (grid traversals and dense majorants)
+    uint pad0;
+    vec3 gridOrigin;            // local voxel
+    float pad1;
+    vec3 gridCellSize;          // voxel units per macrocell
+    float pad2;
+    ivec3 denseDims;            // dense sampler: samples per axis
+    int denseLevel;             // dense sampler: level of the spacing (1 << denseLevel)
+    vec3 denseOrigin;           // dense sampler: sample (i, j, k) at denseOrigin + (ijk + 0.5) * denseSpacing
+    float denseSpacing;         // voxel units
+    uint64_t bricks;            // BrickGpu[]
+    uint64_t brickValues;       // float[] in brick order (NaN = empty slot)
+    uint64_t samplerNodes;      // BvhNodeGpu[] over brick domains (ext-brick) or ABR boxes (abr), sw
+    uint64_t samplerPrims;      // uint[] BVH slot -> brick id or ABR id, sw
+    uint64_t samplerAccel;      // TLAS over the same boxes (rq back-end), else 0
+    uint64_t abrs;              // AbrGpu[]
+    uint64_t abrBrickList;      // uint[]
+    uint64_t gridRanges;        // ValueRangeGpu[] per macrocell
+    uint64_t denseValues;       // float[] dense samples, x fastest (NaN: outside the medium), else 0
+    uint64_t pad3;
+};
+AMRVK_STATIC_ASSERT(sizeof(SceneGpu) == 176);
+
+struct MajorantsGpu {
+    uint64_t tfPositions;      // float[tfNodeCount], ascending field values
+    uint64_t tfColors;         // vec4[tfNodeCount]: rgb albedo, a = alpha (extinction per finest cell width)
+    uint tfNodeCount;
+    uint domainCount;          // traversal boxes (grid-bvh: macrocells)
+    uint domainAnyActive;      // 1 when some traversal box has majorant > 0
+    uint pad;
+    uint64_t gridMajorants;    // float[] max alpha per macrocell
+    uint64_t domainBoxes;      // AabbGpu[] traversal boxes (not for grid-bvh: computed from the grid)
+    uint64_t domainRanges;     // ValueRangeGpu[] per traversal box (grid-bvh: = gridRanges)
+    uint64_t domainMajorants;  // float[] max alpha per traversal box (grid-bvh: = gridMajorants)
+    uint64_t domainNodes;      // BvhNodeGpu[] over the boxes with majorant > 0 (sw back-end)
+    uint64_t domainPrims;      // uint[] BVH slot -> box id
+    uint64_t domainAccel;      // TLAS over the boxes, culled ones collapsed to points (rq back-end)
+    uint64_t pad1;
+};
+AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 96);
+
+struct RenderParams {
+    ViewGpu view;
+    ShadingGpu shading;
+    SceneGpu scene;
+    MajorantsGpu majorants;
+    uint64_t accum;     // vec4[2 * pixels]: sum and sum of squares of radiance; w = count
+    uint64_t counters;  // uint[kCounterCount]
 };
 
 struct PushConstants {
@@ -120,12 +133,81 @@ AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 16);
 // aabbs[i] = box i, or the point lo when majorants[i] == 0 (ray-query culling).
 struct StructurePush {
     uint64_t params;     // RenderParams address (TF, grid, domain boxes)
-    uint64_t ranges;     // vec2[] (majorants.comp) or float[] majorants (domain_aabbs.comp)
+    uint64_t source;     // ValueRangeGpu[] (majorants.comp) or float[] majorants (domain_aabbs.comp)
     uint64_t target;     // float[] majorants or AabbGpu[]
     uint count;
-    uint kind;           // domain_aabbs.comp: traversal kind (grid-bvh computes boxes)
+    uint traversal;      // domain_aabbs.comp: TraversalKind (grid-bvh computes its boxes)
 };
 AMRVK_STATIC_ASSERT(sizeof(StructurePush) == 32);
+
+#ifdef __cplusplus
+AMRVK_STATIC_ASSERT(offsetof(LightGpu, posOrDir) == 0);
+AMRVK_STATIC_ASSERT(offsetof(LightGpu, type) == 12);
+AMRVK_STATIC_ASSERT(offsetof(LightGpu, radiance) == 16);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, eye) == 0);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, width) == 12);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, dir00) == 16);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, height) == 28);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, du) == 32);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, seed) == 44);
+AMRVK_STATIC_ASSERT(offsetof(ViewGpu, dv) == 48);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, ambient) == 0);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, g) == 12);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, background) == 16);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, densityScale) == 28);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, lightCount) == 32);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, maxTrackingSteps) == 36);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, dvrStep) == 40);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, dvrShading) == 44);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, dvrLightDir) == 48);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, dvrAmbient) == 60);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, dvrOpacityStop) == 64);
+AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, lights) == 80);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, boundsHi) == 0);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, invFinestCellWidth) == 12);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridDims) == 16);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridOrigin) == 32);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridCellSize) == 48);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseDims) == 64);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseLevel) == 76);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseOrigin) == 80);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseSpacing) == 92);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, bricks) == 96);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, brickValues) == 104);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, samplerNodes) == 112);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, samplerPrims) == 120);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, samplerAccel) == 128);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, abrs) == 136);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, abrBrickList) == 144);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridRanges) == 152);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseValues) == 160);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfPositions) == 0);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfColors) == 8);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfNodeCount) == 16);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainCount) == 20);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainAnyActive) == 24);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, gridMajorants) == 32);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainBoxes) == 40);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainRanges) == 48);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainMajorants) == 56);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainNodes) == 64);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainPrims) == 72);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainAccel) == 80);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, view) == 0);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, shading) == 64);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, majorants) == 576);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 672);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 680);
+AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 688);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, params) == 0);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, source) == 8);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, target) == 16);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, count) == 24);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, traversal) == 28);
+#endif
 
 AMRVK_NAMESPACE_END
 #endif

@@ -12,13 +12,9 @@
 
 namespace amrvk::accel {
 
-struct BvhNode {
-    glm::vec3 lo;
-    uint32_t first;  // inner: index of the left child (right = first + 1); leaf: first primitive slot
-    glm::vec3 hi;
-    uint32_t count;  // 0 for inner nodes, else primitives in this leaf
-};
-static_assert(sizeof(BvhNode) == 32);
+// The node layout is the GPU's (shaders/shared/amr_gpu.h): inner nodes have count 0 and children
+// first, first + 1; leaves list primIds[first, first + count).
+using BvhNode = shared::BvhNodeGpu;
 
 struct Bvh {
     std::vector<BvhNode> nodes;      // nodes[0] is the root

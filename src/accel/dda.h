@@ -2,13 +2,15 @@
 // CPU twin of shaders/lib/majorant_dda.glsl: the 3-D DDA over a uniform macrocell grid, written
 // with the same operations in the same order (templated on the scalar type: float reproduces the
 // shader, double is the precise reference). Segments are contiguous and cover the ray's overlap
-// with the grid within [tMin, tMax].
+// with the grid within [tMin, tMax]; the grid is clipped by the shared slab test (ray_box.h).
 #include <glm/glm.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+#include "accel/ray_box.h"
 
 namespace amrvk::accel {
 
@@ -34,17 +36,7 @@ std::vector<DdaSegment<T>> ddaSegments(const DdaGrid& grid, glm::vec<3, T> o, gl
     const V hi = lo + size * V(dims);
     std::vector<DdaSegment<T>> out;
     T t = tMin, tEnd = tMax;
-    for (int a = 0; a < 3; ++a) {  // clipRay
-        if (d[a] == T(0)) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return out;
-            continue;
-        }
-        T inv = T(1) / d[a];
-        T t0 = (lo[a] - o[a]) * inv, t1 = (hi[a] - o[a]) * inv;
-        t = std::max(t, std::min(t0, t1));
-        tEnd = std::min(tEnd, std::max(t0, t1));
-    }
-    if (!(t <= tEnd)) return out;
+    if (!clipRay(lo, hi, o, d, t, tEnd)) return out;
     V start = (o + d * t - lo) / size;
     glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(start)), glm::ivec3(0), dims - 1);
     glm::ivec3 step(0);

@@ -226,6 +226,7 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.tfUpdateWallSeconds = tfTimer.seconds();
         r.majorantSeconds = renderer.majorantSeconds();
         r.tfStructureSeconds = renderer.structureUpdateSeconds();
+        for (const auto& hb : renderer.hostBytes()) r.hostBytes.push_back(hb);
         r.deviceBytesAfterBuild = mCtx.memory().currentBytes();
         for (const auto& [name, usage] : mCtx.memory().perResource())
             if (usage.current > 0) r.deviceBytesPerResource.emplace_back(name, usage.current);

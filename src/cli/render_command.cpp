@@ -233,11 +233,15 @@ int runRender(const std::vector<std::string>& argv) {
                 rs.width, rs.height, (long long)spp, scene::modeName(rs.mode), config.label().c_str(),
                 ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
                 out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
-    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits])
-        std::fprintf(stderr, "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce limit\n",
+    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
+        c[shared::kCounterTrackingCapHits])
+        std::fprintf(stderr,
+                     "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce limit, "
+                     "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
                      (unsigned long long)c[shared::kCounterMajorantViolations],
                      (unsigned long long)c[shared::kCounterNanSamples],
-                     (unsigned long long)c[shared::kCounterBounceLimitHits]);
+                     (unsigned long long)c[shared::kCounterBounceLimitHits],
+                     (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (args.has("json")) {
         JsonWriter j;
         j.beginObject();
@@ -256,6 +260,7 @@ int runRender(const std::vector<std::string>& argv) {
         j.member("majorantViolations", c[shared::kCounterMajorantViolations]);
         j.member("nanSamples", c[shared::kCounterNanSamples]);
         j.member("bounceLimitHits", c[shared::kCounterBounceLimitHits]);
+        j.member("trackingCapHits", c[shared::kCounterTrackingCapHits]);
         j.member("majorantSeconds", renderer.majorantSeconds());
         j.member("tfStructureUpdateSeconds", renderer.structureUpdateSeconds());
         j.member("activeTraversalBoxes", renderer.activeTraversalBoxes());
@@ -263,11 +268,12 @@ int runRender(const std::vector<std::string>& argv) {
         j.key("structureBuildSecondsPer").beginObject();
         j.member("bricks", scene.buildSeconds.bricks).member("abrs", scene.buildSeconds.abrs);
         j.member("samplerBvh", scene.buildSeconds.samplerBvh).member("macrocells", scene.buildSeconds.grid);
-        j.member("traversalRanges", scene.buildSeconds.domains).member("kdTree", scene.buildSeconds.kdTree);
+        j.member("traversalRanges", scene.buildSeconds.domains).member("kdTree", renderer.kdTreeBuildSeconds());
         j.member("denseGrid", scene.buildSeconds.dense);
         j.endObject();
         j.key("hostMemoryPerStructure").beginObject();
         for (const auto& [name, bytes] : scene.hostBytes()) j.member(name, bytes);
+        for (const auto& [name, bytes] : renderer.hostBytes()) j.member(name, bytes);
         j.endObject();
         j.member("deviceMemoryBytes", ctx.memory().currentBytes());
         j.member("deviceMemoryPeakBytes", ctx.memory().peakBytes());

@@ -1,21 +1,27 @@
 #pragma once
-// The GPU renderer: uploads the structures of one scene::VolumeScene configuration (and only those),
-// keeps majorants and culled traversal hierarchies in step with the transfer function
-// (majorants.comp; sw: BVH over the boxes with majorant > 0 rebuilt on the host when that set
-// changes; rq: domain_aabbs.comp + BLAS rebuild; kdtree: the tree itself is rebuilt per TF), and
-// accumulates path-traced samples (path_trace.comp or path_trace_rq), 1 spp per dispatch.
-// A new configuration needs a new Renderer; destroying the old one frees its device memory.
-#include <array>
+// The GPU renderer: one API for `amrvk render`, `bench` and the viewer, taking incremental edits.
+// It joins three parts, each in its own file pair:
+//   DeviceScene   the device copy of the scene's TF-independent structures (one combination)
+//   MajorantPass  the TF, majorants, culled traversal hierarchy and kd-tree (per TF)
+//   PathTracePass pipelines, accumulation and counters (per sample)
+// and composes the RenderParams buffer from their blocks. Each edit invalidates only what depends
+// on it (scene/invalidation.h): a camera move resets the accumulation and rewrites 64 bytes; a TF
+// edit reruns the majorant pass; a structure change rebuilds the device copy. The scene is only
+// read: whoever owns it configures it, then calls setStructure().
+#include <cstdint>
 #include <functional>
-#include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "gpu/acceleration_structure.h"
 #include "gpu/buffer.h"
-#include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
+#include "render/device_scene.h"
+#include "render/majorant_pass.h"
+#include "render/path_trace_pass.h"
+#include "scene/invalidation.h"
 #include "scene/render_output.h"
 #include "scene/render_settings.h"
 #include "scene/transfer_function.h"
@@ -24,63 +30,93 @@
 
 namespace amrvk::render {
 
+// How often each part was rebuilt since construction (the invalidation rule made observable).
+struct UpdateCounts {
+    uint64_t deviceScenes = 0;        // device copies of the TF-independent structures
+    uint64_t majorantDispatches = 0;  // majorant passes over every structure
+    uint64_t accumulationResets = 0;
+    uint64_t pipelinesCompiled = 0;   // path-trace pipelines created
+};
+
 class Renderer {
 public:
-    // The scene must stay alive and configured as it is (kdtree: setTransferFunction rebuilds it).
-    Renderer(gpu::Context& ctx, scene::VolumeScene& volume);
+    // Uploads the structures of scene.config (and only those). The scene must outlive the renderer
+    // and may change only through configure() followed by setStructure().
+    Renderer(gpu::Context& ctx, const scene::VolumeScene& scene);
 
-    // Uploads the TF, recomputes every majorant on the GPU and updates the culled traversal
-    // structure (and, for kdtree, rebuilds the tree for this TF).
+    // ---- Edits (each resets the accumulation; what else it redoes is in scene/invalidation.h) ----
+    // The scene was configured for another combination: a new device copy, the majorants of the
+    // current TF, new pipelines. Device memory of the old combination is freed first.
+    void setStructure();
+    // New TF: TF nodes, majorants, culling, kd-tree. Nothing TF-independent is touched.
     void setTransferFunction(const scene::TransferFunction& tf);
-    // Accumulates `spp` samples per pixel from scratch. `progress(done, total)` after each batch.
+    // Camera, image size, seed, mode, lighting, medium and dvr options: applies only what differs
+    // from the current settings (nothing at all when they are equal). Throws a one-line error for
+    // an invalid value, leaving the current settings in place.
+    void setSettings(const scene::RenderSettings& settings);
+    void setCamera(const scene::Camera& camera);
+    // Recompiles the pipelines in use from the shader library (e.g. after gpu::setShaderDirectory
+    // and an edit); on a compile error throws and the previous pipelines keep running.
+    void reloadShaders();
+    void resetAccumulation();
+
+    // ---- Accumulation ----
+    // Adds `spp` samples per pixel to the current image; progress(done, spp) after each batch.
+    void accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress = {},
+                    uint32_t maxBatch = 64);
+    uint32_t accumulatedSpp() const { return mPathTrace.spp(); }
+    // The image so far: mean, sums of squares, spp and the counters of every path in it.
+    scene::RenderOutput output() const { return mPathTrace.read(); }
+    // One image from scratch: setSettings, reset, accumulate `spp`. `snapshot(out)` additionally
+    // sees the image at each sample count in `snapshotSpp` (ascending; downloads are not timed).
     scene::RenderOutput render(const scene::RenderSettings& settings, uint32_t spp,
-                        const std::function<void(uint32_t, uint32_t)>& progress = {});
-    // The same, also handing out the image after each sample count in `snapshotSpp` (ascending):
-    // `snapshot(out)` sees the mean so far, out.spp samples and the GPU seconds spent so far
-    // (downloads are not timed).
-    scene::RenderOutput render(const scene::RenderSettings& settings, uint32_t spp,
-                        const std::function<void(uint32_t, uint32_t)>& progress,
-                        const std::vector<uint32_t>& snapshotSpp,
-                        const std::function<void(const scene::RenderOutput&)>& snapshot);
-    // Majorant per macrocell as computed on the GPU (grid traversals; for tests and statistics).
-    std::vector<float> downloadMajorants() const;
-    // Majorant per traversal box (abr | brick | ext-brick | kdtree), as computed on the GPU.
-    std::vector<float> downloadDomainMajorants() const;
-    // GPU seconds of the last TF update: majorant passes (+ AABB pass and BLAS build for rq).
-    double majorantSeconds() const { return mMajorantSeconds; }
-    // Host seconds of the last TF update spent on TF-dependent structures (kd-tree, sw culling BVH).
-    double structureUpdateSeconds() const { return mStructureSeconds; }
-    // Traversal boxes (or macrocells for grid-bvh) with majorant > 0 after the last TF update.
-    uint64_t activeTraversalBoxes() const { return mActiveBoxes; }
+                               const std::function<void(uint32_t, uint32_t)>& progress = {},
+                               const std::vector<uint32_t>& snapshotSpp = {},
+                               const std::function<void(const scene::RenderOutput&)>& snapshot = {});
+
+    // ---- State and statistics ----
     const scene::StructureConfig& config() const { return mScene.config; }
-    // Device address of the RenderParams buffer (valid after setTransferFunction), for test kernels.
-    uint64_t paramsAddress() const { return mParamsBuffer.address(); }
+    const scene::RenderSettings& settings() const { return mSettings; }
+    const UpdateCounts& updateCounts() const { return mCounts; }
+    // GPU seconds of the last majorant pass (+ AABB pass and BLAS build for rq).
+    double majorantSeconds() const { return mMajorants->gpuSeconds(); }
+    // Host seconds of the last TF update spent on TF-dependent structures (kd-tree, sw culling BVH).
+    double structureUpdateSeconds() const { return mMajorants->hostSeconds(); }
+    double kdTreeBuildSeconds() const { return mMajorants->kdTreeSeconds(); }
+    // Traversal boxes (macrocells for grid-bvh) whose range can reach alpha > 0 under the TF.
+    uint64_t activeTraversalBoxes() const { return mMajorants->activeBoxes(); }
+    const std::vector<uint8_t>& activeTraversalMask() const { return mMajorants->activeMask(); }
+    // Host bytes of the TF-dependent structures (the scene reports the rest).
+    std::vector<std::pair<std::string, uint64_t>> hostBytes() const { return mMajorants->hostBytes(); }
+    // The traversal boxes (local voxel space) of abr | brick | ext-brick | kdtree (under the last TF).
+    const std::vector<shared::AabbGpu>& traversalBoxes() const { return mMajorants->traversalBoxes(); }
+    std::vector<float> downloadMajorants() const { return mMajorants->downloadGridMajorants(); }
+    std::vector<float> downloadDomainMajorants() const { return mMajorants->downloadDomainMajorants(); }
     // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
     void overrideMajorants(const std::vector<float>& majorants);
+    // Device address of the RenderParams buffer (current after any edit), for test kernels.
+    uint64_t paramsAddress();
     gpu::Context& context() { return mCtx; }
 
 private:
-    void writeParams(const scene::RenderSettings& settings);
-    const gpu::ComputePipeline& pathTracePipeline(scene::Mode mode);
-    void uploadDomainBoxes();
-    void updateSwCulling(const std::vector<float>& majorants);
-    uint32_t domainCount() const;
+    void buildStructures();
+    void writeView(const scene::RenderSettings& s);
+    void writeShading(const scene::RenderSettings& s);
+    void uploadParams();
+    void changed();
 
     gpu::Context& mCtx;
-    scene::VolumeScene& mScene;
+    const scene::VolumeScene& mScene;
+    std::unique_ptr<DeviceScene> mDevice;
+    std::unique_ptr<MajorantPass> mMajorants;
+    PathTracePass mPathTrace;
+    gpu::Buffer mParamsBuffer;
     shared::RenderParams mParams{};
-    gpu::Buffer mBricks, mBrickValues, mSamplerNodes, mSamplerPrims, mSamplerAabbs, mAbrs, mAbrBrickList;
-    gpu::Buffer mGridRanges, mGridMajorants, mTfPositions, mTfColors, mAccum, mCounters, mParamsBuffer;
-    gpu::Buffer mDenseValues;
-    gpu::Buffer mDomainBoxes, mDomainRanges, mDomainMajorants, mDomainNodes, mDomainPrims, mDomainAabbs;
-    gpu::AabbAccelerationStructure mSamplerAccel, mDomainAccel;
-    gpu::ComputePipeline mMajorantPipeline, mAabbPipeline;
-    std::map<int, gpu::ComputePipeline> mPathTrace;  // created on first use per mode
-    std::vector<uint8_t> mActiveMask;                // sw culling: boxes in the current domain BVH
-    int mWidth = 0, mHeight = 0;
-    double mMajorantSeconds = 0, mStructureSeconds = 0;
-    uint64_t mActiveBoxes = 0;
-    bool mHasTf = false;
+    bool mParamsDirty = true;
+    std::optional<scene::TransferFunction> mTf;
+    scene::RenderSettings mSettings;
+    bool mHasSettings = false;
+    UpdateCounts mCounts;
 };
 
 }  // namespace amrvk::render

@@ -18,8 +18,7 @@ Camera defaultCamera(glm::dvec3 worldLo, glm::dvec3 worldHi, double fovYDegrees)
     return c;
 }
 
-RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Transform& voxelToWorld,
-                      glm::dvec3 localOrigin) {
+RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Transform& voxelToWorld) {
     glm::dvec3 forward = camera.target - camera.eye;
     AMRVK_CHECK(glm::length(forward) > 0, "--camera: eye and target coincide");
     forward = glm::normalize(forward);
@@ -36,7 +35,7 @@ RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Tr
     glm::dvec3 dir00 = forward - right * w + up * h;
     // World -> voxel is linear per axis: directions divide by the scale.
     RayBasis b;
-    b.eye = (camera.eye - voxelToWorld.origin) / voxelToWorld.scale - localOrigin;
+    b.eye = (camera.eye - voxelToWorld.origin) / voxelToWorld.scale;
     b.dir00 = dir00 / voxelToWorld.scale;
     b.du = du / voxelToWorld.scale;
     b.dv = dv / voxelToWorld.scale;

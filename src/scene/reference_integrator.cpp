@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "accel/ray_box.h"
 #include "core/error.h"
 
 namespace amrvk::scene {
@@ -64,52 +65,50 @@ double ReferenceIntegrator::extinction(glm::dvec3 p, glm::dvec4& tf, double dens
     return tf.a * densityScale * mInvFinest;
 }
 
-bool ReferenceIntegrator::clip(glm::dvec3 o, glm::dvec3 d, double& t0, double& t1) const {
-    glm::dvec3 lo(mBounds.lower), hi(mBounds.upper);
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return false;
-            continue;
-        }
-        double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-        t0 = std::max(t0, std::min(ta, tb));
-        t1 = std::min(t1, std::max(ta, tb));
+template <typename OnCollision>
+void ReferenceIntegrator::sampleTmaj(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double densityScale,
+                                     OnCollision&& onCollision) const {
+    double t0 = 0, t1 = tMax;
+    const double maj = mMaxAlpha * densityScale * mInvFinest;
+    if (!accel::clipRay(glm::dvec3(mBounds.lower), glm::dvec3(mBounds.upper), o, d, t0, t1) || !(maj > 0)) return;
+    for (double t = t0;;) {
+        t -= std::log(1.0 - rng.next()) / maj;
+        if (t >= t1) return;
+        glm::dvec4 tf;
+        const double sigma = extinction(o + d * t, tf, densityScale);
+        if (!onCollision(t, sigma, maj, tf)) return;
     }
-    return t0 <= t1;
 }
 
 bool ReferenceIntegrator::deltaTrack(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double& tHit,
                                      glm::dvec4& tf, double densityScale) const {
-    double t0 = 0, t1 = tMax;
-    const double maj = mMaxAlpha * densityScale * mInvFinest;
-    if (!clip(o, d, t0, t1) || !(maj > 0)) return false;
-    double t = t0;
-    for (;;) {
-        t -= std::log(1.0 - rng.next()) / maj;
-        if (t >= t1) return false;
-        double sigma = extinction(o + d * t, tf, densityScale);
+    bool hit = false;
+    sampleTmaj(o, d, tMax, rng, densityScale, [&](double t, double sigma, double maj, const glm::dvec4& tfc) {
         if (rng.next() * maj < sigma) {
+            hit = true;
             tHit = t;
-            return true;
+            tf = tfc;
+            return false;
         }
-    }
+        return true;
+    });
+    return hit;
 }
 
 double ReferenceIntegrator::ratioTrack(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double densityScale) const {
-    double t0 = 0, t1 = tMax;
-    const double maj = mMaxAlpha * densityScale * mInvFinest;
-    if (!clip(o, d, t0, t1) || !(maj > 0)) return 1.0;
-    double t = t0, tr = 1.0;
-    glm::dvec4 tf;
-    for (;;) {
-        t -= std::log(1.0 - rng.next()) / maj;
-        if (t >= t1) return tr;
-        tr *= std::max(0.0, 1.0 - extinction(o + d * t, tf, densityScale) / maj);
+    double tr = 1.0;
+    sampleTmaj(o, d, tMax, rng, densityScale, [&](double, double sigma, double maj, const glm::dvec4&) {
+        tr *= std::max(0.0, 1.0 - sigma / maj);
         if (tr < 0.05) {
-            if (rng.next() * 0.05 >= tr) return 0.0;
+            if (rng.next() * 0.05 >= tr) {
+                tr = 0.0;
+                return false;
+            }
             tr = 0.05;
         }
-    }
+        return true;
+    });
+    return tr;
 }
 
 glm::dvec3 ReferenceIntegrator::radiance(const RenderSettings& s, glm::dvec3 o, glm::dvec3 d, Rng& rng) const {
@@ -170,7 +169,7 @@ glm::dvec3 ReferenceIntegrator::radiance(const RenderSettings& s, glm::dvec3 o, 
 }
 
 RenderOutput ReferenceIntegrator::render(const RenderSettings& s, uint32_t spp) const {
-    RayBasis rb = makeRayBasis(s.camera, s.width, s.height, mModel.voxelToWorld, glm::dvec3(0.0));
+    RayBasis rb = makeRayBasis(s.camera, s.width, s.height, mModel.voxelToWorld);
     RenderOutput out;
     out.spp = spp;
     out.mean = Image(s.width, s.height);

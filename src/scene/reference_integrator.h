@@ -35,15 +35,21 @@ public:
     // Renders `spp` samples per pixel; returns mean and per-pixel sum of squares like Renderer.
     RenderOutput render(const RenderSettings& settings, uint32_t spp) const;
 
-    // Transmittance estimators along o + t d (voxel space, t in voxel units, [0, tMax]).
+    // Transmittance estimators along o + t d (voxel space, t in voxel units, [0, tMax]), both
+    // consumers of sampleTmaj.
     bool deltaTrack(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double& tHit, glm::dvec4& tf,
                     double densityScale) const;
     double ratioTrack(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double densityScale) const;
 
 private:
+    // The one tracking loop (pbrt-v4's SampleT_maj; GLSL twin sampleTmaj in tracking.glsl) over
+    // the single segment of the global majorant: exponential steps, each tentative collision
+    // handed to onCollision(t, sigma, majorant, tf), which returns false to stop.
+    template <typename OnCollision>
+    void sampleTmaj(glm::dvec3 o, glm::dvec3 d, double tMax, Rng& rng, double densityScale,
+                    OnCollision&& onCollision) const;
     double extinction(glm::dvec3 p, glm::dvec4& tf, double densityScale) const;
     glm::dvec3 radiance(const RenderSettings& s, glm::dvec3 o, glm::dvec3 d, Rng& rng) const;
-    bool clip(glm::dvec3 o, glm::dvec3 d, double& t0, double& t1) const;
 
     const amr::Model& mModel;
     const TransferFunction& mTf;

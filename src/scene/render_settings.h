@@ -11,11 +11,13 @@
 
 #include "amr/model.h"
 #include "scene/camera.h"
+#include "shared/kinds.h"
 
 namespace amrvk::scene {
 
 // ae | ss | ms: unbiased path tracing. dvr: the ray-marching baseline (biased by its step).
-enum class Mode { Ae, Ss, Ms, Dvr };
+// Defined once for C++ and GLSL in shaders/shared/kinds.h.
+using shared::Mode;
 Mode parseMode(const std::string& name);
 const char* modeName(Mode mode);
 
@@ -43,6 +45,7 @@ struct RenderSettings {
     glm::dvec3 ambient{1.0};             // environment radiance seen by escaping rays
     std::optional<glm::dvec3> background;  // seen by escaping primary rays; default = ambient
     std::vector<Light> lights;           // at most shared::kMaxLights
+    uint32_t maxTrackingSteps = 1u << 22;  // per tracking call; paths reaching it are counted (biased)
     double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
     bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
 };

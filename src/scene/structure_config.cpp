@@ -1,7 +1,6 @@
 #include "scene/structure_config.h"
 
 #include "core/error.h"
-#include "shared/render_params.h"
 
 namespace amrvk::scene {
 
@@ -51,30 +50,6 @@ std::vector<TraversalKind> allTraversals() {
     return out;
 }
 std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr}; }
-
-uint32_t shaderConstant(SamplerKind kind) {
-    switch (kind) {
-        case SamplerKind::Abr: return shared::kSamplerAbr;
-        case SamplerKind::Dense: return shared::kSamplerDense;
-        default: return shared::kSamplerExtBrick;
-    }
-}
-
-uint32_t shaderConstant(TraversalKind kind) {
-    switch (kind) {
-        case TraversalKind::GridDda: return shared::kTraversalGridDda;
-        case TraversalKind::GridBvh: return shared::kTraversalGridBvh;
-        case TraversalKind::Abr: return shared::kTraversalAbr;
-        case TraversalKind::Brick: return shared::kTraversalBrick;
-        case TraversalKind::ExtBrick: return shared::kTraversalExtBrick;
-        default: return shared::kTraversalKdTree;
-    }
-}
-
-uint32_t shaderConstant(Backend backend) {
-    AMRVK_CHECK(backend != Backend::Auto, "internal: back-end 'auto' has no shader constant");
-    return backend == Backend::Rq ? shared::kBackendRq : shared::kBackendSw;
-}
 
 void StructureConfig::validate() const {
     AMRVK_CHECK(sampler != SamplerKind::Dense || usesGrid(), "--sampler dense needs --traversal grid-dda or grid-bvh ",

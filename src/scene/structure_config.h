@@ -5,14 +5,18 @@
 #include <string>
 #include <vector>
 
+#include "shared/kinds.h"
+
 namespace amrvk::scene {
 
-// Dense: the field resampled to a uniform finest-level grid (clamped trilinear), the cost floor of
-// sampling; it needs a grid traversal (its majorants come from the dense samples).
-enum class SamplerKind { ExtBrick, Abr, Dense };
-enum class TraversalKind { GridDda, GridBvh, Abr, Brick, ExtBrick, KdTree };
-// Sw: software BVHs in GLSL. Rq: VK_KHR_ray_query over AABB BLASes. Auto: Rq where the device has it.
-enum class Backend { Sw, Rq, Auto };
+// The kinds are defined once for C++ and GLSL in shaders/shared/kinds.h; their values are the
+// shaders' specialization constants. Dense: the field resampled to a uniform finest-level grid
+// (clamped trilinear), the cost floor of sampling; it needs a grid traversal (its majorants come
+// from the dense samples). Backend Sw: software BVHs in GLSL; Rq: VK_KHR_ray_query over AABB
+// BLASes; Auto: Rq where the device has it (resolved before a scene is configured).
+using shared::Backend;
+using shared::SamplerKind;
+using shared::TraversalKind;
 
 SamplerKind parseSampler(const std::string& name);
 const char* samplerName(SamplerKind kind);
@@ -22,12 +26,6 @@ Backend parseBackend(const std::string& name);
 const char* backendName(Backend backend);
 std::vector<TraversalKind> allTraversals();
 std::vector<SamplerKind> allSamplers();  // the paper's AMR samplers (not dense)
-
-// The specialization-constant values of shaders/shared/render_params.h (kSampler*, kTraversal*,
-// kBackend*); Backend::Auto must be resolved first.
-uint32_t shaderConstant(SamplerKind kind);
-uint32_t shaderConstant(TraversalKind kind);
-uint32_t shaderConstant(Backend backend);
 
 struct StructureConfig {
     SamplerKind sampler = SamplerKind::ExtBrick;

@@ -7,12 +7,24 @@
 
 namespace amrvk::scene {
 
-namespace {
-shared::AabbGpu localBox(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 origin) {
-    // Box faces lie on the half-voxel lattice: exact in float for local coordinates below 2^23.
-    return {glm::vec3(lo - origin), glm::vec3(hi - origin)};
+glm::ivec3 VolumeScene::toLocal(glm::i64vec3 voxel) const {
+    const glm::i64vec3 local = voxel - localOrigin;
+    for (int a = 0; a < 3; ++a)
+        AMRVK_CHECK(local[a] >= INT32_MIN && local[a] <= INT32_MAX, "voxel coordinate ", voxel[a],
+                    " is more than 2^31 from the data's lower corner ", localOrigin[a]);
+    return glm::ivec3(local);
 }
-}  // namespace
+
+const accel::SupportRangeQuery& VolumeScene::supportRangeQuery() const {
+    AMRVK_CHECK(config.traversal == TraversalKind::KdTree, "internal: support ranges are kept for kdtree only");
+    if (!supportRanges.query) supportRanges.query.emplace(bricks, brickValues);
+    return *supportRanges.query;
+}
+
+shared::AabbGpu VolumeScene::toLocal(const accel::BoxD& b) const {
+    // Box faces lie on the half-voxel lattice: exact in float for local coordinates below 2^23.
+    return {glm::vec3(toLocal(b.lo)), glm::vec3(toLocal(b.hi))};
+}
 
 VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
     VolumeScene s;
@@ -42,14 +54,17 @@ void VolumeScene::configure(const StructureConfig& next) {
                                                  (config.sampler == SamplerKind::Dense) != denseSampler);
     const bool rebuildDomains = next.traversal != config.traversal || domains.boxes.empty();
     config = next;
-    const glm::dvec3 origin(localOrigin);
 
     // Free what the new combination does not use.
     if (!next.usesAbrs()) abrs.reset();
     if (!next.usesGrid()) grid.reset();
     // Only the kd-tree keeps the support-range query (it rebuilds per TF); brick ranges use it once.
     if (next.traversal != TraversalKind::KdTree) supportRanges.query.reset();
-    if (next.traversal != TraversalKind::KdTree) kdTree.reset();
+    if (next.traversal == TraversalKind::KdTree && !supportRanges.query) {
+        Timer t;
+        supportRanges.query.emplace(bricks, brickValues);
+        buildSeconds.domains = t.seconds();
+    }
     if (rebuildDomains || !next.traversalUsesBoxes() || next.traversal == TraversalKind::GridBvh) domains = {};
     if (rebuildSampler || denseSampler) {
         samplerBvh = {};
@@ -71,14 +86,11 @@ void VolumeScene::configure(const StructureConfig& next) {
         std::vector<accel::BoxD> boxes = next.sampler == SamplerKind::Abr ? accel::abrBoxes(*abrs)
                                                                          : accel::brickDomainBoxes(bricks);
         if (next.backend == Backend::Sw) {
-            for (auto& b : boxes) {
-                b.lo -= origin;
-                b.hi -= origin;
-            }
+            for (auto& b : boxes) b = {toLocal(b.lo), toLocal(b.hi)};
             samplerBvh = accel::buildBvh(boxes);
         } else {
             samplerBoxes.reserve(boxes.size());
-            for (const auto& b : boxes) samplerBoxes.push_back(localBox(b.lo, b.hi, origin));
+            for (const auto& b : boxes) samplerBoxes.push_back(toLocal(b));
         }
         buildSeconds.samplerBvh = t.seconds();
     }
@@ -100,39 +112,25 @@ void VolumeScene::configure(const StructureConfig& next) {
         ProgressStage stage("traversal value ranges");
         Timer t;
         if (next.traversal == TraversalKind::Abr) {
-            for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(localBox(a.box.lower(), a.box.upper(), origin));
+            for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(toLocal({a.box.lower(), a.box.upper()}));
             domains.ranges = accel::computeAbrValueRanges(*abrs, bricks, brickValues);
         } else if (next.traversal == TraversalKind::Brick) {
             const accel::SupportRangeQuery query(bricks, brickValues);
             for (const accel::Brick& b : bricks.bricks) {
                 amr::Box3l bb = b.bounds();
-                domains.boxes.push_back(localBox(glm::dvec3(bb.lower), glm::dvec3(bb.upper), origin));
+                domains.boxes.push_back(toLocal({glm::dvec3(bb.lower), glm::dvec3(bb.upper)}));
             }
             domains.ranges = accel::brickBoundsRanges(query, bricks);
         } else {
             const accel::SupportRangeQuery query(bricks, brickValues);
             for (const accel::Brick& b : bricks.bricks) {
                 accel::HalfBox d = accel::brickDomain(b);
-                domains.boxes.push_back(localBox(d.lower(), d.upper(), origin));
+                domains.boxes.push_back(toLocal({d.lower(), d.upper()}));
             }
             domains.ranges = accel::brickDomainRanges(query, bricks);
         }
         buildSeconds.domains = t.seconds();
     }
-}
-
-void VolumeScene::rebuildKdTree(const std::function<float(float, float)>& maxAlpha) {
-    AMRVK_CHECK(config.traversal == TraversalKind::KdTree, "internal: rebuildKdTree without kdtree traversal");
-    if (!supportRanges.query) supportRanges.query.emplace(bricks, brickValues);
-    accel::KdTreeParams params;
-    params.maxLeaves = config.kdLeaves;
-    kdTree = accel::buildKdTree(*supportRanges.query, bounds, maxAlpha, params);
-    buildSeconds.kdTree = kdTree->buildSeconds;
-    const glm::dvec3 origin(localOrigin);
-    domains = {};
-    domains.boxes.reserve(kdTree->leaves.size());
-    for (const accel::BoxD& b : kdTree->leaves) domains.boxes.push_back(localBox(b.lo, b.hi, origin));
-    domains.ranges = kdTree->leafRanges;
 }
 
 std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
@@ -144,7 +142,6 @@ std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
     if (grid) out.emplace_back("macrocells", grid->memoryBytes());
     if (dense) out.emplace_back("denseGrid", dense->memoryBytes());
     if (supportRanges.query) out.emplace_back("supportRangeQuery", supportRanges.query->memoryBytes());
-    if (kdTree) out.emplace_back("kdTree", kdTree->memoryBytes());
     if (!domains.boxes.empty()) out.emplace_back("traversalBoxes", domains.memoryBytes());
     return out;
 }

@@ -1,12 +1,13 @@
 #pragma once
-// The CPU-side structures one render configuration needs, and nothing more ("model only what a
-// scene needs"): bricks and brick-order values always; ABRs for the abr sampler or traversal; the
-// sampler's BVH (sw back-end) or its boxes (rq back-end: the GPU builds the BLAS); the macrocell
-// value-range grid for grid-dda and grid-bvh; traversal boxes with value ranges for abr, brick,
-// ext-brick and kdtree; the dense resampling for the dense sampler (whose macrocell ranges then
-// come from the dense samples). configure() switches combination, building what is missing and freeing
-// what the new one does not use. All coordinates the GPU sees are local voxel space:
-// voxel - localOrigin.
+// The TF-independent CPU-side structures one render configuration needs, and nothing more
+// ("model only what a scene needs"): bricks and brick-order values always; ABRs for the abr
+// sampler or traversal; the sampler's BVH (sw back-end) or its boxes (rq back-end: the GPU builds
+// the BLAS); the macrocell value-range grid for grid-dda and grid-bvh; traversal boxes with value
+// ranges for abr, brick and ext-brick; the support-range query the kdtree traversal builds its
+// TF-specific tree from; the dense resampling for the dense sampler (whose macrocell ranges then
+// come from the dense samples). configure() switches combination, building what is missing and
+// freeing what the new one does not use. Renderers only read a scene; whoever owns it configures
+// it. All coordinates the GPU sees are local voxel space, converted in one place: toLocal().
 #include <glm/glm.hpp>
 
 #include <functional>
@@ -19,7 +20,6 @@
 #include "accel/bricks.h"
 #include "accel/bvh.h"
 #include "accel/dense_grid.h"
-#include "accel/kdtree.h"
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
 #include "amr/model.h"
@@ -39,9 +39,10 @@ struct DomainBoxes {
 };
 
 // The support-range query refers to the scene's own bricks and values, so it must not follow the
-// scene when it moves: a moved scene drops it and builds it again on demand.
+// scene when it moves: a moved scene drops it and builds it again on first use
+// (VolumeScene::supportRangeQuery).
 struct SceneSupportRanges {
-    std::optional<accel::SupportRangeQuery> query;
+    mutable std::optional<accel::SupportRangeQuery> query;
     SceneSupportRanges() = default;
     SceneSupportRanges(SceneSupportRanges&&) noexcept {}
     SceneSupportRanges& operator=(SceneSupportRanges&&) noexcept {
@@ -65,20 +66,24 @@ struct VolumeScene {
     std::vector<shared::AabbGpu> samplerBoxes;           // rq back-end: the same boxes, BLAS input
     std::optional<accel::RangeGrid> grid;                // grid-dda, grid-bvh (origin in voxel space)
     std::optional<accel::DenseGrid> dense;               // dense sampler
-    SceneSupportRanges supportRanges;                    // brick, ext-brick, kdtree
-    std::optional<accel::KdTree> kdTree;                 // kdtree (built per TF: rebuildKdTree)
-    DomainBoxes domains;                                 // abr, brick, ext-brick, kdtree traversals
+    SceneSupportRanges supportRanges;                    // kdtree (the renderer builds the tree per TF)
+    DomainBoxes domains;                                 // abr, brick, ext-brick traversals
     struct Timing {
-        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, kdTree = 0, dense = 0;
+        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, dense = 0;
     } buildSeconds;
 
     // Builds what `config` needs and frees the rest. config.backend must be resolved (Sw or Rq).
     void configure(const StructureConfig& config);
-    // kdtree traversal: builds the tree for a TF (maxAlpha = its exact alpha maximum over a
-    // value range) and replaces the traversal boxes with its leaves.
-    void rebuildKdTree(const std::function<float(float, float)>& maxAlpha);
+    // kdtree traversal: the exact range query the TF-specific tree is built from (built by
+    // configure(), again on first use after the scene moved).
+    const accel::SupportRangeQuery& supportRangeQuery() const;
     // Host bytes per structure currently held (name, bytes).
     std::vector<std::pair<std::string, uint64_t>> hostBytes() const;
+    // Voxel space -> local voxel space (what the GPU sees): the one place localOrigin is
+    // subtracted. The integer form throws when a coordinate leaves the int32 range.
+    glm::dvec3 toLocal(glm::dvec3 voxel) const { return voxel - glm::dvec3(localOrigin); }
+    glm::ivec3 toLocal(glm::i64vec3 voxel) const;
+    shared::AabbGpu toLocal(const accel::BoxD& voxelBox) const;
 };
 
 // Bricks and values only; call configure() next.

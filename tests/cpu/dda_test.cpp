@@ -14,14 +14,15 @@ namespace {
 
 DdaGrid grid() { return {{-2.0, 1.0, 0.5}, {1.5, 2.0, 0.75}, {8, 5, 6}}; }
 
-// Ray/box overlap computed independently (slab test, double).
+// Ray/box overlap computed independently (slab test in divisions, double; a ray in an upper face
+// plane misses, as in accel/ray_box.h).
 bool overlap(const DdaGrid& g, glm::dvec3 o, glm::dvec3 d, double& t0, double& t1) {
     glm::dvec3 lo = g.origin, hi = g.origin + g.cellSize * glm::dvec3(g.dims);
     t0 = 0;
     t1 = 1e30;
     for (int a = 0; a < 3; ++a) {
         if (d[a] == 0) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return false;
+            if (o[a] < lo[a] || o[a] >= hi[a]) return false;
             continue;
         }
         double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];

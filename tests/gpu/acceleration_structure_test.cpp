@@ -19,6 +19,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "shared/test_push.h"
 
 using namespace amrvk;
 
@@ -319,16 +320,14 @@ protected:
     // Runs test_ray_query in `mode` for every ray; returns 2 + maxOut uints per ray.
     static std::vector<uint32_t> query(const gpu::AabbAccelerationStructure& as, const gpu::Buffer& filterBoxes,
                                        const std::vector<Ray>& rays, uint32_t mode, uint32_t maxOut) {
-        static gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_ray_query"), "test_ray_query", 48);
+        static gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_ray_query"), "test_ray_query",
+                                         sizeof(shared::TestRayQueryPush));
         gpu::Buffer rayBuf(ctx(), rays.size() * sizeof(Ray), gpu::MemoryKind::Device, "rqRays");
         rayBuf.upload(rays.data(), rays.size() * sizeof(Ray));
         const uint32_t count = uint32_t(rays.size());
         gpu::Buffer out(ctx(), uint64_t(count) * (2 + maxOut) * 4, gpu::MemoryKind::HostRead, "rqOut");
-        struct {
-            uint64_t tlas, boxes, rays, out;
-            uint32_t count, mode, maxOut, pad;
-        } push{as.tlasAddress(), filterBoxes.address(), rayBuf.address(), out.address(), count, mode, maxOut, 0};
-        static_assert(sizeof push == 48);
+        shared::TestRayQueryPush push{as.tlasAddress(), filterBoxes.address(), rayBuf.address(), out.address(),
+                                      count, mode, maxOut, 0};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (count + 31) / 32); });
         return out.download<uint32_t>();
     }

@@ -7,6 +7,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "shared/test_push.h"
 #include "shared/render_params.h"
 
 using namespace amrvk;
@@ -39,18 +40,15 @@ TEST_F(DdaGpu, SegmentsEqualTheCpuTwin) {
 
     auto& c = ctx();
     shared::RenderParams p{};
-    p.gridDims = glm::ivec4(grid.dims, 0);
-    p.gridOrigin = glm::vec4(glm::vec3(grid.origin), 0);
-    p.gridCellSize = glm::vec4(glm::vec3(grid.cellSize), 0);
+    p.scene.gridDims = grid.dims;
+    p.scene.gridOrigin = glm::vec3(grid.origin);
+    p.scene.gridCellSize = glm::vec3(grid.cellSize);
     gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
     params.upload(&p, sizeof p);
     gpu::Buffer rayBuf = gpu::makeBuffer<glm::vec4>(c, rays, "rays");
     gpu::Buffer out(c, uint64_t(count) * stride * 4, gpu::MemoryKind::HostRead, "segments");
-    gpu::ComputePipeline pipe(c, gpu::loadShader("test_dda"), "test_dda", 28);
-    struct {
-        uint64_t params, rays, out;
-        uint32_t count;
-    } push{params.address(), rayBuf.address(), out.address(), count};
+    gpu::ComputePipeline pipe(c, gpu::loadShader("test_dda"), "test_dda", sizeof(shared::TestDdaPush));
+    shared::TestDdaPush push{params.address(), rayBuf.address(), out.address(), count, 0};
     c.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (count + 31) / 32); });
     auto got = out.download<float>();
     size_t mismatches = 0;

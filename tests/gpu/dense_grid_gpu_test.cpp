@@ -9,6 +9,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "kernels.h"
 #include "image_compare.h"
 #include "model_fixtures.h"
 #include "render/renderer.h"
@@ -63,15 +64,8 @@ TEST_F(DenseGridGpu, PointValuesEqualTheCpuDefinition) {
     std::vector<glm::vec4> pts;
     for (int i = 0; i < 10000; ++i) pts.emplace_back(glm::vec3(size * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
     const uint32_t n = uint32_t(pts.size());
-    gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
-    gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
-    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_sample"), "test_sample", 40);
-    struct {
-        uint64_t params, points, out;
-        uint32_t count, sampler, backend, pad;
-    } push{renderer.paramsAddress(), in.address(), out.address(), n, shared::kSamplerDense, shared::kBackendSw, 0};
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
-    auto got = out.download<float>();
+    const std::vector<float> got =
+        test::sampleAt(ctx(), renderer.paramsAddress(), pts, scene::SamplerKind::Dense, scene::Backend::Sw);
     size_t bad = 0, inside = 0;
     for (uint32_t i = 0; i < n && bad < 10; ++i) {
         const glm::dvec3 p = glm::dvec3(glm::vec3(pts[i])) + origin;

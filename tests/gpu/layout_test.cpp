@@ -1,79 +1,156 @@
-// GPU layout conformance: the C++ and GLSL views of the shared structs agree on every offset.
+// GPU layout conformance: the C++ and GLSL views of every shared struct agree on every field.
+// The C++ side fills each struct so that 32-bit word i holds the value i; the kernel
+// (tests/shaders/test_layout.comp) reads every field through the GLSL declaration in declaration
+// order and writes its words back. Each field must come back as the words at its C++ offset, and
+// the fields listed here must tile each struct exactly (so a field missing from the test, or a
+// hole in the layout, fails too).
 #include <cstring>
+#include <vector>
 
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
 #include "shared/amr_gpu.h"
 #include "shared/render_params.h"
+#include "shared/test_push.h"
 
 using namespace amrvk;
+using namespace amrvk::shared;
 
 namespace {
-uint32_t bits(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
+
+struct Field {
+    const char* name;
+    size_t offset;  // bytes from the start of the struct
+    size_t words;   // 32-bit words
+};
+
+#define AMRVK_FIELD(base, Struct, member, words) \
+    Field { #Struct "." #member, (base) + offsetof(Struct, member), (words) }
+
+// Every field of RenderParams, in declaration order (the kernel reads them in the same order).
+std::vector<Field> renderParamsFields() {
+    const size_t v = offsetof(RenderParams, view), s = offsetof(RenderParams, shading),
+                 c = offsetof(RenderParams, scene), m = offsetof(RenderParams, majorants);
+    std::vector<Field> f = {
+        AMRVK_FIELD(v, ViewGpu, eye, 3),          AMRVK_FIELD(v, ViewGpu, width, 1),
+        AMRVK_FIELD(v, ViewGpu, dir00, 3),        AMRVK_FIELD(v, ViewGpu, height, 1),
+        AMRVK_FIELD(v, ViewGpu, du, 3),           AMRVK_FIELD(v, ViewGpu, seed, 1),
+        AMRVK_FIELD(v, ViewGpu, dv, 3),           AMRVK_FIELD(v, ViewGpu, pad, 1),
+        AMRVK_FIELD(s, ShadingGpu, ambient, 3),   AMRVK_FIELD(s, ShadingGpu, g, 1),
+        AMRVK_FIELD(s, ShadingGpu, background, 3), AMRVK_FIELD(s, ShadingGpu, densityScale, 1),
+        AMRVK_FIELD(s, ShadingGpu, lightCount, 1), AMRVK_FIELD(s, ShadingGpu, maxTrackingSteps, 1),
+        AMRVK_FIELD(s, ShadingGpu, dvrStep, 1),   AMRVK_FIELD(s, ShadingGpu, dvrShading, 1),
+        AMRVK_FIELD(s, ShadingGpu, dvrLightDir, 3), AMRVK_FIELD(s, ShadingGpu, dvrAmbient, 1),
+        AMRVK_FIELD(s, ShadingGpu, dvrOpacityStop, 1), AMRVK_FIELD(s, ShadingGpu, pad0, 1),
+        AMRVK_FIELD(s, ShadingGpu, pad1, 1),      AMRVK_FIELD(s, ShadingGpu, pad2, 1),
+    };
+    for (size_t l = 0; l < kMaxLights; ++l) {
+        const size_t base = s + offsetof(ShadingGpu, lights) + l * sizeof(LightGpu);
+        f.insert(f.end(), {AMRVK_FIELD(base, LightGpu, posOrDir, 3), AMRVK_FIELD(base, LightGpu, type, 1),
+                           AMRVK_FIELD(base, LightGpu, radiance, 3), AMRVK_FIELD(base, LightGpu, pad, 1)});
+    }
+    f.insert(f.end(), {
+        AMRVK_FIELD(c, SceneGpu, boundsHi, 3),     AMRVK_FIELD(c, SceneGpu, invFinestCellWidth, 1),
+        AMRVK_FIELD(c, SceneGpu, gridDims, 3),     AMRVK_FIELD(c, SceneGpu, pad0, 1),
+        AMRVK_FIELD(c, SceneGpu, gridOrigin, 3),   AMRVK_FIELD(c, SceneGpu, pad1, 1),
+        AMRVK_FIELD(c, SceneGpu, gridCellSize, 3), AMRVK_FIELD(c, SceneGpu, pad2, 1),
+        AMRVK_FIELD(c, SceneGpu, denseDims, 3),    AMRVK_FIELD(c, SceneGpu, denseLevel, 1),
+        AMRVK_FIELD(c, SceneGpu, denseOrigin, 3),  AMRVK_FIELD(c, SceneGpu, denseSpacing, 1),
+        AMRVK_FIELD(c, SceneGpu, bricks, 2),       AMRVK_FIELD(c, SceneGpu, brickValues, 2),
+        AMRVK_FIELD(c, SceneGpu, samplerNodes, 2), AMRVK_FIELD(c, SceneGpu, samplerPrims, 2),
+        AMRVK_FIELD(c, SceneGpu, samplerAccel, 2), AMRVK_FIELD(c, SceneGpu, abrs, 2),
+        AMRVK_FIELD(c, SceneGpu, abrBrickList, 2), AMRVK_FIELD(c, SceneGpu, gridRanges, 2),
+        AMRVK_FIELD(c, SceneGpu, denseValues, 2),  AMRVK_FIELD(c, SceneGpu, pad3, 2),
+        AMRVK_FIELD(m, MajorantsGpu, tfPositions, 2),   AMRVK_FIELD(m, MajorantsGpu, tfColors, 2),
+        AMRVK_FIELD(m, MajorantsGpu, tfNodeCount, 1),   AMRVK_FIELD(m, MajorantsGpu, domainCount, 1),
+        AMRVK_FIELD(m, MajorantsGpu, domainAnyActive, 1), AMRVK_FIELD(m, MajorantsGpu, pad, 1),
+        AMRVK_FIELD(m, MajorantsGpu, gridMajorants, 2), AMRVK_FIELD(m, MajorantsGpu, domainBoxes, 2),
+        AMRVK_FIELD(m, MajorantsGpu, domainRanges, 2),  AMRVK_FIELD(m, MajorantsGpu, domainMajorants, 2),
+        AMRVK_FIELD(m, MajorantsGpu, domainNodes, 2),   AMRVK_FIELD(m, MajorantsGpu, domainPrims, 2),
+        AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, pad1, 2),
+        AMRVK_FIELD(0, RenderParams, accum, 2),         AMRVK_FIELD(0, RenderParams, counters, 2),
+    });
+    return f;
 }
+
+// The structures the kernel reads through a buffer reference, packed one after another.
+struct Structs {
+    BrickGpu brick;
+    BvhNodeGpu node;
+    AbrGpu abr;
+    AabbGpu aabb;
+    ValueRangeGpu range;
+};
+static_assert(sizeof(Structs) == 32 + 32 + 32 + 24 + 8);
+
+std::vector<Field> structFields() {
+    const size_t b = offsetof(Structs, brick), n = offsetof(Structs, node), a = offsetof(Structs, abr),
+                 x = offsetof(Structs, aabb), r = offsetof(Structs, range);
+    return {
+        AMRVK_FIELD(b, BrickGpu, lower, 3),   AMRVK_FIELD(b, BrickGpu, level, 1),
+        AMRVK_FIELD(b, BrickGpu, size, 3),    AMRVK_FIELD(b, BrickGpu, begin, 1),
+        AMRVK_FIELD(n, BvhNodeGpu, lo, 3),    AMRVK_FIELD(n, BvhNodeGpu, first, 1),
+        AMRVK_FIELD(n, BvhNodeGpu, hi, 3),    AMRVK_FIELD(n, BvhNodeGpu, count, 1),
+        AMRVK_FIELD(a, AbrGpu, lo, 3),        AMRVK_FIELD(a, AbrGpu, brickBegin, 1),
+        AMRVK_FIELD(a, AbrGpu, hi, 3),        AMRVK_FIELD(a, AbrGpu, brickCount, 1),
+        AMRVK_FIELD(x, AabbGpu, lo, 3),       AMRVK_FIELD(x, AabbGpu, hi, 3),
+        AMRVK_FIELD(r, ValueRangeGpu, lo, 1), AMRVK_FIELD(r, ValueRangeGpu, hi, 1),
+    };
+}
+
+// The words each field should read back, and a check that the fields tile [0, bytes) exactly.
+std::vector<uint32_t> expectedWords(const std::vector<Field>& fields, size_t bytes, const char* what) {
+    std::vector<uint32_t> out;
+    size_t next = 0;
+    for (const Field& f : fields) {
+        EXPECT_EQ(f.offset, next) << what << ": " << f.name << " does not follow the previous field";
+        for (size_t w = 0; w < f.words; ++w) out.push_back(uint32_t(f.offset / 4 + w));
+        next = f.offset + 4 * f.words;
+    }
+    EXPECT_EQ(next, bytes) << what << ": the fields do not cover the whole struct";
+    return out;
+}
+
+template <typename T>
+T filledWithWordIndices() {
+    static_assert(sizeof(T) % 4 == 0);
+    T value;
+    std::vector<uint32_t> words(sizeof(T) / 4);
+    for (size_t i = 0; i < words.size(); ++i) words[i] = uint32_t(i);
+    std::memcpy(&value, words.data(), sizeof(T));
+    return value;
+}
+
 }  // namespace
 
 class Layout : public test::GpuTest {};
 
-TEST_F(Layout, SharedStructsMatchBetweenCppAndGlsl) {
-    static_assert(offsetof(shared::RenderParams, bricks) % 8 == 0);
-    shared::RenderParams p{};
-    p.eye.x = 1.5f;
-    p.dv.w = -2.25f;
-    p.image = {640, 480, 7, 99};
-    p.boundsLo.w = 0.125f;
-    p.boundsHi.w = 1e4f;
-    p.gridDims = {3, 4, 5, 0};
-    p.gridCellSize.y = 6.5f;
-    p.tfInfo.x = 17.0f;
-    p.background.z = 0.75f;
-    p.shading.x = -0.3f;
-    p.lights[3].posOrDir.w = 1.0f;
-    p.lights[7].radiance.y = 42.0f;
+TEST_F(Layout, EverySharedFieldHasTheSameOffsetInCppAndGlsl) {
+    const std::vector<Field> paramFields = renderParamsFields(), objectFields = structFields();
+    std::vector<uint32_t> expect = expectedWords(paramFields, sizeof(RenderParams), "RenderParams");
+    const size_t paramWords = expect.size();
+    const std::vector<uint32_t> objects = expectedWords(objectFields, sizeof(Structs), "BrickGpu..ValueRangeGpu");
+    expect.insert(expect.end(), objects.begin(), objects.end());
 
     auto& c = ctx();
-    shared::BrickGpu bricks[2] = {{}, {{1, 2, 3, 4}, {5, 6, 7, 123456}}};
-    shared::BvhNodeGpu nodes[2] = {{}, {{0, 0, 0}, 77u, {1, 2, 3.5f}, 3u}};
-    shared::AbrGpu abrs[2] = {{}, {{0, 0, 0}, 11u, {9.5f, 0, 0}, 12u}};
-    gpu::Buffer bb = gpu::makeBuffer<shared::BrickGpu>(c, bricks, "bricks");
-    gpu::Buffer nb = gpu::makeBuffer<shared::BvhNodeGpu>(c, nodes, "nodes");
-    gpu::Buffer ab = gpu::makeBuffer<shared::AbrGpu>(c, abrs, "abrs");
-    p.bricks = 0x1122334455667788ull;
-    p.gridMajorants = 0x99aabbccull;
-    p.counters = 0xdeadbeef00000000ull;
-    p.brickValues = bb.address();  // the shader reads BrickGpu[1] through this field
-    p.samplerNodes = nb.address();
-    p.abrs = ab.address();
-    shared::AabbGpu boxes[2] = {{}, {{1, 2, 3.25f}, {4, 5.5f, 6}}};
-    gpu::Buffer xb = gpu::makeBuffer<shared::AabbGpu>(c, boxes, "aabbs");
-    p.domainBoxes = xb.address();
-    p.samplerAccel = 0x0badf00dull;
-    p.domainAccel = 0x1234567800000000ull;
-    p.domainInfo = {31, 1, 0, 0};
-    p.dvr.x = 0.375f;
-    p.dvrLight.z = -0.5f;
-    p.denseDims = {7, 8, 9, 2};
-    p.denseOrigin.w = 4.0f;
-    p.denseValues = 0xfeedface00000000ull;
-    p.accum = 0x00000000c0ffee00ull;
-    gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
-    params.upload(&p, sizeof p);
-    gpu::Buffer out(c, 64 * 4, gpu::MemoryKind::HostRead, "out");
-    gpu::ComputePipeline pipe(c, gpu::loadShader("test_layout"), "test_layout", 16);
-    struct {
-        uint64_t params, out;
-    } push{params.address(), out.address()};
+    const RenderParams params = filledWithWordIndices<RenderParams>();
+    const Structs structs = filledWithWordIndices<Structs>();
+    gpu::Buffer paramsBuf(c, sizeof params, gpu::MemoryKind::Device, "params");
+    paramsBuf.upload(&params, sizeof params);
+    gpu::Buffer structsBuf(c, sizeof structs, gpu::MemoryKind::Device, "structs");
+    structsBuf.upload(&structs, sizeof structs);
+    gpu::Buffer out(c, expect.size() * 4, gpu::MemoryKind::HostRead, "out");
+    gpu::ComputePipeline pipe(c, gpu::loadShader("test_layout"), "test_layout", sizeof(TestLayoutPush));
+    TestLayoutPush push{paramsBuf.address(), out.address(), structsBuf.address(), 0};
     c.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, 1); });
-    auto got = out.download<uint32_t>();
-    std::vector<uint32_t> expect = {bits(1.5f), bits(-2.25f), 640, 99, bits(0.125f), bits(1e4f), 5,
-                                    bits(6.5f), bits(17.0f), bits(0.75f), bits(-0.3f), bits(1.0f), bits(42.0f),
-                                    0x55667788u, 0x11223344u, 0x99aabbccu, 0xdeadbeefu, 4, 123456, 77, 3,
-                                    bits(3.5f), 11, 12, bits(9.5f), 0x0badf00du, 0x12345678u, 31, 1,
-                                    bits(3.25f), bits(5.5f), bits(0.375f), bits(-0.5f), 2, bits(4.0f),
-                                    0xfeedfaceu, 0xc0ffee00u};
-    for (size_t i = 0; i < expect.size(); ++i) EXPECT_EQ(got[i], expect[i]) << "field " << i;
+    const std::vector<uint32_t> got = out.download<uint32_t>();
+    ASSERT_EQ(got.size(), expect.size());
+    size_t word = 0;
+    for (const std::vector<Field>* fields : {&paramFields, &objectFields})
+        for (const Field& f : *fields)
+            for (size_t w = 0; w < f.words; ++w, ++word)
+                EXPECT_EQ(got[word], expect[word]) << f.name << " word " << w;
+    EXPECT_EQ(word, expect.size());
+    EXPECT_EQ(paramWords, sizeof(RenderParams) / 4);
 }

@@ -41,7 +41,7 @@ scene::Camera slabCamera() {
 // (4x4 sub-samples), z-test on the per-pixel variances; returns the expected image mean (rgb avg).
 double expectSlabMean(const scene::RenderOutput& o, const scene::RenderSettings& s,
                       const std::function<glm::dvec3(double)>& expected) {
-    scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
+    scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{});
     const double z = test::sidakZ(1e-4, 3);
     glm::dvec3 sumDiff(0.0), var(0.0), sumExpect(0.0);
     for (int y = 0; y < s.height; ++y)
@@ -92,7 +92,7 @@ TEST_F(RayMarchGpu, ConstantSlabMatchesTheJitteredRiemannSum) {
         // The exact absorption+emission answer for the same rays.
         double exactMean = 0;
         {
-            scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{}, glm::dvec3(0.0));
+            scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, amr::Transform{});
             for (int y = 0; y < s.height; ++y)
                 for (int x = 0; x < s.width; ++x)
                     for (int k = 0; k < 16; ++k) {

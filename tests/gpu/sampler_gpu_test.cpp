@@ -9,6 +9,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "kernels.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "shared/render_params.h"
@@ -49,17 +50,7 @@ protected:
                 pts.emplace_back(glm::vec3(p), 0.0f);
             }
             const uint32_t n = uint32_t(pts.size());
-            gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
-            gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
-            const bool rq = backend == scene::Backend::Rq;
-            gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_sample_rq" : "test_sample"), "test_sample", 40);
-            struct {
-                uint64_t params, points, out;
-                uint32_t count, sampler, backend, pad;
-            } push{renderer.paramsAddress(), in.address(), out.address(), n,
-                   scene::shaderConstant(kind), scene::shaderConstant(backend), 0};
-            ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
-            auto got = out.download<float>();
+            const std::vector<float> got = test::sampleAt(ctx(), renderer.paramsAddress(), pts, kind, backend);
             amr::ReferenceSampler ref(model, field);
             size_t bad = 0;
             for (uint32_t i = 0; i < n && bad < 10; ++i) {

@@ -74,8 +74,8 @@ protected:
             scene::RenderOutput o = renderWith(m, cfg, tf, s, spp);
             // 24 combinations per data set: family-wise 1e-4 each.
             test::expectSameImage(o, ref, 8,
-                                  tag + "-" + traversalName(cfg.traversal) + "-" + samplerName(cfg.sampler) + "-" +
-                                      backendName(cfg.backend),
+                                  tag + "-" + scene::traversalName(cfg.traversal) + "-" + scene::samplerName(cfg.sampler) + "-" +
+                                      scene::backendName(cfg.backend),
                                   1e-4);
         }
     }

@@ -5,6 +5,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "shared/test_push.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "shared/render_params.h"
@@ -20,7 +21,8 @@ TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
     render::Renderer renderer(ctx(), scene);
     const uint32_t n = 1u << 16;
     gpu::Buffer out(ctx(), uint64_t(n) * 8, gpu::MemoryKind::HostRead, "tracking");
-    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking", 64);
+    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking",
+                              sizeof(shared::TestTrackingPush));
     const double length = 16.0;  // along x through the box
     for (double tau : {0.1, 1.0, 5.0, 20.0, 50.0}) {
         const float alpha = float(tau / length);
@@ -28,12 +30,9 @@ TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
         for (float over : {1.0f, 4.0f, 32.0f}) {
             SCOPED_TRACE(testing::Message() << "tau " << tau << " majorant x" << over);
             renderer.overrideMajorants(std::vector<float>(scene.grid->ranges.size(), alpha * over));
-            struct {
-                uint64_t params, out;
-                glm::vec4 origin, dir;
-                uint32_t count, sampler, traversal, pad;
-            } push{renderer.paramsAddress(), out.address(), {-3.0f, 8.3f, 7.6f, 0.0f}, {1.0f, 0.0f, 0.0f, INFINITY},
-                   n, shared::kSamplerExtBrick, shared::kTraversalGridDda, 0};
+            shared::TestTrackingPush push{renderer.paramsAddress(), out.address(), {-3.0f, 8.3f, 7.6f, 0.0f},
+                                          {1.0f, 0.0f, 0.0f, INFINITY}, n, uint32_t(scene::SamplerKind::ExtBrick),
+                                          uint32_t(scene::TraversalKind::GridDda), 0};
             ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
             auto v = out.download<float>();
             double escapes = 0, ratioSum = 0, ratioSq = 0;

@@ -11,6 +11,8 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
+#include "kernels.h"
+#include "shared/test_push.h"
 #include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
@@ -62,7 +64,7 @@ std::vector<Ray> testRays(glm::vec3 hi, uint32_t seed) {
 class TraversalGpu : public test::GpuTest {
 protected:
     // Segments of every ray (rays in local voxel space, t in [0, inf)).
-    std::vector<std::vector<Segment>> segments(const render::Renderer& r, scene::Backend backend,
+    std::vector<std::vector<Segment>> segments(render::Renderer& r, scene::Backend backend,
                                                const std::vector<Ray>& rays) {
         const bool rq = backend == scene::Backend::Rq;
         std::vector<glm::vec4> packed;
@@ -73,12 +75,10 @@ protected:
         const uint32_t n = uint32_t(rays.size()), stride = 1 + 4 * kMaxSegments;
         gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), packed, "rays");
         gpu::Buffer out(ctx(), uint64_t(n) * stride * 4, gpu::MemoryKind::HostRead, "segments");
-        gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_segments_rq" : "test_segments"), "test_segments", 40);
-        struct {
-            uint64_t params, rays, out;
-            uint32_t count, traversal, backend, maxSegments;
-        } push{r.paramsAddress(), in.address(), out.address(), n,
-               scene::shaderConstant(r.config().traversal), scene::shaderConstant(backend), kMaxSegments};
+        gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_segments_rq" : "test_segments"), "test_segments",
+                                  sizeof(shared::TestSegmentsPush));
+        shared::TestSegmentsPush push{r.paramsAddress(), in.address(), out.address(), n,
+                                      uint32_t(r.config().traversal), uint32_t(backend), kMaxSegments};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         auto raw = out.download<uint32_t>();
         std::vector<std::vector<Segment>> result(n);
@@ -95,19 +95,8 @@ protected:
     }
 
     // Values (value, weightSum, inside) of the renderer's sampler at local points.
-    std::vector<float> samples(const render::Renderer& r, const std::vector<glm::vec4>& pts) {
-        const bool rq = r.config().backend == scene::Backend::Rq;
-        const uint32_t n = uint32_t(pts.size());
-        gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), pts, "points");
-        gpu::Buffer out(ctx(), uint64_t(n) * 12, gpu::MemoryKind::HostRead, "samples");
-        gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_sample_rq" : "test_sample"), "test_sample", 40);
-        struct {
-            uint64_t params, points, out;
-            uint32_t count, sampler, backend, pad;
-        } push{r.paramsAddress(), in.address(), out.address(), n,
-               scene::shaderConstant(r.config().sampler), scene::shaderConstant(r.config().backend), 0};
-        ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
-        return out.download<float>();
+    std::vector<float> samples(render::Renderer& r, const std::vector<glm::vec4>& pts) {
+        return test::sampleAt(ctx(), r.paramsAddress(), pts, r.config().sampler, r.config().backend);
     }
 };
 
@@ -121,14 +110,14 @@ BoxSet traversalBoxes(const scene::VolumeScene& scene, const render::Renderer& r
     BoxSet s;
     if (scene.config.traversal == scene::TraversalKind::GridBvh) {
         const accel::RangeGrid& g = *scene.grid;
-        const glm::dvec3 o = g.origin - glm::dvec3(scene.localOrigin);
+        const glm::dvec3 o = scene.toLocal(g.origin);
         for (int z = 0; z < g.dims.z; ++z)
             for (int y = 0; y < g.dims.y; ++y)
                 for (int x = 0; x < g.dims.x; ++x)
                     s.boxes.push_back({o + glm::dvec3(x, y, z) * g.cellSize, o + glm::dvec3(x + 1, y + 1, z + 1) * g.cellSize});
         s.maj = r.downloadMajorants();
     } else {
-        for (const auto& b : scene.domains.boxes) s.boxes.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
+        for (const auto& b : r.traversalBoxes()) s.boxes.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
         s.maj = r.downloadDomainMajorants();
     }
     return s;

@@ -3,7 +3,8 @@
 // (cell, t0, t1) so tests/gpu/dda_gpu_test.cpp can compare them with the CPU twin.
 #include "lib/common.glsl"
 #include "lib/majorant_dda.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t rays; uint64_t outAddr; uint rayCount; } tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestDdaPush tp; };
 layout(local_size_x = 32) in;
 const uint kMaxSegs = 64u;
 
@@ -13,7 +14,7 @@ void main() {
     gParams = ParamsRef(tp.params);
     Vec4Ref rays = Vec4Ref(tp.rays);
     vec4 o = rays.v[2u * i], d = rays.v[2u * i + 1u];
-    FloatRW out_ = FloatRW(tp.outAddr);
+    FloatRW out_ = FloatRW(tp.results);
     uint base = i * (1u + 3u * kMaxSegs);
     uint n = 0u;
     DdaState s;

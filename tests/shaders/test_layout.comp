@@ -1,56 +1,64 @@
 #version 460
-// Layout conformance: copies RenderParams fields, read through the GLSL declaration, into a flat
-// uint array that the C++ test compares with what it wrote (tests/gpu/layout_test.cpp).
+// Layout conformance: reads every field of every shared struct through its GLSL declaration, in
+// declaration order, and writes the raw 32-bit words to `out`. The C++ side fills the structs so
+// that word i holds the value i and checks that each field's words are the ones at its C++ offset
+// (tests/gpu/layout_test.cpp). Pads are read too, so the words must tile each struct exactly.
 #include "lib/common.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAddr; } tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestLayoutPush tp; };
 layout(local_size_x = 1) in;
+
+layout(buffer_reference, scalar) readonly buffer StructsRef {
+    BrickGpu brick;
+    BvhNodeGpu node;
+    AbrGpu abr;
+    AabbGpu aabb;
+    ValueRangeGpu range;
+};
+
+uint k = 0u;
+void u(uint v) { UintRW(tp.results).v[k++] = v; }
+void i(int v) { u(uint(v)); }
+void f(float v) { u(floatBitsToUint(v)); }
+void u64(uint64_t v) { u(uint(v)); u(uint(v >> 32)); }
+void f3(vec3 v) { f(v.x); f(v.y); f(v.z); }
+void i3(ivec3 v) { i(v.x); i(v.y); i(v.z); }
+void f4(vec4 v) { f(v.x); f(v.y); f(v.z); f(v.w); }
 
 void main() {
     gParams = ParamsRef(tp.params);
-    UintRW o = UintRW(tp.outAddr);
-    uint k = 0u;
-    o.v[k++] = floatBitsToUint(P.eye.x);
-    o.v[k++] = floatBitsToUint(P.dv.w);
-    o.v[k++] = P.image.x;
-    o.v[k++] = P.image.w;
-    o.v[k++] = floatBitsToUint(P.boundsLo.w);
-    o.v[k++] = floatBitsToUint(P.boundsHi.w);
-    o.v[k++] = uint(P.gridDims.z);
-    o.v[k++] = floatBitsToUint(P.gridCellSize.y);
-    o.v[k++] = floatBitsToUint(P.tfInfo.x);
-    o.v[k++] = floatBitsToUint(P.background.z);
-    o.v[k++] = floatBitsToUint(P.shading.x);
-    o.v[k++] = floatBitsToUint(P.lights[3].posOrDir.w);
-    o.v[k++] = floatBitsToUint(P.lights[7].radiance.y);
-    o.v[k++] = uint(P.bricks);
-    o.v[k++] = uint(P.bricks >> 32);
-    o.v[k++] = uint(P.gridMajorants);
-    o.v[k++] = uint(P.counters >> 32);
-    // Struct arrays read through buffer references (BrickGpu, BvhNodeGpu, AbrGpu).
-    BrickGpu b = BrickRef(P.brickValues).v[1];
-    o.v[k++] = uint(b.lowerLevel.w);
-    o.v[k++] = uint(b.sizeBegin.w);
-    BvhNodeGpu n = BvhRef(P.samplerNodes).v[1];
-    o.v[k++] = n.first;
-    o.v[k++] = n.count;
-    o.v[k++] = floatBitsToUint(n.hi.z);
-    AbrGpu a = AbrRef(P.abrs).v[1];
-    o.v[k++] = a.brickBegin;
-    o.v[k++] = a.brickCount;
-    o.v[k++] = floatBitsToUint(a.hi.x);
-    // Structure-matrix fields and the AABB layout (VkAabbPositionsKHR).
-    o.v[k++] = uint(P.samplerAccel);
-    o.v[k++] = uint(P.domainAccel >> 32);
-    o.v[k++] = P.domainInfo.x;
-    o.v[k++] = P.domainInfo.y;
-    AabbGpu box = AabbRef(P.domainBoxes).v[1];
-    o.v[k++] = floatBitsToUint(box.lo.z);
-    o.v[k++] = floatBitsToUint(box.hi.y);
-    // dvr and dense-sampler fields.
-    o.v[k++] = floatBitsToUint(P.dvr.x);
-    o.v[k++] = floatBitsToUint(P.dvrLight.z);
-    o.v[k++] = uint(P.denseDims.w);
-    o.v[k++] = floatBitsToUint(P.denseOrigin.w);
-    o.v[k++] = uint(P.denseValues >> 32);
-    o.v[k++] = uint(P.accum);
+    // RenderParams.view
+    f3(P.view.eye); u(P.view.width); f3(P.view.dir00); u(P.view.height);
+    f3(P.view.du); u(P.view.seed); f3(P.view.dv); u(P.view.pad);
+    // RenderParams.shading
+    f3(P.shading.ambient); f(P.shading.g); f3(P.shading.background); f(P.shading.densityScale);
+    u(P.shading.lightCount); u(P.shading.maxTrackingSteps); f(P.shading.dvrStep); u(P.shading.dvrShading);
+    f3(P.shading.dvrLightDir); f(P.shading.dvrAmbient); f(P.shading.dvrOpacityStop);
+    f(P.shading.pad0); f(P.shading.pad1); f(P.shading.pad2);
+    for (uint l = 0u; l < kMaxLights; ++l) {
+        f3(P.shading.lights[l].posOrDir); u(P.shading.lights[l].type);
+        f3(P.shading.lights[l].radiance); f(P.shading.lights[l].pad);
+    }
+    // RenderParams.scene
+    f3(P.scene.boundsHi); f(P.scene.invFinestCellWidth); i3(P.scene.gridDims); u(P.scene.pad0);
+    f3(P.scene.gridOrigin); f(P.scene.pad1); f3(P.scene.gridCellSize); f(P.scene.pad2);
+    i3(P.scene.denseDims); i(P.scene.denseLevel); f3(P.scene.denseOrigin); f(P.scene.denseSpacing);
+    u64(P.scene.bricks); u64(P.scene.brickValues); u64(P.scene.samplerNodes); u64(P.scene.samplerPrims);
+    u64(P.scene.samplerAccel); u64(P.scene.abrs); u64(P.scene.abrBrickList); u64(P.scene.gridRanges);
+    u64(P.scene.denseValues); u64(P.scene.pad3);
+    // RenderParams.majorants
+    u64(P.majorants.tfPositions); u64(P.majorants.tfColors); u(P.majorants.tfNodeCount);
+    u(P.majorants.domainCount); u(P.majorants.domainAnyActive); u(P.majorants.pad);
+    u64(P.majorants.gridMajorants); u64(P.majorants.domainBoxes); u64(P.majorants.domainRanges);
+    u64(P.majorants.domainMajorants); u64(P.majorants.domainNodes); u64(P.majorants.domainPrims);
+    u64(P.majorants.domainAccel); u64(P.majorants.pad1);
+    // RenderParams tail
+    u64(P.accum); u64(P.counters);
+    // The structures read through buffer references.
+    StructsRef s = StructsRef(tp.structs);
+    i3(s.brick.lower); i(s.brick.level); i3(s.brick.size); u(s.brick.begin);
+    f3(s.node.lo); u(s.node.first); f3(s.node.hi); u(s.node.count);
+    f3(s.abr.lo); u(s.abr.brickBegin); f3(s.abr.hi); u(s.abr.brickCount);
+    f3(s.aabb.lo); f3(s.aabb.hi);
+    f(s.range.lo); f(s.range.hi);
 }

@@ -17,15 +17,8 @@
 layout(buffer_reference, scalar) readonly buffer BoxesRef { float v[]; };
 layout(buffer_reference, scalar) readonly buffer RaysRef { vec4 v[]; };
 layout(buffer_reference, scalar) buffer OutRef { uint v[]; };
-layout(push_constant, scalar) uniform TestPush {
-    uint64_t tlas;
-    uint64_t boxes;
-    uint64_t rays;
-    uint64_t outAddr;
-    uint rayCount;
-    uint mode;
-    uint maxOut;
-} tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestRayQueryPush tp; };
 layout(local_size_x = 32) in;
 
 // Closed slab interval (x, y) of box b along o + t d; empty when x > y. A zero direction
@@ -56,7 +49,7 @@ void main() {
     if (i >= tp.rayCount) return;
     RaysRef rays = RaysRef(tp.rays);
     BoxesRef boxes = BoxesRef(tp.boxes);
-    OutRef outs = OutRef(tp.outAddr);
+    OutRef outs = OutRef(tp.results);
     vec4 o = rays.v[2u * i], d = rays.v[2u * i + 1u];
     uint base = i * (2u + tp.maxOut);
 

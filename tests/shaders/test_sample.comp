@@ -6,7 +6,8 @@
 #endif
 #include "lib/common.glsl"
 #include "lib/amr_sample.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t points; uint64_t outAddr; uint count; uint samplerKind; uint backend; uint pad; } tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestSamplePush tp; };
 layout(local_size_x = 32) in;
 
 void main() {
@@ -15,7 +16,7 @@ void main() {
     gParams = ParamsRef(tp.params);
     vec4 p = Vec4Ref(tp.points).v[i];
     FieldSample s = sampleField(tp.samplerKind, tp.backend, p.xyz);
-    FloatRW o = FloatRW(tp.outAddr);
+    FloatRW o = FloatRW(tp.results);
     o.v[3u * i] = s.value;
     o.v[3u * i + 1u] = s.weightSum;
     o.v[3u * i + 2u] = s.inside ? 1.0 : 0.0;

@@ -11,9 +11,8 @@
 #include "lib/domain_traversal.glsl"
 #include "lib/traversal.glsl"
 // rays: vec4 (origin, tMin), vec4 (direction, tMax) per ray.
-layout(push_constant, scalar) uniform TestPush {
-    uint64_t params; uint64_t rays; uint64_t outAddr; uint count; uint traversal; uint backend; uint maxSegments;
-} tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestSegmentsPush tp; };
 layout(local_size_x = 32) in;
 
 void main() {
@@ -22,7 +21,7 @@ void main() {
     gParams = ParamsRef(tp.params);
     vec4 o = Vec4Ref(tp.rays).v[2u * r], d = Vec4Ref(tp.rays).v[2u * r + 1u];
     StructureConfig cfg = StructureConfig(kSamplerExtBrick, tp.traversal, tp.backend);
-    UintRW out_ = UintRW(tp.outAddr);
+    UintRW out_ = UintRW(tp.results);
     uint base = r * (1u + 4u * tp.maxSegments);
     uint n = 0u, steps = 0u;
     Traversal tr;

@@ -9,7 +9,8 @@
 #include "lib/domain_traversal.glsl"
 #include "lib/traversal.glsl"
 #include "lib/tracking.glsl"
-layout(push_constant, scalar) uniform TestPush { uint64_t params; uint64_t outAddr; vec4 origin; vec4 dir; uint count; uint samplerKind; uint traversal; uint pad; } tp;
+#include "shared/test_push.h"
+layout(push_constant, scalar) uniform Push { TestTrackingPush tp; };
 layout(local_size_x = 64) in;
 
 void main() {
@@ -17,12 +18,12 @@ void main() {
     if (i >= tp.count) return;
     gParams = ParamsRef(tp.params);
     uint rng = seedRng(i, 0u, 12345u);
-    Counters c = Counters(0u, 0u, 0u, 0u, 0u);
+    Counters c = newCounters();
     float tHit;
     vec4 tf;
     bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c, tHit, tf);
     float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c);
-    FloatRW o = FloatRW(tp.outAddr);
+    FloatRW o = FloatRW(tp.results);
     o.v[2u * i] = hit ? 0.0 : 1.0;
     o.v[2u * i + 1u] = tr;
 }

@@ -1,0 +1,92 @@
+#include "render/device_scene.h"
+
+#include "core/error.h"
+
+namespace amrvk::render {
+
+using scene::Backend;
+using scene::SamplerKind;
+using scene::TraversalKind;
+
+namespace {
+gpu::Buffer rangeBuffer(gpu::Context& ctx, const std::vector<accel::ValueRange>& ranges, const std::string& name) {
+    gpu::Buffer b(ctx, std::max<uint64_t>(16, ranges.size() * sizeof(shared::ValueRangeGpu)), gpu::MemoryKind::Device,
+                  name);
+    if (!ranges.empty()) b.upload(ranges.data(), ranges.size() * sizeof(shared::ValueRangeGpu));
+    return b;
+}
+}  // namespace
+
+std::string traversalResourceName(TraversalKind traversal, const char* what) {
+    return std::string(scene::traversalName(traversal)) + "Traversal" + what;
+}
+
+DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
+    const scene::StructureConfig& cfg = scene.config;
+    AMRVK_CHECK(cfg.backend != Backend::Auto, "internal: DeviceScene needs a resolved back-end");
+    AMRVK_CHECK(cfg.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
+                "' has no VK_KHR_ray_query");
+    mParams.boundsHi = glm::vec3(scene.toLocal(glm::dvec3(scene.bounds.upper)));
+    mParams.invFinestCellWidth = float(1.0 / double(amr::cellWidth(scene.minLevel)));
+    if (cfg.usesBricks()) {
+        std::vector<shared::BrickGpu> bricks;
+        bricks.reserve(scene.bricks.bricks.size());
+        for (const accel::Brick& b : scene.bricks.bricks)
+            bricks.push_back({scene.toLocal(glm::i64vec3(b.lower)), b.level, b.size, uint32_t(b.begin)});
+        mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
+        mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+        mParams.bricks = mBricks.address();
+        mParams.brickValues = mBrickValues.address();
+    }
+    const std::string sampler = cfg.sampler == SamplerKind::Abr ? "abrSampler" : "brickDomainSampler";
+    if (cfg.sampler == SamplerKind::Dense) {
+        AMRVK_CHECK(scene.dense.has_value(), "internal: dense sampler without a dense grid");
+        const accel::DenseGrid& d = *scene.dense;
+        mDenseValues = gpu::makeBuffer<float>(ctx, d.values, "denseGrid");
+        mParams.denseValues = mDenseValues.address();
+        mParams.denseDims = d.dims;
+        mParams.denseLevel = d.level;
+        mParams.denseOrigin = glm::vec3(scene.toLocal(glm::dvec3(d.origin)));
+        mParams.denseSpacing = float(amr::cellWidth(d.level));
+    } else if (cfg.backend == Backend::Sw) {
+        mSamplerNodes = gpu::makeBuffer<shared::BvhNodeGpu>(ctx, scene.samplerBvh.nodes, sampler + "Bvh");
+        mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, sampler + "BvhPrims");
+        mParams.samplerNodes = mSamplerNodes.address();
+        mParams.samplerPrims = mSamplerPrims.address();
+    } else {
+        const auto& boxes = scene.samplerBoxes;
+        mSamplerAabbs = gpu::Buffer(ctx, std::max<uint64_t>(16, boxes.size() * sizeof(shared::AabbGpu)),
+                                    gpu::MemoryKind::Device, sampler + "Aabbs",
+                                    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR);
+        if (!boxes.empty()) mSamplerAabbs.upload(boxes.data(), boxes.size() * sizeof(shared::AabbGpu));
+        mSamplerAccel = gpu::AabbAccelerationStructure(ctx, uint32_t(boxes.size()), sampler + "Accel");
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { mSamplerAccel.build(cmd, mSamplerAabbs); });
+        mParams.samplerAccel = mSamplerAccel.tlasAddress();
+    }
+    if (scene.abrs) {
+        std::vector<shared::AbrGpu> abrs;
+        abrs.reserve(scene.abrs->abrs.size());
+        for (const accel::Abr& a : scene.abrs->abrs) {
+            const shared::AabbGpu box = scene.toLocal({a.box.lower(), a.box.upper()});
+            abrs.push_back({box.lo, a.brickBegin, box.hi, a.brickCount});
+        }
+        mAbrs = gpu::makeBuffer<shared::AbrGpu>(ctx, abrs, "abrs");
+        mAbrBrickList = gpu::makeBuffer<uint32_t>(ctx, scene.abrs->brickList, "abrBrickLists");
+        mParams.abrs = mAbrs.address();
+        mParams.abrBrickList = mAbrBrickList.address();
+    }
+    if (scene.grid) {
+        mGridRanges = rangeBuffer(ctx, scene.grid->ranges, "macrocellRanges");
+        mParams.gridDims = scene.grid->dims;
+        mParams.gridOrigin = glm::vec3(scene.toLocal(scene.grid->origin));
+        mParams.gridCellSize = glm::vec3(scene.grid->cellSize);
+        mParams.gridRanges = mGridRanges.address();
+    }
+    const TraversalKind t = cfg.traversal;
+    if (t == TraversalKind::Abr || t == TraversalKind::Brick || t == TraversalKind::ExtBrick) {
+        mDomainBoxes = gpu::makeBuffer<shared::AabbGpu>(ctx, scene.domains.boxes, traversalResourceName(t, "Boxes"));
+        mDomainRanges = rangeBuffer(ctx, scene.domains.ranges, traversalResourceName(t, "Ranges"));
+    }
+}
+
+}  // namespace amrvk::render

@@ -1,0 +1,220 @@
+#include "render/majorant_pass.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/stats.h"
+#include "gpu/shader_library.h"
+
+namespace amrvk::render {
+
+using scene::Backend;
+using scene::TraversalKind;
+
+namespace {
+constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+
+gpu::Buffer floatBuffer(gpu::Context& ctx, uint64_t count, const std::string& name) {
+    return gpu::Buffer(ctx, std::max<uint64_t>(16, count * sizeof(float)), gpu::MemoryKind::Device, name);
+}
+}  // namespace
+
+MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device)
+    : mCtx(ctx), mScene(scene), mDevice(device) {
+    const scene::StructureConfig& cfg = scene.config;
+    const TraversalKind t = cfg.traversal;
+    if (scene.grid) {
+        mGridMajorants = floatBuffer(ctx, scene.grid->ranges.size(), "macrocellMajorants");
+        mParams.gridMajorants = mGridMajorants.address();
+    }
+    if (t == TraversalKind::GridBvh) {
+        mParams.domainCount = uint32_t(scene.grid->ranges.size());
+        mParams.domainRanges = device.gridRanges().address();
+        mParams.domainMajorants = mGridMajorants.address();
+    } else if (cfg.traversalUsesBoxes() && t != TraversalKind::KdTree) {
+        mParams.domainCount = uint32_t(scene.domains.boxes.size());
+        mParams.domainBoxes = device.domainBoxes().address();
+        mParams.domainRanges = device.domainRanges().address();
+        mDomainMajorants = floatBuffer(ctx, mParams.domainCount, traversalResourceName(t, "Majorants"));
+        mParams.domainMajorants = mDomainMajorants.address();
+    }
+    if (cfg.backend == Backend::Rq && cfg.traversalUsesBoxes() && t != TraversalKind::KdTree) {
+        mDomainAabbs = gpu::Buffer(ctx, std::max<uint64_t>(24, uint64_t(mParams.domainCount) * sizeof(shared::AabbGpu)),
+                                   gpu::MemoryKind::Device, traversalResourceName(t, "Aabbs"), kAsInput);
+        mDomainAccel = gpu::AabbAccelerationStructure(ctx, mParams.domainCount, traversalResourceName(t, "Accel"));
+        mParams.domainAccel = mDomainAccel.tlasAddress();
+    }
+}
+
+const std::vector<accel::ValueRange>& MajorantPass::domainRanges() const {
+    switch (mScene.config.traversal) {
+        case TraversalKind::GridBvh: return mScene.grid->ranges;
+        case TraversalKind::KdTree: return mKdTree->leafRanges;
+        default: return mScene.domains.ranges;
+    }
+}
+
+void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
+    accel::KdTreeParams params;
+    params.maxLeaves = mScene.config.kdLeaves;
+    mKdTree = accel::buildKdTree(mScene.supportRangeQuery(), mScene.bounds,
+                                 [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
+    mKdBoxesHost.clear();
+    mKdBoxesHost.reserve(mKdTree->leaves.size());
+    for (const accel::BoxD& b : mKdTree->leaves) mKdBoxesHost.push_back(mScene.toLocal(b));
+    const TraversalKind t = TraversalKind::KdTree;
+    const uint32_t count = uint32_t(mKdBoxesHost.size());
+    mKdBoxes = gpu::Buffer();
+    mKdRanges = gpu::Buffer();
+    mDomainMajorants = gpu::Buffer();
+    mKdBoxes = gpu::makeBuffer<shared::AabbGpu>(mCtx, mKdBoxesHost, traversalResourceName(t, "Boxes"));
+    mKdRanges = gpu::Buffer(mCtx, std::max<uint64_t>(16, uint64_t(count) * sizeof(shared::ValueRangeGpu)),
+                            gpu::MemoryKind::Device, traversalResourceName(t, "Ranges"));
+    if (count > 0) mKdRanges.upload(mKdTree->leafRanges.data(), uint64_t(count) * sizeof(shared::ValueRangeGpu));
+    mDomainMajorants = floatBuffer(mCtx, count, traversalResourceName(t, "Majorants"));
+    mParams.domainCount = count;
+    mParams.domainBoxes = mKdBoxes.address();
+    mParams.domainRanges = mKdRanges.address();
+    mParams.domainMajorants = mDomainMajorants.address();
+    if (mScene.config.backend == Backend::Rq) {
+        mDomainAccel = {};
+        mDomainAabbs = gpu::Buffer();
+        mDomainAabbs = gpu::Buffer(mCtx, std::max<uint64_t>(24, uint64_t(count) * sizeof(shared::AabbGpu)),
+                                   gpu::MemoryKind::Device, traversalResourceName(t, "Aabbs"), kAsInput);
+        mDomainAccel = gpu::AabbAccelerationStructure(mCtx, count, traversalResourceName(t, "Accel"));
+        mParams.domainAccel = mDomainAccel.tlasAddress();
+    }
+    mBvhMask.clear();  // new boxes: the culling BVH must be rebuilt
+}
+
+const std::vector<shared::AabbGpu>& MajorantPass::traversalBoxes() const {
+    return mScene.config.traversal == TraversalKind::KdTree ? mKdBoxesHost : mScene.domains.boxes;
+}
+
+// sw back-end: a BVH over the active boxes, rebuilt only when that set changes.
+void MajorantPass::updateSwCulling() {
+    if (mActive == mBvhMask && mDomainNodes.valid()) return;
+    mBvhMask = mActive;
+    std::vector<accel::BoxD> boxes;
+    std::vector<uint32_t> ids;
+    const TraversalKind t = mScene.config.traversal;
+    const std::vector<shared::AabbGpu>& domainBoxes = traversalBoxes();
+    for (uint32_t i = 0; i < mActive.size(); ++i) {
+        if (!mActive[i]) continue;
+        ids.push_back(i);
+        if (t == TraversalKind::GridBvh) {
+            // The shader computes macrocell faces in float; pad the double box so nodes stay conservative.
+            const accel::RangeGrid& g = *mScene.grid;
+            const glm::ivec3 c(int(i % uint32_t(g.dims.x)), int((i / uint32_t(g.dims.x)) % uint32_t(g.dims.y)),
+                               int(i / uint32_t(g.dims.x * g.dims.y)));
+            const glm::dvec3 o = mScene.toLocal(g.origin);
+            const glm::dvec3 lo = o + glm::dvec3(c) * g.cellSize, hi = o + glm::dvec3(c + 1) * g.cellSize;
+            const glm::dvec3 pad = 1e-5 * (glm::abs(lo) + glm::abs(hi) + 1.0);
+            boxes.push_back({lo - pad, hi + pad});
+        } else {
+            const shared::AabbGpu& b = domainBoxes[i];
+            boxes.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
+        }
+    }
+    mDomainNodes = gpu::Buffer();
+    mDomainPrims = gpu::Buffer();
+    accel::Bvh bvh = boxes.empty() ? accel::Bvh{} : accel::buildBvh(boxes);
+    for (uint32_t& p : bvh.primIds) p = ids[p];
+    mDomainNodes = gpu::makeBuffer<shared::BvhNodeGpu>(mCtx, bvh.nodes, traversalResourceName(t, "Bvh"));
+    mDomainPrims = gpu::makeBuffer<uint32_t>(mCtx, bvh.primIds, traversalResourceName(t, "BvhPrims"));
+    mParams.domainNodes = mDomainNodes.address();
+    mParams.domainPrims = mDomainPrims.address();
+}
+
+void MajorantPass::prepare(const scene::TransferFunction& tf) {
+    const auto& positions = tf.positions();
+    const auto& colors = tf.colors();
+    AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
+    Timer host;
+    const scene::StructureConfig& cfg = mScene.config;
+    mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
+    mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
+    mParams.tfPositions = mTfPositions.address();
+    mParams.tfColors = mTfColors.address();
+    mParams.tfNodeCount = uint32_t(positions.size());
+    if (cfg.traversal == TraversalKind::KdTree) buildKdTree(tf);
+    if (cfg.traversalUsesBoxes()) {
+        // The host holds every value range: the boxes that can have a majorant > 0 are known
+        // without reading the GPU's majorants back.
+        const std::vector<accel::ValueRange>& ranges = domainRanges();
+        mActive.assign(ranges.size(), 0);
+        for (size_t i = 0; i < ranges.size(); ++i) mActive[i] = tf.maxAlpha(ranges[i].lo, ranges[i].hi) > 0.0f;
+        mActiveBoxes = uint64_t(std::count(mActive.begin(), mActive.end(), uint8_t(1)));
+        mParams.domainAnyActive = mActiveBoxes > 0 ? 1u : 0u;
+        if (cfg.backend == Backend::Sw) updateSwCulling();
+    }
+    mHostSeconds = host.seconds();
+}
+
+void MajorantPass::dispatch(uint64_t paramsAddress) {
+    const scene::StructureConfig& cfg = mScene.config;
+    if (!mMajorantPipeline.valid())
+        mMajorantPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("majorants"), "majorants",
+                                                 sizeof(shared::StructurePush));
+    const bool rq = cfg.backend == Backend::Rq && cfg.traversalUsesBoxes();
+    if (rq && !mAabbPipeline.valid())
+        mAabbPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("domain_aabbs"), "domain_aabbs",
+                                             sizeof(shared::StructurePush));
+    const uint32_t boxCount = cfg.traversalUsesBoxes() ? mParams.domainCount : 0;
+    const bool ownDomainMajorants = mDomainMajorants.valid();
+    gpu::GpuTimer timer(mCtx, 4);
+    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+        timer.reset(cmd);
+        const uint32_t scope = timer.begin(cmd, "majorants");
+        if (mScene.grid) {
+            const uint32_t n = uint32_t(mScene.grid->ranges.size());
+            shared::StructurePush push{paramsAddress, mDevice.gridRanges().address(), mGridMajorants.address(), n, 0};
+            mMajorantPipeline.dispatch(cmd, &push, (n + 63) / 64);
+        }
+        if (ownDomainMajorants && boxCount > 0) {
+            shared::StructurePush push{paramsAddress, mParams.domainRanges, mDomainMajorants.address(), boxCount, 0};
+            mMajorantPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
+        }
+        gpu::computeBarrier(cmd);
+        if (rq && boxCount > 0) {
+            shared::StructurePush push{paramsAddress, mParams.domainMajorants, mDomainAabbs.address(), boxCount,
+                                       uint32_t(cfg.traversal)};
+            mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
+            gpu::computeBarrier(cmd);
+            mDomainAccel.build(cmd, mDomainAabbs);
+        }
+        timer.end(cmd, scope);
+        gpu::computeBarrier(cmd);
+    });
+    mGpuSeconds = timer.total("majorants");
+}
+
+std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {
+    std::vector<std::pair<std::string, uint64_t>> out;
+    if (mKdTree) out.emplace_back("kdTree", mKdTree->memoryBytes());
+    return out;
+}
+
+std::vector<float> MajorantPass::downloadGridMajorants() const {
+    AMRVK_CHECK(mGridMajorants.valid(), "downloadGridMajorants: no macrocell grid in this configuration");
+    std::vector<float> out(mScene.grid->ranges.size());
+    mGridMajorants.download(out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+std::vector<float> MajorantPass::downloadDomainMajorants() const {
+    AMRVK_CHECK(mDomainMajorants.valid(), "downloadDomainMajorants: no traversal boxes in this configuration");
+    std::vector<float> out(mParams.domainCount);
+    if (!out.empty()) mDomainMajorants.download(out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+void MajorantPass::overrideGridMajorants(const std::vector<float>& majorants) {
+    AMRVK_CHECK(mScene.grid && mScene.config.traversal == TraversalKind::GridDda,
+                "overrideMajorants: grid-dda traversal only");
+    AMRVK_CHECK(majorants.size() == mScene.grid->ranges.size(), "overrideMajorants: ", majorants.size(),
+                " values for ", mScene.grid->ranges.size(), " macrocells");
+    mGridMajorants.upload(majorants.data(), majorants.size() * sizeof(float));
+}
+
+}  // namespace amrvk::render

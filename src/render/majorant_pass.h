@@ -1,0 +1,82 @@
+#pragma once
+// Everything that depends on the transfer function (barney's computeMajorants(tf) over ranges
+// built once): the TF nodes on the GPU; the majorant of every macrocell and traversal box
+// (majorants.comp: exact TF alpha maximum over the value range); the culled traversal hierarchy
+// over the boxes whose majorant can be > 0 (sw: a BVH built on the host from the value ranges it
+// already holds; rq: domain_aabbs.comp collapses culled boxes, then a BLAS rebuild); and, for the
+// kdtree traversal, the TF-specific kd-tree itself. Fills shared::MajorantsGpu. Never touches the
+// TF-independent structures (VolumeScene, DeviceScene), which it only reads.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "accel/kdtree.h"
+#include "gpu/acceleration_structure.h"
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/context.h"
+#include "render/device_scene.h"
+#include "scene/transfer_function.h"
+#include "scene/volume_scene.h"
+
+namespace amrvk::render {
+
+class MajorantPass {
+public:
+    // Both must outlive the pass and stay as they are (a structure change makes a new pass).
+    MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device);
+
+    // Host part of a TF change: TF nodes, the kd-tree and its boxes (kdtree traversal), and the set
+    // of traversal boxes whose value range can reach alpha > 0 (TransferFunction::maxAlpha, the
+    // CPU twin of the shader's tfMaxAlpha) with, for sw, the BVH over them (rebuilt only when that
+    // set changed). Fills params(); dispatch() must follow once they are on the GPU.
+    void prepare(const scene::TransferFunction& tf);
+    // GPU part: majorants of every structure, and for rq the AABBs and BLAS of the culled boxes.
+    // paramsAddress: a RenderParams buffer holding params() and the scene's SceneGpu.
+    void dispatch(uint64_t paramsAddress);
+
+    const shared::MajorantsGpu& params() const { return mParams; }
+    double gpuSeconds() const { return mGpuSeconds; }    // last dispatch: majorant passes (+ AABBs, BLAS)
+    double hostSeconds() const { return mHostSeconds; }  // last prepare: kd-tree and sw culling BVH
+    double kdTreeSeconds() const { return mKdTree ? mKdTree->buildSeconds : 0.0; }
+    // Traversal boxes (macrocells for grid-bvh) whose range can reach alpha > 0 under the last TF.
+    uint64_t activeBoxes() const { return mActiveBoxes; }
+    // Per traversal box: 1 when its range can reach alpha > 0 under the last TF (the culling set).
+    const std::vector<uint8_t>& activeMask() const { return mActive; }
+    // The traversal boxes (local voxel space) of abr | brick | ext-brick | kdtree; empty otherwise.
+    const std::vector<shared::AabbGpu>& traversalBoxes() const;
+    // Host bytes of the TF-dependent structures (the kd-tree).
+    std::vector<std::pair<std::string, uint64_t>> hostBytes() const;
+
+    // Majorant per macrocell / traversal box as computed on the GPU (tests and statistics).
+    std::vector<float> downloadGridMajorants() const;
+    std::vector<float> downloadDomainMajorants() const;
+    // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
+    void overrideGridMajorants(const std::vector<float>& majorants);
+
+private:
+    void buildKdTree(const scene::TransferFunction& tf);
+    void updateSwCulling();
+    const std::vector<accel::ValueRange>& domainRanges() const;
+
+    gpu::Context& mCtx;
+    const scene::VolumeScene& mScene;
+    const DeviceScene& mDevice;
+    shared::MajorantsGpu mParams{};
+    gpu::Buffer mTfPositions, mTfColors, mGridMajorants, mDomainMajorants;
+    gpu::Buffer mKdBoxes, mKdRanges;               // kdtree traversal: the leaves of the TF's tree
+    gpu::Buffer mDomainNodes, mDomainPrims;        // sw culling: BVH over the active boxes
+    gpu::Buffer mDomainAabbs;                      // rq culling: BLAS input
+    gpu::AabbAccelerationStructure mDomainAccel;
+    gpu::ComputePipeline mMajorantPipeline, mAabbPipeline;
+    std::optional<accel::KdTree> mKdTree;
+    std::vector<shared::AabbGpu> mKdBoxesHost;     // local voxel space
+    std::vector<uint8_t> mActive;                  // boxes whose range can reach alpha > 0
+    std::vector<uint8_t> mBvhMask;                 // the boxes in the current sw BVH
+    uint64_t mActiveBoxes = 0;
+    double mGpuSeconds = 0, mHostSeconds = 0;
+};
+
+}  // namespace amrvk::render

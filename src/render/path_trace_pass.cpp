@@ -1,0 +1,124 @@
+#include "render/path_trace_pass.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "gpu/shader_library.h"
+
+namespace amrvk::render {
+
+namespace {
+
+std::string pipelineKey(scene::Mode mode, const scene::StructureConfig& config) {
+    return std::string("path_trace.") + scene::modeName(mode) + "." + config.label();
+}
+
+gpu::ComputePipeline compile(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config) {
+    // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
+    const char* shader = config.backend == scene::Backend::Rq ? "path_trace_rq" : "path_trace";
+    return gpu::ComputePipeline(ctx, gpu::loadShader(shader), pipelineKey(mode, config), sizeof(shared::PushConstants),
+                                {{0, uint32_t(mode)},
+                                 {1, uint32_t(config.sampler)},
+                                 {2, uint32_t(config.traversal)},
+                                 {3, uint32_t(config.backend)}});
+}
+
+}  // namespace
+
+PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
+    mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
+}
+
+const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scene::StructureConfig& config) {
+    AMRVK_CHECK(config.backend != scene::Backend::Auto, "internal: pipeline needs a resolved back-end");
+    const std::string key = pipelineKey(mode, config);
+    auto it = mPipelines.find(key);
+    if (it == mPipelines.end()) {
+        it = mPipelines.emplace(key, compile(mCtx, mode, config)).first;
+        ++mCompiled;
+    }
+    return it->second;
+}
+
+void PathTracePass::dropPipelines() { mPipelines.clear(); }
+
+void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config) {
+    gpu::ComputePipeline fresh = compile(mCtx, mode, config);  // throws before anything is replaced
+    ++mCompiled;
+    mPipelines.clear();
+    mPipelines.emplace(pipelineKey(mode, config), std::move(fresh));
+}
+
+void PathTracePass::resize(int width, int height) {
+    if (mAccum.valid() && width == mWidth && height == mHeight) return;
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    mAccum = gpu::Buffer();
+    mAccum = gpu::Buffer(mCtx, pixels * 2 * sizeof(glm::vec4), gpu::MemoryKind::Device, "accumulation");
+    mWidth = width;
+    mHeight = height;
+    reset();
+}
+
+void PathTracePass::reset() {
+    if (mAccum.valid()) mAccum.fillZero();
+    mSpp = 0;
+    mStats = {};
+}
+
+void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t n,
+                               const std::function<void(uint32_t)>& afterBatch, uint32_t maxBatch) {
+    AMRVK_CHECK(mAccum.valid(), "internal: accumulate() before resize()");
+    const uint32_t gx = (uint32_t(mWidth) + 7) / 8, gy = (uint32_t(mHeight) + 7) / 8;
+    gpu::GpuTimer timer(mCtx, 64);
+    std::array<uint32_t, shared::kCounterCount> counters{};
+    uint32_t done = 0, batch = 1;
+    while (done < n) {
+        const uint32_t count = std::min({batch, maxBatch, n - done});
+        mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+            gpu::computeBarrier(cmd);
+            for (uint32_t i = 0; i < count; ++i) {
+                const uint32_t scope = timer.begin(cmd, "path_trace");
+                shared::PushConstants push{paramsAddress, mSpp + i, 0};
+                pipeline.dispatch(cmd, &push, gx, gy);
+                timer.end(cmd, scope);
+                gpu::computeBarrier(cmd);
+            }
+        });
+        mCounters.download(counters.data(), sizeof counters);
+        uint32_t largest = 0;
+        for (uint32_t k = 0; k < shared::kCounterCount; ++k) {
+            mStats.counters[k] += counters[k];
+            largest = std::max(largest, counters[k]);
+        }
+        mStats.gpuSeconds += timer.total("path_trace");
+        mSpp += count;
+        done += count;
+        mStats.paths = uint64_t(mSpp) * uint64_t(mWidth) * uint64_t(mHeight);
+        // Grow batches while the 32-bit counters stay far from overflowing.
+        if (largest < (1u << 28) && batch < 64) batch *= 2;
+        else if (largest >= (1u << 30) && batch > 1) batch /= 2;
+        if (afterBatch) afterBatch(mSpp);
+    }
+}
+
+scene::RenderOutput PathTracePass::read() const {
+    scene::RenderOutput o;
+    o.spp = mSpp;
+    o.stats = mStats;
+    o.mean = Image(mWidth, mHeight);
+    o.sumSq.resize(o.mean.pixels.size());
+    if (!mAccum.valid()) return o;
+    std::vector<glm::vec4> accum(o.mean.pixels.size() * 2);
+    mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
+    for (size_t i = 0; i < o.mean.pixels.size(); ++i) {
+        const glm::vec4 sum = accum[2 * i];
+        const float count = sum.w > 0 ? sum.w : 1.0f;
+        o.mean.pixels[i] = glm::vec4(glm::vec3(sum) / count, 1.0f);
+        o.sumSq[i] = accum[2 * i + 1];
+    }
+    return o;
+}
+
+}  // namespace amrvk::render

@@ -1,0 +1,62 @@
+#pragma once
+// The path-trace pass: one sample per pixel per dispatch of path_trace.comp (specialised for a
+// mode and structure combination; path_trace_rq for the ray-query back-end) added to an
+// accumulation buffer (sum and sum of squares per pixel), with the per-dispatch counters summed
+// on the host in 64 bits. Samples continue from the accumulated count, so adding n samples to an
+// image of k gives the same estimate as one run of k + n.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/context.h"
+#include "scene/render_output.h"
+#include "scene/render_settings.h"
+#include "scene/structure_config.h"
+
+namespace amrvk::render {
+
+class PathTracePass {
+public:
+    explicit PathTracePass(gpu::Context& ctx);
+
+    // The pipeline for (mode, config), compiled on first use and kept until dropPipelines().
+    const gpu::ComputePipeline& pipeline(scene::Mode mode, const scene::StructureConfig& config);
+    // Forgets every pipeline (structure or shader change); the next pipeline() compiles again.
+    void dropPipelines();
+    // Compiles the pipeline for (mode, config) from the current shader library and only then
+    // replaces the old one: on a compile error it throws and the previous pipeline keeps running.
+    void recompile(scene::Mode mode, const scene::StructureConfig& config);
+    uint64_t pipelinesCompiled() const { return mCompiled; }
+
+    // (Re)allocates the accumulation buffer for width x height pixels when the size changes.
+    void resize(int width, int height);
+    // Zeroes the accumulation: the image holds no sample afterwards.
+    void reset();
+    uint64_t accumAddress() const { return mAccum.address(); }
+    uint64_t countersAddress() const { return mCounters.address(); }
+    uint32_t spp() const { return mSpp; }
+    const scene::RenderStats& stats() const { return mStats; }
+
+    // Adds n samples per pixel with `pipeline`; paramsAddress holds RenderParams for this pass.
+    // Batches of dispatches grow while the 32-bit counters stay far from overflowing;
+    // afterBatch(spp so far) runs after each batch.
+    void accumulate(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t n,
+                    const std::function<void(uint32_t)>& afterBatch = {}, uint32_t maxBatch = 64);
+    // The mean so far (downloads the accumulation buffer).
+    scene::RenderOutput read() const;
+
+private:
+    gpu::Context& mCtx;
+    std::map<std::string, gpu::ComputePipeline> mPipelines;  // key: mode + structure label
+    gpu::Buffer mAccum, mCounters;
+    int mWidth = 0, mHeight = 0;
+    uint32_t mSpp = 0;
+    uint64_t mCompiled = 0;
+    scene::RenderStats mStats;
+};
+
+}  // namespace amrvk::render

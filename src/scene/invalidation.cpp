@@ -1,0 +1,62 @@
+#include "scene/invalidation.h"
+
+namespace amrvk::scene {
+
+namespace {
+
+bool sameLights(const std::vector<Light>& a, const std::vector<Light>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i].point != b[i].point || a[i].posOrDir != b[i].posOrDir || a[i].radiance != b[i].radiance) return false;
+    return true;
+}
+
+}  // namespace
+
+Invalidation invalidatedBy(ChangeSet c) {
+    Invalidation v;
+    v.accumulation = !c.empty();
+    v.accumulationBuffer = c.has(Change::ImageSize);
+    v.viewParams = c.has(Change::Camera) || c.has(Change::ImageSize) || c.has(Change::Seed);
+    v.shadingParams = c.has(Change::Lighting) || c.has(Change::Medium) || c.has(Change::DvrOptions) ||
+                      c.has(Change::Camera);  // dvr's headlight follows the camera
+    v.pipelines = c.has(Change::Structure) || c.has(Change::Shaders);
+    v.majorants = c.has(Change::TransferFunction) || c.has(Change::Structure);
+    v.culling = v.majorants;
+    v.kdTree = v.majorants;
+    v.deviceScene = c.has(Change::Structure);
+    return v;
+}
+
+ChangeSet settingsChanges(const RenderSettings& a, const RenderSettings& b) {
+    ChangeSet c;
+    if (a.camera.eye != b.camera.eye || a.camera.target != b.camera.target || a.camera.up != b.camera.up ||
+        a.camera.fovYDegrees != b.camera.fovYDegrees)
+        c |= Change::Camera;
+    if (a.width != b.width || a.height != b.height) c |= Change::ImageSize;
+    if (a.seed != b.seed) c |= Change::Seed;
+    if (a.mode != b.mode) c |= Change::Mode;
+    if (a.ambient != b.ambient || a.background != b.background || !sameLights(a.lights, b.lights))
+        c |= Change::Lighting;
+    if (a.densityScale != b.densityScale || a.g != b.g || a.maxTrackingSteps != b.maxTrackingSteps)
+        c |= Change::Medium;
+    if (a.dvrStep != b.dvrStep || a.dvrShading != b.dvrShading) c |= Change::DvrOptions;
+    return c;
+}
+
+std::string describe(ChangeSet c) {
+    static const std::pair<Change, const char*> kNames[] = {
+        {Change::Camera, "camera"},         {Change::ImageSize, "image size"}, {Change::Seed, "seed"},
+        {Change::Mode, "mode"},             {Change::Lighting, "lighting"},    {Change::Medium, "medium"},
+        {Change::DvrOptions, "dvr options"}, {Change::TransferFunction, "transfer function"},
+        {Change::Structure, "structure"},   {Change::Shaders, "shaders"}};
+    std::string out;
+    for (const auto& [change, name] : kNames) {
+        if (!c.has(change)) continue;
+        if (!out.empty()) out += '|';
+        out += name;
+    }
+    return out.empty() ? "nothing" : out;
+}
+
+}  // namespace amrvk::scene
