@@ -4,7 +4,8 @@
 # depfiles) and embeds the SPIR-V in a static library `target` that defines
 #   std::span<const amrvk::gpu::EmbeddedShader> amrvk::shaders::<cppFunctionName>();
 # Shader names are the file names without extension; a variant compiles `source` again with
-# -DDEFINE under its own name (e.g. a ray-query build that needs a device feature).
+# -DDEFINE under its own name (e.g. a ray-query build that needs a device feature). Each entry
+# records its source name and define, so --shader-dir can rebuild variants from the source.
 find_program(GLSLC glslc REQUIRED)
 
 function(amrvk_embed_shaders)
@@ -43,7 +44,8 @@ function(amrvk_embed_shaders)
       VERBATIM)
     list(APPEND incs ${inc})
     string(APPEND decls "const uint32_t k_${name}[] =\n#include \"${name}.spv.inc\"\n;\n")
-    string(APPEND table "    {\"${name}\", k_${name}, sizeof(k_${name}) / sizeof(uint32_t)},\n")
+    get_filename_component(srcname ${src} NAME_WE)
+    string(APPEND table "    {\"${name}\", k_${name}, sizeof(k_${name}) / sizeof(uint32_t), \"${srcname}\", \"${define}\"},\n")
   endforeach()
   set(cpp ${outdir}/embedded.cpp)
   file(WRITE ${cpp}.in

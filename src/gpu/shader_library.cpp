@@ -1,13 +1,11 @@
 #include "gpu/shader_library.h"
 
-#include <unistd.h>
-
-#include <cstdlib>
 #include <map>
 #include <mutex>
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "gpu/shader_compiler.h"
 
 namespace fs = std::filesystem;
 
@@ -34,36 +32,42 @@ void registerShaders(std::span<const EmbeddedShader> shaders) {
 }
 
 void setShaderDirectory(const fs::path& dir) {
-    AMRVK_CHECK(fs::is_directory(dir), "--shader-dir ", dir.string(), ": not a directory");
+    AMRVK_CHECK(dir.empty() || fs::is_directory(dir), "--shader-dir ", dir.string(), ": not a directory");
     std::lock_guard lock(gMutex);
     gDirectory = dir;
 }
 
+fs::path shaderDirectory() {
+    std::lock_guard lock(gMutex);
+    return gDirectory;
+}
+
 std::vector<uint32_t> loadShader(const std::string& name) {
     fs::path dir;
+    std::string source = name, define;
+    const EmbeddedShader* embedded = nullptr;
     {
         std::lock_guard lock(gMutex);
         dir = gDirectory;
-    }
-    if (!dir.empty()) {
-        fs::path spv = dir / (name + ".spv"), comp = dir / (name + ".comp");
-        if (fs::exists(spv)) return readSpirv(spv);
-        if (fs::exists(comp)) {
-            fs::path out = fs::temp_directory_path() / ("amrvk-" + name + "-" + std::to_string(::getpid()) + ".spv");
-            std::string cmd = "glslc --target-env=vulkan1.2 -O -I '" + (dir / "..").string() + "' -I '" +
-                              dir.string() + "' -o '" + out.string() + "' '" + comp.string() + "'";
-            int rc = std::system(cmd.c_str());
-            AMRVK_CHECK(rc == 0, comp.string(), ": glslc failed (exit ", rc, ")");
-            auto words = readSpirv(out);
-            fs::remove(out);
-            return words;
+        auto it = gShaders.find(name);
+        if (it != gShaders.end()) {
+            embedded = &it->second;
+            source = it->second.source;
+            define = it->second.define;
         }
     }
-    std::lock_guard lock(gMutex);
-    auto it = gShaders.find(name);
-    AMRVK_CHECK(it != gShaders.end(), "shader '", name, "' not found",
+    if (!dir.empty()) {
+        const fs::path spv = dir / (name + ".spv"), comp = dir / (source + ".comp");
+        if (fs::exists(spv)) return readSpirv(spv);
+        if (fs::exists(comp)) {
+            std::vector<std::string> defines;
+            if (!define.empty()) defines.push_back(define);
+            return compileComputeShader(comp, defines, {dir / "..", dir});
+        }
+    }
+    AMRVK_CHECK(embedded, "shader '", name, "' not found",
                 dir.empty() ? std::string(" among the embedded shaders") : " in " + dir.string() + " or embedded");
-    return std::vector<uint32_t>(it->second.words, it->second.words + it->second.wordCount);
+    return std::vector<uint32_t>(embedded->words, embedded->words + embedded->wordCount);
 }
 
 }  // namespace amrvk::gpu
