@@ -198,17 +198,14 @@ int runRender(const std::vector<std::string>& argv) {
         if (args.has("sampler")) constraints.sampler = config.sampler;
         if (args.has("backend") && args.get("backend") != "auto") constraints.backend = config.backend;
         if (args.has("grid")) constraints.grid = config.grid;
+        constraints.kdLeaves = config.kdLeaves;
         render::AutoChoice choice;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");
             choice = render::autoSelect(ctx, scene, tf, rs, constraints);
         }
-        const uint32_t kdLeavesChosen = config.kdLeaves;
-        config = choice.config;
-        config.kdLeaves = kdLeavesChosen;
-        Timer t;
-        scene.configure(config);
-        buildSeconds = t.seconds();
+        config = choice.config;  // the scene is configured for it
+        buildSeconds = choice.configureSeconds;
         std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n", config.label().c_str(),
                      config.usesGrid() ? (" grid " + config.grid).c_str() : "", choice.probes.size(), choice.seconds);
     }

@@ -77,7 +77,7 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
 
     scene::StructureConfig base;
     base.grid = constraints.grid.value_or("auto");
-    base.kdLeaves = 4096;
+    base.kdLeaves = constraints.kdLeaves;
     for (scene::TraversalKind t : traversals)
         for (scene::SamplerKind s : samplers)
             for (scene::Backend b : backends) {
@@ -98,6 +98,9 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
         }
     }
     choice.seconds = total.seconds();
+    Timer configure;
+    volume.configure(choice.config);
+    choice.configureSeconds = configure.seconds();
     return choice;
 }
 

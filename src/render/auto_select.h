@@ -21,6 +21,7 @@ struct AutoConstraints {
     std::optional<scene::SamplerKind> sampler;
     std::optional<scene::Backend> backend;  // resolved (Sw or Rq) when set
     std::optional<std::string> grid;
+    uint32_t kdLeaves = 4096;  // the kd-tree size of kdtree probes and picks (not chosen)
 };
 
 struct AutoOptions {
@@ -42,11 +43,13 @@ struct AutoProbe {
 struct AutoChoice {
     scene::StructureConfig config;
     std::vector<AutoProbe> probes;
-    double seconds = 0;  // wall time of all probes
+    double seconds = 0;           // wall time of all probes
+    double configureSeconds = 0;  // configuring the scene for the pick at the end
 };
 
 // Probes with the scene's model and field under `tf` and `settings` (mode, camera, lights; size
-// and spp are the probe's). Reconfigures `volume`: configure it again before rendering.
+// and spp are the probe's). The scene is the driver's to change: each probe configures it, and it
+// is left configured for the pick.
 AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene::TransferFunction& tf,
                       const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options = {},
