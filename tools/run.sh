@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # amrvk set-up and entry points. Usage: tools/run.sh demo|test|build|deps
-#   demo  installs what is missing, builds Release into build/, runs the bundled sample
+#   demo  installs what is missing, builds Release into build/, renders the Enzo cosmology data
+#         beside the checkout (or the bundled sample where it is absent) to out/demo.png
 #   test  installs what is missing, builds, runs every test (ctest)
 #   build installs what is missing and builds
 #   deps  only installs what is missing (Debian 12; root or sudo)
@@ -93,11 +94,21 @@ case "$cmd" in
   build) deps; build ;;
   demo)
     deps; build
-    say "demo: the bundled sample (assets/samples/cloud: synthetic turbulent cloud, 32768 cells, 8 levels)"
-    ./build/bin/amrvk info assets/samples/cloud.cells
     mkdir -p out
-    ./build/bin/amrvk render assets/samples/cloud.cells --mode ms --size 256x256 --spp 16 --grid 64 \
-      --tf ramp --tf-range 0 1 --light-dir 1 -1 2 3 3 3 -o out/demo.png --json out/demo.json
+    # Lit from one side (a warm sun and a dim blue sky) on a black background, multiple scattering.
+    look=(--mode ms --background 0.004 0.004 0.008 --ambient 0.1 0.1 0.14 --light-dir 1 -1 2 5 4.5 3.8)
+    enzo="${AMRVK_DATA_DIR:-../shared/data/amr}/enzo_tiny_cosmology/DD0018/DD0018"
+    if [ -f "$enzo" ]; then
+      say "demo: Enzo cosmology at redshift 1.15 (137,502 leaf cells on 5 levels), gas density, the cosmic web"
+      ./build/bin/amrvk info "$enzo" --field Density
+      ./build/bin/amrvk render "$enzo" --field Density --tf assets/tf/cosmic-web.json --tf-range 0 4 \
+        --density-scale 0.06 "${look[@]}" --size 384x384 --spp 32 -o out/demo.png --json out/demo.json
+    else
+      say "demo: $enzo is absent; the bundled sample instead (synthetic turbulent cloud, 32768 cells, 8 levels)"
+      ./build/bin/amrvk info assets/samples/cloud.cells
+      ./build/bin/amrvk render assets/samples/cloud.cells --tf ramp --tf-range 0.3 2 --density-scale 3 --grid 64 \
+        "${look[@]}" --size 256x256 --spp 16 -o out/demo.png --json out/demo.json
+    fi
     say "demo image: $here/out/demo.png (statistics: $here/out/demo.json)"
     ;;
   test)
