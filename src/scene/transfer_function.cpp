@@ -100,6 +100,38 @@ void mergeChannels(const Channel<glm::dvec3>& rgb, const Channel<double>& alpha,
     }
 }
 
+}  // namespace
+
+TransferFunction TfChannels::merged() const {
+    AMRVK_CHECK(!colorPositions.empty() && colorPositions.size() == colors.size() && !opacityPositions.empty() &&
+                    opacityPositions.size() == alphas.size(),
+                name, ": colour and opacity need at least one node each");
+    Channel<glm::dvec3> rgb;
+    Channel<double> alpha;
+    rgb.positions = colorPositions;
+    for (const glm::vec3& c : colors) rgb.values.emplace_back(c);
+    alpha.positions = opacityPositions;
+    for (float a : alphas) alpha.values.push_back(a);
+    std::vector<float> positions;
+    std::vector<glm::vec4> merged;
+    mergeChannels(rgb, alpha, positions, merged);
+    validateNodes(positions, merged, name);
+    return TransferFunction(positions, merged, name);
+}
+
+TfChannels TfChannels::split(const TransferFunction& tf) {
+    TfChannels c;
+    c.name = tf.name();
+    c.colorPositions = c.opacityPositions = tf.positions();
+    for (const glm::vec4& v : tf.colors()) {
+        c.colors.emplace_back(v);
+        c.alphas.push_back(v.a);
+    }
+    return c;
+}
+
+namespace {
+
 // The numbers of array member `key`, which must hold a positive multiple of `stride` numbers.
 std::vector<double> readNumberArray(const nlohmann::json& preset, const char* key, size_t stride,
                                     const std::string& where) {
@@ -128,39 +160,35 @@ float presetPosition(double x, size_t node, const char* key, const std::string& 
     return p;
 }
 
-TransferFunction presetFromJson(const nlohmann::json& preset, const std::string& where,
-                                const std::string& name) {
+TfChannels channelsFromJson(const nlohmann::json& preset, const std::string& where, const std::string& name) {
     AMRVK_CHECK(preset.contains("RGBPoints"), where, ": no RGBPoints",
                 preset.contains("IndexedColors") ? " (indexed colour maps are not supported)" : "");
+    TfChannels out;
+    out.name = name;
     std::vector<double> rgbPoints = readNumberArray(preset, "RGBPoints", 4, where);
-    Channel<glm::dvec3> rgb;
     for (size_t i = 0; i < rgbPoints.size() / 4; ++i) {
-        rgb.positions.push_back(presetPosition(rgbPoints[4 * i], i, "RGBPoints", where, rgb.positions));
+        out.colorPositions.push_back(presetPosition(rgbPoints[4 * i], i, "RGBPoints", where, out.colorPositions));
         glm::dvec3 c(rgbPoints[4 * i + 1], rgbPoints[4 * i + 2], rgbPoints[4 * i + 3]);
         for (int k = 0; k < 3; ++k)
             AMRVK_CHECK(c[k] >= 0.0 && c[k] <= 1.0, where, ": RGBPoints node ", i, " colour ",
                         "rgb"[k], " = ", c[k], " is outside [0, 1]");
-        rgb.values.push_back(c);
+        out.colors.emplace_back(c);
     }
-    Channel<double> alpha;
     if (preset.contains("Points")) {
         std::vector<double> points = readNumberArray(preset, "Points", 4, where);
         for (size_t i = 0; i < points.size() / 4; ++i) {
-            alpha.positions.push_back(presetPosition(points[4 * i], i, "Points", where, alpha.positions));
+            out.opacityPositions.push_back(presetPosition(points[4 * i], i, "Points", where, out.opacityPositions));
             double a = points[4 * i + 1];
             AMRVK_CHECK(a >= 0.0 && std::isfinite(static_cast<float>(a)), where, ": Points node ",
                         i, " opacity ", a, " is negative or not a finite float");
-            alpha.values.push_back(a);
+            out.alphas.push_back(float(a));
         }
     } else {
-        alpha.positions = {rgb.positions.front(), rgb.positions.back()};
-        alpha.values = {0.0, 1.0};
+        out.opacityPositions = {out.colorPositions.front(), out.colorPositions.back()};
+        out.alphas = {0.0f, 1.0f};
     }
-    std::vector<float> positions;
-    std::vector<glm::vec4> colors;
-    mergeChannels(rgb, alpha, positions, colors);
-    validateNodes(positions, colors, where);
-    return TransferFunction(positions, colors, name);
+    out.merged();  // validates the combination (one error naming the preset)
+    return out;
 }
 
 std::string oneLine(std::string s) {
@@ -307,50 +335,112 @@ TransferFunction makePreset(std::string_view name, float lo, float hi) {
     return {};
 }
 
-TransferFunction loadParaViewPreset(const fs::path& path, std::string_view presetName) {
-    const std::string file = path.string();
+namespace {
+
+// The presets of a ParaView JSON file: one object or an array of them, each with its label (its
+// "Name", else "#index").
+struct PresetDocument {
     nlohmann::json doc;
+    std::vector<const nlohmann::json*> presets;
+    std::vector<std::string> labels;
+};
+
+PresetDocument readPresetDocument(const fs::path& path) {
+    const std::string file = path.string();
+    PresetDocument d;
     try {
-        doc = nlohmann::json::parse(readTextFile(path));
+        d.doc = nlohmann::json::parse(readTextFile(path));
     } catch (const nlohmann::json::exception& e) {
         std::string msg = e.what();
         if (size_t close = msg.find("] "); msg.starts_with("[json.exception") && close != std::string::npos)
             msg = msg.substr(close + 2);
         AMRVK_CHECK(false, file, ": malformed JSON (", oneLine(msg), ")");
     }
-    AMRVK_CHECK(doc.is_array() || doc.is_object(), file,
-                ": expected a ParaView preset object or an array of presets, found a ", doc.type_name());
-    std::vector<const nlohmann::json*> presets;
-    if (doc.is_object()) {
-        presets.push_back(&doc);
+    AMRVK_CHECK(d.doc.is_array() || d.doc.is_object(), file,
+                ": expected a ParaView preset object or an array of presets, found a ", d.doc.type_name());
+    if (d.doc.is_object()) {
+        d.presets.push_back(&d.doc);
     } else {
-        for (const nlohmann::json& p : doc) presets.push_back(&p);
+        for (const nlohmann::json& p : d.doc) d.presets.push_back(&p);
     }
-    AMRVK_CHECK(!presets.empty(), file, ": no presets (empty array)");
+    AMRVK_CHECK(!d.presets.empty(), file, ": no presets (empty array)");
+    for (size_t i = 0; i < d.presets.size(); ++i) {
+        const nlohmann::json& p = *d.presets[i];
+        d.labels.push_back(p.is_object() && p.contains("Name") && p["Name"].is_string() ? p["Name"].get<std::string>()
+                                                                                       : strCat("#", i));
+    }
+    return d;
+}
 
-    auto presetLabel = [](const nlohmann::json& p, size_t index) {
-        if (p.is_object() && p.contains("Name") && p["Name"].is_string())
-            return p["Name"].get<std::string>();
-        return strCat("#", index);
-    };
+TfChannels presetChannels(const PresetDocument& d, size_t i, const fs::path& path) {
+    const std::string where = strCat(path.string(), ": preset '", d.labels[i], "'");
+    AMRVK_CHECK(d.presets[i]->is_object(), where, ": not a JSON object");
+    return channelsFromJson(*d.presets[i], where, d.labels[i]);
+}
+
+}  // namespace
+
+TransferFunction loadParaViewPreset(const fs::path& path, std::string_view presetName) {
+    const PresetDocument d = readPresetDocument(path);
     size_t chosen = 0;
     if (!presetName.empty()) {
-        chosen = presets.size();
+        chosen = d.presets.size();
         std::string available;
-        for (size_t i = 0; i < presets.size(); ++i) {
-            std::string label = presetLabel(*presets[i], i);
-            if (label == presetName && chosen == presets.size()) chosen = i;
-            if (i < 8) available += (i ? ", " : "") + label;
+        for (size_t i = 0; i < d.presets.size(); ++i) {
+            if (d.labels[i] == presetName && chosen == d.presets.size()) chosen = i;
+            if (i < 8) available += (i ? ", " : "") + d.labels[i];
             else if (i == 8) available += ", ...";
         }
-        AMRVK_CHECK(chosen < presets.size(), file, ": no preset named '", presetName, "' (",
-                    presets.size(), " presets: ", available, ")");
+        AMRVK_CHECK(chosen < d.presets.size(), path.string(), ": no preset named '", presetName, "' (",
+                    d.presets.size(), " presets: ", available, ")");
     }
-    const nlohmann::json& preset = *presets[chosen];
-    std::string label = presetLabel(preset, chosen);
-    std::string where = strCat(file, ": preset '", label, "'");
-    AMRVK_CHECK(preset.is_object(), where, ": not a JSON object");
-    return presetFromJson(preset, where, label);
+    return presetChannels(d, chosen, path).merged();
+}
+
+ParaViewPresets loadParaViewPresets(const fs::path& path) {
+    const PresetDocument d = readPresetDocument(path);
+    ParaViewPresets out;
+    for (size_t i = 0; i < d.presets.size(); ++i) {
+        try {
+            out.presets.push_back(presetChannels(d, i, path));
+        } catch (const Error& e) {
+            out.skipped.push_back(e.what());
+        }
+    }
+    return out;
+}
+
+TfChannels parseParaViewPreset(const std::string& text, const std::string& where) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+        AMRVK_CHECK(false, where, ": malformed JSON (", oneLine(e.what()), ")");
+    }
+    AMRVK_CHECK(j.is_object(), where, ": expected a ParaView preset object, found a ", j.type_name());
+    const std::string name = j.contains("Name") && j["Name"].is_string() ? j["Name"].get<std::string>() : "session";
+    return channelsFromJson(j, where, name);
+}
+
+TfChannels builtInChannels(std::string_view name) {
+    for (const PresetNodes& p : presetTable())
+        if (name == p.name) return TfChannels::split(TransferFunction(p.positions, p.colors, p.name));
+    AMRVK_CHECK(false, "unknown transfer function preset '", name, "' (presets: ", joinedPresetNames(), ")");
+    return {};
+}
+
+std::string paraViewPresetJson(const TfChannels& c) {
+    nlohmann::ordered_json p;
+    p["Name"] = c.name;
+    p["ColorSpace"] = "RGB";
+    nlohmann::json rgb = nlohmann::json::array(), points = nlohmann::json::array();
+    for (size_t i = 0; i < c.colorPositions.size(); ++i)
+        for (float v : {c.colorPositions[i], c.colors[i].r, c.colors[i].g, c.colors[i].b}) rgb.push_back(v);
+    for (size_t i = 0; i < c.opacityPositions.size(); ++i)
+        for (float v : {c.opacityPositions[i], c.alphas[i], 0.5f, 0.0f}) points.push_back(v);
+    p["RGBPoints"] = rgb;
+    p["Points"] = points;
+    return nlohmann::ordered_json::array({p}).dump(1) + "\n";
 }
 
 TransferFunction loadXf(const fs::path& path, float dataLo, float dataHi) {

@@ -79,6 +79,36 @@ TransferFunction makePreset(std::string_view name, float lo, float hi);
 TransferFunction loadParaViewPreset(const std::filesystem::path& path,
                                     std::string_view presetName = {});
 
+// A TF as ParaView keeps it: a colour function and an opacity function, each linear between its
+// own nodes (positions ascending, field units; rgb in [0, 1], alpha >= 0). The TF editor edits
+// them apart; merged() joins them into one TransferFunction at the union of their positions
+// (steps kept), validated (errors name `name`).
+struct TfChannels {
+    std::string name;
+    std::vector<float> colorPositions;
+    std::vector<glm::vec3> colors;
+    std::vector<float> opacityPositions;
+    std::vector<float> alphas;
+    TransferFunction merged() const;
+    // Both channels with the TF's own nodes.
+    static TfChannels split(const TransferFunction& tf);
+};
+
+// Every preset of a ParaView JSON file that amrvk can use; the others (e.g. indexed colour maps)
+// are listed in `skipped` with the reason, one line each.
+struct ParaViewPresets {
+    std::vector<TfChannels> presets;
+    std::vector<std::string> skipped;
+};
+ParaViewPresets loadParaViewPresets(const std::filesystem::path& path);
+// One preset object given as JSON text (a session's "transferFunction"); errors name `where`.
+TfChannels parseParaViewPreset(const std::string& jsonText, const std::string& where);
+// A built-in preset's channels over [0, 1].
+TfChannels builtInChannels(std::string_view name);
+// One preset as a ParaView JSON file's text (an array of one object; opacity midpoint 0.5 and
+// sharpness 0, which is linear). loadParaViewPreset reads it back to the same TF.
+std::string paraViewPresetJson(const TfChannels& channels);
+
 // `.xf` transfer function, either format:
 // - magic 0x1235abc000: uint64 magic, float opacityScale, float absDomain[2], float relDomain[2]
 //   (percent), int32 N, float rgba[N][4]. The N nodes are spaced uniformly over

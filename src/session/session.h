@@ -1,0 +1,36 @@
+#pragma once
+// A session: everything that makes a picture, in one JSON file that both the viewer (save/load)
+// and `amrvk render --session` read, so a picture explored interactively renders the same offline.
+// Schema (docs/sessions.md): {"amrvk": "session", "version": 1, "input", "read", "field",
+// "camera", "image", "render", "lights", "structure", "transferFunction"}. The input path is
+// stored absolute; a relative one in a hand-written file is taken relative to the session file.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "amr/readers.h"
+#include "scene/render_settings.h"
+#include "scene/structure_config.h"
+#include "scene/transfer_function.h"
+
+namespace amrvk::session {
+
+struct Session {
+    std::string input;               // the data set (file or directory)
+    amr::ReadOptions read;           // format, NaN policy, raw-volume options (fields: see `field`)
+    std::string field;               // empty: the source's default field
+    scene::RenderSettings settings;  // camera, image size, mode, seed, medium, lights, dvr
+    uint32_t spp = 64;               // render: samples per pixel; viewer: stop accumulating there (0: run on)
+    scene::StructureConfig structure;  // backend may be Auto
+    scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)
+};
+
+// The JSON text of a session (pretty, keys in schema order).
+std::string sessionJson(const Session& s);
+// Parses a session; errors are one line naming `where` (the file) and the key.
+Session parseSession(const std::string& text, const std::filesystem::path& where);
+
+void saveSession(const std::filesystem::path& path, const Session& s);  // atomic: temp file + rename
+Session loadSession(const std::filesystem::path& path);
+
+}  // namespace amrvk::session

@@ -1,0 +1,125 @@
+// Session files: every field round-trips; a relative input is taken relative to the file; every
+// bad value gives one line naming the file and the key; the file is written atomically.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "scene/invalidation.h"
+#include "session/session.h"
+#include "test_data.h"
+
+using namespace amrvk;
+using session::Session;
+
+namespace {
+
+Session fullSession() {
+    Session s;
+    s.input = "/data/enzo/DD0018/DD0018";
+    s.read.format = "enzo";
+    s.read.nanPolicy = amr::NanPolicy::Drop;
+    s.field = "Density";
+    s.spp = 128;
+    scene::RenderSettings& r = s.settings;
+    r.mode = scene::Mode::Ss;
+    r.width = 320;
+    r.height = 200;
+    r.seed = 77;
+    r.camera.eye = {1.5, -2.25, 3.0};
+    r.camera.target = {0.5, 0.5, 0.5};
+    r.camera.up = {0.0, 0.0, 1.0};
+    r.camera.fovYDegrees = 33.0;
+    r.densityScale = 0.05;
+    r.g = -0.3;
+    r.ambient = {0.1, 0.2, 0.3};
+    r.background = glm::dvec3(0.0, 0.0, 0.01);
+    r.dvrStep = 0.25;
+    r.dvrShading = true;
+    r.lights.push_back({false, {1.0, -1.0, 2.0}, {3.0, 3.0, 2.5}});
+    r.lights.push_back({true, {0.2, 0.3, 4.0}, {10.0, 9.0, 8.0}});
+    s.structure.traversal = scene::TraversalKind::KdTree;
+    s.structure.sampler = scene::SamplerKind::Abr;
+    s.structure.backend = scene::Backend::Auto;
+    s.structure.grid = "64";
+    s.structure.kdLeaves = 512;
+    s.structure.denseMaxBytes = uint64_t(300) << 20;
+    s.tf = scene::TfChannels::split(scene::makePreset("spiky", 0.0f, 3.0f));
+    s.tf.name = "spiky edit";
+    return s;
+}
+
+std::string errorOfParse(const std::string& text) {
+    return test::errorOf([&] { session::parseSession(text, "/tmp/s.json"); });
+}
+
+}  // namespace
+
+TEST(Session, EveryFieldRoundTrips) {
+    const Session s = fullSession();
+    const auto file = test::scratchDir() / "full.json";
+    session::saveSession(file, s);
+    const Session t = session::loadSession(file);
+    EXPECT_EQ(t.input, s.input);
+    EXPECT_EQ(t.read.format, "enzo");
+    EXPECT_EQ(t.read.nanPolicy, amr::NanPolicy::Drop);
+    EXPECT_EQ(t.field, "Density");
+    EXPECT_EQ(t.spp, 128u);
+    const scene::RenderSettings &a = s.settings, &b = t.settings;
+    EXPECT_TRUE(scene::settingsChanges(a, b).empty()) << scene::describe(scene::settingsChanges(a, b));
+    EXPECT_EQ(b.seed, 77u);
+    EXPECT_EQ(b.width, 320);
+    ASSERT_EQ(b.lights.size(), 2u);
+    EXPECT_TRUE(b.lights[1].point);
+    EXPECT_EQ(t.structure.label(), s.structure.label());
+    EXPECT_EQ(t.structure.grid, "64");
+    EXPECT_EQ(t.structure.kdLeaves, 512u);
+    EXPECT_EQ(t.structure.denseMaxBytes, s.structure.denseMaxBytes);
+    const scene::TransferFunction x = s.tf.merged(), y = t.tf.merged();
+    EXPECT_EQ(y.positions(), x.positions());
+    EXPECT_EQ(y.colors(), x.colors());
+    EXPECT_EQ(t.tf.name, "spiky edit");
+    // Saving what was loaded gives the same text.
+    EXPECT_EQ(session::sessionJson(t), session::sessionJson(s));
+}
+
+TEST(Session, RelativeInputIsRelativeToTheFile) {
+    std::string text = session::sessionJson(fullSession());
+    const std::string from = "\"/data/enzo/DD0018/DD0018\"", to = "\"../data/cloud.cells\"";
+    text.replace(text.find(from), from.size(), to);
+    const Session s = session::parseSession(text, "/home/me/sessions/a.json");
+    EXPECT_EQ(s.input, "/home/me/data/cloud.cells");
+}
+
+TEST(Session, BadValuesNameTheFileAndTheKey) {
+    const std::string good = session::sessionJson(fullSession());
+    auto with = [&](const std::string& from, const std::string& to) {
+        std::string t = good;
+        const size_t at = t.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) t.replace(at, from.size(), to);
+        return t;
+    };
+    const struct {
+        std::string text;
+        std::vector<std::string> fragments;
+    } cases[] = {
+        {"{", {"/tmp/s.json", "malformed JSON"}},
+        {"[]", {"/tmp/s.json", "not an amrvk session"}},
+        {with("\"version\": 1", "\"version\": 7"), {"version 7"}},
+        {with("\"fovY\": 33.0", "\"fovY\": 0.0"), {"camera.fovY", "(0, 180)"}},
+        {with("\"width\": 320", "\"width\": 0"), {"image.width", "[1, 16384]"}},
+        {with("\"mode\": \"ss\"", "\"mode\": \"xx\""), {"--mode", "xx"}},
+        {with("\"densityScale\": 0.05", "\"densityScale\": -1"), {"render.densityScale"}},
+        {with("\"g\": -0.3", "\"g\": \"a\""), {"render.g", "expected a number"}},
+        {with("\"type\": \"point\"", "\"type\": \"spot\""), {"lights[1].type", "spot"}},
+        {with("\"traversal\": \"kdtree\"", "\"traversal\": \"octree\""), {"--traversal", "octree"}},
+        {with("\"RGBPoints\"", "\"RGBPointz\""), {"transferFunction", "no RGBPoints"}},
+        {with("\"eye\": [", "\"eye\": [\"x\", "), {"camera.eye"}},
+    };
+    for (const auto& c : cases) {
+        const std::string e = errorOfParse(c.text);
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+        for (const auto& f : c.fragments) EXPECT_NE(e.find(f), std::string::npos) << "'" << f << "' not in: " << e;
+    }
+    EXPECT_NE(test::errorOf([] { session::loadSession("/nonexistent/s.json"); }).find("no such session file"),
+              std::string::npos);
+}
