@@ -16,7 +16,8 @@ say() { printf '[amrvk] %s\n' "$*" >&2; }
 base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validationlayers
            glslc glslang-tools spirv-tools libglfw3-dev libglm-dev libgtest-dev
            libhdf5-dev libpng-dev zlib1g-dev nlohmann-json3-dev python3 python3-matplotlib
-           libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev)
+           libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev
+           libimgui-dev xvfb xauth xdotool)
 # Packages taken from bookworm-backports (lavapipe with VK_KHR_ray_query).
 backports_pkgs=(mesa-vulkan-drivers)
 

@@ -101,8 +101,8 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
 
 void main() {
     gParams = ParamsRef(pc.params);
-    uvec2 pix = gl_GlobalInvocationID.xy;
-    bool inImage = pix.x < P.view.width && pix.y < P.view.height;
+    uvec2 pix = gl_GlobalInvocationID.xy + uvec2(0u, pc.rowOffset);
+    bool inImage = pix.x < P.view.width && pix.y < min(P.view.height, pc.rowEnd);
     Counters c = newCounters();
     uint nanSamples = 0u;
     if (inImage) {

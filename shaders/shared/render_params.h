@@ -125,9 +125,11 @@ struct RenderParams {
 struct PushConstants {
     uint64_t params;  // RenderParams address
     uint frameIndex;  // sample number of this dispatch
+    uint rowOffset;   // first image row of this dispatch (time-budgeted tiles: a band of rows)
+    uint rowEnd;      // one past its last row (the image height for a whole sample)
     uint pad;
 };
-AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 16);
+AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 24);
 
 // majorants.comp: majorants[i] = max TF alpha over ranges[i] for i < count. domain_aabbs.comp:
 // aabbs[i] = box i, or the point lo when majorants[i] == 0 (ray-query culling).
@@ -202,6 +204,8 @@ AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 680);
 AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 688);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowEnd) == 16);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, source) == 8);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, target) == 16);

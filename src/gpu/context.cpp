@@ -69,7 +69,7 @@ bool instanceExtensionAvailable(const char* name) {
     return hasExtension(exts, name);
 }
 
-VkInstance createInstance(bool validation, bool debugUtils) {
+VkInstance createInstance(bool validation, bool debugUtils, const std::vector<std::string>& extra = {}) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "amrvk";
     app.pEngineName = "amrvk";
@@ -77,6 +77,7 @@ VkInstance createInstance(bool validation, bool debugUtils) {
     std::vector<const char*> layers, exts;
     if (validation) layers.push_back(kValidationLayer);
     if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    for (const std::string& e : extra) exts.push_back(e.c_str());
     VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ci.pApplicationInfo = &app;
     ci.enabledLayerCount = uint32_t(layers.size());
@@ -97,7 +98,7 @@ struct Probe {
     VkPhysicalDeviceType type{};
 };
 
-Probe probeDevice(VkPhysicalDevice pd, uint32_t index) {
+Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK_NULL_HANDLE) {
     Probe p;
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
@@ -137,18 +138,24 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index) {
     std::vector<VkQueueFamilyProperties> qs(qn);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qs.data());
     bool compute = false;
-    for (uint32_t i = 0; i < qn && !compute; ++i)
-        if ((qs[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && qs[i].timestampValidBits > 0) {
+    for (uint32_t i = 0; i < qn && !compute; ++i) {
+        VkBool32 present = VK_TRUE;
+        if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &present);
+        if ((qs[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && qs[i].timestampValidBits > 0 && present) {
             p.queueFamily = i;
             compute = true;
         }
+    }
+    const bool swapchain = !surface || hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
     if (v < VK_API_VERSION_1_3) r.rejectReason = "Vulkan " + r.apiVersion + " < 1.3";
     else if (!f12.bufferDeviceAddress) r.rejectReason = "no bufferDeviceAddress";
     else if (!f12.scalarBlockLayout) r.rejectReason = "no scalarBlockLayout";
     else if (!f13.synchronization2) r.rejectReason = "no synchronization2";
     else if (!f.features.shaderInt64) r.rejectReason = "no shaderInt64";
-    else if (!compute) r.rejectReason = "no compute queue with timestamps";
+    else if (!swapchain) r.rejectReason = "no VK_KHR_swapchain (cannot show a window)";
+    else if (!compute) r.rejectReason = surface ? "no compute queue with timestamps that presents to the window"
+                                                : "no compute queue with timestamps";
     r.usable = r.rejectReason.empty();
     return p;
 }
@@ -230,7 +237,7 @@ Context::Context(const ContextOptions& options) {
         AMRVK_CHECK(validationAvailable(), "Vulkan validation requested but ", kValidationLayer,
                     " is not installed (apt-get install vulkan-validationlayers)");
     mDebugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    mInstance = createInstance(validation, mDebugUtils);
+    mInstance = createInstance(validation, mDebugUtils, options.instanceExtensions);
     try {
         if (validation && mDebugUtils) {
             VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
@@ -247,10 +254,14 @@ Context::Context(const ContextOptions& options) {
             AMRVK_VK_CHECK(create(mInstance, &mci, nullptr, &mMessenger));
         }
 
+        if (options.createSurface) {
+            mSurface = options.createSurface(mInstance);
+            AMRVK_CHECK(mSurface, "could not create a Vulkan surface for the window");
+        }
         auto pds = physicalDevices(mInstance);
         AMRVK_CHECK(!pds.empty(), "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
         std::vector<Probe> probes;
-        for (uint32_t i = 0; i < pds.size(); ++i) probes.push_back(probeDevice(pds[i], i));
+        for (uint32_t i = 0; i < pds.size(); ++i) probes.push_back(probeDevice(pds[i], i, mSurface));
         int chosen = -1;
         auto describe = [](const Probe& p) { return p.report.name + ": " + p.report.rejectReason; };
         if (!options.device.empty()) {
@@ -310,6 +321,7 @@ Context::Context(const ContextOptions& options) {
             exts = {VK_KHR_RAY_QUERY_EXTENSION_NAME, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
                     VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
         }
+        if (mSurface) exts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f};
         dci.queueCreateInfoCount = 1;
         dci.pQueueCreateInfos = &qci;
@@ -339,6 +351,10 @@ void Context::release() {
         if (mCommandPool) vkDestroyCommandPool(mDevice, mCommandPool, nullptr);
         vkDestroyDevice(mDevice, nullptr);
         mDevice = VK_NULL_HANDLE;
+    }
+    if (mSurface) {
+        vkDestroySurfaceKHR(mInstance, mSurface, nullptr);
+        mSurface = VK_NULL_HANDLE;
     }
     if (mMessenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(

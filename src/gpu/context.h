@@ -22,6 +22,11 @@ struct ContextOptions {
     bool validation = false;  // also on when AMRVK_VALIDATION=1
     bool requireRayQuery = false;
     bool disableRayQuery = false;  // leave ray queries off even where supported (tests, comparisons)
+    // Presentation (the viewer): instance extensions the window system needs, and a function that
+    // creates the window's surface once the instance exists. The device picked must then present
+    // to that surface from its queue and gets VK_KHR_swapchain; the Context destroys the surface.
+    std::vector<std::string> instanceExtensions;
+    std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 struct DeviceReport {
@@ -68,6 +73,7 @@ public:
     VkPhysicalDevice physicalDevice() const { return mPhysical; }
     VkDevice device() const { return mDevice; }
     VkQueue queue() const { return mQueue; }
+    VkSurfaceKHR surface() const { return mSurface; }  // VK_NULL_HANDLE without presentation
     uint32_t queueFamily() const { return mQueueFamily; }
     const DeviceReport& deviceReport() const { return mReport; }
     const VkPhysicalDeviceLimits& limits() const { return mLimits; }
@@ -91,6 +97,7 @@ private:
 
     VkInstance mInstance = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT mMessenger = VK_NULL_HANDLE;
+    VkSurfaceKHR mSurface = VK_NULL_HANDLE;
     VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
     VkDevice mDevice = VK_NULL_HANDLE;
     VkQueue mQueue = VK_NULL_HANDLE;

@@ -62,12 +62,47 @@ void PathTracePass::resize(int width, int height) {
 void PathTracePass::reset() {
     if (mAccum.valid()) mAccum.fillZero();
     mSpp = 0;
+    mRowsDone = 0;
     mStats = {};
+}
+
+double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows) {
+    AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
+    const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);
+    if (count == 0) return 0.0;
+    gpu::GpuTimer timer(mCtx, 2);
+    std::array<uint32_t, shared::kCounterCount> counters{};
+    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+        timer.reset(cmd);
+        vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+        gpu::computeBarrier(cmd);
+        const uint32_t scope = timer.begin(cmd, "path_trace");
+        shared::PushConstants push{paramsAddress, mSpp, first, first + count, 0};
+        pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (count + 7) / 8);
+        timer.end(cmd, scope);
+        gpu::computeBarrier(cmd);
+    });
+    mCounters.download(counters.data(), sizeof counters);
+    for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];
+    const double seconds = timer.total("path_trace");
+    mStats.gpuSeconds += seconds;
+    mStats.paths += uint64_t(count) * uint64_t(mWidth);
+    mRowsDone += count;
+    if (mRowsDone == uint32_t(mHeight)) {
+        ++mSpp;
+        mRowsDone = 0;
+    }
+    return seconds;
 }
 
 void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t n,
                                const std::function<void(uint32_t)>& afterBatch, uint32_t maxBatch) {
     AMRVK_CHECK(mAccum.valid(), "internal: accumulate() before resize()");
+    if (mRowsDone > 0 && n > 0) {  // finish the sample a tile began
+        rows(pipeline, paramsAddress, uint32_t(mHeight) - mRowsDone);
+        --n;
+        if (afterBatch) afterBatch(mSpp);
+    }
     const uint32_t gx = (uint32_t(mWidth) + 7) / 8, gy = (uint32_t(mHeight) + 7) / 8;
     gpu::GpuTimer timer(mCtx, 64);
     std::array<uint32_t, shared::kCounterCount> counters{};
@@ -80,7 +115,7 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
             gpu::computeBarrier(cmd);
             for (uint32_t i = 0; i < count; ++i) {
                 const uint32_t scope = timer.begin(cmd, "path_trace");
-                shared::PushConstants push{paramsAddress, mSpp + i, 0};
+                shared::PushConstants push{paramsAddress, mSpp + i, 0u, uint32_t(mHeight), 0};
                 pipeline.dispatch(cmd, &push, gx, gy);
                 timer.end(cmd, scope);
                 gpu::computeBarrier(cmd);
@@ -95,7 +130,7 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
         mStats.gpuSeconds += timer.total("path_trace");
         mSpp += count;
         done += count;
-        mStats.paths = uint64_t(mSpp) * uint64_t(mWidth) * uint64_t(mHeight);
+        mStats.paths += uint64_t(count) * uint64_t(mWidth) * uint64_t(mHeight);
         // Grow batches while the 32-bit counters stay far from overflowing.
         if (largest < (1u << 28) && batch < 64) batch *= 2;
         else if (largest >= (1u << 30) && batch > 1) batch /= 2;

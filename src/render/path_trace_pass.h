@@ -38,14 +38,18 @@ public:
     void reset();
     uint64_t accumAddress() const { return mAccum.address(); }
     uint64_t countersAddress() const { return mCounters.address(); }
-    uint32_t spp() const { return mSpp; }
+    uint32_t spp() const { return mSpp; }          // complete samples per pixel
+    uint32_t rowsDone() const { return mRowsDone; }  // rows of the image that have sample spp() + 1
     const scene::RenderStats& stats() const { return mStats; }
 
-    // Adds n samples per pixel with `pipeline`; paramsAddress holds RenderParams for this pass.
-    // Batches of dispatches grow while the 32-bit counters stay far from overflowing;
-    // afterBatch(spp so far) runs after each batch.
+    // Adds n samples per pixel with `pipeline` (first completing a sample that rows() began);
+    // paramsAddress holds RenderParams for this pass. Batches of dispatches grow while the 32-bit
+    // counters stay far from overflowing; afterBatch(spp so far) runs after each batch.
     void accumulate(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t n,
                     const std::function<void(uint32_t)>& afterBatch = {}, uint32_t maxBatch = 64);
+    // Traces the next `rows` rows of the current sample (a time-budgeted tile; the sample is
+    // complete when the last row is done). Returns the GPU seconds it took.
+    double rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows);
     // The mean so far (downloads the accumulation buffer).
     scene::RenderOutput read() const;
 
@@ -54,7 +58,7 @@ private:
     std::map<std::string, gpu::ComputePipeline> mPipelines;  // key: mode + structure label
     gpu::Buffer mAccum, mCounters;
     int mWidth = 0, mHeight = 0;
-    uint32_t mSpp = 0;
+    uint32_t mSpp = 0, mRowsDone = 0;
     uint64_t mCompiled = 0;
     scene::RenderStats mStats;
 };

@@ -167,13 +167,23 @@ void Renderer::reloadShaders() {
 
 void Renderer::resetAccumulation() { changed(); }
 
-void Renderer::accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress, uint32_t maxBatch) {
+const gpu::ComputePipeline& Renderer::currentPipeline() {
     AMRVK_CHECK(mTf.has_value(), "internal: accumulate() before setTransferFunction()");
     AMRVK_CHECK(mHasSettings, "internal: accumulate() before setSettings()");
     const uint64_t before = mPathTrace.pipelinesCompiled();
     const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config);
     mCounts.pipelinesCompiled += mPathTrace.pipelinesCompiled() - before;
     uploadParams();
+    return pipeline;
+}
+
+double Renderer::accumulateRows(uint32_t rows) {
+    const gpu::ComputePipeline& pipeline = currentPipeline();
+    return mPathTrace.rows(pipeline, mParamsBuffer.address(), rows);
+}
+
+void Renderer::accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress, uint32_t maxBatch) {
+    const gpu::ComputePipeline& pipeline = currentPipeline();
     const uint32_t start = mPathTrace.spp();
     mPathTrace.accumulate(pipeline, mParamsBuffer.address(), spp, [&](uint32_t total) {
         if (progress) progress(total - start, spp);

@@ -65,6 +65,10 @@ public:
     void accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress = {},
                     uint32_t maxBatch = 64);
     uint32_t accumulatedSpp() const { return mPathTrace.spp(); }
+    // A time-budgeted tile: traces the next `rows` rows of the current sample (the viewer, so one
+    // frame never waits for a whole sample). Returns the GPU seconds; rowsDone() tells how far.
+    double accumulateRows(uint32_t rows);
+    uint32_t rowsDone() const { return mPathTrace.rowsDone(); }
     // The image so far: mean, sums of squares, spp and the counters of every path in it.
     scene::RenderOutput output() const { return mPathTrace.read(); }
     // One image from scratch: setSettings, reset, accumulate `spp`. `snapshot(out)` additionally
@@ -100,6 +104,7 @@ public:
 
 private:
     void buildStructures();
+    const gpu::ComputePipeline& currentPipeline();  // compiled on first use; params uploaded
     void writeView(const scene::RenderSettings& s);
     void writeShading(const scene::RenderSettings& s);
     void uploadParams();

@@ -160,6 +160,18 @@ TEST_F(RendererGpu, AccumulationResumesWhereItStopped) {
     EXPECT_EQ(parts.stats.paths, once.stats.paths);
     EXPECT_EQ(parts.stats.counter(shared::kCounterRealCollisions), once.stats.counter(shared::kCounterRealCollisions));
     EXPECT_LT(maxRelativeDifference(parts.mean, once.mean), 1e-5) << "3 + 5 samples are the samples 0..7";
+
+    // Time-budgeted tiles of 5 rows (24 rows: uneven), then whole samples after a partial one.
+    r.resetAccumulation();
+    while (r.accumulatedSpp() < 3) r.accumulateRows(5);
+    r.accumulateRows(7);
+    EXPECT_EQ(r.rowsDone(), 7u);
+    r.accumulate(5);  // completes the started sample, then 4 more
+    EXPECT_EQ(r.rowsDone(), 0u);
+    const scene::RenderOutput tiles = r.output();
+    EXPECT_EQ(tiles.spp, 8u);
+    EXPECT_EQ(tiles.stats.paths, once.stats.paths);
+    EXPECT_LT(maxRelativeDifference(tiles.mean, once.mean), 1e-5) << "tiles trace every pixel once per sample";
 }
 
 TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
