@@ -364,7 +364,8 @@ BenchResults Runner::run() {
     for (const BenchDataset& ds : mOpt.datasets) {
         mDs = &ds;
         tick("reading " + ds.input);
-        amr::ReadOptions ro;
+        amr::ReadOptions ro = mOpt.read;
+        ro.fields.clear();
         if (!ds.field.empty()) ro.fields = {ds.field};
         amr::Model model = amr::readModel(ds.input, ro);
         const amr::Field& field = ds.field.empty() ? model.defaultField() : model.field(ds.field);

@@ -16,6 +16,7 @@
 
 #include "render/auto_select.h"
 #include "bench/convergence.h"
+#include "amr/readers.h"
 #include "gpu/context.h"
 #include "render/renderer.h"
 
@@ -29,6 +30,7 @@ struct BenchDataset {
 
 struct BenchOptions {
     std::vector<BenchDataset> datasets;
+    amr::ReadOptions read;                 // format, NaN policy, raw options (the field is per data set)
     std::vector<std::string> tfs = {"spiky", "foggy"};  // presets or files
     std::optional<std::pair<float, float>> tfRange;       // map every TF onto [lo, hi] (default: the field's range)
     std::vector<scene::Mode> modes = {scene::Mode::Ms};  // unbiased modes of the matrix

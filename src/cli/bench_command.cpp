@@ -8,8 +8,8 @@
 
 #include "bench/bench_runner.h"
 #include "bench/report.h"
-#include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "gpu/context.h"
@@ -20,8 +20,6 @@ namespace amrvk::cli {
 namespace {
 
 const char* kBenchHelp =
-    "usage: amrvk bench <input[:field]>... -o DIR [options]\n"
-    "\n"
     "The paper's benchmark protocol on a Vulkan device, with speed against error. For every data set\n"
     "x TF preset x mode x traversal x sampler x back-end: 1 sample per pixel per frame, --warmup\n"
     "frames, then --frames timed frames (GPU timer) -> frames/s, M paths/s, density lookups, traversal\n"
@@ -33,9 +31,7 @@ const char* kBenchHelp =
     "frames/s against macrocell resolution for grid-dda and grid-bvh, and with --auto the automatic\n"
     "choice against the best measured combination. Writes DIR/results.json, results.csv, results.md\n"
     "(paper layout, best three and worst marked) and PNG plots. Tests never assert speed; neither\n"
-    "should you compare numbers from different devices.\n"
-    "\n"
-    "options:\n";
+    "should you compare numbers from different devices.";
 
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;
@@ -49,49 +45,50 @@ std::vector<std::string> splitList(const std::string& text) {
 }  // namespace
 
 int runBench(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = {
-        {"output", 1, "DIR", "output directory (created; references are cached in DIR/references)"},
-        {"tfs", 1, "LIST", "TF presets or files, comma-separated (default spiky,foggy)"},
-        {"tf-range", 2, "LO HI", "map every TF onto [LO, HI] (default: each field's range)"},
-        {"modes", 1, "LIST", "unbiased modes of the matrix: ae,ss,ms (default ms)"},
-        {"traversals", 1, "LIST", "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)"},
-        {"samplers", 1, "LIST", "subset of ext-brick,abr (default both)"},
-        {"backends", 1, "LIST", "subset of sw,rq (default sw, and rq where the device has ray queries)"},
-        {"size", 1, "WxH", "image size (default 1024x1024 on a GPU, 256x256 on a CPU device)"},
-        {"frames", 1, "N", "timed frames of 1 spp each (default 100)"},
-        {"warmup", 1, "N", "untimed frames first (default 10)"},
-        {"reference-spp", 1, "N", "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)"},
-        {"target-rmse", 1, "E", "RMSE whose time is reported (default: half the first combination's 1-spp RMSE)"},
-        {"dvr-steps", 1, "LIST|none", "dvr step sizes (fractions of the finest cell width; default 2,1,0.5,0.25,0.125)"},
-        {"grid-sweep", 1, "LIST|none", "macrocells on the longest axis for the grid sweep (default 16,32,64,128,256)"},
-        {"grid", 1, "auto|N|NxMxK", "macrocell grid of the matrix runs (default auto)"},
-        {"kd-leaves", 1, "N", "kdtree leaves (default 4096)"},
-        {"no-dense", 0, "", "skip the dense-sampler cost floor"},
-        {"dense-max-mib", 1, "MIB", "largest dense grid (default 2048); larger data sets report it as failed"},
-        {"auto", 0, "", "also run the automatic choice and compare it with the best measured combination"},
-        {"density-scale", 1, "S", "multiplies extinction (default 1)"},
-        {"ambient", 3, "R G B", "environment radiance (default 1 1 1)"},
-        {"light-dir", 6, "X Y Z R G B", "directional light (repeatable)", true},
-        {"camera", 9, "EX EY EZ TX TY TZ UX UY UZ", "eye, target, up in world space (default: each data set's three-quarter view)"},
-        {"fov", 1, "DEG", "vertical field of view (default 40)"},
-        {"seed", 1, "S", "random seed (default 1)"},
-        {"device", 1, "INDEX|NAME", "Vulkan device (default: the first discrete GPU, else any)"},
-        {"shader-dir", 1, "DIR", "load shaders from DIR instead of the embedded ones"},
-        {"validation", 0, "", "enable the Vulkan validation layer"},
-        {"help", 0, "", "show this help"},
-    };
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s%s", kBenchHelp, formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("bench", argv, specs, 1, 64);
-    AMRVK_CHECK(args.has("output"), "-o DIR is required (the reports go there)");
+    CLI::App app(kBenchHelp, "amrvk bench");
+    app.get_formatter()->column_width(34);
+    std::vector<std::string> inputs;
+    std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
+    int64_t frames = 100, warmup = 10, refSpp = 0;
+    double targetRmse = 0;
+    bool noDense = false, autoSelect = false;
+    ReadArgs read;
+    PictureArgs pic;
+    DeviceArgs dev;
+    app.add_option("inputs", inputs, "data sets; INPUT:FIELD picks a field per data set (--field for all)")
+        ->required()
+        ->type_name("INPUT[:FIELD]...");
+    app.add_option("-o,--output", outDir, "output directory (created; references are cached in DIR/references)")
+        ->required()
+        ->type_name("DIR");
+    addReadOptions(app, read, false);
+    app.add_option("--tfs", tfs, "TF presets or files, comma-separated")->capture_default_str()->type_name("LIST");
+    app.add_option("--modes", modes, "unbiased modes of the matrix: ae,ss,ms")->capture_default_str()->type_name("LIST");
+    app.add_option("--traversals", traversals, "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
+        ->type_name("LIST");
+    app.add_option("--samplers", samplers, "subset of ext-brick,abr (default both)")->type_name("LIST");
+    app.add_option("--backends", backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
+        ->type_name("LIST");
+    app.add_option("--frames", frames, "timed frames of 1 spp each")->check(interval(2, 1 << 20))->capture_default_str();
+    app.add_option("--warmup", warmup, "untimed frames first")->check(interval(0, 1 << 20))->capture_default_str();
+    app.add_option("--reference-spp", refSpp, "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)")
+        ->check(interval(2, 1 << 24));
+    app.add_option("--target-rmse", targetRmse, "RMSE whose time is reported (default: half the first combination's 1-spp RMSE)")
+        ->check(interval(0, INFINITY, false, true));
+    app.add_option("--dvr-steps", dvrSteps, "dvr step sizes (fractions of the finest cell width; default 2,1,0.5,0.25,0.125)")
+        ->type_name("LIST|none");
+    app.add_option("--grid-sweep", gridSweep, "macrocells on the longest axis for the grid sweep (default 16,32,64,128,256)")
+        ->type_name("LIST|none");
+    app.add_flag("--no-dense", noDense, "skip the dense-sampler cost floor");
+    app.add_flag("--auto", autoSelect, "also run the automatic choice and compare it with the best measured combination");
+    addPictureOptions(app, pic, true);
+    app.get_option("--size")->description("image size (default 1024x1024 on a GPU, 256x256 on a CPU device)")->default_str("");
+    addDeviceOptions(app, dev);
+    if (!parseCommandLine(app, argv)) return 0;
+
     bench::BenchOptions o;
-    o.outDir = args.get("output");
-    std::filesystem::create_directories(o.outDir);
-    AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
-    for (const std::string& p : args.positional()) {
+    o.outDir = outDir;
+    for (const std::string& p : inputs) {
         bench::BenchDataset ds;
         ds.input = p;
         const size_t colon = p.rfind(':');
@@ -99,102 +96,83 @@ int runBench(const std::vector<std::string>& argv) {
             ds.input = p.substr(0, colon);
             ds.field = p.substr(colon + 1);
         }
+        if (ds.field.empty() && !read.fields.empty()) ds.field = read.fields.front();
         AMRVK_CHECK(std::filesystem::exists(ds.input), ds.input, ": no such file or directory");
         std::filesystem::path path(ds.input);
         ds.tag = path.filename().empty() ? path.parent_path().filename().string() : path.filename().string();
         if (!ds.field.empty()) ds.tag += ":" + ds.field;
         o.datasets.push_back(ds);
     }
-    if (args.has("tfs")) o.tfs = splitList(args.get("tfs"));
+    o.read = readOptions(read);
+    o.tfs = splitList(tfs);
     AMRVK_CHECK(!o.tfs.empty(), "--tfs: empty list");
-    if (args.has("tf-range")) {
-        auto v = args.values("tf-range");
-        const float lo = float(parseDouble("--tf-range", v[0])), hi = float(parseDouble("--tf-range", v[1]));
+    if (app.count("--tf-range")) {
+        const float lo = float(pic.tfRange[0]), hi = float(pic.tfRange[1]);
         AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         o.tfRange = std::make_pair(lo, hi);
     }
-    if (args.has("modes")) {
-        o.modes.clear();
-        for (const auto& m : splitList(args.get("modes"))) {
-            scene::Mode mode = scene::parseMode(m);
-            AMRVK_CHECK(mode != scene::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
-            o.modes.push_back(mode);
-        }
+    o.modes.clear();
+    for (const auto& m : splitList(modes)) {
+        scene::Mode mode = scene::parseMode(m);
+        AMRVK_CHECK(mode != scene::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
+        o.modes.push_back(mode);
     }
-    if (args.has("traversals")) {
+    AMRVK_CHECK(!o.modes.empty(), "--modes: empty list");
+    if (app.count("--traversals")) {
         o.traversals.clear();
-        for (const auto& t : splitList(args.get("traversals"))) o.traversals.push_back(scene::parseTraversal(t));
+        for (const auto& t : splitList(traversals)) o.traversals.push_back(scene::parseTraversal(t));
+        AMRVK_CHECK(!o.traversals.empty(), "--traversals: empty list");
     }
-    if (args.has("samplers")) {
+    if (app.count("--samplers")) {
         o.samplers.clear();
-        for (const auto& s : splitList(args.get("samplers"))) {
-            scene::SamplerKind k = scene::parseSampler(s);
+        for (const auto& sm : splitList(samplers)) {
+            scene::SamplerKind k = scene::parseSampler(sm);
             AMRVK_CHECK(k != scene::SamplerKind::Dense, "--samplers: dense runs by itself (see --no-dense)");
             o.samplers.push_back(k);
         }
+        AMRVK_CHECK(!o.samplers.empty(), "--samplers: empty list");
     }
-    if (args.has("backends"))
-        for (const auto& b : splitList(args.get("backends"))) {
+    if (app.count("--backends")) {
+        for (const auto& b : splitList(backends)) {
             scene::Backend k = scene::parseBackend(b);
             AMRVK_CHECK(k != scene::Backend::Auto, "--backends: name sw and/or rq");
             o.backends.push_back(k);
         }
-    if (args.has("size")) parseSize("--size", args.get("size"), o.width, o.height);
-    const int64_t frames = args.getInt("frames", 100), warmup = args.getInt("warmup", 10);
-    AMRVK_CHECK(frames >= 2 && frames <= 1 << 20, "--frames ", frames, " is outside [2, 2^20]");
-    AMRVK_CHECK(warmup >= 0 && warmup <= 1 << 20, "--warmup ", warmup, " is outside [0, 2^20]");
+        AMRVK_CHECK(!o.backends.empty(), "--backends: empty list");
+    }
+    if (app.count("--size")) parseSize("--size", pic.size, o.width, o.height);
     o.frames = uint32_t(frames);
     o.warmup = uint32_t(warmup);
-    const int64_t refSpp = args.getInt("reference-spp", 0);
-    AMRVK_CHECK(refSpp == 0 || (refSpp >= 2 && refSpp <= 1 << 24), "--reference-spp ", refSpp, " is outside [2, 2^24]");
     o.referenceSpp = uint32_t(refSpp);
-    o.targetRmse = args.getDouble("target-rmse", 0.0);
-    AMRVK_CHECK(o.targetRmse >= 0 && std::isfinite(o.targetRmse), "--target-rmse must be finite and >= 0");
-    if (args.has("dvr-steps")) {
+    o.targetRmse = targetRmse;
+    if (app.count("--dvr-steps")) {
         o.dvrSteps.clear();
-        if (args.get("dvr-steps") != "none")
-            for (const auto& s : splitList(args.get("dvr-steps"))) {
-                const double dt = parseDouble("--dvr-steps", s);
-                AMRVK_CHECK(dt > 0 && dt <= 64, "--dvr-steps: ", dt, " is outside (0, 64]");
+        if (dvrSteps != "none")
+            for (const auto& t : splitList(dvrSteps)) {
+                char* end = nullptr;
+                const double dt = std::strtod(t.c_str(), &end);
+                AMRVK_CHECK(end && *end == '\0' && dt > 0 && dt <= 64, "--dvr-steps: '", t, "' is not in (0, 64]");
                 o.dvrSteps.push_back(dt);
             }
     }
-    if (args.has("grid-sweep")) {
+    if (app.count("--grid-sweep")) {
         o.gridSweep.clear();
-        if (args.get("grid-sweep") != "none")
-            for (const auto& g : splitList(args.get("grid-sweep"))) {
-                const int64_t n = parseInt("--grid-sweep", g);
-                AMRVK_CHECK(n >= 1 && n <= 4096, "--grid-sweep: ", n, " is outside [1, 4096]");
+        if (gridSweep != "none")
+            for (const auto& g : splitList(gridSweep)) {
+                char* end = nullptr;
+                const long n = std::strtol(g.c_str(), &end, 10);
+                AMRVK_CHECK(end && *end == '\0' && n >= 1 && n <= 4096, "--grid-sweep: '", g, "' is not in [1, 4096]");
                 o.gridSweep.push_back(g);
             }
     }
-    o.grid = args.get("grid", "auto");
-    const int64_t kd = args.getInt("kd-leaves", 4096);
-    AMRVK_CHECK(kd >= 1 && kd <= (int64_t(1) << 24), "--kd-leaves ", kd, " is outside [1, 2^24]");
-    o.kdLeaves = uint32_t(kd);
-    o.dense = !args.has("no-dense");
-    const int64_t denseMiB = args.getInt("dense-max-mib", 2048);
-    AMRVK_CHECK(denseMiB >= 1 && denseMiB <= (int64_t(1) << 20), "--dense-max-mib ", denseMiB, " is outside [1, 2^20]");
-    o.denseMaxBytes = uint64_t(denseMiB) << 20;
-    o.autoSelect = args.has("auto");
-    o.base.densityScale = args.getDouble("density-scale", 1.0);
-    AMRVK_CHECK(o.base.densityScale >= 0 && std::isfinite(o.base.densityScale), "--density-scale must be finite and >= 0");
-    if (args.has("ambient")) o.base.ambient = parseVec3("--ambient", args.values("ambient"), 0);
-    auto lights = args.values("light-dir");
-    for (size_t i = 0; i + 5 < lights.size(); i += 6)
-        o.base.lights.push_back({false, parseVec3("--light-dir", lights, i), parseVec3("--light-dir", lights, i + 3)});
-    o.base.seed = uint32_t(args.getInt("seed", 1));
-    o.fovDegrees = args.getDouble("fov", 40.0);
-    AMRVK_CHECK(o.fovDegrees > 0 && o.fovDegrees < 180, "--fov ", o.fovDegrees, " is outside (0, 180)");
-    if (args.has("camera")) {
-        auto v = args.values("camera");
-        scene::Camera c;
-        c.eye = parseVec3("--camera", v, 0);
-        c.target = parseVec3("--camera", v, 3);
-        c.up = parseVec3("--camera", v, 6);
-        c.fovYDegrees = o.fovDegrees;
-        o.camera = c;
-    }
+    o.grid = pic.grid;
+    o.kdLeaves = uint32_t(pic.kdLeaves);
+    o.dense = !noDense;
+    o.denseMaxBytes = uint64_t(pic.denseMaxMib) << 20;
+    o.autoSelect = autoSelect;
+    o.base = pictureSettings(app, pic, scene::RenderSettings{});
+    o.fovDegrees = pic.fov;
+    if (app.count("--camera")) o.camera = o.base.camera;
     o.commandLine = "amrvk bench";
     for (const auto& a : argv) o.commandLine += " " + a;
     {
@@ -202,11 +180,11 @@ int runBench(const std::vector<std::string>& argv) {
         std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
         if (!ec) o.amrvkPath = self.string();
     }
-    if (args.has("shader-dir")) gpu::setShaderDirectory(args.get("shader-dir"));
-    gpu::ContextOptions co;
-    co.device = args.get("device");
-    co.validation = args.has("validation");
-    gpu::Context ctx(co);
+    // Every option is valid: only now the output directory is made.
+    std::filesystem::create_directories(o.outDir);
+    AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
+    if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
+    gpu::Context ctx(contextOptions(dev));
 
     ProgressBar bar("bench", "runs");
     bench::BenchResults results =

@@ -11,5 +11,6 @@ int runConvert(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
 int runDevices(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runView(const std::vector<std::string>& args);
 
 }  // namespace amrvk::cli

@@ -7,11 +7,11 @@
 #include "accel/bricks.h"
 #include "accel/range_grid.h"
 #include "amr/readers.h"
-#include "cli/args.h"
+#include <nlohmann/json.hpp>
+
 #include "cli/commands.h"
-#include "cli/read_options.h"
+#include "cli/options.h"
 #include "core/error.h"
-#include "core/json.h"
 #include "core/progress.h"
 #include "core/stats.h"
 
@@ -20,14 +20,10 @@ namespace amrvk::cli {
 namespace {
 
 const char* kInfoHelp =
-    "usage: amrvk info <input> [--field NAME] [--json] [options]\n"
-    "\n"
-    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value\n"
-    "ranges, and macrocell value ranges, and reports the data and the structures: format, voxel and\n"
-    "world bounds, leaf cells per level (level 0 = finest), fields, the field's range and\n"
-    "volume-weighted mean, brick/ABR statistics, bytes per structure and build times.\n"
-    "\n"
-    "options:\n";
+    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value ranges, and "
+    "macrocell value ranges, and reports the data and the structures: format, voxel and world bounds, leaf "
+    "cells per level (level 0 = finest), fields, the field's range and volume-weighted mean, brick/ABR "
+    "statistics, bytes per structure and build times.";
 
 std::string mib(uint64_t bytes) {
     char buf[32];
@@ -38,24 +34,26 @@ std::string mib(uint64_t bytes) {
 }  // namespace
 
 int runInfo(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = readOptionSpecs(false);
-    specs.push_back({"grid", 1, "auto|N|NxMxK", "macrocell grid (default auto: 128 on the longest axis)"});
-    specs.push_back({"bricks", 1, "FILE", "use the bricks of an ExaBrick .bricks file instead of building them"});
-    specs.push_back({"json", 0, "", "print one JSON object on stdout instead of text"});
-    specs.push_back({"help", 0, "", "show this help"});
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s%s", kInfoHelp, formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("info", argv, specs, 1, 1);
-    amr::ReadOptions ro = readOptionsFrom(args);
+    CLI::App app(kInfoHelp, "amrvk info");
+    std::string input, gridSpec = "auto", bricksFile;
+    bool json = false;
+    ReadArgs read;
+    app.add_option("input", input, "the data set")->required();
+    addReadOptions(app, read, false);
+    app.add_option("--grid", gridSpec, "macrocell grid (auto: 128 on the longest axis)")
+        ->capture_default_str()
+        ->type_name("auto|N|NxMxK");
+    app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
+        ->type_name("FILE");
+    app.add_flag("--json", json, "print one JSON object on stdout instead of text");
+    if (!parseCommandLine(app, argv)) return 0;
+    const amr::ReadOptions ro = readOptions(read);
 
     Timer readTimer;
     amr::Model model;
     {
-        ProgressStage stage("reading " + args.positional()[0]);
-        model = amr::readModel(args.positional()[0], ro);
+        ProgressStage stage("reading " + input);
+        model = amr::readModel(input, ro);
     }
     const double readSeconds = readTimer.seconds();
     const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
@@ -65,8 +63,7 @@ int runInfo(const std::vector<std::string>& argv) {
     accel::BrickSet bricks;
     {
         ProgressStage stage("bricks");
-        bricks = args.has("bricks") ? accel::readBricksFile(args.get("bricks"), model)
-                                    : accel::buildBricks(model);
+        bricks = bricksFile.empty() ? accel::buildBricks(model) : accel::readBricksFile(bricksFile, model);
     }
     const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
     std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
@@ -79,7 +76,7 @@ int runInfo(const std::vector<std::string>& argv) {
         abrRanges = accel::computeAbrValueRanges(abrs, bricks, brickValues);
     }
     const double abrSeconds = abrTimer.seconds();
-    const glm::ivec3 gridDims = accel::parseGridDims(args.get("grid", "auto"), summary.bounds);
+    const glm::ivec3 gridDims = accel::parseGridDims(gridSpec, summary.bounds);
     accel::RangeGrid grid;
     {
         ProgressStage stage("macrocell value ranges");
@@ -112,53 +109,42 @@ int runInfo(const std::vector<std::string>& argv) {
     const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
     const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
 
-    if (args.has("json")) {
-        JsonWriter j;
-        j.beginObject();
-        j.member("source", model.source).member("format", model.format);
-        j.member("leafCells", model.cellCount());
-        j.key("cellsPerLevel").beginArray();
-        for (uint64_t c : summary.cellsPerLevel) j.value(c);
-        j.endArray();
-        j.member("minLevel", summary.minLevel).member("maxLevel", summary.maxLevel);
-        j.key("fields").beginArray();
-        for (const auto& f : model.availableFields) j.value(f);
-        j.endArray();
-        j.member("field", field.name);
-        j.key("valueRange").beginArray().value(double(stats.minValue)).value(double(stats.maxValue)).endArray();
-        j.member("volumeWeightedMean", stats.volumeWeightedMean);
-        auto vec = [&](const char* k, glm::dvec3 v) {
-            j.key(k).beginArray().value(v.x).value(v.y).value(v.z).endArray();
-        };
-        j.key("voxelBounds").beginObject();
-        vec("lower", glm::dvec3(summary.bounds.lower));
-        vec("upper", glm::dvec3(summary.bounds.upper));
-        j.endObject();
-        j.key("worldBounds").beginObject();
-        vec("lower", worldLo);
-        vec("upper", worldHi);
-        j.endObject();
-        j.member("bricks", brickStats.brickCount);
-        j.member("singleCellBricks", brickStats.singleCellBricks);
-        j.member("averageCellsPerBrick", brickStats.averageCellsPerBrick);
-        j.member("abrs", uint64_t(abrs.abrs.size()));
-        j.member("averageBricksPerAbr", bricksPerAbr);
-        j.member("maxBricksPerAbr", maxBricksPerAbr);
-        j.key("macrocellDims").beginArray().value(gridDims.x).value(gridDims.y).value(gridDims.z).endArray();
-        j.key("memoryBytes").beginObject();
-        for (const auto& m : memory) j.member(m.name, m.bytes);
-        j.member("total", totalBytes);
-        j.endObject();
-        j.key("buildSeconds").beginObject();
-        j.member("read", readSeconds).member("bricks", bricks.buildSeconds);
-        j.member("abrs", abrSeconds).member("macrocells", grid.buildSeconds);
-        j.endObject();
-        j.member("peakResidentBytes", peakResidentBytes());
-        j.key("attributes").beginObject();
-        for (const auto& [k, v] : model.attributes) j.member(k, v);
-        j.endObject();
-        j.endObject();
-        std::printf("%s\n", j.str().c_str());
+    if (json) {
+        using Json = nlohmann::ordered_json;
+        auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
+        Json j;
+        j["source"] = model.source;
+        j["format"] = model.format;
+        j["leafCells"] = model.cellCount();
+        j["cellsPerLevel"] = summary.cellsPerLevel;
+        j["minLevel"] = summary.minLevel;
+        j["maxLevel"] = summary.maxLevel;
+        j["fields"] = model.availableFields;
+        j["field"] = field.name;
+        j["valueRange"] = Json::array({double(stats.minValue), double(stats.maxValue)});
+        j["volumeWeightedMean"] = stats.volumeWeightedMean;
+        j["voxelBounds"] = {{"lower", vec(glm::dvec3(summary.bounds.lower))}, {"upper", vec(glm::dvec3(summary.bounds.upper))}};
+        j["worldBounds"] = {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}};
+        j["bricks"] = brickStats.brickCount;
+        j["singleCellBricks"] = brickStats.singleCellBricks;
+        j["averageCellsPerBrick"] = brickStats.averageCellsPerBrick;
+        j["abrs"] = uint64_t(abrs.abrs.size());
+        j["averageBricksPerAbr"] = bricksPerAbr;
+        j["maxBricksPerAbr"] = maxBricksPerAbr;
+        j["macrocellDims"] = Json::array({gridDims.x, gridDims.y, gridDims.z});
+        Json mem = Json::object();
+        for (const auto& m : memory) mem[m.name] = m.bytes;
+        mem["total"] = totalBytes;
+        j["memoryBytes"] = mem;
+        j["buildSeconds"] = {{"read", readSeconds},
+                             {"bricks", bricks.buildSeconds},
+                             {"abrs", abrSeconds},
+                             {"macrocells", grid.buildSeconds}};
+        j["peakResidentBytes"] = peakResidentBytes();
+        Json attributes = Json::object();
+        for (const auto& [k, v] : model.attributes) attributes[k] = v;
+        j["attributes"] = attributes;
+        std::printf("%s\n", j.dump(2).c_str());
         return 0;
     }
 
@@ -198,22 +184,20 @@ int runInfo(const std::vector<std::string>& argv) {
 }
 
 int runConvert(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = readOptionSpecs(true);
-    specs.push_back({"output", 1, "BASE", "output base: writes BASE.cells and BASE.<field>.scalars"});
-    specs.push_back({"help", 0, "", "show this help"});
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("usage: amrvk convert <input> -o BASE [options]\n\nWrites the leaf cells of any "
-                        "supported input as ExaBrick BASE.cells plus one BASE.<field>.scalars per field.\n\n"
-                        "options:\n%s",
-                        formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("convert", argv, specs, 1, 1);
-    AMRVK_CHECK(args.has("output"), "amrvk convert: -o BASE is required");
-    amr::Model model = amr::readModel(args.positional()[0], readOptionsFrom(args));
-    amr::writeExaBrick(model, args.get("output"));
-    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", args.get("output").c_str(),
+    CLI::App app("Writes the leaf cells of any supported input as ExaBrick BASE.cells plus one BASE.<field>.scalars "
+                 "per field.",
+                 "amrvk convert");
+    std::string input, base;
+    ReadArgs read;
+    app.add_option("input", input, "the data set")->required();
+    addReadOptions(app, read, true);
+    app.add_option("-o,--output", base, "output base: writes BASE.cells and BASE.<field>.scalars")
+        ->required()
+        ->type_name("BASE");
+    if (!parseCommandLine(app, argv)) return 0;
+    amr::Model model = amr::readModel(input, readOptions(read));
+    amr::writeExaBrick(model, base);
+    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());
     return 0;
 }

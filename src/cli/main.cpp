@@ -1,6 +1,9 @@
 // amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device.
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <exception>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -18,12 +21,32 @@ const char* kUsage =
     "  amrvk gen <kind> --cells N --seed S -o BASE  write synthetic AMR (.cells/.scalars)\n"
     "  amrvk convert <input> -o BASE               convert any input to ExaBrick .cells/.scalars\n"
     "  amrvk render <input> [-o out.png] [options]  path-trace the data on a Vulkan device\n"
+    "  amrvk view <input> [options]                the interactive viewer (or --headless)\n"
     "  amrvk bench <input>... -o DIR [options]     benchmark protocol: speed against error, reports\n"
     "  amrvk devices [--json]                      list Vulkan devices and why any is unusable\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
     "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to override)\n";
+
+// CLI11's messages in amrvk's form: one line naming the option and the value.
+std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
+    std::string m = e.what();
+    std::smatch match;
+    if (const auto* extras = dynamic_cast<const CLI::ExtrasError*>(&e)) {
+        (void)extras;
+        static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
+        const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
+        return arg.rfind("-", 0) == 0 ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command +
+                                            " --help)"
+                                      : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
+    }
+    static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
+    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
+    for (char& c : m)
+        if (c == '\n' || c == '\r') c = ' ';
+    return m + " (see amrvk " + command + " --help)";
 }
+}  // namespace
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
@@ -38,10 +61,14 @@ int main(int argc, char** argv) {
         if (command == "gen") return amrvk::cli::runGen(args);
         if (command == "convert") return amrvk::cli::runConvert(args);
         if (command == "render") return amrvk::cli::runRender(args);
+        if (command == "view") return amrvk::cli::runView(args);
         if (command == "devices") return amrvk::cli::runDevices(args);
         if (command == "bench") return amrvk::cli::runBench(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), parseErrorLine(e, command).c_str());
+        return 1;
     } catch (const amrvk::Error& e) {
         std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());
         return 1;

@@ -69,8 +69,13 @@ public:
     // frame never waits for a whole sample). Returns the GPU seconds; rowsDone() tells how far.
     double accumulateRows(uint32_t rows);
     uint32_t rowsDone() const { return mPathTrace.rowsDone(); }
+    // The accumulation buffer (vec4 sum with count in w, then sum of squares, per pixel) at the
+    // current image size, for the display pass.
+    uint64_t accumulationAddress() const { return mPathTrace.accumAddress(); }
     // The image so far: mean, sums of squares, spp and the counters of every path in it.
     scene::RenderOutput output() const { return mPathTrace.read(); }
+    // The counters and GPU time of every path in the current image (no download).
+    const scene::RenderStats& stats() const { return mPathTrace.stats(); }
     // One image from scratch: setSettings, reset, accumulate `spp`. `snapshot(out)` additionally
     // sees the image at each sample count in `snapshotSpp` (ascending; downloads are not timed).
     scene::RenderOutput render(const scene::RenderSettings& settings, uint32_t spp,

@@ -13,6 +13,12 @@ void FrameBudget::record(double seconds, uint64_t pixelSamples) {
     mMeasured = true;
 }
 
+void FrameBudget::recordOtherWork(double seconds) {
+    if (!(seconds >= 0)) return;
+    mOther = 0.8 * mOther + 0.2 * seconds;
+    mBudget = std::max(0.1 * mFrame, mFrame - mOther);
+}
+
 int FrameBudget::previewScale(int width, int height) const {
     const double pixels = double(std::max(width, 1)) * double(std::max(height, 1));
     int scale = 1;

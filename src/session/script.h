@@ -9,6 +9,7 @@
 //   edit-shader FILE FIND REPLACE    replace the first FIND in FILE (under --shader-dir) and save it
 //   reload                           recompile the shaders now (the watcher also does on a save)
 //   screenshot FILE                  the accumulated image, no UI (.png, .exr, .pfm)
+//   capture-window FILE              the window as shown, UI included (.png; no-op with --headless)
 //   quit
 // Parsing checks every action's name and argument count and every number, one line per error
 // naming the file and line.

@@ -28,6 +28,14 @@ TEST(FrameBudget, PreviewAndTilesFitTheBudget) {
     EXPECT_EQ(slow.rowsPerFrame(1024, 768), 1u);
 }
 
+TEST(FrameBudget, TheRestOfTheFrameComesOutOfTheBudget) {
+    FrameBudget b(0.05);
+    for (int i = 0; i < 50; ++i) b.recordOtherWork(0.02);  // UI + display: 20 ms a frame
+    EXPECT_NEAR(b.budgetSeconds(), 0.03, 1e-6);
+    for (int i = 0; i < 50; ++i) b.recordOtherWork(1.0);  // a very slow UI: the tracer keeps 1/10
+    EXPECT_NEAR(b.budgetSeconds(), 0.005, 1e-12);
+}
+
 TEST(FrameBudget, FollowsTheMeasuredCost) {
     FrameBudget b(0.05);
     b.record(1.0, 1000);

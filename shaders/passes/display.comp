@@ -1,0 +1,38 @@
+#version 460
+// The accumulated image as a window shows it: the per-pixel mean (sum / count; pixels without a
+// sample yet are black), scaled bilinearly from the render size to the window size (a preview
+// rendered smaller is magnified), times the exposure, clamped, sRGB encoded to 8 bits (the curve
+// of core/image_io's encodeSrgb8) and packed for a B8G8R8A8_UNORM image.
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "shared/display_gpu.h"
+layout(push_constant, scalar) uniform Push { DisplayPush pc; };
+layout(buffer_reference, scalar) readonly buffer AccumRef { vec4 v[]; };
+layout(buffer_reference, scalar) buffer PixelsRW { uint v[]; };
+layout(local_size_x = 8, local_size_y = 8) in;
+
+vec3 meanAt(ivec2 p) {
+    p = clamp(p, ivec2(0), ivec2(pc.srcWidth, pc.srcHeight) - 1);
+    vec4 sum = AccumRef(pc.accum).v[2u * (uint(p.y) * pc.srcWidth + uint(p.x))];
+    return sum.w > 0.0 ? sum.rgb / sum.w : vec3(0.0);
+}
+
+// sRGB code 0..255 of a linear value clamped to [0, 1] (NaN -> 0). CPU twin: encodeSrgb8.
+float encodeSrgb(float linear) {
+    float c = linear > 0.0 ? min(linear, 1.0) : 0.0;
+    float s = c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+    return floor(clamp(s, 0.0, 1.0) * 255.0 + 0.5);
+}
+
+void main() {
+    uvec2 d = gl_GlobalInvocationID.xy;
+    if (d.x >= pc.dstWidth || d.y >= pc.dstHeight) return;
+    vec2 src = (vec2(d) + 0.5) * vec2(pc.srcWidth, pc.srcHeight) / vec2(pc.dstWidth, pc.dstHeight) - 0.5;
+    ivec2 i0 = ivec2(floor(src));
+    vec2 f = src - vec2(i0);
+    vec3 c = mix(mix(meanAt(i0), meanAt(i0 + ivec2(1, 0)), f.x), mix(meanAt(i0 + ivec2(0, 1)), meanAt(i0 + ivec2(1, 1)), f.x),
+                 f.y) * pc.exposure;
+    uint r = uint(encodeSrgb(c.r)), g = uint(encodeSrgb(c.g)), b = uint(encodeSrgb(c.b));
+    PixelsRW(pc.target).v[d.y * pc.dstWidth + d.x] = b | (g << 8) | (r << 16) | (255u << 24);
+}

@@ -1,0 +1,311 @@
+#include "cli/options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "scene/camera.h"
+
+namespace amrvk::cli {
+
+CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
+    auto bound = [](double v) {
+        if (std::isinf(v)) return std::string(v < 0 ? "-inf" : "inf");
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.10g", v);
+        return std::string(buf);
+    };
+    const std::string text = (openLo ? "(" : "[") + bound(lo) + ", " + bound(hi) + (openHi ? ")" : "]");
+    return CLI::Validator(
+        [=](std::string& s) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(s.c_str(), &end);
+            if (s.empty() || !end || *end != '\0') return "'" + s + "' is not a number";
+            if (!std::isfinite(v)) return "'" + s + "' is not a finite number";
+            const bool inside = (openLo ? v > lo : v >= lo) && (openHi ? v < hi : v <= hi);
+            return inside ? std::string() : "'" + s + "' is outside " + text;
+        },
+        text);
+}
+
+const CLI::Validator kFinite = interval(-INFINITY, INFINITY, true, true).description("FINITE");
+
+namespace {
+
+// Whether `name` is an option of `app` and was given on the command line.
+bool given(const CLI::App& app, const std::string& name) {
+    const CLI::Option* o = app.get_option_no_throw(name);
+    return o && o->count() > 0;
+}
+
+std::vector<std::string> traversalChoices(bool withAuto) {
+    std::vector<std::string> out;
+    for (scene::TraversalKind t : scene::allTraversals()) out.push_back(scene::traversalName(t));
+    if (withAuto) out.push_back("auto");
+    return out;
+}
+
+glm::dvec3 vec3At(const std::vector<double>& v, size_t at) { return {v[at], v[at + 1], v[at + 2]}; }
+
+// Lights given as repeated 6-number options.
+void addLights(std::vector<scene::Light>& out, const std::vector<double>& values, bool point, const char* option) {
+    for (size_t i = 0; i + 5 < values.size(); i += 6) {
+        scene::Light L{point, vec3At(values, i), vec3At(values, i + 3)};
+        AMRVK_CHECK(glm::all(glm::greaterThanEqual(L.radiance, glm::dvec3(0.0))), option, ": radiance ",
+                    L.radiance.x, " ", L.radiance.y, " ", L.radiance.z, " must be >= 0");
+        AMRVK_CHECK(point || glm::length(L.posOrDir) > 0, option, ": the direction 0 0 0 points nowhere");
+        out.push_back(L);
+    }
+}
+
+}  // namespace
+
+void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
+    app.add_option("--format", a.format, "input format (default: detected from names and magic bytes)")
+        ->check(CLI::IsMember({"auto", "exabrick", "amrex", "enzo", "chombo", "raw"}))
+        ->type_name("auto|exabrick|amrex|enzo|chombo|raw");
+    CLI::Option* field = app.add_option("--field", a.fields,
+                                        multiField ? "field to load (repeatable; default: every field)"
+                                                   : "field to use (default: the first)")
+                             ->type_name("NAME");
+    if (multiField) field->take_all();
+    else field->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::Throw);
+    app.add_option("--nan", a.nan, "NaN/Inf values: reject = an error, drop = their cells are removed")
+        ->check(CLI::IsMember({"reject", "drop"}))
+        ->capture_default_str();
+    app.add_option("--dims", a.dims, "raw volumes: voxels per axis (else from a name like v_64x64x64_uint8.raw)")
+        ->expected(3)
+        ->check(interval(1, 1 << 20))
+        ->type_name("NX NY NZ");
+    app.add_option("--type", a.type, "raw volumes: voxel type")
+        ->check(CLI::IsMember({"uint8", "uint16", "float32", "float64"}))
+        ->type_name("uint8|uint16|float32|float64");
+    app.add_option("--threshold", a.threshold, "raw volumes: merge a block into one cell when max - min <= T")
+        ->check(interval(0, INFINITY, false, true))
+        ->capture_default_str()
+        ->type_name("T");
+}
+
+amr::ReadOptions readOptions(const ReadArgs& a) {
+    amr::ReadOptions ro;
+    ro.format = a.format;
+    ro.fields = a.fields;
+    ro.nanPolicy = amr::parseNanPolicy(a.nan);
+    if (a.dims.size() == 3) ro.rawDims = glm::ivec3(a.dims[0], a.dims[1], a.dims[2]);
+    ro.rawType = a.type;
+    ro.rawThreshold = a.threshold;
+    return ro;
+}
+
+void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
+    app.add_option("--device", a.device, "Vulkan device by index or name part (default: a discrete GPU, else any)")
+        ->type_name("INDEX|NAME");
+    app.add_option("--shader-dir", a.shaderDir,
+                   "load shaders from DIR (.spv, or .comp compiled in process) instead of the embedded ones")
+        ->check(CLI::ExistingDirectory)
+        ->type_name("DIR");
+    app.add_flag("--validation", a.validation, "enable the Vulkan validation layer");
+}
+
+gpu::ContextOptions contextOptions(const DeviceArgs& a) {
+    gpu::ContextOptions co;
+    co.device = a.device;
+    co.validation = a.validation;
+    return co;
+}
+
+void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
+    if (!subset) {
+        app.add_option("--session", a.session,
+                       "start from a session file (the viewer's 'save session'); options given too override it")
+            ->check(CLI::ExistingFile)
+            ->type_name("FILE");
+        app.add_option("--tf", a.tf,
+                       "transfer function: ParaView preset JSON, .xf, or a preset (ramp, grey, spiky, foggy, "
+                       "constant, empty) over the field's range")
+            ->capture_default_str()
+            ->type_name("FILE|PRESET");
+        app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
+            ->type_name("NAME");
+        app.add_option("--mode", a.mode,
+                       "absorption+emission, single or multiple scattering, or the ray-marching baseline (biased "
+                       "by --dt)")
+            ->check(CLI::IsMember({"ae", "ss", "ms", "dvr"}))
+            ->capture_default_str()
+            ->type_name("ae|ss|ms|dvr");
+        app.add_option("--dt", a.dt, "dvr: step as a fraction of the finest cell width at the sample")
+            ->check(interval(0, 64, true))
+            ->capture_default_str();
+        app.add_flag("--dvr-shading", a.dvrShading, "dvr: gradient shading by the first --light-dir (else a headlight)");
+        app.add_option("--traversal", a.traversal,
+                       "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, brick bounds, brick "
+                       "domains, the TF-specific kd-tree; auto = probe every combination briefly and take the most "
+                       "efficient (options given explicitly stay fixed)")
+            ->check(CLI::IsMember(traversalChoices(true)))
+            ->capture_default_str();
+        app.add_option("--sampler", a.sampler,
+                       "sample reconstruction: brick domains, ABRs, or dense = the field resampled to the finest "
+                       "uniform grid (trilinear, a grid traversal only; the cost floor)")
+            ->check(CLI::IsMember({"ext-brick", "abr", "dense"}))
+            ->capture_default_str();
+        app.add_option("--backend", a.backend,
+                       "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it")
+            ->check(CLI::IsMember({"sw", "rq", "auto"}))
+            ->capture_default_str();
+        app.add_option("--spp", a.spp, "samples per pixel")->check(interval(1, 1 << 24))->capture_default_str();
+    }
+    app.add_option("--tf-range", a.tfRange, "map the TF's node range onto [LO, HI] (presets: default the field's range)")
+        ->expected(2)
+        ->check(kFinite)
+        ->type_name("LO HI");
+    app.add_option("--grid", a.grid, "macrocell grid of grid-dda and grid-bvh (auto: 128 on the longest axis)")
+        ->capture_default_str()
+        ->type_name("auto|N|NxMxK");
+    app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")
+        ->check(interval(1, 1 << 24))
+        ->capture_default_str();
+    app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")
+        ->check(interval(1, 1 << 20))
+        ->capture_default_str();
+    app.add_option("--size", a.size, "image size, 1..16384 per side")->capture_default_str()->type_name("WxH");
+    app.add_option("--camera", a.camera, "eye, target and up in world space (default: a three-quarter view)")
+        ->expected(9)
+        ->check(kFinite)
+        ->type_name("EX EY EZ TX TY TZ UX UY UZ");
+    app.add_option("--fov", a.fov, "vertical field of view in degrees, in (0, 180)")
+        ->check(interval(0, 180, true, true))
+        ->capture_default_str();
+    app.add_option("--seed", a.seed, "random seed")->check(interval(0, UINT32_MAX))->capture_default_str();
+    app.add_option("--density-scale", a.densityScale, "multiplies extinction")
+        ->check(interval(0, INFINITY, false, true))
+        ->capture_default_str();
+    app.add_option("--g", a.g, "Henyey-Greenstein asymmetry in [-1, 1] (clamped to +-0.999)")
+        ->check(interval(-1, 1))
+        ->capture_default_str();
+    app.add_option("--ambient", a.ambient, "uniform environment radiance (default 1 1 1)")
+        ->expected(3)
+        ->check(interval(0, INFINITY, false, true))
+        ->type_name("R G B");
+    if (!subset)
+        app.add_option("--background", a.background, "radiance seen by primary rays that escape (default: the ambient)")
+            ->expected(3)
+            ->check(interval(0, INFINITY, false, true))
+            ->type_name("R G B");
+    app.add_option("--light-dir", a.lightDir, "directional light towards X Y Z (world) with radiance R G B (repeatable)")
+        ->expected(6)
+        ->take_all()
+        ->check(kFinite)
+        ->type_name("X Y Z R G B");
+    if (!subset)
+        app.add_option("--light-point", a.lightPoint, "point light at X Y Z (world) with intensity R G B (repeatable)")
+            ->expected(6)
+            ->take_all()
+            ->check(kFinite)
+            ->type_name("X Y Z R G B");
+}
+
+void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
+    int a = 0, b = 0;
+    char x = 0, tail = 0;
+    const int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
+    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384, option, " '", text,
+                "': expected WxH with 1 <= W, H <= 16384");
+    width = a;
+    height = b;
+}
+
+scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings s) {
+    const bool all = !given(app, "--session");
+    auto use = [&](const char* name) { return (all && app.get_option_no_throw(name)) || given(app, name); };
+    if (use("--mode")) s.mode = scene::parseMode(a.mode);
+    if (use("--dt")) s.dvrStep = a.dt;
+    if (use("--dvr-shading")) s.dvrShading = a.dvrShading;
+    if (use("--size")) parseSize("--size", a.size, s.width, s.height);
+    if (use("--seed")) s.seed = uint32_t(a.seed);
+    if (use("--density-scale")) s.densityScale = a.densityScale;
+    if (use("--g")) s.g = a.g;
+    if (given(app, "--ambient")) s.ambient = vec3At(a.ambient, 0);
+    if (given(app, "--background")) s.background = vec3At(a.background, 0);
+    if (given(app, "--light-dir") || given(app, "--light-point")) {
+        s.lights.clear();
+        addLights(s.lights, a.lightDir, false, "--light-dir");
+        addLights(s.lights, a.lightPoint, true, "--light-point");
+        AMRVK_CHECK(s.lights.size() <= 8, "at most 8 lights (got ", s.lights.size(), ")");
+    }
+    if (given(app, "--camera")) {
+        s.camera.eye = vec3At(a.camera, 0);
+        s.camera.target = vec3At(a.camera, 3);
+        s.camera.up = vec3At(a.camera, 6);
+        AMRVK_CHECK(glm::length(s.camera.eye - s.camera.target) > 0, "--camera: eye and target coincide");
+        AMRVK_CHECK(glm::length(glm::cross(s.camera.target - s.camera.eye, s.camera.up)) > 0,
+                    "--camera: the up vector is parallel to the view direction");
+    }
+    if (use("--fov")) s.camera.fovYDegrees = a.fov;
+    return s;
+}
+
+Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
+                           const PictureArgs& a) {
+    Picture p;
+    const bool fromSession = given(app, "--session");
+    if (fromSession) {
+        p.session = session::loadSession(a.session);
+        p.tfFromSession = !(given(app, "--tf") || given(app, "--tf-range") || given(app, "--tf-preset"));
+        p.cameraGiven = true;
+    }
+    session::Session& s = p.session;
+    if (input) s.input = *input;
+    AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
+    const bool all = !fromSession;
+    auto use = [&](const char* name) { return all || given(app, name); };
+    if (use("--format")) s.read.format = read.format;
+    if (use("--nan")) s.read.nanPolicy = amr::parseNanPolicy(read.nan);
+    if (given(app, "--dims")) s.read.rawDims = glm::ivec3(read.dims[0], read.dims[1], read.dims[2]);
+    if (given(app, "--type")) s.read.rawType = read.type;
+    if (use("--threshold")) s.read.rawThreshold = read.threshold;
+    if (given(app, "--field")) s.field = read.fields.front();
+    s.settings = pictureSettings(app, a, fromSession ? s.settings : scene::RenderSettings{});
+    p.cameraGiven = p.cameraGiven || given(app, "--camera");
+    if (use("--spp")) s.spp = uint32_t(a.spp);
+    p.autoTraversal = a.traversal == "auto" && given(app, "--traversal");
+    if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
+    if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
+    if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
+    if (use("--grid")) s.structure.grid = a.grid;
+    if (use("--kd-leaves")) s.structure.kdLeaves = uint32_t(a.kdLeaves);
+    if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
+    if (!p.autoTraversal) s.structure.validate();
+    return p;
+}
+
+void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model,
+                         float valueLo, float valueHi) {
+    if (!p.tfFromSession) {
+        const bool range = given(app, "--tf-range");
+        const float lo = range ? float(a.tfRange[0]) : valueLo, hi = range ? float(a.tfRange[1]) : valueHi;
+        AMRVK_CHECK(!range || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
+        scene::TransferFunction tf = scene::loadTransferFunction(a.tf, lo, hi, a.tfPreset);
+        if (range) tf = tf.rescaled(lo, hi);
+        p.session.tf = scene::TfChannels::split(tf);
+    }
+    if (!p.cameraGiven) {
+        const amr::ModelSummary sum = amr::summarize(model);
+        p.session.settings.camera =
+            scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                 model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)), p.session.settings.camera.fovYDegrees);
+    }
+}
+
+bool parseCommandLine(CLI::App& app, const std::vector<std::string>& argv) {
+    std::vector<std::string> reversed(argv.rbegin(), argv.rend());  // CLI11 takes them back to front
+    try {
+        app.parse(reversed);
+    } catch (const CLI::CallForHelp&) {
+        std::fputs(app.help().c_str(), stdout);
+        return false;
+    }
+    return true;
+}
+
+}  // namespace amrvk::cli

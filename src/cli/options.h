@@ -1,0 +1,94 @@
+#pragma once
+// Every command-line option of amrvk, declared once (name, default, range, help) with CLI11 and
+// shared by the commands that take it: read options (info, convert, render, view, bench), the
+// picture options (render and view, most of them bench too), device options. Values are checked
+// where they are declared (ranges, finite numbers, names), so every command reports a bad value
+// in the same one line.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "amr/readers.h"
+#include "gpu/context.h"
+#include "session/session.h"
+
+namespace amrvk::cli {
+
+// A finite number in [lo, hi] (open ends where asked); the message names the value and the
+// interval, e.g. "'0' is outside [1, 16777216]" or "'x' is not a number". CLI11 reads "nan" and
+// "inf" as numbers; these checks do not let them through.
+CLI::Validator interval(double lo, double hi, bool openLo = false, bool openHi = false);
+extern const CLI::Validator kFinite;  // any finite number
+
+struct ReadArgs {
+    std::string format = "auto";
+    std::vector<std::string> fields;
+    std::string nan = "reject";
+    std::vector<int> dims;
+    std::string type;
+    double threshold = 0;
+};
+// --format, --field (repeatable where multiField), --nan, --dims, --type, --threshold.
+void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField);
+amr::ReadOptions readOptions(const ReadArgs& a);
+
+struct DeviceArgs {
+    std::string device, shaderDir;
+    bool validation = false;
+};
+// --device, --shader-dir, --validation.
+void addDeviceOptions(CLI::App& app, DeviceArgs& a);
+gpu::ContextOptions contextOptions(const DeviceArgs& a);
+
+// The options that make a picture (render, view; bench takes a subset).
+struct PictureArgs {
+    std::string session;
+    std::string tf = "ramp", tfPreset;
+    std::vector<double> tfRange;
+    std::string mode = "ms";
+    double dt = 0.5;
+    bool dvrShading = false;
+    std::string traversal = "grid-dda", sampler = "ext-brick", backend = "auto", grid = "auto";
+    int64_t kdLeaves = 4096, denseMaxMib = 2048;
+    int64_t spp = 64;
+    std::string size = "512x512";
+    std::vector<double> camera;
+    double fov = 40;
+    int64_t seed = 1;
+    double densityScale = 1, g = 0;
+    std::vector<double> ambient, background, lightDir, lightPoint;
+};
+// Every picture option; bench passes subset = true to leave out what it sets per run (mode, TF,
+// structure, spp, session, dt, dvr shading).
+void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset = false);
+
+// Lighting, medium, camera, image size and seed from the options given on the command line, on top
+// of `base` (a session's settings or the defaults). Camera only when --camera was given.
+scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings base);
+
+// "WxH" with 1 <= W, H <= 16384.
+void parseSize(const std::string& option, const std::string& text, int& width, int& height);
+
+// The session a render or view starts from: --session FILE when given, then every option given
+// explicitly on top of it; without a session the options' defaults. The TF (unless it comes from
+// the session) and the default camera need the data: see resolveAfterReading.
+struct Picture {
+    session::Session session;
+    bool tfFromSession = false;
+    bool cameraGiven = false;      // --camera or the session's camera
+    bool autoTraversal = false;    // --traversal auto
+};
+Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
+                           const PictureArgs& a);
+// Loads the TF (a preset over the field's value range unless --tf-range) and, unless one was
+// given, frames the data with the default camera.
+void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model,
+                         float valueLo, float valueHi);
+
+// Parses argv (after the subcommand) into `app`; --help prints the help and returns false (the
+// command then exits 0). Errors throw CLI::ParseError, which main prints as one line.
+bool parseCommandLine(CLI::App& app, const std::vector<std::string>& argv);
+
+}  // namespace amrvk::cli

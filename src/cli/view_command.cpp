@@ -1,0 +1,94 @@
+// amrvk view: the interactive viewer (viewer/viewer_app.h), with every read and render option of
+// amrvk render plus automation for scripts and tests.
+#include <cstdio>
+
+#include "amr/readers.h"
+#include "cli/commands.h"
+#include "cli/options.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "scene/volume_scene.h"
+#include "viewer/viewer_app.h"
+
+namespace amrvk::cli {
+
+namespace {
+
+const char* kViewHelp =
+    "The interactive viewer: turn the data around (left drag orbits, right drag or the wheel zooms, middle or "
+    "shift drag pans; arrow keys, +/-, R resets), edit the transfer function over the field's histogram, "
+    "switch mode, structures and lights, and watch the path-traced picture converge. It renders a small "
+    "preview while you interact and refines at full resolution when you stop, within a time budget per "
+    "frame, so the window stays responsive on slow devices. Sessions saved here render the same with "
+    "amrvk render --session. --headless runs with no window (no display needed), for scripts and tests.";
+
+}  // namespace
+
+int runView(const std::vector<std::string>& argv) {
+    CLI::App app(kViewHelp, "amrvk view");
+    app.get_formatter()->column_width(36);
+    std::string input;
+    ReadArgs read;
+    PictureArgs pic;
+    DeviceArgs dev;
+    viewer::ViewerOptions vo;
+    std::string screenshot, script, stats;
+    int64_t frames = 0;
+    double budgetMs = 50;
+    std::string window;
+    app.add_option("input", input, "the data set (as amrvk render; optional with --session)");
+    addReadOptions(app, read, false);
+    addPictureOptions(app, pic);
+    app.get_option("--spp")->description("stop accumulating at N samples per pixel (default: run on)");
+    addDeviceOptions(app, dev);
+    app.add_flag("--headless", vo.headless, "no window (no display needed): for --script, --frames, --screenshot");
+    app.add_option("--frames", frames, "stop after N frames (default: when the window closes; --headless needs it)")
+        ->check(interval(1, 1e12));
+    app.add_option("--screenshot", screenshot, "at exit, save the accumulated image without the UI (.png .exr .pfm)")
+        ->type_name("FILE");
+    app.add_option("--script", script, "frame-numbered actions (docs/viewer.md)")->check(CLI::ExistingFile)->type_name("FILE");
+    app.add_option("--stats", stats, "at exit, write frame times and times to the first full sample as JSON")
+        ->type_name("FILE");
+    app.add_option("--frame-budget-ms", budgetMs,
+                   "target frame time; the path tracer gets what the UI and display leave of it")
+        ->check(interval(1, 10000))
+        ->capture_default_str();
+    app.add_option("--window", window, "window size (default: --size)")->type_name("WxH");
+    if (!parseCommandLine(app, argv)) return 0;
+
+    AMRVK_CHECK(!vo.headless || frames > 0 || !script.empty(),
+                "--headless needs --frames N or a --script that quits (it has no window to close)");
+    if (!screenshot.empty()) {
+        const std::string ext = std::filesystem::path(screenshot).extension().string();
+        AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
+                    ": unknown image type (use .png, .exr or .pfm)");
+    }
+    Picture picture = pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
+    if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
+    // The TF and the default camera need the field's range and the bounds.
+    amr::ReadOptions ro = picture.session.read;
+    if (!picture.session.field.empty()) ro.fields = {picture.session.field};
+    amr::Model model;
+    {
+        ProgressStage stage("reading " + picture.session.input);
+        model = amr::readModel(picture.session.input, ro);
+    }
+    const amr::Field& field = picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
+    picture.session.field = field.name;
+    const amr::FieldStats st = amr::computeFieldStats(model, field);
+    resolveAfterReading(picture, app, pic, model, st.minValue, st.maxValue);
+    vo.start = picture.session;
+    vo.frames = uint64_t(frames);
+    vo.screenshot = screenshot;
+    vo.script = script;
+    vo.statsJson = stats;
+    vo.shaderDir = dev.shaderDir;
+    vo.device = dev.device;
+    vo.validation = dev.validation;
+    vo.frameBudgetSeconds = budgetMs * 1e-3;
+    if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
+    return viewer::runViewer(vo, std::move(model));
+}
+
+}  // namespace amrvk::cli

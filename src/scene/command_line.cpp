@@ -1,0 +1,63 @@
+#include "scene/command_line.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace amrvk::scene {
+
+namespace {
+std::string vec(glm::dvec3 v) { return formatNumber(v.x) + " " + formatNumber(v.y) + " " + formatNumber(v.z); }
+}  // namespace
+
+std::string shellQuote(const std::string& s) {
+    if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=.,/:@%") ==
+                          std::string::npos)
+        return s;
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string formatNumber(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    // Shortest text that reads back the same double.
+    for (int digits = 1; digits <= 17; ++digits) {
+        char s[64];
+        std::snprintf(s, sizeof s, "%.*g", digits, v);
+        if (std::strtod(s, nullptr) == v) return s;
+    }
+    return buf;
+}
+
+std::string settingsOptions(const RenderSettings& s, bool withCamera) {
+    const RenderSettings d;
+    std::string o = std::string(" --mode ") + modeName(s.mode);
+    o += " --size " + std::to_string(s.width) + "x" + std::to_string(s.height);
+    o += " --seed " + std::to_string(s.seed);
+    if (withCamera) {
+        o += " --camera " + vec(s.camera.eye) + " " + vec(s.camera.target) + " " + vec(s.camera.up);
+        o += " --fov " + formatNumber(s.camera.fovYDegrees);
+    }
+    if (s.densityScale != d.densityScale) o += " --density-scale " + formatNumber(s.densityScale);
+    if (s.g != d.g) o += " --g " + formatNumber(s.g);
+    if (s.ambient != d.ambient) o += " --ambient " + vec(s.ambient);
+    if (s.background) o += " --background " + vec(*s.background);
+    for (const Light& L : s.lights)
+        o += std::string(L.point ? " --light-point " : " --light-dir ") + vec(L.posOrDir) + " " + vec(L.radiance);
+    if (s.dvrStep != d.dvrStep) o += " --dt " + formatNumber(s.dvrStep);
+    if (s.dvrShading) o += " --dvr-shading";
+    return o;
+}
+
+std::string structureOptions(const StructureConfig& c) {
+    const StructureConfig d;
+    std::string o = std::string(" --traversal ") + traversalName(c.traversal) + " --sampler " + samplerName(c.sampler) +
+                    " --backend " + backendName(c.backend);
+    if (c.usesGrid() || c.grid != d.grid) o += " --grid " + shellQuote(c.grid);
+    if (c.kdLeaves != d.kdLeaves) o += " --kd-leaves " + std::to_string(c.kdLeaves);
+    if (c.denseMaxBytes != d.denseMaxBytes) o += " --dense-max-mib " + std::to_string(c.denseMaxBytes >> 20);
+    return o;
+}
+
+}  // namespace amrvk::scene

@@ -1,0 +1,330 @@
+#include "viewer/panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace amrvk::viewer {
+
+namespace {
+
+const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
+
+std::string bytesText(uint64_t b) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / double(1 << 20));
+    return buf;
+}
+
+// Combo over a fixed list of names; true when the choice changed.
+bool namedCombo(const char* label, std::string& value, const std::vector<std::string>& names) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, value.c_str())) {
+        for (const std::string& n : names) {
+            if (ImGui::Selectable(n.c_str(), n == value) && n != value) {
+                value = n;
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+bool vec3Edit(const char* label, glm::dvec3& v, float speed) {
+    float f[3] = {float(v.x), float(v.y), float(v.z)};
+    if (!ImGui::DragFloat3(label, f, speed)) return false;
+    v = glm::dvec3(f[0], f[1], f[2]);
+    return true;
+}
+
+bool colorEdit(const char* label, glm::dvec3& v) {
+    // HDR colours: the value can exceed 1 (radiance), so a float editor without clamping.
+    float f[3] = {float(v.x), float(v.y), float(v.z)};
+    if (!ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) return false;
+    v = glm::max(glm::dvec3(f[0], f[1], f[2]), glm::dvec3(0.0));
+    return true;
+}
+
+void statisticsOverlay(const Statistics& s) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("statistics", nullptr, flags)) {
+        ImGui::Text("%s", s.device.c_str());
+        ImGui::Text("%s", s.combination.c_str());
+        ImGui::Text("%.1f frames/s (%.1f ms)   %.3f M paths/s", s.framesPerSecond, s.frameMilliseconds,
+                    s.mPathsPerSecond);
+        if (s.previewScale > 1) {
+            ImGui::Text("preview 1/%d", s.previewScale);
+        } else if (s.sppLimit > 0) {
+            ImGui::Text("%u / %u spp", s.spp, s.sppLimit);
+        } else {
+            ImGui::Text("%u spp", s.spp);
+        }
+        if (s.rowsDone > 0 && s.previewScale == 1) {
+            ImGui::SameLine();
+            ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
+        }
+        ImGui::Text("%.2f lookups/path   %.2f null/real collision", s.lookupsPerPath, s.nullPerReal);
+        if (s.violations > 0) ImGui::TextColored(kRed, "%llu majorant violations", (unsigned long long)s.violations);
+        else ImGui::Text("0 majorant violations");
+        if (s.trackingCapHits > 0)
+            ImGui::TextColored(kRed, "%llu paths stopped at the tracking cap (biased)",
+                               (unsigned long long)s.trackingCapHits);
+        if (s.nanSamples > 0) ImGui::TextColored(kRed, "%llu NaN samples", (unsigned long long)s.nanSamples);
+        ImGui::Text("device memory %s", bytesText(s.deviceBytes).c_str());
+        ImGui::Text("last TF edit %.1f ms, structure %.2f s", s.tfEditSeconds * 1e3, s.structureSeconds);
+    }
+    ImGui::End();
+}
+
+// The opacity curve over the histogram and the colour map; nodes are dragged (left), added
+// (double click) and removed (right click).
+void tfCanvas(PanelState& p, PanelRequests& r) {
+    session::TfEditor& tf = *p.tf;
+    const float width = std::max(120.0f, ImGui::GetContentRegionAvail().x);
+    const ImVec2 size(width, 150.0f);
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("opacity", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(o, ImVec2(o.x + size.x, o.y + size.y), IM_COL32(30, 30, 34, 255));
+    const float top = std::max(p.alphaDisplayMax, 1e-6f);
+    auto toScreen = [&](float x, float a) {
+        return ImVec2(o.x + x * size.x, o.y + size.y - std::min(a / top, 1.0f) * (size.y - 4.0f) - 2.0f);
+    };
+    if (p.histogram && !p.histogram->counts.empty()) {
+        const auto& c = p.histogram->counts;
+        const double m = std::max(p.histogram->maxCount(), 1e-300);
+        const float bw = size.x / float(c.size());
+        for (size_t i = 0; i < c.size(); ++i) {
+            const double h = p.logHistogram ? std::log1p(c[i]) / std::log1p(m) : c[i] / m;
+            if (!(h > 0)) continue;
+            dl->AddRectFilled(ImVec2(o.x + float(i) * bw, o.y + size.y - float(h) * size.y),
+                              ImVec2(o.x + float(i + 1) * bw, o.y + size.y), IM_COL32(90, 90, 100, 255));
+        }
+    }
+    const auto& nodes = tf.opacity();
+    for (size_t i = 0; i + 1 < nodes.size(); ++i)
+        dl->AddLine(toScreen(nodes[i].x, nodes[i].alpha), toScreen(nodes[i + 1].x, nodes[i + 1].alpha),
+                    IM_COL32(255, 255, 255, 255), 2.0f);
+    for (size_t i = 0; i < nodes.size(); ++i)
+        dl->AddCircleFilled(toScreen(nodes[i].x, nodes[i].alpha), int(i) == p.draggingNode ? 6.0f : 4.5f,
+                            IM_COL32(255, 200, 60, 255));
+
+    const ImVec2 mouse = ImGui::GetMousePos();
+    const float mx = std::clamp((mouse.x - o.x) / size.x, 0.0f, 1.0f);
+    const float ma = std::max(0.0f, (o.y + size.y - 2.0f - mouse.y) / (size.y - 4.0f) * top);
+    const float tolX = 7.0f / size.x, tolA = 7.0f / (size.y - 4.0f) * top;
+    if (ImGui::IsItemHovered()) {
+        const std::optional<size_t> hit = tf.nodeNear(mx, ma, tolX, tolA);
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hit) p.draggingNode = int(*hit);
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && !hit) {
+            p.draggingNode = int(tf.addNode(mx, ma));
+            r.tfChanged = true;
+        }
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hit && *hit > 0 && *hit + 1 < nodes.size()) {
+            tf.removeNode(*hit);
+            r.tfChanged = r.tfCommitted = true;
+        }
+        const float value = tf.lo() + mx * (tf.hi() - tf.lo());
+        ImGui::SetTooltip("value %.4g   alpha %.4g\ndrag a node; double-click adds one, right-click removes it", value,
+                          ma);
+    }
+    if (p.draggingNode >= 0) {
+        if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+            const auto& n = tf.opacity()[size_t(p.draggingNode)];
+            if (n.x != mx || n.alpha != ma) {
+                tf.moveNode(size_t(p.draggingNode), mx, ma);
+                r.tfChanged = true;
+            }
+        } else {
+            p.draggingNode = -1;
+            r.tfCommitted = true;
+        }
+    }
+    // The colour map under the curve.
+    const ImVec2 bar = ImGui::GetCursorScreenPos();
+    const auto& xs = tf.colorPositions();
+    const auto& cs = tf.colors();
+    auto col = [](glm::vec3 c) {
+        return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f));
+    };
+    for (size_t i = 0; i + 1 < xs.size(); ++i)
+        dl->AddRectFilledMultiColor(ImVec2(bar.x + xs[i] * size.x, bar.y), ImVec2(bar.x + xs[i + 1] * size.x, bar.y + 14),
+                                    col(cs[i]), col(cs[i + 1]), col(cs[i + 1]), col(cs[i]));
+    if (xs.size() == 1) dl->AddRectFilled(bar, ImVec2(bar.x + size.x, bar.y + 14), col(cs[0]));
+    ImGui::Dummy(ImVec2(size.x, 16));
+}
+
+void transferFunctionPanel(PanelState& p, PanelRequests& r) {
+    session::TfEditor& tf = *p.tf;
+    if (!p.colorMapNames.empty()) {
+        std::string name = p.colorMapNames[size_t(std::clamp(p.colorMapChoice, 0, int(p.colorMapNames.size()) - 1))];
+        if (namedCombo("colour map", name, p.colorMapNames)) {
+            p.colorMapChoice = int(std::find(p.colorMapNames.begin(), p.colorMapNames.end(), name) - p.colorMapNames.begin());
+            r.applyColorMap = true;
+        }
+    }
+    tfCanvas(p, r);
+    ImGui::SliderFloat("alpha axis", &p.alphaDisplayMax, 1e-3f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+    ImGui::SameLine();
+    ImGui::Checkbox("log histogram", &p.logHistogram);
+    float range[2] = {tf.lo(), tf.hi()};
+    if (ImGui::InputFloat2("value range", range, "%.5g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+        try {
+            tf.setRange(range[0], range[1]);
+            r.tfChanged = r.tfCommitted = true;
+        } catch (const Error& e) {
+            p.message = e.what();
+        }
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("data range")) r.resetRange = true;
+    float density = float(p.state->settings.densityScale);
+    if (ImGui::SliderFloat("density scale", &density, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic)) {
+        p.state->settings.densityScale = std::max(0.0f, density);
+        r.settingsChanged = true;
+    }
+    ImGui::BeginDisabled(!p.canUndo);
+    if (ImGui::Button("undo")) r.undo = true;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!p.canRedo);
+    if (ImGui::Button("redo")) r.redo = true;
+    ImGui::EndDisabled();
+    ImGui::InputText("TF file", &p.tfPath);
+    if (ImGui::Button("load ParaView presets")) r.loadTfFile = true;
+    ImGui::SameLine();
+    if (ImGui::Button("save as ParaView JSON")) r.saveTfFile = true;
+}
+
+void renderPanel(PanelState& p, PanelRequests& r) {
+    scene::RenderSettings& s = p.state->settings;
+    std::string mode = scene::modeName(s.mode);
+    if (namedCombo("mode", mode, {"ae", "ss", "ms", "dvr"})) {
+        s.mode = scene::parseMode(mode);
+        r.settingsChanged = true;
+    }
+    float g = float(s.g);
+    if (ImGui::SliderFloat("phase g", &g, -0.99f, 0.99f)) {
+        s.g = g;
+        r.settingsChanged = true;
+    }
+    if (s.mode == scene::Mode::Dvr) {
+        float dt = float(s.dvrStep);
+        if (ImGui::SliderFloat("dvr step", &dt, 0.05f, 4.0f, "%.3g", ImGuiSliderFlags_Logarithmic)) {
+            s.dvrStep = dt;
+            r.settingsChanged = true;
+        }
+        r.settingsChanged |= ImGui::Checkbox("gradient shading", &s.dvrShading);
+    }
+    int spp = int(p.state->spp);
+    if (ImGui::InputInt("stop at spp (0: never)", &spp)) p.state->spp = uint32_t(std::max(0, spp));
+    r.settingsChanged |= colorEdit("ambient", s.ambient);
+    glm::dvec3 bg = s.background.value_or(s.ambient);
+    if (colorEdit("background", bg)) {
+        s.background = bg;
+        r.settingsChanged = true;
+    }
+    ImGui::TextUnformatted("lights");
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        ImGui::PushID(int(i));
+        scene::Light& L = s.lights[i];
+        r.settingsChanged |= vec3Edit(L.point ? "position" : "direction", L.posOrDir, 0.01f);
+        r.settingsChanged |= colorEdit(L.point ? "intensity" : "radiance", L.radiance);
+        if (ImGui::Button("remove light")) {
+            s.lights.erase(s.lights.begin() + std::ptrdiff_t(i));
+            r.settingsChanged = true;
+            ImGui::PopID();
+            break;
+        }
+        ImGui::Separator();
+        ImGui::PopID();
+    }
+    if (s.lights.size() < 8 && ImGui::Button("add sun")) {
+        s.lights.push_back({false, {1.0, -1.0, 2.0}, glm::dvec3(3.0)});
+        r.settingsChanged = true;
+    }
+}
+
+void structurePanel(PanelState& p, PanelRequests& r) {
+    scene::StructureConfig& c = p.state->structure;
+    std::vector<std::string> traversals, samplers = {"ext-brick", "abr", "dense"};
+    for (scene::TraversalKind t : scene::allTraversals()) traversals.push_back(scene::traversalName(t));
+    std::string t = scene::traversalName(c.traversal), sm = scene::samplerName(c.sampler),
+                b = scene::backendName(c.backend);
+    if (namedCombo("traversal", t, traversals)) {
+        c.traversal = scene::parseTraversal(t);
+        r.structureChanged = true;
+    }
+    if (namedCombo("sampler", sm, samplers)) {
+        c.sampler = scene::parseSampler(sm);
+        r.structureChanged = true;
+    }
+    if (namedCombo("back-end", b, {"sw", "rq", "auto"})) {
+        c.backend = scene::parseBackend(b);
+        r.structureChanged = true;
+    }
+    if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue)) r.structureChanged = true;
+    int leaves = int(c.kdLeaves);
+    if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        c.kdLeaves = uint32_t(std::clamp(leaves, 1, 1 << 24));
+        r.structureChanged = true;
+    }
+}
+
+void cameraPanel(PanelState& p, PanelRequests& r) {
+    session::OrbitCamera& cam = *p.camera;
+    float fov = float(cam.fovYDegrees());
+    if (ImGui::SliderFloat("field of view", &fov, 5.0f, 120.0f)) cam.setFov(fov);
+    int up = cam.upAxis();
+    ImGui::TextUnformatted("up axis");
+    for (int a = 0; a < 3; ++a) {
+        ImGui::SameLine();
+        if (ImGui::RadioButton(a == 0 ? "x" : a == 1 ? "y" : "z", up == a)) cam.setUpAxis(a);
+    }
+    if (ImGui::Button("reset view (R)")) r.resetView = true;
+    ImGui::SameLine();
+    if (ImGui::Button("copy as command")) r.copyCommand = true;
+    ImGui::TextDisabled("left drag orbits, right drag or wheel zooms, middle or shift drag pans");
+}
+
+void filesPanel(PanelState& p, PanelRequests& r) {
+    ImGui::InputText("image", &p.screenshotPath);
+    ImGui::SameLine();
+    if (ImGui::Button("save image")) r.screenshot = true;
+    ImGui::InputText("session", &p.sessionPath);
+    if (ImGui::Button("save session")) r.saveSession = true;
+    ImGui::SameLine();
+    if (ImGui::Button("load session")) r.loadSession = true;
+}
+
+}  // namespace
+
+void drawPanels(PanelState& p, PanelRequests& r) {
+    statisticsOverlay(*p.stats);
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x - 8, vp->WorkPos.y + 8), ImGuiCond_FirstUseEver,
+                            ImVec2(1, 0));
+    ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("amrvk")) {
+        if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
+        if (ImGui::CollapsingHeader("render")) renderPanel(p, r);
+        if (ImGui::CollapsingHeader("structures")) structurePanel(p, r);
+        if (ImGui::CollapsingHeader("camera")) cameraPanel(p, r);
+        if (ImGui::CollapsingHeader("files")) filesPanel(p, r);
+        if (!p.shaderError.empty()) ImGui::TextColored(kRed, "shader: %s", p.shaderError.c_str());
+        if (!p.message.empty()) ImGui::TextWrapped("%s", p.message.c_str());
+    }
+    ImGui::End();
+}
+
+}  // namespace amrvk::viewer

@@ -1,0 +1,62 @@
+#pragma once
+// The viewer's ImGui panels: statistics overlay, camera, transfer-function editor (colour map,
+// draggable opacity curve over the field histogram, value range, density), render settings and
+// lights, files (screenshot, session, TF). They edit the state they are given and raise requests
+// the app carries out; all ImGui widget code is here.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "session/histogram.h"
+#include "session/orbit_camera.h"
+#include "session/session.h"
+#include "session/tf_editor.h"
+
+namespace amrvk::viewer {
+
+struct Statistics {
+    std::string device, combination;
+    double framesPerSecond = 0, frameMilliseconds = 0;
+    double mPathsPerSecond = 0, lookupsPerPath = 0, nullPerReal = 0;
+    uint64_t violations = 0, trackingCapHits = 0, nanSamples = 0, bounceLimitHits = 0;
+    uint32_t spp = 0, sppLimit = 0, rowsDone = 0, height = 0;
+    int previewScale = 1;  // > 1: showing a preview rendered at 1/scale of the size
+    uint64_t deviceBytes = 0;
+    double tfEditSeconds = 0, structureSeconds = 0;  // last TF edit, last structure change (wall)
+};
+
+struct PanelRequests {
+    bool tfChanged = false;      // the editor state changed this frame (live)
+    bool tfCommitted = false;    // an edit finished (push to the undo history)
+    bool undo = false, redo = false;
+    bool settingsChanged = false;
+    bool structureChanged = false;
+    bool resetView = false, resetRange = false;
+    bool screenshot = false, saveSession = false, loadSession = false, copyCommand = false;
+    bool loadTfFile = false, saveTfFile = false, applyColorMap = false;
+};
+
+struct PanelState {
+    const Statistics* stats = nullptr;
+    session::Session* state = nullptr;        // settings and structure are edited in place
+    session::TfEditor* tf = nullptr;          // edited in place
+    session::OrbitCamera* camera = nullptr;   // fov and up axis
+    const session::Histogram* histogram = nullptr;
+    bool canUndo = false, canRedo = false;
+    std::vector<std::string> colorMapNames;   // built-in ones, then those of a loaded file
+    int colorMapChoice = 0;
+    bool logHistogram = true;
+    float alphaDisplayMax = 1.0f;             // top of the opacity curve's axis
+    std::string message;                      // last status line (saved files, errors)
+    std::string shaderError;                  // compile error of the watched shaders (red)
+    std::string screenshotPath = "amrvk-view.png";
+    std::string sessionPath = "amrvk-session.json";
+    std::string tfPath = "amrvk-tf.json";
+    std::string gridText;                     // edited, applied with the structure
+    int draggingNode = -1;                    // opacity node under a drag, between frames
+};
+
+// Draws every panel for this frame and fills `requests`.
+void drawPanels(PanelState& panel, PanelRequests& requests);
+
+}  // namespace amrvk::viewer

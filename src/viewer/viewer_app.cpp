@@ -1,0 +1,742 @@
+#include "viewer/viewer_app.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include "amr/readers.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/image_io.h"
+#include "core/progress.h"
+#include "core/stats.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "gpu/shader_compiler.h"
+#include "gpu/shader_library.h"
+#include "render/display_pass.h"
+#include "render/renderer.h"
+#include "session/file_watcher.h"
+#include "session/frame_budget.h"
+#include "session/render_command.h"
+#include "session/script.h"
+#include "viewer/imgui_layer.h"
+#include "viewer/panels.h"
+#include "viewer/swapchain.h"
+#include "viewer/window.h"
+
+namespace fs = std::filesystem;
+
+namespace amrvk::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Frame times and the time from each change to the first complete full-resolution sample.
+struct Timings {
+    std::vector<double> interactiveFrames, idleFrames, toFirstFullSample;
+    static double percentile(std::vector<double> v, double p) {
+        if (v.empty()) return 0.0;
+        std::sort(v.begin(), v.end());
+        return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+    }
+    static double mean(const std::vector<double>& v) {
+        double s = 0;
+        for (double x : v) s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    }
+};
+
+class ViewerApp {
+public:
+    ViewerApp(const ViewerOptions& o, amr::Model model);
+    int run();
+
+private:
+    void load();
+    void createWindowResources();
+    bool frame();
+    void runScript();
+    void pollShaders();
+    void reloadShaders();
+    void handleInput();
+    void applyEdits();
+    void trace();
+    void traceWithinBudget();
+    void present();
+    void recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D extent);
+    void saveCapture(VkExtent2D extent);
+    void updateStatistics(double frameSeconds);
+    void setStructure(const scene::StructureConfig& next);
+    void setTransferFunction();
+    void screenshot(const fs::path& file);
+    void saveSessionFile(const fs::path& file);
+    void loadSessionFile(const fs::path& file);
+    void copyCommand();
+    void finishSample();
+    scene::RenderSettings fullSettings() const;
+    void writeStats() const;
+
+    ViewerOptions mOpt;
+    std::unique_ptr<Window> mWindow;
+    std::unique_ptr<gpu::Context> mCtx;
+    std::unique_ptr<Swapchain> mSwapchain;
+    std::unique_ptr<ImGuiLayer> mImGui;
+    std::unique_ptr<render::DisplayPass> mDisplayPass;
+    gpu::Buffer mDisplay;  // the window's pixels (B, G, R, A), copied into the swapchain image
+    int mDisplayWidth = 0, mDisplayHeight = 0;
+
+    amr::Model mModel;
+    const amr::Field* mField = nullptr;
+    std::unique_ptr<scene::VolumeScene> mScene;
+    std::unique_ptr<render::Renderer> mRenderer;
+
+    session::Session mState;          // the picture: settings at full resolution
+    session::OrbitCamera mCamera;
+    session::TfEditor mTf;
+    session::TfHistory mTfHistory;
+    session::FrameBudget mBudget;
+    std::optional<session::Histogram> mHistogram;
+    std::vector<session::ScriptAction> mScript;
+    size_t mScriptAt = 0;
+    std::optional<session::FileWatcher> mWatcher;
+    Clock::time_point mLastShaderPoll = Clock::now();
+    std::vector<scene::TfChannels> mColorMaps;
+
+    PanelState mPanel;
+    Statistics mStats;
+    Timings mTimings;
+    uint64_t mFrame = 0;
+    bool mQuit = false;
+    bool mInteracting = false;   // a change or a drag this frame: preview
+    bool mNeedPreview = true;    // nothing on screen for the current picture yet: preview first
+    int mPreviewScale = 1;       // the renderer's current size is full / scale
+    bool mDisplayFresh = false;  // the display buffer holds an image worth showing
+    std::optional<Clock::time_point> mChangedAt;  // since the last change, until the first full sample
+    double mGpuSecondsEma = 0;
+    double mTraceSeconds = 0;  // wall seconds spent in trace() in all
+    uint64_t mValidationBefore = 0;
+    scene::RenderSettings mApplied;  // what the renderer was last given
+    bool mDragging = false;
+    std::string mCapturePath;  // the next presented frame is saved there (UI included)
+    gpu::Buffer mCaptureBuffer;
+    double mLastX = 0, mLastY = 0;
+};
+
+ViewerApp::ViewerApp(const ViewerOptions& o, amr::Model model)
+    : mOpt(o),
+      mModel(std::move(model)),
+      mState(o.start),
+      mCamera(glm::dvec3(0.0), glm::dvec3(1.0)),
+      mTf(o.start.tf.merged()),
+      mTfHistory(mTf),
+      mBudget(o.frameBudgetSeconds) {
+    AMRVK_CHECK(o.frameBudgetSeconds > 0, "internal: the frame budget must be positive");
+    mPanel.gridText = mState.structure.grid;
+}
+
+scene::RenderSettings ViewerApp::fullSettings() const {
+    scene::RenderSettings s = mState.settings;
+    s.camera = mCamera.camera();
+    return s;
+}
+
+void ViewerApp::load() {
+    mField = mState.field.empty() ? &mModel.defaultField() : &mModel.field(mState.field);
+    mState.field = mField->name;
+    mScene = std::make_unique<scene::VolumeScene>(scene::makeVolumeScene(mModel, *mField));
+    const amr::ModelSummary sum = amr::summarize(mModel);
+    mCamera = session::OrbitCamera(mModel.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                   mModel.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
+                                   mState.settings.camera.fovYDegrees);
+    mCamera.setCamera(mState.settings.camera);
+}
+
+void ViewerApp::createWindowResources() {
+    int w = 0, h = 0;
+    mWindow->framebufferSize(w, h);
+    mSwapchain = std::make_unique<Swapchain>(*mCtx, std::max(w, 1), std::max(h, 1));
+    mImGui = std::make_unique<ImGuiLayer>(*mCtx, mWindow->handle(), mSwapchain->renderPass(),
+                                          mSwapchain->minImageCount(), mSwapchain->imageCount());
+}
+
+void ViewerApp::setStructure(const scene::StructureConfig& requested) {
+    scene::StructureConfig next = requested;
+    next.backend = scene::resolveBackend(requested.backend, mCtx->hasRayQuery(), mCtx->deviceReport().name);
+    next.validate();
+    Timer t;
+    {
+        ProgressStage stage("structures for " + next.label());
+        mScene->configure(next);
+    }
+    if (mRenderer) mRenderer->setStructure();
+    else mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
+    mStats.structureSeconds = t.seconds();
+    mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
+}
+
+void ViewerApp::setTransferFunction() {
+    Timer t;
+    mRenderer->setTransferFunction(mTf.transferFunction());
+    mStats.tfEditSeconds = t.seconds();
+    mState.tf = mTf.channels();
+}
+
+int ViewerApp::run() {
+    load();
+    gpu::ContextOptions co;
+    co.device = mOpt.device;
+    co.validation = mOpt.validation;
+    co.requireRayQuery = mState.structure.backend == scene::Backend::Rq;
+    if (!mOpt.headless) {
+        const int w = mOpt.windowWidth > 0 ? mOpt.windowWidth : mState.settings.width;
+        const int h = mOpt.windowHeight > 0 ? mOpt.windowHeight : mState.settings.height;
+        mWindow = std::make_unique<Window>(w, h, "amrvk view - " + fs::path(mState.input).filename().string());
+        co.instanceExtensions = Window::requiredInstanceExtensions();
+        co.createSurface = [this](VkInstance instance) { return mWindow->createSurface(instance); };
+    }
+    mCtx = std::make_unique<gpu::Context>(co);
+    mValidationBefore = mCtx->validationErrors();
+    mStats.device = mCtx->deviceReport().name;
+    if (!mOpt.shaderDir.empty()) {
+        gpu::setShaderDirectory(mOpt.shaderDir);
+        mWatcher.emplace(std::vector<fs::path>{mOpt.shaderDir, mOpt.shaderDir / ".."});
+    }
+    setStructure(mState.structure);
+    setTransferFunction();
+    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+    mColorMaps.push_back(mState.tf);  // the starting colour map first
+    for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
+    if (!mOpt.script.empty()) mScript = session::loadScript(mOpt.script);
+    if (mWindow) {
+        createWindowResources();
+        mDisplayPass = std::make_unique<render::DisplayPass>(*mCtx);
+    }
+    mChangedAt = Clock::now();
+    while (!mQuit && (mOpt.frames == 0 || mFrame < mOpt.frames)) {
+        const Clock::time_point start = Clock::now();
+        const double traceBefore = mTraceSeconds;
+        if (!frame()) break;
+        const double seconds = secondsSince(start);
+        // The rest of the frame (UI, display, present) comes out of the path tracer's share.
+        mBudget.recordOtherWork(seconds - (mTraceSeconds - traceBefore));
+        (mInteracting ? mTimings.interactiveFrames : mTimings.idleFrames).push_back(seconds);
+        updateStatistics(seconds);
+        ++mFrame;
+    }
+    if (!mOpt.screenshot.empty()) screenshot(mOpt.screenshot);
+    if (!mOpt.statsJson.empty()) writeStats();
+    mImGui.reset();
+    mSwapchain.reset();
+    const uint64_t errors = mCtx->validationErrors() - mValidationBefore;
+    if (mOpt.validation && errors > 0) {
+        std::fprintf(stderr, "amrvk view: error: Vulkan validation reported %llu error(s); last: %s\n",
+                     (unsigned long long)errors, mCtx->lastValidationMessage().c_str());
+        return 1;
+    }
+    return 0;
+}
+
+bool ViewerApp::frame() {
+    if (mWindow) {
+        mWindow->pollEvents();
+        if (mWindow->shouldClose()) return false;
+        int w = 0, h = 0;
+        mWindow->framebufferSize(w, h);
+        if (w == 0 || h == 0) {  // minimised: nothing to draw, keep the accumulation
+            mWindow->waitEvents(0.1);
+            return true;
+        }
+        const VkExtent2D e = mSwapchain->extent();
+        if (uint32_t(w) != e.width || uint32_t(h) != e.height) {
+            mSwapchain->recreate(w, h);
+            mImGui->setMinImageCount(mSwapchain->minImageCount());
+        }
+    }
+    mInteracting = false;
+    runScript();
+    pollShaders();
+    if (mWindow) {
+        mImGui->beginFrame();
+        mPanel.stats = &mStats;
+        mPanel.state = &mState;
+        mPanel.tf = &mTf;
+        mPanel.camera = &mCamera;
+        mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
+        mPanel.canUndo = mTfHistory.canUndo();
+        mPanel.canRedo = mTfHistory.canRedo();
+        mPanel.colorMapNames.clear();
+        for (const scene::TfChannels& c : mColorMaps) mPanel.colorMapNames.push_back(c.name);
+        PanelRequests req;
+        drawPanels(mPanel, req);
+        try {
+            if (req.undo) mTf = mTfHistory.undo();
+            if (req.redo) mTf = mTfHistory.redo();
+            if (req.resetRange) {
+                mTf.setRange(mScene->valueLo, mScene->valueHi > mScene->valueLo ? mScene->valueHi : mScene->valueLo + 1);
+                req.tfChanged = req.tfCommitted = true;
+            }
+            if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
+                mTf.setColorMap(mColorMaps[size_t(mPanel.colorMapChoice)]);
+                req.tfChanged = req.tfCommitted = true;
+            }
+            if (req.loadTfFile) {
+                const scene::ParaViewPresets p = scene::loadParaViewPresets(mPanel.tfPath);
+                AMRVK_CHECK(!p.presets.empty(), mPanel.tfPath, ": no usable preset");
+                for (const scene::TfChannels& c : p.presets) mColorMaps.push_back(c);
+                mTf.setPreset(p.presets.front());
+                mPanel.message = "loaded " + std::to_string(p.presets.size()) + " preset(s) from " + mPanel.tfPath +
+                                 (p.skipped.empty() ? "" : " (" + std::to_string(p.skipped.size()) + " skipped)");
+                req.tfChanged = req.tfCommitted = true;
+            }
+            if (req.saveTfFile) {
+                writeFileAtomic(mPanel.tfPath, mTf.toParaViewJson(fs::path(mPanel.tfPath).stem().string()));
+                mPanel.message = "saved " + mPanel.tfPath;
+            }
+            if (req.tfCommitted) mTfHistory.push(mTf);
+            if (req.undo || req.redo || req.tfChanged) {
+                setTransferFunction();
+                mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+                mInteracting = true;
+            }
+            if (req.structureChanged) {
+                scene::StructureConfig next = mState.structure;
+                next.grid = mPanel.gridText;
+                setStructure(next);
+                mState.structure = next;
+                mInteracting = true;
+            }
+            if (req.resetView) mCamera.reset();
+            if (req.screenshot) screenshot(mPanel.screenshotPath);
+            if (req.saveSession) saveSessionFile(mPanel.sessionPath);
+            if (req.loadSession) loadSessionFile(mPanel.sessionPath);
+            if (req.copyCommand) copyCommand();
+        } catch (const Error& e) {
+            mPanel.message = std::string("error: ") + e.what();
+        }
+        handleInput();
+    }
+    applyEdits();
+    trace();
+    if (mWindow) present();
+    return !mQuit;
+}
+
+void ViewerApp::handleInput() {
+    GLFWwindow* w = mWindow->handle();
+    double x = 0, y = 0;
+    glfwGetCursorPos(w, &x, &y);
+    int width = 0, height = 0;
+    mWindow->framebufferSize(width, height);
+    const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    const bool any = left || right || middle;
+    if (any && !mDragging && !mImGui->wantsMouse()) {
+        mDragging = true;
+    } else if (!any) {
+        mDragging = false;
+    }
+    if (mDragging) {
+        const double dx = x - mLastX, dy = y - mLastY;
+        if (dx != 0 || dy != 0) {
+            if (middle || (left && shift)) mCamera.pan(dx, dy, double(height));
+            else if (right) mCamera.zoom(-dy / 20.0);
+            else mCamera.orbit(dx, dy, double(height));
+        }
+        mInteracting = true;
+    }
+    mLastX = x;
+    mLastY = y;
+    if (!mImGui->wantsMouse()) {
+        const float wheel = mImGui->mouseWheel();
+        if (wheel != 0.0f) mCamera.zoom(wheel);
+    }
+    if (!mImGui->wantsKeyboard()) {
+        auto key = [&](int k) { return mImGui->keyPressed(k); };
+        const double h = double(height), step = h / 18.0;  // 10 degrees
+        if (key(GLFW_KEY_LEFT)) mCamera.orbit(-step, 0, h);
+        if (key(GLFW_KEY_RIGHT)) mCamera.orbit(step, 0, h);
+        if (key(GLFW_KEY_UP)) mCamera.orbit(0, step, h);
+        if (key(GLFW_KEY_DOWN)) mCamera.orbit(0, -step, h);
+        if (key(GLFW_KEY_EQUAL) || key(GLFW_KEY_KP_ADD) || key(GLFW_KEY_PAGE_UP)) mCamera.zoom(1);
+        if (key(GLFW_KEY_MINUS) || key(GLFW_KEY_KP_SUBTRACT) || key(GLFW_KEY_PAGE_DOWN)) mCamera.zoom(-1);
+        if (key(GLFW_KEY_R)) mCamera.reset();
+        if (key(GLFW_KEY_Q) || key(GLFW_KEY_ESCAPE)) mQuit = true;
+    }
+}
+
+void ViewerApp::runScript() {
+    while (mScriptAt < mScript.size() && mScript[mScriptAt].frame <= mFrame) {
+        const session::ScriptAction& a = mScript[mScriptAt++];
+        const std::string& n = a.name;
+        scene::StructureConfig structure = mState.structure;
+        if (n == "orbit") mCamera.orbit(a.number(0), a.number(1), double(mState.settings.height));
+        else if (n == "pan") mCamera.pan(a.number(0), a.number(1), double(mState.settings.height));
+        else if (n == "zoom") mCamera.zoom(a.number(0));
+        else if (n == "tf-preset") {
+            mTf.setPreset(scene::builtInChannels(a.args[0]));
+        } else if (n == "tf-range") {
+            mTf.setRange(float(a.number(0)), float(a.number(1)));
+        } else if (n == "density") {
+            AMRVK_CHECK(a.number(0) >= 0, a.where, ": density must be >= 0");
+            mState.settings.densityScale = a.number(0);
+        } else if (n == "mode") mState.settings.mode = scene::parseMode(a.args[0]);
+        else if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
+        else if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
+        else if (n == "backend") structure.backend = scene::parseBackend(a.args[0]);
+        else if (n == "grid") structure.grid = a.args[0];
+        else if (n == "edit-shader") {
+            AMRVK_CHECK(!mOpt.shaderDir.empty(), a.where, ": edit-shader needs --shader-dir");
+            const fs::path file = fs::path(a.args[0]).is_absolute() ? fs::path(a.args[0]) : mOpt.shaderDir / a.args[0];
+            std::string text = readTextFile(file);
+            const size_t at = text.find(a.args[1]);
+            AMRVK_CHECK(at != std::string::npos, a.where, ": '", a.args[1], "' not found in ", file.string());
+            text.replace(at, a.args[1].size(), a.args[2]);
+            writeFileAtomic(file, text);
+        } else if (n == "reload") {
+            reloadShaders();
+        } else if (n == "screenshot") {
+            screenshot(a.args[0]);
+        } else if (n == "capture-window") {
+            if (mWindow) mCapturePath = a.args[0];
+        } else if (n == "quit") {
+            mQuit = true;
+        }
+        if (n == "tf-preset" || n == "tf-range") {
+            mTfHistory.push(mTf);
+            setTransferFunction();
+            mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+        }
+        if (structure.traversal != mState.structure.traversal || structure.sampler != mState.structure.sampler ||
+            structure.backend != mState.structure.backend || structure.grid != mState.structure.grid) {
+            setStructure(structure);
+            mState.structure = structure;
+            mPanel.gridText = structure.grid;
+        }
+        std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame, a.name.c_str());
+    }
+}
+
+void ViewerApp::pollShaders() {
+    if (!mWatcher || secondsSince(mLastShaderPoll) < 0.25) return;
+    mLastShaderPoll = Clock::now();
+    if (!mWatcher->poll().empty()) reloadShaders();
+}
+
+void ViewerApp::reloadShaders() {
+    try {
+        mRenderer->reloadShaders();
+        mPanel.shaderError.clear();
+        mPanel.message = "shaders reloaded";
+        std::fprintf(stderr, "amrvk view: shaders reloaded from %s\n", mOpt.shaderDir.string().c_str());
+    } catch (const gpu::ShaderCompileError& e) {
+        mPanel.shaderError = e.what();  // the previous pipeline keeps running
+        std::fprintf(stderr, "amrvk view: shader error (previous pipeline kept): %s\n", e.what());
+    }
+    mChangedAt = Clock::now();
+}
+
+void ViewerApp::applyEdits() {
+    // The picture the state describes, at full resolution or as a preview while interacting.
+    const scene::RenderSettings full = fullSettings();
+    if (!scene::settingsChanges(mApplied, full).empty() && mFrame > 0) mInteracting = true;
+    scene::RenderSettings s = full;
+    if (mInteracting) mNeedPreview = true;
+    mPreviewScale = mNeedPreview ? mBudget.previewScale(full.width, full.height) : 1;
+    s.width = std::max(1, full.width / mPreviewScale);
+    s.height = std::max(1, full.height / mPreviewScale);
+    mRenderer->setSettings(s);
+    if (mInteracting) mChangedAt = Clock::now();
+    mApplied = full;
+}
+
+void ViewerApp::trace() {
+    const Clock::time_point start = Clock::now();
+    traceWithinBudget();
+    mTraceSeconds += secondsSince(start);
+}
+
+void ViewerApp::traceWithinBudget() {
+    const scene::RenderSettings& s = mRenderer->settings();
+    const uint32_t limit = mState.spp;
+    const bool done = mPreviewScale == 1 && limit > 0 && mRenderer->accumulatedSpp() >= limit;
+    if (done) {
+        if (mWindow) mWindow->waitEvents(0.03);  // converged: wait for the user instead of spinning
+        return;
+    }
+    const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+    double gpu = 0;
+    if (mPreviewScale > 1) {
+        const double before = mRenderer->stats().gpuSeconds;
+        mRenderer->accumulate(1);
+        gpu = mRenderer->stats().gpuSeconds - before;
+        mBudget.record(gpu, pixels);
+        mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
+    } else {
+        const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height);
+        if (rows >= uint32_t(s.height) && mRenderer->rowsDone() == 0) {
+            // Fast device: whole samples, as many as fit.
+            const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
+            uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
+            if (limit > 0) n = std::min(n, limit - mRenderer->accumulatedSpp());
+            const double before = mRenderer->stats().gpuSeconds;
+            mRenderer->accumulate(n);
+            gpu = mRenderer->stats().gpuSeconds - before;
+            mBudget.record(gpu, pixels * n);
+        } else {
+            const uint32_t before = mRenderer->rowsDone();
+            gpu = mRenderer->accumulateRows(rows);
+            mBudget.record(gpu, uint64_t(std::min(rows, uint32_t(s.height) - before)) * uint64_t(s.width));
+        }
+        if (mChangedAt && mRenderer->accumulatedSpp() >= 1) {
+            mTimings.toFirstFullSample.push_back(secondsSince(*mChangedAt));
+            mChangedAt.reset();
+        }
+    }
+    mGpuSecondsEma = gpu;
+    mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
+}
+
+void ViewerApp::present() {
+    const VkExtent2D e = mSwapchain->extent();
+    if (int(e.width) != mDisplayWidth || int(e.height) != mDisplayHeight) {
+        mDisplay = gpu::Buffer();
+        mDisplay = gpu::Buffer(*mCtx, uint64_t(e.width) * e.height * 4, gpu::MemoryKind::Device, "display");
+        mDisplay.fillZero();
+        mDisplayWidth = int(e.width);
+        mDisplayHeight = int(e.height);
+        mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
+    }
+    const scene::RenderSettings& s = mRenderer->settings();
+    const bool ok = mSwapchain->frame([&](VkCommandBuffer cmd, VkImage image, VkFramebuffer framebuffer) {
+        // Until the first full-resolution sample is complete the last picture stays on screen.
+        if (mDisplayFresh)
+            mDisplayPass->record(cmd, mRenderer->accumulationAddress(), s.width, s.height, mDisplay, mDisplayWidth,
+                                 mDisplayHeight);
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT;
+        mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+        VkImageMemoryBarrier2 toCopy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        toCopy.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+        toCopy.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        toCopy.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        toCopy.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        toCopy.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        toCopy.srcQueueFamilyIndex = toCopy.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        toCopy.image = image;
+        toCopy.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &mb;
+        dep.imageMemoryBarrierCount = 1;
+        dep.pImageMemoryBarriers = &toCopy;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {e.width, e.height, 1};
+        vkCmdCopyBufferToImage(cmd, mDisplay.handle(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        VkImageMemoryBarrier2 toDraw = toCopy;
+        toDraw.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        toDraw.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        toDraw.dstStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+        toDraw.dstAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+        toDraw.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        toDraw.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        VkDependencyInfo dep2{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep2.imageMemoryBarrierCount = 1;
+        dep2.pImageMemoryBarriers = &toDraw;
+        vkCmdPipelineBarrier2(cmd, &dep2);
+        VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        rbi.renderPass = mSwapchain->renderPass();
+        rbi.framebuffer = framebuffer;
+        rbi.renderArea = {{0, 0}, e};
+        vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+        mImGui->render(cmd);
+        vkCmdEndRenderPass(cmd);
+        if (!mCapturePath.empty()) recordCapture(cmd, image, e);
+    });
+    if (ok && !mCapturePath.empty()) saveCapture(e);
+    if (!ok) {
+        int w = 0, h = 0;
+        mWindow->framebufferSize(w, h);
+        if (w > 0 && h > 0) {
+            mSwapchain->recreate(w, h);
+            mImGui->setMinImageCount(mSwapchain->minImageCount());
+        }
+    }
+}
+
+// The presented image (UI included) into a host buffer: present layout -> copy -> present layout.
+void ViewerApp::recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D e) {
+    const uint64_t bytes = uint64_t(e.width) * e.height * 4;
+    if (!mCaptureBuffer.valid() || mCaptureBuffer.size() < bytes)
+        mCaptureBuffer = gpu::Buffer(*mCtx, bytes, gpu::MemoryKind::HostRead, "windowCapture");
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    b.srcAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {e.width, e.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, mCaptureBuffer.handle(), 1, &region);
+    VkImageMemoryBarrier2 back = b;
+    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    back.srcAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    back.dstAccessMask = 0;
+    back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    back.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    dep.pImageMemoryBarriers = &back;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void ViewerApp::saveCapture(VkExtent2D e) {
+    vkQueueWaitIdle(mCtx->queue());
+    std::vector<uint8_t> bgra(size_t(e.width) * e.height * 4);
+    mCaptureBuffer.download(bgra.data(), bgra.size());
+    Image8 png{int(e.width), int(e.height), std::vector<uint8_t>(bgra.size())};
+    for (size_t i = 0; i < bgra.size(); i += 4) {
+        png.rgba[i] = bgra[i + 2];
+        png.rgba[i + 1] = bgra[i + 1];
+        png.rgba[i + 2] = bgra[i];
+        png.rgba[i + 3] = 255;
+    }
+    writePng8(mCapturePath, png);
+    std::fprintf(stderr, "amrvk view: captured the window to %s\n", mCapturePath.c_str());
+    mCapturePath.clear();
+}
+
+void ViewerApp::updateStatistics(double frameSeconds) {
+    Statistics& st = mStats;
+    st.frameMilliseconds = st.frameMilliseconds > 0 ? 0.9 * st.frameMilliseconds + 0.1 * frameSeconds * 1e3
+                                                    : frameSeconds * 1e3;
+    st.framesPerSecond = st.frameMilliseconds > 0 ? 1e3 / st.frameMilliseconds : 0;
+    const scene::RenderStats& stats = mRenderer->stats();
+    const double paths = double(stats.paths);
+    const auto& c = stats.counters;
+    st.mPathsPerSecond = stats.gpuSeconds > 0 ? paths / stats.gpuSeconds * 1e-6 : 0;
+    st.lookupsPerPath = paths > 0 ? double(c[shared::kCounterDensityLookups]) / paths : 0;
+    const double real = double(c[shared::kCounterRealCollisions]);
+    st.nullPerReal = real > 0 ? double(c[shared::kCounterNullCollisions]) / real : 0;
+    st.violations = c[shared::kCounterMajorantViolations];
+    st.trackingCapHits = c[shared::kCounterTrackingCapHits];
+    st.nanSamples = c[shared::kCounterNanSamples];
+    st.bounceLimitHits = c[shared::kCounterBounceLimitHits];
+    st.spp = mRenderer->accumulatedSpp();
+    st.sppLimit = mState.spp;
+    st.rowsDone = mRenderer->rowsDone();
+    st.height = uint32_t(mRenderer->settings().height);
+    st.previewScale = mPreviewScale;
+    st.deviceBytes = mCtx->memory().currentBytes();
+}
+
+void ViewerApp::finishSample() {
+    // The full-resolution picture with at least one complete sample (no half-traced rows).
+    scene::RenderSettings s = fullSettings();
+    mRenderer->setSettings(s);
+    mPreviewScale = 1;
+    if (mRenderer->accumulatedSpp() == 0 || mRenderer->rowsDone() > 0)
+        mRenderer->accumulateRows(uint32_t(s.height) - mRenderer->rowsDone());
+}
+
+void ViewerApp::screenshot(const fs::path& file) {
+    finishSample();
+    writeImage(file, mRenderer->output().mean);
+    mPanel.message = "saved " + file.string() + " (" + std::to_string(mRenderer->accumulatedSpp()) + " spp)";
+    std::fprintf(stderr, "amrvk view: %s\n", mPanel.message.c_str());
+}
+
+void ViewerApp::saveSessionFile(const fs::path& file) {
+    session::Session s = mState;
+    s.settings.camera = mCamera.camera();
+    s.tf = mTf.channels();
+    s.input = fs::absolute(s.input).lexically_normal().string();
+    session::saveSession(file, s);
+    mPanel.message = "saved " + file.string();
+}
+
+void ViewerApp::loadSessionFile(const fs::path& file) {
+    const session::Session s = session::loadSession(file);
+    const bool sameData = fs::absolute(s.input).lexically_normal() == fs::absolute(mState.input).lexically_normal() &&
+                          s.field == mState.field;
+    AMRVK_CHECK(sameData, file.string(), ": this session shows ", s.input, " (", s.field,
+                "); open it with amrvk view --session ", file.string());
+    mState.settings = s.settings;
+    mState.spp = s.spp;
+    mCamera.setCamera(s.settings.camera);
+    mTf = session::TfEditor(s.tf.merged());
+    mTfHistory.push(mTf);
+    setTransferFunction();
+    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+    if (s.structure.label() != mState.structure.label() || s.structure.grid != mState.structure.grid) {
+        setStructure(s.structure);
+        mState.structure = s.structure;
+        mPanel.gridText = s.structure.grid;
+    }
+    mPanel.message = "loaded " + file.string();
+}
+
+void ViewerApp::copyCommand() {
+    session::Session s = mState;
+    s.settings.camera = mCamera.camera();
+    // The TF beside the session file's default place, so the command does not depend on the viewer.
+    const fs::path tfFile = fs::absolute(mPanel.tfPath);
+    writeFileAtomic(tfFile, mTf.toParaViewJson(tfFile.stem().string()));
+    const std::string line = session::renderCommandLine(s, tfFile.string(), "amrvk.png");
+    if (mWindow) mWindow->setClipboard(line);
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    mPanel.message = "command copied (TF in " + tfFile.string() + ")";
+}
+
+void ViewerApp::writeStats() const {
+    nlohmann::ordered_json j;
+    j["device"] = mStats.device;
+    j["frames"] = mFrame;
+    j["frameBudgetSeconds"] = mBudget.budgetSeconds();
+    auto summary = [](const std::vector<double>& v) {
+        return nlohmann::ordered_json{{"count", v.size()},
+                                      {"meanSeconds", Timings::mean(v)},
+                                      {"medianSeconds", Timings::percentile(v, 0.5)},
+                                      {"p95Seconds", Timings::percentile(v, 0.95)}};
+    };
+    j["interactiveFrames"] = summary(mTimings.interactiveFrames);
+    j["idleFrames"] = summary(mTimings.idleFrames);
+    j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
+    j["spp"] = mRenderer->accumulatedSpp();
+    j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
+    writeFileAtomic(mOpt.statsJson, j.dump(2) + "\n");
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& options, amr::Model model) {
+    ViewerApp app(options, std::move(model));
+    return app.run();
+}
+
+}  // namespace amrvk::viewer

@@ -1,0 +1,37 @@
+#pragma once
+// `amrvk view`: the interactive viewer on the same renderer and shaders as `amrvk render`. A
+// window (GLFW + Vulkan swapchain + Dear ImGui overlay) or --headless (no window, no display):
+// the image accumulates progressively and resets on every change that alters it; while the user
+// interacts it renders a preview small enough for one sample to fit the frame budget, and when
+// they stop it refines at full resolution in time-budgeted bands of rows, so the UI stays
+// responsive whatever one sample costs. Window, swapchain and ImGui code live in src/viewer only;
+// the state and its rules (session, camera, TF editor, scripts, frame budget) are in src/session.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "amr/model.h"
+#include "session/session.h"
+
+namespace amrvk::viewer {
+
+struct ViewerOptions {
+    session::Session start;             // what to show first (input, field, camera, TF, every setting)
+    bool headless = false;              // no window: automation and tests
+    uint64_t frames = 0;                // stop after this many frames (0: until the window closes)
+    std::filesystem::path screenshot;   // at exit: the accumulated linear image (.png, .exr, .pfm), no UI
+    std::filesystem::path script;       // frame-numbered actions (session/script.h)
+    std::filesystem::path shaderDir;    // watched: a saved edit recompiles and swaps the pipeline
+    std::filesystem::path statsJson;    // at exit: frame times and times to the first full sample
+    std::string device;                 // --device
+    bool validation = false;            // any Vulkan validation error makes the exit status non-zero
+    double frameBudgetSeconds = 0.05;   // target frame time; path tracing gets what the UI leaves of it
+    int windowWidth = 0, windowHeight = 0;  // 0: the session's image size
+};
+
+// Shows `model` (read with options.start's input, read options and field) until the window closes,
+// the frames are done or a script says quit. Returns the exit status: 0, or 1 after Vulkan
+// validation errors with `validation`.
+int runViewer(const ViewerOptions& options, amr::Model model);
+
+}  // namespace amrvk::viewer
