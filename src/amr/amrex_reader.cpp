@@ -373,23 +373,13 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
     Block block;
     block.lo = valid.lo;
     block.hi = valid.hi;
-    const glm::ivec3 fd = fab.dims(), vd = valid.dims();
-    const glm::ivec3 off = valid.lo - fab.lo;
     std::vector<unsigned char> raw(compBytes);
     for (size_t comp : components) {
         reader.seek(dataStart + comp * compBytes);
         reader.read(raw.data(), compBytes);
-        std::vector<float> values;
-        values.reserve(valid.cellCount());
-        for (int z = 0; z < vd.z; ++z)
-            for (int y = 0; y < vd.y; ++y)
-                for (int x = 0; x < vd.x; ++x) {
-                    const size_t i =
-                        (size_t(z + off.z) * size_t(fd.y) + size_t(y + off.y)) * size_t(fd.x) +
-                        size_t(x + off.x);
-                    values.push_back(decodeReal(raw.data() + i * size_t(fmt.bytes), fmt));
-                }
-        block.values.push_back(std::move(values));
+        block.values.push_back(cropBox(fab.dims(), valid.lo - fab.lo, valid.dims(), [&](size_t i) {
+            return decodeReal(raw.data() + i * size_t(fmt.bytes), fmt);
+        }));
     }
     return block;
 }
@@ -407,27 +397,10 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     fileSize(headerPath);
     const Header header = readHeader(headerPath);
     model.availableFields = header.names;
-    const std::vector<std::string> selected =
-        selectFields(model.availableFields, options.fields, model.source);
-    std::vector<size_t> components;
-    for (const std::string& name : selected) {
-        components.push_back(static_cast<size_t>(
-            std::find(header.names.begin(), header.names.end(), name) - header.names.begin()));
-        model.fields.push_back({name, {}});
-    }
+    const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
-    // Cell width of each level in finest-level cells.
     const int levelCount = header.finestLevel + 1;
-    std::vector<int64_t> widths(static_cast<size_t>(levelCount), 1);
-    for (int l = header.finestLevel - 1; l >= 0; --l) {
-        const int r = header.refRatio[static_cast<size_t>(l)];
-        AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), headerPath.string(),
-                    ": refinement ratio ", r, " from level ", l, " to ", l + 1,
-                    " is not a power of two");
-        widths[static_cast<size_t>(l)] = widths[static_cast<size_t>(l) + 1] * r;
-        AMRVK_CHECK(widths[static_cast<size_t>(l)] <= (int64_t{1} << kMaxLevel),
-                    headerPath.string(), ": refinement ratios multiply to more than 2^", kMaxLevel);
-    }
+    const std::vector<int64_t> widths = levelCellWidths(header.refRatio, headerPath.string());
 
     std::vector<BlockLevel> levels;
     std::vector<std::string> vismfVersions;
@@ -466,14 +439,12 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     if (header.dim == 2) model.voxelToWorld.scale.z = model.voxelToWorld.scale.x;
 
     const char* coordNames[] = {"cartesian", "rz", "spherical"};
-    std::vector<size_t> boxCounts;
-    for (const BlockLevel& level : levels) boxCounts.push_back(level.blocks.size());
     model.attributes = {
         {"plotfileVersion", header.version},
         {"dimensions", std::to_string(header.dim)},
         {"time", formatDouble(header.time)},
         {"levels", std::to_string(levelCount)},
-        {"boxesPerLevel", join(boxCounts)},
+        {"boxesPerLevel", join(blockCounts(levels))},
         {"refinementRatios", join(header.refRatio)},
         {"coordinateSystem", header.coordSys >= 0 && header.coordSys <= 2
                                  ? coordNames[header.coordSys]
