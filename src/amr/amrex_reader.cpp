@@ -41,30 +41,14 @@ class TextCursor {
         ++mPos;
         return true;
     }
-    int64_t readInt64(const char* what) {
-        skipSpace();
-        int64_t v = 0;
-        const char* begin = mText.data() + mPos;
-        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
-        AMRVK_CHECK(ec == std::errc(), where(), ": expected an integer (", what, ")", found());
-        mPos += static_cast<size_t>(ptr - begin);
-        return v;
-    }
+    int64_t readInt64(const char* what) { return readNumber<int64_t>(what, "an integer"); }
     int readInt(const char* what) {
         int64_t v = readInt64(what);
         AMRVK_CHECK(v >= INT32_MIN && v <= INT32_MAX, where(), ": ", what, " ", v,
                     " is out of range");
         return static_cast<int>(v);
     }
-    double readDouble(const char* what) {
-        skipSpace();
-        double v = 0;
-        const char* begin = mText.data() + mPos;
-        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
-        AMRVK_CHECK(ec == std::errc(), where(), ": expected a number (", what, ")", found());
-        mPos += static_cast<size_t>(ptr - begin);
-        return v;
-    }
+    double readDouble(const char* what) { return readNumber<double>(what, "a number"); }
     std::string readWord(const char* what) {
         skipSpace();
         size_t end = mPos;
@@ -113,6 +97,17 @@ class TextCursor {
     }
 
   private:
+    // One number parsed by std::from_chars; `kind` names what was expected ("an integer").
+    template <typename T>
+    T readNumber(const char* what, const char* kind) {
+        skipSpace();
+        T v = 0;
+        const char* begin = mText.data() + mPos;
+        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
+        AMRVK_CHECK(ec == std::errc(), where(), ": expected ", kind, " (", what, ")", found());
+        mPos += static_cast<size_t>(ptr - begin);
+        return v;
+    }
     static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
     void skipSpace() {
         while (mPos < mText.size() && isSpace(mText[mPos])) ++mPos;
