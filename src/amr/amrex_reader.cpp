@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "amr/block_structured.h"
 #include "amr/readers.h"
@@ -150,20 +151,22 @@ struct RealFormat {
     bool swap = false;  // file byte order differs from this machine's
 };
 
+// "(n, (a b c ...))": a size and a list.
+std::pair<int, std::vector<int>> readSizedList(TextCursor& in, const char* sizeWhat, const char* listWhat) {
+    in.expect('(');
+    const int n = in.readInt(sizeWhat);
+    in.expect(',');
+    std::vector<int> list = in.readIntList(listWhat);
+    in.expect(')');
+    return {n, std::move(list)};
+}
+
 // "((8, (64 11 52 0 1 12 0 1023)),(8, (8 7 6 5 4 3 2 1)))"
 RealFormat readRealDescriptor(TextCursor& in) {
     in.expect('(');
-    in.expect('(');
-    const int bytes = in.readInt("real size");
+    const auto [bytes, format] = readSizedList(in, "real size", "real format");
     in.expect(',');
-    std::vector<int> format = in.readIntList("real format");
-    in.expect(')');
-    in.expect(',');
-    in.expect('(');
-    const int orderBytes = in.readInt("byte order size");
-    in.expect(',');
-    std::vector<int> order = in.readIntList("byte order");
-    in.expect(')');
+    const auto [orderBytes, order] = readSizedList(in, "byte order size", "byte order");
     in.expect(')');
     const std::vector<int> ieee64{64, 11, 52, 0, 1, 12, 0, 1023};
     const std::vector<int> ieee32{32, 8, 23, 0, 1, 9, 0, 127};
