@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <bit>
-#include <future>
 #include <limits>
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/parallel.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
@@ -46,24 +46,22 @@ public:
     explicit BrickBuilder(std::vector<WorkCell>& work) : mWork(work) {}
 
     // Builds the subtree over work[begin, end) and returns its leaves in left-to-right order.
-    std::vector<Leaf> build(size_t begin, size_t end, int parallelDepth) {
+    // The two sides of a node of at least kParallelCells cells are built concurrently: they
+    // partition disjoint parts of the work array, so the leaves do not depend on the schedule.
+    std::vector<Leaf> build(size_t begin, size_t end) {
         std::vector<Leaf> leaves;
         struct Node { size_t b, e; };
         std::vector<Node> stack{{begin, end}};
         while (!stack.empty()) {
             Node n = stack.back();
             stack.pop_back();
-            size_t mid = 0;
             if (tryLeaf(n.b, n.e, leaves)) continue;
-            mid = split(n.b, n.e);
-            if (parallelDepth > 0) {
-                auto left = std::async(std::launch::async,
-                                       [&, n, mid] { return build(n.b, mid, parallelDepth - 1); });
-                auto right = build(mid, n.e, parallelDepth - 1);
-                auto l = left.get();
-                leaves.insert(leaves.end(), l.begin(), l.end());
+            const size_t mid = split(n.b, n.e);
+            if (n.e - n.b >= kParallelCells) {
+                std::vector<Leaf> left, right;
+                parallelInvoke([&] { left = build(n.b, mid); }, [&] { right = build(mid, n.e); });
+                leaves.insert(leaves.end(), left.begin(), left.end());
                 leaves.insert(leaves.end(), right.begin(), right.end());
-                parallelDepth = 0;
                 continue;
             }
             stack.push_back({mid, n.e});
@@ -73,6 +71,8 @@ public:
     }
 
 private:
+    static constexpr size_t kParallelCells = size_t{1} << 15;
+
     struct NodeInfo {
         glm::i64vec3 lo, hi;
         uint32_t levelMask;
@@ -203,7 +203,7 @@ BrickSet buildBricks(const amr::Model& model) {
         for (size_t i = 0; i < n; ++i)
             work[i] = {model.cells[i].lower, model.cells[i].level, static_cast<uint32_t>(i)};
         BrickBuilder builder(work);
-        leaves = builder.build(0, n, n > 100000 ? 2 : 0);
+        leaves = builder.build(0, n);
         std::sort(leaves.begin(), leaves.end(),
                   [](const Leaf& a, const Leaf& b) { return a.begin < b.begin; });
         out.cellIds.resize(n);

@@ -1,16 +1,15 @@
 #include "accel/dense_grid.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "accel/brick_sampler.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stats.h"
 
@@ -65,17 +64,6 @@ int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
     int64_t q = a / b;
     return (a % b != 0 && a < 0) ? q - 1 : q;
 }
-
-// Runs work(t) on `threads` threads (the calling one included).
-template <typename Work>
-void runThreads(unsigned threads, Work&& work) {
-    std::vector<std::thread> others;
-    for (unsigned t = 1; t < threads; ++t) others.emplace_back([&work, t] { work(t); });
-    work(0u);
-    for (std::thread& th : others) th.join();
-}
-
-unsigned threadCount() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 }  // namespace
 
@@ -133,18 +121,17 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
             }
     }
 
-    // Values: the brick reconstruction at each inside centre, z slices shared among threads.
+    // Values: the brick reconstruction at each inside centre, z slices in parallel.
     ExtBrickSampler sampler(bricks, brickValues);
-    std::atomic<int> nextZ{0};
-    runThreads(threadCount(), [&](unsigned) {
-        for (int z = nextZ++; z < g.dims.z; z = nextZ++)
-            for (int y = 0; y < g.dims.y; ++y)
-                for (int x = 0; x < g.dims.x; ++x) {
-                    float& v = g.values[g.index({x, y, z})];
-                    if (std::isnan(v)) continue;
-                    const amr::Sample s = sampler.sample(g.centre({x, y, z}));
-                    v = s.valid() ? static_cast<float>(s.value) : kNaN;
-                }
+    parallelFor(0, size_t(g.dims.z), [&](size_t zi) {
+        const int z = int(zi);
+        for (int y = 0; y < g.dims.y; ++y)
+            for (int x = 0; x < g.dims.x; ++x) {
+                float& v = g.values[g.index({x, y, z})];
+                if (std::isnan(v)) continue;
+                const amr::Sample s = sampler.sample(g.centre({x, y, z}));
+                v = s.valid() ? static_cast<float>(s.value) : kNaN;
+            }
     });
     g.buildSeconds = timer.seconds();
     return g;
@@ -174,11 +161,11 @@ void assignDenseRanges(const DenseGrid& dense, RangeGrid& grid) {
     }
 
     // Separable min/max per macrocell layer cz: rows reduced over x, then over y, then over z.
-    std::atomic<int> nextLayer{0};
-    runThreads(std::min<unsigned>(threadCount(), unsigned(M.z)), [&](unsigned) {
+    // Layers in parallel; each run of layers has its own scratch.
+    parallelForRanges(0, size_t(M.z), 1, [&](size_t czBegin, size_t czEnd) {
         std::vector<ValueRange> rows(size_t(M.x) * size_t(N.y));  // (cx, y)
         std::vector<ValueRange> layer(size_t(M.x) * size_t(M.y));  // (cx, cy)
-        for (int cz = nextLayer++; cz < M.z; cz = nextLayer++) {
+        for (int cz = int(czBegin); cz < int(czEnd); ++cz) {
             std::fill(layer.begin(), layer.end(), ValueRange{});
             const glm::ivec2 zs = span[2][size_t(cz)];
             for (int z = zs.x; z <= zs.y; ++z) {

@@ -3,12 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <future>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
+
+namespace {
+
+// Cells per splat chunk and the most chunks: every chunk splats into its own full grid, so the
+// count also bounds the extra memory (at most kMaxSplatChunks - 1 grids besides the result).
+constexpr size_t kSplatChunkCells = 250000;
+constexpr size_t kMaxSplatChunks = 4;
+
+}  // namespace
 
 glm::ivec3 RangeGrid::cellOf(glm::dvec3 p) const {
     glm::dvec3 c = glm::floor((p - origin) / cellSize);
@@ -62,7 +71,7 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
     const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
     const glm::dvec3 eps = 1e-5 * g.cellSize;
 
-    // Two halves of the cells splat into private grids, merged afterwards.
+    // Consecutive chunks of cells splat into private grids (in parallel), merged in chunk order.
     auto splat = [&](size_t begin, size_t end) {
         std::vector<ValueRange> ranges(total);
         for (size_t i = begin; i < end; ++i) {
@@ -80,15 +89,12 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
         }
         return ranges;
     };
+    auto merge = [&](std::vector<ValueRange>& acc, std::vector<ValueRange>&& part) {
+        parallelFor(0, total, [&](size_t i) { acc[i].extend(part[i]); }, 4096);
+    };
     const size_t n = model.cells.size();
-    if (n > 200000) {
-        auto first = std::async(std::launch::async, splat, 0, n / 2);
-        g.ranges = splat(n / 2, n);
-        auto other = first.get();
-        for (size_t i = 0; i < total; ++i) g.ranges[i].extend(other[i]);
-    } else {
-        g.ranges = splat(0, n);
-    }
+    const size_t chunks = std::clamp<size_t>(n / kSplatChunkCells, 1, kMaxSplatChunks);
+    g.ranges = parallelReduce<std::vector<ValueRange>>(0, n, chunks, splat, merge);
     g.buildSeconds = timer.seconds();
     return g;
 }

@@ -1,13 +1,11 @@
 #include "accel/support_range.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <future>
-#include <thread>
 
 #include "accel/abrs.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace amrvk::accel {
 
@@ -37,23 +35,6 @@ bool disjoint(const glm::i64vec3& qlo, const glm::i64vec3& qhi, const glm::i64ve
 // True when extending r by `part` cannot change r (also for an empty `part`).
 bool within(const ValueRange& part, const ValueRange& r) {
     return part.lo >= r.lo && part.hi <= r.hi;
-}
-
-// Calls f(i) for i in [0, n) on the hardware threads (at most 8), in blocks of 64 indices.
-template <typename F>
-void parallelFor(size_t n, F&& f) {
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    constexpr size_t kBlock = 64;
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-        for (size_t begin; (begin = next.fetch_add(kBlock)) < n;)
-            for (size_t i = begin; i < std::min(n, begin + kBlock); ++i) f(i);
-    };
-    std::vector<std::future<void>> others;
-    for (size_t t = 1; t < threads && t * kBlock < n; ++t)
-        others.push_back(std::async(std::launch::async, work));
-    work();
-    for (auto& o : others) o.get();
 }
 
 }  // namespace
@@ -184,7 +165,7 @@ uint64_t SupportRangeQuery::memoryBytes() const {
 
 std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const BrickSet& bricks) {
     std::vector<ValueRange> out(bricks.bricks.size());
-    parallelFor(out.size(), [&](size_t i) {
+    parallelFor(0, out.size(), [&](size_t i) {
         const amr::Box3l b = bricks.bricks[i].bounds();
         out[i] = query.query({glm::dvec3(b.lower), glm::dvec3(b.upper)});
     });
@@ -193,7 +174,7 @@ std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const 
 
 std::vector<ValueRange> brickDomainRanges(const SupportRangeQuery& query, const BrickSet& bricks) {
     std::vector<ValueRange> out(bricks.bricks.size());
-    parallelFor(out.size(), [&](size_t i) {
+    parallelFor(0, out.size(), [&](size_t i) {
         const HalfBox d = brickDomain(bricks.bricks[i]);
         out[i] = query.query({d.lower(), d.upper()});
     });

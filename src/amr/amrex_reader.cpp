@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "amr/block_structured.h"
 #include "amr/readers.h"
@@ -41,30 +42,14 @@ class TextCursor {
         ++mPos;
         return true;
     }
-    int64_t readInt64(const char* what) {
-        skipSpace();
-        int64_t v = 0;
-        const char* begin = mText.data() + mPos;
-        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
-        AMRVK_CHECK(ec == std::errc(), where(), ": expected an integer (", what, ")", found());
-        mPos += static_cast<size_t>(ptr - begin);
-        return v;
-    }
+    int64_t readInt64(const char* what) { return readNumber<int64_t>(what, "an integer"); }
     int readInt(const char* what) {
         int64_t v = readInt64(what);
         AMRVK_CHECK(v >= INT32_MIN && v <= INT32_MAX, where(), ": ", what, " ", v,
                     " is out of range");
         return static_cast<int>(v);
     }
-    double readDouble(const char* what) {
-        skipSpace();
-        double v = 0;
-        const char* begin = mText.data() + mPos;
-        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
-        AMRVK_CHECK(ec == std::errc(), where(), ": expected a number (", what, ")", found());
-        mPos += static_cast<size_t>(ptr - begin);
-        return v;
-    }
+    double readDouble(const char* what) { return readNumber<double>(what, "a number"); }
     std::string readWord(const char* what) {
         skipSpace();
         size_t end = mPos;
@@ -113,6 +98,17 @@ class TextCursor {
     }
 
   private:
+    // One number parsed by std::from_chars; `kind` names what was expected ("an integer").
+    template <typename T>
+    T readNumber(const char* what, const char* kind) {
+        skipSpace();
+        T v = 0;
+        const char* begin = mText.data() + mPos;
+        auto [ptr, ec] = std::from_chars(begin, mText.data() + mText.size(), v);
+        AMRVK_CHECK(ec == std::errc(), where(), ": expected ", kind, " (", what, ")", found());
+        mPos += static_cast<size_t>(ptr - begin);
+        return v;
+    }
     static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
     void skipSpace() {
         while (mPos < mText.size() && isSpace(mText[mPos])) ++mPos;
@@ -155,20 +151,22 @@ struct RealFormat {
     bool swap = false;  // file byte order differs from this machine's
 };
 
+// "(n, (a b c ...))": a size and a list.
+std::pair<int, std::vector<int>> readSizedList(TextCursor& in, const char* sizeWhat, const char* listWhat) {
+    in.expect('(');
+    const int n = in.readInt(sizeWhat);
+    in.expect(',');
+    std::vector<int> list = in.readIntList(listWhat);
+    in.expect(')');
+    return {n, std::move(list)};
+}
+
 // "((8, (64 11 52 0 1 12 0 1023)),(8, (8 7 6 5 4 3 2 1)))"
 RealFormat readRealDescriptor(TextCursor& in) {
     in.expect('(');
-    in.expect('(');
-    const int bytes = in.readInt("real size");
+    const auto [bytes, format] = readSizedList(in, "real size", "real format");
     in.expect(',');
-    std::vector<int> format = in.readIntList("real format");
-    in.expect(')');
-    in.expect(',');
-    in.expect('(');
-    const int orderBytes = in.readInt("byte order size");
-    in.expect(',');
-    std::vector<int> order = in.readIntList("byte order");
-    in.expect(')');
+    const auto [orderBytes, order] = readSizedList(in, "byte order size", "byte order");
     in.expect(')');
     const std::vector<int> ieee64{64, 11, 52, 0, 1, 12, 0, 1023};
     const std::vector<int> ieee32{32, 8, 23, 0, 1, 9, 0, 127};
@@ -373,23 +371,13 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
     Block block;
     block.lo = valid.lo;
     block.hi = valid.hi;
-    const glm::ivec3 fd = fab.dims(), vd = valid.dims();
-    const glm::ivec3 off = valid.lo - fab.lo;
     std::vector<unsigned char> raw(compBytes);
     for (size_t comp : components) {
         reader.seek(dataStart + comp * compBytes);
         reader.read(raw.data(), compBytes);
-        std::vector<float> values;
-        values.reserve(valid.cellCount());
-        for (int z = 0; z < vd.z; ++z)
-            for (int y = 0; y < vd.y; ++y)
-                for (int x = 0; x < vd.x; ++x) {
-                    const size_t i =
-                        (size_t(z + off.z) * size_t(fd.y) + size_t(y + off.y)) * size_t(fd.x) +
-                        size_t(x + off.x);
-                    values.push_back(decodeReal(raw.data() + i * size_t(fmt.bytes), fmt));
-                }
-        block.values.push_back(std::move(values));
+        block.values.push_back(cropBox(fab.dims(), valid.lo - fab.lo, valid.dims(), [&](size_t i) {
+            return decodeReal(raw.data() + i * size_t(fmt.bytes), fmt);
+        }));
     }
     return block;
 }
@@ -407,27 +395,10 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     fileSize(headerPath);
     const Header header = readHeader(headerPath);
     model.availableFields = header.names;
-    const std::vector<std::string> selected =
-        selectFields(model.availableFields, options.fields, model.source);
-    std::vector<size_t> components;
-    for (const std::string& name : selected) {
-        components.push_back(static_cast<size_t>(
-            std::find(header.names.begin(), header.names.end(), name) - header.names.begin()));
-        model.fields.push_back({name, {}});
-    }
+    const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
-    // Cell width of each level in finest-level cells.
     const int levelCount = header.finestLevel + 1;
-    std::vector<int64_t> widths(static_cast<size_t>(levelCount), 1);
-    for (int l = header.finestLevel - 1; l >= 0; --l) {
-        const int r = header.refRatio[static_cast<size_t>(l)];
-        AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), headerPath.string(),
-                    ": refinement ratio ", r, " from level ", l, " to ", l + 1,
-                    " is not a power of two");
-        widths[static_cast<size_t>(l)] = widths[static_cast<size_t>(l) + 1] * r;
-        AMRVK_CHECK(widths[static_cast<size_t>(l)] <= (int64_t{1} << kMaxLevel),
-                    headerPath.string(), ": refinement ratios multiply to more than 2^", kMaxLevel);
-    }
+    const std::vector<int64_t> widths = levelCellWidths(header.refRatio, headerPath.string());
 
     std::vector<BlockLevel> levels;
     std::vector<std::string> vismfVersions;
@@ -466,14 +437,12 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     if (header.dim == 2) model.voxelToWorld.scale.z = model.voxelToWorld.scale.x;
 
     const char* coordNames[] = {"cartesian", "rz", "spherical"};
-    std::vector<size_t> boxCounts;
-    for (const BlockLevel& level : levels) boxCounts.push_back(level.blocks.size());
     model.attributes = {
         {"plotfileVersion", header.version},
         {"dimensions", std::to_string(header.dim)},
         {"time", formatDouble(header.time)},
         {"levels", std::to_string(levelCount)},
-        {"boxesPerLevel", join(boxCounts)},
+        {"boxesPerLevel", join(blockCounts(levels))},
         {"refinementRatios", join(header.refRatio)},
         {"coordinateSystem", header.coordSys >= 0 && header.coordSys <= 2
                                  ? coordNames[header.coordSys]

@@ -59,6 +59,37 @@ std::vector<std::string> selectFields(const std::vector<std::string>& available,
     return requested;
 }
 
+std::vector<size_t> addSelectedFields(Model& model, const std::vector<std::string>& requested) {
+    const std::vector<std::string> selected = selectFields(model.availableFields, requested, model.source);
+    std::vector<size_t> components;
+    for (const std::string& name : selected) {
+        components.push_back(static_cast<size_t>(
+            std::find(model.availableFields.begin(), model.availableFields.end(), name) -
+            model.availableFields.begin()));
+        model.fields.push_back({name, {}});
+    }
+    return components;
+}
+
+std::vector<int64_t> levelCellWidths(const std::vector<int>& ratios, const std::string& source) {
+    std::vector<int64_t> widths(ratios.size() + 1, 1);
+    for (size_t l = ratios.size(); l-- > 0;) {
+        const int r = ratios[l];
+        AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), source, ": refinement ratio ", r,
+                    " from level ", l, " to ", l + 1, " is not a power of two");
+        widths[l] = widths[l + 1] * r;
+        AMRVK_CHECK(widths[l] <= (int64_t{1} << kMaxLevel), source,
+                    ": refinement ratios multiply to more than 2^", kMaxLevel);
+    }
+    return widths;
+}
+
+std::vector<size_t> blockCounts(const std::vector<BlockLevel>& levels) {
+    std::vector<size_t> counts;
+    for (const BlockLevel& level : levels) counts.push_back(level.blocks.size());
+    return counts;
+}
+
 void appendLeafCells(Model& model, const std::vector<BlockLevel>& levels, bool planar) {
     checkLevels(model, levels, planar);
     const size_t fieldCount = model.fields.size();

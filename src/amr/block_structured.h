@@ -61,4 +61,36 @@ std::vector<std::string> selectFields(const std::vector<std::string>& available,
                                       const std::vector<std::string>& requested,
                                       const std::string& source);
 
+// The steps every block-structured reader shares around its format-specific parsing:
+
+// Selects the fields to load from model.availableFields (selectFields, errors naming
+// model.source), appends an empty entry per selected field to model.fields and returns the
+// selected fields' indices in model.availableFields (the components to read), in order.
+std::vector<size_t> addSelectedFields(Model& model, const std::vector<std::string>& requested);
+
+// Cell width of every level in finest-level cells (BlockLevel::cellWidth): the product of the
+// refinement ratios from that level down to the finest; ratios[l] refines level l into l + 1.
+// Checked from the finest ratio down; throws "SOURCE: refinement ratio R from level L to L+1 is
+// not a power of two" or "SOURCE: refinement ratios multiply to more than 2^30".
+std::vector<int64_t> levelCellWidths(const std::vector<int>& ratios, const std::string& source);
+
+// The values of a box of `dims` cells that starts `offset` cells into a stored box of `stored`
+// cells (ghost cells, a FAB's grown box), x fastest; valueAt(i) converts stored element i (the
+// stored box's own x-fastest index) to float.
+template <class ValueAt>
+std::vector<float> cropBox(glm::ivec3 stored, glm::ivec3 offset, glm::ivec3 dims, ValueAt&& valueAt) {
+    std::vector<float> values;
+    values.reserve(size_t(dims.x) * size_t(dims.y) * size_t(dims.z));
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                values.push_back(valueAt((size_t(z + offset.z) * size_t(stored.y) + size_t(y + offset.y)) *
+                                             size_t(stored.x) +
+                                         size_t(x + offset.x)));
+    return values;
+}
+
+// Number of blocks of each level, in `levels` order (the boxes/grids per level attribute).
+std::vector<size_t> blockCounts(const std::vector<BlockLevel>& levels);
+
 }  // namespace amrvk::amr

@@ -227,23 +227,12 @@ std::vector<Block> readLevelBlocks(const ChomboFile& file, hid_t group,
         Block block;
         block.lo = valid.lo;
         block.hi = valid.hi;
-        const glm::ivec3 gd = grown.dims(), vd = valid.dims();
         buffer.resize(n);
         for (size_t comp : components) {
             file.readRange(data.get(), dataName, static_cast<hsize_t>(offsets[b]) + comp * n, n,
                            buffer.data());
-            std::vector<float> values;
-            values.reserve(valid.cellCount());
-            for (int z = 0; z < vd.z; ++z)
-                for (int y = 0; y < vd.y; ++y)
-                    for (int x = 0; x < vd.x; ++x) {
-                        const size_t i =
-                            (size_t(z + ghost.z) * size_t(gd.y) + size_t(y + ghost.y)) *
-                                size_t(gd.x) +
-                            size_t(x + ghost.x);
-                        values.push_back(static_cast<float>(buffer[i]));
-                    }
-            block.values.push_back(std::move(values));
+            block.values.push_back(cropBox(grown.dims(), ghost, valid.dims(),
+                                           [&](size_t i) { return static_cast<float>(buffer[i]); }));
         }
         blocks.push_back(std::move(block));
     }
@@ -279,15 +268,7 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     AMRVK_CHECK(ncomp > 0, file.name(), ": num_components is ", ncomp);
     for (int c = 0; c < ncomp; ++c)
         model.availableFields.push_back(file.readString(root, strCat("component_", c)));
-    const std::vector<std::string> selected =
-        selectFields(model.availableFields, options.fields, model.source);
-    std::vector<size_t> components;
-    for (const std::string& name : selected) {
-        components.push_back(static_cast<size_t>(
-            std::find(model.availableFields.begin(), model.availableFields.end(), name) -
-            model.availableFields.begin()));
-        model.fields.push_back({name, {}});
-    }
+    const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     const int levelCount = file.readInt(root, "num_levels");
     AMRVK_CHECK(levelCount > 0 && levelCount <= kMaxLevel + 1, file.name(), ": num_levels is ",
@@ -305,16 +286,10 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
             ratios.push_back(r);
         }
     }
-    std::vector<int64_t> widths(static_cast<size_t>(levelCount), 1);
-    for (size_t l = ratios.size(); l-- > 0;) {
-        widths[l] = widths[l + 1] * ratios[l];
-        AMRVK_CHECK(widths[l] <= (int64_t{1} << kMaxLevel), file.name(),
-                    ": refinement ratios multiply to more than 2^", kMaxLevel);
-    }
+    const std::vector<int64_t> widths = levelCellWidths(ratios, file.name());
 
     std::vector<BlockLevel> levels;
     glm::ivec3 domainLo0{0};
-    std::vector<size_t> boxCounts;
     for (int l = 0; l < levelCount; ++l) {
         const hid_t group = groups[static_cast<size_t>(l)].get();
         const std::string levelName = strCat("level_", l);
@@ -328,7 +303,6 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
         if (l == 0) domainLo0 = level.indexOrigin;
 
         level.blocks = readLevelBlocks(file, group, levelName, dim, ncomp, components);
-        boxCounts.push_back(level.blocks.size());
         levels.push_back(std::move(level));
     }
     appendLeafCells(model, levels, dim == 2);
@@ -341,7 +315,7 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     model.attributes = {
         {"dimensions", std::to_string(dim)},
         {"levels", std::to_string(levelCount)},
-        {"boxesPerLevel", join(boxCounts)},
+        {"boxesPerLevel", join(blockCounts(levels))},
         {"refinementRatios", join(ratios)},
     };
     std::vector<std::string> cellSizes;

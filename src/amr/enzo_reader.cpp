@@ -274,15 +274,7 @@ std::vector<float> readGridField(hid_t file, const std::string& fileName, const 
     AMRVK_CHECK(H5Dread(d.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()) >= 0,
                 fileName, ": cannot read ", dsName, " (truncated or damaged file?)");
     if (file3 == active) return all;
-    std::vector<float> out;
-    out.reserve(size_t(active.x) * size_t(active.y) * size_t(active.z));
-    for (int z = 0; z < active.z; ++z)
-        for (int y = 0; y < active.y; ++y)
-            for (int x = 0; x < active.x; ++x)
-                out.push_back(all[(size_t(z + offset.z) * size_t(file3.y) + size_t(y + offset.y)) *
-                                      size_t(file3.x) +
-                                  size_t(x + offset.x)]);
-    return out;
+    return cropBox(file3, offset, active, [&](size_t i) { return all[i]; });
 }
 
 }  // namespace
@@ -315,32 +307,26 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
         if (std::find(model.availableFields.begin(), model.availableFields.end(), n) ==
             model.availableFields.end())
             model.availableFields.push_back(n);
-    const std::vector<std::string> selected =
-        selectFields(model.availableFields, options.fields, model.source);
-    for (const std::string& name : selected) model.fields.push_back({name, {}});
+    const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     int finest = 0;
     for (const GridInfo& g : grids) finest = std::max(finest, g.level);
     AMRVK_CHECK(double(finest) * std::log2(double(params.refineBy)) <= kMaxLevel,
                 hierarchyPath.string(), ": ", finest, " levels of RefineBy ", params.refineBy,
                 " exceed 2^", kMaxLevel, " finest cells per root cell");
-    std::vector<BlockLevel> levels(static_cast<size_t>(finest) + 1);
-    for (int l = 0; l <= finest; ++l) {
-        int64_t w = 1;
-        for (int k = l; k < finest; ++k) w *= params.refineBy;
-        levels[static_cast<size_t>(l)].cellWidth = w;
-    }
-    std::vector<size_t> gridsPerLevel(levels.size(), 0);
+    const std::vector<int64_t> widths =
+        levelCellWidths(std::vector<int>(static_cast<size_t>(finest), params.refineBy), hierarchyPath.string());
+    std::vector<BlockLevel> levels(widths.size());
+    for (size_t l = 0; l < levels.size(); ++l) levels[l].cellWidth = widths[l];
     for (const GridInfo& g : grids) {
         const fs::path file = dataPath(g);
         const hid_t h = files.open(file);
         Block block;
         block.lo = g.position;
         block.hi = g.position + g.active() - 1;
-        for (const std::string& name : selected)
-            block.values.push_back(readGridField(h, file.string(), g, name));
+        for (size_t f : components)
+            block.values.push_back(readGridField(h, file.string(), g, model.availableFields[f]));
         levels[static_cast<size_t>(g.level)].blocks.push_back(std::move(block));
-        ++gridsPerLevel[static_cast<size_t>(g.level)];
     }
     appendLeafCells(model, levels);
 
@@ -351,7 +337,7 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
 
     model.attributes = params.attributes;
     model.attributes.emplace_back("levels", std::to_string(levels.size()));
-    model.attributes.emplace_back("gridsPerLevel", join(gridsPerLevel));
+    model.attributes.emplace_back("gridsPerLevel", join(blockCounts(levels)));
     model.attributes.emplace_back("refineBy", std::to_string(params.refineBy));
     model.attributes.emplace_back(
         "topGridDimensions",

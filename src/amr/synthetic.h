@@ -27,6 +27,9 @@
 // the factor 1.4 and to span several levels; SyntheticStats::blockCells reports the B used.
 // Output: cells in depth-first order (children x fastest, then y, then z; a block is the
 // depth-first subtree of its leaf node), level 0 = finest.
+// Parts: the fields in amr/synthetic_fields.*, the octree passes in amr/octree_refine.h, the
+// choice of t in amr/threshold_search.*, the leaves' destinations in amr/cell_sinks.* (files
+// through amr/cells_writer.*); this file pair only picks B, the depth and the field and runs them.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
