@@ -32,7 +32,7 @@ int runView(const std::vector<std::string>& argv) {
     PictureArgs pic;
     DeviceArgs dev;
     viewer::ViewerOptions vo;
-    std::string screenshot, script, stats;
+    std::string screenshot, script, stats, saveSession;
     int64_t frames = 0;
     double budgetMs = 50;
     std::string window;
@@ -47,6 +47,8 @@ int runView(const std::vector<std::string>& argv) {
     app.add_option("--screenshot", screenshot, "at exit, save the accumulated image without the UI (.png .exr .pfm)")
         ->type_name("FILE");
     app.add_option("--script", script, "frame-numbered actions (docs/viewer.md)")->check(CLI::ExistingFile)->type_name("FILE");
+    app.add_option("--save-session", saveSession, "at exit, save the state as a session file (amrvk render --session)")
+        ->type_name("FILE");
     app.add_option("--stats", stats, "at exit, write frame times and times to the first full sample as JSON")
         ->type_name("FILE");
     app.add_option("--frame-budget-ms", budgetMs,
@@ -83,6 +85,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.screenshot = screenshot;
     vo.script = script;
     vo.statsJson = stats;
+    vo.saveSession = saveSession;
     vo.shaderDir = dev.shaderDir;
     vo.device = dev.device;
     vo.validation = dev.validation;

@@ -23,7 +23,7 @@ const std::map<std::string, Signature>& signatures() {
         {"orbit", {2, {0, 1}}},   {"pan", {2, {0, 1}}},      {"zoom", {1, {0}}},    {"tf-preset", {1, {}}},
         {"tf-range", {2, {0, 1}}}, {"density", {1, {0}}},    {"mode", {1, {}}},     {"traversal", {1, {}}},
         {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
-        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}},   {"quit", {0, {}}}};
+        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}}};
     return table;
 }
 

@@ -10,6 +10,7 @@
 //   reload                           recompile the shaders now (the watcher also does on a save)
 //   screenshot FILE                  the accumulated image, no UI (.png, .exr, .pfm)
 //   capture-window FILE              the window as shown, UI included (.png; no-op with --headless)
+//   save-session FILE                the current state as a session file (render it with amrvk render --session)
 //   quit
 // Parsing checks every action's name and argument count and every number, one line per error
 // naming the file and line.

@@ -79,6 +79,7 @@ private:
     void updateStatistics(double frameSeconds);
     void setStructure(const scene::StructureConfig& next);
     void setTransferFunction();
+    void noteReset(const std::string& what);
     void screenshot(const fs::path& file);
     void saveSessionFile(const fs::path& file);
     void loadSessionFile(const fs::path& file);
@@ -129,6 +130,12 @@ private:
     scene::RenderSettings mApplied;  // what the renderer was last given
     bool mDragging = false;
     std::string mCapturePath;  // the next presented frame is saved there (UI included)
+    struct Reset {
+        uint64_t frame;
+        std::string what;
+        uint32_t samplesLeft;  // samples of the old picture still in the image right after (must be 0)
+    };
+    std::vector<Reset> mResets;
     gpu::Buffer mCaptureBuffer;
     double mLastX = 0, mLastY = 0;
 };
@@ -183,6 +190,14 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
     else mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
     mStats.structureSeconds = t.seconds();
     mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
+    noteReset("structure");
+}
+
+void ViewerApp::noteReset(const std::string& what) {
+    // The renderer must have dropped every sample of the old picture.
+    mResets.push_back({mFrame, what, mRenderer ? mRenderer->accumulatedSpp() + mRenderer->rowsDone() : 0});
+    mNeedPreview = true;
+    mChangedAt = Clock::now();
 }
 
 void ViewerApp::setTransferFunction() {
@@ -190,6 +205,7 @@ void ViewerApp::setTransferFunction() {
     mRenderer->setTransferFunction(mTf.transferFunction());
     mStats.tfEditSeconds = t.seconds();
     mState.tf = mTf.channels();
+    noteReset("transfer function");
 }
 
 int ViewerApp::run() {
@@ -235,6 +251,7 @@ int ViewerApp::run() {
         ++mFrame;
     }
     if (!mOpt.screenshot.empty()) screenshot(mOpt.screenshot);
+    if (!mOpt.saveSession.empty()) saveSessionFile(mOpt.saveSession);
     if (!mOpt.statsJson.empty()) writeStats();
     mImGui.reset();
     mSwapchain.reset();
@@ -409,6 +426,8 @@ void ViewerApp::runScript() {
             reloadShaders();
         } else if (n == "screenshot") {
             screenshot(a.args[0]);
+        } else if (n == "save-session") {
+            saveSessionFile(a.args[0]);
         } else if (n == "capture-window") {
             if (mWindow) mCapturePath = a.args[0];
         } else if (n == "quit") {
@@ -438,6 +457,7 @@ void ViewerApp::pollShaders() {
 void ViewerApp::reloadShaders() {
     try {
         mRenderer->reloadShaders();
+        noteReset("shaders");
         mPanel.shaderError.clear();
         mPanel.message = "shaders reloaded";
         std::fprintf(stderr, "amrvk view: shaders reloaded from %s\n", mOpt.shaderDir.string().c_str());
@@ -451,13 +471,15 @@ void ViewerApp::reloadShaders() {
 void ViewerApp::applyEdits() {
     // The picture the state describes, at full resolution or as a preview while interacting.
     const scene::RenderSettings full = fullSettings();
-    if (!scene::settingsChanges(mApplied, full).empty() && mFrame > 0) mInteracting = true;
+    const scene::ChangeSet changes = scene::settingsChanges(mApplied, full);
+    if (!changes.empty() && mFrame > 0) mInteracting = true;
     scene::RenderSettings s = full;
     if (mInteracting) mNeedPreview = true;
     mPreviewScale = mNeedPreview ? mBudget.previewScale(full.width, full.height) : 1;
     s.width = std::max(1, full.width / mPreviewScale);
     s.height = std::max(1, full.height / mPreviewScale);
     mRenderer->setSettings(s);
+    if (!changes.empty() && mFrame > 0) noteReset(scene::describe(changes));
     if (mInteracting) mChangedAt = Clock::now();
     mApplied = full;
 }
@@ -728,6 +750,9 @@ void ViewerApp::writeStats() const {
     j["idleFrames"] = summary(mTimings.idleFrames);
     j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
     j["spp"] = mRenderer->accumulatedSpp();
+    j["resets"] = nlohmann::ordered_json::array();
+    for (const Reset& r : mResets)
+        j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
     j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
     writeFileAtomic(mOpt.statsJson, j.dump(2) + "\n");
 }

@@ -1,0 +1,221 @@
+// amrvk view end to end (the binary, validation on): a headless run and a run in a real window
+// under Xvfb (swapchain present path) give the image `render` gives for the same session (tile
+// z-test shown to reject a 10% density change); a script that orbits, edits the TF and switches
+// traversal and mode resets the accumulation at every change and ends at the image of the final
+// state; a scripted shader edit changes the picture and a syntax error keeps the previous pipeline
+// and names file and line; a real mouse drag (xdotool) turns the camera and a key press quits.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "amr/readers.h"
+#include "core/image_io.h"
+#include "gpu_fixture.h"
+#include "image_compare.h"
+#include "render/renderer.h"
+#include "session/session.h"
+#include "test_data.h"
+
+using namespace amrvk;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string amrvkBinary() { return std::string(AMRVK_BINARY_DIR) + "/bin/amrvk"; }
+std::string sample() { return std::string(AMRVK_SOURCE_DIR) + "/assets/samples/cloud.cells"; }
+
+bool onPath(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+// Runs a shell command line with stdout and stderr into files under dir; returns the exit status.
+int run(const std::string& commandLine, const fs::path& dir, const std::string& tag) {
+    const std::string cmd = commandLine + " >" + (dir / (tag + ".out")).string() + " 2>" + (dir / (tag + ".err")).string();
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The picture options every run here shares: small, quick, and sensitive to the density (an
+// optically thin-to-medium cloud on black, so the comparison has power).
+const std::string kPicture = " --size 48x32 --tf ramp --tf-range 0 1.2 --density-scale 1 --grid 16 --mode ae"
+                             " --background 0 0 0 --backend sw";
+
+// `render` of a session in process, with another seed (independent samples) and a density factor.
+scene::RenderOutput renderSession(gpu::Context& ctx, const session::Session& s, uint32_t seedOffset, double densityFactor) {
+    amr::ReadOptions ro = s.read;
+    ro.fields = {s.field};
+    const amr::Model model = amr::readModel(s.input, ro);
+    scene::StructureConfig cfg = s.structure;
+    cfg.backend = scene::resolveBackend(cfg.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
+    scene::VolumeScene scene = scene::buildVolumeScene(model, model.field(s.field), cfg);
+    render::Renderer r(ctx, scene);
+    r.setTransferFunction(s.tf.merged());
+    scene::RenderSettings rs = s.settings;
+    rs.seed += seedOffset;
+    rs.densityScale *= densityFactor;
+    return r.render(rs, s.spp);
+}
+
+// The viewer's screenshot as a RenderOutput with the reference's per-pixel sample variance (same
+// estimator and sample count, so the same variance), for the tile z-test.
+scene::RenderOutput withVarianceOf(const Image& image, const scene::RenderOutput& ref) {
+    scene::RenderOutput o;
+    o.mean = image;
+    o.spp = ref.spp;
+    o.sumSq.resize(image.pixels.size());
+    const double n = ref.spp;
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double m = image.pixels[i][c];
+            o.sumSq[i][c] = float(test::sampleVariance(ref, i, c) * (n - 1) + n * m * m);
+        }
+    return o;
+}
+
+nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(test::readAll(p)); }
+
+class ViewerGpu : public test::GpuTest {
+protected:
+    void SetUp() override {
+        test::GpuTest::SetUp();
+        if (!fs::exists(amrvkBinary())) GTEST_SKIP() << "amrvk binary not built: " << amrvkBinary();
+    }
+
+    // The viewer's image of `dir`/final.pfm against render of `dir`/final.json: equal, and the
+    // comparison rejects a 10% denser medium.
+    void expectSameAsRender(const fs::path& dir, const std::string& tag) {
+        const session::Session s = session::loadSession(dir / "final.json");
+        const Image shot = readPfm(dir / "final.pfm");
+        const scene::RenderOutput ref = renderSession(ctx(), s, 1000, 1.0);
+        ASSERT_EQ(shot.width, ref.mean.width);
+        ASSERT_EQ(shot.height, ref.mean.height);
+        const scene::RenderOutput viewer = withVarianceOf(shot, ref);
+        test::expectSameImage(viewer, ref, 16, tag, 1e-4);
+        const scene::RenderOutput denser = renderSession(ctx(), s, 1000, 1.1);
+        EXPECT_GT(test::countDifferingTiles(viewer, denser, 16, 1e-4, 1e-6), 0)
+            << "the comparison must reject a 10% density change (power)";
+    }
+};
+
+}  // namespace
+
+TEST_F(ViewerGpu, HeadlessScreenshotEqualsRenderOfTheSameSession) {
+    const fs::path dir = test::scratchDir() / "viewer-headless";
+    fs::create_directories(dir);
+    const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 400 --screenshot " +
+                           (dir / "final.pfm").string() + " --save-session " + (dir / "final.json").string() +
+                           " --validation",
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    expectSameAsRender(dir, "viewer-headless");
+}
+
+TEST_F(ViewerGpu, WindowUnderXvfbEqualsRenderOfTheSameSession) {
+    if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    const fs::path dir = test::scratchDir() / "viewer-window";
+    fs::create_directories(dir);
+    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' " + amrvkBinary() + " view " + sample() + kPicture +
+                           " --spp 128 --frames 300 --window 640x480 --screenshot " + (dir / "final.pfm").string() +
+                           " --save-session " + (dir / "final.json").string() + " --validation",
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    expectSameAsRender(dir, "viewer-window");
+}
+
+TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
+    const fs::path dir = test::scratchDir() / "viewer-script";
+    fs::create_directories(dir);
+    test::writeAll(dir / "script.txt", "5 orbit 40 10\n"
+                                       "10 tf-range 0 0.8\n"
+                                       "15 traversal abr\n"
+                                       "20 mode dvr\n"
+                                       "25 zoom 1\n");
+    const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 600 --script " +
+                           (dir / "script.txt").string() + " --stats " + (dir / "stats.json").string() +
+                           " --screenshot " + (dir / "final.pfm").string() + " --save-session " +
+                           (dir / "final.json").string() + " --validation",
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const nlohmann::json stats = readJson(dir / "stats.json");
+    const std::vector<std::pair<uint64_t, std::string>> expected = {
+        {5, "camera"}, {10, "transfer function"}, {15, "structure"}, {20, "mode"}, {25, "camera"}};
+    for (const auto& [frame, what] : expected) {
+        bool found = false;
+        for (const auto& r : stats["resets"])
+            if (r["frame"].get<uint64_t>() == frame && r["what"].get<std::string>() == what) {
+                found = true;
+                EXPECT_EQ(r["samplesLeft"].get<uint32_t>(), 0u) << what << " at frame " << frame;
+            }
+        EXPECT_TRUE(found) << "no reset for " << what << " at frame " << frame << ": " << stats["resets"].dump();
+    }
+    EXPECT_EQ(stats["spp"].get<uint32_t>(), 128u);
+    const session::Session s = session::loadSession(dir / "final.json");
+    EXPECT_EQ(s.structure.traversal, scene::TraversalKind::Abr);
+    EXPECT_EQ(s.settings.mode, scene::Mode::Dvr);
+    EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 0.8f);
+    expectSameAsRender(dir, "viewer-script");
+}
+
+TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
+    const fs::path dir = test::scratchDir() / "viewer-reload";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
+    // ae with a camera looking past the data: every pixel is the background radiance (ambient 1).
+    test::writeAll(dir / "script.txt",
+                   "3 screenshot " + (dir / "before.pfm").string() + "\n"
+                   "4 edit-shader path_trace.comp \"? tf.rgb : P.shading.background;\" \"? tf.rgb : 2.0 * P.shading.background;\"\n"
+                   "5 reload\n"
+                   "30 screenshot " + (dir / "after.pfm").string() + "\n"
+                   "31 edit-shader ../lib/tf.glsl \"if (lo > hi) return 0.0;\" \"if (lo > hi) return 0.0 +;\"\n"
+                   "32 reload\n"
+                   "60 screenshot " + (dir / "kept.pfm").string() + "\n"
+                   "61 quit\n");
+    const int rc = run(amrvkBinary() + " view " + sample() + " --size 8x8 --mode ae --spp 4 --backend sw --camera 1000 0 0 "
+                           "2000 0 0 0 0 1 --headless --shader-dir " + (dir / "shaders" / "passes").string() +
+                           " --script " + (dir / "script.txt").string() + " --validation",
+                       dir, "view");
+    const std::string err = test::readAll(dir / "view.err");
+    ASSERT_EQ(rc, 0) << err;
+    EXPECT_FLOAT_EQ(readPfm(dir / "before.pfm").pixels[0].r, 1.0f);
+    EXPECT_FLOAT_EQ(readPfm(dir / "after.pfm").pixels[0].r, 2.0f) << "the edited shader runs";
+    EXPECT_FLOAT_EQ(readPfm(dir / "kept.pfm").pixels[0].r, 2.0f) << "a failed compile keeps the previous pipeline";
+    EXPECT_NE(err.find("previous pipeline kept"), std::string::npos) << err;
+    int line = 0;
+    {
+        std::ifstream in(dir / "shaders" / "lib" / "tf.glsl");
+        std::string text;
+        for (int n = 1; std::getline(in, text); ++n)
+            if (text.find("return 0.0 +;") != std::string::npos) line = n;
+    }
+    EXPECT_NE(err.find("tf.glsl:" + std::to_string(line)), std::string::npos) << "file and line: " << err;
+}
+
+TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
+    if (!onPath("xvfb-run") || !onPath("xdotool")) GTEST_SKIP() << "xvfb-run or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-mouse";
+    fs::create_directories(dir);
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --save-session \"$3/final.json\" "
+                   "--validation & pid=$!\n"
+                   "sleep 6\n"
+                   "xdotool mousemove 150 450 mousedown 1 mousemove 210 470 mousemove 260 480 mouseup 1\n"
+                   "sleep 2\n"
+                   "xdotool key q\n"
+                   "wait $pid\n");
+    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' bash " + (dir / "drive.sh").string() + " " + amrvkBinary() +
+                           " " + sample() + " " + dir.string(),
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const session::Session s = session::loadSession(dir / "final.json");
+    const amr::Model m = amr::readModel(sample(), {});
+    const amr::ModelSummary sum = amr::summarize(m);
+    const scene::Camera start = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                                     m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
+    EXPECT_GT(glm::length(s.settings.camera.eye - start.eye), 1e-3 * glm::length(start.eye - start.target))
+        << "the drag turned the camera";
+    EXPECT_NEAR(glm::length(s.settings.camera.eye - s.settings.camera.target), glm::length(start.eye - start.target),
+                1e-6 * glm::length(start.eye - start.target))
+        << "an orbit keeps the distance";
+}
