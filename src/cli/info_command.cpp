@@ -1,5 +1,7 @@
 // amrvk info: describe a data set and build the structures every renderer configuration starts
 // from (bricks, ABRs with value ranges, macrocell value ranges), with sizes and build times.
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 
@@ -11,7 +13,6 @@
 #include "cli/commands.h"
 #include "cli/read_options.h"
 #include "core/error.h"
-#include "core/json.h"
 #include "core/progress.h"
 #include "core/stats.h"
 
@@ -113,52 +114,30 @@ int runInfo(const std::vector<std::string>& argv) {
     const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
 
     if (args.has("json")) {
-        JsonWriter j;
-        j.beginObject();
-        j.member("source", model.source).member("format", model.format);
-        j.member("leafCells", model.cellCount());
-        j.key("cellsPerLevel").beginArray();
-        for (uint64_t c : summary.cellsPerLevel) j.value(c);
-        j.endArray();
-        j.member("minLevel", summary.minLevel).member("maxLevel", summary.maxLevel);
-        j.key("fields").beginArray();
-        for (const auto& f : model.availableFields) j.value(f);
-        j.endArray();
-        j.member("field", field.name);
-        j.key("valueRange").beginArray().value(double(stats.minValue)).value(double(stats.maxValue)).endArray();
-        j.member("volumeWeightedMean", stats.volumeWeightedMean);
-        auto vec = [&](const char* k, glm::dvec3 v) {
-            j.key(k).beginArray().value(v.x).value(v.y).value(v.z).endArray();
-        };
-        j.key("voxelBounds").beginObject();
-        vec("lower", glm::dvec3(summary.bounds.lower));
-        vec("upper", glm::dvec3(summary.bounds.upper));
-        j.endObject();
-        j.key("worldBounds").beginObject();
-        vec("lower", worldLo);
-        vec("upper", worldHi);
-        j.endObject();
-        j.member("bricks", brickStats.brickCount);
-        j.member("singleCellBricks", brickStats.singleCellBricks);
-        j.member("averageCellsPerBrick", brickStats.averageCellsPerBrick);
-        j.member("abrs", uint64_t(abrs.abrs.size()));
-        j.member("averageBricksPerAbr", bricksPerAbr);
-        j.member("maxBricksPerAbr", maxBricksPerAbr);
-        j.key("macrocellDims").beginArray().value(gridDims.x).value(gridDims.y).value(gridDims.z).endArray();
-        j.key("memoryBytes").beginObject();
-        for (const auto& m : memory) j.member(m.name, m.bytes);
-        j.member("total", totalBytes);
-        j.endObject();
-        j.key("buildSeconds").beginObject();
-        j.member("read", readSeconds).member("bricks", bricks.buildSeconds);
-        j.member("abrs", abrSeconds).member("macrocells", grid.buildSeconds);
-        j.endObject();
-        j.member("peakResidentBytes", peakResidentBytes());
-        j.key("attributes").beginObject();
-        for (const auto& [k, v] : model.attributes) j.member(k, v);
-        j.endObject();
-        j.endObject();
-        std::printf("%s\n", j.str().c_str());
+        using Json = nlohmann::ordered_json;
+        auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
+        Json j = {{"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
+                  {"cellsPerLevel", summary.cellsPerLevel}, {"minLevel", summary.minLevel},
+                  {"maxLevel", summary.maxLevel}, {"fields", model.availableFields}, {"field", field.name},
+                  {"valueRange", Json::array({double(stats.minValue), double(stats.maxValue)})},
+                  {"volumeWeightedMean", stats.volumeWeightedMean},
+                  {"voxelBounds", {{"lower", vec(glm::dvec3(summary.bounds.lower))},
+                                   {"upper", vec(glm::dvec3(summary.bounds.upper))}}},
+                  {"worldBounds", {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}}},
+                  {"bricks", brickStats.brickCount}, {"singleCellBricks", brickStats.singleCellBricks},
+                  {"averageCellsPerBrick", brickStats.averageCellsPerBrick}, {"abrs", abrs.abrs.size()},
+                  {"averageBricksPerAbr", bricksPerAbr}, {"maxBricksPerAbr", maxBricksPerAbr},
+                  {"macrocellDims", Json::array({gridDims.x, gridDims.y, gridDims.z})}};
+        Json& bytes = j["memoryBytes"] = Json::object();
+        for (const auto& m : memory) bytes[m.name] = m.bytes;
+        bytes["total"] = totalBytes;
+        j["buildSeconds"] = {{"read", readSeconds}, {"bricks", bricks.buildSeconds}, {"abrs", abrSeconds},
+                             {"macrocells", grid.buildSeconds}};
+        j["peakResidentBytes"] = peakResidentBytes();
+        j["attributes"] = Json::object();
+        for (const auto& [k, v] : model.attributes) j["attributes"][k] = v;
+        // One line; non-finite numbers as null, bytes that are not UTF-8 as U+FFFD.
+        std::printf("%s\n", j.dump(-1, ' ', false, Json::error_handler_t::replace).c_str());
         return 0;
     }
 

@@ -1,4 +1,5 @@
 // amrvk render: path-trace an AMR data set on a Vulkan device; amrvk devices: list devices.
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <cmath>
@@ -11,7 +12,6 @@
 #include "cli/read_options.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/json.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/context.h"
@@ -47,16 +47,12 @@ int runDevices(const std::vector<std::string>& argv) {
     Args args("devices", argv, specs, 0, 0);
     auto devices = gpu::listDevices();
     if (args.has("json")) {
-        JsonWriter j;
-        j.beginArray();
-        for (const auto& d : devices) {
-            j.beginObject().member("index", d.index).member("name", d.name).member("type", d.type);
-            j.member("driver", d.driver).member("apiVersion", d.apiVersion);
-            j.member("deviceLocalBytes", d.deviceLocalBytes).member("rayQuery", d.rayQuery);
-            j.member("usable", d.usable).member("rejectReason", d.rejectReason).endObject();
-        }
-        j.endArray();
-        std::printf("%s\n", j.str().c_str());
+        nlohmann::ordered_json j = nlohmann::ordered_json::array();
+        for (const auto& d : devices)
+            j.push_back({{"index", d.index}, {"name", d.name}, {"type", d.type}, {"driver", d.driver},
+                         {"apiVersion", d.apiVersion}, {"deviceLocalBytes", d.deviceLocalBytes},
+                         {"rayQuery", d.rayQuery}, {"usable", d.usable}, {"rejectReason", d.rejectReason}});
+        std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
         return 0;
     }
     for (const auto& d : devices)
@@ -239,47 +235,39 @@ int runRender(const std::vector<std::string>& argv) {
                      (unsigned long long)c[shared::kCounterNanSamples],
                      (unsigned long long)c[shared::kCounterBounceLimitHits]);
     if (args.has("json")) {
-        JsonWriter j;
-        j.beginObject();
-        j.member("input", model.source).member("field", field.name);
-        j.member("device", ctx.deviceReport().name).member("width", rs.width).member("height", rs.height);
-        j.member("spp", spp).member("mode", scene::modeName(rs.mode));
-        j.member("traversal", scene::traversalName(config.traversal)).member("sampler", scene::samplerName(config.sampler));
-        j.member("backend", scene::backendName(config.backend)).member("tf", tf.name());
-        j.member("seconds", out.stats.gpuSeconds).member("wallSeconds", wallSeconds);
-        j.member("pathsPerSecond", out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0);
-        j.member("paths", out.stats.paths);
-        j.member("densityLookups", c[shared::kCounterDensityLookups]);
-        j.member("realCollisions", c[shared::kCounterRealCollisions]);
-        j.member("nullCollisions", c[shared::kCounterNullCollisions]);
-        j.member("traversalSteps", c[shared::kCounterTraversalSteps]);
-        j.member("majorantViolations", c[shared::kCounterMajorantViolations]);
-        j.member("nanSamples", c[shared::kCounterNanSamples]);
-        j.member("bounceLimitHits", c[shared::kCounterBounceLimitHits]);
-        j.member("majorantSeconds", renderer.majorantSeconds());
-        j.member("tfStructureUpdateSeconds", renderer.structureUpdateSeconds());
-        j.member("activeTraversalBoxes", renderer.activeTraversalBoxes());
-        j.member("structureBuildSeconds", buildSeconds);
-        j.key("structureBuildSecondsPer").beginObject();
-        j.member("bricks", scene.buildSeconds.bricks).member("abrs", scene.buildSeconds.abrs);
-        j.member("samplerBvh", scene.buildSeconds.samplerBvh).member("macrocells", scene.buildSeconds.grid);
-        j.member("traversalRanges", scene.buildSeconds.domains).member("kdTree", scene.buildSeconds.kdTree);
-        j.member("denseGrid", scene.buildSeconds.dense);
-        j.endObject();
-        j.key("hostMemoryPerStructure").beginObject();
-        for (const auto& [name, bytes] : scene.hostBytes()) j.member(name, bytes);
-        j.endObject();
-        j.member("deviceMemoryBytes", ctx.memory().currentBytes());
-        j.member("deviceMemoryPeakBytes", ctx.memory().peakBytes());
-        j.key("deviceMemoryPerResource").beginObject();
+        using Json = nlohmann::ordered_json;
+        Json j = {{"input", model.source}, {"field", field.name}, {"device", ctx.deviceReport().name},
+                  {"width", rs.width}, {"height", rs.height}, {"spp", spp}, {"mode", scene::modeName(rs.mode)},
+                  {"traversal", scene::traversalName(config.traversal)},
+                  {"sampler", scene::samplerName(config.sampler)}, {"backend", scene::backendName(config.backend)},
+                  {"tf", tf.name()}, {"seconds", out.stats.gpuSeconds}, {"wallSeconds", wallSeconds},
+                  {"pathsPerSecond", out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0},
+                  {"paths", out.stats.paths}, {"densityLookups", c[shared::kCounterDensityLookups]},
+                  {"realCollisions", c[shared::kCounterRealCollisions]},
+                  {"nullCollisions", c[shared::kCounterNullCollisions]},
+                  {"traversalSteps", c[shared::kCounterTraversalSteps]},
+                  {"majorantViolations", c[shared::kCounterMajorantViolations]},
+                  {"nanSamples", c[shared::kCounterNanSamples]},
+                  {"bounceLimitHits", c[shared::kCounterBounceLimitHits]},
+                  {"majorantSeconds", renderer.majorantSeconds()},
+                  {"tfStructureUpdateSeconds", renderer.structureUpdateSeconds()},
+                  {"activeTraversalBoxes", renderer.activeTraversalBoxes()}, {"structureBuildSeconds", buildSeconds}};
+        j["structureBuildSecondsPer"] = {
+            {"bricks", scene.buildSeconds.bricks},     {"abrs", scene.buildSeconds.abrs},
+            {"samplerBvh", scene.buildSeconds.samplerBvh}, {"macrocells", scene.buildSeconds.grid},
+            {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", scene.buildSeconds.kdTree},
+            {"denseGrid", scene.buildSeconds.dense}};
+        Json& host = j["hostMemoryPerStructure"] = Json::object();
+        for (const auto& [name, bytes] : scene.hostBytes()) host[name] = bytes;
+        j["deviceMemoryBytes"] = ctx.memory().currentBytes();
+        j["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
+        Json& device = j["deviceMemoryPerResource"] = Json::object();
         for (const auto& [name, usage] : ctx.memory().perResource())
-            j.key(name).beginObject().member("current", usage.current).member("peak", usage.peak).endObject();
-        j.endObject();
-        if (scene.grid)
-            j.key("macrocellDims").beginArray().value(scene.grid->dims.x).value(scene.grid->dims.y).value(scene.grid->dims.z).endArray();
-        j.key("meanRGB").beginArray().value(meanRgb.x).value(meanRgb.y).value(meanRgb.z).endArray();
-        j.endObject();
-        writeFileAtomic(args.get("json"), j.str() + "\n");
+            device[name] = {{"current", usage.current}, {"peak", usage.peak}};
+        if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
+        j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
+        // Non-finite numbers are written as null, bytes that are not UTF-8 as U+FFFD.
+        writeFileAtomic(args.get("json"), j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
     }
     return 0;
 }
