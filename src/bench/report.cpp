@@ -6,9 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <set>
 
-#include "bench/plot.h"
+#include "bench/plot_script.h"
 #include "core/file_io.h"
 
 namespace amrvk::bench {
@@ -35,7 +34,7 @@ double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 using Json = nlohmann::ordered_json;
 
 Json runJson(const RunResult& r) {
-    Json j = {{"dataset", r.dataset}, {"tf", r.tf}, {"mode", r.mode}, {"kind", r.kind},
+    Json j = {{"dataset", r.dataset}, {"tf", r.tf}, {"mode", r.mode}, {"kind", r.kind}, {"label", runLabel(r)},
               {"traversal", scene::traversalName(r.config.traversal)}, {"sampler", scene::samplerName(r.config.sampler)},
               {"backend", scene::backendName(r.config.backend)}, {"grid", r.config.grid}, {"gridDims", r.gridDims},
               {"kdLeaves", r.config.kdLeaves}};
@@ -218,110 +217,7 @@ std::string resultsCsv(const BenchResults& res) {
     return csv;
 }
 
-std::vector<std::string> writePlots(const BenchResults& res, const std::filesystem::path& dir) {
-    std::vector<std::string> files;
-    // Speed against error per (data set, TF, mode): matrix + dense + auto, and dvr against ae tracking.
-    std::vector<std::tuple<std::string, std::string, std::string, bool>> groups;
-    for (const RunResult& r : res.runs) {
-        const bool dvr = r.kind == "dvr" || r.kind == "pt-ae";
-        if (r.kind == "grid-sweep") continue;
-        auto g = std::make_tuple(r.dataset, r.tf, dvr ? std::string("dvr") : r.mode, dvr);
-        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
-    }
-    for (const auto& [ds, tf, mode, dvr] : groups) {
-        LinePlot p;
-        p.title = ds + ", TF " + tf + ", " + (dvr ? "dvr (step sizes) vs ae tracking" : "mode " + mode) +
-                  ": RMSE vs GPU time, " + std::to_string(res.width) + "x" + std::to_string(res.height);
-        p.xLabel = "GPU seconds";
-        p.yLabel = "RMSE";
-        p.logX = p.logY = true;
-        double t0 = 0, e0 = 0;
-        for (const RunResult& r : res.runs) {
-            const bool inGroup = r.dataset == ds && r.tf == tf && r.kind != "grid-sweep" &&
-                                 (dvr ? (r.kind == "dvr" || r.kind == "pt-ae") : (r.kind != "dvr" && r.kind != "pt-ae" && r.mode == mode));
-            if (!inGroup || !r.error.empty() || r.curve.empty()) continue;
-            PlotSeries s;
-            s.label = runLabel(r);
-            for (const ErrorSample& e : r.curve) {
-                s.x.push_back(e.seconds);
-                s.y.push_back(e.rmse);
-            }
-            if (r.kind == "dense") s.style = LineStyle::Dashed;
-            if (t0 == 0 && r.curve.front().seconds > 0) {
-                t0 = r.curve.front().seconds;
-                e0 = r.curve.front().rmse;
-            }
-            p.series.push_back(std::move(s));
-        }
-        if (p.series.empty()) continue;
-        if (t0 > 0 && e0 > 0) {  // the N^-1/2 guide through the first run's first point
-            PlotSeries guide;
-            guide.label = "slope -1/2";
-            guide.x = {t0, t0 * 1000};
-            guide.y = {e0, e0 / std::sqrt(1000.0)};
-            guide.style = LineStyle::Dashed;
-            guide.markers = false;
-            guide.color = Rgb8{120, 120, 120};
-            p.series.push_back(guide);
-        }
-        const std::string name = "error_" + fileTag(ds) + "_" + fileTag(tf) + "_" + fileTag(mode) + ".png";
-        writeLinePlot(dir / name, p);
-        files.push_back(name);
-    }
-    // Frames/s against macrocell resolution.
-    std::set<std::pair<std::string, std::string>> sweeps;
-    for (const RunResult& r : res.runs)
-        if (r.kind == "grid-sweep") sweeps.insert({r.dataset, r.tf});
-    for (const auto& [ds, tf] : sweeps) {
-        LinePlot p;
-        p.title = ds + ", TF " + tf + ": frames/s vs macrocells on the longest axis";
-        p.xLabel = "macrocells (longest axis)";
-        p.yLabel = "frames/s";
-        p.logX = true;
-        for (const char* t : {"grid-dda", "grid-bvh"}) {
-            PlotSeries s;
-            s.label = t;
-            for (const RunResult& r : res.runs)
-                if (r.kind == "grid-sweep" && r.dataset == ds && r.tf == tf && r.error.empty() &&
-                    scene::traversalName(r.config.traversal) == std::string(t)) {
-                    s.x.push_back(std::atof(r.config.grid.c_str()));
-                    s.y.push_back(r.fps);
-                }
-            if (!s.x.empty()) p.series.push_back(s);
-        }
-        const std::string name = "grid_sweep_" + fileTag(ds) + "_" + fileTag(tf) + ".png";
-        writeLinePlot(dir / name, p);
-        files.push_back(name);
-    }
-    // Device memory per combination (first TF and mode of each data set).
-    std::vector<std::string> datasets;
-    for (const RunResult& r : res.runs)
-        if (std::find(datasets.begin(), datasets.end(), r.dataset) == datasets.end()) datasets.push_back(r.dataset);
-    for (const std::string& ds : datasets) {
-        BarChart c;
-        c.title = ds + ": device memory per structure combination";
-        c.yLabel = "MiB";
-        c.logY = true;
-        c.categories = {"after build", "peak while rendering"};
-        std::string tf0, mode0;
-        for (const RunResult& r : res.runs) {
-            if (r.dataset != ds || (r.kind != "matrix" && r.kind != "dense") || !r.error.empty()) continue;
-            if (tf0.empty()) {
-                tf0 = r.tf;
-                mode0 = r.mode;
-            }
-            if (r.tf != tf0 || r.mode != mode0) continue;
-            c.groups.push_back({r.config.label(), {mib(r.deviceBytesAfterBuild), mib(r.deviceBytesPeak)}});
-        }
-        if (c.groups.empty()) continue;
-        const std::string name = "memory_" + fileTag(ds) + ".png";
-        writeBarChart(dir / name, c);
-        files.push_back(name);
-    }
-    return files;
-}
-
-std::string resultsMarkdown(const BenchResults& res, const std::vector<std::string>& plots) {
+std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     std::string md = "# amrvk bench results\n\n";
     md += "- device: " + res.device + " (" + res.deviceType + ", driver " + res.driver + ")\n";
     md += "- command: `" + res.commandLine + "`\n";
@@ -410,19 +306,20 @@ std::string resultsMarkdown(const BenchResults& res, const std::vector<std::stri
     for (const ReferenceInfo& r : res.references)
         md += "| " + r.dataset + " | " + r.tf + " | " + r.mode + " | " + std::to_string(r.spp) + " | " +
               num(r.rmseOfReference) + " | " + (r.cached ? "yes" : "no") + " | `" + r.command + "` |\n";
-    if (!plots.empty()) {
-        md += "\n## Plots\n\n";
-        for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n";
-    }
+    md += "\n## Plots\n\n";
+    if (!plots.note.empty()) md += plots.note + "\n";
+    for (const std::string& p : plots.files)
+        if (p.ends_with(".png")) md += "![" + p + "](" + p + ")\n";
     return md;
 }
 
-void writeReports(const BenchResults& results, const std::filesystem::path& dir) {
+PlotOutcome writeReports(const BenchResults& results, const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     writeFileAtomic(dir / "results.json", resultsJson(results));
     writeFileAtomic(dir / "results.csv", resultsCsv(results));
-    const std::vector<std::string> plots = writePlots(results, dir);
+    const PlotOutcome plots = drawPlots(dir);
     writeFileAtomic(dir / "results.md", resultsMarkdown(results, plots));
+    return plots;
 }
 
 }  // namespace amrvk::bench

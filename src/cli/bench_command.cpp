@@ -32,7 +32,8 @@ const char* kBenchHelp =
     "sampler as the cost floor of sampling, the dvr ray marcher over step sizes against ae tracking,\n"
     "frames/s against macrocell resolution for grid-dda and grid-bvh, and with --auto the automatic\n"
     "choice against the best measured combination. Writes DIR/results.json, results.csv, results.md\n"
-    "(paper layout, best three and worst marked) and PNG plots. Tests never assert speed; neither\n"
+    "(paper layout, best three and worst marked), and PNG and PDF plots drawn by plot_bench.py\n"
+    "(matplotlib; next to the amrvk binary). Tests never assert speed; neither\n"
     "should you compare numbers from different devices.\n"
     "\n"
     "options:\n";
@@ -212,11 +213,12 @@ int runBench(const std::vector<std::string>& argv) {
     bench::BenchResults results =
         bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
     bar.finish();
-    bench::writeReports(results, o.outDir);
+    const bench::PlotOutcome plots = bench::writeReports(results, o.outDir);
     size_t failed = 0;
     for (const auto& r : results.runs) failed += !r.error.empty();
-    std::printf("wrote %s/results.{json,csv,md} and plots: %zu runs (%zu failed) on %s\n", o.outDir.string().c_str(),
-                results.runs.size(), failed, results.device.c_str());
+    std::printf("wrote %s/results.{json,csv,md} and %zu plot files (PNG, PDF): %zu runs (%zu failed) on %s\n",
+                o.outDir.string().c_str(), plots.files.size(), results.runs.size(), failed, results.device.c_str());
+    if (!plots.note.empty()) std::fprintf(stderr, "amrvk bench: %s\n", plots.note.c_str());
     return 0;
 }
 
