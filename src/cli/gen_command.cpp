@@ -4,28 +4,18 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "amr/synthetic.h"
-#include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
 
 namespace amrvk::cli {
 
 namespace {
 
-const std::vector<OptionSpec> kGenSpecs = {
-    {"cells", 1, "N", "target leaf-cell count, e.g. 1e6 (result within a factor 1.4; required)"},
-    {"seed", 1, "S", "random seed, integer >= 0 (default 1); same seed = identical files"},
-    {"output", 1, "BASE", "writes BASE.cells and BASE.scalars (-o BASE; required)"},
-    {"block", 1, "B", "cells per block edge: 1, 2, 4, 8, 16 or 32 (default 8); 1 = one cell per leaf"},
-    {"levels", 1, "L", "cell levels 0..L-1: domain 2^(L-1) blocks wide (default: by kind and N)"},
-    {"field", 1, "NAME", "field name: writes BASE.NAME.scalars instead of BASE.scalars"},
-};
-
-const char* kGenUsage =
-    "usage: amrvk gen <kind> --cells N [--seed S] -o BASE [--block B] [--levels L] [--field NAME]\n"
-    "\n"
+const char* kGenHelp =
     "Writes deterministic synthetic AMR (leaf cells, level 0 = finest) as BASE.cells\n"
     "(16-byte int32 x,y,z,level records) and BASE.scalars (float32, same order), streamed\n"
     "depth-first with bounded memory; nothing is left behind if the run fails.\n"
@@ -40,9 +30,7 @@ const char* kGenUsage =
     "           refined where the density varies (structure at many scales)\n"
     "  shells   nested spherical shells with sharp radial bands, refined at the boundaries\n"
     "  teapot   'teapot in a stadium': a tiny torus and ball refined to the finest level\n"
-    "           inside a coarse domain at least 2^20 cells wide (large level jumps)\n"
-    "\n"
-    "options:\n";
+    "           inside a coarse domain at least 2^20 cells wide (large level jumps)";
 
 // Progress on stderr: at most 10 lines/s on a terminal (rewritten in place), once a second
 // otherwise, and only after the first second unless stderr is a terminal.
@@ -92,37 +80,41 @@ private:
 }  // namespace
 
 int runGen(const std::vector<std::string>& argv) {
-    for (const std::string& a : argv) {
-        if (a == "--help" || a == "-h") {
-            std::fputs(kGenUsage, stdout);
-            std::fputs(formatOptions(kGenSpecs).c_str(), stdout);
-            return 0;
-        }
-    }
-    Args args("gen", argv, kGenSpecs, 1, 1);
+    CLI::App app(kGenHelp, "amrvk gen");
+    setUpCommand(app);
     amr::SyntheticParams params;
-    params.kind = amr::parseSyntheticKind(args.positional()[0]);
-    AMRVK_CHECK(args.has("cells"), "amrvk gen: --cells N is required (see amrvk gen --help)");
-    AMRVK_CHECK(args.has("output"), "amrvk gen: -o BASE is required (see amrvk gen --help)");
-    const int64_t cells = args.getInt("cells", 0);
-    AMRVK_CHECK(cells >= 1, "--cells: ", cells, " must be at least 1");
-    params.cells = static_cast<uint64_t>(cells);
-    const int64_t seed = args.getInt("seed", 1);
-    AMRVK_CHECK(seed >= 0, "--seed: ", seed, " must be >= 0");
-    params.seed = static_cast<uint64_t>(seed);
-    const int64_t block = args.getInt("block", 8);
-    AMRVK_CHECK(block >= 1 && block <= 32 && (block & (block - 1)) == 0, "--block: ", block,
-                " is not one of 1, 2, 4, 8, 16, 32");
-    params.blockCells = static_cast<int>(block);
-    const int64_t levels = args.getInt("levels", 0);
-    AMRVK_CHECK(!args.has("levels") || (levels >= 1 && levels <= amr::kMaxLevel + 1), "--levels: ",
-                levels, " is outside [1, ", amr::kMaxLevel + 1, "]");
-    params.levels = static_cast<int>(levels);
-    params.field = args.get("field");
-    AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field,
-                "' must not contain '/'");
-    const std::string base = args.get("output");
-    AMRVK_CHECK(!base.empty(), "amrvk gen: -o BASE must not be empty");
+    std::string base;
+    app.add_option_function<std::string>(
+           "kind", [&params](const std::string& k) { params.kind = amr::parseSyntheticKind(k); },
+           "what to generate (see above)")
+        ->type_name("cloud|shells|teapot")
+        ->required();
+    app.add_option("--cells", params.cells, "target leaf-cell count, e.g. 1e6 (result within a factor 1.4)")
+        ->type_name("N")
+        ->transform(integerIn(1, std::numeric_limits<int64_t>::max()))
+        ->required();
+    app.add_option("--seed", params.seed, "random seed; same seed = identical files")
+        ->type_name("S")
+        ->transform(integerIn(0, std::numeric_limits<int64_t>::max()))
+        ->default_str(strCat(params.seed));
+    app.add_option("-o,--output", base, "writes BASE.cells and BASE.scalars")
+        ->type_name("BASE")
+        ->check([](const std::string& b) { return b.empty() ? std::string("must not be empty") : std::string(); })
+        ->required();
+    app.add_option("--block", params.blockCells, "cells per block edge; 1 = one cell per leaf")
+        ->type_name("B")
+        ->check(CLI::IsMember(std::vector<int>{1, 2, 4, 8, 16, 32}))
+        ->default_str(strCat(params.blockCells));
+    app.add_option("--levels", params.levels, "cell levels 0..L-1: the domain is 2^(L-1) blocks wide")
+        ->type_name("L")
+        ->transform(integerIn(1, amr::kMaxLevel + 1))
+        ->default_str("by kind and N");
+    app.add_option("--field", params.field, "field name: writes BASE.NAME.scalars instead of BASE.scalars")
+        ->type_name("NAME")
+        ->check([](const std::string& f) {
+            return f.find('/') == std::string::npos ? std::string() : "'" + f + "' must not contain '/'";
+        });
+    if (!parseCommandLine(app, argv)) return 0;
 
     const std::string kindName(amr::syntheticKindName(params.kind));
     ProgressPrinter printer("amrvk gen " + kindName);

@@ -9,9 +9,8 @@
 #include "accel/bricks.h"
 #include "accel/range_grid.h"
 #include "amr/readers.h"
-#include "cli/args.h"
 #include "cli/commands.h"
-#include "cli/read_options.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stats.h"
@@ -21,14 +20,10 @@ namespace amrvk::cli {
 namespace {
 
 const char* kInfoHelp =
-    "usage: amrvk info <input> [--field NAME] [--json] [options]\n"
-    "\n"
     "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value\n"
     "ranges, and macrocell value ranges, and reports the data and the structures: format, voxel and\n"
     "world bounds, leaf cells per level (level 0 = finest), fields, the field's range and\n"
-    "volume-weighted mean, brick/ABR statistics, bytes per structure and build times.\n"
-    "\n"
-    "options:\n";
+    "volume-weighted mean, brick/ABR statistics, bytes per structure and build times.";
 
 std::string mib(uint64_t bytes) {
     char buf[32];
@@ -39,24 +34,26 @@ std::string mib(uint64_t bytes) {
 }  // namespace
 
 int runInfo(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = readOptionSpecs(false);
-    specs.push_back({"grid", 1, "auto|N|NxMxK", "macrocell grid (default auto: 128 on the longest axis)"});
-    specs.push_back({"bricks", 1, "FILE", "use the bricks of an ExaBrick .bricks file instead of building them"});
-    specs.push_back({"json", 0, "", "print one JSON object on stdout instead of text"});
-    specs.push_back({"help", 0, "", "show this help"});
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s%s", kInfoHelp, formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("info", argv, specs, 1, 1);
-    amr::ReadOptions ro = readOptionsFrom(args);
+    CLI::App app(kInfoHelp, "amrvk info");
+    setUpCommand(app);
+    std::string input, bricksFile;
+    bool json = false;
+    amr::ReadOptions ro;
+    std::string gridText = "auto";
+    app.add_option("input", input, "the AMR data set (see amrvk --help for the formats)")->type_name("PATH")->required();
+    addReadOptions(app, ro, false);
+    addGridOption(app, gridText);
+    app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
+        ->type_name("FILE")
+        ->group("structures");
+    app.add_flag("--json", json, "print one JSON object on stdout instead of text")->group("output");
+    if (!parseCommandLine(app, argv)) return 0;
 
     Timer readTimer;
     amr::Model model;
     {
-        ProgressStage stage("reading " + args.positional()[0]);
-        model = amr::readModel(args.positional()[0], ro);
+        ProgressStage stage("reading " + input);
+        model = amr::readModel(input, ro);
     }
     const double readSeconds = readTimer.seconds();
     const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
@@ -66,8 +63,7 @@ int runInfo(const std::vector<std::string>& argv) {
     accel::BrickSet bricks;
     {
         ProgressStage stage("bricks");
-        bricks = args.has("bricks") ? accel::readBricksFile(args.get("bricks"), model)
-                                    : accel::buildBricks(model);
+        bricks = bricksFile.empty() ? accel::buildBricks(model) : accel::readBricksFile(bricksFile, model);
     }
     const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
     std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
@@ -80,7 +76,7 @@ int runInfo(const std::vector<std::string>& argv) {
         abrRanges = accel::computeAbrValueRanges(abrs, bricks, brickValues);
     }
     const double abrSeconds = abrTimer.seconds();
-    const glm::ivec3 gridDims = accel::parseGridDims(args.get("grid", "auto"), summary.bounds);
+    const glm::ivec3 gridDims = accel::parseGridDims(gridText, summary.bounds);
     accel::RangeGrid grid;
     {
         ProgressStage stage("macrocell value ranges");
@@ -113,7 +109,7 @@ int runInfo(const std::vector<std::string>& argv) {
     const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
     const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
 
-    if (args.has("json")) {
+    if (json) {
         using Json = nlohmann::ordered_json;
         auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
         Json j = {{"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
@@ -177,22 +173,22 @@ int runInfo(const std::vector<std::string>& argv) {
 }
 
 int runConvert(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = readOptionSpecs(true);
-    specs.push_back({"output", 1, "BASE", "output base: writes BASE.cells and BASE.<field>.scalars"});
-    specs.push_back({"help", 0, "", "show this help"});
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("usage: amrvk convert <input> -o BASE [options]\n\nWrites the leaf cells of any "
-                        "supported input as ExaBrick BASE.cells plus one BASE.<field>.scalars per field.\n\n"
-                        "options:\n%s",
-                        formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("convert", argv, specs, 1, 1);
-    AMRVK_CHECK(args.has("output"), "amrvk convert: -o BASE is required");
-    amr::Model model = amr::readModel(args.positional()[0], readOptionsFrom(args));
-    amr::writeExaBrick(model, args.get("output"));
-    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", args.get("output").c_str(),
+    CLI::App app("Writes the leaf cells of any supported input as ExaBrick BASE.cells plus one\n"
+                 "BASE.<field>.scalars per field.",
+                 "amrvk convert");
+    setUpCommand(app);
+    std::string input, base;
+    amr::ReadOptions ro;
+    app.add_option("input", input, "the AMR data set (see amrvk --help for the formats)")->type_name("PATH")->required();
+    addReadOptions(app, ro, true);
+    app.add_option("-o,--output", base, "output base: writes BASE.cells and BASE.<field>.scalars")
+        ->type_name("BASE")
+        ->required()
+        ->group("output");
+    if (!parseCommandLine(app, argv)) return 0;
+    amr::Model model = amr::readModel(input, ro);
+    amr::writeExaBrick(model, base);
+    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());
     return 0;
 }

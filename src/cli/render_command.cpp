@@ -7,15 +7,13 @@
 
 #include "amr/readers.h"
 #include "render/auto_select.h"
-#include "cli/args.h"
 #include "cli/commands.h"
-#include "cli/read_options.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/context.h"
-#include "gpu/shader_library.h"
 #include "core/image_io.h"
 #include "render/renderer.h"
 
@@ -24,29 +22,23 @@ namespace amrvk::cli {
 namespace {
 
 const char* kRenderHelp =
-    "usage: amrvk render <input> [options]\n"
-    "\n"
     "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel\n"
     "per dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width;\n"
     "albedo = TF colour. Every majorant traversal x sample reconstruction structure of the paper is\n"
-    "selectable; box hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq).\n"
-    "\n"
-    "options:\n";
+    "selectable; box hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq).";
 
 }  // namespace
 
 int runDevices(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = {{"json", 0, "", "print a JSON array"}, {"help", 0, "", "show this help"}};
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("usage: amrvk devices [--json]\n\nLists every Vulkan device: index, name, type, driver, "
-                        "device-local memory, ray-query support, and why an unusable one is rejected.\n\n%s",
-                        formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("devices", argv, specs, 0, 0);
+    CLI::App app("Lists every Vulkan device: index, name, type, driver, device-local memory, ray-query support,\n"
+                 "and why an unusable one is rejected.",
+                 "amrvk devices");
+    setUpCommand(app);
+    bool json = false;
+    app.add_flag("--json", json, "print a JSON array");
+    if (!parseCommandLine(app, argv)) return 0;
     auto devices = gpu::listDevices();
-    if (args.has("json")) {
+    if (json) {
         nlohmann::ordered_json j = nlohmann::ordered_json::array();
         for (const auto& d : devices)
             j.push_back({{"index", d.index}, {"name", d.name}, {"type", d.type}, {"driver", d.driver},
@@ -65,51 +57,46 @@ int runDevices(const std::vector<std::string>& argv) {
 }
 
 int runRender(const std::vector<std::string>& argv) {
-    std::vector<OptionSpec> specs = readOptionSpecs(false);
-    auto add = [&](OptionSpec s) { specs.push_back(std::move(s)); };
-    add({"tf", 1, "FILE|PRESET", "transfer function: ParaView preset JSON, .xf, or a preset (ramp, grey, spiky, foggy, constant, empty); default ramp over the field's range"});
-    add({"tf-preset", 1, "NAME", "preset name inside a ParaView JSON file (default: the first)"});
-    add({"tf-range", 2, "LO HI", "map the TF's node range onto [LO, HI] (presets: default the field's range)"});
-    add({"mode", 1, "ae|ss|ms|dvr", "absorption+emission, single or multiple scattering, or the ray-marching baseline dvr (biased by --dt; default ms)"});
-    add({"dt", 1, "DT", "dvr: step as a fraction of the finest cell width at the sample (default 0.5)"});
-    add({"dvr-shading", 0, "", "dvr: gradient shading by the first --light-dir (else a headlight)"});
-    add({"sampler", 1, "ext-brick|abr|dense", "sample reconstruction: brick domains, ABRs, or dense = the field resampled to the finest uniform grid (trilinear; the cost floor; needs a grid traversal) (default ext-brick)"});
-    add({"dense-max-mib", 1, "MIB", "dense: largest dense grid to build (default 2048)"});
-    add({"traversal", 1, "grid-dda|grid-bvh|abr|brick|ext-brick|kdtree|auto",
-         "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, brick bounds, brick domains, or the TF-specific kd-tree (default grid-dda); auto = probe every combination briefly and take the most efficient traversal, sampler, back-end and grid (those given explicitly stay fixed)"});
-    add({"backend", 1, "sw|rq|auto", "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it (default auto)"});
-    add({"grid", 1, "auto|N|NxMxK", "macrocell grid of grid-dda and grid-bvh (default auto: 128 on the longest axis)"});
-    add({"kd-leaves", 1, "N", "kdtree: leaves of the kd-tree, rebuilt per TF (default 4096)"});
-    add({"spp", 1, "N", "samples per pixel (default 64)"});
-    add({"size", 1, "WxH", "image size (default 512x512)"});
-    add({"camera", 9, "EX EY EZ TX TY TZ UX UY UZ", "eye, target and up in world space (default: three-quarter view)"});
-    add({"fov", 1, "DEG", "vertical field of view (default 40)"});
-    add({"seed", 1, "S", "random seed (default 1)"});
-    add({"density-scale", 1, "S", "multiplies extinction (default 1)"});
-    add({"g", 1, "G", "Henyey-Greenstein asymmetry in [-0.999, 0.999] (default 0)"});
-    add({"ambient", 3, "R G B", "uniform environment radiance (default 1 1 1)"});
-    add({"background", 3, "R G B", "radiance seen by primary rays that escape (default: the ambient)"});
-    add({"light-dir", 6, "X Y Z R G B", "directional light towards X Y Z (world) with radiance R G B (repeatable)", true});
-    add({"light-point", 6, "X Y Z R G B", "point light at X Y Z (world) with intensity R G B (repeatable)", true});
-    add({"output", 1, "FILE", "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float); default amrvk.png"});
-    add({"json", 1, "FILE", "write render statistics as JSON"});
-    add({"device", 1, "INDEX|NAME", "Vulkan device (default: the first discrete GPU, else any)"});
-    add({"shader-dir", 1, "DIR", "load shaders (.spv or .comp) from DIR instead of the embedded ones"});
-    add({"validation", 0, "", "enable the Vulkan validation layer"});
-    add({"help", 0, "", "show this help"});
-    for (const auto& a : argv)
-        if (a == "--help" || a == "-h") {
-            std::printf("%s%s", kRenderHelp, formatOptions(specs).c_str());
-            return 0;
-        }
-    Args args("render", argv, specs, 1, 1);
-    const std::string output = args.get("output", "amrvk.png");
+    CLI::App app(kRenderHelp, "amrvk render");
+    setUpCommand(app);
+    std::string input, output = "amrvk.png", jsonFile;
+    int64_t spp = 64;
+    amr::ReadOptions ro;
+    scene::RenderSettings rs;
+    rs.width = rs.height = 512;
+    scene::StructureConfig config;
+    config.backend = scene::Backend::Auto;
+    bool autoChoice = false;
+    TfChoice tfChoice;
+    CameraChoice camera;
+    gpu::ContextOptions co;
+    app.add_option("input", input, "the AMR data set (see amrvk --help for the formats)")->type_name("PATH")->required();
+    addReadOptions(app, ro, false);
+    addModeOptions(app, rs);
+    addImageOptions(app, rs);
+    app.add_option("--spp", spp, "samples per pixel")
+        ->type_name("N")
+        ->transform(integerIn(1, 1 << 24))
+        ->default_str(strCat(spp))
+        ->group("picture");
+    addTransferFunctionOptions(app, tfChoice);
+    addStructureOptions(app, config, &autoChoice);
+    addStructureSizeOptions(app, config);
+    addLightingOptions(app, rs);
+    addCameraOptions(app, camera);
+    app.add_option("-o,--output", output, "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
+        ->type_name("FILE")
+        ->default_str(output)
+        ->group("output");
+    app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE")->group("output");
+    addDeviceOptions(app, co);
+    if (!parseCommandLine(app, argv)) return 0;
     {
         std::string ext = std::filesystem::path(output).extension().string();
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
                     ": unknown image type (use .png, .exr or .pfm)");
         // Fail before the render, not after it, when the outputs cannot be written.
-        for (const std::string& file : {output, args.get("json")}) {
+        for (const std::string& file : {output, jsonFile}) {
             if (file.empty()) continue;
             std::filesystem::path dir = std::filesystem::path(file).parent_path();
             if (dir.empty()) dir = ".";
@@ -117,52 +104,14 @@ int runRender(const std::vector<std::string>& argv) {
                         " is missing or not writable)");
         }
     }
-    scene::StructureConfig config;
-    const bool autoChoice = args.get("traversal") == "auto";
-    if (!autoChoice) config.traversal = scene::parseTraversal(args.get("traversal", "grid-dda"));
-    config.sampler = scene::parseSampler(args.get("sampler", "ext-brick"));
-    config.backend = scene::parseBackend(args.get("backend", "auto"));
-    config.grid = args.get("grid", "auto");
-    const int64_t kdLeaves = args.getInt("kd-leaves", 4096);
-    AMRVK_CHECK(kdLeaves >= 1 && kdLeaves <= (int64_t(1) << 24), "--kd-leaves ", kdLeaves, " is outside [1, 2^24]");
-    config.kdLeaves = uint32_t(kdLeaves);
-    const int64_t denseMiB = args.getInt("dense-max-mib", 2048);
-    AMRVK_CHECK(denseMiB >= 1 && denseMiB <= (int64_t(1) << 20), "--dense-max-mib ", denseMiB, " is outside [1, 2^20]");
-    config.denseMaxBytes = uint64_t(denseMiB) << 20;
     if (!autoChoice) config.validate();
-    scene::RenderSettings rs;
-    rs.mode = scene::parseMode(args.get("mode", "ms"));
-    parseSize("--size", args.get("size", "512x512"), rs.width, rs.height);
-    const int64_t spp = args.getInt("spp", 64);
-    AMRVK_CHECK(spp >= 1 && spp <= (1 << 24), "--spp ", spp, " is outside [1, 2^24]");
-    rs.seed = uint32_t(args.getInt("seed", 1));
-    rs.dvrStep = args.getDouble("dt", 0.5);
-    AMRVK_CHECK(rs.dvrStep > 0 && rs.dvrStep <= 64, "--dt ", rs.dvrStep, " is outside (0, 64]");
-    rs.dvrShading = args.has("dvr-shading");
-    rs.densityScale = args.getDouble("density-scale", 1.0);
-    AMRVK_CHECK(rs.densityScale >= 0 && std::isfinite(rs.densityScale), "--density-scale must be finite and >= 0");
-    rs.g = args.getDouble("g", 0.0);
-    AMRVK_CHECK(rs.g >= -1 && rs.g <= 1, "--g ", rs.g, " is outside [-1, 1]");
-    if (args.has("ambient")) rs.ambient = parseVec3("--ambient", args.values("ambient"), 0);
-    if (args.has("background")) rs.background = parseVec3("--background", args.values("background"), 0);
-    for (const char* kind : {"light-dir", "light-point"}) {
-        auto v = args.values(kind);
-        for (size_t i = 0; i + 5 < v.size(); i += 6)
-            rs.lights.push_back({std::string(kind) == "light-point", parseVec3(std::string("--") + kind, v, i),
-                                 parseVec3(std::string("--") + kind, v, i + 3)});
-    }
 
-    amr::ReadOptions ro = readOptionsFrom(args);
     amr::Model model;
     {
-        ProgressStage stage("reading " + args.positional()[0]);
-        model = amr::readModel(args.positional()[0], ro);
+        ProgressStage stage("reading " + input);
+        model = amr::readModel(input, ro);
     }
     const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
-    if (args.has("shader-dir")) gpu::setShaderDirectory(args.get("shader-dir"));
-    gpu::ContextOptions co;
-    co.device = args.get("device");
-    co.validation = args.has("validation");
     co.requireRayQuery = config.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
     config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
@@ -174,26 +123,16 @@ int runRender(const std::vector<std::string>& argv) {
     const amr::ModelSummary summary = amr::summarize(model);
     const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
     const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
-    rs.camera = scene::defaultCamera(worldLo, worldHi, args.getDouble("fov", 40.0));
-    if (args.has("camera")) {
-        auto v = args.values("camera");
-        rs.camera.eye = parseVec3("--camera", v, 0);
-        rs.camera.target = parseVec3("--camera", v, 3);
-        rs.camera.up = parseVec3("--camera", v, 6);
-    }
-    float tfLo = scene.valueLo, tfHi = scene.valueHi;
-    if (args.has("tf-range")) {
-        auto v = args.values("tf-range");
-        tfLo = float(parseDouble("--tf-range", v[0]));
-        tfHi = float(parseDouble("--tf-range", v[1]));
-    }
-    scene::TransferFunction tf = scene::loadTransferFunction(args.get("tf", "ramp"), tfLo, tfHi, args.get("tf-preset"));
-    if (args.has("tf-range")) tf = tf.rescaled(tfLo, tfHi);
+    rs.camera = camera.cameraFor(worldLo, worldHi);
+    const float tfLo = tfChoice.range ? tfChoice.range->first : scene.valueLo;
+    const float tfHi = tfChoice.range ? tfChoice.range->second : scene.valueHi;
+    scene::TransferFunction tf = scene::loadTransferFunction(tfChoice.spec, tfLo, tfHi, tfChoice.preset);
+    if (tfChoice.range) tf = tf.rescaled(tfLo, tfHi);
     if (autoChoice) {
         render::AutoConstraints constraints;
-        if (args.has("sampler")) constraints.sampler = config.sampler;
-        if (args.has("backend") && args.get("backend") != "auto") constraints.backend = config.backend;
-        if (args.has("grid")) constraints.grid = config.grid;
+        if (app.count("--sampler")) constraints.sampler = config.sampler;
+        if (config.backend != scene::Backend::Auto) constraints.backend = config.backend;
+        if (app.count("--grid")) constraints.grid = config.grid;
         render::AutoChoice choice;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");
@@ -234,7 +173,7 @@ int runRender(const std::vector<std::string>& argv) {
                      (unsigned long long)c[shared::kCounterMajorantViolations],
                      (unsigned long long)c[shared::kCounterNanSamples],
                      (unsigned long long)c[shared::kCounterBounceLimitHits]);
-    if (args.has("json")) {
+    if (!jsonFile.empty()) {
         using Json = nlohmann::ordered_json;
         Json j = {{"input", model.source}, {"field", field.name}, {"device", ctx.deviceReport().name},
                   {"width", rs.width}, {"height", rs.height}, {"spp", spp}, {"mode", scene::modeName(rs.mode)},
@@ -267,7 +206,7 @@ int runRender(const std::vector<std::string>& argv) {
         if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
         j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
         // Non-finite numbers are written as null, bytes that are not UTF-8 as U+FFFD.
-        writeFileAtomic(args.get("json"), j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+        writeFileAtomic(jsonFile, j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
     }
     return 0;
 }

@@ -42,10 +42,11 @@ PY
   --grid-sweep none >/dev/null || fail=1
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert all(r["cached"] for r in j["references"]), j["references"]' "$dir/out/results.json"
 
-expect "-o DIR is required" -- bench "$sample"
-expect "--frames 1" -- bench "$sample" -o "$dir/x" --frames 1
+expect "--output is required" -- bench "$sample"
+expect "--frames: 1 is outside" -- bench "$sample" -o "$dir/x" --frames 1
 expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"
 expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
 expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr
 expect "--dvr-steps: 0" -- bench "$sample" -o "$dir/x" --dvr-steps 0
+expect "unknown field 'rho'" -- bench "$sample" -o "$dir/x" --field rho   # --field reaches the reader
 exit $fail
