@@ -89,6 +89,15 @@ std::optional<int64_t> parseInteger(const std::string& text) {
     return std::nullopt;
 }
 
+// "WxH" with 1 <= W, H <= kMaxImageSide, or nullopt.
+std::optional<std::pair<int, int>> parseImageSize(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, tail = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || (x != 'x' && x != 'X')) return std::nullopt;
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) return std::nullopt;
+    return std::make_pair(w, h);
+}
+
 std::string vecText(glm::dvec3 v) { return strCat(v.x, " ", v.y, " ", v.z); }
 
 glm::dvec3 vec3At(const double* v) { return {v[0], v[1], v[2]}; }
@@ -165,14 +174,6 @@ CLI::Validator finiteNumber() {
             return v && std::isfinite(*v) ? std::string() : "'" + text + "' is not a finite number";
         },
         "");
-}
-
-std::optional<std::pair<int, int>> parseImageSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, tail = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || (x != 'x' && x != 'X')) return std::nullopt;
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) return std::nullopt;
-    return std::make_pair(w, h);
 }
 
 void addReadOptions(CLI::App& app, amr::ReadOptions& ro, bool multiField) {

@@ -40,9 +40,6 @@ CLI::Validator integerIn(int64_t lo, int64_t hi);
 CLI::Validator numberIn(double lo, double hi, Open open = Open::None);
 CLI::Validator finiteNumber();
 
-// "WxH" with 1 <= W, H <= 16384, or nullopt.
-std::optional<std::pair<int, int>> parseImageSize(const std::string& text);
-
 // Input: --format, --field (repeatable when `multiField`: every field given is loaded; else one),
 // --nan, --dims, --type, --threshold.
 void addReadOptions(CLI::App& app, amr::ReadOptions& ro, bool multiField);
