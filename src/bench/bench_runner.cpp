@@ -1,14 +1,14 @@
 #include "bench/bench_runner.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <sstream>
 
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/json.h"
 #include "core/stats.h"
 #include "scene/camera.h"
 
@@ -141,10 +141,9 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     ReferenceImage ref;
     ref.spp = spp;
     if (std::filesystem::exists(meanFile) && std::filesystem::exists(varFile) && std::filesystem::exists(infoFile)) {
-        std::ifstream in(infoFile);
-        std::stringstream text;
-        text << in.rdbuf();
-        if (text.str().find("\"key\":\"" + jsonEscape(key) + "\"") != std::string::npos) {
+        // A cache file that does not parse, or has another key, is rendered again.
+        const nlohmann::json cached = nlohmann::json::parse(readTextFile(infoFile), nullptr, false);
+        if (cached.is_object() && cached.contains("key") && cached.at("key") == key) {
             ref.mean = readPfm(meanFile);
             Image var = readPfm(varFile);
             if (ref.mean.width == rs.width && ref.mean.height == rs.height && var.pixels.size() == ref.mean.pixels.size()) {
@@ -172,11 +171,10 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         writeImage(meanFile, ref.mean);
         writeImage(varFile, var);
         info.seconds = out.stats.gpuSeconds;
-        JsonWriter j;
-        j.beginObject().member("key", key).member("command", command).member("spp", spp);
-        j.member("gpuSeconds", out.stats.gpuSeconds).member("device", mCtx.deviceReport().name);
-        j.member("variance", varFile.string()).endObject();
-        writeFileAtomic(infoFile, j.str() + "\n");
+        const nlohmann::ordered_json j = {{"key", key}, {"command", command}, {"spp", spp},
+                                          {"gpuSeconds", out.stats.gpuSeconds},
+                                          {"device", mCtx.deviceReport().name}, {"variance", varFile.string()}};
+        writeFileAtomic(infoFile, j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
     }
     double v = 0;
     for (float x : ref.meanVariance) v += x;

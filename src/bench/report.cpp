@@ -1,14 +1,14 @@
 #include "bench/report.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <set>
 
-#include "bench/plot.h"
+#include "bench/plot_script.h"
 #include "core/file_io.h"
-#include "core/json.h"
 
 namespace amrvk::bench {
 
@@ -31,42 +31,53 @@ std::string runLabel(const RunResult& r) {
 
 double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 
-void writeRun(JsonWriter& j, const RunResult& r) {
-    j.beginObject();
-    j.member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("kind", r.kind);
-    j.member("traversal", scene::traversalName(r.config.traversal)).member("sampler", scene::samplerName(r.config.sampler));
-    j.member("backend", scene::backendName(r.config.backend)).member("grid", r.config.grid);
-    j.member("gridDims", r.gridDims).member("kdLeaves", r.config.kdLeaves);
-    if (r.kind == "dvr") j.member("dt", r.dvrStep);
-    j.member("width", r.width).member("height", r.height).member("frames", r.frames);
+using Json = nlohmann::ordered_json;
+
+Json runJson(const RunResult& r) {
+    Json j = {{"dataset", r.dataset}, {"tf", r.tf}, {"mode", r.mode}, {"kind", r.kind}, {"label", runLabel(r)},
+              {"traversal", scene::traversalName(r.config.traversal)}, {"sampler", scene::samplerName(r.config.sampler)},
+              {"backend", scene::backendName(r.config.backend)}, {"grid", r.config.grid}, {"gridDims", r.gridDims},
+              {"kdLeaves", r.config.kdLeaves}};
+    if (r.kind == "dvr") j["dt"] = r.dvrStep;
+    j["width"] = r.width;
+    j["height"] = r.height;
+    j["frames"] = r.frames;
     if (!r.error.empty()) {
-        j.member("error", r.error).endObject();
-        return;
+        j["error"] = r.error;
+        return j;
     }
-    j.member("gpuSeconds", r.gpuSeconds).member("fps", r.fps).member("mPathsPerSecond", r.mPathsPerSecond);
-    j.member("lookupsPerPath", r.lookupsPerPath).member("stepsPerPath", r.stepsPerPath);
-    j.member("realCollisionsPerPath", r.realPerPath).member("nullPerRealCollision", r.nullPerReal);
-    j.member("majorantViolations", r.violations).member("nanSamples", r.nanSamples);
-    j.member("structureBuildSeconds", r.buildSeconds).member("majorantUpdateSeconds", r.majorantSeconds);
-    j.member("tfStructureUpdateSeconds", r.tfStructureSeconds).member("tfUpdateWallSeconds", r.tfUpdateWallSeconds);
-    j.member("deviceBytesAfterBuild", r.deviceBytesAfterBuild).member("deviceBytesPeak", r.deviceBytesPeak);
-    j.key("deviceBytesPerResource").beginObject();
-    for (const auto& [name, bytes] : r.deviceBytesPerResource) j.member(name, bytes);
-    j.endObject();
-    j.key("hostBytesPerStructure").beginObject();
-    for (const auto& [name, bytes] : r.hostBytes) j.member(name, bytes);
-    j.endObject();
-    j.key("error").beginArray();
+    j["gpuSeconds"] = r.gpuSeconds;
+    j["fps"] = r.fps;
+    j["mPathsPerSecond"] = r.mPathsPerSecond;
+    j["lookupsPerPath"] = r.lookupsPerPath;
+    j["stepsPerPath"] = r.stepsPerPath;
+    j["realCollisionsPerPath"] = r.realPerPath;
+    j["nullPerRealCollision"] = r.nullPerReal;
+    j["majorantViolations"] = r.violations;
+    j["nanSamples"] = r.nanSamples;
+    j["structureBuildSeconds"] = r.buildSeconds;
+    j["majorantUpdateSeconds"] = r.majorantSeconds;
+    j["tfStructureUpdateSeconds"] = r.tfStructureSeconds;
+    j["tfUpdateWallSeconds"] = r.tfUpdateWallSeconds;
+    j["deviceBytesAfterBuild"] = r.deviceBytesAfterBuild;
+    j["deviceBytesPeak"] = r.deviceBytesPeak;
+    Json& device = j["deviceBytesPerResource"] = Json::object();
+    for (const auto& [name, bytes] : r.deviceBytesPerResource) device[name] = bytes;
+    Json& host = j["hostBytesPerStructure"] = Json::object();
+    for (const auto& [name, bytes] : r.hostBytes) host[name] = bytes;
+    Json& curve = j["error"] = Json::array();
     for (const ErrorSample& e : r.curve)
-        j.beginObject().member("spp", e.spp).member("seconds", e.seconds).member("rmse", e.rmse).member("relMse", e.relMse).endObject();
-    j.endArray();
-    if (r.slope) j.member("slope", *r.slope);
-    else j.key("slope").null();
-    j.member("targetRmse", r.targetRmse);
-    if (r.toTarget) j.member("secondsToTarget", r.toTarget->seconds).member("toTargetExtrapolated", r.toTarget->extrapolated);
-    else j.key("secondsToTarget").null();
-    if (r.costRatioToDense > 0) j.member("costRatioToDense", r.costRatioToDense);
-    j.endObject();
+        curve.push_back({{"spp", e.spp}, {"seconds", e.seconds}, {"rmse", e.rmse}, {"relMse", e.relMse}});
+    j["slope"] = r.slope ? Json(*r.slope) : Json();
+    j["targetRmse"] = r.targetRmse;
+    if (r.toTarget) {
+        j["secondsToTarget"] = r.toTarget->seconds;
+        j["toTargetExtrapolated"] = r.toTarget->extrapolated;
+    } else {
+        j["secondsToTarget"] = nullptr;
+    }
+    if (r.costRatioToDense > 0) j["costRatioToDense"] = r.costRatioToDense;
+    return j;
 }
 
 // Runs of one kind and mode, keyed by row label and column (data set x TF).
@@ -140,45 +151,38 @@ std::vector<std::string> modesOf(const BenchResults& res) {
 }  // namespace
 
 std::string resultsJson(const BenchResults& res) {
-    JsonWriter j;
-    j.beginObject();
-    j.member("device", res.device).member("driver", res.driver).member("deviceType", res.deviceType);
-    j.member("commandLine", res.commandLine).member("date", res.date);
-    j.member("width", res.width).member("height", res.height).member("frames", res.frames).member("warmupFrames", res.warmup);
-    j.member("referenceSpp", res.referenceSpp).member("samplesPerFrame", 1);
-    j.key("datasets").beginArray();
+    Json j = {{"device", res.device}, {"driver", res.driver}, {"deviceType", res.deviceType},
+              {"commandLine", res.commandLine}, {"date", res.date}, {"width", res.width}, {"height", res.height},
+              {"frames", res.frames}, {"warmupFrames", res.warmup}, {"referenceSpp", res.referenceSpp},
+              {"samplesPerFrame", 1}};
+    Json& datasets = j["datasets"] = Json::array();
     for (const DatasetInfo& d : res.datasets)
-        j.beginObject().member("tag", d.tag).member("input", d.input).member("field", d.field).member("cells", d.cells)
-            .member("levels", d.levels).member("bounds", d.bounds).endObject();
-    j.endArray();
-    j.key("references").beginArray();
+        datasets.push_back({{"tag", d.tag}, {"input", d.input}, {"field", d.field}, {"cells", d.cells},
+                            {"levels", d.levels}, {"bounds", d.bounds}});
+    Json& references = j["references"] = Json::array();
     for (const ReferenceInfo& r : res.references)
-        j.beginObject().member("dataset", r.dataset).member("tf", r.tf).member("mode", r.mode).member("file", r.file)
-            .member("command", r.command).member("spp", r.spp).member("gpuSeconds", r.seconds)
-            .member("rmseOfReference", r.rmseOfReference).member("cached", r.cached).endObject();
-    j.endArray();
-    j.key("runs").beginArray();
-    for (const RunResult& r : res.runs) writeRun(j, r);
-    j.endArray();
-    j.key("auto").beginArray();
+        references.push_back({{"dataset", r.dataset}, {"tf", r.tf}, {"mode", r.mode}, {"file", r.file},
+                              {"command", r.command}, {"spp", r.spp}, {"gpuSeconds", r.seconds},
+                              {"rmseOfReference", r.rmseOfReference}, {"cached", r.cached}});
+    Json& runs = j["runs"] = Json::array();
+    for (const RunResult& r : res.runs) runs.push_back(runJson(r));
+    Json& autos = j["auto"] = Json::array();
     for (const AutoResult& a : res.autos) {
-        j.beginObject().member("dataset", a.dataset).member("tf", a.tf).member("mode", a.mode);
-        j.member("pick", a.choice.config.label()).member("pickGrid", a.choice.config.grid);
-        j.member("probeSeconds", a.choice.seconds).member("probes", uint64_t(a.choice.probes.size()));
-        j.member("pickEfficiency", a.pickEfficiency).member("bestEfficiency", a.bestEfficiency);
-        j.member("efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0);
-        j.member("pickFps", a.pickFps).member("best", a.bestLabel).member("bestFps", a.bestFps);
-        j.key("probeDetails").beginArray();
+        Json probes = Json::array();
         for (const render::AutoProbe& p : a.choice.probes)
-            j.beginObject().member("config", p.config.label()).member("grid", p.config.grid)
-                .member("secondsPerSpp", p.secondsPerSpp).member("variance", p.variance)
-                .member("efficiency", p.efficiency).member("wallSeconds", p.wallSeconds).member("note", p.note).endObject();
-        j.endArray();
-        j.endObject();
+            probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid}, {"secondsPerSpp", p.secondsPerSpp},
+                              {"variance", p.variance}, {"efficiency", p.efficiency}, {"wallSeconds", p.wallSeconds},
+                              {"note", p.note}});
+        autos.push_back({{"dataset", a.dataset}, {"tf", a.tf}, {"mode", a.mode}, {"pick", a.choice.config.label()},
+                         {"pickGrid", a.choice.config.grid}, {"probeSeconds", a.choice.seconds},
+                         {"probes", a.choice.probes.size()}, {"pickEfficiency", a.pickEfficiency},
+                         {"bestEfficiency", a.bestEfficiency},
+                         {"efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0},
+                         {"pickFps", a.pickFps}, {"best", a.bestLabel}, {"bestFps", a.bestFps},
+                         {"probeDetails", std::move(probes)}});
     }
-    j.endArray();
-    j.endObject();
-    return j.str() + "\n";
+    // Non-finite numbers are written as null; bytes that are not UTF-8 (paths) become U+FFFD.
+    return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 std::string resultsCsv(const BenchResults& res) {
@@ -213,110 +217,7 @@ std::string resultsCsv(const BenchResults& res) {
     return csv;
 }
 
-std::vector<std::string> writePlots(const BenchResults& res, const std::filesystem::path& dir) {
-    std::vector<std::string> files;
-    // Speed against error per (data set, TF, mode): matrix + dense + auto, and dvr against ae tracking.
-    std::vector<std::tuple<std::string, std::string, std::string, bool>> groups;
-    for (const RunResult& r : res.runs) {
-        const bool dvr = r.kind == "dvr" || r.kind == "pt-ae";
-        if (r.kind == "grid-sweep") continue;
-        auto g = std::make_tuple(r.dataset, r.tf, dvr ? std::string("dvr") : r.mode, dvr);
-        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
-    }
-    for (const auto& [ds, tf, mode, dvr] : groups) {
-        LinePlot p;
-        p.title = ds + ", TF " + tf + ", " + (dvr ? "dvr (step sizes) vs ae tracking" : "mode " + mode) +
-                  ": RMSE vs GPU time, " + std::to_string(res.width) + "x" + std::to_string(res.height);
-        p.xLabel = "GPU seconds";
-        p.yLabel = "RMSE";
-        p.logX = p.logY = true;
-        double t0 = 0, e0 = 0;
-        for (const RunResult& r : res.runs) {
-            const bool inGroup = r.dataset == ds && r.tf == tf && r.kind != "grid-sweep" &&
-                                 (dvr ? (r.kind == "dvr" || r.kind == "pt-ae") : (r.kind != "dvr" && r.kind != "pt-ae" && r.mode == mode));
-            if (!inGroup || !r.error.empty() || r.curve.empty()) continue;
-            PlotSeries s;
-            s.label = runLabel(r);
-            for (const ErrorSample& e : r.curve) {
-                s.x.push_back(e.seconds);
-                s.y.push_back(e.rmse);
-            }
-            if (r.kind == "dense") s.style = LineStyle::Dashed;
-            if (t0 == 0 && r.curve.front().seconds > 0) {
-                t0 = r.curve.front().seconds;
-                e0 = r.curve.front().rmse;
-            }
-            p.series.push_back(std::move(s));
-        }
-        if (p.series.empty()) continue;
-        if (t0 > 0 && e0 > 0) {  // the N^-1/2 guide through the first run's first point
-            PlotSeries guide;
-            guide.label = "slope -1/2";
-            guide.x = {t0, t0 * 1000};
-            guide.y = {e0, e0 / std::sqrt(1000.0)};
-            guide.style = LineStyle::Dashed;
-            guide.markers = false;
-            guide.color = Rgb8{120, 120, 120};
-            p.series.push_back(guide);
-        }
-        const std::string name = "error_" + fileTag(ds) + "_" + fileTag(tf) + "_" + fileTag(mode) + ".png";
-        writeLinePlot(dir / name, p);
-        files.push_back(name);
-    }
-    // Frames/s against macrocell resolution.
-    std::set<std::pair<std::string, std::string>> sweeps;
-    for (const RunResult& r : res.runs)
-        if (r.kind == "grid-sweep") sweeps.insert({r.dataset, r.tf});
-    for (const auto& [ds, tf] : sweeps) {
-        LinePlot p;
-        p.title = ds + ", TF " + tf + ": frames/s vs macrocells on the longest axis";
-        p.xLabel = "macrocells (longest axis)";
-        p.yLabel = "frames/s";
-        p.logX = true;
-        for (const char* t : {"grid-dda", "grid-bvh"}) {
-            PlotSeries s;
-            s.label = t;
-            for (const RunResult& r : res.runs)
-                if (r.kind == "grid-sweep" && r.dataset == ds && r.tf == tf && r.error.empty() &&
-                    scene::traversalName(r.config.traversal) == std::string(t)) {
-                    s.x.push_back(std::atof(r.config.grid.c_str()));
-                    s.y.push_back(r.fps);
-                }
-            if (!s.x.empty()) p.series.push_back(s);
-        }
-        const std::string name = "grid_sweep_" + fileTag(ds) + "_" + fileTag(tf) + ".png";
-        writeLinePlot(dir / name, p);
-        files.push_back(name);
-    }
-    // Device memory per combination (first TF and mode of each data set).
-    std::vector<std::string> datasets;
-    for (const RunResult& r : res.runs)
-        if (std::find(datasets.begin(), datasets.end(), r.dataset) == datasets.end()) datasets.push_back(r.dataset);
-    for (const std::string& ds : datasets) {
-        BarChart c;
-        c.title = ds + ": device memory per structure combination";
-        c.yLabel = "MiB";
-        c.logY = true;
-        c.categories = {"after build", "peak while rendering"};
-        std::string tf0, mode0;
-        for (const RunResult& r : res.runs) {
-            if (r.dataset != ds || (r.kind != "matrix" && r.kind != "dense") || !r.error.empty()) continue;
-            if (tf0.empty()) {
-                tf0 = r.tf;
-                mode0 = r.mode;
-            }
-            if (r.tf != tf0 || r.mode != mode0) continue;
-            c.groups.push_back({r.config.label(), {mib(r.deviceBytesAfterBuild), mib(r.deviceBytesPeak)}});
-        }
-        if (c.groups.empty()) continue;
-        const std::string name = "memory_" + fileTag(ds) + ".png";
-        writeBarChart(dir / name, c);
-        files.push_back(name);
-    }
-    return files;
-}
-
-std::string resultsMarkdown(const BenchResults& res, const std::vector<std::string>& plots) {
+std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     std::string md = "# amrvk bench results\n\n";
     md += "- device: " + res.device + " (" + res.deviceType + ", driver " + res.driver + ")\n";
     md += "- command: `" + res.commandLine + "`\n";
@@ -405,19 +306,20 @@ std::string resultsMarkdown(const BenchResults& res, const std::vector<std::stri
     for (const ReferenceInfo& r : res.references)
         md += "| " + r.dataset + " | " + r.tf + " | " + r.mode + " | " + std::to_string(r.spp) + " | " +
               num(r.rmseOfReference) + " | " + (r.cached ? "yes" : "no") + " | `" + r.command + "` |\n";
-    if (!plots.empty()) {
-        md += "\n## Plots\n\n";
-        for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n";
-    }
+    md += "\n## Plots\n\n";
+    if (!plots.note.empty()) md += plots.note + "\n";
+    for (const std::string& p : plots.files)
+        if (p.ends_with(".png")) md += "![" + p + "](" + p + ")\n";
     return md;
 }
 
-void writeReports(const BenchResults& results, const std::filesystem::path& dir) {
+PlotOutcome writeReports(const BenchResults& results, const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     writeFileAtomic(dir / "results.json", resultsJson(results));
     writeFileAtomic(dir / "results.csv", resultsCsv(results));
-    const std::vector<std::string> plots = writePlots(results, dir);
+    const PlotOutcome plots = drawPlots(dir);
     writeFileAtomic(dir / "results.md", resultsMarkdown(results, plots));
+    return plots;
 }
 
 }  // namespace amrvk::bench

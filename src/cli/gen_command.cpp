@@ -35,7 +35,7 @@ const char* kGenUsage =
 // Progress on stderr: at most 10 lines/s on a terminal (rewritten in place), once a second
 // otherwise, and only after the first second unless stderr is a terminal.
 class ProgressPrinter {
-public:
+  public:
     explicit ProgressPrinter(std::string label)
         : mLabel(std::move(label)), mTty(::isatty(::fileno(stderr)) != 0), mStart(Clock::now()) {}
     ~ProgressPrinter() { finish(); }
@@ -51,13 +51,16 @@ public:
         mLast = now;
         mPrinted = true;
         char line[256];
-        std::snprintf(line, sizeof line, "%s: %.*s %3d%%", mLabel.c_str(), static_cast<int>(phase.size()),
-                      phase.data(), static_cast<int>(fraction * 100.0));
+        std::snprintf(line, sizeof line, "%s: %.*s %3d%%", mLabel.c_str(),
+                      static_cast<int>(phase.size()), phase.data(),
+                      static_cast<int>(fraction * 100.0));
         const size_t length = std::strlen(line);
         mWidth = std::max(mWidth, length);
         // On a terminal: rewrite in place, padded over a longer previous line.
-        if (mTty) std::fprintf(stderr, "\r%-*s", static_cast<int>(mWidth), line);
-        else std::fprintf(stderr, "%s\n", line);
+        if (mTty)
+            std::fprintf(stderr, "\r%-*s", static_cast<int>(mWidth), line);
+        else
+            std::fprintf(stderr, "%s\n", line);
         std::fflush(stderr);
     }
 
@@ -68,7 +71,7 @@ public:
         mWidth = 0;
     }
 
-private:
+  private:
     using Clock = std::chrono::steady_clock;
     std::string mLabel;
     bool mTty;
@@ -81,27 +84,34 @@ private:
 
 int runGen(const std::vector<std::string>& argv) {
     CLI::App app(kGenUsage, "amrvk gen");
-    app.get_formatter()->column_width(30);
+    setUpCommand(app);
     std::string kind, base;
     double cells = 0;
     int64_t seed = 1, block = 8, levels = 0;
     amr::SyntheticParams params;
     app.add_option("kind", kind, "cloud, shells or teapot")->required();
-    app.add_option("--cells", cells, "target leaf-cell count, e.g. 1e6 (the result is within a factor 1.4)")
+    app.add_option("--cells", cells,
+                   "target leaf-cell count, e.g. 1e6 (the result is within a factor 1.4)")
         ->required()
         ->check(interval(1, 1e15))
         ->type_name("N");
     app.add_option("--seed", seed, "random seed; the same seed gives identical files")
         ->check(interval(0, 4.6e18))
-        ->capture_default_str();
-    app.add_option("-o,--output", base, "writes BASE.cells and BASE.scalars")->required()->type_name("BASE");
+        ->capture_default_str()
+        ->type_name("S");
+    app.add_option("-o,--output", base, "writes BASE.cells and BASE.scalars")
+        ->required()
+        ->type_name("BASE");
     app.add_option("--block", block, "cells per block edge (1 = one cell per leaf)")
         ->check(CLI::IsMember({1, 2, 4, 8, 16, 32}))
-        ->capture_default_str();
-    app.add_option("--levels", levels, "cell levels 0..L-1: the domain is 2^(L-1) blocks wide (default: by kind and N)")
+        ->capture_default_str()
+        ->type_name("B");
+    app.add_option("--levels", levels,
+                   "cell levels 0..L-1: the domain is 2^(L-1) blocks wide (default: by kind and N)")
         ->check(interval(1, amr::kMaxLevel + 1))
         ->type_name("L");
-    app.add_option("--field", params.field, "field name: writes BASE.NAME.scalars instead of BASE.scalars")
+    app.add_option("--field", params.field,
+                   "field name: writes BASE.NAME.scalars instead of BASE.scalars")
         ->type_name("NAME");
     if (!parseCommandLine(app, argv)) return 0;
     params.kind = amr::parseSyntheticKind(kind);
@@ -110,33 +120,41 @@ int runGen(const std::vector<std::string>& argv) {
     params.seed = static_cast<uint64_t>(seed);
     params.blockCells = static_cast<int>(block);
     params.levels = static_cast<int>(levels);
-    AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field, "' must not contain '/'");
+    AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field,
+                "' must not contain '/'");
     AMRVK_CHECK(!base.empty(), "amrvk gen: -o BASE must not be empty");
 
     const std::string kindName(amr::syntheticKindName(params.kind));
     ProgressPrinter printer("amrvk gen " + kindName);
-    params.progress = [&](std::string_view phase, double fraction) { printer.update(phase, fraction); };
+    params.progress = [&](std::string_view phase, double fraction) {
+        printer.update(phase, fraction);
+    };
     amr::SyntheticStats st = amr::generateSynthetic(params, base);
     params.progress = nullptr;
     printer.finish();
 
     const std::string scalars = params.field.empty() ? ".scalars" : "." + params.field + ".scalars";
-    const uint64_t blockVolume = static_cast<uint64_t>(st.blockCells) * static_cast<uint64_t>(st.blockCells) *
+    const uint64_t blockVolume = static_cast<uint64_t>(st.blockCells) *
+                                 static_cast<uint64_t>(st.blockCells) *
                                  static_cast<uint64_t>(st.blockCells);
-    const std::string reduced = st.blockCells == params.blockCells
-                                    ? std::string()
-                                    : strCat(" (reduced from --block ", params.blockCells, ": too few blocks for N)");
-    std::printf("amrvk gen %s: %llu cells, levels %d-%d (%d levels), %llu blocks of %d^3 cells%s, domain 2^%d, "
-                "%.1f MB in %s.cells + %s%s, %.2f s\n",
-                kindName.c_str(), static_cast<unsigned long long>(st.cells), st.minLevel, st.maxLevel,
-                st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume),
-                st.blockCells, reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6, base.c_str(),
-                base.c_str(), scalars.c_str(), st.seconds);
+    const std::string reduced =
+        st.blockCells == params.blockCells
+            ? std::string()
+            : strCat(" (reduced from --block ", params.blockCells, ": too few blocks for N)");
+    std::printf(
+        "amrvk gen %s: %llu cells, levels %d-%d (%d levels), %llu blocks of %d^3 cells%s, domain "
+        "2^%d, "
+        "%.1f MB in %s.cells + %s%s, %.2f s\n",
+        kindName.c_str(), static_cast<unsigned long long>(st.cells), st.minLevel, st.maxLevel,
+        st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume),
+        st.blockCells, reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6,
+        base.c_str(), base.c_str(), scalars.c_str(), st.seconds);
     if (!st.targetReached)
-        std::fprintf(stderr,
-                     "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",
-                     static_cast<unsigned long long>(st.cells),
-                     static_cast<unsigned long long>(params.cells), st.rootLevel);
+        std::fprintf(
+            stderr,
+            "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",
+            static_cast<unsigned long long>(st.cells),
+            static_cast<unsigned long long>(params.cells), st.rootLevel);
     return 0;
 }
 

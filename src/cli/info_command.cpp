@@ -2,13 +2,12 @@
 // from (bricks, ABRs with value ranges, macrocell value ranges), with sizes and build times.
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "accel/abrs.h"
 #include "accel/bricks.h"
 #include "accel/range_grid.h"
 #include "amr/readers.h"
-#include <nlohmann/json.hpp>
-
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
@@ -20,9 +19,12 @@ namespace amrvk::cli {
 namespace {
 
 const char* kInfoHelp =
-    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value ranges, and "
-    "macrocell value ranges, and reports the data and the structures: format, voxel and world bounds, leaf "
-    "cells per level (level 0 = finest), fields, the field's range and volume-weighted mean, brick/ABR "
+    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value "
+    "ranges, and "
+    "macrocell value ranges, and reports the data and the structures: format, voxel and world "
+    "bounds, leaf "
+    "cells per level (level 0 = finest), fields, the field's range and volume-weighted mean, "
+    "brick/ABR "
     "statistics, bytes per structure and build times.";
 
 std::string mib(uint64_t bytes) {
@@ -35,15 +37,17 @@ std::string mib(uint64_t bytes) {
 
 int runInfo(const std::vector<std::string>& argv) {
     CLI::App app(kInfoHelp, "amrvk info");
+    setUpCommand(app);
     std::string input, gridSpec = "auto", bricksFile;
     bool json = false;
     ReadArgs read;
-    app.add_option("input", input, "the data set")->required();
+    app.add_option("input", input, "the data set")->required()->type_name("INPUT");
     addReadOptions(app, read, false);
     app.add_option("--grid", gridSpec, "macrocell grid (auto: 128 on the longest axis)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
-    app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
+    app.add_option("--bricks", bricksFile,
+                   "use the bricks of an ExaBrick .bricks file instead of building them")
         ->type_name("FILE");
     app.add_flag("--json", json, "print one JSON object on stdout instead of text");
     if (!parseCommandLine(app, argv)) return 0;
@@ -63,7 +67,8 @@ int runInfo(const std::vector<std::string>& argv) {
     accel::BrickSet bricks;
     {
         ProgressStage stage("bricks");
-        bricks = bricksFile.empty() ? accel::buildBricks(model) : accel::readBricksFile(bricksFile, model);
+        bricks = bricksFile.empty() ? accel::buildBricks(model)
+                                    : accel::readBricksFile(bricksFile, model);
     }
     const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
     std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
@@ -83,7 +88,8 @@ int runInfo(const std::vector<std::string>& argv) {
         grid = accel::buildRangeGrid(model, field, gridDims);
     }
 
-    double bricksPerAbr = abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
+    double bricksPerAbr =
+        abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
     uint32_t maxBricksPerAbr = 0;
     for (const auto& a : abrs.abrs) maxBricksPerAbr = std::max(maxBricksPerAbr, a.brickCount);
 
@@ -123,7 +129,8 @@ int runInfo(const std::vector<std::string>& argv) {
         j["field"] = field.name;
         j["valueRange"] = Json::array({double(stats.minValue), double(stats.maxValue)});
         j["volumeWeightedMean"] = stats.volumeWeightedMean;
-        j["voxelBounds"] = {{"lower", vec(glm::dvec3(summary.bounds.lower))}, {"upper", vec(glm::dvec3(summary.bounds.upper))}};
+        j["voxelBounds"] = {{"lower", vec(glm::dvec3(summary.bounds.lower))},
+                            {"upper", vec(glm::dvec3(summary.bounds.upper))}};
         j["worldBounds"] = {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}};
         j["bricks"] = brickStats.brickCount;
         j["singleCellBricks"] = brickStats.singleCellBricks;
@@ -165,13 +172,15 @@ int runInfo(const std::vector<std::string>& argv) {
     for (size_t l = 0; l < summary.cellsPerLevel.size(); ++l)
         if (summary.cellsPerLevel[l])
             std::printf("  level %-4zu  %llu cells of width %lld\n", l,
-                        (unsigned long long)summary.cellsPerLevel[l], (long long)amr::cellWidth(int(l)));
+                        (unsigned long long)summary.cellsPerLevel[l],
+                        (long long)amr::cellWidth(int(l)));
     std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", field.name.c_str(),
                 double(stats.minValue), double(stats.maxValue), stats.volumeWeightedMean);
-    std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
-                (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
-                (unsigned long long)brickStats.singleCellBricks,
-                (unsigned long long)brickStats.largestBrickCells, bricks.buildSeconds);
+    std::printf(
+        "bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
+        (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
+        (unsigned long long)brickStats.singleCellBricks,
+        (unsigned long long)brickStats.largestBrickCells, bricks.buildSeconds);
     std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", abrs.abrs.size(),
                 bricksPerAbr, maxBricksPerAbr, abrSeconds);
     std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", gridDims.x, gridDims.y,
@@ -184,12 +193,15 @@ int runInfo(const std::vector<std::string>& argv) {
 }
 
 int runConvert(const std::vector<std::string>& argv) {
-    CLI::App app("Writes the leaf cells of any supported input as ExaBrick BASE.cells plus one BASE.<field>.scalars "
-                 "per field.",
-                 "amrvk convert");
+    CLI::App app(
+        "Writes the leaf cells of any supported input as ExaBrick BASE.cells plus one "
+        "BASE.<field>.scalars "
+        "per field.",
+        "amrvk convert");
+    setUpCommand(app);
     std::string input, base;
     ReadArgs read;
-    app.add_option("input", input, "the data set")->required();
+    app.add_option("input", input, "the data set")->required()->type_name("INPUT");
     addReadOptions(app, read, true);
     app.add_option("-o,--output", base, "output base: writes BASE.cells and BASE.<field>.scalars")
         ->required()

@@ -1,6 +1,5 @@
 // amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <exception>
 #include <regex>
@@ -22,11 +21,13 @@ const char* kUsage =
     "  amrvk convert <input> -o BASE               convert any input to ExaBrick .cells/.scalars\n"
     "  amrvk render <input> [-o out.png] [options]  path-trace the data on a Vulkan device\n"
     "  amrvk view <input> [options]                the interactive viewer (or --headless)\n"
-    "  amrvk bench <input>... -o DIR [options]     benchmark protocol: speed against error, reports\n"
+    "  amrvk bench <input>... -o DIR [options]     benchmark protocol: speed against error, "
+    "reports\n"
     "  amrvk devices [--json]                      list Vulkan devices and why any is unusable\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
-    "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to override)\n";
+    "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to "
+    "override)\n";
 
 // CLI11's messages in amrvk's form: one line naming the option and the value.
 std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
@@ -36,12 +37,18 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
         (void)extras;
         static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
         const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
-        return arg.rfind("-", 0) == 0 ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command +
-                                            " --help)"
-                                      : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
+        return arg.rfind("-", 0) == 0
+                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " +
+                         command + " --help)"
+                   : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
     }
+    static const std::regex missing(R"(^(\S+): (\d+) required ([^:\s]+).* missing)");
+    if (std::regex_search(m, match, missing))
+        return match[1].str() + ": expects " + (match[2].str() == "1" ? "a value" : match[2].str() + " values") + " (" +
+               match[3].str() + ") (see amrvk " + command + " --help)";
     static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
-    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
+    if (std::regex_search(m, match, conversion))
+        return match[1].str() + ": '" + match[2].str() + "' is not a number";
     for (char& c : m)
         if (c == '\n' || c == '\r') c = ' ';
     return m + " (see amrvk " + command + " --help)";
@@ -67,7 +74,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), parseErrorLine(e, command).c_str());
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(),
+                     parseErrorLine(e, command).c_str());
         return 1;
     } catch (const amrvk::Error& e) {
         std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());

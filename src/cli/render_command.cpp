@@ -1,11 +1,10 @@
 // amrvk render: path-trace an AMR data set on a Vulkan device; amrvk devices: list devices.
 #include <unistd.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "amr/readers.h"
 #include "cli/commands.h"
@@ -28,10 +27,14 @@ namespace amrvk::cli {
 namespace {
 
 const char* kRenderHelp =
-    "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel per "
-    "dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width; albedo = TF "
-    "colour. Every majorant traversal x sample reconstruction structure of the paper is selectable; box "
-    "hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq). --session FILE renders a "
+    "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel "
+    "per "
+    "dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width; albedo = "
+    "TF "
+    "colour. Every majorant traversal x sample reconstruction structure of the paper is "
+    "selectable; box "
+    "hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq). --session FILE "
+    "renders a "
     "picture saved by the viewer (amrvk view), with any option given here on top.";
 
 // Fails before the render, not after it, when an output cannot be written.
@@ -50,9 +53,12 @@ Json vec3(glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); }
 }  // namespace
 
 int runDevices(const std::vector<std::string>& argv) {
-    CLI::App app("Lists every Vulkan device: index, name, type, driver, device-local memory, ray-query support, and "
-                 "why an unusable one is rejected.",
-                 "amrvk devices");
+    CLI::App app(
+        "Lists every Vulkan device: index, name, type, driver, device-local memory, ray-query "
+        "support, and "
+        "why an unusable one is rejected.",
+        "amrvk devices");
+    setUpCommand(app);
     bool json = false;
     app.add_flag("--json", json, "print a JSON array");
     if (!parseCommandLine(app, argv)) return 0;
@@ -73,8 +79,8 @@ int runDevices(const std::vector<std::string>& argv) {
         return 0;
     }
     for (const auto& d : devices)
-        std::printf("%u: %s (%s), driver %s, Vulkan %s, %.1f GiB device-local, ray query %s%s\n", d.index,
-                    d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
+        std::printf("%u: %s (%s), driver %s, Vulkan %s, %.1f GiB device-local, ray query %s%s\n",
+                    d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
                     double(d.deviceLocalBytes) / (1 << 30), d.rayQuery ? "yes" : "no",
                     d.usable ? "" : (", unusable: " + d.rejectReason).c_str());
     if (devices.empty()) std::printf("no Vulkan devices\n");
@@ -83,16 +89,20 @@ int runDevices(const std::vector<std::string>& argv) {
 
 int runRender(const std::vector<std::string>& argv) {
     CLI::App app(kRenderHelp, "amrvk render");
-    app.get_formatter()->column_width(36);
+    setUpCommand(app);
     std::string input, output = "amrvk.png", jsonFile;
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
-    app.add_option("input", input, "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
-                                   "raw .raw (optional with --session)");
+    app.add_option(
+           "input", input,
+           "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
+           "raw .raw (optional with --session)")
+        ->type_name("INPUT");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
-    app.add_option("-o,--output", output, "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
+    app.add_option("-o,--output", output,
+                   "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
         ->capture_default_str()
         ->type_name("FILE");
     app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE");
@@ -106,7 +116,8 @@ int runRender(const std::vector<std::string>& argv) {
         checkWritable(output, "-o");
         checkWritable(jsonFile, "--json");
     }
-    Picture picture = pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    Picture picture = pictureFromOptions(
+        app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
     session::Session& s = picture.session;
     scene::StructureConfig config = s.structure;
 
@@ -122,10 +133,12 @@ int runRender(const std::vector<std::string>& argv) {
     gpu::ContextOptions co = contextOptions(dev);
     co.requireRayQuery = config.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
-    config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
+    config.backend =
+        scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     Timer buildTimer;
-    scene::VolumeScene scene = picture.autoTraversal ? scene::makeVolumeScene(model, field)
-                                                     : scene::buildVolumeScene(model, field, config);
+    scene::VolumeScene scene = picture.autoTraversal
+                                   ? scene::makeVolumeScene(model, field)
+                                   : scene::buildVolumeScene(model, field, config);
     double buildSeconds = buildTimer.seconds();
     resolveAfterReading(picture, app, pic, model, scene.valueLo, scene.valueHi);
     const scene::RenderSettings& rs = s.settings;
@@ -143,15 +156,18 @@ int runRender(const std::vector<std::string>& argv) {
         }
         config = choice.config;  // the scene is configured for it
         buildSeconds = choice.configureSeconds;
-        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n", config.label().c_str(),
-                     config.usesGrid() ? (" grid " + config.grid).c_str() : "", choice.probes.size(), choice.seconds);
+        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n",
+                     config.label().c_str(),
+                     config.usesGrid() ? (" grid " + config.grid).c_str() : "",
+                     choice.probes.size(), choice.seconds);
     }
 
     render::Renderer renderer(ctx, scene);
     renderer.setTransferFunction(tf);
     ProgressBar bar("render", "spp");
     Timer wall;
-    scene::RenderOutput out = renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    scene::RenderOutput out =
+        renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) { bar.update(d, t); });
     bar.finish();
     const double wallSeconds = wall.seconds();
     writeImage(output, out.mean);
@@ -163,18 +179,21 @@ int runRender(const std::vector<std::string>& argv) {
     meanRgb /= double(out.mean.pixels.size());
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
-    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(), rs.width,
-                rs.height, s.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
-                out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
-    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
-        c[shared::kCounterTrackingCapHits])
-        std::fprintf(stderr,
-                     "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce limit, "
-                     "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
-                     (unsigned long long)c[shared::kCounterMajorantViolations],
-                     (unsigned long long)c[shared::kCounterNanSamples],
-                     (unsigned long long)c[shared::kCounterBounceLimitHits],
-                     (unsigned long long)c[shared::kCounterTrackingCapHits]);
+    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n",
+                output.c_str(), rs.width, rs.height, s.spp, scene::modeName(rs.mode),
+                config.label().c_str(), ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
+                out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
+    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] ||
+        c[shared::kCounterBounceLimitHits] || c[shared::kCounterTrackingCapHits])
+        std::fprintf(
+            stderr,
+            "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce "
+            "limit, "
+            "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
+            (unsigned long long)c[shared::kCounterMajorantViolations],
+            (unsigned long long)c[shared::kCounterNanSamples],
+            (unsigned long long)c[shared::kCounterBounceLimitHits],
+            (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (!jsonFile.empty()) {
         Json j;
         j["input"] = model.source;
@@ -221,7 +240,9 @@ int runRender(const std::vector<std::string>& argv) {
         for (const auto& [name, usage] : ctx.memory().perResource())
             device[name] = {{"current", usage.current}, {"peak", usage.peak}};
         j["deviceMemoryPerResource"] = device;
-        if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
+        if (scene.grid)
+            j["macrocellDims"] =
+                Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
         j["meanRGB"] = vec3(meanRgb);
         writeFileAtomic(jsonFile, j.dump(2) + "\n");
     }

@@ -15,18 +15,24 @@ namespace amrvk::cli {
 namespace {
 
 const char* kViewHelp =
-    "The interactive viewer: turn the data around (left drag orbits, right drag or the wheel zooms, middle or "
-    "shift drag pans; arrow keys, +/-, R resets), edit the transfer function over the field's histogram, "
-    "switch mode, structures and lights, and watch the path-traced picture converge. It renders a small "
-    "preview while you interact and refines at full resolution when you stop, within a time budget per "
-    "frame, so the window stays responsive on slow devices. Sessions saved here render the same with "
-    "amrvk render --session. --headless runs with no window (no display needed), for scripts and tests.";
+    "The interactive viewer: turn the data around (left drag orbits, right drag or the wheel "
+    "zooms, middle or "
+    "shift drag pans; arrow keys, +/-, R resets), edit the transfer function over the field's "
+    "histogram, "
+    "switch mode, structures and lights, and watch the path-traced picture converge. It renders a "
+    "small "
+    "preview while you interact and refines at full resolution when you stop, within a time budget "
+    "per "
+    "frame, so the window stays responsive on slow devices. Sessions saved here render the same "
+    "with "
+    "amrvk render --session. --headless runs with no window (no display needed), for scripts and "
+    "tests.";
 
 }  // namespace
 
 int runView(const std::vector<std::string>& argv) {
     CLI::App app(kViewHelp, "amrvk view");
-    app.get_formatter()->column_width(36);
+    setUpCommand(app);
     std::string input;
     ReadArgs read;
     PictureArgs pic;
@@ -36,25 +42,37 @@ int runView(const std::vector<std::string>& argv) {
     int64_t frames = 0;
     double budgetMs = 50;
     std::string window;
-    app.add_option("input", input, "the data set (as amrvk render; optional with --session)");
+    app.add_option("input", input, "the data set (as amrvk render; optional with --session)")
+        ->type_name("INPUT");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
-    app.get_option("--spp")->description("stop accumulating at N samples per pixel (default: run on)");
+    app.get_option("--spp")
+        ->description("stop accumulating at N samples per pixel (default: run on)")
+        ->default_str("");
     addDeviceOptions(app, dev);
-    app.add_flag("--headless", vo.headless, "no window (no display needed): for --script, --frames, --screenshot");
-    app.add_option("--frames", frames, "stop after N frames (default: when the window closes; --headless needs it)")
-        ->check(interval(1, 1e12));
-    app.add_option("--screenshot", screenshot, "at exit, save the accumulated image without the UI (.png .exr .pfm)")
+    app.add_flag("--headless", vo.headless,
+                 "no window (no display needed): for --script, --frames, --screenshot");
+    app.add_option("--frames", frames,
+                   "stop after N frames (default: when the window closes; --headless needs it)")
+        ->check(interval(1, 1e12))
+        ->type_name("N");
+    app.add_option("--screenshot", screenshot,
+                   "at exit, save the accumulated image without the UI (.png .exr .pfm)")
         ->type_name("FILE");
-    app.add_option("--script", script, "frame-numbered actions (docs/viewer.md)")->check(CLI::ExistingFile)->type_name("FILE");
-    app.add_option("--save-session", saveSession, "at exit, save the state as a session file (amrvk render --session)")
+    app.add_option("--script", script, "frame-numbered actions (docs/viewer.md)")
+        ->check(CLI::ExistingFile)
         ->type_name("FILE");
-    app.add_option("--stats", stats, "at exit, write frame times and times to the first full sample as JSON")
+    app.add_option("--save-session", saveSession,
+                   "at exit, save the state as a session file (amrvk render --session)")
+        ->type_name("FILE");
+    app.add_option("--stats", stats,
+                   "at exit, write frame times and times to the first full sample as JSON")
         ->type_name("FILE");
     app.add_option("--frame-budget-ms", budgetMs,
                    "target frame time; the path tracer gets what the UI and display leave of it")
         ->check(interval(1, 10000))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->type_name("MS");
     app.add_option("--window", window, "window size (default: --size)")->type_name("WxH");
     if (!parseCommandLine(app, argv)) return 0;
 
@@ -65,8 +83,10 @@ int runView(const std::vector<std::string>& argv) {
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
                     ": unknown image type (use .png, .exr or .pfm)");
     }
-    Picture picture = pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
-    AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
+    Picture picture = pictureFromOptions(
+        app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    AMRVK_CHECK(!picture.autoTraversal,
+                "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
     // The TF and the default camera need the field's range and the bounds.
     amr::ReadOptions ro = picture.session.read;
@@ -76,7 +96,8 @@ int runView(const std::vector<std::string>& argv) {
         ProgressStage stage("reading " + picture.session.input);
         model = amr::readModel(picture.session.input, ro);
     }
-    const amr::Field& field = picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
+    const amr::Field& field =
+        picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
     picture.session.field = field.name;
     const amr::FieldStats st = amr::computeFieldStats(model, field);
     resolveAfterReading(picture, app, pic, model, st.minValue, st.maxValue);

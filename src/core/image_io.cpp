@@ -1,12 +1,15 @@
 #include "core/image_io.h"
 
 #include <png.h>
+#include <tinyexr.h>
 
 #include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "core/error.h"
@@ -16,13 +19,11 @@ namespace fs = std::filesystem;
 
 namespace amrvk {
 
-// PFM and EXR are little-endian; values are written and read with memcpy of native floats.
+// PFM is little-endian; values are written and read with memcpy of native floats.
 static_assert(std::endian::native == std::endian::little, "image_io assumes a little-endian host");
 
 namespace {
 
-constexpr uint32_t kExrMagic = 20000630;  // bytes 76 2f 31 01
-constexpr int32_t kExrFloat = 2;          // pixel type FLOAT
 constexpr int kMaxDimension = 1 << 20;
 
 std::string lowerExtension(const fs::path& path) {
@@ -39,28 +40,6 @@ void checkImage(const fs::path& path, const Image& image) {
     AMRVK_CHECK(image.pixels.size() == size_t(image.width) * size_t(image.height), path.string(),
                 ": image ", image.width, "x", image.height, " has ", image.pixels.size(), " pixels");
 }
-
-// Little-endian byte appender for headers.
-class Bytes {
-public:
-    template <typename T>
-    void put(T v) {
-        const size_t at = mData.size();
-        mData.resize(at + sizeof(T));
-        std::memcpy(mData.data() + at, &v, sizeof(T));
-    }
-    void putString(const char* s) { mData.insert(mData.end(), s, s + std::strlen(s) + 1); }
-    // EXR attribute: name, type, int32 size, then the value appended by the caller.
-    void attribute(const char* name, const char* type, int32_t size) {
-        putString(name);
-        putString(type);
-        put(size);
-    }
-    const std::vector<uint8_t>& data() const { return mData; }
-
-private:
-    std::vector<uint8_t> mData;
-};
 
 // Encodes 8-bit RGBA pixels (row 0 = top) as PNG and writes them through AtomicFileWriter.
 void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rgba) {
@@ -106,55 +85,71 @@ void writePfm(const fs::path& path, const Image& image) {
     out.commit();
 }
 
+// tinyexr's error message (freed) on one line: its line breaks become "; ".
+std::string takeExrError(const char* err) {
+    std::string message;
+    for (const char* c = err; c && *c; ++c) {
+        if (*c != '\n') message += *c;
+        else if (c[1]) message += "; ";
+    }
+    if (err) FreeEXRErrorMessage(err);
+    return message.empty() ? "no details" : message;
+}
+
+// A parsed header and loaded image, freed on scope exit.
+struct ExrFile {
+    EXRHeader header;
+    EXRImage image;
+    ExrFile() {
+        InitEXRHeader(&header);
+        InitEXRImage(&image);
+    }
+    ~ExrFile() {
+        FreeEXRImage(&image);
+        FreeEXRHeader(&header);
+    }
+    ExrFile(const ExrFile&) = delete;
+    ExrFile& operator=(const ExrFile&) = delete;
+};
+
+// Uncompressed FLOAT scanlines; channels in OpenEXR's alphabetical order B, G, R.
 void writeExr(const fs::path& path, const Image& image) {
-    const int32_t w = image.width, h = image.height;
-    Bytes header;
-    header.put(kExrMagic);
-    header.put(int32_t(2));  // version 2, single-part scanline, short names
-    const char* channels[] = {"B", "G", "R"};
-    header.attribute("channels", "chlist", 3 * (2 + 16) + 1);
-    for (const char* c : channels) {
-        header.putString(c);
-        header.put(kExrFloat);
-        header.put(uint32_t(0));  // pLinear 0, three reserved bytes
-        header.put(int32_t(1));   // xSampling
-        header.put(int32_t(1));   // ySampling
+    const size_t count = image.pixels.size();
+    std::vector<float> planes[3];  // B, G, R
+    for (int c = 0; c < 3; ++c) {
+        planes[c].resize(count);
+        for (size_t i = 0; i < count; ++i) planes[c][i] = image.pixels[i][2 - c];
     }
-    header.put(uint8_t(0));
-    header.attribute("compression", "compression", 1);
-    header.put(uint8_t(0));  // NO_COMPRESSION
-    for (const char* window : {"dataWindow", "displayWindow"}) {
-        header.attribute(window, "box2i", 16);
-        header.put(int32_t(0));
-        header.put(int32_t(0));
-        header.put(w - 1);
-        header.put(h - 1);
+    float* planePointers[3] = {planes[0].data(), planes[1].data(), planes[2].data()};
+    EXRImage exr;
+    InitEXRImage(&exr);
+    exr.images = reinterpret_cast<unsigned char**>(planePointers);
+    exr.width = image.width;
+    exr.height = image.height;
+    exr.num_channels = 3;
+
+    EXRHeader header;
+    InitEXRHeader(&header);
+    EXRChannelInfo channels[3] = {};
+    int pixelTypes[3], requestedTypes[3];
+    const char* names[3] = {"B", "G", "R"};
+    for (int c = 0; c < 3; ++c) {
+        std::strcpy(channels[c].name, names[c]);
+        pixelTypes[c] = requestedTypes[c] = TINYEXR_PIXELTYPE_FLOAT;
     }
-    header.attribute("lineOrder", "lineOrder", 1);
-    header.put(uint8_t(0));  // INCREASING_Y
-    header.attribute("pixelAspectRatio", "float", 4);
-    header.put(1.0f);
-    header.attribute("screenWindowCenter", "v2f", 8);
-    header.put(0.0f);
-    header.put(0.0f);
-    header.attribute("screenWindowWidth", "float", 4);
-    header.put(1.0f);
-    header.put(uint8_t(0));  // end of header
+    header.num_channels = 3;
+    header.channels = channels;
+    header.pixel_types = pixelTypes;
+    header.requested_pixel_types = requestedTypes;
+    header.compression_type = TINYEXR_COMPRESSIONTYPE_NONE;
 
-    const uint64_t rowBytes = uint64_t(w) * 3 * sizeof(float);
-    const uint64_t firstChunk = header.data().size() + uint64_t(h) * sizeof(uint64_t);
-    for (int32_t y = 0; y < h; ++y) header.put(uint64_t(firstChunk + uint64_t(y) * (8 + rowBytes)));
-
+    unsigned char* memory = nullptr;
+    const char* err = nullptr;
+    const size_t bytes = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+    const std::unique_ptr<unsigned char, decltype(&std::free)> owned(memory, &std::free);
+    AMRVK_CHECK(bytes > 0 && memory, path.string(), ": OpenEXR encoding failed (", takeExrError(err), ")");
     AtomicFileWriter out(path);
-    out.write(header.data().data(), header.data().size());
-    std::vector<float> row(size_t(w) * 3);
-    for (int32_t y = 0; y < h; ++y) {
-        for (int c = 0; c < 3; ++c)  // channel order B, G, R
-            for (int x = 0; x < w; ++x) row[size_t(c * w + x)] = image.at(x, y)[2 - c];
-        const int32_t chunkHead[2] = {y, static_cast<int32_t>(rowBytes)};
-        out.write(chunkHead, sizeof(chunkHead));
-        out.writeSpan(std::span<const float>(row));
-    }
+    out.write(memory, bytes);
     out.commit();
 }
 
@@ -164,44 +159,6 @@ std::vector<uint8_t> readAll(const fs::path& path) {
     in.readArray(data, in.size());
     return data;
 }
-
-// Bounds-checked little-endian cursor over a file's bytes; errors name file and offset.
-class Cursor {
-public:
-    Cursor(const fs::path& path, const std::vector<uint8_t>& data) : mPath(path), mData(data) {}
-    template <typename T>
-    T get() {
-        need(sizeof(T));
-        T v;
-        std::memcpy(&v, mData.data() + mOffset, sizeof(T));
-        mOffset += sizeof(T);
-        return v;
-    }
-    std::string getString() {
-        const auto* begin = mData.data() + mOffset;
-        const auto* end = std::find(begin, mData.data() + mData.size(), uint8_t(0));
-        AMRVK_CHECK(end != mData.data() + mData.size(), mPath.string(),
-                    ": unterminated string at byte ", mOffset);
-        std::string s(begin, end);
-        mOffset += s.size() + 1;
-        return s;
-    }
-    void need(uint64_t bytes) const {
-        AMRVK_CHECK(mOffset + bytes <= mData.size(), mPath.string(), ": truncated at byte ",
-                    mData.size(), " (needed ", bytes, " bytes at offset ", mOffset, ")");
-    }
-    void seek(uint64_t offset) {
-        AMRVK_CHECK(offset <= mData.size(), mPath.string(), ": offset ", offset,
-                    " is past the end (size ", mData.size(), " bytes)");
-        mOffset = offset;
-    }
-    uint64_t offset() const { return mOffset; }
-
-private:
-    const fs::path& mPath;
-    const std::vector<uint8_t>& mData;
-    uint64_t mOffset = 0;
-};
 
 }  // namespace
 
@@ -290,68 +247,34 @@ Image readPfm(const fs::path& path) {
 Image readExr(const fs::path& path) {
     const std::string file = path.string();
     const std::vector<uint8_t> data = readAll(path);
-    Cursor in(path, data);
-    AMRVK_CHECK(in.get<uint32_t>() == kExrMagic, file, ": not an OpenEXR file (bad magic)");
-    const uint32_t version = in.get<uint32_t>();
-    AMRVK_CHECK((version & 0xff) == 2 && (version & 0x1a00) == 0, file, ": OpenEXR version field 0x",
-                std::hex, version, std::dec, " is not a single-part scanline version 2 file");
-    struct Channel {
-        std::string name;
-        int32_t type;
-    };
-    std::vector<Channel> channels;
-    int32_t window[4] = {0, 0, -1, -1};
-    bool haveWindow = false;
-    for (;;) {
-        const std::string name = in.getString();
-        if (name.empty()) break;
-        const std::string type = in.getString();
-        const int32_t size = in.get<int32_t>();
-        AMRVK_CHECK(size >= 0, file, ": attribute '", name, "' has negative size ", size);
-        in.need(uint64_t(size));
-        const uint64_t next = in.offset() + uint64_t(size);
-        if (name == "channels") {
-            for (;;) {
-                std::string channel = in.getString();
-                if (channel.empty()) break;
-                const int32_t pixelType = in.get<int32_t>();
-                in.get<uint32_t>();
-                const int32_t xs = in.get<int32_t>(), ys = in.get<int32_t>();
-                AMRVK_CHECK(pixelType == kExrFloat && xs == 1 && ys == 1, file, ": channel '",
-                            channel, "' is not an unsampled FLOAT channel (only those are read)");
-                channels.push_back({channel, pixelType});
-            }
-        } else if (name == "compression") {
-            const auto compression = in.get<uint8_t>();
-            AMRVK_CHECK(compression == 0, file, ": compression ", int(compression),
-                        " is not supported (only NONE)");
-        } else if (name == "dataWindow") {
-            for (int32_t& v : window) v = in.get<int32_t>();
-            haveWindow = true;
-        }
-        in.seek(next);
+    EXRVersion version;
+    AMRVK_CHECK(ParseEXRVersionFromMemory(&version, data.data(), data.size()) == TINYEXR_SUCCESS, file,
+                ": not an OpenEXR file (bad magic or version)");
+    AMRVK_CHECK(!version.multipart && !version.non_image && !version.tiled, file,
+                ": only single-part scanline OpenEXR files are read (not multi-part, deep or tiled)");
+    ExrFile exr;
+    const char* err = nullptr;
+    AMRVK_CHECK(ParseEXRHeaderFromMemory(&exr.header, &version, data.data(), data.size(), &err) == TINYEXR_SUCCESS,
+                file, ": bad OpenEXR header (", takeExrError(err), ")");
+    for (int c = 0; c < exr.header.num_channels; ++c) {
+        AMRVK_CHECK(exr.header.pixel_types[c] != TINYEXR_PIXELTYPE_UINT, file, ": channel '",
+                    exr.header.channels[c].name, "' is UINT (only HALF and FLOAT channels are read)");
+        exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
     }
-    AMRVK_CHECK(haveWindow && !channels.empty(), file, ": missing dataWindow or channels attribute");
-    const int64_t width = int64_t(window[2]) - window[0] + 1, height = int64_t(window[3]) - window[1] + 1;
+    if (LoadEXRImageFromMemory(&exr.image, &exr.header, data.data(), data.size(), &err) != TINYEXR_SUCCESS) {
+        InitEXRImage(&exr.image);  // tinyexr has freed it, leaving dangling pointers
+        AMRVK_CHECK(false, file, ": cannot read OpenEXR pixels (", takeExrError(err), ")");
+    }
+    const int width = exr.image.width, height = exr.image.height;
     AMRVK_CHECK(width > 0 && height > 0 && width <= kMaxDimension && height <= kMaxDimension, file,
-                ": dataWindow size ", width, "x", height, " is not in [1, ", kMaxDimension, "] per axis");
-    Image image(int(width), int(height), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    const uint64_t rowBytes = uint64_t(width) * channels.size() * sizeof(float);
-    std::vector<uint64_t> offsets(static_cast<size_t>(height));
-    for (uint64_t& o : offsets) o = in.get<uint64_t>();
-    for (uint64_t chunkOffset : offsets) {
-        in.seek(chunkOffset);
-        const int64_t y = int64_t(in.get<int32_t>()) - window[1];
-        const int32_t bytes = in.get<int32_t>();
-        AMRVK_CHECK(y >= 0 && y < height && uint64_t(bytes) == rowBytes, file, ": scanline chunk at byte ",
-                    chunkOffset, " has y ", y + window[1], " and ", bytes, " bytes (expected ", rowBytes, ")");
-        for (const Channel& c : channels) {
-            int k = c.name == "R" ? 0 : c.name == "G" ? 1 : c.name == "B" ? 2 : c.name == "A" ? 3 : -1;
-            for (int64_t x = 0; x < width; ++x) {
-                const float v = in.get<float>();
-                if (k >= 0) image.at(int(x), int(y))[k] = v;
-            }
-        }
+                ": OpenEXR size ", width, "x", height, " is not in [1, ", kMaxDimension, "] per axis");
+    Image image(width, height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    for (int c = 0; c < exr.header.num_channels; ++c) {
+        const std::string name = exr.header.channels[c].name;
+        const int k = name == "R" ? 0 : name == "G" ? 1 : name == "B" ? 2 : name == "A" ? 3 : -1;
+        if (k < 0) continue;
+        const float* plane = reinterpret_cast<const float*>(exr.image.images[c]);
+        for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i][k] = plane[i];
     }
     return image;
 }

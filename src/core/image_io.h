@@ -35,7 +35,7 @@ uint8_t encodeSrgb8(float linear);
 // Writes by extension (case-insensitive):
 //   .png  8-bit sRGB RGBA: each linear channel clamped to [0, 1], sRGB curve, alpha 255;
 //   .pfm  linear float RGB, little-endian (scale -1), rows bottom to top as the format requires;
-//   .exr  linear float RGB, uncompressed scanlines, channels B, G, R as FLOAT.
+//   .exr  linear float RGB (tinyexr): single-part, uncompressed scanlines, channels B, G, R as FLOAT.
 // The alpha channel is written only to PNG (as 255). Throws for an unknown extension, an image
 // whose size does not match its pixels, or a write failure (leaving no file).
 void writeImage(const std::filesystem::path& path, const Image& image);
@@ -44,9 +44,9 @@ void writeImage(const std::filesystem::path& path, const Image& image);
 // outside [1, 2^20] per axis, rgba.size() != 4 * width * height, or a write failure (leaving no file).
 void writePng8(const std::filesystem::path& path, const Image8& image);
 
-// Readers for tests and reference images: PFM (RGB or grey, either byte order), OpenEXR as
-// written by writeImage (single-part scanline, uncompressed, FLOAT channels; R, G, B, A by name,
-// missing colour channels 0, missing A 1), PNG (raw 8-bit RGBA). Alpha of PFM is 1.
+// Readers for tests and reference images: PFM (RGB or grey, either byte order), OpenEXR
+// (tinyexr: single-part scanline, any compression it supports, HALF or FLOAT channels; R, G, B, A
+// by name, missing colour channels 0, missing A 1), PNG (raw 8-bit RGBA). Alpha of PFM is 1.
 Image readPfm(const std::filesystem::path& path);
 Image readExr(const std::filesystem::path& path);
 Image8 readPng(const std::filesystem::path& path);

@@ -35,6 +35,13 @@ expect "unknown option '--bogus'" -- info good.cells --bogus
 expect "'x' is not a number" -- info good.cells --grid 4 --threshold x
 expect "--grid 'big'" -- info good.cells --grid big
 expect "cannot write" -- convert good.cells -o /nonexistent-dir/out
+expect "input is required" -- info
+expect "unexpected argument 'extra'" -- info good.cells extra
+expect "--threshold: expects a value (T)" -- info good.cells --threshold
+expect "--dims: '0' is outside [1, 1048576]" -- info good.cells --dims 0 4 4
+expect "--field: At Most 1" -- info good.cells --field a --field b
+expect "--cells: '0' is outside" -- gen cloud --cells 0 -o x
+expect "--output is required" -- convert good.cells
 "$amrvk" info nan.cells --nan drop >/dev/null 2>&1 || { echo "FAIL: --nan drop"; fail=1; }
 ls /nonexistent-dir 2>/dev/null && fail=1
 exit $fail

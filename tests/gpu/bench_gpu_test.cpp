@@ -1,9 +1,11 @@
 // The benchmark protocol end to end on tiny data (amrvk bench's runner and reports): every
 // reported key is present, the error against the reference falls with spp at the N^-1/2 rate for
 // the unbiased modes, the dvr baseline's error stops at its step-size bias, and --auto picks a
-// valid combination no worse than the best measured one. Never asserts on speed.
+// valid combination no worse than the best measured one; the reports and plots are written. Never
+// asserts on speed.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 
 #include "amr/readers.h"
@@ -52,7 +54,7 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     size_t progressCalls = 0;
     bench::BenchResults res = bench::runBench(ctx(), o, [&](size_t, size_t, const std::string&) { ++progressCalls; });
     EXPECT_GT(progressCalls, 0u);
-    bench::writeReports(res, o.outDir);
+    const bench::PlotOutcome plots = bench::writeReports(res, o.outDir);
 
     // Every figure in results.json.
     nlohmann::json j = readJson(o.outDir / "results.json");
@@ -135,11 +137,25 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     EXPECT_NE(md.find("| traversal / sampler / back-end | cloud foggy |"), std::string::npos);
     EXPECT_NE(md.find("(best 1)"), std::string::npos);
     EXPECT_NE(md.find("## References"), std::string::npos);
-    for (const char* png : {"error_cloud_foggy_ae.png", "error_cloud_foggy_ms.png", "error_cloud_foggy_dvr.png",
-                            "grid_sweep_cloud_foggy.png", "memory_cloud.png"}) {
-        ASSERT_TRUE(std::filesystem::exists(o.outDir / png)) << png;
-        Image8 img = readPng(o.outDir / png);
-        EXPECT_GT(img.width, 0);
+    // Plots: PNG and PDF from tools/plot_bench.py where a Python with matplotlib is found, linked
+    // from results.md; otherwise a note with the command that draws them, also in results.md.
+    if (bench::findMatplotlibPython()) {
+        EXPECT_EQ(plots.note, "");
+        for (const std::string stem : {"error_cloud_foggy_ae", "error_cloud_foggy_ms", "error_cloud_foggy_dvr",
+                                       "grid_sweep_cloud_foggy", "memory_cloud"}) {
+            for (const std::string ext : {".png", ".pdf"}) {
+                EXPECT_NE(std::find(plots.files.begin(), plots.files.end(), stem + ext), plots.files.end()) << stem + ext;
+                EXPECT_GT(std::filesystem::file_size(o.outDir / (stem + ext)), 0u) << stem + ext;
+            }
+            Image8 img = readPng(o.outDir / (stem + ".png"));
+            EXPECT_GT(img.width, 0);
+            EXPECT_NE(md.find("![" + stem + ".png](" + stem + ".png)"), std::string::npos) << stem;
+        }
+    } else {
+        EXPECT_TRUE(plots.files.empty());
+        EXPECT_NE(plots.note.find("python3 " + bench::plotScriptPath().string() + " " + o.outDir.string()),
+                  std::string::npos) << plots.note;
+        EXPECT_NE(md.find(plots.note), std::string::npos);
     }
 
     // A second run reuses the cached references (same key).
