@@ -58,36 +58,28 @@ int runBench(const std::vector<std::string>& argv) {
     CLI::App app(kBenchHelp, "amrvk bench");
     setUpCommand(app);
     std::vector<std::string> inputs;
-    std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps,
-                        gridSweep;
+    std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
     bool noDense = false, autoSelect = false;
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
-    app.add_option("inputs", inputs,
-                   "data sets; INPUT:FIELD picks a field per data set (--field for all)")
+    app.add_option("inputs", inputs, "data sets; INPUT:FIELD picks a field per data set (--field for all)")
         ->required()
         ->type_name("INPUT[:FIELD]...");
-    app.add_option("-o,--output", outDir,
-                   "output directory (created; references are cached in DIR/references)")
+    app.add_option("-o,--output", outDir, "output directory (created; references are cached in DIR/references)")
         ->required()
         ->type_name("DIR");
     addReadOptions(app, read, false);
-    app.add_option("--tfs", tfs, "TF presets or files, comma-separated")
-        ->capture_default_str()
-        ->type_name("LIST");
+    app.add_option("--tfs", tfs, "TF presets or files, comma-separated")->capture_default_str()->type_name("LIST");
     app.add_option("--modes", modes, "unbiased modes of the matrix: ae,ss,ms")
         ->capture_default_str()
         ->type_name("LIST");
-    app.add_option("--traversals", traversals,
-                   "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
+    app.add_option("--traversals", traversals, "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
         ->type_name("LIST");
-    app.add_option("--samplers", samplers, "subset of ext-brick,abr (default both)")
-        ->type_name("LIST");
-    app.add_option("--backends", backends,
-                   "subset of sw,rq (default sw, and rq where the device has ray queries)")
+    app.add_option("--samplers", samplers, "subset of ext-brick,abr (default both)")->type_name("LIST");
+    app.add_option("--backends", backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
         ->type_name("LIST");
     app.add_option("--frames", frames, "timed frames of 1 spp each")
         ->check(interval(2, 1 << 20))
@@ -97,18 +89,16 @@ int runBench(const std::vector<std::string>& argv) {
         ->check(interval(0, 1 << 20))
         ->capture_default_str()
         ->type_name("N");
-    app.add_option(
-           "--reference-spp", refSpp,
-           "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)")
+    app.add_option("--reference-spp", refSpp,
+                   "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)")
         ->check(interval(2, 1 << 24))
         ->type_name("N");
     app.add_option("--target-rmse", targetRmse,
                    "RMSE whose time is reported (default: half the first combination's 1-spp RMSE)")
         ->check(interval(0, INFINITY, false, true))
         ->type_name("E");
-    app.add_option(
-           "--dvr-steps", dvrSteps,
-           "dvr step sizes (fractions of the finest cell width; default 2,1,0.5,0.25,0.125)")
+    app.add_option("--dvr-steps", dvrSteps,
+                   "dvr step sizes (fractions of the finest cell width; default 2,1,0.5,0.25,0.125)")
         ->type_name("LIST|none");
     app.add_option("--grid-sweep", gridSweep,
                    "macrocells on the longest axis for the grid sweep (default 16,32,64,128,256)")
@@ -136,8 +126,7 @@ int runBench(const std::vector<std::string>& argv) {
         if (ds.field.empty() && !read.fields.empty()) ds.field = read.fields.front();
         AMRVK_CHECK(std::filesystem::exists(ds.input), ds.input, ": no such file or directory");
         std::filesystem::path path(ds.input);
-        ds.tag = path.filename().empty() ? path.parent_path().filename().string()
-                                         : path.filename().string();
+        ds.tag = path.filename().empty() ? path.parent_path().filename().string() : path.filename().string();
         if (!ds.field.empty()) ds.tag += ":" + ds.field;
         o.datasets.push_back(ds);
     }
@@ -152,23 +141,20 @@ int runBench(const std::vector<std::string>& argv) {
     o.modes.clear();
     for (const auto& m : splitList(modes)) {
         scene::Mode mode = scene::parseMode(m);
-        AMRVK_CHECK(mode != scene::Mode::Dvr,
-                    "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
+        AMRVK_CHECK(mode != scene::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
         o.modes.push_back(mode);
     }
     AMRVK_CHECK(!o.modes.empty(), "--modes: empty list");
     if (app.count("--traversals")) {
         o.traversals.clear();
-        for (const auto& t : splitList(traversals))
-            o.traversals.push_back(scene::parseTraversal(t));
+        for (const auto& t : splitList(traversals)) o.traversals.push_back(scene::parseTraversal(t));
         AMRVK_CHECK(!o.traversals.empty(), "--traversals: empty list");
     }
     if (app.count("--samplers")) {
         o.samplers.clear();
         for (const auto& sm : splitList(samplers)) {
             scene::SamplerKind k = scene::parseSampler(sm);
-            AMRVK_CHECK(k != scene::SamplerKind::Dense,
-                        "--samplers: dense runs by itself (see --no-dense)");
+            AMRVK_CHECK(k != scene::SamplerKind::Dense, "--samplers: dense runs by itself (see --no-dense)");
             o.samplers.push_back(k);
         }
         AMRVK_CHECK(!o.samplers.empty(), "--samplers: empty list");
@@ -192,8 +178,7 @@ int runBench(const std::vector<std::string>& argv) {
             for (const auto& t : splitList(dvrSteps)) {
                 char* end = nullptr;
                 const double dt = std::strtod(t.c_str(), &end);
-                AMRVK_CHECK(end && *end == '\0' && dt > 0 && dt <= 64, "--dvr-steps: '", t,
-                            "' is not in (0, 64]");
+                AMRVK_CHECK(end && *end == '\0' && dt > 0 && dt <= 64, "--dvr-steps: '", t, "' is not in (0, 64]");
                 o.dvrSteps.push_back(dt);
             }
     }
@@ -203,8 +188,7 @@ int runBench(const std::vector<std::string>& argv) {
             for (const auto& g : splitList(gridSweep)) {
                 char* end = nullptr;
                 const long n = std::strtol(g.c_str(), &end, 10);
-                AMRVK_CHECK(end && *end == '\0' && n >= 1 && n <= 4096, "--grid-sweep: '", g,
-                            "' is not in [1, 4096]");
+                AMRVK_CHECK(end && *end == '\0' && n >= 1 && n <= 4096, "--grid-sweep: '", g, "' is not in [1, 4096]");
                 o.gridSweep.push_back(g);
             }
     }
@@ -225,14 +209,13 @@ int runBench(const std::vector<std::string>& argv) {
     }
     // Every option is valid: only now the output directory is made.
     std::filesystem::create_directories(o.outDir);
-    AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(),
-                ": directory is not writable");
+    AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
     gpu::Context ctx(contextOptions(dev));
 
     ProgressBar bar("bench", "runs");
-    bench::BenchResults results = bench::runBench(
-        ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
+    bench::BenchResults results =
+        bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
     bar.finish();
     const bench::PlotOutcome plots = bench::writeReports(results, o.outDir);
     size_t failed = 0;
@@ -240,8 +223,7 @@ int runBench(const std::vector<std::string>& argv) {
     std::printf(
         "wrote %s/results.{json,csv,md} and %zu plot files (PNG, PDF): %zu runs (%zu failed) on "
         "%s\n",
-        o.outDir.string().c_str(), plots.files.size(), results.runs.size(), failed,
-        results.device.c_str());
+        o.outDir.string().c_str(), plots.files.size(), results.runs.size(), failed, results.device.c_str());
     if (!plots.note.empty()) std::fprintf(stderr, "amrvk bench: %s\n", plots.note.c_str());
     return 0;
 }

@@ -51,8 +51,7 @@ class ProgressPrinter {
         mLast = now;
         mPrinted = true;
         char line[256];
-        std::snprintf(line, sizeof line, "%s: %.*s %3d%%", mLabel.c_str(),
-                      static_cast<int>(phase.size()), phase.data(),
+        std::snprintf(line, sizeof line, "%s: %.*s %3d%%", mLabel.c_str(), static_cast<int>(phase.size()), phase.data(),
                       static_cast<int>(fraction * 100.0));
         const size_t length = std::strlen(line);
         mWidth = std::max(mWidth, length);
@@ -90,8 +89,7 @@ int runGen(const std::vector<std::string>& argv) {
     int64_t seed = 1, block = 8, levels = 0;
     amr::SyntheticParams params;
     app.add_option("kind", kind, "cloud, shells or teapot")->required();
-    app.add_option("--cells", cells,
-                   "target leaf-cell count, e.g. 1e6 (the result is within a factor 1.4)")
+    app.add_option("--cells", cells, "target leaf-cell count, e.g. 1e6 (the result is within a factor 1.4)")
         ->required()
         ->check(interval(1, 1e15))
         ->type_name("N");
@@ -99,19 +97,15 @@ int runGen(const std::vector<std::string>& argv) {
         ->check(interval(0, 4.6e18))
         ->capture_default_str()
         ->type_name("S");
-    app.add_option("-o,--output", base, "writes BASE.cells and BASE.scalars")
-        ->required()
-        ->type_name("BASE");
+    app.add_option("-o,--output", base, "writes BASE.cells and BASE.scalars")->required()->type_name("BASE");
     app.add_option("--block", block, "cells per block edge (1 = one cell per leaf)")
         ->check(CLI::IsMember({1, 2, 4, 8, 16, 32}))
         ->capture_default_str()
         ->type_name("B");
-    app.add_option("--levels", levels,
-                   "cell levels 0..L-1: the domain is 2^(L-1) blocks wide (default: by kind and N)")
+    app.add_option("--levels", levels, "cell levels 0..L-1: the domain is 2^(L-1) blocks wide (default: by kind and N)")
         ->check(interval(1, amr::kMaxLevel + 1))
         ->type_name("L");
-    app.add_option("--field", params.field,
-                   "field name: writes BASE.NAME.scalars instead of BASE.scalars")
+    app.add_option("--field", params.field, "field name: writes BASE.NAME.scalars instead of BASE.scalars")
         ->type_name("NAME");
     if (!parseCommandLine(app, argv)) return 0;
     params.kind = amr::parseSyntheticKind(kind);
@@ -120,41 +114,34 @@ int runGen(const std::vector<std::string>& argv) {
     params.seed = static_cast<uint64_t>(seed);
     params.blockCells = static_cast<int>(block);
     params.levels = static_cast<int>(levels);
-    AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field,
-                "' must not contain '/'");
+    AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field, "' must not contain '/'");
     AMRVK_CHECK(!base.empty(), "amrvk gen: -o BASE must not be empty");
 
     const std::string kindName(amr::syntheticKindName(params.kind));
     ProgressPrinter printer("amrvk gen " + kindName);
-    params.progress = [&](std::string_view phase, double fraction) {
-        printer.update(phase, fraction);
-    };
+    params.progress = [&](std::string_view phase, double fraction) { printer.update(phase, fraction); };
     amr::SyntheticStats st = amr::generateSynthetic(params, base);
     params.progress = nullptr;
     printer.finish();
 
     const std::string scalars = params.field.empty() ? ".scalars" : "." + params.field + ".scalars";
-    const uint64_t blockVolume = static_cast<uint64_t>(st.blockCells) *
-                                 static_cast<uint64_t>(st.blockCells) *
+    const uint64_t blockVolume = static_cast<uint64_t>(st.blockCells) * static_cast<uint64_t>(st.blockCells) *
                                  static_cast<uint64_t>(st.blockCells);
-    const std::string reduced =
-        st.blockCells == params.blockCells
-            ? std::string()
-            : strCat(" (reduced from --block ", params.blockCells, ": too few blocks for N)");
+    const std::string reduced = st.blockCells == params.blockCells
+                                    ? std::string()
+                                    : strCat(" (reduced from --block ", params.blockCells, ": too few blocks for N)");
     std::printf(
         "amrvk gen %s: %llu cells, levels %d-%d (%d levels), %llu blocks of %d^3 cells%s, domain "
         "2^%d, "
         "%.1f MB in %s.cells + %s%s, %.2f s\n",
         kindName.c_str(), static_cast<unsigned long long>(st.cells), st.minLevel, st.maxLevel,
-        st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume),
-        st.blockCells, reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6,
-        base.c_str(), base.c_str(), scalars.c_str(), st.seconds);
+        st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume), st.blockCells,
+        reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6, base.c_str(), base.c_str(), scalars.c_str(),
+        st.seconds);
     if (!st.targetReached)
-        std::fprintf(
-            stderr,
-            "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",
-            static_cast<unsigned long long>(st.cells),
-            static_cast<unsigned long long>(params.cells), st.rootLevel);
+        std::fprintf(stderr, "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",
+                     static_cast<unsigned long long>(st.cells), static_cast<unsigned long long>(params.cells),
+                     st.rootLevel);
     return 0;
 }
 

@@ -46,8 +46,7 @@ int runInfo(const std::vector<std::string>& argv) {
     app.add_option("--grid", gridSpec, "macrocell grid (auto: 128 on the longest axis)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
-    app.add_option("--bricks", bricksFile,
-                   "use the bricks of an ExaBrick .bricks file instead of building them")
+    app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
         ->type_name("FILE");
     app.add_flag("--json", json, "print one JSON object on stdout instead of text");
     if (!parseCommandLine(app, argv)) return 0;
@@ -67,8 +66,7 @@ int runInfo(const std::vector<std::string>& argv) {
     accel::BrickSet bricks;
     {
         ProgressStage stage("bricks");
-        bricks = bricksFile.empty() ? accel::buildBricks(model)
-                                    : accel::readBricksFile(bricksFile, model);
+        bricks = bricksFile.empty() ? accel::buildBricks(model) : accel::readBricksFile(bricksFile, model);
     }
     const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
     std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
@@ -88,8 +86,7 @@ int runInfo(const std::vector<std::string>& argv) {
         grid = accel::buildRangeGrid(model, field, gridDims);
     }
 
-    double bricksPerAbr =
-        abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
+    double bricksPerAbr = abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
     uint32_t maxBricksPerAbr = 0;
     for (const auto& a : abrs.abrs) maxBricksPerAbr = std::max(maxBricksPerAbr, a.brickCount);
 
@@ -162,33 +159,30 @@ int runInfo(const std::vector<std::string>& argv) {
     for (const auto& f : model.availableFields) fieldList += (fieldList.empty() ? "" : ", ") + f;
     std::printf("fields        %s\n", fieldList.c_str());
     std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
-                (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y,
-                (long long)summary.bounds.lower.z, (long long)summary.bounds.upper.x,
-                (long long)summary.bounds.upper.y, (long long)summary.bounds.upper.z);
-    std::printf("world bounds  [%g %g %g] - [%g %g %g]\n", worldLo.x, worldLo.y, worldLo.z,
-                worldHi.x, worldHi.y, worldHi.z);
-    std::printf("leaf cells    %llu on levels %d..%d (0 = finest)\n",
-                (unsigned long long)model.cellCount(), summary.minLevel, summary.maxLevel);
+                (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
+                (long long)summary.bounds.upper.x, (long long)summary.bounds.upper.y,
+                (long long)summary.bounds.upper.z);
+    std::printf("world bounds  [%g %g %g] - [%g %g %g]\n", worldLo.x, worldLo.y, worldLo.z, worldHi.x, worldHi.y,
+                worldHi.z);
+    std::printf("leaf cells    %llu on levels %d..%d (0 = finest)\n", (unsigned long long)model.cellCount(),
+                summary.minLevel, summary.maxLevel);
     for (size_t l = 0; l < summary.cellsPerLevel.size(); ++l)
         if (summary.cellsPerLevel[l])
-            std::printf("  level %-4zu  %llu cells of width %lld\n", l,
-                        (unsigned long long)summary.cellsPerLevel[l],
+            std::printf("  level %-4zu  %llu cells of width %lld\n", l, (unsigned long long)summary.cellsPerLevel[l],
                         (long long)amr::cellWidth(int(l)));
     std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", field.name.c_str(),
                 double(stats.minValue), double(stats.maxValue), stats.volumeWeightedMean);
-    std::printf(
-        "bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
-        (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
-        (unsigned long long)brickStats.singleCellBricks,
-        (unsigned long long)brickStats.largestBrickCells, bricks.buildSeconds);
-    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", abrs.abrs.size(),
-                bricksPerAbr, maxBricksPerAbr, abrSeconds);
-    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", gridDims.x, gridDims.y,
-                gridDims.z, grid.buildSeconds);
+    std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
+                (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
+                (unsigned long long)brickStats.singleCellBricks, (unsigned long long)brickStats.largestBrickCells,
+                bricks.buildSeconds);
+    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", abrs.abrs.size(), bricksPerAbr,
+                maxBricksPerAbr, abrSeconds);
+    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", gridDims.x, gridDims.y, gridDims.z,
+                grid.buildSeconds);
     std::printf("memory        %s in all\n", mib(totalBytes).c_str());
     for (const auto& m : memory) std::printf("  %-20s %s\n", m.name, mib(m.bytes).c_str());
-    std::printf("read time     %.3f s; peak resident memory %s\n", readSeconds,
-                mib(peakResidentBytes()).c_str());
+    std::printf("read time     %.3f s; peak resident memory %s\n", readSeconds, mib(peakResidentBytes()).c_str());
     return 0;
 }
 

@@ -38,8 +38,7 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
         static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
         const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
         return arg.rfind("-", 0) == 0
-                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " +
-                         command + " --help)"
+                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command + " --help)"
                    : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
     }
     static const std::regex missing(R"(^(\S+): (\d+) required ([^:\s]+).* missing)");
@@ -47,8 +46,7 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
         return match[1].str() + ": expects " + (match[2].str() == "1" ? "a value" : match[2].str() + " values") + " (" +
                match[3].str() + ") (see amrvk " + command + " --help)";
     static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
-    if (std::regex_search(m, match, conversion))
-        return match[1].str() + ": '" + match[2].str() + "' is not a number";
+    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
     for (char& c : m)
         if (c == '\n' || c == '\r') c = ' ';
     return m + " (see amrvk " + command + " --help)";
@@ -74,8 +72,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(),
-                     parseErrorLine(e, command).c_str());
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), parseErrorLine(e, command).c_str());
         return 1;
     } catch (const amrvk::Error& e) {
         std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());

@@ -18,8 +18,7 @@ CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
         std::snprintf(buf, sizeof buf, "%.10g", v);
         return std::string(buf);
     };
-    const std::string text =
-        (openLo ? "(" : "[") + bound(lo) + ", " + bound(hi) + (openHi ? ")" : "]");
+    const std::string text = (openLo ? "(" : "[") + bound(lo) + ", " + bound(hi) + (openHi ? ")" : "]");
     return CLI::Validator(
         [=](std::string& s) -> std::string {
             char* end = nullptr;
@@ -62,10 +61,8 @@ class HelpFormatter : public CLI::Formatter {
         label("Positionals", "arguments");
         column_width(34);
     }
-    std::string make_help(const CLI::App* app, std::string name,
-                          CLI::AppFormatMode mode) const override {
-        const std::string help = make_usage(app, name) + "\n" +
-                                 wrapText(app->get_description(), kHelpWidth) + "\n" +
+    std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override {
+        const std::string help = make_usage(app, name) + "\n" + wrapText(app->get_description(), kHelpWidth) + "\n" +
                                  make_positionals(app) + make_groups(app, mode) + "\n";
         return CLI::detail::find_and_replace(help, "\n\n\n",
                                              "\n\n");  // one blank line between groups
@@ -80,17 +77,14 @@ class HelpFormatter : public CLI::Formatter {
         const std::string type = opt->get_type_name();
         for (size_t at = type.find(':'); at != std::string::npos;) {
             const size_t next = type.find(':', at + 1);
-            std::string note =
-                type.substr(at + 1, next == std::string::npos ? next : next - at - 1);
+            std::string note = type.substr(at + 1, next == std::string::npos ? next : next - at - 1);
             if (note.size() > 4 && note.compare(note.size() - 4, 4, " x 2") != 0 &&
                 note.find(" x ") != std::string::npos)
-                note = note.substr(
-                    0, note.find(" x "));  // "[1, 9] x 3": the count is in the type name
+                note = note.substr(0, note.find(" x "));  // "[1, 9] x 3": the count is in the type name
             const std::string shown = type.substr(0, type.find(':'));
             if (note == "FILE" || note == "DIR") note = "must exist";
             if (note.front() == '{' && shown.find('|') == std::string::npos)
-                note = "one of " +
-                       CLI::detail::find_and_replace(note.substr(1, note.size() - 2), ",", ", ");
+                note = "one of " + CLI::detail::find_and_replace(note.substr(1, note.size() - 2), ",", ", ");
             if (note.front() != '{' && note != "FINITE") notes.push_back(note);  // else the type name lists the choices
             at = next;
         }
@@ -118,15 +112,12 @@ std::vector<std::string> traversalChoices(bool withAuto) {
 glm::dvec3 vec3At(const std::vector<double>& v, size_t at) { return {v[at], v[at + 1], v[at + 2]}; }
 
 // Lights given as repeated 6-number options.
-void addLights(std::vector<scene::Light>& out, const std::vector<double>& values, bool point,
-               const char* option) {
+void addLights(std::vector<scene::Light>& out, const std::vector<double>& values, bool point, const char* option) {
     for (size_t i = 0; i + 5 < values.size(); i += 6) {
         scene::Light L{point, vec3At(values, i), vec3At(values, i + 3)};
-        AMRVK_CHECK(glm::all(glm::greaterThanEqual(L.radiance, glm::dvec3(0.0))), option,
-                    ": radiance ", L.radiance.x, " ", L.radiance.y, " ", L.radiance.z,
-                    " must be >= 0");
-        AMRVK_CHECK(point || glm::length(L.posOrDir) > 0, option,
-                    ": the direction 0 0 0 points nowhere");
+        AMRVK_CHECK(glm::all(glm::greaterThanEqual(L.radiance, glm::dvec3(0.0))), option, ": radiance ", L.radiance.x,
+                    " ", L.radiance.y, " ", L.radiance.z, " must be >= 0");
+        AMRVK_CHECK(point || glm::length(L.posOrDir) > 0, option, ": the direction 0 0 0 points nowhere");
         out.push_back(L);
     }
 }
@@ -134,34 +125,29 @@ void addLights(std::vector<scene::Light>& out, const std::vector<double>& values
 }  // namespace
 
 void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
-    app.add_option("--format", a.format,
-                   "input format (default: detected from names and magic bytes)")
+    app.add_option("--format", a.format, "input format (default: detected from names and magic bytes)")
         ->check(CLI::IsMember({"auto", "exabrick", "amrex", "enzo", "chombo", "raw"}))
         ->type_name("auto|exabrick|amrex|enzo|chombo|raw");
-    CLI::Option* field =
-        app.add_option("--field", a.fields,
-                       multiField ? "field to load (repeatable; default: every field)"
-                                  : "field to use (default: the first)")
-            ->type_name("NAME");
+    CLI::Option* field = app.add_option("--field", a.fields,
+                                        multiField ? "field to load (repeatable; default: every field)"
+                                                   : "field to use (default: the first)")
+                             ->type_name("NAME");
     if (multiField)
         field->take_all();
     else
         field->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::Throw);
-    app.add_option("--nan", a.nan,
-                   "NaN/Inf values: reject = an error, drop = their cells are removed")
+    app.add_option("--nan", a.nan, "NaN/Inf values: reject = an error, drop = their cells are removed")
         ->check(CLI::IsMember({"reject", "drop"}))
         ->capture_default_str()
         ->type_name("reject|drop");
-    app.add_option("--dims", a.dims,
-                   "raw volumes: voxels per axis (else from a name like v_64x64x64_uint8.raw)")
+    app.add_option("--dims", a.dims, "raw volumes: voxels per axis (else from a name like v_64x64x64_uint8.raw)")
         ->expected(3)
         ->check(interval(1, 1 << 20))
         ->type_name("NX NY NZ");
     app.add_option("--type", a.type, "raw volumes: voxel type")
         ->check(CLI::IsMember({"uint8", "uint16", "float32", "float64"}))
         ->type_name("uint8|uint16|float32|float64");
-    app.add_option("--threshold", a.threshold,
-                   "raw volumes: merge a block into one cell when max - min <= T")
+    app.add_option("--threshold", a.threshold, "raw volumes: merge a block into one cell when max - min <= T")
         ->check(interval(0, INFINITY, false, true))
         ->capture_default_str()
         ->type_name("T");
@@ -179,8 +165,7 @@ amr::ReadOptions readOptions(const ReadArgs& a) {
 }
 
 void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
-    app.add_option("--device", a.device,
-                   "Vulkan device by index or name part (default: a discrete GPU, else any)")
+    app.add_option("--device", a.device, "Vulkan device by index or name part (default: a discrete GPU, else any)")
         ->type_name("INDEX|NAME");
     app.add_option("--shader-dir", a.shaderDir,
                    "load shaders from DIR (.spv, or .comp compiled in process) instead of the "
@@ -210,8 +195,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
                        "constant, empty) over the field's range")
             ->capture_default_str()
             ->type_name("FILE|PRESET");
-        app.add_option("--tf-preset", a.tfPreset,
-                       "preset name inside a ParaView JSON file (default: the first)")
+        app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
             ->type_name("NAME");
         app.add_option("--mode", a.mode,
                        "absorption+emission, single or multiple scattering, or the ray-marching "
@@ -220,8 +204,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->check(CLI::IsMember({"ae", "ss", "ms", "dvr"}))
             ->capture_default_str()
             ->type_name("ae|ss|ms|dvr");
-        app.add_option("--dt", a.dt,
-                       "dvr: step as a fraction of the finest cell width at the sample")
+        app.add_option("--dt", a.dt, "dvr: step as a fraction of the finest cell width at the sample")
             ->check(interval(0, 64, true))
             ->capture_default_str()
             ->type_name("F");
@@ -243,9 +226,8 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->check(CLI::IsMember({"ext-brick", "abr", "dense"}))
             ->capture_default_str()
             ->type_name("ext-brick|abr|dense");
-        app.add_option(
-               "--backend", a.backend,
-               "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it")
+        app.add_option("--backend", a.backend,
+                       "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it")
             ->check(CLI::IsMember({"sw", "rq", "auto"}))
             ->capture_default_str()
             ->type_name("sw|rq|auto");
@@ -259,8 +241,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->expected(2)
         ->check(kFinite)
         ->type_name("LO HI");
-    app.add_option("--grid", a.grid,
-                   "macrocell grid of grid-dda and grid-bvh (auto: 128 on the longest axis)")
+    app.add_option("--grid", a.grid, "macrocell grid of grid-dda and grid-bvh (auto: 128 on the longest axis)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")
@@ -271,11 +252,8 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->check(interval(1, 1 << 20))
         ->capture_default_str()
         ->type_name("MIB");
-    app.add_option("--size", a.size, "image size, 1..16384 per side")
-        ->capture_default_str()
-        ->type_name("WxH");
-    app.add_option("--camera", a.camera,
-                   "eye, target and up in world space (default: a three-quarter view)")
+    app.add_option("--size", a.size, "image size, 1..16384 per side")->capture_default_str()->type_name("WxH");
+    app.add_option("--camera", a.camera, "eye, target and up in world space (default: a three-quarter view)")
         ->expected(9)
         ->check(kFinite)
         ->type_name("EX EY EZ TX TY TZ UX UY UZ");
@@ -299,8 +277,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->expected(3)
         ->check(interval(0, INFINITY, false, true))
         ->type_name("R G B");
-    app.add_option("--background", a.background,
-                   "radiance seen by primary rays that escape (default: the ambient)")
+    app.add_option("--background", a.background, "radiance seen by primary rays that escape (default: the ambient)")
         ->expected(3)
         ->check(interval(0, INFINITY, false, true))
         ->type_name("R G B");
@@ -310,8 +287,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->take_all()
         ->check(kFinite)
         ->type_name("X Y Z R G B");
-    app.add_option("--light-point", a.lightPoint,
-                   "point light at X Y Z (world) with intensity R G B (repeatable)")
+    app.add_option("--light-point", a.lightPoint, "point light at X Y Z (world) with intensity R G B (repeatable)")
         ->expected(6)
         ->take_all()
         ->check(kFinite)
@@ -322,18 +298,15 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
     int a = 0, b = 0;
     char x = 0, tail = 0;
     const int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
-    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384,
-                option, " '", text, "': expected WxH with 1 <= W, H <= 16384");
+    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384, option, " '", text,
+                "': expected WxH with 1 <= W, H <= 16384");
     width = a;
     height = b;
 }
 
-scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
-                                      scene::RenderSettings s) {
+scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings s) {
     const bool all = !given(app, "--session");
-    auto use = [&](const char* name) {
-        return (all && app.get_option_no_throw(name)) || given(app, name);
-    };
+    auto use = [&](const char* name) { return (all && app.get_option_no_throw(name)) || given(app, name); };
     if (use("--mode")) s.mode = scene::parseMode(a.mode);
     if (use("--dt")) s.dvrStep = a.dt;
     if (use("--dvr-shading")) s.dvrShading = a.dvrShading;
@@ -353,8 +326,7 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
         s.camera.eye = vec3At(a.camera, 0);
         s.camera.target = vec3At(a.camera, 3);
         s.camera.up = vec3At(a.camera, 6);
-        AMRVK_CHECK(glm::length(s.camera.eye - s.camera.target) > 0,
-                    "--camera: eye and target coincide");
+        AMRVK_CHECK(glm::length(s.camera.eye - s.camera.target) > 0, "--camera: eye and target coincide");
         AMRVK_CHECK(glm::length(glm::cross(s.camera.target - s.camera.eye, s.camera.up)) > 0,
                     "--camera: the up vector is parallel to the view direction");
     }
@@ -362,14 +334,13 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
     return s;
 }
 
-Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input,
-                           const ReadArgs& read, const PictureArgs& a) {
+Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
+                           const PictureArgs& a) {
     Picture p;
     const bool fromSession = given(app, "--session");
     if (fromSession) {
         p.session = session::loadSession(a.session);
-        p.tfFromSession =
-            !(given(app, "--tf") || given(app, "--tf-range") || given(app, "--tf-preset"));
+        p.tfFromSession = !(given(app, "--tf") || given(app, "--tf-range") || given(app, "--tf-preset"));
         p.cameraGiven = true;
     }
     session::Session& s = p.session;
@@ -387,8 +358,7 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
     p.cameraGiven = p.cameraGiven || given(app, "--camera");
     if (use("--spp")) s.spp = uint32_t(a.spp);
     p.autoTraversal = a.traversal == "auto" && given(app, "--traversal");
-    if (use("--traversal") && a.traversal != "auto")
-        s.structure.traversal = scene::parseTraversal(a.traversal);
+    if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
     if (use("--grid")) s.structure.grid = a.grid;
@@ -398,12 +368,11 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
     return p;
 }
 
-void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a,
-                         const amr::Model& model, float valueLo, float valueHi) {
+void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,
+                         float valueHi) {
     if (!p.tfFromSession) {
         const bool range = given(app, "--tf-range");
-        const float lo = range ? float(a.tfRange[0]) : valueLo,
-                    hi = range ? float(a.tfRange[1]) : valueHi;
+        const float lo = range ? float(a.tfRange[0]) : valueLo, hi = range ? float(a.tfRange[1]) : valueHi;
         AMRVK_CHECK(!range || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         scene::TransferFunction tf = scene::loadTransferFunction(a.tf, lo, hi, a.tfPreset);
         if (range) tf = tf.rescaled(lo, hi);
@@ -411,10 +380,9 @@ void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a,
     }
     if (!p.cameraGiven) {
         const amr::ModelSummary sum = amr::summarize(model);
-        p.session.settings.camera =
-            scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
-                                 model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
-                                 p.session.settings.camera.fovYDegrees);
+        p.session.settings.camera = scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                                         model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
+                                                         p.session.settings.camera.fovYDegrees);
     }
 }
 

@@ -65,8 +65,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset = false);
 
 // Lighting, medium, camera, image size and seed from the options given on the command line, on top
 // of `base` (a session's settings or the defaults). Camera only when --camera was given.
-scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
-                                      scene::RenderSettings base);
+scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings base);
 
 // "WxH" with 1 <= W, H <= 16384.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
@@ -80,12 +79,12 @@ struct Picture {
     bool cameraGiven = false;    // --camera or the session's camera
     bool autoTraversal = false;  // --traversal auto
 };
-Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input,
-                           const ReadArgs& read, const PictureArgs& a);
+Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
+                           const PictureArgs& a);
 // Loads the TF (a preset over the field's value range unless --tf-range) and, unless one was
 // given, frames the data with the default camera.
-void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a,
-                         const amr::Model& model, float valueLo, float valueHi);
+void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,
+                         float valueHi);
 
 // amrvk's help layout (usage, wrapped descriptions with their checks and defaults), the "options"
 // group and -h,--help; every command calls it right after making its App.

@@ -79,8 +79,8 @@ int runDevices(const std::vector<std::string>& argv) {
         return 0;
     }
     for (const auto& d : devices)
-        std::printf("%u: %s (%s), driver %s, Vulkan %s, %.1f GiB device-local, ray query %s%s\n",
-                    d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
+        std::printf("%u: %s (%s), driver %s, Vulkan %s, %.1f GiB device-local, ray query %s%s\n", d.index,
+                    d.name.c_str(), d.type.c_str(), d.driver.c_str(), d.apiVersion.c_str(),
                     double(d.deviceLocalBytes) / (1 << 30), d.rayQuery ? "yes" : "no",
                     d.usable ? "" : (", unusable: " + d.rejectReason).c_str());
     if (devices.empty()) std::printf("no Vulkan devices\n");
@@ -94,15 +94,13 @@ int runRender(const std::vector<std::string>& argv) {
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
-    app.add_option(
-           "input", input,
-           "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
-           "raw .raw (optional with --session)")
+    app.add_option("input", input,
+                   "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
+                   "raw .raw (optional with --session)")
         ->type_name("INPUT");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
-    app.add_option("-o,--output", output,
-                   "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
+    app.add_option("-o,--output", output, "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
         ->capture_default_str()
         ->type_name("FILE");
     app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE");
@@ -116,8 +114,8 @@ int runRender(const std::vector<std::string>& argv) {
         checkWritable(output, "-o");
         checkWritable(jsonFile, "--json");
     }
-    Picture picture = pictureFromOptions(
-        app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    Picture picture =
+        pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
     session::Session& s = picture.session;
     scene::StructureConfig config = s.structure;
 
@@ -133,12 +131,10 @@ int runRender(const std::vector<std::string>& argv) {
     gpu::ContextOptions co = contextOptions(dev);
     co.requireRayQuery = config.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
-    config.backend =
-        scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
+    config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     Timer buildTimer;
-    scene::VolumeScene scene = picture.autoTraversal
-                                   ? scene::makeVolumeScene(model, field)
-                                   : scene::buildVolumeScene(model, field, config);
+    scene::VolumeScene scene =
+        picture.autoTraversal ? scene::makeVolumeScene(model, field) : scene::buildVolumeScene(model, field, config);
     double buildSeconds = buildTimer.seconds();
     resolveAfterReading(picture, app, pic, model, scene.valueLo, scene.valueHi);
     const scene::RenderSettings& rs = s.settings;
@@ -156,18 +152,15 @@ int runRender(const std::vector<std::string>& argv) {
         }
         config = choice.config;  // the scene is configured for it
         buildSeconds = choice.configureSeconds;
-        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n",
-                     config.label().c_str(),
-                     config.usesGrid() ? (" grid " + config.grid).c_str() : "",
-                     choice.probes.size(), choice.seconds);
+        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n", config.label().c_str(),
+                     config.usesGrid() ? (" grid " + config.grid).c_str() : "", choice.probes.size(), choice.seconds);
     }
 
     render::Renderer renderer(ctx, scene);
     renderer.setTransferFunction(tf);
     ProgressBar bar("render", "spp");
     Timer wall;
-    scene::RenderOutput out =
-        renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    scene::RenderOutput out = renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) { bar.update(d, t); });
     bar.finish();
     const double wallSeconds = wall.seconds();
     writeImage(output, out.mean);
@@ -179,21 +172,19 @@ int runRender(const std::vector<std::string>& argv) {
     meanRgb /= double(out.mean.pixels.size());
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
-    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n",
-                output.c_str(), rs.width, rs.height, s.spp, scene::modeName(rs.mode),
-                config.label().c_str(), ctx.deviceReport().name.c_str(), out.stats.gpuSeconds,
-                out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
-    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] ||
-        c[shared::kCounterBounceLimitHits] || c[shared::kCounterTrackingCapHits])
-        std::fprintf(
-            stderr,
-            "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce "
-            "limit, "
-            "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
-            (unsigned long long)c[shared::kCounterMajorantViolations],
-            (unsigned long long)c[shared::kCounterNanSamples],
-            (unsigned long long)c[shared::kCounterBounceLimitHits],
-            (unsigned long long)c[shared::kCounterTrackingCapHits]);
+    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(), rs.width,
+                rs.height, s.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
+                out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
+    if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
+        c[shared::kCounterTrackingCapHits])
+        std::fprintf(stderr,
+                     "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce "
+                     "limit, "
+                     "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
+                     (unsigned long long)c[shared::kCounterMajorantViolations],
+                     (unsigned long long)c[shared::kCounterNanSamples],
+                     (unsigned long long)c[shared::kCounterBounceLimitHits],
+                     (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (!jsonFile.empty()) {
         Json j;
         j["input"] = model.source;
@@ -223,13 +214,11 @@ int runRender(const std::vector<std::string>& argv) {
         j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
         j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
         j["structureBuildSeconds"] = buildSeconds;
-        j["structureBuildSecondsPer"] = {{"bricks", scene.buildSeconds.bricks},
-                                         {"abrs", scene.buildSeconds.abrs},
-                                         {"samplerBvh", scene.buildSeconds.samplerBvh},
-                                         {"macrocells", scene.buildSeconds.grid},
-                                         {"traversalRanges", scene.buildSeconds.domains},
-                                         {"kdTree", renderer.kdTreeBuildSeconds()},
-                                         {"denseGrid", scene.buildSeconds.dense}};
+        j["structureBuildSecondsPer"] = {
+            {"bricks", scene.buildSeconds.bricks},           {"abrs", scene.buildSeconds.abrs},
+            {"samplerBvh", scene.buildSeconds.samplerBvh},   {"macrocells", scene.buildSeconds.grid},
+            {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", renderer.kdTreeBuildSeconds()},
+            {"denseGrid", scene.buildSeconds.dense}};
         Json host = Json::object();
         for (const auto& [name, bytes] : scene.hostBytes()) host[name] = bytes;
         for (const auto& [name, bytes] : renderer.hostBytes()) host[name] = bytes;
@@ -240,9 +229,7 @@ int runRender(const std::vector<std::string>& argv) {
         for (const auto& [name, usage] : ctx.memory().perResource())
             device[name] = {{"current", usage.current}, {"peak", usage.peak}};
         j["deviceMemoryPerResource"] = device;
-        if (scene.grid)
-            j["macrocellDims"] =
-                Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
+        if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
         j["meanRGB"] = vec3(meanRgb);
         writeFileAtomic(jsonFile, j.dump(2) + "\n");
     }

@@ -42,31 +42,23 @@ int runView(const std::vector<std::string>& argv) {
     int64_t frames = 0;
     double budgetMs = 50;
     std::string window;
-    app.add_option("input", input, "the data set (as amrvk render; optional with --session)")
-        ->type_name("INPUT");
+    app.add_option("input", input, "the data set (as amrvk render; optional with --session)")->type_name("INPUT");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
-    app.get_option("--spp")
-        ->description("stop accumulating at N samples per pixel (default: run on)")
-        ->default_str("");
+    app.get_option("--spp")->description("stop accumulating at N samples per pixel (default: run on)")->default_str("");
     addDeviceOptions(app, dev);
-    app.add_flag("--headless", vo.headless,
-                 "no window (no display needed): for --script, --frames, --screenshot");
-    app.add_option("--frames", frames,
-                   "stop after N frames (default: when the window closes; --headless needs it)")
+    app.add_flag("--headless", vo.headless, "no window (no display needed): for --script, --frames, --screenshot");
+    app.add_option("--frames", frames, "stop after N frames (default: when the window closes; --headless needs it)")
         ->check(interval(1, 1e12))
         ->type_name("N");
-    app.add_option("--screenshot", screenshot,
-                   "at exit, save the accumulated image without the UI (.png .exr .pfm)")
+    app.add_option("--screenshot", screenshot, "at exit, save the accumulated image without the UI (.png .exr .pfm)")
         ->type_name("FILE");
     app.add_option("--script", script, "frame-numbered actions (docs/viewer.md)")
         ->check(CLI::ExistingFile)
         ->type_name("FILE");
-    app.add_option("--save-session", saveSession,
-                   "at exit, save the state as a session file (amrvk render --session)")
+    app.add_option("--save-session", saveSession, "at exit, save the state as a session file (amrvk render --session)")
         ->type_name("FILE");
-    app.add_option("--stats", stats,
-                   "at exit, write frame times and times to the first full sample as JSON")
+    app.add_option("--stats", stats, "at exit, write frame times and times to the first full sample as JSON")
         ->type_name("FILE");
     app.add_option("--frame-budget-ms", budgetMs,
                    "target frame time; the path tracer gets what the UI and display leave of it")
@@ -83,10 +75,9 @@ int runView(const std::vector<std::string>& argv) {
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
                     ": unknown image type (use .png, .exr or .pfm)");
     }
-    Picture picture = pictureFromOptions(
-        app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
-    AMRVK_CHECK(!picture.autoTraversal,
-                "--traversal auto is for amrvk render (the viewer switches structures live)");
+    Picture picture =
+        pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
     // The TF and the default camera need the field's range and the bounds.
     amr::ReadOptions ro = picture.session.read;
@@ -96,8 +87,7 @@ int runView(const std::vector<std::string>& argv) {
         ProgressStage stage("reading " + picture.session.input);
         model = amr::readModel(picture.session.input, ro);
     }
-    const amr::Field& field =
-        picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
+    const amr::Field& field = picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
     picture.session.field = field.name;
     const amr::FieldStats st = amr::computeFieldStats(model, field);
     resolveAfterReading(picture, app, pic, model, st.minValue, st.maxValue);

@@ -1,8 +1,8 @@
 #include "viewer/imgui_layer.h"
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
 
 #include "core/error.h"
 #include "gpu/vk_check.h"
@@ -69,7 +69,5 @@ void ImGuiLayer::setMinImageCount(uint32_t count) { ImGui_ImplVulkan_SetMinImage
 
 bool ImGuiLayer::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
-float ImGuiLayer::mouseWheel() const { return ImGui::GetIO().MouseWheel; }
-bool ImGuiLayer::keyPressed(int glfwKey) const { return ImGui::IsKeyPressed(glfwKey, true); }
 
 }  // namespace amrvk::viewer

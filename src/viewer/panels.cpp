@@ -74,8 +74,10 @@ void statisticsOverlay(const Statistics& s) {
             ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
         }
         ImGui::Text("%.2f lookups/path   %.2f null/real collision", s.lookupsPerPath, s.nullPerReal);
-        if (s.violations > 0) ImGui::TextColored(kRed, "%llu majorant violations", (unsigned long long)s.violations);
-        else ImGui::Text("0 majorant violations");
+        if (s.violations > 0)
+            ImGui::TextColored(kRed, "%llu majorant violations", (unsigned long long)s.violations);
+        else
+            ImGui::Text("0 majorant violations");
         if (s.trackingCapHits > 0)
             ImGui::TextColored(kRed, "%llu paths stopped at the tracking cap (biased)",
                                (unsigned long long)s.trackingCapHits);
@@ -154,12 +156,11 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
     const ImVec2 bar = ImGui::GetCursorScreenPos();
     const auto& xs = tf.colorPositions();
     const auto& cs = tf.colors();
-    auto col = [](glm::vec3 c) {
-        return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f));
-    };
+    auto col = [](glm::vec3 c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)); };
     for (size_t i = 0; i + 1 < xs.size(); ++i)
-        dl->AddRectFilledMultiColor(ImVec2(bar.x + xs[i] * size.x, bar.y), ImVec2(bar.x + xs[i + 1] * size.x, bar.y + 14),
-                                    col(cs[i]), col(cs[i + 1]), col(cs[i + 1]), col(cs[i]));
+        dl->AddRectFilledMultiColor(ImVec2(bar.x + xs[i] * size.x, bar.y),
+                                    ImVec2(bar.x + xs[i + 1] * size.x, bar.y + 14), col(cs[i]), col(cs[i + 1]),
+                                    col(cs[i + 1]), col(cs[i]));
     if (xs.size() == 1) dl->AddRectFilled(bar, ImVec2(bar.x + size.x, bar.y + 14), col(cs[0]));
     ImGui::Dummy(ImVec2(size.x, 16));
 }
@@ -169,7 +170,8 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     if (!p.colorMapNames.empty()) {
         std::string name = p.colorMapNames[size_t(std::clamp(p.colorMapChoice, 0, int(p.colorMapNames.size()) - 1))];
         if (namedCombo("colour map", name, p.colorMapNames)) {
-            p.colorMapChoice = int(std::find(p.colorMapNames.begin(), p.colorMapNames.end(), name) - p.colorMapNames.begin());
+            p.colorMapChoice =
+                int(std::find(p.colorMapNames.begin(), p.colorMapNames.end(), name) - p.colorMapNames.begin());
             r.applyColorMap = true;
         }
     }
@@ -273,7 +275,8 @@ void structurePanel(PanelState& p, PanelRequests& r) {
         c.backend = scene::parseBackend(b);
         r.structureChanged = true;
     }
-    if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue)) r.structureChanged = true;
+    if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue))
+        r.structureChanged = true;
     int leaves = int(c.kdLeaves);
     if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue)) {
         c.kdLeaves = uint32_t(std::clamp(leaves, 1, 1 << 24));

@@ -26,8 +26,8 @@ struct Statistics {
 };
 
 struct PanelRequests {
-    bool tfChanged = false;      // the editor state changed this frame (live)
-    bool tfCommitted = false;    // an edit finished (push to the undo history)
+    bool tfChanged = false;    // the editor state changed this frame (live)
+    bool tfCommitted = false;  // an edit finished (push to the undo history)
     bool undo = false, redo = false;
     bool settingsChanged = false;
     bool structureChanged = false;
@@ -38,22 +38,22 @@ struct PanelRequests {
 
 struct PanelState {
     const Statistics* stats = nullptr;
-    session::Session* state = nullptr;        // settings and structure are edited in place
-    session::TfEditor* tf = nullptr;          // edited in place
-    session::OrbitCamera* camera = nullptr;   // fov and up axis
+    session::Session* state = nullptr;       // settings and structure are edited in place
+    session::TfEditor* tf = nullptr;         // edited in place
+    session::OrbitCamera* camera = nullptr;  // fov and up axis
     const session::Histogram* histogram = nullptr;
     bool canUndo = false, canRedo = false;
-    std::vector<std::string> colorMapNames;   // built-in ones, then those of a loaded file
+    std::vector<std::string> colorMapNames;  // built-in ones, then those of a loaded file
     int colorMapChoice = 0;
     bool logHistogram = true;
-    float alphaDisplayMax = 1.0f;             // top of the opacity curve's axis
-    std::string message;                      // last status line (saved files, errors)
-    std::string shaderError;                  // compile error of the watched shaders (red)
+    float alphaDisplayMax = 1.0f;  // top of the opacity curve's axis
+    std::string message;           // last status line (saved files, errors)
+    std::string shaderError;       // compile error of the watched shaders (red)
     std::string screenshotPath = "amrvk-view.png";
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
-    std::string gridText;                     // edited, applied with the structure
-    int draggingNode = -1;                    // opacity node under a drag, between frames
+    std::string gridText;   // edited, applied with the structure
+    int draggingNode = -1;  // opacity node under a drag, between frames
 };
 
 // Draws every panel for this frame and fills `requests`.

@@ -2,12 +2,12 @@
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
 
@@ -58,11 +58,11 @@ struct Timings {
 };
 
 class ViewerApp {
-public:
+  public:
     ViewerApp(const ViewerOptions& o, amr::Model model);
     int run();
 
-private:
+  private:
     void load();
     void createWindowResources();
     bool frame();
@@ -102,7 +102,7 @@ private:
     std::unique_ptr<scene::VolumeScene> mScene;
     std::unique_ptr<render::Renderer> mRenderer;
 
-    session::Session mState;          // the picture: settings at full resolution
+    session::Session mState;  // the picture: settings at full resolution
     session::OrbitCamera mCamera;
     session::TfEditor mTf;
     session::TfHistory mTfHistory;
@@ -119,17 +119,18 @@ private:
     Timings mTimings;
     uint64_t mFrame = 0;
     bool mQuit = false;
-    bool mInteracting = false;   // a change or a drag this frame: preview
-    bool mNeedPreview = true;    // nothing on screen for the current picture yet: preview first
-    int mPreviewScale = 1;       // the renderer's current size is full / scale
-    bool mDisplayFresh = false;  // the display buffer holds an image worth showing
+    bool mInteracting = false;                    // a change or a drag this frame: preview
+    bool mNeedPreview = true;                     // nothing on screen for the current picture yet: preview first
+    int mPreviewScale = 1;                        // the renderer's current size is full / scale
+    bool mDisplayFresh = false;                   // the display buffer holds an image worth showing
     std::optional<Clock::time_point> mChangedAt;  // since the last change, until the first full sample
     double mGpuSecondsEma = 0;
     double mTraceSeconds = 0;  // wall seconds spent in trace() in all
     uint64_t mValidationBefore = 0;
     scene::RenderSettings mApplied;  // what the renderer was last given
-    bool mDragging = false;
-    std::string mCapturePath;  // the next presented frame is saved there (UI included)
+    int mDragButton = -1;            // the mouse button that started the current drag, or -1
+    bool mDragPans = false;          // the drag began as shift+left: pan
+    std::string mCapturePath;        // the next presented frame is saved there (UI included)
     struct Reset {
         uint64_t frame;
         std::string what;
@@ -186,8 +187,10 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
         ProgressStage stage("structures for " + next.label());
         mScene->configure(next);
     }
-    if (mRenderer) mRenderer->setStructure();
-    else mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
+    if (mRenderer)
+        mRenderer->setStructure();
+    else
+        mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
     mStats.structureSeconds = t.seconds();
     mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
     noteReset("structure");
@@ -300,7 +303,8 @@ bool ViewerApp::frame() {
             if (req.undo) mTf = mTfHistory.undo();
             if (req.redo) mTf = mTfHistory.redo();
             if (req.resetRange) {
-                mTf.setRange(mScene->valueLo, mScene->valueHi > mScene->valueLo ? mScene->valueHi : mScene->valueLo + 1);
+                mTf.setRange(mScene->valueLo,
+                             mScene->valueHi > mScene->valueLo ? mScene->valueHi : mScene->valueLo + 1);
                 req.tfChanged = req.tfCommitted = true;
             }
             if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
@@ -350,47 +354,76 @@ bool ViewerApp::frame() {
 }
 
 void ViewerApp::handleInput() {
-    GLFWwindow* w = mWindow->handle();
-    double x = 0, y = 0;
-    glfwGetCursorPos(w, &x, &y);
     int width = 0, height = 0;
     mWindow->framebufferSize(width, height);
-    const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-    const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-    const bool any = left || right || middle;
-    if (any && !mDragging && !mImGui->wantsMouse()) {
-        mDragging = true;
-    } else if (!any) {
-        mDragging = false;
-    }
-    if (mDragging) {
-        const double dx = x - mLastX, dy = y - mLastY;
-        if (dx != 0 || dy != 0) {
-            if (middle || (left && shift)) mCamera.pan(dx, dy, double(height));
-            else if (right) mCamera.zoom(-dy / 20.0);
-            else mCamera.orbit(dx, dy, double(height));
+    const double h = double(height), step = h / 18.0;  // arrow keys: 10 degrees
+    // ImGui decides per frame whether the pointer or keyboard is its own; a drag that starts on the
+    // picture stays a camera drag even when it crosses a panel.
+    const bool uiMouse = mImGui->wantsMouse(), uiKeys = mImGui->wantsKeyboard();
+    for (const InputEvent& e : mWindow->takeEvents()) {
+        switch (e.kind) {
+            case InputEvent::Kind::Button:
+                if (e.action == GLFW_PRESS && mDragButton < 0 && !uiMouse) {
+                    mDragButton = e.code;
+                    mDragPans = e.code == GLFW_MOUSE_BUTTON_MIDDLE || (e.mods & GLFW_MOD_SHIFT);
+                } else if (e.action == GLFW_RELEASE && e.code == mDragButton) {
+                    mDragButton = -1;
+                }
+                break;
+            case InputEvent::Kind::Cursor:
+                if (mDragButton >= 0) {
+                    const double dx = e.x - mLastX, dy = e.y - mLastY;
+                    if (mDragPans)
+                        mCamera.pan(dx, dy, h);
+                    else if (mDragButton == GLFW_MOUSE_BUTTON_RIGHT)
+                        mCamera.zoom(-dy / 20.0);
+                    else
+                        mCamera.orbit(dx, dy, h);
+                    mInteracting = true;
+                }
+                mLastX = e.x;
+                mLastY = e.y;
+                break;
+            case InputEvent::Kind::Scroll:
+                if (!uiMouse && e.y != 0) mCamera.zoom(e.y);
+                break;
+            case InputEvent::Kind::Key:
+                if (uiKeys || e.action == GLFW_RELEASE) break;
+                switch (e.code) {
+                    case GLFW_KEY_LEFT:
+                        mCamera.orbit(-step, 0, h);
+                        break;
+                    case GLFW_KEY_RIGHT:
+                        mCamera.orbit(step, 0, h);
+                        break;
+                    case GLFW_KEY_UP:
+                        mCamera.orbit(0, step, h);
+                        break;
+                    case GLFW_KEY_DOWN:
+                        mCamera.orbit(0, -step, h);
+                        break;
+                    case GLFW_KEY_EQUAL:
+                    case GLFW_KEY_KP_ADD:
+                    case GLFW_KEY_PAGE_UP:
+                        mCamera.zoom(1);
+                        break;
+                    case GLFW_KEY_MINUS:
+                    case GLFW_KEY_KP_SUBTRACT:
+                    case GLFW_KEY_PAGE_DOWN:
+                        mCamera.zoom(-1);
+                        break;
+                    case GLFW_KEY_R:
+                        mCamera.reset();
+                        break;
+                    case GLFW_KEY_Q:
+                    case GLFW_KEY_ESCAPE:
+                        mQuit = true;
+                        break;
+                    default:
+                        break;
+                }
+                break;
         }
-        mInteracting = true;
-    }
-    mLastX = x;
-    mLastY = y;
-    if (!mImGui->wantsMouse()) {
-        const float wheel = mImGui->mouseWheel();
-        if (wheel != 0.0f) mCamera.zoom(wheel);
-    }
-    if (!mImGui->wantsKeyboard()) {
-        auto key = [&](int k) { return mImGui->keyPressed(k); };
-        const double h = double(height), step = h / 18.0;  // 10 degrees
-        if (key(GLFW_KEY_LEFT)) mCamera.orbit(-step, 0, h);
-        if (key(GLFW_KEY_RIGHT)) mCamera.orbit(step, 0, h);
-        if (key(GLFW_KEY_UP)) mCamera.orbit(0, step, h);
-        if (key(GLFW_KEY_DOWN)) mCamera.orbit(0, -step, h);
-        if (key(GLFW_KEY_EQUAL) || key(GLFW_KEY_KP_ADD) || key(GLFW_KEY_PAGE_UP)) mCamera.zoom(1);
-        if (key(GLFW_KEY_MINUS) || key(GLFW_KEY_KP_SUBTRACT) || key(GLFW_KEY_PAGE_DOWN)) mCamera.zoom(-1);
-        if (key(GLFW_KEY_R)) mCamera.reset();
-        if (key(GLFW_KEY_Q) || key(GLFW_KEY_ESCAPE)) mQuit = true;
     }
 }
 
@@ -399,9 +432,12 @@ void ViewerApp::runScript() {
         const session::ScriptAction& a = mScript[mScriptAt++];
         const std::string& n = a.name;
         scene::StructureConfig structure = mState.structure;
-        if (n == "orbit") mCamera.orbit(a.number(0), a.number(1), double(mState.settings.height));
-        else if (n == "pan") mCamera.pan(a.number(0), a.number(1), double(mState.settings.height));
-        else if (n == "zoom") mCamera.zoom(a.number(0));
+        if (n == "orbit")
+            mCamera.orbit(a.number(0), a.number(1), double(mState.settings.height));
+        else if (n == "pan")
+            mCamera.pan(a.number(0), a.number(1), double(mState.settings.height));
+        else if (n == "zoom")
+            mCamera.zoom(a.number(0));
         else if (n == "tf-preset") {
             mTf.setPreset(scene::builtInChannels(a.args[0]));
         } else if (n == "tf-range") {
@@ -409,11 +445,16 @@ void ViewerApp::runScript() {
         } else if (n == "density") {
             AMRVK_CHECK(a.number(0) >= 0, a.where, ": density must be >= 0");
             mState.settings.densityScale = a.number(0);
-        } else if (n == "mode") mState.settings.mode = scene::parseMode(a.args[0]);
-        else if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
-        else if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
-        else if (n == "backend") structure.backend = scene::parseBackend(a.args[0]);
-        else if (n == "grid") structure.grid = a.args[0];
+        } else if (n == "mode")
+            mState.settings.mode = scene::parseMode(a.args[0]);
+        else if (n == "traversal")
+            structure.traversal = scene::parseTraversal(a.args[0]);
+        else if (n == "sampler")
+            structure.sampler = scene::parseSampler(a.args[0]);
+        else if (n == "backend")
+            structure.backend = scene::parseBackend(a.args[0]);
+        else if (n == "grid")
+            structure.grid = a.args[0];
         else if (n == "edit-shader") {
             AMRVK_CHECK(!mOpt.shaderDir.empty(), a.where, ": edit-shader needs --shader-dir");
             const fs::path file = fs::path(a.args[0]).is_absolute() ? fs::path(a.args[0]) : mOpt.shaderDir / a.args[0];
@@ -654,8 +695,8 @@ void ViewerApp::saveCapture(VkExtent2D e) {
 
 void ViewerApp::updateStatistics(double frameSeconds) {
     Statistics& st = mStats;
-    st.frameMilliseconds = st.frameMilliseconds > 0 ? 0.9 * st.frameMilliseconds + 0.1 * frameSeconds * 1e3
-                                                    : frameSeconds * 1e3;
+    st.frameMilliseconds =
+        st.frameMilliseconds > 0 ? 0.9 * st.frameMilliseconds + 0.1 * frameSeconds * 1e3 : frameSeconds * 1e3;
     st.framesPerSecond = st.frameMilliseconds > 0 ? 1e3 / st.frameMilliseconds : 0;
     const scene::RenderStats& stats = mRenderer->stats();
     const double paths = double(stats.paths);

@@ -16,17 +16,17 @@
 namespace amrvk::viewer {
 
 struct ViewerOptions {
-    session::Session start;             // what to show first (input, field, camera, TF, every setting)
-    bool headless = false;              // no window: automation and tests
-    uint64_t frames = 0;                // stop after this many frames (0: until the window closes)
-    std::filesystem::path screenshot;   // at exit: the accumulated linear image (.png, .exr, .pfm), no UI
-    std::filesystem::path script;       // frame-numbered actions (session/script.h)
-    std::filesystem::path shaderDir;    // watched: a saved edit recompiles and swaps the pipeline
-    std::filesystem::path statsJson;    // at exit: frame times, times to the first full sample, resets
-    std::filesystem::path saveSession;  // at exit: the state as a session file
-    std::string device;                 // --device
-    bool validation = false;            // any Vulkan validation error makes the exit status non-zero
-    double frameBudgetSeconds = 0.05;   // target frame time; path tracing gets what the UI leaves of it
+    session::Session start;                 // what to show first (input, field, camera, TF, every setting)
+    bool headless = false;                  // no window: automation and tests
+    uint64_t frames = 0;                    // stop after this many frames (0: until the window closes)
+    std::filesystem::path screenshot;       // at exit: the accumulated linear image (.png, .exr, .pfm), no UI
+    std::filesystem::path script;           // frame-numbered actions (session/script.h)
+    std::filesystem::path shaderDir;        // watched: a saved edit recompiles and swaps the pipeline
+    std::filesystem::path statsJson;        // at exit: frame times, times to the first full sample, resets
+    std::filesystem::path saveSession;      // at exit: the state as a session file
+    std::string device;                     // --device
+    bool validation = false;                // any Vulkan validation error makes the exit status non-zero
+    double frameBudgetSeconds = 0.05;       // target frame time; path tracing gets what the UI leaves of it
     int windowWidth = 0, windowHeight = 0;  // 0: the session's image size
 };
 

@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cstdlib>
+#include <utility>
 
 #include "core/error.h"
 #include "gpu/vk_check.h"
@@ -11,6 +12,8 @@
 namespace amrvk::viewer {
 
 namespace {
+
+Window& owner(GLFWwindow* w) { return *static_cast<Window*>(glfwGetWindowUserPointer(w)); }
 
 std::string lastGlfwError() {
     const char* text = nullptr;
@@ -35,6 +38,19 @@ Window::Window(int width, int height, const std::string& title) {
         glfwTerminate();
         AMRVK_CHECK(false, "cannot open a window (", why, "): run with --headless, or under xvfb-run");
     }
+    glfwSetWindowUserPointer(mWindow, this);
+    glfwSetKeyCallback(mWindow, [](GLFWwindow* w, int key, int, int action, int mods) {
+        owner(w).push({InputEvent::Kind::Key, key, action, mods});
+    });
+    glfwSetMouseButtonCallback(mWindow, [](GLFWwindow* w, int button, int action, int mods) {
+        owner(w).push({InputEvent::Kind::Button, button, action, mods});
+    });
+    glfwSetCursorPosCallback(mWindow, [](GLFWwindow* w, double x, double y) {
+        owner(w).push({InputEvent::Kind::Cursor, 0, 0, 0, x, y});
+    });
+    glfwSetScrollCallback(mWindow, [](GLFWwindow* w, double x, double y) {
+        owner(w).push({InputEvent::Kind::Scroll, 0, 0, 0, x, y});
+    });
 }
 
 Window::~Window() {
@@ -62,5 +78,6 @@ void Window::waitEvents(double seconds) const { glfwWaitEventsTimeout(seconds); 
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }
 void Window::setTitle(const std::string& title) const { glfwSetWindowTitle(mWindow, title.c_str()); }
 void Window::setClipboard(const std::string& text) const { glfwSetClipboardString(mWindow, text.c_str()); }
+std::vector<InputEvent> Window::takeEvents() { return std::exchange(mEvents, {}); }
 
 }  // namespace amrvk::viewer

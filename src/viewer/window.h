@@ -10,8 +10,20 @@ struct GLFWwindow;
 
 namespace amrvk::viewer {
 
+// One input event, in the order GLFW delivered it: a key or button pressed and released between two
+// frames still arrives as two events (polling the state would miss it). Codes and actions are
+// GLFW's.
+struct InputEvent {
+    enum class Kind { Key, Button, Cursor, Scroll };
+    Kind kind = Kind::Key;
+    int code = 0;         // key or mouse button
+    int action = 0;       // GLFW_PRESS, GLFW_RELEASE or GLFW_REPEAT
+    int mods = 0;         // GLFW_MOD_* at the time
+    double x = 0, y = 0;  // cursor position (window coordinates) or scroll offsets
+};
+
 class Window {
-public:
+  public:
     Window(int width, int height, const std::string& title);
     ~Window();
     Window(const Window&) = delete;
@@ -30,9 +42,14 @@ public:
     void framebufferSize(int& width, int& height) const;
     void setTitle(const std::string& title) const;
     void setClipboard(const std::string& text) const;
+    // The events since the last call, oldest first. Installed before ImGui's back-end, which chains
+    // to these callbacks, so both see every event.
+    std::vector<InputEvent> takeEvents();
 
-private:
+  private:
+    void push(const InputEvent& e) { mEvents.push_back(e); }
     GLFWwindow* mWindow = nullptr;
+    std::vector<InputEvent> mEvents;
 };
 
 }  // namespace amrvk::viewer

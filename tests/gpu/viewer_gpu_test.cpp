@@ -199,11 +199,16 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
                    "set -u\n"
                    "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --save-session \"$3/final.json\" "
                    "--validation & pid=$!\n"
-                   "sleep 6\n"
+                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"  // a lost key fails, not hangs
+                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
+                   "done\n"
+                   "sleep 3\n"  // the first frames (pipeline compiles) are slow on a CPU device
                    "xdotool mousemove 150 450 mousedown 1 mousemove 210 470 mousemove 260 480 mouseup 1\n"
-                   "sleep 2\n"
+                   "sleep 1\n"
                    "xdotool key q\n"
-                   "wait $pid\n");
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
     const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' bash " + (dir / "drive.sh").string() + " " + amrvkBinary() +
                            " " + sample() + " " + dir.string(),
                        dir, "view");
