@@ -58,3 +58,21 @@ function(amrvk_embed_shaders)
   add_library(${ARG_TARGET} STATIC ${cpp} ${incs})
   target_include_directories(${ARG_TARGET} PRIVATE ${outdir} ${CMAKE_SOURCE_DIR}/src)
 endfunction()
+
+# amrvk_embed_shader_sources(TARGET target FUNCTION cppFunctionName ROOT shaderRoot)
+# A static library `target` with the text of every shader source under ROOT (see
+# EmbedSources.cmake), for `amrvk shaders --export`; rebuilt when any of them changes.
+function(amrvk_embed_shader_sources)
+  cmake_parse_arguments(ARG "" "TARGET;FUNCTION;ROOT" "" ${ARGN})
+  file(GLOB_RECURSE files CONFIGURE_DEPENDS ${ARG_ROOT}/passes/*.comp ${ARG_ROOT}/lib/*.glsl ${ARG_ROOT}/shared/*.h)
+  set(cpp ${CMAKE_CURRENT_BINARY_DIR}/${ARG_TARGET}/sources.cpp)
+  add_custom_command(
+    OUTPUT ${cpp}
+    COMMAND ${CMAKE_COMMAND} -DROOT=${ARG_ROOT} -DOUT=${cpp} -DFUNCTION=${ARG_FUNCTION}
+            -P ${CMAKE_SOURCE_DIR}/cmake/EmbedSources.cmake
+    DEPENDS ${files} ${CMAKE_SOURCE_DIR}/cmake/EmbedSources.cmake
+    COMMENT "embed shader sources"
+    VERBATIM)
+  add_library(${ARG_TARGET} STATIC ${cpp})
+  target_include_directories(${ARG_TARGET} PRIVATE ${CMAKE_SOURCE_DIR}/src)
+endfunction()

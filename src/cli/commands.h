@@ -12,5 +12,6 @@ int runRender(const std::vector<std::string>& args);
 int runDevices(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 int runView(const std::vector<std::string>& args);
+int runShaders(const std::vector<std::string>& args);
 
 }  // namespace amrvk::cli

@@ -24,6 +24,7 @@ const char* kUsage =
     "  amrvk bench <input>... -o DIR [options]     benchmark protocol: speed against error, "
     "reports\n"
     "  amrvk devices [--json]                      list Vulkan devices and why any is unusable\n"
+    "  amrvk shaders --export DIR                  write the built-in shader sources (for --shader-dir)\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
     "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to "
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
         if (command == "view") return amrvk::cli::runView(args);
         if (command == "devices") return amrvk::cli::runDevices(args);
         if (command == "bench") return amrvk::cli::runBench(args);
+        if (command == "shaders") return amrvk::cli::runShaders(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const CLI::ParseError& e) {

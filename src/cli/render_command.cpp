@@ -54,9 +54,8 @@ Json vec3(glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); }
 
 int runDevices(const std::vector<std::string>& argv) {
     CLI::App app(
-        "Lists every Vulkan device: index, name, type, driver, device-local memory, ray-query "
-        "support, and "
-        "why an unusable one is rejected.",
+        "Lists every Vulkan device: index, name, type, driver, device-local memory, ray-query support, and why an "
+        "unusable one is rejected.",
         "amrvk devices");
     setUpCommand(app);
     bool json = false;

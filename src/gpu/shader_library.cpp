@@ -42,6 +42,8 @@ fs::path shaderDirectory() {
     return gDirectory;
 }
 
+fs::path shaderSourceRoot(const fs::path& dir) { return fs::is_directory(dir / "passes") ? dir : dir / ".."; }
+
 std::vector<uint32_t> loadShader(const std::string& name) {
     fs::path dir;
     std::string source = name, define;
@@ -57,17 +59,35 @@ std::vector<uint32_t> loadShader(const std::string& name) {
         }
     }
     if (!dir.empty()) {
-        const fs::path spv = dir / (name + ".spv"), comp = dir / (source + ".comp");
+        const fs::path root = shaderSourceRoot(dir), passes = root == dir ? dir / "passes" : dir;
+        const fs::path spv = passes / (name + ".spv"), comp = passes / (source + ".comp");
         if (fs::exists(spv)) return readSpirv(spv);
         if (fs::exists(comp)) {
             std::vector<std::string> defines;
             if (!define.empty()) defines.push_back(define);
-            return compileComputeShader(comp, defines, {dir / "..", dir});
+            return compileComputeShader(comp, defines, {root, passes});
         }
     }
     AMRVK_CHECK(embedded, "shader '", name, "' not found",
                 dir.empty() ? std::string(" among the embedded shaders") : " in " + dir.string() + " or embedded");
     return std::vector<uint32_t>(embedded->words, embedded->words + embedded->wordCount);
+}
+
+std::vector<fs::path> exportShaderSources(std::span<const ShaderSourceFile> sources, const fs::path& dir,
+                                          bool overwrite) {
+    std::vector<fs::path> out;
+    for (const ShaderSourceFile& f : sources) {
+        const fs::path p = dir / f.path;
+        AMRVK_CHECK(overwrite || !fs::exists(p), p.string(), " exists (give --force to overwrite)");
+        out.push_back(p);
+    }
+    for (size_t i = 0; i < sources.size(); ++i) {
+        std::error_code ec;
+        fs::create_directories(out[i].parent_path(), ec);
+        AMRVK_CHECK(!ec, out[i].parent_path().string(), ": cannot create (", ec.message(), ")");
+        writeFileAtomic(out[i], std::string(sources[i].text, sources[i].size));
+    }
+    return out;
 }
 
 }  // namespace amrvk::gpu

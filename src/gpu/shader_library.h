@@ -1,8 +1,9 @@
 #pragma once
 // SPIR-V by shader name: embedded in the binary at build time (cmake/AmrvkShaders.cmake), or,
-// after setShaderDirectory(DIR), read from DIR/<name>.spv, or compiled in process from
-// DIR/<source>.comp (gpu/shader_compiler.h) with the variant's define, includes resolved against
-// DIR/.. and DIR (the layout of shaders/: passes/*.comp include "lib/..." and "shared/...").
+// after setShaderDirectory(DIR), read from P/<name>.spv, or compiled in process from
+// P/<source>.comp (gpu/shader_compiler.h) with the variant's define, where P is DIR/passes when
+// DIR is a copy of shaders/ (as `amrvk shaders --export` writes) and DIR itself otherwise;
+// includes resolve against P/.. and P (passes/*.comp include "lib/..." and "shared/...").
 // A variant (e.g. path_trace_rq = path_trace.comp with AMRVK_RAY_QUERY) is compiled from its
 // source, so an edited path_trace.comp changes both.
 #include <cstdint>
@@ -21,11 +22,27 @@ struct EmbeddedShader {
     const char* define;    // preprocessor define of the variant, or "" (e.g. "AMRVK_RAY_QUERY")
 };
 
+// A shader source file embedded at build time: its path under shaders/ (e.g. "lib/phase.glsl")
+// and its text (size bytes, NUL-terminated).
+struct ShaderSourceFile {
+    const char* path;
+    const char* text;
+    size_t size;
+};
+
+// Writes the sources into dir (dir/passes, dir/lib, dir/shared), creating it. Refuses, before
+// writing anything, when one of the files exists and overwrite is false. Returns the files written.
+std::vector<std::filesystem::path> exportShaderSources(std::span<const ShaderSourceFile> sources,
+                                                       const std::filesystem::path& dir, bool overwrite);
+
 // Makes embedded shaders findable by name (each library of shaders registers once).
 void registerShaders(std::span<const EmbeddedShader> shaders);
 // Where loadShader looks first; an empty path goes back to the embedded shaders only.
 void setShaderDirectory(const std::filesystem::path& dir);
 std::filesystem::path shaderDirectory();
+// The folder that holds passes/, lib/ and shared/ for a --shader-dir DIR: DIR itself when it has
+// passes/, else DIR/.. (DIR is a passes folder). What the viewer watches for edits.
+std::filesystem::path shaderSourceRoot(const std::filesystem::path& dir);
 // The SPIR-V of `name`. Throws "shader 'X' not found (...)", or gpu::ShaderCompileError (one line
 // with file and line) when a source in the shader directory does not compile.
 std::vector<uint32_t> loadShader(const std::string& name);

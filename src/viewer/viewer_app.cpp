@@ -229,7 +229,7 @@ int ViewerApp::run() {
     mStats.device = mCtx->deviceReport().name;
     if (!mOpt.shaderDir.empty()) {
         gpu::setShaderDirectory(mOpt.shaderDir);
-        mWatcher.emplace(std::vector<fs::path>{mOpt.shaderDir, mOpt.shaderDir / ".."});
+        mWatcher.emplace(std::vector<fs::path>{gpu::shaderSourceRoot(mOpt.shaderDir)});
     }
     setStructure(mState.structure);
     setTransferFunction();
