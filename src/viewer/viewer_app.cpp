@@ -548,7 +548,7 @@ void ViewerApp::traceWithinBudget() {
         mBudget.record(gpu, pixels);
         mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
     } else {
-        const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height);
+        const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mRenderer->rowsDone());
         if (rows >= uint32_t(s.height) && mRenderer->rowsDone() == 0) {
             // Fast device: whole samples, as many as fit.
             const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
@@ -561,7 +561,7 @@ void ViewerApp::traceWithinBudget() {
         } else {
             const uint32_t before = mRenderer->rowsDone();
             gpu = mRenderer->accumulateRows(rows);
-            mBudget.record(gpu, uint64_t(std::min(rows, uint32_t(s.height) - before)) * uint64_t(s.width));
+            mBudget.recordRows(gpu, before, std::min(rows, uint32_t(s.height) - before), s.width, s.height);
         }
         if (mChangedAt && mRenderer->accumulatedSpp() >= 1) {
             mTimings.toFirstFullSample.push_back(secondsSince(*mChangedAt));
