@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -79,6 +81,10 @@ class ViewerApp {
     void updateStatistics(double frameSeconds);
     void setStructure(const scene::StructureConfig& next);
     void setTransferFunction();
+    // Runs a long CPU/GPU rebuild on a worker thread while this (the main) thread keeps handling
+    // window events, so closing (the window button, q or Esc) works during it: the window is
+    // hidden at once and the viewer ends when the build returns. Other input during it is dropped.
+    void whileResponsive(const std::function<void()>& work);
     void noteReset(const std::string& what);
     void screenshot(const fs::path& file);
     void saveSessionFile(const fs::path& file);
@@ -183,14 +189,16 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
     next.backend = scene::resolveBackend(requested.backend, mCtx->hasRayQuery(), mCtx->deviceReport().name);
     next.validate();
     Timer t;
-    {
-        ProgressStage stage("structures for " + next.label());
-        mScene->configure(next);
-    }
-    if (mRenderer)
-        mRenderer->setStructure();
-    else
-        mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
+    whileResponsive([&] {
+        {
+            ProgressStage stage("structures for " + next.label());
+            mScene->configure(next);
+        }
+        if (mRenderer)
+            mRenderer->setStructure();
+        else
+            mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
+    });
     mStats.structureSeconds = t.seconds();
     mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
     noteReset("structure");
@@ -203,9 +211,29 @@ void ViewerApp::noteReset(const std::string& what) {
     mChangedAt = Clock::now();
 }
 
+void ViewerApp::whileResponsive(const std::function<void()>& work) {
+    if (!mWindow) return work();
+    // The main thread touches neither the scene, the renderer nor the Vulkan queue until the job ends.
+    std::future<void> job = std::async(std::launch::async, work);
+    while (job.wait_for(std::chrono::milliseconds(0)) != std::future_status::ready) {
+        mWindow->waitEvents(0.05);
+        for (const InputEvent& e : mWindow->takeEvents())
+            if (e.kind == InputEvent::Kind::Key && e.action == GLFW_PRESS &&
+                (e.code == GLFW_KEY_Q || e.code == GLFW_KEY_ESCAPE))
+                mWindow->requestClose();
+        if (mWindow->shouldClose() && !mQuit) {
+            mWindow->hide();
+            mQuit = true;
+            std::fprintf(stderr, "amrvk view: closing when the build in progress returns\n");
+        }
+    }
+    job.get();  // rethrows the build's error
+}
+
 void ViewerApp::setTransferFunction() {
     Timer t;
-    mRenderer->setTransferFunction(mTf.transferFunction());
+    const scene::TransferFunction tf = mTf.transferFunction();
+    whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
     mState.tf = mTf.channels();
     noteReset("transfer function");
@@ -285,6 +313,7 @@ bool ViewerApp::frame() {
     }
     mInteracting = false;
     runScript();
+    if (mQuit) return false;  // closed during a rebuild the script asked for
     pollShaders();
     if (mWindow) {
         mImGui->beginFrame();

@@ -73,6 +73,7 @@ VkSurfaceKHR Window::createSurface(VkInstance instance) const {
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(mWindow); }
 void Window::requestClose() const { glfwSetWindowShouldClose(mWindow, GLFW_TRUE); }
+void Window::hide() const { glfwHideWindow(mWindow); }
 void Window::pollEvents() const { glfwPollEvents(); }
 void Window::waitEvents(double seconds) const { glfwWaitEventsTimeout(seconds); }
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }

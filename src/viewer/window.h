@@ -36,6 +36,7 @@ class Window {
 
     bool shouldClose() const;
     void requestClose() const;
+    void hide() const;  // the window disappears at once (closing while a long build finishes)
     void pollEvents() const;
     void waitEvents(double seconds) const;  // sleeps until an event or the timeout (minimised window)
     // Framebuffer size in pixels; (0, 0) while minimised.

@@ -3,12 +3,15 @@
 // z-test shown to reject a 10% density change); a script that orbits, edits the TF and switches
 // traversal and mode resets the accumulation at every change and ends at the image of the final
 // state; a scripted shader edit changes the picture and a syntax error keeps the previous pipeline
-// and names file and line; a real mouse drag (xdotool) turns the camera and a key press quits.
+// and names file and line; a real mouse drag (xdotool) turns the camera and a key press quits;
+// quitting during a 15 s rebuild hides the window at once; with no display, one line suggests
+// --headless.
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "amr/readers.h"
 #include "core/image_io.h"
@@ -223,4 +226,49 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
     EXPECT_NEAR(glm::length(s.settings.camera.eye - s.settings.camera.target), glm::length(start.eye - start.target),
                 1e-6 * glm::length(start.eye - start.target))
         << "an orbit keeps the distance";
+}
+
+TEST_F(ViewerGpu, ClosingDuringALongRebuildHidesTheWindowAtOnce) {
+    if (!onPath("xvfb-run") || !onPath("xdotool")) GTEST_SKIP() << "xvfb-run or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-close-during-build";
+    fs::create_directories(dir);
+    // A kd-tree of 10^6 leaves over 2 * 10^6 cells: about 15 s of building on a 2-core CPU.
+    ASSERT_EQ(run(amrvkBinary() + " gen cloud --cells 2000000 --seed 3 -o " + (dir / "big").string(), dir, "gen"), 0)
+        << test::readAll(dir / "gen.err");
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --traversal kdtree --kd-leaves 1000000 --size 64x48 --backend sw --validation "
+                   "& pid=$!\n"
+                   "( sleep 300; kill $pid 2>/dev/null ) & watchdog=$!\n"
+                   "for i in $(seq 240); do xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 && break; "
+                   "sleep 0.25; done\n"
+                   "sleep 1\n"
+                   "xdotool key q\n"
+                   // Hidden within 5 s, while the build (about 15 s) still runs.
+                   "for i in $(seq 20); do xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 || break; "
+                   "sleep 0.25; done\n"
+                   "xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 && echo visible || echo hidden\n"
+                   "kill -0 $pid 2>/dev/null && echo running || echo ended\n"
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
+    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' bash " + (dir / "drive.sh").string() + " " + amrvkBinary() +
+                           " " + (dir / "big.cells").string(),
+                       dir, "view");
+    const std::string out = test::readAll(dir / "view.out"), err = test::readAll(dir / "view.err");
+    ASSERT_EQ(rc, 0) << err;
+    EXPECT_NE(out.find("hidden"), std::string::npos) << "the window stays until the build ends: " << out;
+    EXPECT_NE(out.find("running"), std::string::npos) << "the build ended before the check; no evidence: " << out;
+    EXPECT_NE(err.find("closing when the build in progress returns"), std::string::npos) << err;
+}
+
+TEST_F(ViewerGpu, WithoutADisplayTheErrorSuggestsHeadless) {
+    const fs::path dir = test::scratchDir() / "viewer-no-display";
+    fs::create_directories(dir);
+    const int rc = run("env -u DISPLAY -u WAYLAND_DISPLAY " + amrvkBinary() + " view " + sample() + " --frames 2", dir,
+                       "view");
+    const std::string err = test::readAll(dir / "view.err");
+    EXPECT_EQ(rc, 1) << err;
+    EXPECT_NE(err.find("--headless"), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line: " << err;
 }
