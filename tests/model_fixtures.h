@@ -7,6 +7,8 @@
 #include <functional>
 #include <random>
 
+#include "accel/abrs.h"
+#include "accel/bricks.h"
 #include "amr/model.h"
 #include "amr/readers.h"
 #include "amr/synthetic.h"
@@ -94,6 +96,24 @@ inline void expectExaBrickRoundTrip(const amr::Model& m) {
     }
     for (const auto& e : std::filesystem::directory_iterator(base.parent_path()))
         EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << "temporary file left: " << e.path();
+}
+
+// A validated model with its bricks, optionally its ABRs, and its first field in brick order: what
+// the CPU structure tests build before the structure under test.
+struct Built {
+    amr::Model model;
+    accel::BrickSet bricks;
+    accel::AbrSet abrs;         // empty unless asked for
+    std::vector<float> values;  // the first field, brick order
+};
+
+inline Built buildBricks(amr::Model m, bool withAbrs = false) {
+    Built b{std::move(m), {}, {}, {}};
+    amr::validate(b.model);
+    b.bricks = accel::buildBricks(b.model);
+    if (withAbrs) b.abrs = accel::buildAbrs(b.bricks);
+    b.values = accel::brickOrderValues(b.bricks, b.model.fields[0]);
+    return b;
 }
 
 }  // namespace amrvk::test

@@ -86,6 +86,30 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, const void* push, uint32_t g
     vkCmdDispatch(cmd, gx, gy, gz);
 }
 
+void imageBarrier(VkCommandBuffer cmd, VkImage image, const ImageUse& from, const ImageUse& to) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = from.stage;
+    b.srcAccessMask = from.access;
+    b.dstStageMask = to.stage;
+    b.dstAccessMask = to.access;
+    b.oldLayout = from.layout;
+    b.newLayout = to.layout;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.imageMemoryBarrierCount = 1;
+    di.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &di);
+}
+
+VkBufferImageCopy wholeImageCopy(VkExtent2D extent) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    return region;
+}
+
 void computeBarrier(VkCommandBuffer cmd) {
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;

@@ -46,6 +46,17 @@ private:
 // A compute-to-compute (and compute-to-transfer) memory barrier on the whole device memory.
 void computeBarrier(VkCommandBuffer cmd);
 
+// One side of an image barrier: the stages and accesses before or after it, and the layout.
+struct ImageUse {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+};
+// A layout transition of a single-level colour image (e.g. a swapchain image) from one use to the next.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, const ImageUse& from, const ImageUse& to);
+// The copy region of a whole single-level colour image, tightly packed rows.
+VkBufferImageCopy wholeImageCopy(VkExtent2D extent);
+
 // Named GPU timestamps: scope(cmd, name) ... end(cmd); results in seconds after the submit.
 class GpuTimer {
 public:

@@ -617,41 +617,17 @@ void ViewerApp::present() {
         if (mDisplayFresh)
             mDisplayPass->record(cmd, mRenderer->accumulationAddress(), s.width, s.height, mDisplay, mDisplayWidth,
                                  mDisplayHeight);
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT;
-        mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-        VkImageMemoryBarrier2 toCopy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        toCopy.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
-        toCopy.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toCopy.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toCopy.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        toCopy.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        toCopy.srcQueueFamilyIndex = toCopy.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        toCopy.image = image;
-        toCopy.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &mb;
-        dep.imageMemoryBarrierCount = 1;
-        dep.pImageMemoryBarriers = &toCopy;
-        vkCmdPipelineBarrier2(cmd, &dep);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {e.width, e.height, 1};
+        // display pass (compute) -> copy into the swapchain image -> the UI's render pass.
+        const gpu::ImageUse copyDst{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+        gpu::computeBarrier(cmd);
+        gpu::imageBarrier(cmd, image, {VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_UNDEFINED}, copyDst);
+        const VkBufferImageCopy region = gpu::wholeImageCopy(e);
         vkCmdCopyBufferToImage(cmd, mDisplay.handle(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        VkImageMemoryBarrier2 toDraw = toCopy;
-        toDraw.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toDraw.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toDraw.dstStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-        toDraw.dstAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-        toDraw.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        toDraw.newLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        VkDependencyInfo dep2{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep2.imageMemoryBarrierCount = 1;
-        dep2.pImageMemoryBarriers = &toDraw;
-        vkCmdPipelineBarrier2(cmd, &dep2);
+        gpu::imageBarrier(cmd, image, copyDst,
+                          {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
         VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
         rbi.renderPass = mSwapchain->renderPass();
         rbi.framebuffer = framebuffer;
@@ -677,33 +653,14 @@ void ViewerApp::recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D e) 
     const uint64_t bytes = uint64_t(e.width) * e.height * 4;
     if (!mCaptureBuffer.valid() || mCaptureBuffer.size() < bytes)
         mCaptureBuffer = gpu::Buffer(*mCtx, bytes, gpu::MemoryKind::HostRead, "windowCapture");
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-    b.srcAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    b.oldLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {e.width, e.height, 1};
+    const gpu::ImageUse present{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                                VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
+    const gpu::ImageUse copySrc{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+    gpu::imageBarrier(cmd, image, present, copySrc);
+    const VkBufferImageCopy region = gpu::wholeImageCopy(e);
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, mCaptureBuffer.handle(), 1, &region);
-    VkImageMemoryBarrier2 back = b;
-    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    back.srcAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    back.dstAccessMask = 0;
-    back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    back.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    dep.pImageMemoryBarriers = &back;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    gpu::imageBarrier(cmd, image, copySrc, {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR});
 }
 
 void ViewerApp::saveCapture(VkExtent2D e) {

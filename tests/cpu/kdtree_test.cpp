@@ -23,20 +23,13 @@ using namespace amrvk::accel;
 
 namespace {
 
-struct Built {
-    amr::Model model;
-    BrickSet bricks;
-    std::vector<float> values;  // brick order
-    amr::Box3l bounds;          // union of leaf cells
-    float lo = 0, hi = 0;       // field range
+struct Built : test::Built {
+    amr::Box3l bounds;     // union of leaf cells
+    float lo = 0, hi = 0;  // field range
 };
 
 Built build(amr::Model m) {
-    Built b;
-    b.model = std::move(m);
-    amr::validate(b.model);
-    b.bricks = buildBricks(b.model);
-    b.values = brickOrderValues(b.bricks, b.model.fields[0]);
+    Built b{test::buildBricks(std::move(m))};
     b.bounds = amr::summarize(b.model).bounds;
     const amr::FieldStats st = amr::computeFieldStats(b.model, b.model.fields[0]);
     b.lo = st.minValue;

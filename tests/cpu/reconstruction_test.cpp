@@ -15,21 +15,8 @@ using namespace amrvk::accel;
 
 namespace {
 
-struct Built {
-    amr::Model model;
-    BrickSet bricks;
-    AbrSet abrs;
-    std::vector<float> values;  // brick order
-};
-
-Built build(amr::Model m) {
-    Built b{std::move(m), {}, {}, {}};
-    amr::validate(b.model);
-    b.bricks = buildBricks(b.model);
-    b.abrs = buildAbrs(b.bricks);
-    b.values = brickOrderValues(b.bricks, b.model.fields[0]);
-    return b;
-}
+using test::Built;
+Built build(amr::Model m) { return test::buildBricks(std::move(m), true); }
 
 // Random points in the union of leaf cells (the medium), uniformly per cell.
 std::vector<glm::dvec3> pointsInCells(const amr::Model& m, size_t count, uint32_t seed) {

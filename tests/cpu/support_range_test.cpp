@@ -25,19 +25,8 @@ using namespace amrvk::accel;
 
 namespace {
 
-struct Built {
-    amr::Model model;
-    BrickSet bricks;
-    std::vector<float> values;  // brick order
-};
-
-Built build(amr::Model m) {
-    Built b{std::move(m), {}, {}};
-    amr::validate(b.model);
-    b.bricks = buildBricks(b.model);
-    b.values = brickOrderValues(b.bricks, b.model.fields[0]);
-    return b;
-}
+using test::Built;
+Built build(amr::Model m) { return test::buildBricks(std::move(m)); }
 
 // Closed support of a cell: [lower - w/2, lower + 3w/2] (exact in double).
 BoxD supportOf(const amr::Cell& c) {
