@@ -25,7 +25,7 @@ namespace {
 // Cursor over AMReX's whitespace-separated text (Header, Cell_H, FAB header lines); every error
 // names `mName` and the line.
 class TextCursor {
-  public:
+public:
     TextCursor(std::string text, std::string name)
         : mText(std::move(text)), mName(std::move(name)) {}
 
@@ -97,7 +97,7 @@ class TextCursor {
             1 + std::count(mText.begin(), mText.begin() + static_cast<std::ptrdiff_t>(mPos), '\n'));
     }
 
-  private:
+private:
     // One number parsed by std::from_chars; `kind` names what was expected ("an integer").
     template <typename T>
     T readNumber(const char* what, const char* kind) {

@@ -23,7 +23,7 @@ namespace {
 
 // HDF5 access for one file; every error names the file and the object.
 class ChomboFile {
-  public:
+public:
     explicit ChomboFile(const fs::path& path)
         : mName(path.string()), mFile(openHdf5ReadOnly(path)) {}
 
@@ -166,7 +166,7 @@ class ChomboFile {
         return a;
     }
 
-  private:
+private:
     std::string mName;
     H5Id mFile;
 };

@@ -203,7 +203,7 @@ void placeGrids(std::vector<GridInfo>& grids, const Parameters& p, const std::st
 
 // Open cpu files by path; every error names the file and the dataset.
 class GridFiles {
-  public:
+public:
     hid_t open(const fs::path& path) {
         auto it = mFiles.find(path.string());
         if (it != mFiles.end()) return it->second.get();
@@ -215,7 +215,7 @@ class GridFiles {
         return id;
     }
 
-  private:
+private:
     std::map<std::string, H5Id> mFiles;
 };
 

@@ -10,7 +10,7 @@ namespace amrvk::amr {
 
 // Owns one HDF5 id and closes it with the matching H5?close on destruction.
 class H5Id {
-  public:
+public:
     using Closer = herr_t (*)(hid_t);
     H5Id(hid_t id, Closer close) : mId(id), mClose(close) {}
     ~H5Id() {
@@ -25,7 +25,7 @@ class H5Id {
     hid_t get() const { return mId; }
     bool valid() const { return mId >= 0; }
 
-  private:
+private:
     hid_t mId;
     Closer mClose;
 };

@@ -35,7 +35,7 @@ const char* kGenUsage =
 // Progress on stderr: at most 10 lines/s on a terminal (rewritten in place), once a second
 // otherwise, and only after the first second unless stderr is a terminal.
 class ProgressPrinter {
-  public:
+public:
     explicit ProgressPrinter(std::string label)
         : mLabel(std::move(label)), mTty(::isatty(::fileno(stderr)) != 0), mStart(Clock::now()) {}
     ~ProgressPrinter() { finish(); }
@@ -70,7 +70,7 @@ class ProgressPrinter {
         mWidth = 0;
     }
 
-  private:
+private:
     using Clock = std::chrono::steady_clock;
     std::string mLabel;
     bool mTty;

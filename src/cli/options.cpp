@@ -54,7 +54,7 @@ std::string wrapText(const std::string& text, size_t width) {
 // amrvk's help: "usage:", the description, then "  --name VALUES   help (check; default: X)", the
 // checks CLI11 appends to the type name moved into the description, wrapped to kHelpWidth.
 class HelpFormatter : public CLI::Formatter {
-  public:
+public:
     HelpFormatter() {
         label("Usage", "usage");
         label("OPTIONS", "options");

@@ -13,7 +13,7 @@
 namespace amrvk::session {
 
 class FrameBudget {
-  public:
+public:
     // frameSeconds: the whole frame (default 1/20 s, so >= 15 frames/s with some margin); the path
     // tracer gets what the rest of the frame (UI, display, present) leaves, at least 1/10 of it.
     explicit FrameBudget(double frameSeconds = 0.05) : mFrame(frameSeconds), mBudget(frameSeconds) {}
@@ -35,7 +35,7 @@ class FrameBudget {
     // budget; at least 1, at most height - firstRow.
     uint32_t rowsPerFrame(int width, int height, uint32_t firstRow = 0) const;
 
-  private:
+private:
     double mFrame, mBudget;
     double mOther = 0;
     double mCost = 2e-6;  // s per pixel-sample until measured: lavapipe-like, so the first frames are short

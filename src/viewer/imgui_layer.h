@@ -11,7 +11,7 @@ struct GLFWwindow;
 namespace amrvk::viewer {
 
 class ImGuiLayer {
-  public:
+public:
     ImGuiLayer(gpu::Context& ctx, GLFWwindow* window, VkRenderPass renderPass, uint32_t minImageCount,
                uint32_t imageCount);
     ~ImGuiLayer();
@@ -28,7 +28,7 @@ class ImGuiLayer {
     // Wheel steps this frame (> 0 away from the user) and key presses (GLFW key codes, with
     // repeat).
 
-  private:
+private:
     gpu::Context& mCtx;
     VkDescriptorPool mPool = VK_NULL_HANDLE;
 };

@@ -14,7 +14,7 @@
 namespace amrvk::viewer {
 
 class Swapchain {
-  public:
+public:
     Swapchain(gpu::Context& ctx, int width, int height);
     ~Swapchain();
     Swapchain(const Swapchain&) = delete;
@@ -33,7 +33,7 @@ class Swapchain {
     // presents. False when the swapchain is out of date: recreate it and draw again.
     bool frame(const std::function<void(VkCommandBuffer, VkImage, VkFramebuffer)>& record);
 
-  private:
+private:
     void create(int width, int height);
     void destroy();
 

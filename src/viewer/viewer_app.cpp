@@ -60,11 +60,11 @@ struct Timings {
 };
 
 class ViewerApp {
-  public:
+public:
     ViewerApp(const ViewerOptions& o, amr::Model model);
     int run();
 
-  private:
+private:
     void load();
     void createWindowResources();
     bool frame();

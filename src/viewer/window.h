@@ -23,7 +23,7 @@ struct InputEvent {
 };
 
 class Window {
-  public:
+public:
     Window(int width, int height, const std::string& title);
     ~Window();
     Window(const Window&) = delete;
@@ -47,7 +47,7 @@ class Window {
     // to these callbacks, so both see every event.
     std::vector<InputEvent> takeEvents();
 
-  private:
+private:
     void push(const InputEvent& e) { mEvents.push_back(e); }
     GLFWwindow* mWindow = nullptr;
     std::vector<InputEvent> mEvents;
