@@ -87,6 +87,9 @@ private:
     void whileResponsive(const std::function<void()>& work);
     void noteReset(const std::string& what);
     void screenshot(const fs::path& file);
+    // The state as a session: the camera and TF as shown, the input path absolute (so the file and
+    // the command line work from any directory). What save-session and copy-as-command write.
+    session::Session currentSession() const;
     void saveSessionFile(const fs::path& file);
     void loadSessionFile(const fs::path& file);
     void copyCommand();
@@ -313,7 +316,7 @@ bool ViewerApp::frame() {
     }
     mInteracting = false;
     runScript();
-    if (mQuit) return false;  // closed during a rebuild the script asked for
+    if (mQuit) return false;  // a quit action, or closed during a rebuild an action started
     pollShaders();
     if (mWindow) {
         mImGui->beginFrame();
@@ -719,12 +722,16 @@ void ViewerApp::screenshot(const fs::path& file) {
     std::fprintf(stderr, "amrvk view: %s\n", mPanel.message.c_str());
 }
 
-void ViewerApp::saveSessionFile(const fs::path& file) {
+session::Session ViewerApp::currentSession() const {
     session::Session s = mState;
     s.settings.camera = mCamera.camera();
     s.tf = mTf.channels();
     s.input = fs::absolute(s.input).lexically_normal().string();
-    session::saveSession(file, s);
+    return s;
+}
+
+void ViewerApp::saveSessionFile(const fs::path& file) {
+    session::saveSession(file, currentSession());
     mPanel.message = "saved " + file.string();
 }
 
@@ -750,8 +757,7 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
 }
 
 void ViewerApp::copyCommand() {
-    session::Session s = mState;
-    s.settings.camera = mCamera.camera();
+    const session::Session s = currentSession();
     // The TF beside the session file's default place, so the command does not depend on the viewer.
     const fs::path tfFile = fs::absolute(mPanel.tfPath);
     writeFileAtomic(tfFile, mTf.toParaViewJson(tfFile.stem().string()));
