@@ -89,11 +89,18 @@ inline std::string joinParts(const std::vector<std::string>& parts) {
 }
 
 // Runs f; an amrvk::Error is the expected failure, anything else is a finding (abort).
+// AMRVK_FUZZ_VERBOSE=1 prints each outcome (for running a target on single files).
 template <typename F>
 void expectOnlyAmrvkErrors(const char* target, F&& f) {
+    static const bool verbose = [] {
+        const char* v = std::getenv("AMRVK_FUZZ_VERBOSE");
+        return v && *v && *v != '0';
+    }();
     try {
         f();
+        if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: read\n", target);
     } catch (const amrvk::Error& e) {
+        if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: amrvk::Error: %s\n", target, e.what());
         // A clean, one-line error is the correct outcome for bad input; a message spanning lines
         // breaks the CLI's contract (tests/cli/bad_input.sh) and is reported too.
         const std::string_view msg = e.what();

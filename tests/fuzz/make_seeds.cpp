@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/bricks.h"
 #include "amr/model.h"
 #include "fuzz_common.h"
 #include "scene/transfer_function.h"
@@ -57,6 +58,14 @@ void exabrickSeeds(const fs::path& source) {
     const std::string cc = readAll(source / "assets/samples/cloud.cells", 256 * 16);
     const std::string cs = readAll(source / "assets/samples/cloud.scalars", 256 * 4);
     if (!cc.empty()) seed("exabrick", "cloud-256", fuzz::joinParts({cc, cs}));
+
+    // .bricks: the five-cell model's own bricks (written as `amrvk convert --bricks` would).
+    amr::Model m;
+    m.cells = cells;
+    m.fields.push_back({"scalars", a});
+    const fs::path tmp = fuzz::freshScratch() / "m.bricks";
+    accel::writeBricksFile(tmp, accel::buildBricks(m));
+    seed("bricks", "five", fuzz::joinParts({bytesOf(cells), bytesOf(a), readAll(tmp)}));
 }
 
 // ---- AMReX (the synthetic plotfile of tests/cpu/amrex_reader_test.cpp) -----------------------
@@ -148,7 +157,7 @@ std::string amrexSynthetic(const Synthetic& s) {
 void amrexSeeds(const fs::path& data) {
     seed("amrex", "synthetic-v1-3d", amrexSynthetic({}));
     seed("amrex", "synthetic-v1-2d-ghost-float-be", amrexSynthetic({2, 1, 4, true, 1, 2}));
-    seed("amrex", "synthetic-v2-3d-ratio4", amrexSynthetic({3, 2, 8, false, 0, 4}));
+    seed("amrex", "synthetic-v2-3d", amrexSynthetic({3, 2, 8, false, 0, 2}));
     seed("amrex", "synthetic-v3-2d", amrexSynthetic({2, 3, 4, false, 0, 2}));
     seed("amrex", "synthetic-v4-3d-ghost", amrexSynthetic({3, 4, 8, false, 2, 2}));
     // The real PeleLM plotfile's Header, level 0 (Cell_H and its 156 KB of FAB data) and the
@@ -215,7 +224,10 @@ void enzoSeeds(const fs::path& data) {
                           enzoGridFile({glm::ivec3(4)})}));
     // The real tiny-cosmology parameter file and hierarchy with the small grid file.
     const fs::path dd = data / "enzo_tiny_cosmology/DD0018";
-    const std::string params = readAll(dd / "DD0018"), realHierarchy = readAll(dd / "DD0018.hierarchy");
+    const std::string params = readAll(dd / "DD0018");
+    std::string realHierarchy = readAll(dd / "DD0018.hierarchy");
+    for (size_t at; (at = realHierarchy.find("DD0018.cpu")) != std::string::npos;)
+        realHierarchy.replace(at, 10, "DD0000.cpu");  // the file name fuzz_enzo writes
     if (!params.empty()) seed("enzo", "dd0018-text", fuzz::joinParts({params, realHierarchy, grids}));
 }
 
@@ -255,8 +267,10 @@ void tfSeeds(const fs::path& source) {
     put(scene::kXfMagic);
     for (float f : {100.0f, 0.0f, 10.0f, 0.0f, 100.0f}) put(f);
     put(int32_t(4));
-    for (int i = 0; i < 4; ++i)
-        for (float f : {0.25f * i, 0.5f, 1.0f - 0.25f * i, 0.3f * i}) put(f);
+    for (int i = 0; i < 4; ++i) {
+        const float x = float(i);
+        for (float f : {0.25f * x, 0.5f, 1.0f - 0.25f * x, 0.3f * x}) put(f);
+    }
     seed("tf_xf", "magic-4", xf);
     std::string owl;
     for (int i = 0; i < 128; ++i) {
