@@ -138,6 +138,17 @@ fuzz_max_len() {
   esac
 }
 
+# One line for a replayed finding's report: the error and the first frame in amrvk's sources.
+fuzz_signature() {
+  local err frame
+  err=$(grep -Eo -m1 '(ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z-]+( on [a-z-]+)?|runtime error: .*|==amrvk-fuzz== .*|ERROR: libFuzzer: [a-z-]+)' "$1" \
+        | sed -E 's/0x[0-9a-f]+/ADDR/g; s/\(malloc\([0-9]+\)\)//' || true)
+  frame=$(grep -Eo -m1 ' in [^ ]+.* (/[^ ]*)?/src/[a-z]+/[a-z_]+\.(cpp|h):[0-9]+' "$1" \
+          | grep -Eo 'src/[a-z]+/[a-z_]+\.(cpp|h):[0-9]+' || true)
+  [ -n "$err" ] || err="no report on replay (flaky or needs the fork's state)"
+  echo "${err} at ${frame:-?}"
+}
+
 # Builds the libFuzzer targets (clang, ASan + UBSan) into build-fuzz/, writes the seed corpora
 # (generated + cut from the data beside the checkout) into build-fuzz/corpus/<target>/, which
 # grows from run to run, and runs every target (or those in AMRVK_FUZZ_TARGETS) for $1 seconds.
@@ -162,25 +173,44 @@ fuzz() {
     local art="$bd/artifacts/$t" log="$bd/logs/$t.log" dict=()
     mkdir -p "$art"
     [ -f "tests/fuzz/dict/$t.dict" ] && dict=(-dict="tests/fuzz/dict/$t.dict")
-    local regress=(); [ -d "tests/fuzz/regressions/$t" ] && regress=("tests/fuzz/regressions/$t")
-    local before; before=$(find "$art" -type f | wc -l)
+    : >"$log.start"
+    # The committed inputs of earlier findings (tests/fuzz/findings.md) first: each must now give
+    # success or an amrvk::Error.
+    local r regressed=0
+    for r in tests/fuzz/regressions/"$t"/*; do
+      [ -f "$r" ] || continue
+      if ! "$bd/bin/fuzz_$t" -timeout=10 -rss_limit_mb=2048 "$r" >"$bd/logs/replay.txt" 2>&1; then
+        regressed=$((regressed + 1))
+        echo "    regression $r: $(fuzz_signature "$bd/logs/replay.txt")" >&2
+      fi
+    done
     say "fuzz $t: ${seconds} s"
     # -fork=1 with -ignore_*: a finding does not end the run, so one run lists every distinct
     # crash; each input that crashed, leaked, hung (> 10 s) or exceeded 2 GB stays in $art.
-    # The committed regressions (known findings) are read as extra seeds but not rewritten.
-    "$bd/bin/fuzz_$t" "$bd/corpus/$t" "${regress[@]}" "${dict[@]}" -max_len="$(fuzz_max_len "$t")" \
+    "$bd/bin/fuzz_$t" "$bd/corpus/$t" "${dict[@]}" -max_len="$(fuzz_max_len "$t")" \
       -timeout=10 -rss_limit_mb=2048 -max_total_time="$seconds" -fork=1 -ignore_crashes=1 \
       -ignore_timeouts=1 -ignore_ooms=1 -artifact_prefix="$art/" -print_final_stats=1 \
       >"$log" 2>&1 || true
     local execs found
-    execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s+=$2} END{print s+0}')
-    [ "$execs" = 0 ] && execs=$(grep -Eo '^#[0-9]+' "$log" | tail -1 | tr -d '#')
-    found=$(( $(find "$art" -type f | wc -l) - before ))
-    summary+=("$(printf '%-9s %10s execs %6s exec/s  %s new findings' "$t" "${execs:-0}" \
-      "$(( ${execs:-0} / (seconds > 0 ? seconds : 1) ))" "$found")")
-    if [ "$found" -gt 0 ]; then
-      failed+=("$t")
-      grep -E '^(==[0-9]+==ERROR|SUMMARY|==amrvk-fuzz==|.*runtime error)' "$log" | sort -u | head -5 >&2 || true
+    # Fork mode's status lines "#N: cov: ..." count the executions of all jobs.
+    execs=$(grep -Eo '^#[0-9]+' "$log" | tail -1 | tr -d '#' || true)
+    # Findings: new crash-, leak-, timeout- and oom- inputs. slow-unit- files (an input over 10 s
+    # that still finished) are listed but do not fail; an empty oom-da39a3ee... is fork mode's
+    # placeholder when a child ran out of memory between inputs (replays clean), likewise.
+    found=$(find "$art" -type f -newer "$log.start" -size +0 \( -name 'crash-*' -o -name 'leak-*' \
+      -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
+    local slow; slow=$(find "$art" -type f -newer "$log.start" -name 'slow-unit-*' ! -name '*.txt' | wc -l)
+    summary+=("$(printf '%-9s %10s execs %6s exec/s  %s new findings, %s slow inputs, %s regressions' \
+      "$t" "${execs:-0}" "$(( ${execs:-0} / (seconds > 0 ? seconds : 1) ))" "$found" "$slow" "$regressed")")
+    [ "$found" -gt 0 ] || [ "$regressed" -gt 0 ] && failed+=("$t")
+    if [ "$found" -gt 0 ] || [ "$slow" -gt 0 ]; then
+      # Fork mode keeps the children's reports to itself: replay each new artifact once, keep its
+      # report beside it (<artifact>.txt) and print each distinct (error, first amrvk frame).
+      local a
+      for a in $(find "$art" -type f ! -name '*.txt' -size +0 -newer "$log.start"); do
+        "$bd/bin/fuzz_$t" -timeout=10 -rss_limit_mb=2048 "$a" >"$a.txt" 2>&1 || true
+        fuzz_signature "$a.txt"
+      done | sort | uniq -c | sed 's/^/    /' >&2
     fi
   done
   say "fuzz summary (${seconds} s per target; findings in $bd/artifacts/<target>/, logs in $bd/logs/):"
