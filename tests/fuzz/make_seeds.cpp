@@ -171,29 +171,28 @@ void amrexSeeds(const fs::path& data) {
 }
 
 // ---- Enzo -------------------------------------------------------------------------------------
-// A small HDF5 grid file: groups Grid00000001.. with 3-D float datasets Density and
-// Temperature of the given shapes (z, y, x), built with the HDF5 API and read back as bytes.
+// The grid-file description fuzz_enzo's FuzzedDataProvider reads back (integers in a range and
+// bools come from the end of the data, one byte each for these small ranges): per grid "take id
+// i+1" and two datasets Density and Temperature, rank 3, shape 4^3 or given, float32.
 std::string enzoGridFile(const std::vector<glm::ivec3>& shapes) {
-    const fs::path tmp = fuzz::freshScratch() / "grid.h5";
-    hid_t f = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    for (size_t g = 0; g < shapes.size(); ++g) {
-        char name[32];
-        std::snprintf(name, sizeof(name), "Grid%08zu", g + 1);
-        hid_t grp = H5Gcreate2(f, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        const hsize_t dims[3] = {hsize_t(shapes[g].z), hsize_t(shapes[g].y), hsize_t(shapes[g].x)};
-        std::vector<float> v(dims[0] * dims[1] * dims[2]);
-        for (size_t i = 0; i < v.size(); ++i) v[i] = 1.0f + float(i % 7);
-        for (const char* field : {"Density", "Temperature"}) {
-            hid_t space = H5Screate_simple(3, dims, nullptr);
-            hid_t ds = H5Dcreate2(grp, field, H5T_IEEE_F32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-            H5Dwrite(ds, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-            H5Dclose(ds);
-            H5Sclose(space);
+    // Bytes are consumed from the back, so build the sequence and reverse it.
+    std::vector<uint8_t> seq;
+    seq.push_back(uint8_t(shapes.size()));                  // grids (0..4)
+    for (const glm::ivec3& s : shapes) {
+        seq.push_back(1);                                   // id = i + 1
+        seq.push_back(2);                                   // datasets (0..3)
+        for (int name : {0, 1}) {
+            seq.push_back(uint8_t(name));                   // Density, Temperature
+            seq.push_back(1);                               // rank: not the 1-in-8 case -> 3
+            for (int a : {2, 1, 0}) {                       // dims, slowest first
+                seq.push_back(0);                           // not "4"
+                seq.push_back(uint8_t(s[a]));               // 0..40
+            }
+            seq.push_back(0);                               // no odd value
+            seq.push_back(0);                               // float32
         }
-        H5Gclose(grp);
     }
-    H5Fclose(f);
-    return readAll(tmp);
+    return std::string(seq.rbegin(), seq.rend());
 }
 const char* kEnzoParams =
     "InitialTime = 1.5\nTopGridRank = 3\nTopGridDimensions = 4 4 4\nDomainLeftEdge = 0 0 0\n"
@@ -231,10 +230,14 @@ void enzoSeeds(const fs::path& data) {
     if (!params.empty()) seed("enzo", "dd0018-text", fuzz::joinParts({params, realHierarchy, grids}));
 }
 
-// ---- Chombo: the smaller real file (403 KB), copied at run time -------------------------------
+// ---- Chombo ---------------------------------------------------------------------------------
+// fuzz_chombo (structured): a few byte patterns for its FuzzedDataProvider (libFuzzer finds the
+// rest). fuzz_chombo_bytes: the smaller real file (403 KB), copied at run time.
 void chomboSeeds(const fs::path& data) {
+    for (int b : {1, 2, 3, 5})
+        seed("chombo", "bytes-" + std::to_string(b), std::string(256, char(b)));
     const std::string plt = readAll(data / "chombo_mushy_layer_2d/plt000100.2d.hdf5");
-    if (!plt.empty()) seed("chombo", "plt000100", plt);
+    if (!plt.empty()) seed("chombo_bytes", "plt000100", plt);
 }
 
 // ---- raw ----------------------------------------------------------------------------------------
