@@ -187,6 +187,11 @@ fuzz() {
         echo "    regression $r: $(fuzz_signature "$bd/logs/replay.txt")" >&2
       fi
     done
+    if [ "$seconds" -le 0 ]; then  # fuzz 0: build, seeds and the replay only
+      summary+=("$(printf '%-12s replay only, %s regressions' "$t" "$regressed")")
+      [ "$regressed" -gt 0 ] && failed+=("$t")
+      continue
+    fi
     say "fuzz $t: ${seconds} s"
     # -fork=1 with -ignore_*: a finding does not end the run, so one run lists every distinct
     # crash; each input that crashed, leaked, hung (> 10 s) or exceeded 2 GB stays in $art.
@@ -203,7 +208,7 @@ fuzz() {
     found=$(find "$art" -type f -newer "$log.start" -size +0 \( -name 'crash-*' -o -name 'leak-*' \
       -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
     local slow; slow=$(find "$art" -type f -newer "$log.start" -name 'slow-unit-*' ! -name '*.txt' | wc -l)
-    summary+=("$(printf '%-9s %10s execs %6s exec/s  %s new findings, %s slow inputs, %s regressions' \
+    summary+=("$(printf '%-12s %10s execs %6s exec/s  %s new findings, %s slow inputs, %s regressions' \
       "$t" "${execs:-0}" "$(( ${execs:-0} / (seconds > 0 ? seconds : 1) ))" "$found" "$slow" "$regressed")")
     [ "$found" -gt 0 ] || [ "$regressed" -gt 0 ] && failed+=("$t")
     if [ "$found" -gt 0 ] || [ "$slow" -gt 0 ]; then
