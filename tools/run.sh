@@ -143,7 +143,7 @@ fuzz_max_len() {
 # One line for a replayed finding's report: the error and the first frame in amrvk's sources.
 fuzz_signature() {
   local err frame
-  err=$(grep -Eo -m1 '(SUMMARY: [A-Za-z]+: [a-z-]+|runtime error: [^0-9]*|==amrvk-fuzz== .*: uncaught .*)' "$1" \
+  err=$(grep -Eo -m1 '(SUMMARY: [A-Za-z]+: [a-z-]+|runtime error: [a-z ]*[a-z]|==amrvk-fuzz== .*: uncaught .*)' "$1" \
         | sed -E 's/^SUMMARY: //' || true)
   frame=$(grep -Eo -m1 ' in [^ ]+.* (/[^ ]*)?/(src/[a-z]+|tests/fuzz)/[a-z0-9_]+\.(cpp|h):[0-9]+' "$1" \
           | grep -Eo '(src/[a-z]+|tests/fuzz)/[a-z0-9_]+\.(cpp|h):[0-9]+' || true)
