@@ -210,7 +210,7 @@ fuzz() {
       last="#$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || echo 0) time: $seconds"
     fi
     execs=$(echo "$last" | grep -Eo '^#[0-9]+' | tr -d '#' || true)
-    secs=$(echo "$last" | grep -Eo 'time: [0-9]+' | grep -Eo '[0-9]+' || true)
+    secs=$(echo "$last" | grep -Eo ' time: [0-9]+' | grep -Eo '[0-9]+' | head -1 || true)
     [ -n "$secs" ] && [ "$secs" -gt 0 ] || secs=$seconds
     # Findings: new crash-, leak-, timeout- and oom- inputs. slow-unit- files (an input over 10 s
     # that still finished) are listed but do not fail; an empty oom-da39a3ee... is fork mode's
