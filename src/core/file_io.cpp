@@ -50,9 +50,13 @@ void BinaryReader::seek(uint64_t offset) {
     mOffset = offset;
 }
 
+void BinaryReader::requireBytes(uint64_t bytes) const {
+    AMRVK_CHECK(bytes <= mSize - mOffset, mPath.string(), ": truncated at byte ", mSize, " (needed ",
+                bytes - (mSize - mOffset), " more bytes at offset ", mOffset, ")");
+}
+
 void BinaryReader::read(void* dst, uint64_t bytes) {
-    AMRVK_CHECK(mOffset + bytes <= mSize, mPath.string(), ": truncated at byte ", mSize,
-                " (needed ", mOffset + bytes - mSize, " more bytes at offset ", mOffset, ")");
+    requireBytes(bytes);
     size_t got = std::fread(dst, 1, bytes, mFile);
     AMRVK_CHECK(got == bytes, mPath.string(), ": read error at byte ", mOffset + got);
     mOffset += bytes;

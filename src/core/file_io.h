@@ -30,8 +30,12 @@ public:
     void seek(uint64_t offset);
     // Reads exactly `bytes` bytes or throws "FILE: truncated at byte N (needed M more bytes)".
     void read(void* dst, uint64_t bytes);
+    // Throws the truncation error of read() unless `bytes` more bytes are left.
+    void requireBytes(uint64_t bytes) const;
+    // Reads `count` values; the file is checked to hold them before anything is allocated.
     template <typename T>
     void readArray(std::vector<T>& out, uint64_t count) {
+        requireBytes(count > UINT64_MAX / sizeof(T) ? UINT64_MAX : count * sizeof(T));
         out.resize(count);
         read(out.data(), count * sizeof(T));
     }
