@@ -12,7 +12,10 @@ namespace amrvk {
 uint64_t checkedProduct(std::initializer_list<uint64_t> factors, std::string_view what) {
     uint64_t p = 1;
     bool overflow = false;
-    for (uint64_t f : factors) overflow = __builtin_mul_overflow(p, f, &p) || overflow;
+    for (uint64_t f : factors) {
+        if (f == 0) return 0;
+        overflow = __builtin_mul_overflow(p, f, &p) || overflow;
+    }
     if (overflow) {
         std::string text;
         for (uint64_t f : factors) text += (text.empty() ? "" : " x ") + std::to_string(f);

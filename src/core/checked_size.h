@@ -15,7 +15,8 @@ namespace amrvk {
 // in int32, and a corner times a level's cell width (<= 2^30) fits in int64.
 constexpr int64_t kMaxIndex = (int64_t{1} << 30) - 1;
 
-// The product of `factors`; throws "WHAT: a x b x ... overflows 64 bits" if it does not fit.
+// The exact product of `factors` (0 if any is 0); throws "WHAT: a x b x ... overflows 64 bits" if
+// it does not fit.
 uint64_t checkedProduct(std::initializer_list<uint64_t> factors, std::string_view what);
 
 // a + b; throws "WHAT: a + b overflows 64 bits" if it does not fit.
