@@ -13,6 +13,7 @@
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/stats.h"
+#include "scene/structure_config.h"
 #include "scene/volume_scene.h"
 #include "test_data.h"
 
@@ -100,4 +101,29 @@ TEST(HostileInput, ErrorMessagesEscapeControlBytes) {
     const std::string msg = Error(raw).what();
     EXPECT_EQ(msg, "name\\nwith\\x00nul\\x1b[2J\\r\\t\\x7f end");
     EXPECT_EQ(Error("plain text: 1 < 2").what(), std::string("plain text: 1 < 2"));
+}
+
+TEST(HostileInput, SparseDataGetsATraversalThatFitsIt) {
+    // 20,000 finest cells scattered over a 2^30-wide box: grid-dda (the old default) ran for over
+    // 300 s; the fitted default is abr. AMR data that tiles its domain keeps grid-dda.
+    amr::Model sparse;
+    sparse.source = "scatter";
+    uint64_t x = 1;
+    for (int i = 0; i < 20000; ++i) {
+        glm::ivec3 p;
+        for (int a = 0; a < 3; ++a) p[a] = int((x = x * 6364136223846793005u + 1442695040888963407u) >> 34);
+        sparse.cells.push_back({p, 0});
+    }
+    std::string why;
+    const amr::ModelSummary s = amr::summarize(sparse);
+    EXPECT_EQ(scene::fittingTraversal(s.leafVolume, s.bounds.volume(), &why), scene::TraversalKind::Abr);
+    expectContains(why, "traversal abr: the cells fill");
+    const amr::Model cloud = amr::readModel(fs::path(AMRVK_SOURCE_DIR) / "assets/samples/cloud.cells", {});
+    const amr::ModelSummary c = amr::summarize(cloud);
+    why.clear();
+    EXPECT_EQ(scene::fittingTraversal(c.leafVolume, c.bounds.volume(), &why), scene::TraversalKind::GridDda);
+    EXPECT_EQ(why, "") << "nothing to say for the default";
+    // The threshold itself: just above and just below.
+    EXPECT_EQ(scene::fittingTraversal(1.001e-3, 1.0), scene::TraversalKind::GridDda);
+    EXPECT_EQ(scene::fittingTraversal(0.999e-3, 1.0), scene::TraversalKind::Abr);
 }
