@@ -1,0 +1,126 @@
+#pragma once
+// Shared by the libFuzzer targets (docs/fuzzing.md). Each target turns the fuzz input into one or
+// more files in a private scratch directory, calls a reader, and accepts exactly two outcomes:
+// success, or an amrvk::Error (a clean one-line message). Any other exception type aborts, so
+// libFuzzer records it as a crash like a sanitizer report, a hang (-timeout) or an
+// out-of-memory (-rss_limit_mb / -malloc_limit_mb).
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <typeinfo>
+#include <vector>
+
+#include "core/error.h"
+
+namespace amrvk::fuzz {
+
+// A scratch directory for this process (under $TMPDIR or /tmp), emptied for every input and
+// removed at exit.
+inline const std::filesystem::path& scratch() {
+    static const std::filesystem::path dir = [] {
+        const char* t = std::getenv("TMPDIR");
+        std::string tmpl = std::string(t && *t ? t : "/tmp") + "/amrvk-fuzz-XXXXXX";
+        if (!mkdtemp(tmpl.data())) {
+            std::perror("amrvk fuzz: mkdtemp");
+            std::abort();
+        }
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(scratch(), ec);
+        });
+        return std::filesystem::path(tmpl);
+    }();
+    return dir;
+}
+
+// Empties the scratch directory and returns it.
+inline std::filesystem::path freshScratch() {
+    const auto& dir = scratch();
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+        std::filesystem::remove_all(e.path(), ec);
+    return dir;
+}
+
+inline void writeFile(const std::filesystem::path& p, std::string_view bytes) {
+    std::filesystem::create_directories(p.parent_path());
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!out) {
+        std::fprintf(stderr, "amrvk fuzz: cannot write %s\n", p.c_str());
+        std::abort();
+    }
+}
+
+// The separator between the files of a multi-file input (also in the targets' dictionaries).
+inline constexpr std::string_view kSeparator = "\n--next-file--\n";
+
+// Splits the input at kSeparator into at most `maxParts` parts (the last part keeps any further
+// separators); missing parts are empty.
+inline std::vector<std::string_view> splitParts(const uint8_t* data, size_t size, size_t maxParts) {
+    std::string_view rest(reinterpret_cast<const char*>(data), size);
+    std::vector<std::string_view> parts;
+    while (parts.size() + 1 < maxParts) {
+        const size_t at = rest.find(kSeparator);
+        if (at == std::string_view::npos) break;
+        parts.push_back(rest.substr(0, at));
+        rest.remove_prefix(at + kSeparator.size());
+    }
+    parts.push_back(rest);
+    parts.resize(maxParts);
+    return parts;
+}
+
+// Joins files into one input (for the seed generator).
+inline std::string joinParts(const std::vector<std::string>& parts) {
+    std::string out;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        if (i) out += kSeparator;
+        out += parts[i];
+    }
+    return out;
+}
+
+// Runs f; an amrvk::Error is the expected failure, anything else is a finding (abort).
+// AMRVK_FUZZ_VERBOSE=1 prints each outcome (for running a target on single files).
+template <typename F>
+void expectOnlyAmrvkErrors(const char* target, F&& f) {
+    static const bool verbose = [] {
+        const char* v = std::getenv("AMRVK_FUZZ_VERBOSE");
+        return v && *v && *v != '0';
+    }();
+    try {
+        f();
+        if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: read\n", target);
+    } catch (const amrvk::Error& e) {
+        if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: amrvk::Error: %s\n", target, e.what());
+        // A clean, one-line error is the correct outcome for bad input. With AMRVK_FUZZ_ONE_LINE=1
+        // a message spanning lines (the CLI's contract, tests/cli/bad_input.sh) is a finding too;
+        // off by default while the AMReX reader quotes raw file bytes (tests/fuzz/findings.md).
+        static const bool oneLine = [] {
+            const char* v = std::getenv("AMRVK_FUZZ_ONE_LINE");
+            return v && *v && *v != '0';
+        }();
+        const std::string_view msg = e.what();
+        if (oneLine && (msg.find('\n') != std::string_view::npos || msg.empty())) {
+            std::fprintf(stderr, "==amrvk-fuzz== %s: amrvk::Error message is not one line: %s\n",
+                         target, e.what());
+            std::abort();
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "==amrvk-fuzz== %s: uncaught %s: %s\n", target, typeid(e).name(), e.what());
+        std::abort();
+    } catch (...) {
+        std::fprintf(stderr, "==amrvk-fuzz== %s: uncaught non-std exception\n", target);
+        std::abort();
+    }
+}
+
+}  // namespace amrvk::fuzz

@@ -1,0 +1,310 @@
+// Writes the fuzz targets' seed corpora: small valid inputs generated here (through the same
+// APIs and layouts the reader tests use) plus inputs cut from the real data sets in
+// ../shared/data/amr and the bundled assets where they exist (tools/run.sh fuzz; docs/fuzzing.md).
+// Usage: amrvk_fuzz_seeds OUT_DIR DATA_DIR SOURCE_DIR   (writes OUT_DIR/<target>/seed-*)
+#include <hdf5.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "accel/bricks.h"
+#include "amr/model.h"
+#include "fuzz_common.h"
+#include "scene/transfer_function.h"
+
+namespace fs = std::filesystem;
+using namespace amrvk;
+
+namespace {
+
+fs::path gOut;
+int gCount = 0;
+
+std::string readAll(const fs::path& p, size_t limit = std::string::npos) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) return {};
+    std::ostringstream os;
+    os << in.rdbuf();
+    std::string s = os.str();
+    if (s.size() > limit) s.resize(limit);
+    return s;
+}
+
+void seed(const std::string& target, const std::string& name, const std::string& bytes) {
+    fuzz::writeFile(gOut / target / ("seed-" + name), bytes);
+    ++gCount;
+}
+
+template <typename T>
+std::string bytesOf(const std::vector<T>& v) {
+    return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+// ---- ExaBrick ------------------------------------------------------------------------------
+void exabrickSeeds(const fs::path& source) {
+    const std::vector<amr::Cell> cells = {{{0, 0, 0}, 1}, {{2, 0, 0}, 0}, {{3, 0, 0}, 0},
+                                          {{2, 1, 0}, 0}, {{3, 1, 0}, 0}};
+    const std::vector<float> a = {1, 2, 3, 4, 5}, b = {-1, 0.5f, NAN, 7, 8};
+    seed("exabrick", "five", fuzz::joinParts({bytesOf(cells), bytesOf(a)}));
+    seed("exabrick", "two-fields", fuzz::joinParts({bytesOf(cells), bytesOf(a), bytesOf(b)}));
+    // The bundled cloud sample, cut to its first 256 cells (a partial cover: validation errors).
+    const std::string cc = readAll(source / "assets/samples/cloud.cells", 256 * 16);
+    const std::string cs = readAll(source / "assets/samples/cloud.scalars", 256 * 4);
+    if (!cc.empty()) seed("exabrick", "cloud-256", fuzz::joinParts({cc, cs}));
+
+    // .bricks: the five-cell model's own bricks (written as `amrvk convert --bricks` would).
+    amr::Model m;
+    m.cells = cells;
+    m.fields.push_back({"scalars", a});
+    const fs::path tmp = fuzz::freshScratch() / "m.bricks";
+    accel::writeBricksFile(tmp, accel::buildBricks(m));
+    seed("bricks", "five", fuzz::joinParts({bytesOf(cells), bytesOf(a), readAll(tmp)}));
+}
+
+// ---- AMReX (the synthetic plotfile of tests/cpu/amrex_reader_test.cpp) -----------------------
+struct Synthetic {
+    int dim = 3;
+    int vismfVersion = 1;
+    int realBytes = 8;
+    bool bigEndian = false;
+    int ngrow = 0;
+    int ratio = 2;
+};
+std::string intVect(glm::ivec3 v, int dim) {
+    std::string s = "(" + std::to_string(v.x) + "," + std::to_string(v.y);
+    if (dim == 3) s += "," + std::to_string(v.z);
+    return s + ")";
+}
+std::string boxText(glm::ivec3 lo, glm::ivec3 hi, int dim) {
+    return "(" + intVect(lo, dim) + " " + intVect(hi, dim) + " " + intVect(glm::ivec3(0), dim) + ")";
+}
+std::string realDescriptor(const Synthetic& s) {
+    std::string format = s.realBytes == 8 ? "(64 11 52 0 1 12 0 1023)" : "(32 8 23 0 1 9 0 127)";
+    std::string order;
+    for (int i = 0; i < s.realBytes; ++i) {
+        if (i) order += " ";
+        order += std::to_string(s.bigEndian ? i + 1 : s.realBytes - i);
+    }
+    const std::string n = std::to_string(s.realBytes);
+    return "((" + n + ", " + format + "),(" + n + ", (" + order + ")))";
+}
+void appendReal(std::string& out, double v, const Synthetic& s) {
+    unsigned char b[8];
+    if (s.realBytes == 8) {
+        std::memcpy(b, &v, 8);
+    } else {
+        float f = static_cast<float>(v);
+        std::memcpy(b, &f, 4);
+    }
+    const size_t n = static_cast<size_t>(s.realBytes);
+    if (s.bigEndian == (std::endian::native == std::endian::little)) std::reverse(b, b + n);
+    out.append(reinterpret_cast<const char*>(b), n);
+}
+std::string amrexSynthetic(const Synthetic& s) {
+    const int d = s.dim;
+    const glm::ivec3 one = d == 3 ? glm::ivec3(1) : glm::ivec3(1, 1, 0);
+    const glm::ivec3 lo[2] = {glm::ivec3(0), 2 * one};
+    const glm::ivec3 hi[2] = {3 * one, 5 * one};
+    const glm::ivec3 domainHi[2] = {3 * one, (4 * s.ratio - 1) * one};
+    std::ostringstream h;
+    h << "HyperCLaw-V1.1\n2\na\nb(x)\n" << d << "\n0.5\n1\n";
+    for (int a = 0; a < d; ++a) h << "0 ";
+    h << "\n";
+    for (int a = 0; a < d; ++a) h << "1 ";
+    h << "\n" << s.ratio << " \n";
+    for (int l = 0; l < 2; ++l) h << boxText(glm::ivec3(0), domainHi[l], d) << " ";
+    h << "\n0 0 \n";
+    for (int l = 0; l < 2; ++l) {
+        for (int a = 0; a < d; ++a) h << 0.25 / (l ? s.ratio : 1) << " ";
+        h << "\n";
+    }
+    h << "0\n0\n";
+    for (int l = 0; l < 2; ++l) {
+        h << l << " 1 0.5\n0\n";
+        for (int a = 0; a < d; ++a) h << "0 1\n";
+        h << "Level_" << l << "/Cell\n";
+    }
+    std::vector<std::string> parts{h.str()};
+    for (int l = 0; l < 2; ++l) {
+        const glm::ivec3 g = s.ngrow * one;
+        const glm::ivec3 flo = lo[l] - g, fhi = hi[l] + g;
+        std::string data;
+        if (s.vismfVersion == 1) data = "FAB " + realDescriptor(s) + boxText(flo, fhi, d) + " 2\n";
+        for (int c = 0; c < 2; ++c)
+            for (int k = flo.z; k <= fhi.z; ++k)
+                for (int j = flo.y; j <= fhi.y; ++j)
+                    for (int i = flo.x; i <= fhi.x; ++i)
+                        appendReal(data, 1000 * l + 100 * c + i + 10 * j + 0.25 * k, s);
+        std::ostringstream ch;
+        ch << s.vismfVersion << "\n0\n2\n" << s.ngrow << "\n";
+        ch << "(1 0\n" << boxText(lo[l], hi[l], d) << "\n)\n1\nFabOnDisk: Cell_D_00000 0\n\n";
+        if (s.vismfVersion == 1 || s.vismfVersion == 3)
+            ch << "1,2\n0.0e+00,1.0e+02,\n\n1,2\n1.0e+03,1.1e+03,\n";
+        if (s.vismfVersion == 4) ch << "0.0e+00,1.0e+02,\n1.0e+03,1.1e+03,\n";
+        if (s.vismfVersion >= 2) ch << realDescriptor(s) << "\n";
+        parts.push_back(ch.str());
+        parts.push_back(data);
+    }
+    return fuzz::joinParts(parts);
+}
+void amrexSeeds(const fs::path& data) {
+    seed("amrex", "synthetic-v1-3d", amrexSynthetic({}));
+    seed("amrex", "synthetic-v1-2d-ghost-float-be", amrexSynthetic({2, 1, 4, true, 1, 2}));
+    seed("amrex", "synthetic-v2-3d", amrexSynthetic({3, 2, 8, false, 0, 2}));
+    seed("amrex", "synthetic-v3-2d", amrexSynthetic({2, 3, 4, false, 0, 2}));
+    seed("amrex", "synthetic-v4-3d-ghost", amrexSynthetic({3, 4, 8, false, 2, 2}));
+    // The real PeleLM plotfile's Header, level 0 (Cell_H and its 156 KB of FAB data) and the
+    // level-1 Cell_H (its data files are not in the input: the read ends there).
+    const fs::path plt = data / "amrex_pelelm_3d/example_plt_3d";
+    const std::string header = readAll(plt / "Header");
+    if (!header.empty())
+        seed("amrex", "pelelm-level0",
+             fuzz::joinParts({header, readAll(plt / "Level_0/Cell_H"), readAll(plt / "Level_0/Cell_D_00000"),
+                              readAll(plt / "Level_1/Cell_H")}));
+}
+
+// ---- Enzo -------------------------------------------------------------------------------------
+// The grid-file description fuzz_enzo's FuzzedDataProvider reads back (integers in a range and
+// bools come from the end of the data, one byte each for these small ranges): per grid "take id
+// i+1" and two datasets Density and Temperature, rank 3, shape 4^3 or given, float32.
+std::string enzoGridFile(const std::vector<glm::ivec3>& shapes) {
+    // Bytes are consumed from the back, so build the sequence and reverse it.
+    std::vector<uint8_t> seq;
+    seq.push_back(uint8_t(shapes.size()));                  // grids (0..4)
+    for (const glm::ivec3& s : shapes) {
+        seq.push_back(1);                                   // id = i + 1
+        seq.push_back(2);                                   // datasets (0..3)
+        for (int name : {0, 1}) {
+            seq.push_back(uint8_t(name));                   // Density, Temperature
+            seq.push_back(1);                               // rank: not the 1-in-8 case -> 3
+            for (int a : {2, 1, 0}) {                       // dims, slowest first
+                seq.push_back(0);                           // not "4"
+                seq.push_back(uint8_t(s[a]));               // 0..40
+            }
+            seq.push_back(0);                               // no odd value
+            seq.push_back(0);                               // float32
+        }
+    }
+    return std::string(seq.rbegin(), seq.rend());
+}
+const char* kEnzoParams =
+    "InitialTime = 1.5\nTopGridRank = 3\nTopGridDimensions = 4 4 4\nDomainLeftEdge = 0 0 0\n"
+    "DomainRightEdge = 1 1 1\nRefineBy = 2\nMaximumRefinementLevel = 1\n"
+    "DataLabel[0] = Density\nDataLabel[1] = Temperature\n";
+std::string enzoGrid(int id, glm::ivec3 dim, glm::ivec3 start, glm::ivec3 end, glm::dvec3 left,
+                     glm::dvec3 right) {
+    std::ostringstream h;
+    auto v3 = [&](auto v) { return std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.z); };
+    h << "\nGrid = " << id << "\nTask = 0\nGridRank = 3\nGridDimension = " << v3(dim)
+      << "\nGridStartIndex = " << v3(start) << "\nGridEndIndex = " << v3(end)
+      << "\nGridLeftEdge = " << v3(left) << "\nGridRightEdge = " << v3(right)
+      << "\nNumberOfBaryonFields = 2\nBaryonFileName = ./DD0000.cpu0000\n"
+      << "Pointer: Grid[" << id << "]->NextGridThisLevel = 0\n";
+    return h.str();
+}
+void enzoSeeds(const fs::path& data) {
+    // Root grid 4^3 (no ghost zones in the file) and one level-1 grid 4^3 over root cells 1..2,
+    // stored with 1 ghost zone (6^3).
+    const std::string hierarchy =
+        enzoGrid(1, glm::ivec3(4), glm::ivec3(0), glm::ivec3(3), glm::dvec3(0), glm::dvec3(1)) +
+        enzoGrid(2, glm::ivec3(6), glm::ivec3(1), glm::ivec3(4), glm::dvec3(0.25), glm::dvec3(0.75));
+    const std::string grids = enzoGridFile({glm::ivec3(4), glm::ivec3(6)});
+    seed("enzo", "two-grids", fuzz::joinParts({kEnzoParams, hierarchy, grids}));
+    seed("enzo", "root-only",
+         fuzz::joinParts({kEnzoParams,
+                          enzoGrid(1, glm::ivec3(4), glm::ivec3(0), glm::ivec3(3), glm::dvec3(0), glm::dvec3(1)),
+                          enzoGridFile({glm::ivec3(4)})}));
+    // The real tiny-cosmology parameter file and hierarchy with the small grid file.
+    const fs::path dd = data / "enzo_tiny_cosmology/DD0018";
+    const std::string params = readAll(dd / "DD0018");
+    std::string realHierarchy = readAll(dd / "DD0018.hierarchy");
+    for (size_t at; (at = realHierarchy.find("DD0018.cpu")) != std::string::npos;)
+        realHierarchy.replace(at, 10, "DD0000.cpu");  // the file name fuzz_enzo writes
+    if (!params.empty()) seed("enzo", "dd0018-text", fuzz::joinParts({params, realHierarchy, grids}));
+}
+
+// ---- Chombo ---------------------------------------------------------------------------------
+// fuzz_chombo (structured): a few byte patterns for its FuzzedDataProvider (libFuzzer finds the
+// rest). fuzz_chombo_bytes: the smaller real file (403 KB), copied at run time.
+void chomboSeeds(const fs::path& data) {
+    for (int b : {1, 2, 3, 5})
+        seed("chombo", "bytes-" + std::to_string(b), std::string(256, char(b)));
+    const std::string plt = readAll(data / "chombo_mushy_layer_2d/plt000100.2d.hdf5");
+    if (!plt.empty()) seed("chombo_bytes", "plt000100", plt);
+}
+
+// ---- raw ----------------------------------------------------------------------------------------
+void rawSeeds() {
+    // Header bytes: type|flags, dims-1 (x, y, z), threshold*16; then voxels (fuzz_raw.cpp).
+    std::string ramp = {char(0), char(7), char(7), char(7), char(0)};
+    for (int i = 0; i < 512; ++i) ramp += char(i / 64);
+    seed("raw", "uint8-8cube", ramp);
+    std::string f32 = {char(2 | 8), char(4), char(2), char(2), char(8)};
+    for (int i = 0; i < 45; ++i) {
+        float v = float(i % 5) * 0.5f;
+        f32.append(reinterpret_cast<const char*>(&v), 4);
+    }
+    seed("raw", "float32-5x3x3-named", f32);
+    std::string u16 = {char(1), char(15), char(0), char(3), char(0)};
+    for (int i = 0; i < 64; ++i) u16 += char(i), u16 += char(0);
+    seed("raw", "uint16-16x1x4", u16);
+    std::string f64 = {char(3 | 4), char(1), char(1), char(1), char(1)};
+    for (int i = 0; i < 8; ++i) {
+        double v = i == 3 ? NAN : i;
+        f64.append(reinterpret_cast<const char*>(&v), 8);
+    }
+    seed("raw", "float64-2cube-nan", f64);
+}
+
+// ---- transfer functions ----------------------------------------------------------------------
+void tfSeeds(const fs::path& source) {
+    std::string xf;
+    auto put = [&](const auto& v) { xf.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
+    put(scene::kXfMagic);
+    for (float f : {100.0f, 0.0f, 10.0f, 0.0f, 100.0f}) put(f);
+    put(int32_t(4));
+    for (int i = 0; i < 4; ++i) {
+        const float x = float(i);
+        for (float f : {0.25f * x, 0.5f, 1.0f - 0.25f * x, 0.3f * x}) put(f);
+    }
+    seed("tf_xf", "magic-4", xf);
+    std::string owl;
+    for (int i = 0; i < 128; ++i) {
+        float a = float(i) / 127.0f;
+        owl.append(reinterpret_cast<const char*>(&a), 4);
+    }
+    seed("tf_xf", "owl-128", owl);
+    for (const char* name : {"ramp", "spiky"})
+        seed("tf_json", name, scene::paraViewPresetJson(scene::builtInChannels(name)));
+    const std::string web = readAll(source / "assets/tf/cosmic-web.json");
+    if (!web.empty()) seed("tf_json", "cosmic-web", web);
+    seed("tf_json", "object-with-points",
+         R"({"Name":"x","RGBPoints":[0,0,0,0,0.5,1,0,0,1,1,1,1],"Points":[0,0,0.5,0,1,1,0.5,0]})");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 4) {
+        std::cerr << "usage: amrvk_fuzz_seeds OUT_DIR DATA_DIR SOURCE_DIR\n";
+        return 2;
+    }
+    gOut = argv[1];
+    const fs::path data = argv[2], source = argv[3];
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    exabrickSeeds(source);
+    amrexSeeds(data);
+    enzoSeeds(data);
+    chomboSeeds(data);
+    rawSeeds();
+    tfSeeds(source);
+    std::cout << "amrvk_fuzz_seeds: wrote " << gCount << " seeds under " << gOut.string() << "\n";
+    return 0;
+}
