@@ -109,9 +109,7 @@ sanitize() {
   export LSAN_OPTIONS="suppressions=$here/tools/lsan.supp:print_suppressions=0"
   # Tests that fail under the sanitizers because of known bugs in src/, each listed in
   # tests/fuzz/findings.md; remove an entry when its bug is fixed.
-  local skip=(
-    'ImageIo\.MalformedFilesAreRejected$'  # findings.md S1: readExr leaks on truncated pixels
-  )
+  local skip=()
   local exclude=(); [ "${#skip[@]}" -gt 0 ] && exclude=(-E "$(IFS='|'; echo "${skip[*]}")")
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L cpu "${exclude[@]}"
   say "sanitize: build and CPU tests took $((SECONDS - t0)) s"

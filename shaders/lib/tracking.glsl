@@ -6,8 +6,9 @@
 //                    Russian roulette below 0.05
 // Restarting at each segment boundary is valid because exponential free flights are memoryless.
 // Majorant and acceptance test are in the same units (extinction per voxel unit), unlike upstream
-// ExaBrick. A call takes at most P.shading.maxTrackingSteps steps; reaching that cap ends it
-// (delta: no collision, ratio: transmittance 0 — biased) and is counted, never silent.
+// ExaBrick. A call takes at most P.shading.maxTrackingSteps steps; reaching that cap, or a mean
+// free path too short to advance t in float, ends it (delta: no collision, ratio: transmittance 0
+// — biased) and is counted (kCounterTrackingCapHits), never silent.
 // CPU twin: scene/reference_integrator.cpp (sampleTmaj, deltaTrack, ratioTrack).
 #ifndef AMRVK_TRACKING_GLSL
 #define AMRVK_TRACKING_GLSL
@@ -92,16 +93,19 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
         float maj = extinctionOfAlpha(majAlpha);
         if (!(maj > 0.0)) continue;
+        float meanStep = 1.0 / maj;
         float t = t0;
         for (;;) {
-            if (stepsLeft == 0u) {
+            // The cap, or a mean free path below float resolution at t (t would stall and burn the
+            // cap in place, e.g. --density-scale 1e30): both end the call, counted, at once.
+            if (stepsLeft == 0u || t + meanStep == t) {
                 c.capped++;
                 st.hit = false;
                 st.transmittance = 0.0;
                 return;
             }
             --stepsLeft;
-            t -= log(1.0 - rand(rng)) / maj;
+            t -= log(1.0 - rand(rng)) * meanStep;
             if (t >= t1) break;
             vec4 tfc;
             float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);

@@ -26,7 +26,7 @@ AMRVK_CONST uint kCounterTraversalSteps = 3u;
 AMRVK_CONST uint kCounterMajorantViolations = 4u;  // sigma > majorant (1 + 1e-6)
 AMRVK_CONST uint kCounterBounceLimitHits = 5u;     // ms paths stopped at kMaxBounces
 AMRVK_CONST uint kCounterNanSamples = 6u;          // NaN/Inf radiance samples (zeroed)
-AMRVK_CONST uint kCounterTrackingCapHits = 7u;     // tracking stopped at maxTrackingSteps (biased)
+AMRVK_CONST uint kCounterTrackingCapHits = 7u;     // tracking stopped at the step cap or stalled in float (biased)
 AMRVK_CONST uint kCounterCount = 8u;
 
 AMRVK_CONST uint kMaxBounces = 65536u;  // ms path length cap; paths reaching it are counted

@@ -4,6 +4,7 @@
 #include <bit>
 #include <limits>
 
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/parallel.h"
@@ -241,8 +242,13 @@ BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& mod
                         br.level <= amr::kMaxLevel,
                     path.string(), ": brick at byte ", recordOffset, " has size ", br.size.x, "x",
                     br.size.y, "x", br.size.z, " level ", br.level, " (invalid)");
-        AMRVK_CHECK(out.cellIds.size() + br.cellCount() < BrickSet::kEmptySlot, path.string(),
-                    ": too many brick cells");
+        const std::string where = strCat(path.string(), ": brick at byte ", recordOffset);
+        const uint64_t cells = checkedProduct({uint64_t(br.size.x), uint64_t(br.size.y), uint64_t(br.size.z)}, where);
+        AMRVK_CHECK(checkedSum(out.cellIds.size(), cells, where) < BrickSet::kEmptySlot, where, ": ",
+                    out.cellIds.size() + cells, " brick cells in all, the limit is ", BrickSet::kEmptySlot - 1);
+        AMRVK_CHECK(glm::all(glm::lessThanEqual(glm::i64vec3(br.lower) + glm::i64vec3(br.size) * br.cellWidth(),
+                                                glm::i64vec3(INT32_MAX))),
+                    where, ": brick reaches past the 32-bit voxel range");
         br.begin = static_cast<uint32_t>(out.cellIds.size());
         std::vector<int32_t> ids;
         in.readArray(ids, br.cellCount());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/stats.h"
@@ -70,6 +71,11 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
     RangeGrid g = rangeGridLayout(amr::summarize(model).bounds, dims);
     const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
     const glm::dvec3 eps = 1e-5 * g.cellSize;
+    const size_t n = model.cells.size();
+    const size_t chunks = std::clamp<size_t>(n / kSplatChunkCells, 1, kMaxSplatChunks);
+    // parallelReduce holds one private grid per chunk at once.
+    checkAllocation(checkedProduct({total, sizeof(ValueRange), chunks}, "--grid"),
+                    strCat("--grid ", dims.x, "x", dims.y, "x", dims.z, ": macrocell value ranges"));
 
     // Consecutive chunks of cells splat into private grids (in parallel), merged in chunk order.
     auto splat = [&](size_t begin, size_t end) {
@@ -92,8 +98,6 @@ RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::
     auto merge = [&](std::vector<ValueRange>& acc, std::vector<ValueRange>&& part) {
         parallelFor(0, total, [&](size_t i) { acc[i].extend(part[i]); }, 4096);
     };
-    const size_t n = model.cells.size();
-    const size_t chunks = std::clamp<size_t>(n / kSplatChunkCells, 1, kMaxSplatChunks);
     g.ranges = parallelReduce<std::vector<ValueRange>>(0, n, chunks, splat, merge);
     g.buildSeconds = timer.seconds();
     return g;

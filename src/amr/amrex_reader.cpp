@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <utility>
 
 #include "amr/block_structured.h"
 #include "amr/readers.h"
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
@@ -141,7 +143,7 @@ IndexBox readBox(TextCursor& in, int dim) {
         box.lo[static_cast<int>(a)] = lo[a];
         box.hi[static_cast<int>(a)] = hi[a];
     }
-    AMRVK_CHECK(glm::all(glm::lessThanEqual(box.lo, box.hi)), in.where(), ": empty box");
+    checkedBoxCells(box.lo, box.hi, in.where());
     return box;
 }
 
@@ -237,6 +239,10 @@ Header readHeader(const fs::path& headerPath) {
     const int levels = h.finestLevel + 1;
     for (int a = 0; a < h.dim; ++a) h.probLo[a] = in.readDouble("prob_lo");
     for (int a = 0; a < h.dim; ++a) h.probHi[a] = in.readDouble("prob_hi");
+    for (int a = 0; a < h.dim; ++a)
+        AMRVK_CHECK(std::isfinite(h.probLo[a]) && std::isfinite(h.probHi[a]) && h.probLo[a] < h.probHi[a], in.where(),
+                    ": prob_lo ", h.probLo[a], " and prob_hi ", h.probHi[a], " on axis ", a,
+                    " are not a finite range with prob_lo < prob_hi");
     for (int l = 0; l < h.finestLevel; ++l) h.refRatio.push_back(in.readInt("refinement ratio"));
     for (int l = 0; l < levels; ++l) h.domains.push_back(readBox(in, h.dim));
     for (int l = 0; l < levels; ++l) in.readInt("level steps");
@@ -250,7 +256,7 @@ Header readHeader(const fs::path& headerPath) {
         AMRVK_CHECK(nboxes >= 0, in.where(), ": negative box count");
         in.readDouble("level time");
         in.readInt("level step");
-        for (int i = 0; i < nboxes * 2 * h.dim; ++i) in.readDouble("physical box extent");
+        for (int64_t i = 0; i < int64_t{nboxes} * 2 * h.dim; ++i) in.readDouble("physical box extent");
         h.boxCounts.push_back(nboxes);
         h.prefixes.push_back(in.readWord("MultiFab prefix (Level_<l>/Cell)"));
     }
@@ -288,8 +294,7 @@ CellHeader readCellHeader(const fs::path& path, int dim) {
         const int g = in.readInt("ngrow");
         for (int a = 0; a < dim; ++a) h.ngrow[a] = g;
     }
-    AMRVK_CHECK(glm::all(glm::greaterThanEqual(h.ngrow, glm::ivec3(0))), in.where(),
-                ": negative ngrow");
+    for (int a = 0; a < dim; ++a) checkedInRange(h.ngrow[a], 0, kMaxIndex, in.where() + ": ngrow");
     in.expect('(');
     const int nboxes = in.readInt("box count");
     AMRVK_CHECK(nboxes >= 0, in.where(), ": negative box count");
@@ -355,16 +360,20 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
         fabComps = line.readInt("component count");
     } else {
         fmt = cells.rawFormat;
-        fab = {valid.lo - cells.ngrow, valid.hi + cells.ngrow};
+        const glm::i64vec3 lo = glm::i64vec3(valid.lo) - glm::i64vec3(cells.ngrow);
+        const glm::i64vec3 hi = glm::i64vec3(valid.hi) + glm::i64vec3(cells.ngrow);
+        checkedBoxCells(lo, hi, strCat(dataName, ": FAB ", b, " grown by ngrow"));
+        fab = {glm::ivec3(lo), glm::ivec3(hi)};
     }
     AMRVK_CHECK(fab.contains(valid), dataName, ": FAB ", b, " does not contain its valid box from ",
                 cellHeaderName);
     AMRVK_CHECK(fabComps == cells.ncomp, dataName, ": FAB ", b, " has ", fabComps,
                 " components, expected ", cells.ncomp);
-    const uint64_t compBytes = fab.cellCount() * static_cast<uint64_t>(fmt.bytes);
+    const std::string fabName = strCat(dataName, ": FAB ", b);
+    const uint64_t compBytes = checkedProduct({fab.cellCount(), uint64_t(fmt.bytes)}, fabName);
     const uint64_t dataStart = reader.offset();
-    const uint64_t needed = compBytes * static_cast<uint64_t>(fabComps);
-    AMRVK_CHECK(dataStart + needed <= reader.size(), dataName, ": truncated FAB ", b, " (", needed,
+    const uint64_t needed = checkedProduct({compBytes, uint64_t(fabComps)}, fabName);
+    AMRVK_CHECK(needed <= reader.size() - dataStart, dataName, ": truncated FAB ", b, " (", needed,
                 " bytes of data from byte ", dataStart, ", file has ", reader.size(), ")");
 
     // Each component is the whole FAB box, x fastest; keep the valid part.

@@ -12,6 +12,8 @@ CellsWriter::CellsWriter(const std::filesystem::path& cellsPath, const std::file
 
 uint64_t CellsWriter::commit() {
     flush();
+    mCellsOut.finish();  // both written out before either is renamed into place
+    mScalarsOut.finish();
     mCellsOut.commit();
     mScalarsOut.commit();
     return mCellsOut.bytesWritten() + mScalarsOut.bytesWritten();

@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <utility>
 
 #include "amr/block_structured.h"
 #include "amr/hdf5_util.h"
 #include "amr/readers.h"
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/strings.h"
 
@@ -125,8 +127,7 @@ public:
                 boxes[b].lo[a] = v[b * members.size() + static_cast<size_t>(a)];
                 boxes[b].hi[a] = v[b * members.size() + static_cast<size_t>(dim + a)];
             }
-            AMRVK_CHECK(glm::all(glm::lessThanEqual(boxes[b].lo, boxes[b].hi)), mName, ": '", what,
-                        "' box ", b, " is empty");
+            checkedBoxCells(boxes[b].lo, boxes[b].hi, strCat(mName, ": '", what, "' box ", b));
         }
         return boxes;
     }
@@ -190,8 +191,7 @@ glm::ivec3 readOutputGhost(const ChomboFile& file, hid_t group, const std::strin
     const std::vector<int> g =
         file.readIntCompound(attr.get(), true, levelName + "/outputGhost", members);
     for (int a = 0; a < dim; ++a) ghost[a] = g.at(static_cast<size_t>(a));
-    AMRVK_CHECK(glm::all(glm::greaterThanEqual(ghost, glm::ivec3(0))), file.name(), ": ", levelName,
-                " has a negative outputGhost");
+    for (int a = 0; a < dim; ++a) checkedInRange(ghost[a], 0, kMaxIndex, file.name() + ": " + levelName + "/outputGhost");
     return ghost;
 }
 
@@ -217,9 +217,13 @@ std::vector<Block> readLevelBlocks(const ChomboFile& file, hid_t group,
     std::vector<double> buffer;
     for (size_t b = 0; b < boxes.size(); ++b) {
         const IndexBox& valid = boxes[b];
-        const IndexBox grown{valid.lo - ghost, valid.hi + ghost};
-        const size_t n = grown.cellCount();
-        AMRVK_CHECK(offsets[b + 1] - offsets[b] == static_cast<int64_t>(n * size_t(ncomp)),
+        const std::string boxName = strCat(file.name(), ": ", levelName, " box ", b);
+        const glm::i64vec3 grownLo = glm::i64vec3(valid.lo) - glm::i64vec3(ghost);
+        const glm::i64vec3 grownHi = glm::i64vec3(valid.hi) + glm::i64vec3(ghost);
+        const size_t n = checkedBoxCells(grownLo, grownHi, boxName + " grown by outputGhost");
+        const IndexBox grown{glm::ivec3(grownLo), glm::ivec3(grownHi)};
+        AMRVK_CHECK(offsets[b] >= 0 && offsets[b + 1] >= offsets[b] &&
+                        uint64_t(offsets[b + 1] - offsets[b]) == checkedProduct({n, uint64_t(ncomp)}, boxName),
                     file.name(), ": ", levelName, " box ", b, " has ", offsets[b + 1] - offsets[b],
                     " values, expected ", n * size_t(ncomp), " (", ncomp, " components x ", n,
                     " cells)");
@@ -227,6 +231,7 @@ std::vector<Block> readLevelBlocks(const ChomboFile& file, hid_t group,
         Block block;
         block.lo = valid.lo;
         block.hi = valid.hi;
+        checkAllocation(checkedProduct({n, sizeof(double)}, boxName), boxName);
         buffer.resize(n);
         for (size_t comp : components) {
             file.readRange(data.get(), dataName, static_cast<hsize_t>(offsets[b]) + comp * n, n,
@@ -279,6 +284,8 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     for (int l = 0; l < levelCount; ++l) {
         groups.push_back(file.openGroup(root, strCat("level_", l)));
         dx.push_back(file.readDouble(groups.back().get(), "dx"));
+        AMRVK_CHECK(std::isfinite(dx.back()) && dx.back() > 0, file.name(), ": level_", l, " dx ", dx.back(),
+                    " is not a finite positive cell size");
         if (l + 1 < levelCount) {
             const int r = file.readInt(groups.back().get(), "ref_ratio");
             AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), file.name(),

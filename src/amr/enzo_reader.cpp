@@ -16,6 +16,7 @@
 #include "amr/block_structured.h"
 #include "amr/hdf5_util.h"
 #include "amr/readers.h"
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
@@ -103,8 +104,10 @@ Parameters readParameters(const fs::path& path) {
         p.topGridDims[a] = dims[i];
         p.domainLeft[a] = left[i];
         p.domainRight[a] = right[i];
-        AMRVK_CHECK(dims[i] > 0 && right[i] > left[i], name,
-                    ": empty domain (TopGridDimensions / DomainLeftEdge / DomainRightEdge)");
+        AMRVK_CHECK(dims[i] > 0 && dims[i] <= kMaxIndex && std::isfinite(left[i]) && std::isfinite(right[i]) &&
+                        right[i] > left[i],
+                    name, ": empty or non-finite domain on axis ", a, " (TopGridDimensions ", dims[i],
+                    ", DomainLeftEdge ", left[i], ", DomainRightEdge ", right[i], ")");
     }
     p.refineBy = parseNumbers<int>(get("RefineBy"), 1, name + ": RefineBy")[0];
     AMRVK_CHECK(p.refineBy > 1 && std::has_single_bit(static_cast<unsigned>(p.refineBy)), name,
@@ -167,7 +170,7 @@ std::vector<GridInfo> readHierarchy(const fs::path& path) {
         AMRVK_CHECK(glm::all(glm::greaterThanEqual(g.start, glm::ivec3(0))) &&
                         glm::all(glm::lessThanEqual(g.start, g.end)) &&
                         glm::all(glm::lessThan(g.end, g.dimension)) &&
-                        glm::all(glm::lessThan(g.left, g.right)),
+                        glm::all(glm::lessThan(g.left, g.right)) && !glm::any(glm::isinf(g.left - g.right)),
                     name, ": grid ", g.id, " has an empty or inconsistent active region");
         grids.push_back(std::move(g));
     }
@@ -260,20 +263,19 @@ std::vector<float> readGridField(hid_t file, const std::string& fileName, const 
     AMRVK_CHECK(H5Sget_simple_extent_ndims(space.get()) == 3, fileName, ": ", dsName,
                 " is not a 3-D dataset");
     H5Sget_simple_extent_dims(space.get(), shape, nullptr);
-    const glm::ivec3 file3(static_cast<int>(shape[2]), static_cast<int>(shape[1]),
-                           static_cast<int>(shape[0]));
+    const glm::u64vec3 shape3(shape[2], shape[1], shape[0]);
     const glm::ivec3 active = g.active();
-    glm::ivec3 offset{0};
-    if (file3 != active) {
-        AMRVK_CHECK(file3 == g.dimension, fileName, ": ", dsName, " has shape (", shape[0], ", ",
-                    shape[1], ", ", shape[2], "), expected the active zone (", active.z, ", ",
-                    active.y, ", ", active.x, ") or the full grid with ghost zones");
-        offset = g.start;
-    }
-    std::vector<float> all(size_t(file3.x) * size_t(file3.y) * size_t(file3.z));
+    const bool isActive = shape3 == glm::u64vec3(active);
+    AMRVK_CHECK(isActive || shape3 == glm::u64vec3(g.dimension), fileName, ": ", dsName, " has shape (", shape[0],
+                ", ", shape[1], ", ", shape[2], "), expected the active zone (", active.z, ", ", active.y, ", ",
+                active.x, ") or the full grid with ghost zones");
+    const glm::ivec3 file3(isActive ? active : g.dimension), offset(isActive ? glm::ivec3(0) : g.start);
+    const uint64_t count = checkedProduct({shape3.x, shape3.y, shape3.z, sizeof(float)}, fileName + ": " + dsName);
+    checkAllocation(count, fileName + ": " + dsName);
+    std::vector<float> all(count / sizeof(float));
     AMRVK_CHECK(H5Dread(d.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()) >= 0,
                 fileName, ": cannot read ", dsName, " (truncated or damaged file?)");
-    if (file3 == active) return all;
+    if (isActive) return all;
     return cropBox(file3, offset, active, [&](size_t i) { return all[i]; });
 }
 
@@ -322,6 +324,8 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
         const fs::path file = dataPath(g);
         const hid_t h = files.open(file);
         Block block;
+        checkedBoxCells(g.position, glm::i64vec3(g.position) + glm::i64vec3(g.active()) - int64_t{1},
+                        strCat(hierarchyPath.string(), ": grid ", g.id));
         block.lo = g.position;
         block.hi = g.position + g.active() - 1;
         for (size_t f : components)

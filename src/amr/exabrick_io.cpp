@@ -81,22 +81,23 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
 }
 
 void writeExaBrick(const Model& model, const fs::path& base, bool writeSingleAsPlain) {
+    for (const Field& f : model.fields)
+        AMRVK_CHECK(f.values.size() == model.cells.size(), "field '", f.name, "' has ", f.values.size(),
+                    " values for ", model.cells.size(), " cells");
+    // Every file is written under its temporary name first; all are committed only once all are
+    // written, so a failure leaves none of them behind.
+    std::vector<std::unique_ptr<AtomicFileWriter>> writers;
     fs::path cellsPath = base;
     cellsPath += ".cells";
-    AtomicFileWriter cw(cellsPath);
-    cw.writeSpan(std::span<const Cell>(model.cells));
-    std::vector<AtomicFileWriter> writers;
+    writers.push_back(std::make_unique<AtomicFileWriter>(cellsPath));
+    writers.back()->writeSpan(std::span<const Cell>(model.cells));
     for (const Field& f : model.fields) {
-        AMRVK_CHECK(f.values.size() == model.cells.size(), "field '", f.name, "' has ",
-                    f.values.size(), " values for ", model.cells.size(), " cells");
         fs::path p = base;
-        p += (writeSingleAsPlain && model.fields.size() == 1) ? ".scalars"
-                                                              : "." + f.name + ".scalars";
-        AtomicFileWriter w(p);
-        w.writeSpan(std::span<const float>(f.values));
-        w.commit();
+        p += (writeSingleAsPlain && model.fields.size() == 1) ? ".scalars" : "." + f.name + ".scalars";
+        writers.push_back(std::make_unique<AtomicFileWriter>(p));
+        writers.back()->writeSpan(std::span<const float>(f.values));
     }
-    cw.commit();
+    commitAll(writers);
 }
 
 }  // namespace amrvk::amr

@@ -15,6 +15,7 @@
 
 #include "amr/block_structured.h"
 #include "amr/readers.h"
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 
@@ -228,6 +229,7 @@ Model readRaw(const fs::path& path, const ReadOptions& options) {
     const uint64_t voxels = static_cast<uint64_t>(dims.x) * static_cast<uint64_t>(dims.y) * static_cast<uint64_t>(dims.z);
     const uint64_t expected = voxels * rawTypeBytes(type);
     const uint64_t actual = fileSize(path);
+    checkAllocation(expected, path.string() + ": the voxels");
     AMRVK_CHECK(actual == expected, path.string(), ": file size ", actual, " bytes does not match ",
                 dims.x, "x", dims.y, "x", dims.z, " ", type, " (expected ", expected, " bytes)");
 

@@ -42,6 +42,7 @@ std::string detectFormat(const fs::path& path) {
         if (fs::exists(cells)) return "exabrick";
         AMRVK_CHECK(false, path.string(), ": no such file");
     }
+    fileSize(path);  // a regular file, checked before it is opened: a FIFO or device would block the peeks below
     if (path.filename() == "Header" && firstLine(path).rfind("HyperCLaw", 0) == 0) return "amrex";
     fs::path hierarchy = path;
     hierarchy += ".hierarchy";

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/file_io.h"
 
 namespace {
 const char* kUsage =
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
     }
     const std::string command = args[0];
     args.erase(args.begin());
+    amrvk::removeTemporariesOnSignal();  // Ctrl-C leaves no *.tmp-PID files
     try {
         if (command == "info") return amrvk::cli::runInfo(args);
         if (command == "gen") return amrvk::cli::runGen(args);

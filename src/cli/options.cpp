@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "scene/camera.h"
 
@@ -300,6 +301,8 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
     const int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
     AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384, option, " '", text,
                 "': expected WxH with 1 <= W, H <= 16384");
+    // Host side: the float RGBA image, its readback copy and the 8-bit output (36 bytes a pixel).
+    checkAllocation(uint64_t(a) * uint64_t(b) * 36, strCat(option, " ", text, ": the image"));
     width = a;
     height = b;
 }
@@ -358,6 +361,7 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
     p.cameraGiven = p.cameraGiven || given(app, "--camera");
     if (use("--spp")) s.spp = uint32_t(a.spp);
     p.autoTraversal = a.traversal == "auto" && given(app, "--traversal");
+    p.fitTraversal = !given(app, "--traversal") && !fromSession;
     if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
@@ -384,6 +388,14 @@ void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, 
                                                          model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
                                                          p.session.settings.camera.fovYDegrees);
     }
+}
+
+void fitTraversal(Picture& p, const amr::Model& model) {
+    if (!p.fitTraversal || p.session.structure.sampler == scene::SamplerKind::Dense) return;
+    const amr::ModelSummary sum = amr::summarize(model);
+    std::string why;
+    p.session.structure.traversal = scene::fittingTraversal(sum.leafVolume, sum.bounds.volume(), &why);
+    if (!why.empty()) std::fprintf(stderr, "amrvk: %s\n", why.c_str());
 }
 
 void setUpCommand(CLI::App& app) {

@@ -78,6 +78,7 @@ struct Picture {
     bool tfFromSession = false;
     bool cameraGiven = false;    // --camera or the session's camera
     bool autoTraversal = false;  // --traversal auto
+    bool fitTraversal = false;   // no --traversal and no session: resolveAfterReading fits it to the data
 };
 Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
                            const PictureArgs& a);
@@ -85,6 +86,10 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
 // given, frames the data with the default camera.
 void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,
                          float valueHi);
+// Unless --traversal (or a session) chose one, the traversal that fits the data
+// (scene::fittingTraversal), said on stderr when it is not the default grid-dda. Call after
+// reading, before building structures.
+void fitTraversal(Picture& p, const amr::Model& model);
 
 // amrvk's help layout (usage, wrapped descriptions with their checks and defaults), the "options"
 // group and -h,--help; every command calls it right after making its App.

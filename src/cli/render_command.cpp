@@ -126,6 +126,8 @@ int runRender(const std::vector<std::string>& argv) {
         model = amr::readModel(s.input, ro);
     }
     const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
+    fitTraversal(picture, model);
+    config.traversal = s.structure.traversal;
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
     gpu::ContextOptions co = contextOptions(dev);
     co.requireRayQuery = config.backend == scene::Backend::Rq;
@@ -179,7 +181,8 @@ int runRender(const std::vector<std::string>& argv) {
         std::fprintf(stderr,
                      "amrvk: warning: %llu majorant violations, %llu NaN samples, %llu paths hit the bounce "
                      "limit, "
-                     "%llu tracking calls stopped at the step cap (biased: lower --density-scale)\n",
+                     "%llu tracking calls stopped at the step cap or below float resolution (biased: lower "
+                     "--density-scale)\n",
                      (unsigned long long)c[shared::kCounterMajorantViolations],
                      (unsigned long long)c[shared::kCounterNanSamples],
                      (unsigned long long)c[shared::kCounterBounceLimitHits],

@@ -91,6 +91,7 @@ int runView(const std::vector<std::string>& argv) {
     picture.session.field = field.name;
     const amr::FieldStats st = amr::computeFieldStats(model, field);
     resolveAfterReading(picture, app, pic, model, st.minValue, st.maxValue);
+    fitTraversal(picture, model);
     vo.start = picture.session;
     vo.frames = uint64_t(frames);
     vo.screenshot = screenshot;

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace amrvk {
@@ -16,9 +17,13 @@ std::string strCat(Args&&... args) {
     return os.str();
 }
 
+// The message is kept on one line: control bytes from the input (line breaks, NUL, escapes) are
+// shown as \n, \r, \t or \xHH, so a hostile file can neither split nor cut an error.
+std::string oneLineMessage(std::string_view message);
+
 class Error : public std::runtime_error {
 public:
-    explicit Error(const std::string& message) : std::runtime_error(message) {}
+    explicit Error(const std::string& message) : std::runtime_error(oneLineMessage(message)) {}
 };
 
 // Throws amrvk::Error built from the streamed message when cond is false.

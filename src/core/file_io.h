@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,8 +31,12 @@ public:
     void seek(uint64_t offset);
     // Reads exactly `bytes` bytes or throws "FILE: truncated at byte N (needed M more bytes)".
     void read(void* dst, uint64_t bytes);
+    // Throws the truncation error of read() unless `bytes` more bytes are left.
+    void requireBytes(uint64_t bytes) const;
+    // Reads `count` values; the file is checked to hold them before anything is allocated.
     template <typename T>
     void readArray(std::vector<T>& out, uint64_t count) {
+        requireBytes(count > UINT64_MAX / sizeof(T) ? UINT64_MAX : count * sizeof(T));
         out.resize(count);
         read(out.data(), count * sizeof(T));
     }
@@ -59,14 +64,27 @@ public:
         write(values.data(), values.size_bytes());
     }
     uint64_t bytesWritten() const { return mBytes; }
+    // Flushes and closes the temporary file (where a full disk shows up); throws on failure.
+    void finish();
+    // finish() if not yet done, then renames the temporary file to the final path.
     void commit();
 
 private:
     std::filesystem::path mPath;
     std::filesystem::path mTmpPath;
     std::FILE* mFile = nullptr;
+    bool mFinished = false, mCommitted = false;
+    int mSlot = -1;  // entry in the table of temporaries that SIGINT/SIGTERM remove
     uint64_t mBytes = 0;
 };
+
+// Commits several files as one output: every writer is finished before any is renamed, so a write
+// error leaves none of them under its final name.
+void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers);
+
+// Installs SIGINT/SIGTERM handlers that remove every AtomicFileWriter's temporary file, then end
+// the process with the signal's default action. main() calls it once.
+void removeTemporariesOnSignal();
 
 // Writes a whole text/binary buffer atomically.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& contents);

@@ -261,6 +261,9 @@ Image readExr(const fs::path& path) {
                     exr.header.channels[c].name, "' is UINT (only HALF and FLOAT channels are read)");
         exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
     }
+    // On failure tinyexr frees the image (FreeEXRImage) while num_channels is still ours, and sets it
+    // only on success: preset it, or the per-channel buffers of a damaged file leak.
+    exr.image.num_channels = exr.header.num_channels;
     if (LoadEXRImageFromMemory(&exr.image, &exr.header, data.data(), data.size(), &err) != TINYEXR_SUCCESS) {
         InitEXRImage(&exr.image);  // tinyexr has freed it, leaving dangling pointers
         AMRVK_CHECK(false, file, ": cannot read OpenEXR pixels (", takeExrError(err), ")");

@@ -15,7 +15,11 @@ Buffer::Buffer(Context& ctx, uint64_t bytes, MemoryKind kind, std::string name,
     bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | extraUsage;
     bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    AMRVK_VK_CHECK(vkCreateBuffer(ctx.device(), &bci, nullptr, &mBuffer));
+    const VkResult created = vkCreateBuffer(ctx.device(), &bci, nullptr, &mBuffer);
+    AMRVK_CHECK(created != VK_ERROR_OUT_OF_DEVICE_MEMORY && created != VK_ERROR_OUT_OF_HOST_MEMORY,
+                "out of GPU memory creating '", mName, "' (", bytes, " bytes; ", ctx.memory().currentBytes(),
+                " bytes already in use)");
+    AMRVK_VK_CHECK(created);
     try {
         VkMemoryRequirements req{};
         vkGetBufferMemoryRequirements(ctx.device(), mBuffer, &req);

@@ -30,6 +30,13 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
 
     std::vector<scene::TraversalKind> traversals =
         constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
+    // Grid traversals do not fit sparse data (scene::fittingTraversal): not worth their probes.
+    const amr::ModelSummary summary = amr::summarize(*volume.model);
+    if (!constraints.traversal &&
+        scene::fittingTraversal(summary.leafVolume, summary.bounds.volume()) != scene::TraversalKind::GridDda)
+        std::erase_if(traversals, [](scene::TraversalKind t) {
+            return t == scene::TraversalKind::GridDda || t == scene::TraversalKind::GridBvh;
+        });
     std::vector<scene::SamplerKind> samplers =
         constraints.sampler ? std::vector{*constraints.sampler} : scene::allSamplers();
     std::vector<scene::Backend> backends;

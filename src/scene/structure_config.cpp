@@ -60,6 +60,15 @@ std::string StructureConfig::label() const {
     return std::string(traversalName(traversal)) + "/" + samplerName(sampler) + "/" + backendName(backend);
 }
 
+TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::string* why) {
+    const double coverage = boundsVolume > 0 ? leafVolume / boundsVolume : 1.0;
+    if (coverage >= kGridMinCoverage) return TraversalKind::GridDda;
+    if (why)
+        *why = strCat("traversal abr: the cells fill ", coverage, " of their bounding box (below ", kGridMinCoverage,
+                      "), so grid macrocells would be mostly empty space (give --traversal to choose)");
+    return TraversalKind::Abr;
+}
+
 Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName) {
     if (requested == Backend::Auto) return deviceHasRayQuery ? Backend::Rq : Backend::Sw;
     AMRVK_CHECK(requested != Backend::Rq || deviceHasRayQuery, "--backend rq: device '", deviceName,

@@ -44,6 +44,14 @@ struct StructureConfig {
     std::string label() const;  // e.g. "grid-dda/ext-brick/sw"
 };
 
+// Which traversal fits the data when none is asked for: grid-dda (the paper's default) where the
+// leaf cells fill at least kGridMinCoverage of their bounding box, else abr. Over sparse data a
+// uniform macrocell grid is mostly empty space whose majorant is set by the few cells inside:
+// 20,000 cells scattered over a 2^30-wide box give macrocells 2^23 cells wide and millions of
+// null collisions per crossing, while ABRs hug the cells. `why` gets one line for the log.
+constexpr double kGridMinCoverage = 1e-3;
+TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::string* why = nullptr);
+
 // Resolves Backend::Auto: Rq when the device supports ray queries, else Sw; a requested Rq on a
 // device without ray queries is an error naming the device.
 Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName);

@@ -33,6 +33,10 @@ VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
     amr::ModelSummary summary = amr::summarize(model);
     s.bounds = summary.bounds;
     s.localOrigin = summary.bounds.lower;
+    // Local coordinates (what the GPU sees) are int32 and float: refuse a wider domain up front.
+    for (int a = 0; a < 3; ++a)
+        AMRVK_CHECK(summary.bounds.size()[a] <= INT32_MAX, model.source, ": the data spans ", summary.bounds.size()[a],
+                    " finest cells along axis ", "xyz"[a], ", more than 2^31 from the data's lower corner (the limit)");
     s.minLevel = summary.minLevel;
     amr::FieldStats stats = amr::computeFieldStats(model, field);
     s.valueLo = stats.minValue;

@@ -43,5 +43,33 @@ expect "--field: At Most 1" -- info good.cells --field a --field b
 expect "--cells: '0' is outside" -- gen cloud --cells 0 -o x
 expect "--output is required" -- convert good.cells
 "$amrvk" info nan.cells --nan drop >/dev/null 2>&1 || { echo "FAIL: --nan drop"; fail=1; }
+
+# Hostile-input regressions (robustness issue), each named after its defect.
+# ControlBytesInAnErrorStayOnOneLine: a field name with a line break, a NUL-free escape and a bell.
+expect "unknown field 'a\nb\x1b[2J\x07'" -- info good.cells --field "$(printf 'a\nb\033[2J\a')"
+# MisleadingCameraAndLightErrors: NaN in --camera said "eye and target coincide", NaN in
+# --light-dir "direction is zero", --fov 0 "up vector is parallel"; each now names the option.
+expect "--camera: 'nan' is not a finite number" -- render good.cells --camera nan 0 0 0 0 1 0 1 0 -o x.png
+expect "--fov: 'inf' is not a finite number" -- render good.cells --fov inf -o x.png
+expect "--light-dir: 'nan' is not a finite number" -- render good.cells --light-dir nan 0 0 1 1 1 -o x.png
+expect "--light-point: radiance -1 1 1 must be >= 0" -- render good.cells --light-point 0 0 0 -1 1 1 -o x.png
+expect "--background: 'inf' is not a finite number" -- render good.cells --background inf 0 0 -o x.png
+# AnImageTooLargeForMemoryIsRefusedByName (--size 16384x16384 used to start allocating 17 GB).
+AMRVK_MEMORY_BUDGET=1000000 expect "--size 512x512: the image: needs 9437184 bytes, more than the memory budget" \
+  -- render good.cells --size 512x512 -o x.png
+check test ! -e x.png
+# ConvertLeavesNoScalarsWhenTheCellsFail: BASE.cells cannot be renamed into place (a directory
+# holds its name); .scalars used to be committed first and stayed behind.
+mkdir -p conv.cells/occupied
+expect "conv.cells: cannot rename temporary file into place" -- convert good.cells -o conv
+check test ! -e conv.scalars
+check test -z "$(ls | grep tmp- || true)"
+# InterruptedGenLeavesNoTemporaries: SIGINT while gen writes gigabytes used to leave *.tmp-PID.
+"$amrvk" gen cloud --cells 100000000 --seed 1 -o big 2>/dev/null & gen=$!
+for _ in $(seq 300); do ls big.cells.tmp-* >/dev/null 2>&1 && break; sleep 0.1; done
+check ls big.cells.tmp-"$gen"
+kill -INT "$gen"; wait "$gen"; rc=$?
+check test "$rc" = 130
+check test -z "$(ls | grep '^big\.' || true)"
 ls /nonexistent-dir 2>/dev/null && fail=1
 exit $fail

@@ -68,4 +68,38 @@ expect "unknown option '--bogus'" -- render "$sample" "${common[@]}" --bogus -o 
 expect "--json $dir: is a directory" -- render "$sample" "${common[@]}" --json "$dir" -o "$dir/x.png"
 check test ! -e "$dir/x.png"
 check test ! -e "$dir/x.bmp"
+
+# Hostile-input regressions (robustness issue), each named after its defect.
+# SparseDataGetsATraversalThatFitsIt: 20,000 finest cells scattered over a 2^30-wide box ran over
+# 300 s with the default grid-dda (macrocells 2^23 cells wide); the default now fits the data.
+python3 - "$dir/scatter" <<'PY'
+import random, struct, sys
+random.seed(1)
+cells = sorted({tuple(random.randrange(1 << 30) for _ in range(3)) for _ in range(20000)})
+open(sys.argv[1] + '.cells', 'wb').write(b''.join(struct.pack('<4i', *c, 0) for c in cells))
+open(sys.argv[1] + '.scalars', 'wb').write(struct.pack('<%df' % len(cells), *[random.random() for _ in cells]))
+PY
+timeout 120 "$amrvk" render "$dir/scatter.cells" --size 4x4 --spp 1 --mode ae -o "$dir/scatter.png" \
+  --json "$dir/scatter.json" >/dev/null 2>"$dir/scatter.err" || fail=1
+check grep -q "traversal abr: the cells fill .* of their bounding box" "$dir/scatter.err"
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["traversal"] == "abr", j' "$dir/scatter.json"
+# TrackingThatStallsInFloatIsCountedAndQuick: --density-scale 1e30 gives free paths below float
+# resolution; t stalled and each call burned the 2^22-step cap in place (20 s for 8x8 pixels),
+# uncounted before the cap was fixed. Now the call ends at once, counted and warned about.
+timeout 120 "$amrvk" render "$sample" --size 8x8 --spp 1 --mode ae --tf-range 0 1 --density-scale 1e30 \
+  -o "$dir/dense.png" --json "$dir/dense.json" >/dev/null 2>"$dir/dense.err" || fail=1
+check grep -q "tracking calls stopped at the step cap or below float resolution" "$dir/dense.err"
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["trackingCapHits"] > 0 and j["majorantViolations"] == 0, j' "$dir/dense.json"
+# ShaderDirNameIsNeverRunAsACommand: --shader-dir was pasted into a std::system command line; a
+# directory named like a command substitution ran it. Shaders now compile in process.
+evil="$dir/x'\$(touch $dir/PWNED)'x"
+mkdir -p "$evil"
+"$amrvk" shaders --export "$evil/src" >/dev/null || fail=1
+"$amrvk" render "$sample" "${common[@]}" --mode ae --shader-dir "$evil/src/passes" -o "$dir/evil.pfm" >/dev/null || fail=1
+check test -s "$dir/evil.pfm"
+check test ! -e "$dir/PWNED"
+# AMacrocellGridTooLargeForMemoryIsRefusedByName (--grid 4096 allowed 512 GiB of value ranges).
+AMRVK_MEMORY_BUDGET=100000000 expect "--grid 512x512x512: macrocell value ranges: needs 1073741824 bytes" \
+  -- render "$sample" --size 8x8 --spp 1 --grid 512x512x512 -o "$dir/x.png"
+check test ! -e "$dir/x.png"
 exit $fail

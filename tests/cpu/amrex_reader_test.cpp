@@ -377,3 +377,69 @@ TEST(AmrexReader, SyntheticTruncatedFabIsReported) {
     expectContains(msg, data.string());
     expectContains(msg, "truncated FAB 0");
 }
+
+// ---- hostile plotfiles (robustness issue): each edits one field of a valid synthetic plotfile ----
+
+namespace {
+
+// Replaces the one occurrence of `from` in file `p` by `to`.
+void edit(const fs::path& p, const std::string& from, const std::string& to) {
+    std::string text = readAll(p);
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << "'" << from << "' not in " << p;
+    ASSERT_EQ(text.find(from, at + 1), std::string::npos) << "'" << from << "' twice in " << p;
+    writeAll(p, text.replace(at, from.size(), to));
+}
+
+fs::path syntheticPlotfile(const Synthetic& s = {}) {
+    const fs::path dir = test::scratchDir() / "plt";
+    writeSynthetic(dir, s);
+    return dir;
+}
+
+}  // namespace
+
+TEST(AmrexHostile, FabBoxWhoseByteCountWrapsIsRejected) {
+    // 2^21 cells per axis: 2^63 cells x 8 bytes wraps 64 bits (it used to wrap to 0 bytes, pass the
+    // truncation check and read through a null pointer).
+    const fs::path dir = syntheticPlotfile();
+    edit(dir / "Level_1" / "Cell_D_00000", "((2,2,2) (5,5,5) (0,0,0))", "((0,0,0) (2097151,2097151,2097151) (0,0,0))");
+    expectError([&] { readAmrex(dir, {}); }, {"Cell_D_00000: FAB 0", "overflows 64 bits"});
+}
+
+TEST(AmrexHostile, VisMFNgrowWhoseByteCountWrapsIsRejected) {
+    Synthetic s;
+    s.vismfVersion = 2;
+    const fs::path dir = syntheticPlotfile(s);
+    edit(dir / "Level_0" / "Cell_H", "2\n0\n2\n0\n(1 0", "2\n0\n2\n1048574\n(1 0");
+    expectError([&] { readAmrex(dir, {}); }, {"FAB 0", "overflows 64 bits"});
+    edit(dir / "Level_0" / "Cell_H", "2\n0\n2\n1048574\n(1 0", "2\n0\n2\n2147483647\n(1 0");
+    expectError([&] { readAmrex(dir, {}); }, {"Cell_H: line 4: ngrow: 2147483647 is outside [0, 1073741823]"});
+}
+
+TEST(AmrexHostile, BoxCornersNearInt32LimitsAreRejected) {
+    // hi - lo + 1 of these corners overflows int32 (undefined behaviour before the check).
+    const fs::path dir = syntheticPlotfile();
+    edit(dir / "Level_0" / "Cell_H", "((0,0,0) (3,3,3) (0,0,0))", "((-2147483648,0,0) (2147483647,3,3) (0,0,0))");
+    expectError([&] { readAmrex(dir, {}); }, {"Cell_H: line", "has a corner outside [-1073741823, 1073741823]"});
+}
+
+TEST(AmrexHostile, ProbDomainThatIsEmptyInvertedOrNanIsRejected) {
+    for (const std::string lo : {"1", "2", "nan", "-inf"}) {
+        SCOPED_TRACE("prob_lo x = " + lo);
+        const fs::path dir = syntheticPlotfile();
+        edit(dir / "Header", "\n0 0 0 \n1 1 1 \n", "\n" + lo + " 0 0 \n1 1 1 \n");
+        expectError([&] { readAmrex(dir, {}); }, {"Header: line", "prob_lo", "on axis 0",
+                                                  "not a finite range with prob_lo < prob_hi"});
+    }
+}
+
+TEST(AmrexHostile, ControlBytesInTheHeaderStayOnOneLineInTheError) {
+    const fs::path dir = syntheticPlotfile();
+    const char hostile[] = "b(x)\n\x07\x00\nX\x1b[2J\n0.5";  // a bell, a NUL, a line break, a terminal escape
+    edit(dir / "Header", "b(x)\n3\n0.5", std::string(hostile, sizeof hostile - 1));
+    const std::string msg = errorOf([&] { readAmrex(dir, {}); });
+    expectContains(msg, "expected an integer (dimension)");
+    expectContains(msg, "\\x07\\x00\\nX\\x1b[2J");
+    for (char c : msg) EXPECT_TRUE(static_cast<unsigned char>(c) >= 0x20) << "control byte in: " << msg;
+}

@@ -1,6 +1,7 @@
 // Chombo reader on the two real 2-D mushy-layer plotfiles (oracles in shared/data/amr/FORMATS.md 6)
 // and on damaged copies of them.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <cstring>
@@ -158,4 +159,59 @@ TEST(ChomboReader, RoundTripThroughExaBrick) {
     o.fields = {"Temperature", "Porosity"};
     const Model m = readModel(test::dataDir() / kPlt25000, o);
     test::expectExaBrickRoundTrip(m);
+}
+
+// ---- hostile files (robustness issue): one value of a copy of the real plotfile rewritten ----
+
+namespace {
+
+// A writable copy of plt000100 with `edit(file)` applied through the HDF5 library.
+fs::path editedCopy(const std::function<void(hid_t)>& edit) {
+    const fs::path copy = test::scratchDir() / "plt000100.2d.hdf5";
+    writeAll(copy, readAll(test::dataDir() / kPlt100));
+    const hid_t f = H5Fopen(copy.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    EXPECT_GE(f, 0);
+    edit(f);
+    H5Fclose(f);
+    return copy;
+}
+
+void writeLevel0Dx(hid_t f, double dx) {
+    const hid_t g = H5Gopen2(f, "level_0", H5P_DEFAULT);
+    const hid_t a = H5Aopen(g, "dx", H5P_DEFAULT);
+    EXPECT_GE(H5Awrite(a, H5T_NATIVE_DOUBLE, &dx), 0);
+    H5Aclose(a);
+    H5Gclose(g);
+}
+
+}  // namespace
+
+TEST(ChomboHostile, DxThatIsZeroNanOrNegativeIsRejected) {
+    AMRVK_REQUIRE_DATA(kPlt100);
+    for (double dx : {0.0, -0.5, std::nan(""), double(INFINITY)}) {
+        SCOPED_TRACE(dx);
+        const fs::path copy = editedCopy([&](hid_t f) { writeLevel0Dx(f, dx); });
+        expectError([&] { readChombo(copy, {}); }, {copy.string(), ": level_0 dx", "is not a finite positive cell size"});
+    }
+}
+
+TEST(ChomboHostile, BoxCornersNearInt32LimitsAreRejected) {
+    AMRVK_REQUIRE_DATA(kPlt100);
+    // The first box of level 0 from lo_i = -2^31 to hi_i = 2^31 - 1: its extent overflows int32.
+    const fs::path copy = editedCopy([](hid_t f) {
+        const hid_t d = H5Dopen2(f, "level_0/boxes", H5P_DEFAULT);
+        const hid_t mem = H5Tcreate(H5T_COMPOUND, 2 * sizeof(int));
+        H5Tinsert(mem, "lo_i", 0, H5T_NATIVE_INT);
+        H5Tinsert(mem, "hi_i", sizeof(int), H5T_NATIVE_INT);
+        const hid_t space = H5Dget_space(d);
+        std::vector<int> v(2 * size_t(H5Sget_simple_extent_npoints(space)));
+        EXPECT_GE(H5Dread(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+        v[0] = INT32_MIN;
+        v[1] = INT32_MAX;
+        EXPECT_GE(H5Dwrite(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+        H5Sclose(space);
+        H5Tclose(mem);
+        H5Dclose(d);
+    });
+    expectError([&] { readChombo(copy, {}); }, {"'level_0/boxes' box 0", "has a corner outside [-1073741823, 1073741823]"});
 }

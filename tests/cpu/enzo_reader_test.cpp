@@ -171,3 +171,43 @@ TEST(EnzoReader, RoundTripThroughExaBrick) {
     const Model m = readModel(test::dataDir() / kParam, o);
     test::expectExaBrickRoundTrip(m);
 }
+
+// ---- hostile hierarchies (robustness issue): one edited value in a copy of the real output ----
+
+namespace {
+
+// A copy of DD0018 (text and grid files) whose hierarchy has `from` replaced by `to` once.
+fs::path editedCopy(const std::string& file, const std::string& from, const std::string& to) {
+    const fs::path dir = test::scratchDir();
+    const fs::path param = copyTextFiles(dir);
+    for (const char* name : {"DD0018.cpu0000", "DD0018.cpu0001"})
+        writeAll(dir / "DD0018" / name, readAll(dataPath(name)));
+    std::string text = readAll(dir / "DD0018" / file);
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) writeAll(dir / "DD0018" / file, text.replace(at, from.size(), to));
+    return param;
+}
+
+}  // namespace
+
+TEST(EnzoHostile, GridExtentNearInt32LimitIsRejected) {
+    AMRVK_REQUIRE_DATA(kParam);
+    // 2^31 - 4 active cells per axis (level 26): a box whose corner is past the +-2^30 index limit.
+    const std::string grid1 = "GridDimension     = 38 38 22 \nGridStartIndex    = 3 3 3 \n"
+                              "GridEndIndex      = 34 34 18 \nGridLeftEdge      = 0 0 0 \nGridRightEdge     = 1 1 0.5";
+    const std::string huge = "GridDimension     = 2147483647 2147483647 2147483647 \nGridStartIndex    = 3 3 3 \n"
+                             "GridEndIndex      = 2147483646 2147483646 2147483646 \nGridLeftEdge      = 0 0 0 \n"
+                             "GridRightEdge     = 1 1 1";
+    const fs::path param = editedCopy("DD0018.hierarchy", grid1, huge);
+    expectError([&] { readEnzo(param, {}); }, {"DD0018.hierarchy: grid 1", "has a corner outside [-1073741823, 1073741823]"});
+}
+
+TEST(EnzoHostile, DomainThatIsNotFiniteIsRejected) {
+    AMRVK_REQUIRE_DATA(kParam);
+    for (const std::string right : {"inf 1 1", "nan 1 1", "0 1 1"}) {
+        SCOPED_TRACE(right);
+        const fs::path param = editedCopy("DD0018", "DomainRightEdge        = 1 1 1", "DomainRightEdge        = " + right);
+        expectError([&] { readEnzo(param, {}); }, {"DD0018: empty or non-finite domain on axis 0"});
+    }
+}
