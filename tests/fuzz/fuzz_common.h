@@ -101,12 +101,12 @@ void expectOnlyAmrvkErrors(const char* target, F&& f) {
         if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: read\n", target);
     } catch (const amrvk::Error& e) {
         if (verbose) std::fprintf(stderr, "==amrvk-fuzz== %s: amrvk::Error: %s\n", target, e.what());
-        // A clean, one-line error is the correct outcome for bad input. With AMRVK_FUZZ_ONE_LINE=1
-        // a message spanning lines (the CLI's contract, tests/cli/bad_input.sh) is a finding too;
-        // off by default while the AMReX reader quotes raw file bytes (tests/fuzz/findings.md).
+        // A clean, one-line error is the correct outcome for bad input; a message spanning lines
+        // (the CLI's contract, tests/cli/bad_input.sh) is a finding too (findings.md F3).
+        // AMRVK_FUZZ_ONE_LINE=0 turns that check off.
         static const bool oneLine = [] {
             const char* v = std::getenv("AMRVK_FUZZ_ONE_LINE");
-            return v && *v && *v != '0';
+            return !(v && *v == '0');
         }();
         const std::string_view msg = e.what();
         if (oneLine && (msg.find('\n') != std::string_view::npos || msg.empty())) {
