@@ -71,27 +71,29 @@ namespace {
 constexpr int kTempSlots = 64;
 constexpr size_t kTempPathBytes = 4096;
 char gTempPaths[kTempSlots][kTempPathBytes];
-std::atomic<bool> gTempUsed[kTempSlots];
+enum SlotState : int { kFree, kClaimed, kReady };  // the handler unlinks kReady slots only
+std::atomic<int> gTempState[kTempSlots];
 
 int registerTemporary(const std::string& path) {
     if (path.size() >= kTempPathBytes) return -1;
     for (int i = 0; i < kTempSlots; ++i) {
-        bool expected = false;
-        if (!gTempUsed[i].compare_exchange_strong(expected, true)) continue;
+        int expected = kFree;
+        if (!gTempState[i].compare_exchange_strong(expected, kClaimed)) continue;
         std::memcpy(gTempPaths[i], path.c_str(), path.size() + 1);
+        gTempState[i].store(kReady);
         return i;
     }
     return -1;  // more than kTempSlots at once: this one is left to the destructor
 }
 
 void unregisterTemporary(int& slot) {
-    if (slot >= 0) gTempUsed[slot].store(false);
+    if (slot >= 0) gTempState[slot].store(kFree);
     slot = -1;
 }
 
 extern "C" void removeTemporariesAndExit(int sig) {
     for (int i = 0; i < kTempSlots; ++i)
-        if (gTempUsed[i].load()) ::unlink(gTempPaths[i]);
+        if (gTempState[i].load() == kReady) ::unlink(gTempPaths[i]);
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
