@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "accel/bricks.h"
+#include "amrex_synthetic.h"
 #include "amr/model.h"
 #include "fuzz_common.h"
 #include "scene/transfer_function.h"
@@ -68,98 +69,24 @@ void exabrickSeeds(const fs::path& source) {
     seed("bricks", "five", fuzz::joinParts({bytesOf(cells), bytesOf(a), readAll(tmp)}));
 }
 
-// ---- AMReX (the synthetic plotfile of tests/cpu/amrex_reader_test.cpp) -----------------------
-struct Synthetic {
-    int dim = 3;
-    int vismfVersion = 1;
-    int realBytes = 8;
-    bool bigEndian = false;
-    int ngrow = 0;
-    int ratio = 2;
-};
-std::string intVect(glm::ivec3 v, int dim) {
-    std::string s = "(" + std::to_string(v.x) + "," + std::to_string(v.y);
-    if (dim == 3) s += "," + std::to_string(v.z);
-    return s + ")";
-}
-std::string boxText(glm::ivec3 lo, glm::ivec3 hi, int dim) {
-    return "(" + intVect(lo, dim) + " " + intVect(hi, dim) + " " + intVect(glm::ivec3(0), dim) + ")";
-}
-std::string realDescriptor(const Synthetic& s) {
-    std::string format = s.realBytes == 8 ? "(64 11 52 0 1 12 0 1023)" : "(32 8 23 0 1 9 0 127)";
-    std::string order;
-    for (int i = 0; i < s.realBytes; ++i) {
-        if (i) order += " ";
-        order += std::to_string(s.bigEndian ? i + 1 : s.realBytes - i);
-    }
-    const std::string n = std::to_string(s.realBytes);
-    return "((" + n + ", " + format + "),(" + n + ", (" + order + ")))";
-}
-void appendReal(std::string& out, double v, const Synthetic& s) {
-    unsigned char b[8];
-    if (s.realBytes == 8) {
-        std::memcpy(b, &v, 8);
-    } else {
-        float f = static_cast<float>(v);
-        std::memcpy(b, &f, 4);
-    }
-    const size_t n = static_cast<size_t>(s.realBytes);
-    if (s.bigEndian == (std::endian::native == std::endian::little)) std::reverse(b, b + n);
-    out.append(reinterpret_cast<const char*>(b), n);
-}
-std::string amrexSynthetic(const Synthetic& s) {
-    const int d = s.dim;
-    const glm::ivec3 one = d == 3 ? glm::ivec3(1) : glm::ivec3(1, 1, 0);
-    const glm::ivec3 lo[2] = {glm::ivec3(0), 2 * one};
-    const glm::ivec3 hi[2] = {3 * one, 5 * one};
-    const glm::ivec3 domainHi[2] = {3 * one, (4 * s.ratio - 1) * one};
-    std::ostringstream h;
-    h << "HyperCLaw-V1.1\n2\na\nb(x)\n" << d << "\n0.5\n1\n";
-    for (int a = 0; a < d; ++a) h << "0 ";
-    h << "\n";
-    for (int a = 0; a < d; ++a) h << "1 ";
-    h << "\n" << s.ratio << " \n";
-    for (int l = 0; l < 2; ++l) h << boxText(glm::ivec3(0), domainHi[l], d) << " ";
-    h << "\n0 0 \n";
-    for (int l = 0; l < 2; ++l) {
-        for (int a = 0; a < d; ++a) h << 0.25 / (l ? s.ratio : 1) << " ";
-        h << "\n";
-    }
-    h << "0\n0\n";
-    for (int l = 0; l < 2; ++l) {
-        h << l << " 1 0.5\n0\n";
-        for (int a = 0; a < d; ++a) h << "0 1\n";
-        h << "Level_" << l << "/Cell\n";
-    }
-    std::vector<std::string> parts{h.str()};
-    for (int l = 0; l < 2; ++l) {
-        const glm::ivec3 g = s.ngrow * one;
-        const glm::ivec3 flo = lo[l] - g, fhi = hi[l] + g;
-        std::string data;
-        if (s.vismfVersion == 1) data = "FAB " + realDescriptor(s) + boxText(flo, fhi, d) + " 2\n";
-        for (int c = 0; c < 2; ++c)
-            for (int k = flo.z; k <= fhi.z; ++k)
-                for (int j = flo.y; j <= fhi.y; ++j)
-                    for (int i = flo.x; i <= fhi.x; ++i)
-                        appendReal(data, 1000 * l + 100 * c + i + 10 * j + 0.25 * k, s);
-        std::ostringstream ch;
-        ch << s.vismfVersion << "\n0\n2\n" << s.ngrow << "\n";
-        ch << "(1 0\n" << boxText(lo[l], hi[l], d) << "\n)\n1\nFabOnDisk: Cell_D_00000 0\n\n";
-        if (s.vismfVersion == 1 || s.vismfVersion == 3)
-            ch << "1,2\n0.0e+00,1.0e+02,\n\n1,2\n1.0e+03,1.1e+03,\n";
-        if (s.vismfVersion == 4) ch << "0.0e+00,1.0e+02,\n1.0e+03,1.1e+03,\n";
-        if (s.vismfVersion >= 2) ch << realDescriptor(s) << "\n";
-        parts.push_back(ch.str());
-        parts.push_back(data);
-    }
+// ---- AMReX (the synthetic plotfiles of the reader tests, tests/amrex_synthetic.h) -----------
+std::string amrexSynthetic(int dim, int vismfVersion, int realBytes, bool bigEndian, int ngrow) {
+    amrvk::test::amrex::Synthetic s;
+    s.dim = dim;
+    s.vismfVersion = vismfVersion;
+    s.realBytes = realBytes;
+    s.bigEndian = bigEndian;
+    s.ngrow = ngrow;
+    std::vector<std::string> parts;  // Header, then Cell_H and Cell_D_00000 per level: fuzz_amrex's order
+    for (auto& [name, bytes] : amrvk::test::amrex::plotfileFiles(s)) parts.push_back(std::move(bytes));
     return fuzz::joinParts(parts);
 }
 void amrexSeeds(const fs::path& data) {
-    seed("amrex", "synthetic-v1-3d", amrexSynthetic({}));
-    seed("amrex", "synthetic-v1-2d-ghost-float-be", amrexSynthetic({2, 1, 4, true, 1, 2}));
-    seed("amrex", "synthetic-v2-3d", amrexSynthetic({3, 2, 8, false, 0, 2}));
-    seed("amrex", "synthetic-v3-2d", amrexSynthetic({2, 3, 4, false, 0, 2}));
-    seed("amrex", "synthetic-v4-3d-ghost", amrexSynthetic({3, 4, 8, false, 2, 2}));
+    seed("amrex", "synthetic-v1-3d", amrexSynthetic(3, 1, 8, false, 0));
+    seed("amrex", "synthetic-v1-2d-ghost-float-be", amrexSynthetic(2, 1, 4, true, 1));
+    seed("amrex", "synthetic-v2-3d", amrexSynthetic(3, 2, 8, false, 0));
+    seed("amrex", "synthetic-v3-2d", amrexSynthetic(2, 3, 4, false, 0));
+    seed("amrex", "synthetic-v4-3d-ghost", amrexSynthetic(3, 4, 8, false, 2));
     // The real PeleLM plotfile's Header, level 0 (Cell_H and its 156 KB of FAB data) and the
     // level-1 Cell_H (its data files are not in the input: the read ends there).
     const fs::path plt = data / "amrex_pelelm_3d/example_plt_3d";
