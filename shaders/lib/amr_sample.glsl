@@ -5,9 +5,12 @@
 // back-ends give identical values) or over ABR boxes (kSamplerAbr: the one ABR containing p under
 // half-open containment lo <= p < hi, then its sorted brick list). Back-ends: software BVH
 // (kBackendSw) or a ray query of length 0 at p (kBackendRq). Never culled by the transfer function.
+// kSamplerGrid: the macrocell containing p (one index computation) lists every brick whose domain
+// meets it, in ascending id order: the ext-brick sum without a tree descent (accel/brick_grid.*).
 // kSamplerDense: the field resampled at the finest cell centres (accel/dense_grid.*), clamped
 // trilinear: the speed-of-light reference for sampling cost, not the AMR reconstruction.
 // CPU twins: amr/sampler.* (brute force), accel/brick_sampler.* (same paths in double),
+// accel/brick_grid.* (GridSampler),
 // accel/dense_grid.* (sampleDense).
 #ifndef AMRVK_AMR_SAMPLE_GLSL
 #define AMRVK_AMR_SAMPLE_GLSL
@@ -173,6 +176,22 @@ FieldSample sampleFieldRq(uint samplerKind, vec3 p) {
 }
 #endif
 
+// The macrocell's list holds every brick whose domain meets it (grown by a margin far above the
+// float rounding of p and of the index), so the domain test in addBrickContribution keeps exactly
+// the bricks ext-brick gathers, visited in the same ascending id order.
+FieldSample sampleGrid(vec3 p) {
+    ivec3 dims = P.scene.gridDims;
+    ivec3 c = clamp(ivec3(floor((p - P.scene.gridOrigin) / P.scene.gridCellSize)), ivec3(0), dims - 1);
+    UintRef lists = UintRef(P.scene.gridBrickLists);
+    uint cell = uint(c.x + dims.x * (c.y + dims.y * c.z));
+    uint end = lists.v[cell + 1u];
+    float sumW = 0.0, sumWV = 0.0;
+    bool inside = false;
+    int level = kNoLevel;
+    for (uint i = lists.v[cell]; i < end; ++i) addBrickContribution(lists.v[i], p, sumW, sumWV, inside, level);
+    return finishSample(sumW, sumWV, inside, level);
+}
+
 // Clamped trilinear interpolation of the dense samples; NaN samples (outside the medium) are
 // skipped and the remaining weights renormalised. inside = the sample of the dense cell holding p
 // is a value. CPU twin: accel/dense_grid.cpp (sampleDense).
@@ -201,6 +220,7 @@ FieldSample sampleDense(vec3 p) {
 
 FieldSample sampleField(uint samplerKind, uint backend, vec3 p) {
     if (samplerKind == kSamplerDense) return sampleDense(p);
+    if (samplerKind == kSamplerGrid) return sampleGrid(p);
 #ifdef AMRVK_RAY_QUERY
     if (backend == kBackendRq) return sampleFieldRq(samplerKind, p);
 #endif

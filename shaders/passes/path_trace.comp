@@ -1,6 +1,6 @@
 #version 460
 // One sample per pixel per dispatch: camera ray -> estimator of the chosen mode -> accumulate
-// radiance and its square. Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense),
+// radiance and its square. Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense | grid),
 // kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
 // Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
 // (-DAMRVK_RAY_QUERY: also the VK_KHR_ray_query back-end; needs the rayQuery feature).

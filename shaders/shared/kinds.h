@@ -19,6 +19,7 @@ AMRVK_ENUM_BEGIN(SamplerKind)
 AMRVK_ENUM_VALUE(Sampler, ExtBrick, 0u)  // brick basis domains
 AMRVK_ENUM_VALUE(Sampler, Abr, 1u)       // active brick regions
 AMRVK_ENUM_VALUE(Sampler, Dense, 2u)     // uniform finest-level resampling, clamped trilinear (cost floor)
+AMRVK_ENUM_VALUE(Sampler, Grid, 3u)      // macrocell grid of brick lists: no tree descent, ext-brick's values
 AMRVK_ENUM_END()
 
 // Majorant traversals (specialization constant kTraversal). grid-dda steps through the macrocell

@@ -72,7 +72,7 @@ AMRVK_STATIC_ASSERT(sizeof(ShadingGpu) == 80 + 32 * kMaxLights);
 struct SceneGpu {
     vec3 boundsHi;              // the union of leaf cells is [0, boundsHi] (local voxel)
     float invFinestCellWidth;   // 1 / (1 << finest level): extinction per voxel unit per unit alpha
-    ivec3 gridDims;             // macrocells per axis (grid traversals and dense majorants)
+    ivec3 gridDims;             // macrocells per axis (grid traversals, dense majorants, grid sampler)
     uint pad0;
     vec3 gridOrigin;            // local voxel
     float pad1;
@@ -91,7 +91,7 @@ struct SceneGpu {
     uint64_t abrBrickList;      // uint[]
     uint64_t gridRanges;        // ValueRangeGpu[] per macrocell
     uint64_t denseValues;       // float[] dense samples, x fastest (NaN: outside the medium), else 0
-    uint64_t pad3;
+    uint64_t gridBrickLists;    // grid sampler: uint[] per-macrocell offsets, then brick ids (accel/brick_grid.h)
 };
 AMRVK_STATIC_ASSERT(sizeof(SceneGpu) == 176);
 
@@ -183,6 +183,7 @@ AMRVK_STATIC_ASSERT(offsetof(SceneGpu, abrs) == 136);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, abrBrickList) == 144);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridRanges) == 152);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseValues) == 160);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridBrickLists) == 168);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfPositions) == 0);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfColors) == 8);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfNodeCount) == 16);

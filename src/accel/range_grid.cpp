@@ -3,22 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
+#include "accel/abrs.h"
+#include "accel/brick_sampler.h"
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
-
-namespace {
-
-// Cells per splat chunk and the most chunks: every chunk splats into its own full grid, so the
-// count also bounds the extra memory (at most kMaxSplatChunks - 1 grids besides the result).
-constexpr size_t kSplatChunkCells = 250000;
-constexpr size_t kMaxSplatChunks = 4;
-
-}  // namespace
 
 glm::ivec3 RangeGrid::cellOf(glm::dvec3 p) const {
     glm::dvec3 c = glm::floor((p - origin) / cellSize);
@@ -66,39 +60,199 @@ RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
     return g;
 }
 
-RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims) {
-    Timer timer;
-    RangeGrid g = rangeGridLayout(amr::summarize(model).bounds, dims);
-    const size_t total = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
-    const glm::dvec3 eps = 1e-5 * g.cellSize;
-    const size_t n = model.cells.size();
-    const size_t chunks = std::clamp<size_t>(n / kSplatChunkCells, 1, kMaxSplatChunks);
-    // parallelReduce holds one private grid per chunk at once.
-    checkAllocation(checkedProduct({total, sizeof(ValueRange), chunks}, "--grid"),
-                    strCat("--grid ", dims.x, "x", dims.y, "x", dims.z, ": macrocell value ranges"));
+namespace {
 
-    // Consecutive chunks of cells splat into private grids (in parallel), merged in chunk order.
-    auto splat = [&](size_t begin, size_t end) {
-        std::vector<ValueRange> ranges(total);
-        for (size_t i = begin; i < end; ++i) {
-            const amr::Cell& c = model.cells[i];
-            const float v = field.values[i];
-            if (std::isnan(v)) continue;
-            const double w = double(amr::cellWidth(c.level));
-            // Support box, grown by 1e-5 macrocell so that float rounding of sample positions on
-            // the GPU near a macrocell face cannot step outside the conservative range.
-            glm::dvec3 lo = glm::dvec3(c.lower) - 0.5 * w - eps, hi = glm::dvec3(c.lower) + 1.5 * w + eps;
-            glm::ivec3 a = g.cellOf(lo), b = g.cellOf(hi);
-            for (int z = a.z; z <= b.z; ++z)
-                for (int y = a.y; y <= b.y; ++y)
-                    for (int x = a.x; x <= b.x; ++x) ranges[g.index({x, y, z})].extend(v);
+// Positions along one axis of a brick where the extremes of its clamped trilinear t_b over the
+// interval [lo, hi] (cell-centre index space) can lie: both ends and the centres between them.
+// Each is (cell i0, fraction f): value (1 - f) v[i0] + f v[i0 + 1].
+struct AxisPositions {
+    int first = 0, last = 0;  // cells read: [first, last]
+    std::vector<std::pair<int, double>> pos;
+};
+
+void axisPositions(double lo, double hi, int size, AxisPositions& out) {
+    lo = std::clamp(lo, 0.0, double(size - 1));
+    hi = std::clamp(hi, lo, double(size - 1));
+    out.pos.clear();
+    auto add = [&](double u) {
+        int i0 = std::min(int(std::floor(u)), size - 1);
+        out.pos.emplace_back(i0, u - double(i0));
+    };
+    add(lo);
+    for (double c = std::floor(lo) + 1.0; c < hi; c += 1.0) add(c);
+    if (hi > lo) add(hi);
+    out.first = out.pos.front().first;
+    out.last = std::min(out.pos.back().first + (out.pos.back().second > 0.0 ? 1 : 0), size - 1);
+}
+
+struct Scratch {
+    AxisPositions axis[3];
+    std::vector<double> ax, ay;  // t_b interpolated along x, then along y
+    std::vector<double> planes[3];  // lattice breakpoints per axis
+};
+
+// Extends `range` by the range of brick b's t_b over the closed voxel-space box [lo, hi] (already
+// cut to the brick's domain); tracks the largest |value| read in maxAbs.
+void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm::dvec3 hi, Scratch& s,
+                   double& rlo, double& rhi, double& maxAbs) {
+    const double w = double(b.cellWidth());
+    for (int d = 0; d < 3; ++d)
+        axisPositions((lo[d] - b.lower[d]) / w - 0.5, (hi[d] - b.lower[d]) / w - 0.5, b.size[d], s.axis[d]);
+    const AxisPositions &X = s.axis[0], &Y = s.axis[1], &Z = s.axis[2];
+    auto at = [&](int x, int y, int z) { return values[b.begin + size_t((z * b.size.y + y) * b.size.x + x)]; };
+    // The cells read; with an empty slot among them, t_b is a convex combination of the others.
+    bool hole = false;
+    double clo = INFINITY, chi = -INFINITY;
+    for (int z = Z.first; z <= Z.last; ++z)
+        for (int y = Y.first; y <= Y.last; ++y)
+            for (int x = X.first; x <= X.last; ++x) {
+                const float v = at(x, y, z);
+                if (std::isnan(v)) {
+                    hole = true;
+                    continue;
+                }
+                clo = std::min(clo, double(v));
+                chi = std::max(chi, double(v));
+            }
+    if (clo > chi) return;  // nothing but empty slots
+    maxAbs = std::max({maxAbs, std::abs(clo), std::abs(chi)});
+    if (hole) {
+        rlo = std::min(rlo, clo);
+        rhi = std::max(rhi, chi);
+        return;
+    }
+    // Separable evaluation on the lattice X x Y x Z: along x for every cell row read, then along y,
+    // then along z.
+    const int ny = Y.last - Y.first + 1, nz = Z.last - Z.first + 1;
+    const size_t px = X.pos.size(), py = Y.pos.size();
+    auto next = [](int i, int last) { return std::min(i + 1, last); };
+    s.ax.resize(px * size_t(ny) * size_t(nz));
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y)
+            for (size_t i = 0; i < px; ++i) {
+                const auto [x0, f] = X.pos[i];
+                const double v0 = at(x0, Y.first + y, Z.first + z), v1 = at(next(x0, X.last), Y.first + y, Z.first + z);
+                s.ax[(size_t(z) * size_t(ny) + size_t(y)) * px + i] = v0 + f * (v1 - v0);
+            }
+    s.ay.resize(px * py * size_t(nz));
+    for (int z = 0; z < nz; ++z)
+        for (size_t j = 0; j < py; ++j) {
+            const auto [y0, f] = Y.pos[j];
+            const size_t r0 = (size_t(z) * size_t(ny) + size_t(y0 - Y.first)) * px;
+            const size_t r1 = (size_t(z) * size_t(ny) + size_t(next(y0, Y.last) - Y.first)) * px;
+            for (size_t i = 0; i < px; ++i)
+                s.ay[(size_t(z) * py + j) * px + i] = s.ax[r0 + i] + f * (s.ax[r1 + i] - s.ax[r0 + i]);
         }
-        return ranges;
-    };
-    auto merge = [&](std::vector<ValueRange>& acc, std::vector<ValueRange>&& part) {
-        parallelFor(0, total, [&](size_t i) { acc[i].extend(part[i]); }, 4096);
-    };
-    g.ranges = parallelReduce<std::vector<ValueRange>>(0, n, chunks, splat, merge);
+    for (const auto& [z0, f] : Z.pos) {
+        const size_t p0 = size_t(z0 - Z.first) * py * px, p1 = size_t(next(z0, Z.last) - Z.first) * py * px;
+        for (size_t k = 0; k < py * px; ++k) {
+            const double v = s.ay[p0 + k] + f * (s.ay[p1 + k] - s.ay[p0 + k]);
+            rlo = std::min(rlo, v);
+            rhi = std::max(rhi, v);
+        }
+    }
+}
+
+// The exact range of the reconstruction f = N / D over the box [lo, hi] (N = sum phi v, D = sum phi
+// over every brick cell): between consecutive breakpoints of the tent weights along each axis (cell
+// centres and domain ends of the listed bricks) every phi is a product of linear factors, so N and
+// D are multilinear on each sub-box, and so is N - M D for any M. With M the largest f over the
+// sub-box's vertices where D > 0, N - M D <= 0 at every vertex (where D = 0 also N = 0), hence
+// everywhere in the sub-box: f <= M wherever D > 0. The same holds for the minimum. So f's range
+// over the box is its range over the lattice of breakpoints. Returns false (and leaves the range
+// alone) when the lattice would have more than kMaxLatticeVertices vertices.
+constexpr size_t kMaxLatticeVertices = 512;
+
+bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> values, glm::dvec3 lo,
+                  glm::dvec3 hi, std::vector<double> (&planes)[3], double& rlo, double& rhi) {
+    size_t vertices = 1;
+    for (int d = 0; d < 3; ++d) {
+        std::vector<double>& pl = planes[d];
+        pl.assign({lo[d], hi[d]});
+        for (uint32_t id : ids) {
+            const Brick& b = bricks.bricks[id];
+            const double w = double(b.cellWidth()), base = double(b.lower[d]);
+            for (double e : {base - 0.5 * w, base + (double(b.size[d]) + 0.5) * w})  // domain ends
+                if (e > lo[d] && e < hi[d]) pl.push_back(e);
+            const double k0 = std::max(0.0, std::ceil((lo[d] - base) / w - 0.5));
+            const double k1 = std::min(double(b.size[d] - 1), std::floor((hi[d] - base) / w - 0.5));
+            if (k1 - k0 + double(pl.size()) > double(kMaxLatticeVertices)) return false;
+            for (double k = k0; k <= k1; k += 1.0) pl.push_back(base + (k + 0.5) * w);  // centres
+        }
+        std::sort(pl.begin(), pl.end());
+        pl.erase(std::unique(pl.begin(), pl.end()), pl.end());
+        vertices *= pl.size();
+        if (vertices > kMaxLatticeVertices) return false;
+    }
+    double mlo = INFINITY, mhi = -INFINITY;
+    for (double z : planes[2])
+        for (double y : planes[1])
+            for (double x : planes[0]) {
+                const glm::dvec3 p(x, y, z);
+                double sumW = 0, sumWV = 0;
+                for (uint32_t id : ids) {
+                    const Brick& b = bricks.bricks[id];
+                    if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, values, p, sumW, sumWV);
+                }
+                if (sumW <= 0) continue;
+                mlo = std::min(mlo, sumWV / sumW);
+                mhi = std::max(mhi, sumWV / sumW);
+            }
+    if (mlo > mhi) return false;
+    rlo = mlo;
+    rhi = mhi;
+    return true;
+}
+
+}  // namespace
+
+RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues) {
+    Timer timer;
+    RangeGrid g;
+    g.dims = lists.dims;
+    g.origin = lists.origin;
+    g.cellSize = lists.cellSize;
+    const size_t total = lists.cellCount();
+    checkAllocation(checkedProduct({total, sizeof(ValueRange)}, "--grid"),
+                    strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
+    g.ranges.resize(total);
+    const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
+    parallelForRanges(0, total, 64, [&](size_t begin, size_t end) {
+        Scratch scratch;
+        for (size_t cell = begin; cell < end; ++cell) {
+            const glm::ivec3 c(int(cell % size_t(g.dims.x)), int(cell / size_t(g.dims.x) % size_t(g.dims.y)),
+                               int(cell / (size_t(g.dims.x) * size_t(g.dims.y))));
+            // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
+            glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
+            glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
+            for (int a = 0; a < 3; ++a) {
+                if (c[a] == 0) lo[a] = -INFINITY;
+                if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
+            }
+            double rlo = INFINITY, rhi = -INFINITY, maxAbs = 0;
+            glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
+            for (uint32_t id : lists.bricksOf(cell)) {
+                const Brick& b = bricks.bricks[id];
+                const HalfBox d = brickDomain(b);
+                const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
+                if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
+                extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, maxAbs);
+                hullLo = glm::min(hullLo, blo);
+                hullHi = glm::max(hullHi, bhi);
+            }
+            if (rlo > rhi) continue;  // no brick has weight here: empty, majorant 0
+            // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
+            // small against the cells, the mixing of two bricks covers a small part of their
+            // union) the lattice gives f's exact range when it is small enough to evaluate.
+            latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
+            // Outward to float, then 8 ulps of the largest magnitude read (GPU float sums).
+            const double pad = 8.0 * double(std::numeric_limits<float>::epsilon()) * maxAbs;
+            float flo = float(rlo - pad), fhi = float(rhi + pad);
+            if (double(flo) > rlo - pad) flo = std::nextafter(flo, -INFINITY);
+            if (double(fhi) < rhi + pad) fhi = std::nextafter(fhi, INFINITY);
+            g.ranges[cell] = ValueRange(flo, fhi);
+        }
+    });
     g.buildSeconds = timer.seconds();
     return g;
 }

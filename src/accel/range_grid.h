@@ -1,12 +1,19 @@
 #pragma once
 // Macrocell value ranges: a uniform grid over the union of leaf-cell bounds (voxel space); each
-// macrocell holds the range of every cell whose tent support (centre +- one cell width) overlaps
-// or touches it, so it bounds the reconstructed value anywhere inside the macrocell.
+// macrocell holds a range that bounds the reconstructed value anywhere inside it (grown by the
+// brick grid's margin). The reconstruction is the W_b-weighted mean of per-brick clamped-trilinear
+// values t_b (W_b = the brick's tent-weight sum), so it lies in the union over bricks b meeting
+// the macrocell of the range of t_b over (macrocell and b's domain); t_b is trilinear at the point
+// clamped to the brick's cell centres, whose extremes over a box lie on the lattice of the box's
+// faces and the centre planes inside it: the range below is exact per brick, not the range of
+// every cell whose support touches the macrocell (the paper's splat, up to 6x looser).
 #include <glm/glm.hpp>
 
 #include <span>
 #include <vector>
 
+#include "accel/brick_grid.h"
+#include "accel/bricks.h"
 #include "accel/value_range.h"
 #include "amr/model.h"
 
@@ -34,6 +41,9 @@ glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds);
 // The grid's dims, origin and macrocell size over `bounds`, with no ranges yet.
 RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims);
 
-RangeGrid buildRangeGrid(const amr::Model& model, const amr::Field& field, glm::ivec3 dims);
+// Ranges over the layout of `lists` (which it reads: every brick meeting each grown macrocell).
+// Empty slots (NaN) make a brick's bound the range of its non-empty cells near the macrocell.
+// Bounds are widened by 8 float ulps of the largest magnitude involved (the GPU sums in float).
+RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues);
 
 }  // namespace amrvk::accel

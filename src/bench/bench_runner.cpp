@@ -205,7 +205,9 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         // earlier run (the kd-tree is built per TF: it is part of tfStructureSeconds instead).
         const auto& bs = mScene->buildSeconds;
         r.buildSeconds = bs.bricks + (config.usesAbrs() ? bs.abrs : 0.0) +
-                         (config.sampler == SamplerKind::Dense ? bs.dense : bs.samplerBvh) +
+                         (config.sampler == SamplerKind::Dense  ? bs.dense
+                          : config.usesBrickGrid() ? bs.brickGrid
+                                                   : bs.samplerBvh) +
                          (config.usesGrid() ? bs.grid : 0.0) +
                          (config.traversalUsesBoxes() && config.traversal != TraversalKind::GridBvh &&
                                   config.traversal != TraversalKind::KdTree

@@ -78,7 +78,7 @@ int runBench(const std::vector<std::string>& argv) {
         ->type_name("LIST");
     app.add_option("--traversals", traversals, "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
         ->type_name("LIST");
-    app.add_option("--samplers", samplers, "subset of ext-brick,abr (default both)")->type_name("LIST");
+    app.add_option("--samplers", samplers, "subset of ext-brick,abr,grid (default all three)")->type_name("LIST");
     app.add_option("--backends", backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
         ->type_name("LIST");
     app.add_option("--frames", frames, "timed frames of 1 spp each")

@@ -83,7 +83,7 @@ int runInfo(const std::vector<std::string>& argv) {
     accel::RangeGrid grid;
     {
         ProgressStage stage("macrocell value ranges");
-        grid = accel::buildRangeGrid(model, field, gridDims);
+        grid = accel::buildRangeGrid(accel::buildBrickGrid(bricks, summary.bounds, gridDims), bricks, brickValues);
     }
 
     double bricksPerAbr = abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());

@@ -221,12 +221,12 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->capture_default_str()
             ->type_name("NAME");
         app.add_option("--sampler", a.sampler,
-                       "sample reconstruction: brick domains, ABRs, or dense = the field resampled "
-                       "to the finest "
-                       "uniform grid (trilinear, a grid traversal only; the cost floor)")
-            ->check(CLI::IsMember({"ext-brick", "abr", "dense"}))
+                       "sample reconstruction: BVH over brick domains, BVH over ABRs, grid = per-macrocell "
+                       "brick lists (--grid; no tree descent, ext-brick's values), or dense = the field "
+                       "resampled to the finest uniform grid (trilinear, a grid traversal only; the cost floor)")
+            ->check(CLI::IsMember({"ext-brick", "abr", "grid", "dense"}))
             ->capture_default_str()
-            ->type_name("ext-brick|abr|dense");
+            ->type_name("ext-brick|abr|grid|dense");
         app.add_option("--backend", a.backend,
                        "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it")
             ->check(CLI::IsMember({"sw", "rq", "auto"}))
@@ -242,7 +242,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->expected(2)
         ->check(kFinite)
         ->type_name("LO HI");
-    app.add_option("--grid", a.grid, "macrocell grid of grid-dda and grid-bvh (auto: 128 on the longest axis)")
+    app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")

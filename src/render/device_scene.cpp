@@ -48,6 +48,14 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
         mParams.denseLevel = d.level;
         mParams.denseOrigin = glm::vec3(scene.toLocal(glm::dvec3(d.origin)));
         mParams.denseSpacing = float(amr::cellWidth(d.level));
+    } else if (cfg.sampler == SamplerKind::Grid) {
+        AMRVK_CHECK(scene.brickGrid.has_value(), "internal: grid sampler without a brick grid");
+        const accel::BrickGrid& g = *scene.brickGrid;
+        mGridBrickLists = gpu::makeBuffer<uint32_t>(ctx, g.lists, "gridSamplerBrickLists");
+        mParams.gridBrickLists = mGridBrickLists.address();
+        mParams.gridDims = g.dims;  // the layout of the range grid too, when there is one
+        mParams.gridOrigin = glm::vec3(scene.toLocal(g.origin));
+        mParams.gridCellSize = glm::vec3(g.cellSize);
     } else if (cfg.backend == Backend::Sw) {
         mSamplerNodes = gpu::makeBuffer<shared::BvhNodeGpu>(ctx, scene.samplerBvh.nodes, sampler + "Bvh");
         mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, sampler + "BvhPrims");

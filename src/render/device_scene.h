@@ -30,7 +30,7 @@ public:
 private:
     shared::SceneGpu mParams{};
     gpu::Buffer mBricks, mBrickValues, mSamplerNodes, mSamplerPrims, mSamplerAabbs, mAbrs, mAbrBrickList;
-    gpu::Buffer mGridRanges, mDenseValues, mDomainBoxes, mDomainRanges;
+    gpu::Buffer mGridRanges, mDenseValues, mGridBrickLists, mDomainBoxes, mDomainRanges;
     gpu::AabbAccelerationStructure mSamplerAccel;
 };
 

@@ -10,7 +10,7 @@ struct Named {
     int value;
 };
 constexpr Named kSamplers[] = {{"ext-brick", int(SamplerKind::ExtBrick)}, {"abr", int(SamplerKind::Abr)},
-                               {"dense", int(SamplerKind::Dense)}};
+                               {"dense", int(SamplerKind::Dense)}, {"grid", int(SamplerKind::Grid)}};
 constexpr Named kTraversals[] = {{"grid-dda", int(TraversalKind::GridDda)}, {"grid-bvh", int(TraversalKind::GridBvh)},
                                  {"abr", int(TraversalKind::Abr)},          {"brick", int(TraversalKind::Brick)},
                                  {"ext-brick", int(TraversalKind::ExtBrick)}, {"kdtree", int(TraversalKind::KdTree)}};
@@ -49,7 +49,7 @@ std::vector<TraversalKind> allTraversals() {
     for (const Named& n : kTraversals) out.push_back(TraversalKind(n.value));
     return out;
 }
-std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr}; }
+std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr, SamplerKind::Grid}; }
 
 void StructureConfig::validate() const {
     AMRVK_CHECK(sampler != SamplerKind::Dense || usesGrid(), "--sampler dense needs --traversal grid-dda or grid-bvh ",

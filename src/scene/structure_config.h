@@ -25,19 +25,20 @@ const char* traversalName(TraversalKind kind);
 Backend parseBackend(const std::string& name);
 const char* backendName(Backend backend);
 std::vector<TraversalKind> allTraversals();
-std::vector<SamplerKind> allSamplers();  // the paper's AMR samplers (not dense)
+std::vector<SamplerKind> allSamplers();  // the AMR samplers: the paper's two and grid (not dense)
 
 struct StructureConfig {
     SamplerKind sampler = SamplerKind::ExtBrick;
     TraversalKind traversal = TraversalKind::GridDda;
     Backend backend = Backend::Sw;  // resolved (Sw or Rq) before a scene is configured
-    std::string grid = "auto";      // macrocells (grid-dda, grid-bvh): auto | N | NxMxK
+    std::string grid = "auto";      // macrocells (grid-dda, grid-bvh, grid sampler): auto | N | NxMxK
     uint32_t kdLeaves = 4096;       // kdtree leaves
     uint64_t denseMaxBytes = uint64_t(2) << 30;  // dense sampler: refuse larger grids
     // Whether the combination uses a BVH (sampler always; traversal unless grid-dda).
     bool traversalUsesBoxes() const { return traversal != TraversalKind::GridDda; }
     bool usesGrid() const { return traversal == TraversalKind::GridDda || traversal == TraversalKind::GridBvh; }
     bool usesAbrs() const { return sampler == SamplerKind::Abr || traversal == TraversalKind::Abr; }
+    bool usesBrickGrid() const { return sampler == SamplerKind::Grid; }
     bool usesBricks() const { return sampler != SamplerKind::Dense; }  // on the GPU
     // Throws a one-line error for a combination that cannot run (dense without a grid traversal).
     void validate() const;

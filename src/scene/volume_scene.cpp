@@ -52,11 +52,13 @@ void VolumeScene::configure(const StructureConfig& next) {
     AMRVK_CHECK(next.backend != Backend::Auto, "internal: configure() needs a resolved back-end");
     next.validate();
     const bool denseSampler = next.sampler == SamplerKind::Dense;
-    const bool rebuildSampler = !denseSampler && (config.sampler != next.sampler || config.backend != next.backend ||
+    const bool bvhSampler = !denseSampler && !next.usesBrickGrid();
+    const bool rebuildSampler = bvhSampler && (config.sampler != next.sampler || config.backend != next.backend ||
                                                   (samplerBvh.nodes.empty() && samplerBoxes.empty()));
     const bool rebuildGrid = next.usesGrid() && (!grid || config.grid != next.grid ||
                                                  (config.sampler == SamplerKind::Dense) != denseSampler);
     const bool rebuildDomains = next.traversal != config.traversal || domains.boxes.empty();
+    const bool rebuildBrickGrid = next.usesBrickGrid() && (!brickGrid || config.grid != next.grid);
     config = next;
 
     // Free what the new combination does not use.
@@ -70,10 +72,11 @@ void VolumeScene::configure(const StructureConfig& next) {
         buildSeconds.domains = t.seconds();
     }
     if (rebuildDomains || !next.traversalUsesBoxes() || next.traversal == TraversalKind::GridBvh) domains = {};
-    if (rebuildSampler || denseSampler) {
+    if (rebuildSampler || !bvhSampler) {
         samplerBvh = {};
         samplerBoxes = {};
     }
+    if (!next.usesBrickGrid() || rebuildBrickGrid) brickGrid.reset();
     if (!denseSampler) dense.reset();
     if (denseSampler && !dense) {
         dense = accel::buildDenseGrid(*model, bricks, brickValues, bounds, minLevel, next.denseMaxBytes);
@@ -98,6 +101,11 @@ void VolumeScene::configure(const StructureConfig& next) {
         }
         buildSeconds.samplerBvh = t.seconds();
     }
+    if (rebuildBrickGrid) {
+        ProgressStage stage("brick grid");
+        brickGrid = accel::buildBrickGrid(bricks, bounds, accel::parseGridDims(next.grid, bounds));
+        buildSeconds.brickGrid = brickGrid->buildSeconds;
+    }
     if (rebuildGrid) {
         ProgressStage stage("macrocell value ranges");
         const glm::ivec3 dims = accel::parseGridDims(next.grid, bounds);
@@ -106,8 +114,12 @@ void VolumeScene::configure(const StructureConfig& next) {
             grid = accel::rangeGridLayout(bounds, dims);
             accel::assignDenseRanges(*dense, *grid);
             grid->buildSeconds = t.seconds();
-        } else {
-            grid = accel::buildRangeGrid(*model, *field, dims);
+        } else if (brickGrid && brickGrid->dims == dims) {
+            grid = accel::buildRangeGrid(*brickGrid, bricks, brickValues);
+        } else {  // the brick lists only while the ranges are made
+            const accel::BrickGrid lists = accel::buildBrickGrid(bricks, bounds, dims);
+            grid = accel::buildRangeGrid(lists, bricks, brickValues);
+            grid->buildSeconds += lists.buildSeconds;
         }
         buildSeconds.grid = grid->buildSeconds;
     }
@@ -145,6 +157,7 @@ std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
     if (!samplerBoxes.empty()) out.emplace_back("samplerBoxes", samplerBoxes.size() * sizeof(shared::AabbGpu));
     if (grid) out.emplace_back("macrocells", grid->memoryBytes());
     if (dense) out.emplace_back("denseGrid", dense->memoryBytes());
+    if (brickGrid) out.emplace_back("brickGrid", brickGrid->memoryBytes());
     if (supportRanges.query) out.emplace_back("supportRangeQuery", supportRanges.query->memoryBytes());
     if (!domains.boxes.empty()) out.emplace_back("traversalBoxes", domains.memoryBytes());
     return out;

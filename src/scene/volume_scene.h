@@ -5,7 +5,7 @@
 // the BLAS); the macrocell value-range grid for grid-dda and grid-bvh; traversal boxes with value
 // ranges for abr, brick and ext-brick; the support-range query the kdtree traversal builds its
 // TF-specific tree from; the dense resampling for the dense sampler (whose macrocell ranges then
-// come from the dense samples). configure() switches combination, building what is missing and
+// come from the dense samples); the brick grid for the grid sampler. configure() switches combination, building what is missing and
 // freeing what the new one does not use. Renderers only read a scene; whoever owns it configures
 // it. All coordinates the GPU sees are local voxel space, converted in one place: toLocal().
 #include <glm/glm.hpp>
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "accel/abrs.h"
+#include "accel/brick_grid.h"
 #include "accel/bricks.h"
 #include "accel/bvh.h"
 #include "accel/dense_grid.h"
@@ -66,10 +67,11 @@ struct VolumeScene {
     std::vector<shared::AabbGpu> samplerBoxes;           // rq back-end: the same boxes, BLAS input
     std::optional<accel::RangeGrid> grid;                // grid-dda, grid-bvh (origin in voxel space)
     std::optional<accel::DenseGrid> dense;               // dense sampler
+    std::optional<accel::BrickGrid> brickGrid;           // grid sampler (same layout as `grid`)
     SceneSupportRanges supportRanges;                    // kdtree (the renderer builds the tree per TF)
     DomainBoxes domains;                                 // abr, brick, ext-brick traversals
     struct Timing {
-        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, dense = 0;
+        double bricks = 0, abrs = 0, samplerBvh = 0, grid = 0, domains = 0, dense = 0, brickGrid = 0;
     } buildSeconds;
 
     // Builds what `config` needs and frees the rest. config.backend must be resolved (Sw or Rq).

@@ -259,7 +259,7 @@ void renderPanel(PanelState& p, PanelRequests& r) {
 
 void structurePanel(PanelState& p, PanelRequests& r) {
     scene::StructureConfig& c = p.state->structure;
-    std::vector<std::string> traversals, samplers = {"ext-brick", "abr", "dense"};
+    std::vector<std::string> traversals, samplers = {"ext-brick", "abr", "grid", "dense"};
     for (scene::TraversalKind t : scene::allTraversals()) traversals.push_back(scene::traversalName(t));
     std::string t = scene::traversalName(c.traversal), sm = scene::samplerName(c.sampler),
                 b = scene::backendName(c.backend);

@@ -52,7 +52,7 @@ check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sam
 expect "--mode: xyz not in {ae,ss,ms,dvr}" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
 expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
 expect "--size '0x3'" -- render "$sample" --size 0x3 -o "$dir/x.png"
-expect "--sampler: bvh not in {ext-brick,abr,dense}" -- render "$sample" "${common[@]}" --sampler bvh -o "$dir/x.png"
+expect "--sampler: bvh not in {ext-brick,abr,grid,dense}" -- render "$sample" "${common[@]}" --sampler bvh -o "$dir/x.png"
 expect "--traversal: octree not in" -- render "$sample" "${common[@]}" --traversal octree -o "$dir/x.png"
 expect "--backend: cuda not in {sw,rq,auto}" -- render "$sample" "${common[@]}" --backend cuda -o "$dir/x.png"
 expect "--kd-leaves: '0' is outside [1, 16777216]" -- render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 0 -o "$dir/x.png"

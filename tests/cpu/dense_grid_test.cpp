@@ -212,7 +212,7 @@ TEST(DenseGrid, RangesBoundInterpolationInEveryMacrocell) {
     for (uint32_t seed : {7u, 8u}) {
         const Built b = build(seed == 7 ? holeyModel(seed) : coarsened(holeyModel(seed)));
         const DenseGrid g = buildDense(b);
-        RangeGrid grid = buildRangeGrid(b.model, b.model.fields[0], {5, 3, 4});  // not sample-aligned
+        RangeGrid grid = rangeGridLayout(b.summary.bounds, {5, 3, 4});  // not sample-aligned
         assignDenseRanges(g, grid);
         ASSERT_EQ(grid.ranges.size(), size_t(5 * 3 * 4));
         std::mt19937 rng(seed);
@@ -279,7 +279,7 @@ TEST(DenseGrid, ConstantRegionGivesPointRange) {
     const Built b = build(std::move(m));
     ASSERT_LT(b.summary.minLevel, b.summary.maxLevel);
     const DenseGrid g = buildDense(b);
-    RangeGrid grid = buildRangeGrid(b.model, b.model.fields[0], {4, 2, 2});  // macrocells of 8 voxels
+    RangeGrid grid = rangeGridLayout(b.summary.bounds, {4, 2, 2});  // macrocells of 8 voxels
     assignDenseRanges(g, grid);
     for (int cz = 0; cz < 2; ++cz)
         for (int cy = 0; cy < 2; ++cy) {

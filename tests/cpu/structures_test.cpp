@@ -192,33 +192,6 @@ TEST(Abrs, ValueRangesContainReconstructedValues) {
     EXPECT_GT(checked, abrs.abrs.size() * 20);
 }
 
-TEST(RangeGrid, RangesContainReconstructedValuesAtAnyResolution) {
-    amr::Model m = fixture(5);
-    amr::ReferenceSampler ref(m, m.fields[0]);
-    amr::Box3l bounds = amr::summarize(m).bounds;
-    for (glm::ivec3 dims : {glm::ivec3(1), glm::ivec3(7, 5, 3), autoGridDims(bounds, 16),
-                            autoGridDims(bounds, 64)}) {
-        RangeGrid g = buildRangeGrid(m, m.fields[0], dims);
-        std::mt19937 rng(uint32_t(dims.x));
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        for (int k = 0; k < 20000; ++k) {
-            glm::dvec3 p = glm::dvec3(bounds.lower) + glm::dvec3(bounds.size()) * glm::dvec3(u(rng), u(rng), u(rng));
-            if (k % 4 == 0) p = glm::floor(p);  // integer points lie on cell and macrocell faces
-            amr::Sample s = ref.sample(p);
-            if (!s.valid()) continue;
-            // Every macrocell whose closed box contains p must bound the value.
-            glm::dvec3 rel = (p - g.origin) / g.cellSize;
-            glm::ivec3 c0 = glm::clamp(glm::ivec3(glm::ceil(rel) - 1.0), glm::ivec3(0), g.dims - 1);
-            glm::ivec3 c1 = glm::clamp(glm::ivec3(glm::floor(rel)), glm::ivec3(0), g.dims - 1);
-            for (int z = c0.z; z <= c1.z; ++z)
-                for (int y = c0.y; y <= c1.y; ++y)
-                    for (int x = c0.x; x <= c1.x; ++x)
-                        ASSERT_TRUE(rangeHolds(g.ranges[g.index({x, y, z})], s.value))
-                            << "macrocell " << x << "," << y << "," << z << " dims " << dims.x;
-        }
-    }
-}
-
 TEST(RangeGrid, ParsesGridOptions) {
     amr::Box3l b{{0, 0, 0}, {256, 128, 64}};
     EXPECT_EQ(parseGridDims("auto", b), glm::ivec3(128, 64, 32));

@@ -61,7 +61,7 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(c, SceneGpu, samplerNodes, 2), AMRVK_FIELD(c, SceneGpu, samplerPrims, 2),
         AMRVK_FIELD(c, SceneGpu, samplerAccel, 2), AMRVK_FIELD(c, SceneGpu, abrs, 2),
         AMRVK_FIELD(c, SceneGpu, abrBrickList, 2), AMRVK_FIELD(c, SceneGpu, gridRanges, 2),
-        AMRVK_FIELD(c, SceneGpu, denseValues, 2),  AMRVK_FIELD(c, SceneGpu, pad3, 2),
+        AMRVK_FIELD(c, SceneGpu, denseValues, 2),  AMRVK_FIELD(c, SceneGpu, gridBrickLists, 2),
         AMRVK_FIELD(m, MajorantsGpu, tfPositions, 2),   AMRVK_FIELD(m, MajorantsGpu, tfColors, 2),
         AMRVK_FIELD(m, MajorantsGpu, tfNodeCount, 1),   AMRVK_FIELD(m, MajorantsGpu, domainCount, 1),
         AMRVK_FIELD(m, MajorantsGpu, domainAnyActive, 1), AMRVK_FIELD(m, MajorantsGpu, pad, 1),

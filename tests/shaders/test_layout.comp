@@ -45,7 +45,7 @@ void main() {
     i3(P.scene.denseDims); i(P.scene.denseLevel); f3(P.scene.denseOrigin); f(P.scene.denseSpacing);
     u64(P.scene.bricks); u64(P.scene.brickValues); u64(P.scene.samplerNodes); u64(P.scene.samplerPrims);
     u64(P.scene.samplerAccel); u64(P.scene.abrs); u64(P.scene.abrBrickList); u64(P.scene.gridRanges);
-    u64(P.scene.denseValues); u64(P.scene.pad3);
+    u64(P.scene.denseValues); u64(P.scene.gridBrickLists);
     // RenderParams.majorants
     u64(P.majorants.tfPositions); u64(P.majorants.tfColors); u(P.majorants.tfNodeCount);
     u(P.majorants.domainCount); u(P.majorants.domainAnyActive); u(P.majorants.pad);

@@ -1,0 +1,98 @@
+#include "accel/brick_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "accel/abrs.h"
+#include "accel/brick_sampler.h"
+#include "accel/range_grid.h"
+#include "core/checked_size.h"
+#include "core/error.h"
+#include "core/stats.h"
+
+namespace amrvk::accel {
+
+namespace {
+
+// Macrocells [a, b] (inclusive, clamped) met by the closed box [lo, hi] grown by `margin`; a box
+// beyond the grid maps to the edge macrocells, which therefore list domains sticking out of it.
+void cellRange(const BrickGrid& g, glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 margin, glm::ivec3& a, glm::ivec3& b) {
+    for (int d = 0; d < 3; ++d) {
+        const double l = std::floor((lo[d] - margin[d] - g.origin[d]) / g.cellSize[d]);
+        const double h = std::floor((hi[d] + margin[d] - g.origin[d]) / g.cellSize[d]);
+        a[d] = int(std::clamp(l, 0.0, double(g.dims[d] - 1)));
+        b[d] = int(std::clamp(h, 0.0, double(g.dims[d] - 1)));
+    }
+}
+
+}  // namespace
+
+size_t BrickGrid::cellIndexOf(glm::dvec3 p) const {
+    glm::ivec3 c;
+    for (int d = 0; d < 3; ++d)
+        c[d] = int(std::clamp(std::floor((p[d] - origin[d]) / cellSize[d]), 0.0, double(dims[d] - 1)));
+    return size_t(c.x) + size_t(dims.x) * (size_t(c.y) + size_t(dims.y) * size_t(c.z));
+}
+
+glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims) {
+    glm::dvec3 m;
+    for (int d = 0; d < 3; ++d) m[d] = std::max(1e-4 * cellSize[d], std::ldexp(cellSize[d] * dims[d], -18));
+    return m;
+}
+
+BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::ivec3 dims) {
+    Timer timer;
+    const RangeGrid layout = rangeGridLayout(bounds, dims);
+    BrickGrid g;
+    g.dims = layout.dims;
+    g.origin = layout.origin;
+    g.cellSize = layout.cellSize;
+    const size_t cells = g.cellCount();
+    const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
+    const std::string what = strCat("--sampler grid with --grid ", dims.x, "x", dims.y, "x", dims.z);
+
+    // Pass 1: entries per macrocell (as offsets shifted by one).
+    std::vector<uint64_t> counts(cells + 1, 0);
+    auto forEachCell = [&](const Brick& b, auto&& visit) {
+        const HalfBox d = brickDomain(b);
+        glm::ivec3 a, e;
+        cellRange(g, d.lower(), d.upper(), margin, a, e);
+        for (int z = a.z; z <= e.z; ++z)
+            for (int y = a.y; y <= e.y; ++y)
+                for (int x = a.x; x <= e.x; ++x)
+                    visit(size_t(x) + size_t(g.dims.x) * (size_t(y) + size_t(g.dims.y) * size_t(z)));
+    };
+    for (const Brick& b : bricks.bricks) forEachCell(b, [&](size_t c) { ++counts[c + 1]; });
+    uint64_t total = cells + 1;
+    for (size_t c = 1; c <= cells; ++c) total = checkedSum(total, counts[c], what);
+    AMRVK_CHECK(total <= UINT32_MAX, what, ": ", total, " list entries exceed 2^32 (use a coarser --grid)");
+    checkAllocation(checkedProduct({total, sizeof(uint32_t)}, what), what + ": brick lists");
+
+    // Pass 2: offsets, then ids in ascending brick order (bricks are visited in id order).
+    g.lists.resize(size_t(total));
+    uint64_t offset = cells + 1;
+    for (size_t c = 0; c < cells; ++c) {
+        g.lists[c] = uint32_t(offset);
+        offset += counts[c + 1];
+    }
+    g.lists[cells] = uint32_t(offset);
+    std::vector<uint32_t> fill(g.lists.begin(), g.lists.begin() + ptrdiff_t(cells));
+    for (uint32_t id = 0; id < bricks.bricks.size(); ++id)
+        forEachCell(bricks.bricks[id], [&](size_t c) { g.lists[fill[c]++] = id; });
+    g.buildSeconds = timer.seconds();
+    return g;
+}
+
+amr::Sample GridSampler::sample(glm::dvec3 p) const {
+    double sumW = 0, sumWV = 0;
+    for (uint32_t id : mGrid.bricksOf(mGrid.cellIndexOf(p))) {
+        const Brick& b = mBricks.bricks[id];
+        if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, mValues, p, sumW, sumWV);
+    }
+    amr::Sample s;
+    s.weightSum = sumW;
+    s.value = sumW > 0 ? sumWV / sumW : 0.0;
+    return s;
+}
+
+}  // namespace amrvk::accel
