@@ -49,8 +49,11 @@ BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::
     g.cellSize = layout.cellSize;
     const size_t cells = g.cellCount();
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    const std::string what = strCat("--sampler grid with --grid ", dims.x, "x", dims.y, "x", dims.z);
+    const std::string what = strCat("--grid ", dims.x, "x", dims.y, "x", dims.z);
 
+    // At least the counts and the offsets, before anything is allocated.
+    checkAllocation(checkedProduct({uint64_t(cells) + 1, sizeof(uint64_t) + sizeof(uint32_t)}, what),
+                    what + ": brick lists");
     // Pass 1: entries per macrocell (as offsets shifted by one).
     std::vector<uint64_t> counts(cells + 1, 0);
     auto forEachCell = [&](const Brick& b, auto&& visit) {
@@ -66,7 +69,7 @@ BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::
     uint64_t total = cells + 1;
     for (size_t c = 1; c <= cells; ++c) total = checkedSum(total, counts[c], what);
     AMRVK_CHECK(total <= UINT32_MAX, what, ": ", total, " list entries exceed 2^32 (use a coarser --grid)");
-    checkAllocation(checkedProduct({total, sizeof(uint32_t)}, what), what + ": brick lists");
+    checkAllocation(checkedProduct({total, sizeof(uint32_t)}, what) + (cells + 1) * sizeof(uint64_t), what + ": brick lists");
 
     // Pass 2: offsets, then ids in ascending brick order (bricks are visited in id order).
     g.lists.resize(size_t(total));

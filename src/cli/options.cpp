@@ -362,6 +362,7 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
     if (use("--spp")) s.spp = uint32_t(a.spp);
     p.autoTraversal = a.traversal == "auto" && given(app, "--traversal");
     p.fitTraversal = !given(app, "--traversal") && !fromSession;
+    p.fitSampler = p.fitTraversal && !given(app, "--sampler");
     if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
@@ -395,6 +396,12 @@ void fitTraversal(Picture& p, const amr::Model& model) {
     const amr::ModelSummary sum = amr::summarize(model);
     std::string why;
     p.session.structure.traversal = scene::fittingTraversal(sum.leafVolume, sum.bounds.volume(), &why);
+    // Over sparse data the grid sampler's macrocells would list many far-apart bricks; with the
+    // abr traversal the abr sampler needs no lookup at all.
+    if (p.fitSampler && p.session.structure.traversal == scene::TraversalKind::Abr) {
+        p.session.structure.sampler = scene::SamplerKind::Abr;
+        if (why.rfind("traversal abr", 0) == 0) why.insert(13, " and sampler abr");
+    }
     if (!why.empty()) std::fprintf(stderr, "amrvk: %s\n", why.c_str());
 }
 

@@ -49,7 +49,7 @@ struct PictureArgs {
     std::string mode = "ms";
     double dt = 0.5;
     bool dvrShading = false;
-    std::string traversal = "grid-dda", sampler = "ext-brick", backend = "auto", grid = "auto";
+    std::string traversal = "grid-dda", sampler = "grid", backend = "auto", grid = "auto";
     int64_t kdLeaves = 4096, denseMaxMib = 2048;
     int64_t spp = 64;
     std::string size = "512x512";
@@ -79,6 +79,7 @@ struct Picture {
     bool cameraGiven = false;    // --camera or the session's camera
     bool autoTraversal = false;  // --traversal auto
     bool fitTraversal = false;   // no --traversal and no session: resolveAfterReading fits it to the data
+    bool fitSampler = false;     // no --sampler either: sparse data gets the abr sampler too (no lookup)
 };
 Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
                            const PictureArgs& a);

@@ -128,6 +128,7 @@ int runRender(const std::vector<std::string>& argv) {
     const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
     fitTraversal(picture, model);
     config.traversal = s.structure.traversal;
+    config.sampler = s.structure.sampler;
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
     gpu::ContextOptions co = contextOptions(dev);
     co.requireRayQuery = config.backend == scene::Backend::Rq;

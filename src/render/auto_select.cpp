@@ -30,15 +30,19 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
 
     std::vector<scene::TraversalKind> traversals =
         constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
-    // Grid traversals do not fit sparse data (scene::fittingTraversal): not worth their probes.
+    // Grid traversals and the grid sampler do not fit sparse data (scene::fittingTraversal): their
+    // macrocells are mostly empty space. Not worth their probes.
     const amr::ModelSummary summary = amr::summarize(*volume.model);
-    if (!constraints.traversal &&
-        scene::fittingTraversal(summary.leafVolume, summary.bounds.volume()) != scene::TraversalKind::GridDda)
+    const bool sparse =
+        scene::fittingTraversal(summary.leafVolume, summary.bounds.volume()) != scene::TraversalKind::GridDda;
+    if (!constraints.traversal && sparse)
         std::erase_if(traversals, [](scene::TraversalKind t) {
             return t == scene::TraversalKind::GridDda || t == scene::TraversalKind::GridBvh;
         });
     std::vector<scene::SamplerKind> samplers =
         constraints.sampler ? std::vector{*constraints.sampler} : scene::allSamplers();
+    if (!constraints.sampler && sparse)
+        std::erase_if(samplers, [](scene::SamplerKind s) { return s == scene::SamplerKind::Grid; });
     std::vector<scene::Backend> backends;
     if (constraints.backend) backends = {*constraints.backend};
     else {

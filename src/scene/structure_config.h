@@ -28,7 +28,7 @@ std::vector<TraversalKind> allTraversals();
 std::vector<SamplerKind> allSamplers();  // the AMR samplers: the paper's two and grid (not dense)
 
 struct StructureConfig {
-    SamplerKind sampler = SamplerKind::ExtBrick;
+    SamplerKind sampler = SamplerKind::Grid;  // the fastest exact lookup (issue 12)
     TraversalKind traversal = TraversalKind::GridDda;
     Backend backend = Backend::Sw;  // resolved (Sw or Rq) before a scene is configured
     std::string grid = "auto";      // macrocells (grid-dda, grid-bvh, grid sampler): auto | N | NxMxK

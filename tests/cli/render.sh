@@ -81,8 +81,8 @@ open(sys.argv[1] + '.scalars', 'wb').write(struct.pack('<%df' % len(cells), *[ra
 PY
 timeout 120 "$amrvk" render "$dir/scatter.cells" --size 4x4 --spp 1 --mode ae -o "$dir/scatter.png" \
   --json "$dir/scatter.json" >/dev/null 2>"$dir/scatter.err" || fail=1
-check grep -q "traversal abr: the cells fill .* of their bounding box" "$dir/scatter.err"
-check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["traversal"] == "abr", j' "$dir/scatter.json"
+check grep -q "traversal abr and sampler abr: the cells fill .* of their bounding box" "$dir/scatter.err"
+check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["traversal"] == "abr" and j["sampler"] == "abr", j' "$dir/scatter.json"
 # TrackingThatStallsInFloatIsCountedAndQuick: --density-scale 1e30 gives free paths below float
 # resolution; t stalled and each call burned the 2^22-step cap in place (20 s for 8x8 pixels),
 # uncounted before the cap was fixed. Now the call ends at once, counted and warned about.
@@ -99,7 +99,9 @@ mkdir -p "$evil"
 check test -s "$dir/evil.pfm"
 check test ! -e "$dir/PWNED"
 # AMacrocellGridTooLargeForMemoryIsRefusedByName (--grid 4096 allowed 512 GiB of value ranges).
-AMRVK_MEMORY_BUDGET=100000000 expect "--grid 512x512x512: macrocell value ranges: needs 1073741824 bytes" \
+# The brick lists (grid sampler, and the ranges while they are made) are checked before any of
+# their memory is allocated: 512^3 macrocells' counts and offsets alone need 1.6 GB.
+AMRVK_MEMORY_BUDGET=100000000 expect "--grid 512x512x512: brick lists: needs 1610612748 bytes" \
   -- render "$sample" --size 8x8 --spp 1 --grid 512x512x512 -o "$dir/x.png"
 check test ! -e "$dir/x.png"
 exit $fail
