@@ -221,7 +221,7 @@ int runRender(const std::vector<std::string>& argv) {
             {"bricks", scene.buildSeconds.bricks},           {"abrs", scene.buildSeconds.abrs},
             {"samplerBvh", scene.buildSeconds.samplerBvh},   {"macrocells", scene.buildSeconds.grid},
             {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", renderer.kdTreeBuildSeconds()},
-            {"denseGrid", scene.buildSeconds.dense}};
+            {"denseGrid", scene.buildSeconds.dense},         {"brickGrid", scene.buildSeconds.brickGrid}};
         Json host = Json::object();
         for (const auto& [name, bytes] : scene.hostBytes()) host[name] = bytes;
         for (const auto& [name, bytes] : renderer.hostBytes()) host[name] = bytes;

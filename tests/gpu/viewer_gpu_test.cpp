@@ -200,7 +200,7 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
     fs::create_directories(dir);
     test::writeAll(dir / "drive.sh",
                    "set -u\n"
-                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --save-session \"$3/final.json\" "
+                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\" "
                    "--validation & pid=$!\n"
                    "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"  // a lost key fails, not hangs
                    "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
