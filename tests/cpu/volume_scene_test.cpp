@@ -21,17 +21,22 @@ bool holds(const scene::VolumeScene& s, const std::string& name) {
 TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
     const amr::Model m = test::makeThreeLevelCloud();
     scene::VolumeScene s = scene::makeVolumeScene(m, m.defaultField());
-    scene::StructureConfig c;  // grid-dda, ext-brick, sw
+    scene::StructureConfig c;  // grid-dda, grid, sw
+    s.configure(c);
+    EXPECT_TRUE(holds(s, "bricks") && holds(s, "brickGrid") && holds(s, "macrocells"));
+    EXPECT_FALSE(holds(s, "abrs") || holds(s, "traversalBoxes") || holds(s, "samplerBoxes") || holds(s, "samplerBvh"));
+
+    c.sampler = scene::SamplerKind::ExtBrick;
     s.configure(c);
     EXPECT_TRUE(holds(s, "bricks") && holds(s, "samplerBvh") && holds(s, "macrocells"));
-    EXPECT_FALSE(holds(s, "abrs") || holds(s, "traversalBoxes") || holds(s, "samplerBoxes"));
+    EXPECT_FALSE(holds(s, "brickGrid") || holds(s, "abrs") || holds(s, "traversalBoxes"));
 
     c.traversal = scene::TraversalKind::Abr;
     c.sampler = scene::SamplerKind::Abr;
     c.backend = scene::Backend::Rq;
     s.configure(c);
     EXPECT_TRUE(holds(s, "abrs") && holds(s, "traversalBoxes") && holds(s, "samplerBoxes"));
-    EXPECT_FALSE(holds(s, "macrocells") || holds(s, "samplerBvh"));
+    EXPECT_FALSE(holds(s, "macrocells") || holds(s, "samplerBvh") || holds(s, "brickGrid"));
     EXPECT_EQ(s.domains.boxes.size(), s.abrs->abrs.size());
     EXPECT_EQ(s.samplerBoxes.size(), s.abrs->abrs.size());
 
