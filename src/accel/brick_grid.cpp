@@ -5,34 +5,11 @@
 
 #include "accel/abrs.h"
 #include "accel/brick_sampler.h"
-#include "accel/range_grid.h"
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
-
-namespace {
-
-// Macrocells [a, b] (inclusive, clamped) met by the closed box [lo, hi] grown by `margin`; a box
-// beyond the grid maps to the edge macrocells, which therefore list domains sticking out of it.
-void cellRange(const BrickGrid& g, glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 margin, glm::ivec3& a, glm::ivec3& b) {
-    for (int d = 0; d < 3; ++d) {
-        const double l = std::floor((lo[d] - margin[d] - g.origin[d]) / g.cellSize[d]);
-        const double h = std::floor((hi[d] + margin[d] - g.origin[d]) / g.cellSize[d]);
-        a[d] = int(std::clamp(l, 0.0, double(g.dims[d] - 1)));
-        b[d] = int(std::clamp(h, 0.0, double(g.dims[d] - 1)));
-    }
-}
-
-}  // namespace
-
-size_t BrickGrid::cellIndexOf(glm::dvec3 p) const {
-    glm::ivec3 c;
-    for (int d = 0; d < 3; ++d)
-        c[d] = int(std::clamp(std::floor((p[d] - origin[d]) / cellSize[d]), 0.0, double(dims[d] - 1)));
-    return size_t(c.x) + size_t(dims.x) * (size_t(c.y) + size_t(dims.y) * size_t(c.z));
-}
 
 glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims) {
     glm::dvec3 m;
@@ -42,11 +19,7 @@ glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims) {
 
 BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::ivec3 dims) {
     Timer timer;
-    const RangeGrid layout = rangeGridLayout(bounds, dims);
-    BrickGrid g;
-    g.dims = layout.dims;
-    g.origin = layout.origin;
-    g.cellSize = layout.cellSize;
+    BrickGrid g{macrocellLayout(bounds, dims)};
     const size_t cells = g.cellCount();
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
     const std::string what = strCat("--grid ", dims.x, "x", dims.y, "x", dims.z);
@@ -57,13 +30,13 @@ BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::
     // Pass 1: entries per macrocell (as offsets shifted by one).
     std::vector<uint64_t> counts(cells + 1, 0);
     auto forEachCell = [&](const Brick& b, auto&& visit) {
+        // A domain beyond the grid maps to the edge macrocells, which so list what sticks out.
         const HalfBox d = brickDomain(b);
-        glm::ivec3 a, e;
-        cellRange(g, d.lower(), d.upper(), margin, a, e);
+        const glm::ivec3 a = g.cellOf(d.lower() - margin), e = g.cellOf(d.upper() + margin);
         for (int z = a.z; z <= e.z; ++z)
             for (int y = a.y; y <= e.y; ++y)
                 for (int x = a.x; x <= e.x; ++x)
-                    visit(size_t(x) + size_t(g.dims.x) * (size_t(y) + size_t(g.dims.y) * size_t(z)));
+                    visit(g.index({x, y, z}));
     };
     for (const Brick& b : bricks.bricks) forEachCell(b, [&](size_t c) { ++counts[c + 1]; });
     uint64_t total = cells + 1;
@@ -87,15 +60,7 @@ BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::
 }
 
 amr::Sample GridSampler::sample(glm::dvec3 p) const {
-    double sumW = 0, sumWV = 0;
-    for (uint32_t id : mGrid.bricksOf(mGrid.cellIndexOf(p))) {
-        const Brick& b = mBricks.bricks[id];
-        if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, mValues, p, sumW, sumWV);
-    }
-    amr::Sample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0 ? sumWV / sumW : 0.0;
-    return s;
+    return sampleBricks(mGrid.bricksOf(mGrid.index(mGrid.cellOf(p))), mBricks, mValues, p);
 }
 
 }  // namespace amrvk::accel

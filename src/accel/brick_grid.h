@@ -1,5 +1,5 @@
 #pragma once
-// Brick grid: the macrocell grid (same layout as RangeGrid) with, per macrocell, the ascending ids
+// Brick grid: the macrocell grid (MacrocellLayout, as RangeGrid) with, per macrocell, the ascending ids
 // of the bricks whose basis domain (closed) meets the macrocell grown by a margin. A point lookup
 // is one index computation and a short list: no tree descent (issue 12). Sampling through it
 // visits every brick whose domain contains p, in ascending id order, exactly as ExtBrickSampler
@@ -11,25 +11,20 @@
 #include <vector>
 
 #include "accel/bricks.h"
+#include "accel/range_grid.h"
 #include "amr/sampler.h"
 
 namespace amrvk::accel {
 
-struct BrickGrid {
-    glm::ivec3 dims{0};      // macrocells per axis
-    glm::dvec3 origin{0};    // lower corner, voxel space
-    glm::dvec3 cellSize{1};  // macrocell extent per axis, voxel units
-    // lists[0 .. cells] are offsets (macrocell i lists ids lists[lists[i] .. lists[i + 1]); offsets
-    // count from the start of the array, so one buffer on the GPU), then the brick ids.
+struct BrickGrid : MacrocellLayout {
+    // lists[0 .. cellCount()] are offsets (macrocell i lists ids lists[lists[i] .. lists[i + 1]);
+    // offsets count from the start of the array, so one buffer on the GPU), then the brick ids.
     std::vector<uint32_t> lists;
     double buildSeconds = 0;
-    size_t cellCount() const { return size_t(dims.x) * size_t(dims.y) * size_t(dims.z); }
     uint64_t memoryBytes() const { return lists.size() * sizeof(uint32_t); }
     std::span<const uint32_t> bricksOf(size_t cell) const {
         return {lists.data() + lists[cell], lists.data() + lists[cell + 1]};
     }
-    // Macrocell holding voxel-space p (clamped to the grid): what sampleGrid computes in float.
-    size_t cellIndexOf(glm::dvec3 p) const;
 };
 
 // Margin (voxel units, per axis) by which a macrocell is grown when its list is made: at least
@@ -37,7 +32,7 @@ struct BrickGrid {
 // sample position and of its macrocell index on the GPU.
 glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims);
 
-// Lists over the layout of rangeGridLayout(bounds, dims). Throws when the lists would not fit in
+// Lists over macrocellLayout(bounds, dims). Throws when the lists would not fit in
 // uint32 offsets or in the memory budget.
 BrickGrid buildBrickGrid(const BrickSet& bricks, const amr::Box3l& bounds, glm::ivec3 dims);
 
@@ -45,6 +40,7 @@ class GridSampler {
 public:
     GridSampler(const BrickGrid& grid, const BrickSet& bricks, std::span<const float> brickValues)
         : mGrid(grid), mBricks(bricks), mValues(brickValues) {}
+    // The bricks of the macrocell holding p (cellOf: what sampleGrid computes in float).
     amr::Sample sample(glm::dvec3 p) const;
 
 private:

@@ -59,6 +59,16 @@ amr::Sample finish(double sumW, double sumWV) {
 }
 }  // namespace
 
+amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> brickValues,
+                         glm::dvec3 p) {
+    double sumW = 0, sumWV = 0;
+    for (uint32_t id : ids) {
+        const Brick& b = bricks.bricks[id];
+        if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, brickValues, p, sumW, sumWV);
+    }
+    return finish(sumW, sumWV);
+}
+
 ExtBrickSampler::ExtBrickSampler(const BrickSet& bricks, std::span<const float> brickValues)
     : mBricks(bricks), mValues(brickValues) {
     mDomains.reserve(bricks.bricks.size());

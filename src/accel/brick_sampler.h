@@ -21,6 +21,11 @@ namespace amrvk::accel {
 void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
                           double& sumW, double& sumWV);
 
+// The tent-weighted value at p over the listed bricks whose domain contains p, summed in list
+// order (the grid sampler's lists, the exact range lattice).
+amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> brickValues,
+                         glm::dvec3 p);
+
 // Voxel-space double boxes of the brick domains / ABRs (BVH inputs).
 std::vector<BoxD> brickDomainBoxes(const BrickSet& bricks);
 std::vector<BoxD> abrBoxes(const AbrSet& abrs);

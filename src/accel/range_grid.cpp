@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "accel/abrs.h"
+#include "accel/brick_grid.h"
 #include "accel/brick_sampler.h"
 #include "core/checked_size.h"
 #include "core/error.h"
@@ -14,7 +15,7 @@
 
 namespace amrvk::accel {
 
-glm::ivec3 RangeGrid::cellOf(glm::dvec3 p) const {
+glm::ivec3 MacrocellLayout::cellOf(glm::dvec3 p) const {
     glm::dvec3 c = glm::floor((p - origin) / cellSize);
     return glm::clamp(glm::ivec3(glm::clamp(c, glm::dvec3(-1.0), glm::dvec3(dims))), glm::ivec3(0),
                       dims - 1);
@@ -51,9 +52,9 @@ glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
     return dims;
 }
 
-RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
+MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
     AMRVK_CHECK(dims.x >= 1 && dims.y >= 1 && dims.z >= 1, "range grid needs at least one macrocell");
-    RangeGrid g;
+    MacrocellLayout g;
     g.dims = dims;
     g.origin = glm::dvec3(bounds.lower);
     g.cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims);
@@ -190,15 +191,10 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
     for (double z : planes[2])
         for (double y : planes[1])
             for (double x : planes[0]) {
-                const glm::dvec3 p(x, y, z);
-                double sumW = 0, sumWV = 0;
-                for (uint32_t id : ids) {
-                    const Brick& b = bricks.bricks[id];
-                    if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, values, p, sumW, sumWV);
-                }
-                if (sumW <= 0) continue;
-                mlo = std::min(mlo, sumWV / sumW);
-                mhi = std::max(mhi, sumWV / sumW);
+                const amr::Sample f = sampleBricks(ids, bricks, values, glm::dvec3(x, y, z));
+                if (!f.valid()) continue;
+                mlo = std::min(mlo, f.value);
+                mhi = std::max(mhi, f.value);
             }
     if (mlo > mhi) return false;
     rlo = mlo;
@@ -210,11 +206,8 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
 
 RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues) {
     Timer timer;
-    RangeGrid g;
-    g.dims = lists.dims;
-    g.origin = lists.origin;
-    g.cellSize = lists.cellSize;
-    const size_t total = lists.cellCount();
+    RangeGrid g{static_cast<const MacrocellLayout&>(lists)};
+    const size_t total = g.cellCount();
     checkAllocation(checkedProduct({total, sizeof(ValueRange)}, "--grid"),
                     strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
     g.ranges.resize(total);
@@ -223,8 +216,7 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
     parallelForRanges(0, total, 64, [&](size_t begin, size_t end) {
         Scratch scratch;
         for (size_t cell = begin; cell < end; ++cell) {
-            const glm::ivec3 c(int(cell % size_t(g.dims.x)), int(cell / size_t(g.dims.x) % size_t(g.dims.y)),
-                               int(cell / (size_t(g.dims.x) * size_t(g.dims.y))));
+            const glm::ivec3 c = g.coordOf(cell);
             // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
             glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
             glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;

@@ -12,24 +12,35 @@
 #include <span>
 #include <vector>
 
-#include "accel/brick_grid.h"
 #include "accel/bricks.h"
 #include "accel/value_range.h"
 #include "amr/model.h"
 
 namespace amrvk::accel {
 
-struct RangeGrid {
-    glm::ivec3 dims{0};           // macrocells per axis
-    glm::dvec3 origin{0};         // lower corner, voxel space
-    glm::dvec3 cellSize{1};       // macrocell extent per axis, voxel units
-    std::vector<ValueRange> ranges;  // x fastest: index = x + dims.x * (y + dims.y * z)
-    double buildSeconds = 0;
-    uint64_t memoryBytes() const { return ranges.size() * sizeof(ValueRange); }
+// The uniform macrocell grid shared by the value ranges and the brick grid (and the GPU's
+// gridDims/gridOrigin/gridCellSize); macrocells are numbered x fastest.
+struct MacrocellLayout {
+    glm::ivec3 dims{0};      // macrocells per axis
+    glm::dvec3 origin{0};    // lower corner, voxel space
+    glm::dvec3 cellSize{1};  // macrocell extent per axis, voxel units
+    size_t cellCount() const { return size_t(dims.x) * size_t(dims.y) * size_t(dims.z); }
     size_t index(glm::ivec3 c) const { return size_t(c.x) + size_t(dims.x) * (size_t(c.y) + size_t(dims.y) * size_t(c.z)); }
+    glm::ivec3 coordOf(size_t index) const {
+        return {int(index % size_t(dims.x)), int(index / size_t(dims.x) % size_t(dims.y)),
+                int(index / (size_t(dims.x) * size_t(dims.y)))};
+    }
     // Macrocell containing voxel-space point p, clamped to the grid.
     glm::ivec3 cellOf(glm::dvec3 p) const;
 };
+
+struct RangeGrid : MacrocellLayout {
+    std::vector<ValueRange> ranges;  // per macrocell (index())
+    double buildSeconds = 0;
+    uint64_t memoryBytes() const { return ranges.size() * sizeof(ValueRange); }
+};
+
+struct BrickGrid;
 
 // Grid resolution with `longest` macrocells on the longest axis (at most one per voxel unit) and
 // near-cubical macrocells elsewhere.
@@ -39,7 +50,8 @@ glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest = 128);
 glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds);
 
 // The grid's dims, origin and macrocell size over `bounds`, with no ranges yet.
-RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims);
+MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims);
+inline RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) { return {macrocellLayout(bounds, dims)}; }
 
 // Ranges over the layout of `lists` (which it reads: every brick meeting each grown macrocell).
 // Empty slots (NaN) make a brick's bound the range of its non-empty cells near the macrocell.

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "accel/abrs.h"
+#include "accel/brick_grid.h"
 #include "accel/bricks.h"
 #include "accel/range_grid.h"
 #include "amr/readers.h"

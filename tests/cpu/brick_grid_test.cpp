@@ -59,8 +59,8 @@ TEST(BrickGrid, ListsHoldExactlyTheBricksWhoseDomainMeetsTheMacrocell) {
         for (int z = 0; z < dims.z; ++z)
             for (int y = 0; y < dims.y; ++y)
                 for (int x = 0; x < dims.x; ++x) {
-                    const size_t cell = size_t(x) + size_t(dims.x) * (size_t(y) + size_t(dims.y) * size_t(z));
                     const glm::ivec3 c(x, y, z);
+                    const size_t cell = g.index(c);
                     // The macrocell grown by the margin; an edge macrocell reaches out to infinity.
                     glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
                     glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
@@ -125,8 +125,7 @@ TEST(BrickGrid, ADroppedListEntryIsCaughtByTheBruteForceComparison) {
     size_t cell = 0, pos = 0;
     glm::dvec3 lo(0), hi(0);
     for (size_t c = 0; c < g.cellCount() && hi.x <= lo.x; ++c) {
-        const glm::ivec3 ci(int(c % size_t(g.dims.x)), int(c / size_t(g.dims.x) % size_t(g.dims.y)),
-                            int(c / size_t(g.dims.x * g.dims.y)));
+        const glm::ivec3 ci = g.coordOf(c);
         for (size_t k = g.lists[c]; k < g.lists[c + 1]; ++k) {
             const amr::Box3l bb = b.bricks.bricks[g.lists[k]].bounds();
             lo = glm::max(glm::dvec3(bb.lower), g.origin + g.cellSize * glm::dvec3(ci));
@@ -148,7 +147,7 @@ TEST(BrickGrid, ADroppedListEntryIsCaughtByTheBruteForceComparison) {
     size_t wrong = 0;
     for (int i = 0; i < 100; ++i) {
         const glm::dvec3 p = lo + (hi - lo) * glm::dvec3(u(rng), u(rng), u(rng));
-        ASSERT_EQ(g.cellIndexOf(p), cell);
+        ASSERT_EQ(g.index(g.cellOf(p)), cell);
         wrong += std::abs(grid.sample(p).weightSum - ref.sample(p).weightSum) > 1e-9;
     }
     EXPECT_EQ(wrong, 100u);

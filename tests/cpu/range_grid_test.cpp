@@ -82,8 +82,7 @@ Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, si
     std::uniform_real_distribution<double> u(0.0, 1.0);
     Campaign out;
     for (size_t cell : chosen) {
-        const glm::ivec3 c(int(cell % size_t(rg.dims.x)), int(cell / size_t(rg.dims.x) % size_t(rg.dims.y)),
-                           int(cell / (size_t(rg.dims.x) * size_t(rg.dims.y))));
+        const glm::ivec3 c = rg.coordOf(cell);
         const glm::dvec3 lo = rg.origin + rg.cellSize * glm::dvec3(c), size = rg.cellSize;
         const double rlo = rg.ranges[cell].lo, rhi = rg.ranges[cell].hi, shrink = 0.1 * (rhi - rlo);
         for (int k = 0; k < 100000; ++k) {
@@ -192,7 +191,7 @@ TEST(RangeGrid, EmptySlotsFallBackToTheRangeOfTheOtherCells) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     size_t checked = 0;
     for (size_t cell = 0; cell < g.ranges.size(); ++cell) {
-        const glm::ivec3 c(int(cell % 6), int(cell / 6 % 5), int(cell / 30));
+        const glm::ivec3 c = g.coordOf(cell);
         for (int k = 0; k < 2000; ++k) {
             const amr::Sample s = ext.sample(g.origin + g.cellSize * (glm::dvec3(c) + glm::dvec3(u(rng), u(rng), u(rng))));
             if (!s.valid()) continue;
