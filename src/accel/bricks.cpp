@@ -1,8 +1,12 @@
 #include "accel/bricks.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <bit>
+#include <cmath>
 #include <limits>
+#include <memory>
 
 #include "core/checked_size.h"
 #include "core/error.h"
@@ -19,125 +23,295 @@ amr::Box3l Brick::bounds() const {
 
 namespace {
 
-struct WorkCell {
-    glm::ivec3 lower;
-    int32_t level;
-    uint32_t id;  // index into model.cells
-};
-
-struct Leaf {
-    size_t begin, end;  // range in the work array
-    Brick brick;
-};
-
 int64_t floorTo(int64_t v, int64_t w) { return v >= 0 ? v / w * w : -((-v + w - 1) / w) * w; }
 int64_t ceilTo(int64_t v, int64_t w) { return -floorTo(-v, w); }
 
+// Volume of a cell of each level, voxel units^3.
+const std::array<double, 32> kCellVolume = [] {
+    std::array<double, 32> v{};
+    for (int l = 0; l < 32; ++l) v[size_t(l)] = std::ldexp(1.0, 3 * l);
+    return v;
+}();
+
 double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 
-// Per-slab statistics along one axis: cells' level set, used volume and bounds.
+// Bounds and level set of a range of cells (voxel space).
+struct NodeInfo {
+    glm::i64vec3 lo{std::numeric_limits<int64_t>::max()}, hi{std::numeric_limits<int64_t>::min()};
+    uint32_t levelMask = 0;
+    void add(const amr::Cell& c) {
+        const glm::i64vec3 l(c.lower);
+        lo = glm::min(lo, l);
+        hi = glm::max(hi, l + amr::cellWidth(c.level));
+        levelMask |= 1u << c.level;
+    }
+    void merge(const NodeInfo& o) {
+        lo = glm::min(lo, o.lo);
+        hi = glm::max(hi, o.hi);
+        levelMask |= o.levelMask;
+    }
+    int32_t minLevel() const { return std::countr_zero(levelMask); }
+    int32_t maxLevel() const { return 31 - std::countl_zero(levelMask); }
+};
+
+// Per-slab statistics along one axis: cells' level set, used volume and bounds. Bounds are int32:
+// validated cells end at or below 2^31-1.
 struct Slab {
     uint32_t levelMask = 0;
     double volume = 0;
-    glm::i64vec3 lo{std::numeric_limits<int64_t>::max()}, hi{std::numeric_limits<int64_t>::min()};
+    glm::ivec3 lo{std::numeric_limits<int32_t>::max()}, hi{std::numeric_limits<int32_t>::min()};
+};
+Slab merge(const Slab& a, const Slab& s) {
+    Slab m;
+    m.levelMask = a.levelMask | s.levelMask;
+    m.volume = a.volume + s.volume;
+    m.lo = glm::min(a.lo, s.lo);
+    m.hi = glm::max(a.hi, s.hi);
+    return m;
+}
+double sahCost(const Slab& s) {
+    if (s.levelMask == 0) return 0;
+    const glm::dvec3 size = glm::dvec3(s.hi) - glm::dvec3(s.lo);
+    return halfArea(size) * (size.x * size.y * size.z) * std::popcount(s.levelMask);
+}
+
+// Slab statistics per coarse cube (cw^3) of a box [lo, lo + dims cw), x fastest.
+struct CubeGrid {
+    glm::i64vec3 lo{0}, dims{0};
+    int64_t cw = 1;
+    std::vector<Slab> cubes;
 };
 
+std::string describe(const amr::Cell& c) {
+    return strCat("(lower ", c.lower.x, ",", c.lower.y, ",", c.lower.z, " level ", c.level, ")");
+}
+
+// The kd build over the model's own arrays: cells and every field are partitioned together, in
+// place, so no per-cell copy exists; leaves are then put in x-fastest order inside their brick.
 class BrickBuilder {
 public:
-    explicit BrickBuilder(std::vector<WorkCell>& work) : mWork(work) {}
+    explicit BrickBuilder(amr::Model& model) : mModel(model), mCells(model.cells) {
+        for (amr::Field& f : model.fields) mFields.push_back(f.values.data());
+    }
 
-    // Builds the subtree over work[begin, end) and returns its leaves in left-to-right order.
-    // The two sides of a node of at least kParallelCells cells are built concurrently: they
-    // partition disjoint parts of the work array, so the leaves do not depend on the schedule.
-    std::vector<Leaf> build(size_t begin, size_t end) {
-        std::vector<Leaf> leaves;
-        struct Node { size_t b, e; };
-        std::vector<Node> stack{{begin, end}};
+    // Builds the subtree over cells [begin, end) (bounds `info`; `cubes`: an ancestor's cube grid)
+    // and returns its bricks in left-to-right order. The two sides of a node of at least kParallelCells cells are built
+    // concurrently: they own disjoint parts of the arrays, so the result does not depend on the
+    // schedule.
+    std::vector<Brick> build(size_t begin, size_t end, const NodeInfo& info,
+                             std::shared_ptr<const CubeGrid> cubes = nullptr) {
+        std::vector<Brick> bricks;
+        struct Node {
+            size_t b, e;
+            NodeInfo info;
+            std::shared_ptr<const CubeGrid> cubes;
+        };
+        std::vector<Node> stack{{begin, end, info, cubes}};
         while (!stack.empty()) {
-            Node n = stack.back();
+            Node n = std::move(stack.back());
             stack.pop_back();
-            if (tryLeaf(n.b, n.e, leaves)) continue;
-            const size_t mid = split(n.b, n.e);
+            if (tryLeaf(n.b, n.e, n.info, bricks)) continue;
+            NodeInfo left, right;
+            const size_t mid = split(n.b, n.e, n.info, n.cubes, left, right);
             if (n.e - n.b >= kParallelCells) {
-                std::vector<Leaf> left, right;
-                parallelInvoke([&] { left = build(n.b, mid); }, [&] { right = build(mid, n.e); });
-                leaves.insert(leaves.end(), left.begin(), left.end());
-                leaves.insert(leaves.end(), right.begin(), right.end());
+                std::vector<Brick> l, r;
+                parallelInvoke([&] { l = build(n.b, mid, left, n.cubes); },
+                               [&] { r = build(mid, n.e, right, n.cubes); });
+                bricks.insert(bricks.end(), l.begin(), l.end());
+                bricks.insert(bricks.end(), r.begin(), r.end());
                 continue;
             }
-            stack.push_back({mid, n.e});
-            stack.push_back({n.b, mid});
+            stack.push_back({mid, n.e, right, n.cubes});
+            stack.push_back({n.b, mid, left, std::move(n.cubes)});
         }
-        return leaves;
+        return bricks;
+    }
+
+    bool moved() const { return mMoved.load(); }
+
+    NodeInfo info(size_t b, size_t e) const {
+        return parallelReduce<NodeInfo>(
+            b, e, 64,
+            [&](size_t lo, size_t hi) {
+                NodeInfo in;
+                for (size_t i = lo; i < hi; ++i) in.add(mCells[i]);
+                return in;
+            },
+            [](NodeInfo& a, NodeInfo&& o) { a.merge(o); });
     }
 
 private:
     static constexpr size_t kParallelCells = size_t{1} << 15;
+    // Nodes at least this large gather their slab statistics on every core.
+    static constexpr size_t kParallelSlabCells = size_t{1} << 20;
 
-    struct NodeInfo {
-        glm::i64vec3 lo, hi;
-        uint32_t levelMask;
-        int32_t minLevel, maxLevel;
-    };
-
-    NodeInfo info(size_t b, size_t e) const {
-        NodeInfo in{glm::i64vec3(std::numeric_limits<int64_t>::max()),
-                    glm::i64vec3(std::numeric_limits<int64_t>::min()), 0, 64, -1};
-        for (size_t i = b; i < e; ++i) {
-            const WorkCell& c = mWork[i];
-            glm::i64vec3 l(c.lower);
-            in.lo = glm::min(in.lo, l);
-            in.hi = glm::max(in.hi, l + amr::cellWidth(c.level));
-            in.levelMask |= 1u << c.level;
-        }
-        in.minLevel = std::countr_zero(in.levelMask);
-        in.maxLevel = 31 - std::countl_zero(in.levelMask);
-        return in;
+    void swapCells(size_t i, size_t j) {
+        mMoved.store(true, std::memory_order_relaxed);
+        std::swap(mCells[i], mCells[j]);
+        for (float* v : mFields) std::swap(v[i], v[j]);
     }
 
-    bool tryLeaf(size_t b, size_t e, std::vector<Leaf>& leaves) {
-        NodeInfo in = info(b, e);
-        if (in.minLevel != in.maxLevel) return false;
-        const int64_t w = amr::cellWidth(in.minLevel);
-        glm::i64vec3 dims = (in.hi - in.lo) / w;
-        if (dims.x > kMaxBrickCells || dims.y > kMaxBrickCells || dims.z > kMaxBrickCells)
-            return false;
+    // A node becomes a brick when it is one level, completely filled and at most kMaxBrickCells
+    // wide; its cells are then put in brick order. Two cells on one slot overlap.
+    bool tryLeaf(size_t b, size_t e, const NodeInfo& in, std::vector<Brick>& bricks) {
+        const int32_t level = in.minLevel();
+        if (level != in.maxLevel()) return false;
+        const int64_t w = amr::cellWidth(level);
+        const glm::i64vec3 dims = (in.hi - in.lo) / w;
+        if (dims.x > kMaxBrickCells || dims.y > kMaxBrickCells || dims.z > kMaxBrickCells) return false;
         if (uint64_t(dims.x * dims.y * dims.z) != e - b) return false;  // not completely filled
-        Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), in.minLevel, static_cast<uint32_t>(b)};
-        leaves.push_back({b, e, brick});
+        const Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), level, static_cast<uint32_t>(b)};
+        orderBrick(brick, b, e);
+        bricks.push_back(brick);
         return true;
     }
 
+    size_t slotOf(const Brick& br, const amr::Cell& c) const {
+        const glm::i64vec3 local = (glm::i64vec3(c.lower) - glm::i64vec3(br.lower)) / br.cellWidth();
+        return size_t((local.z * br.size.y + local.y) * br.size.x + local.x);
+    }
+
+    // Permutes cells [b, e) (exactly one per slot unless two overlap) into x-fastest order.
+    void orderBrick(const Brick& br, size_t b, size_t e) {
+        bool ordered = true;
+        for (size_t i = b; i < e && ordered; ++i) ordered = slotOf(br, mCells[i]) == i - b;
+        if (ordered) return;
+        mMoved.store(true, std::memory_order_relaxed);
+        const size_t n = e - b;
+        std::vector<uint32_t> from(n, UINT32_MAX);  // slot -> position in [b, e)
+        for (size_t i = b; i < e; ++i) {
+            uint32_t& slot = from[slotOf(br, mCells[i])];
+            if (slot != UINT32_MAX)
+                AMRVK_CHECK(false, mModel.source, ": overlapping cells: ", describe(mCells[i]), " duplicates ",
+                            describe(mCells[b + slot]));
+            slot = static_cast<uint32_t>(i - b);
+        }
+        std::vector<amr::Cell> cells(n);
+        for (size_t k = 0; k < n; ++k) cells[k] = mCells[b + from[k]];
+        std::copy(cells.begin(), cells.end(), mCells.begin() + std::ptrdiff_t(b));
+        std::vector<float> values(n);
+        for (float* v : mFields) {
+            for (size_t k = 0; k < n; ++k) values[k] = v[b + from[k]];
+            std::copy(values.begin(), values.end(), v + b);
+        }
+    }
+
+    using Slabs = std::array<std::vector<Slab>, 3>;
+
+    // Slab statistics of cells [b, e) along every axis: slab k of axis a covers
+    // [lo[a] + k cw, lo[a] + (k + 1) cw), `slabs` per axis; an axis with `used[a] == 0` is skipped.
+    // Where the node holds at least 16 cells per coarse cube (cw^3; the grid then takes at most
+    // 2.5 bytes per cell), its cells are merged per cube
+    // once (one update per cell instead of three) and the grid is handed to the subtree: a
+    // descendant with the same coarsest level holds exactly the cells of the cubes in its box
+    // (every plane between them is a multiple of cw), so it reads its slabs from the grid.
+    Slabs slabStats(size_t b, size_t e, glm::i64vec3 lo, int64_t cw, glm::i64vec3 slabs, glm::i64vec3 used,
+                    std::shared_ptr<const CubeGrid>& cubes) const {
+        const size_t n = e - b;
+        const int shift = std::countr_zero(uint64_t(cw));
+        if (!cubes || cubes->cw != cw) {
+            cubes.reset();
+            const double cubeCount = double(slabs.x) * double(slabs.y) * double(slabs.z);
+            if (cubeCount * 16 <= double(n)) cubes = gatherCubes(b, e, lo, cw, slabs, size_t(cubeCount));
+        }
+        if (cubes) return slabsFromCubes(*cubes, lo, slabs, used);
+        auto gather = [&](size_t from, size_t to) {
+            Slabs s;
+            for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), Slab{});
+            for (size_t i = from; i < to; ++i) {
+                const amr::Cell& c = mCells[i];
+                const glm::ivec3 l = c.lower, u = l + (int32_t{1} << c.level);
+                const uint32_t bit = 1u << c.level;
+                const double volume = kCellVolume[size_t(c.level)];
+                for (int a = 0; a < 3; ++a)
+                    if (used[a] > 0) add(s[size_t(a)][size_t((int64_t(l[a]) - lo[a]) >> shift)], l, u, bit, volume);
+            }
+            return s;
+        };
+        const uint64_t slabTotal = uint64_t(used.x + used.y + used.z);
+        if (n < kParallelSlabCells || slabTotal * 64 > n) return gather(b, e);
+        return parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs);
+    }
+
+    static void add(Slab& sl, glm::ivec3 l, glm::ivec3 u, uint32_t bit, double volume) {
+        sl.levelMask |= bit;
+        sl.volume += volume;
+        sl.lo = glm::min(sl.lo, l);
+        sl.hi = glm::max(sl.hi, u);
+    }
+    static void mergeSlabs(Slabs& acc, Slabs&& part) {
+        for (size_t a = 0; a < 3; ++a)
+            for (size_t k = 0; k < acc[a].size(); ++k) acc[a][k] = merge(acc[a][k], part[a][k]);
+    }
+
+    std::shared_ptr<const CubeGrid> gatherCubes(size_t b, size_t e, glm::i64vec3 lo, int64_t cw, glm::i64vec3 dims,
+                                                size_t count) const {
+        const int64_t shift = std::countr_zero(uint64_t(cw));
+        auto gather = [&](size_t from, size_t to) {
+            Slabs s;
+            s[0].assign(count, Slab{});
+            for (size_t i = from; i < to; ++i) {
+                const amr::Cell& c = mCells[i];
+                const glm::i64vec3 q = (glm::i64vec3(c.lower) - lo) >> shift;
+                add(s[0][size_t((q.z * dims.y + q.y) * dims.x + q.x)], c.lower, c.lower + (int32_t{1} << c.level),
+                    1u << c.level, kCellVolume[size_t(c.level)]);
+            }
+            return s;
+        };
+        // Every core gathers its own copy of the cubes only while they are small against the node.
+        const size_t n = e - b;
+        Slabs s = n >= kParallelSlabCells && count * 256 <= n ? parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs)
+                                                              : gather(b, e);
+        auto grid = std::make_shared<CubeGrid>();
+        grid->lo = lo;
+        grid->dims = dims;
+        grid->cw = cw;
+        grid->cubes = std::move(s[0]);
+        return grid;
+    }
+
+    // Slabs of the box [lo, lo + slabs cw) from the cubes that lie in it.
+    static Slabs slabsFromCubes(const CubeGrid& g, glm::i64vec3 lo, glm::i64vec3 slabs, glm::i64vec3 used) {
+        Slabs s;
+        for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), Slab{});
+        const glm::i64vec3 q0 = (lo - g.lo) / g.cw;
+        for (int64_t z = 0; z < slabs.z; ++z)
+            for (int64_t y = 0; y < slabs.y; ++y) {
+                const size_t row = size_t(((q0.z + z) * g.dims.y + q0.y + y) * g.dims.x + q0.x);
+                for (int64_t x = 0; x < slabs.x; ++x) {
+                    const Slab& c = g.cubes[row + size_t(x)];
+                    if (c.levelMask == 0) continue;
+                    const int64_t q[3] = {x, y, z};
+                    for (int a = 0; a < 3; ++a)
+                        if (used[a] > 0) s[size_t(a)][size_t(q[a])] = merge(s[size_t(a)][size_t(q[a])], c);
+                }
+            }
+        return s;
+    }
+
     // Chooses a plane (exaBuilder's SAH-alike cost over boundary planes between coarse-cell slabs,
-    // else the spatial median of the longest axis) and partitions; returns the split index.
-    size_t split(size_t b, size_t e) {
-        NodeInfo in = info(b, e);
-        const int64_t cw = amr::cellWidth(in.maxLevel);
-        glm::i64vec3 lo, hi, slabs;
+    // else the spatial median of the longest axis) and partitions; returns the split index and the
+    // sides' bounds. Planes lie on multiples of the node's coarsest cell width, so no cell straddles
+    // one: the subtrees' regions are disjoint and cells in different bricks never overlap.
+    size_t split(size_t b, size_t e, const NodeInfo& in, std::shared_ptr<const CubeGrid>& cubes, NodeInfo& left,
+                 NodeInfo& right) {
+        const int64_t cw = amr::cellWidth(in.maxLevel());
+        glm::i64vec3 lo, hi, slabs, used;
+        const uint64_t slabLimit = 4 * (e - b) + 1024;
         for (int a = 0; a < 3; ++a) {
             lo[a] = floorTo(in.lo[a], cw);
             hi[a] = ceilTo(in.hi[a], cw);
             slabs[a] = (hi[a] - lo[a]) / cw;
+            used[a] = slabs[a] < 2 || uint64_t(slabs[a]) > slabLimit ? 0 : slabs[a];
         }
-        const uint64_t slabLimit = 4 * (e - b) + 1024;
         double bestCost = std::numeric_limits<double>::infinity();
         int bestAxis = -1;
         int64_t bestPlane = 0;
-        std::vector<Slab> slab;
+        const Slabs stats = slabStats(b, e, lo, cw, slabs, used, cubes);
         std::vector<Slab> suffix;
         for (int a = 0; a < 3; ++a) {
-            if (slabs[a] < 2 || uint64_t(slabs[a]) > slabLimit) continue;
-            slab.assign(size_t(slabs[a]), Slab{});
-            for (size_t i = b; i < e; ++i) {
-                const WorkCell& c = mWork[i];
-                Slab& s = slab[size_t((c.lower[a] - lo[a]) / cw)];
-                const int64_t w = amr::cellWidth(c.level);
-                glm::i64vec3 l(c.lower);
-                s.levelMask |= 1u << c.level;
-                s.volume += double(w) * double(w) * double(w);
-                s.lo = glm::min(s.lo, l);
-                s.hi = glm::max(s.hi, l + w);
-            }
+            const std::vector<Slab>& slab = stats[size_t(a)];
+            if (slab.empty()) continue;
             const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
             const double fullVolume = double(cw) * double(hi[b1] - lo[b1]) * double(hi[b2] - lo[b2]);
             suffix.assign(slab.size() + 1, Slab{});
@@ -147,8 +321,7 @@ private:
                 prefix = merge(prefix, slab[k - 1]);
                 const Slab& l = slab[k - 1];
                 const Slab& r = slab[k];
-                bool boundary = l.levelMask != r.levelMask || l.volume < fullVolume ||
-                                r.volume < fullVolume;
+                bool boundary = l.levelMask != r.levelMask || l.volume < fullVolume || r.volume < fullVolume;
                 if (!boundary) continue;
                 double cost = sahCost(prefix) + sahCost(suffix[k]);
                 if (cost < bestCost) {
@@ -162,64 +335,75 @@ private:
             int a = 0;
             for (int k = 1; k < 3; ++k)
                 if (slabs[k] > slabs[a]) a = k;
-            AMRVK_CHECK(slabs[a] >= 2, "brick builder: cannot split a node of ", e - b, " cells");
+            if (slabs[a] < 2) reportOverlap(b, e, in);
             bestAxis = a;
             bestPlane = lo[a] + slabs[a] / 2 * cw;
         }
-        auto midIt = std::partition(mWork.begin() + std::ptrdiff_t(b), mWork.begin() + std::ptrdiff_t(e),
-                                    [&](const WorkCell& c) { return c.lower[bestAxis] < bestPlane; });
-        size_t mid = size_t(midIt - mWork.begin());
-        AMRVK_CHECK(mid > b && mid < e, "brick builder: empty side at plane ", bestPlane,
-                    " axis ", bestAxis);
-        return mid;
+        // The sides' bounds come from the slabs when the split axis has them, else from the cells.
+        const std::vector<Slab>& slab = stats[size_t(bestAxis)];
+        const bool sidesFromSlabs = !slab.empty();
+        if (sidesFromSlabs) {
+            const size_t k = size_t((bestPlane - lo[bestAxis]) / cw);
+            Slab l, r;
+            for (size_t m = 0; m < slab.size(); ++m) (m < k ? l : r) = merge(m < k ? l : r, slab[m]);
+            left = {glm::i64vec3(l.lo), glm::i64vec3(l.hi), l.levelMask};
+            right = {glm::i64vec3(r.lo), glm::i64vec3(r.hi), r.levelMask};
+        }
+        // Hoare partition of cells and values.
+        size_t i = b, j = e;
+        const int axis = bestAxis;
+        const int32_t plane = int32_t(bestPlane);  // inside the node's int32 bounds
+        for (;;) {
+            if (sidesFromSlabs) {
+                while (i < j && mCells[i].lower[axis] < plane) ++i;
+                while (i < j && mCells[j - 1].lower[axis] >= plane) --j;
+            } else {
+                while (i < j && mCells[i].lower[axis] < plane) left.add(mCells[i++]);
+                while (i < j && mCells[j - 1].lower[axis] >= plane) right.add(mCells[--j]);
+            }
+            if (i >= j) break;
+            swapCells(i, j - 1);
+        }
+        AMRVK_CHECK(i > b && i < e, "brick builder: empty side at plane ", bestPlane, " axis ", bestAxis);
+        return i;
     }
 
-    static Slab merge(const Slab& a, const Slab& s) {
-        Slab m;
-        m.levelMask = a.levelMask | s.levelMask;
-        m.volume = a.volume + s.volume;
-        m.lo = glm::min(a.lo, s.lo);
-        m.hi = glm::max(a.hi, s.hi);
-        return m;
-    }
-    static double sahCost(const Slab& s) {
-        if (s.levelMask == 0) return 0;
-        glm::dvec3 size(s.hi - s.lo);
-        return halfArea(size) * (size.x * size.y * size.z) * std::popcount(s.levelMask);
+    // A node of several cells inside one cell of its coarsest level: that cell overlaps the others.
+    [[noreturn]] void reportOverlap(size_t b, size_t e, const NodeInfo& in) const {
+        size_t big = b;
+        while (mCells[big].level != in.maxLevel()) ++big;
+        const size_t other = big == b ? b + 1 : b;
+        const bool same = mCells[other].level == mCells[big].level;
+        throw Error(strCat(mModel.source, ": overlapping cells: ", describe(mCells[other]),
+                           same ? " duplicates " : " lies inside ", describe(mCells[big]), " (", e - b,
+                           " cells share that cell's box)"));
     }
 
-    std::vector<WorkCell>& mWork;
+    amr::Model& mModel;
+    std::vector<amr::Cell>& mCells;
+    std::vector<float*> mFields;
+    std::atomic<bool> mMoved{false};  // some cell changed place
 };
 
 }  // namespace
 
-BrickSet buildBricks(const amr::Model& model) {
+BrickSet buildBricks(amr::Model& model) {
     Timer timer;
     BrickSet out;
     const size_t n = model.cells.size();
     AMRVK_CHECK(n > 0 && n < BrickSet::kEmptySlot, model.source, ": cannot brick ", n, " cells");
-    std::vector<Leaf> leaves;
-    {
-        std::vector<WorkCell> work(n);
-        for (size_t i = 0; i < n; ++i)
-            work[i] = {model.cells[i].lower, model.cells[i].level, static_cast<uint32_t>(i)};
-        BrickBuilder builder(work);
-        leaves = builder.build(0, n);
-        std::sort(leaves.begin(), leaves.end(),
-                  [](const Leaf& a, const Leaf& b) { return a.begin < b.begin; });
-        out.cellIds.resize(n);
-        for (const Leaf& leaf : leaves) {
-            const Brick& br = leaf.brick;
-            const int64_t w = br.cellWidth();
-            for (size_t i = leaf.begin; i < leaf.end; ++i) {
-                glm::i64vec3 local = (glm::i64vec3(work[i].lower) - glm::i64vec3(br.lower)) / w;
-                size_t idx = size_t((local.z * br.size.y + local.y) * br.size.x + local.x);
-                out.cellIds[br.begin + idx] = work[i].id;
-            }
-        }
+    for (const amr::Field& f : model.fields)
+        AMRVK_CHECK(f.values.size() == n, model.source, ": field '", f.name, "' has ", f.values.size(),
+                    " values for ", n, " cells");
+    BrickBuilder builder(model);
+    try {
+        out.bricks = builder.build(0, n, builder.info(0, n));
+    } catch (...) {
+        model.cellOrder += builder.moved();
+        throw;
     }
-    out.bricks.reserve(leaves.size());
-    for (const Leaf& leaf : leaves) out.bricks.push_back(leaf.brick);
+    model.cellOrder += builder.moved();
+    out.slots = n;
     out.buildSeconds = timer.seconds();
     return out;
 }
@@ -279,6 +463,7 @@ BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& mod
     }
     AMRVK_CHECK(usedCount == n, path.string(), ": ", n - usedCount,
                 " cells of the model are in no brick");
+    out.slots = out.cellIds.size();
     out.buildSeconds = timer.seconds();
     return out;
 }
@@ -291,7 +476,7 @@ void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks) 
         out.write(header, sizeof header);
         ids.clear();
         for (uint64_t k = 0; k < b.cellCount(); ++k) {
-            uint32_t id = bricks.cellIds[b.begin + k];
+            uint32_t id = bricks.cellId(b.begin + k);
             ids.push_back(id == BrickSet::kEmptySlot ? -1 : static_cast<int32_t>(id));
         }
         out.write(ids.data(), ids.size() * sizeof(int32_t));
@@ -300,7 +485,8 @@ void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks) 
 }
 
 std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field) {
-    std::vector<float> out(bricks.cellIds.size());
+    if (bricks.cellIds.empty()) return field.values;
+    std::vector<float> out(bricks.slots);
     for (size_t i = 0; i < out.size(); ++i) {
         uint32_t id = bricks.cellIds[i];
         out[i] = id == BrickSet::kEmptySlot ? std::numeric_limits<float>::quiet_NaN()
@@ -316,7 +502,7 @@ BrickStats computeBrickStats(const BrickSet& bricks) {
         s.singleCellBricks += b.cellCount() == 1;
         s.largestBrickCells = std::max(s.largestBrickCells, b.cellCount());
     }
-    s.averageCellsPerBrick = s.brickCount ? double(bricks.cellIds.size()) / double(s.brickCount) : 0;
+    s.averageCellsPerBrick = s.brickCount ? double(bricks.slots) / double(s.brickCount) : 0;
     return s;
 }
 

@@ -26,9 +26,13 @@ constexpr int32_t kMaxBrickCells = 127;  // per axis, as exaBuilder's default --
 
 struct BrickSet {
     std::vector<Brick> bricks;
-    std::vector<uint32_t> cellIds;  // brick order -> model cell index; kEmptySlot for a hole
+    uint64_t slots = 0;             // brick slots in all (= cells, plus holes of a .bricks file)
+    // Brick order -> model cell index (kEmptySlot for a hole); empty when the model itself is in
+    // brick order (buildBricks), i.e. slot i is cell i.
+    std::vector<uint32_t> cellIds;
     static constexpr uint32_t kEmptySlot = UINT32_MAX;
     double buildSeconds = 0;
+    uint32_t cellId(uint64_t slot) const { return cellIds.empty() ? uint32_t(slot) : cellIds[slot]; }
     uint64_t memoryBytes() const {
         return bricks.size() * sizeof(Brick) + cellIds.size() * sizeof(uint32_t);
     }
@@ -37,7 +41,13 @@ struct BrickSet {
 // Builds bricks with the exaBuilder SAH-alike kd split: partition at coarse-cell planes where the
 // level set or fullness changes, minimising halfArea(L) * volume(L) * levels(L) + same(R); a node
 // becomes a brick when it is one level, completely filled, and at most kMaxBrickCells per axis.
-BrickSet buildBricks(const amr::Model& model);
+// Reorders model.cells and every field, in place, into brick order (x fastest inside a brick), so
+// no per-cell copy is made and cellIds stays empty. Finds overlapping cells on the way (cells in
+// different bricks lie in disjoint kd regions; within a brick two cells on one slot, or a node
+// inside one cell of its own) and throws "SOURCE: overlapping cells: (lower ..) lies inside (..)";
+// the model is then some permutation of itself. The order is a function of the set of cells, so
+// building again (or from any file order) gives the same model and bricks.
+BrickSet buildBricks(amr::Model& model);
 
 // Reads a .bricks file of the ExaBrick builders (records: int3 size, int3 lower, int level,
 // int cellId[size]) and checks it against the model: every cell id valid and used once, ids -1
@@ -47,7 +57,7 @@ BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& mod
 // Writes bricks in the same .bricks format (empty slots as -1), atomically.
 void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks);
 
-// Values of `field` in brick order (NaN for empty slots).
+// Values of `field` in brick order (NaN for empty slots); a copy of the field after buildBricks.
 std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field);
 
 struct BrickStats {

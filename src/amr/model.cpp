@@ -1,11 +1,13 @@
 #include "amr/model.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "amr/cell_hash.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace amrvk::amr {
 
@@ -34,47 +36,90 @@ const Field& Model::defaultField() const {
     return fields.front();
 }
 
+namespace {
+// Cell volume per level, voxel units^3.
+double cellVolume(int32_t level) {
+    static const std::array<double, kMaxLevel + 1> table = [] {
+        std::array<double, kMaxLevel + 1> t{};
+        for (int l = 0; l <= kMaxLevel; ++l) t[size_t(l)] = std::ldexp(1.0, 3 * l);
+        return t;
+    }();
+    return table[size_t(level)];
+}
+constexpr size_t kReduceChunks = 64;  // fixed, so sums are the same on every machine
+}  // namespace
+
 ModelSummary summarize(const Model& model) {
     ModelSummary s;
     if (model.cells.empty()) return s;
-    glm::i64vec3 lo(std::numeric_limits<int64_t>::max());
-    glm::i64vec3 hi(std::numeric_limits<int64_t>::min());
-    int minL = kMaxLevel + 1, maxL = -1;
-    std::vector<uint64_t> perLevel(64, 0);
-    for (const Cell& c : model.cells) {
-        int64_t w = cellWidth(c.level);
-        glm::i64vec3 l(c.lower);
-        lo = glm::min(lo, l);
-        hi = glm::max(hi, l + w);
-        minL = std::min(minL, c.level);
-        maxL = std::max(maxL, c.level);
-        perLevel[static_cast<size_t>(c.level)]++;
-        s.leafVolume += std::ldexp(1.0, 3 * c.level);
-    }
-    s.bounds = {lo, hi};
-    s.minLevel = minL;
-    s.maxLevel = maxL;
-    perLevel.resize(static_cast<size_t>(maxL) + 1);
-    s.cellsPerLevel = std::move(perLevel);
+    struct Part {
+        glm::i64vec3 lo{std::numeric_limits<int64_t>::max()}, hi{std::numeric_limits<int64_t>::min()};
+        std::array<uint64_t, kMaxLevel + 1> perLevel{};
+        double volume = 0;
+    };
+    const Part all = parallelReduce<Part>(
+        0, model.cells.size(), kReduceChunks,
+        [&](size_t from, size_t to) {
+            Part p;
+            for (size_t i = from; i < to; ++i) {
+                const Cell& c = model.cells[i];
+                const glm::i64vec3 l(c.lower);
+                p.lo = glm::min(p.lo, l);
+                p.hi = glm::max(p.hi, l + cellWidth(c.level));
+                p.perLevel[size_t(c.level)]++;
+                p.volume += cellVolume(c.level);
+            }
+            return p;
+        },
+        [](Part& a, Part&& b) {
+            a.lo = glm::min(a.lo, b.lo);
+            a.hi = glm::max(a.hi, b.hi);
+            for (size_t l = 0; l < a.perLevel.size(); ++l) a.perLevel[l] += b.perLevel[l];
+            a.volume += b.volume;
+        });
+    s.bounds = {all.lo, all.hi};
+    s.leafVolume = all.volume;
+    s.minLevel = kMaxLevel;
+    s.maxLevel = 0;
+    for (int l = 0; l <= kMaxLevel; ++l)
+        if (all.perLevel[size_t(l)] > 0) {
+            s.minLevel = std::min(s.minLevel, l);
+            s.maxLevel = std::max(s.maxLevel, l);
+        }
+    s.cellsPerLevel.assign(all.perLevel.begin(), all.perLevel.begin() + s.maxLevel + 1);
     return s;
 }
 
 FieldStats computeFieldStats(const Model& model, const Field& field) {
     FieldStats st;
     if (field.values.empty()) return st;
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    double sum = 0, vol = 0;
-    for (size_t i = 0; i < field.values.size(); ++i) {
-        float v = field.values[i];
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-        double w = std::ldexp(1.0, 3 * model.cells[i].level);
-        sum += w * v;
-        vol += w;
-    }
-    st.minValue = lo;
-    st.maxValue = hi;
-    st.volumeWeightedMean = vol > 0 ? sum / vol : 0.0;
+    struct Part {
+        float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+        double sum = 0, volume = 0;
+    };
+    const Part all = parallelReduce<Part>(
+        0, field.values.size(), kReduceChunks,
+        [&](size_t from, size_t to) {
+            Part p;
+            for (size_t i = from; i < to; ++i) {
+                const float v = field.values[i];
+                p.lo = std::min(p.lo, v);
+                p.hi = std::max(p.hi, v);
+                const double w = cellVolume(model.cells[i].level);
+                p.sum += w * v;
+                p.volume += w;
+            }
+            return p;
+        },
+        [](Part& a, Part&& b) {
+            a.lo = std::min(a.lo, b.lo);
+            a.hi = std::max(a.hi, b.hi);
+            a.sum += b.sum;
+            a.volume += b.volume;
+        });
+    st.minValue = all.lo;
+    st.maxValue = all.hi;
+    st.volumeWeightedMean = all.volume > 0 ? all.sum / all.volume : 0.0;
     return st;
 }
 
@@ -112,24 +157,44 @@ void applyNanPolicy(Model& model, NanPolicy policy) {
     model.attributes.emplace_back("droppedNonFiniteCells", std::to_string(badCount));
 }
 
-void validate(const Model& model) {
+namespace {
+// What is wrong with a cell on its own, or "" (level, alignment, the int32 voxel range).
+std::string cellProblem(const Cell& c) {
+    if (c.level < 0 || c.level > kMaxLevel) return strCat("has a level outside [0, ", kMaxLevel, "]");
+    const int64_t w = cellWidth(c.level);
+    if (((c.lower.x | c.lower.y | c.lower.z) & static_cast<int32_t>(w - 1)) != 0)
+        return strCat("is not aligned to its width ", w);
+    if (int64_t{c.lower.x} + w > INT32_MAX || int64_t{c.lower.y} + w > INT32_MAX || int64_t{c.lower.z} + w > INT32_MAX)
+        return "reaches past 2^31-1";
+    return {};
+}
+}  // namespace
+
+void validateCells(const Model& model) {
     const std::string& src = model.source;
     AMRVK_CHECK(!model.cells.empty(), src, ": no cells");
     for (const Field& f : model.fields)
         AMRVK_CHECK(f.values.size() == model.cells.size(), src, ": field '", f.name, "' has ",
                     f.values.size(), " values but there are ", model.cells.size(), " cells");
-    for (size_t i = 0; i < model.cells.size(); ++i) {
-        const Cell& c = model.cells[i];
-        AMRVK_CHECK(c.level >= 0 && c.level <= kMaxLevel, src, ": cell ", i, " ",
-                    describeCell(c), " has a level outside [0, ", kMaxLevel, "]");
-        int32_t mask = static_cast<int32_t>(cellWidth(c.level) - 1);
-        AMRVK_CHECK(((c.lower.x | c.lower.y | c.lower.z) & mask) == 0, src, ": cell ", i, " ",
-                    describeCell(c), " is not aligned to its width ", mask + 1);
-        AMRVK_CHECK(int64_t{c.lower.x} + cellWidth(c.level) <= INT32_MAX &&
-                        int64_t{c.lower.y} + cellWidth(c.level) <= INT32_MAX &&
-                        int64_t{c.lower.z} + cellWidth(c.level) <= INT32_MAX,
-                    src, ": cell ", i, " ", describeCell(c), " reaches past 2^31-1");
-    }
+    // Each chunk finds its first bad cell; the lowest is reported, whatever the schedule.
+    constexpr size_t kChunks = 64;
+    const size_t n = model.cells.size();
+    std::vector<size_t> firstBad(kChunks, SIZE_MAX);
+    parallelFor(0, kChunks, [&](size_t k) {
+        for (size_t i = k * n / kChunks; i < (k + 1) * n / kChunks; ++i)
+            if (!cellProblem(model.cells[i]).empty()) {
+                firstBad[k] = i;
+                return;
+            }
+    });
+    for (size_t i : firstBad)
+        AMRVK_CHECK(i == SIZE_MAX, src, ": cell ", i, " ", describeCell(model.cells[i]), " ",
+                    cellProblem(model.cells[i]));
+}
+
+void validate(const Model& model) {
+    validateCells(model);
+    const std::string& src = model.source;
     CellHash hash(model.cells);
     if (hash.firstDuplicate() != CellHash::kNone)
         AMRVK_CHECK(false, src, ": overlapping cells: cell ", hash.firstDuplicate(), " ",

@@ -56,6 +56,9 @@ struct Model {
     std::vector<std::string> availableFields; // every field the source offers (loaded or not)
     Transform voxelToWorld;
     std::vector<std::pair<std::string, std::string>> attributes;  // source metadata, for info
+    // Bumped whenever the cells are reordered (accel::buildBricks puts them in brick order), so
+    // whatever indexes cells by position (amr::ReferenceSampler) can tell it has gone stale.
+    uint64_t cellOrder = 0;
 
     uint64_t cellCount() const { return cells.size(); }
     // Returns the loaded field `name`; throws "unknown field 'X' in SOURCE (available: ...)".
@@ -70,6 +73,7 @@ struct ModelSummary {
     std::vector<uint64_t> cellsPerLevel;   // index = level (0 = finest), size maxLevel + 1
     double leafVolume = 0;                 // sum of cell volumes, voxel units^3
 };
+// In parallel over fixed chunks (same result on every machine); the model passes validateCells.
 ModelSummary summarize(const Model& model);
 
 struct FieldStats {
@@ -86,7 +90,12 @@ NanPolicy parseNanPolicy(std::string_view text);
 void applyNanPolicy(Model& model, NanPolicy policy);
 
 // Throws amrvk::Error on: a field whose length differs from the cell count, a level outside
-// [0, kMaxLevel], a cell not aligned to its width, two overlapping cells, an empty model.
+// [0, kMaxLevel], a cell not aligned to its width or reaching past 2^31-1, an empty model.
+// Checks every cell on its own (in parallel, no extra memory); readModel runs it.
+void validateCells(const Model& model);
+// validateCells, and two overlapping cells (a hash of every cell: about 12 bytes per cell).
+// The brick build (accel::buildBricks) finds overlaps too, at no cost, so the render path
+// needs only validateCells; this is for models that are not bricked (convert, tests).
 void validate(const Model& model);
 
 }  // namespace amrvk::amr

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.h"
+
 namespace amrvk::amr {
 
 double tentWeight(const Cell& cell, glm::dvec3 p) {
@@ -14,10 +16,16 @@ double tentWeight(const Cell& cell, glm::dvec3 p) {
 }
 
 ReferenceSampler::ReferenceSampler(const Model& model, const Field& field)
-    : mModel(model), mField(field), mHash(model.cells) {}
+    : mModel(model), mField(field), mHash(model.cells), mCellOrder(model.cellOrder) {}
+
+void ReferenceSampler::checkOrder() const {
+    AMRVK_CHECK(mModel.cellOrder == mCellOrder, "internal: ", mModel.source,
+                " was reordered (bricks built) after its reference sampler indexed it; build bricks first");
+}
 
 template <typename Visit>
 void ReferenceSampler::forEachContributing(glm::dvec3 p, Visit&& visit) const {
+    checkOrder();
     for (int32_t level : mHash.levels()) {
         const double w = double(cellWidth(level));
         glm::dvec3 k0 = glm::floor(p / w - 0.5);
@@ -48,6 +56,7 @@ Sample ReferenceSampler::sample(glm::dvec3 p) const {
 }
 
 bool ReferenceSampler::insideLeafCell(glm::dvec3 p) const {
+    checkOrder();
     for (int32_t level : mHash.levels()) {
         const double w = double(cellWidth(level));
         glm::dvec3 k = glm::floor(p / w);

@@ -20,6 +20,8 @@ struct Sample {
 // Tent weight of a cell at voxel-space point p (0 outside its support).
 double tentWeight(const Cell& cell, glm::dvec3 p);
 
+// Indexes the model's cells by position: build bricks (which reorder the model) first; a sampler
+// used after its model was reordered throws instead of reading the wrong cells.
 class ReferenceSampler {
 public:
     ReferenceSampler(const Model& model, const Field& field);
@@ -33,9 +35,11 @@ public:
 private:
     template <typename Visit>
     void forEachContributing(glm::dvec3 p, Visit&& visit) const;
+    void checkOrder() const;
     const Model& mModel;
     const Field& mField;
     CellHash mHash;
+    uint64_t mCellOrder;  // model.cellOrder when the hash was built
 };
 
 }  // namespace amrvk::amr

@@ -203,6 +203,7 @@ int runConvert(const std::vector<std::string>& argv) {
         ->type_name("BASE");
     if (!parseCommandLine(app, argv)) return 0;
     amr::Model model = amr::readModel(input, readOptions(read));
+    amr::validate(model);  // overlaps too: the output is never bricked here
     amr::writeExaBrick(model, base);
     std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());

@@ -87,6 +87,7 @@ int runDevices(const std::vector<std::string>& argv) {
 }
 
 int runRender(const std::vector<std::string>& argv) {
+    const Timer sinceStart;  // time to the first sample: reading, validating, structures, device set-up
     CLI::App app(kRenderHelp, "amrvk render");
     setUpCommand(app);
     std::string input, output = "amrvk.png", jsonFile;
@@ -121,10 +122,12 @@ int runRender(const std::vector<std::string>& argv) {
     amr::ReadOptions ro = s.read;
     if (!s.field.empty()) ro.fields = {s.field};
     amr::Model model;
+    Timer readTimer;
     {
         ProgressStage stage("reading " + s.input);
         model = amr::readModel(s.input, ro);
     }
+    const double readSeconds = readTimer.seconds();
     const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
     fitTraversal(picture, model);
     config.traversal = s.structure.traversal;
@@ -162,7 +165,11 @@ int runRender(const std::vector<std::string>& argv) {
     renderer.setTransferFunction(tf);
     ProgressBar bar("render", "spp");
     Timer wall;
-    scene::RenderOutput out = renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) { bar.update(d, t); });
+    double firstSampleSeconds = 0;
+    scene::RenderOutput out = renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) {
+        if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
+        bar.update(d, t);
+    });
     bar.finish();
     const double wallSeconds = wall.seconds();
     writeImage(output, out.mean);
@@ -216,6 +223,9 @@ int runRender(const std::vector<std::string>& argv) {
         j["majorantSeconds"] = renderer.majorantSeconds();
         j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
         j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
+        j["readSeconds"] = readSeconds;                // read and per-cell validation
+        j["firstSampleSeconds"] = firstSampleSeconds;  // command start to the first finished batch (--spp 1: one sample per pixel)
+        j["peakHostBytes"] = peakResidentBytes();      // so far (lavapipe: device memory included)
         j["structureBuildSeconds"] = buildSeconds;
         j["structureBuildSecondsPer"] = {
             {"bricks", scene.buildSeconds.bricks},           {"abrs", scene.buildSeconds.abrs},

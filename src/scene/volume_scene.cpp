@@ -26,7 +26,7 @@ shared::AabbGpu VolumeScene::toLocal(const accel::BoxD& b) const {
     return {glm::vec3(toLocal(b.lo)), glm::vec3(toLocal(b.hi))};
 }
 
-VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
+VolumeScene makeVolumeScene(amr::Model& model, const amr::Field& field) {
     VolumeScene s;
     s.model = &model;
     s.field = &field;
@@ -42,8 +42,10 @@ VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field) {
     s.valueLo = stats.minValue;
     s.valueHi = stats.maxValue;
     ProgressStage stage("bricks");
+    AMRVK_CHECK(&field >= model.fields.data() && &field < model.fields.data() + model.fields.size(),
+                "internal: the scene's field is not one of the model's");
     s.bricks = accel::buildBricks(model);
-    s.brickValues = accel::brickOrderValues(s.bricks, field);
+    s.brickValues = field.values;
     s.buildSeconds.bricks = s.bricks.buildSeconds;
     return s;
 }
@@ -151,7 +153,11 @@ void VolumeScene::configure(const StructureConfig& next) {
 
 std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
     std::vector<std::pair<std::string, uint64_t>> out;
-    out.emplace_back("bricks", bricks.memoryBytes() + brickValues.size() * sizeof(float));
+    uint64_t modelBytes = model ? model->cells.size() * sizeof(amr::Cell) : 0;
+    if (model)
+        for (const amr::Field& f : model->fields) modelBytes += f.values.size() * sizeof(float);
+    out.emplace_back("model", modelBytes);  // cells and loaded fields, in brick order: the brick values
+    out.emplace_back("bricks", bricks.memoryBytes());
     if (abrs) out.emplace_back("abrs", abrs->memoryBytes());
     if (!samplerBvh.nodes.empty()) out.emplace_back("samplerBvh", samplerBvh.memoryBytes());
     if (!samplerBoxes.empty()) out.emplace_back("samplerBoxes", samplerBoxes.size() * sizeof(shared::AabbGpu));
@@ -163,13 +169,13 @@ std::vector<std::pair<std::string, uint64_t>> VolumeScene::hostBytes() const {
     return out;
 }
 
-VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, const StructureConfig& config) {
+VolumeScene buildVolumeScene(amr::Model& model, const amr::Field& field, const StructureConfig& config) {
     VolumeScene s = makeVolumeScene(model, field);
     s.configure(config);
     return s;
 }
 
-VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
+VolumeScene buildVolumeScene(amr::Model& model, const amr::Field& field, SamplerKind sampler,
                              const std::string& gridSpec) {
     StructureConfig c;
     c.sampler = sampler;

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,7 +62,7 @@ struct VolumeScene {
     int32_t minLevel = 0;         // finest level present; sigma is per (1 << minLevel) voxel units
     float valueLo = 0, valueHi = 0;
     accel::BrickSet bricks;
-    std::vector<float> brickValues;
+    std::span<const float> brickValues;  // = field->values: the model is in brick order
     std::optional<accel::AbrSet> abrs;                   // abr sampler or abr traversal
     accel::Bvh samplerBvh;                               // sw back-end: over brick domains or ABR boxes
     std::vector<shared::AabbGpu> samplerBoxes;           // rq back-end: the same boxes, BLAS input
@@ -88,11 +89,13 @@ struct VolumeScene {
     shared::AabbGpu toLocal(const accel::BoxD& voxelBox) const;
 };
 
-// Bricks and values only; call configure() next.
-VolumeScene makeVolumeScene(const amr::Model& model, const amr::Field& field);
-VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, const StructureConfig& config);
+// Bricks and values only; call configure() next. Puts the model (cells and every field) in brick
+// order (accel::buildBricks), so the scene's brick values are the field itself; the model must
+// outlive the scene and `field` must be one of its fields.
+VolumeScene makeVolumeScene(amr::Model& model, const amr::Field& field);
+VolumeScene buildVolumeScene(amr::Model& model, const amr::Field& field, const StructureConfig& config);
 // Convenience for the default traversal (grid-dda, sw).
-VolumeScene buildVolumeScene(const amr::Model& model, const amr::Field& field, SamplerKind sampler,
+VolumeScene buildVolumeScene(amr::Model& model, const amr::Field& field, SamplerKind sampler,
                              const std::string& gridSpec);
 
 }  // namespace amrvk::scene

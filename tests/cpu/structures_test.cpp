@@ -4,7 +4,9 @@
 
 #include <fstream>
 #include <random>
+#include <cstring>
 #include <set>
+#include <tuple>
 
 #include "accel/abrs.h"
 #include "accel/brick_sampler.h"
@@ -32,11 +34,26 @@ bool rangeHolds(const ValueRange& r, double v) {
 }
 }  // namespace
 
-TEST(Bricks, EveryCellInExactlyOneBrickAtItsPosition) {
-    amr::Model m = fixture(1);
+TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
+    const amr::Model original = fixture(1);
+    amr::Model m = original;
+    const amr::ReferenceSampler stale(m, m.fields[0]);
     BrickSet bs = buildBricks(m);
-    ASSERT_EQ(bs.cellIds.size(), m.cells.size());
-    std::vector<int> seen(m.cells.size(), 0);
+    // What indexed the cells by position before the build says so instead of reading wrong cells.
+    EXPECT_THROW(stale.sample(glm::dvec3(m.cells[0].lower) + 0.5), Error);
+    EXPECT_TRUE(bs.cellIds.empty()) << "the model itself is in brick order";
+    ASSERT_EQ(bs.slots, m.cells.size());
+    // The model is a permutation of the original: every (cell, value) pair once.
+    auto key = [](const amr::Model& x, size_t i) {
+        const amr::Cell& c = x.cells[i];
+        return std::make_tuple(c.lower.x, c.lower.y, c.lower.z, c.level, x.fields[0].values[i], x.fields.back().values[i]);
+    };
+    std::multiset<decltype(key(m, 0))> before, after;
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        before.insert(key(original, i));
+        after.insert(key(m, i));
+    }
+    EXPECT_EQ(before, after);
     uint64_t total = 0;
     for (const Brick& b : bs.bricks) {
         EXPECT_EQ(b.begin, total);
@@ -46,16 +63,68 @@ TEST(Bricks, EveryCellInExactlyOneBrickAtItsPosition) {
             EXPECT_LE(b.size[a], kMaxBrickCells);
         }
         for (uint64_t k = 0; k < b.cellCount(); ++k) {
-            uint32_t id = bs.cellIds[b.begin + k];
-            ASSERT_LT(id, m.cells.size());
-            seen[id]++;
+            const uint32_t id = bs.cellId(b.begin + k);
+            EXPECT_EQ(id, b.begin + k);
             glm::ivec3 local(int(k % uint64_t(b.size.x)), int(k / uint64_t(b.size.x) % uint64_t(b.size.y)),
                              int(k / uint64_t(b.size.x * b.size.y)));
             EXPECT_EQ(m.cells[id].lower, b.lower + local * int(b.cellWidth()));
             EXPECT_EQ(m.cells[id].level, b.level);
         }
     }
-    for (int s : seen) EXPECT_EQ(s, 1);
+    EXPECT_EQ(total, m.cells.size());
+
+    // The order is a function of the cells alone: building again, or from a shuffled file order,
+    // gives the same bricks and the same model.
+    const amr::Model ordered = m;
+    const amr::ReferenceSampler fresh(m, m.fields[0]);
+    const BrickSet again = buildBricks(m);
+    EXPECT_NO_THROW(fresh.sample(glm::dvec3(m.cells[0].lower) + 0.5)) << "nothing moved";
+    EXPECT_EQ(std::memcmp(m.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_EQ(m.fields[0].values, ordered.fields[0].values);
+    amr::Model shuffled = original;
+    std::mt19937 rng(7);
+    for (size_t i = shuffled.cells.size(); i-- > 1;) {
+        const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
+        std::swap(shuffled.cells[i], shuffled.cells[j]);
+        for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
+    }
+    const BrickSet fromShuffled = buildBricks(shuffled);
+    ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
+    EXPECT_EQ(std::memcmp(shuffled.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_EQ(shuffled.fields.back().values, ordered.fields.back().values);
+}
+
+// Overlaps are found by the build itself (no hash): a cell inside a coarser one, and a duplicate,
+// each wherever it sits in the file; the message names both cells by position and level.
+TEST(Bricks, OverlappingCellsAreFoundByTheBuild) {
+    for (size_t at : {size_t(0), size_t(17), SIZE_MAX}) {
+        for (bool duplicate : {false, true}) {
+            amr::Model m = fixture(4);
+            const size_t pos = std::min(at, m.cells.size());
+            amr::Cell extra = m.cells[m.cells.size() / 2];
+            if (!duplicate) {  // a finest cell inside the coarsest cell of the model
+                const auto coarse = std::max_element(m.cells.begin(), m.cells.end(),
+                                                     [](const amr::Cell& a, const amr::Cell& b) { return a.level < b.level; });
+                ASSERT_GT(coarse->level, 0);
+                extra = {coarse->lower + glm::ivec3(1, 0, 1), 0};
+            }
+            m.cells.insert(m.cells.begin() + std::ptrdiff_t(pos), extra);
+            for (amr::Field& f : m.fields) f.values.insert(f.values.begin() + std::ptrdiff_t(pos), 1.0f);
+            amr::validateCells(m);
+            EXPECT_THROW(amr::validate(m), Error);  // the hash check agrees
+            const std::string where = strCat("(lower ", extra.lower.x, ",", extra.lower.y, ",", extra.lower.z,
+                                             " level ", extra.level, ")");
+            try {
+                buildBricks(m);
+                ADD_FAILURE() << "no error, duplicate " << duplicate << " at " << pos;
+            } catch (const Error& e) {
+                const std::string msg = e.what();
+                EXPECT_NE(msg.find("overlapping cells"), std::string::npos) << msg;
+                EXPECT_NE(msg.find(where), std::string::npos) << msg;
+                EXPECT_NE(msg.find(duplicate ? "duplicates" : "inside"), std::string::npos) << msg;
+            }
+        }
+    }
 }
 
 TEST(Bricks, LargeUniformBlockIsSplitAtTheBrickLimit) {
@@ -73,7 +142,8 @@ TEST(Bricks, BricksFileRoundTripAndErrors) {
     writeBricksFile(dir / "m.bricks", bs);
     BrickSet back = readBricksFile(dir / "m.bricks", m);
     ASSERT_EQ(back.bricks.size(), bs.bricks.size());
-    EXPECT_EQ(back.cellIds, bs.cellIds);
+    ASSERT_EQ(back.slots, bs.slots);
+    for (uint64_t k = 0; k < bs.slots; ++k) ASSERT_EQ(back.cellId(k), bs.cellId(k)) << k;
 
     // Truncated: the error names the file and the byte count.
     auto bytes = std::filesystem::file_size(dir / "m.bricks");
@@ -86,7 +156,7 @@ TEST(Bricks, BricksFileRoundTripAndErrors) {
         EXPECT_NE(std::string(e.what()).find("t.bricks: truncated"), std::string::npos) << e.what();
     }
     // A cell id listed twice is rejected.
-    BrickSet dup = bs;
+    BrickSet dup = back;
     dup.cellIds[1] = dup.cellIds[0];
     writeBricksFile(dir / "d.bricks", dup);
     EXPECT_THROW(readBricksFile(dir / "d.bricks", m), Error);

@@ -19,7 +19,7 @@ bool holds(const scene::VolumeScene& s, const std::string& name) {
 }  // namespace
 
 TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
-    const amr::Model m = test::makeThreeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     scene::VolumeScene s = scene::makeVolumeScene(m, m.defaultField());
     scene::StructureConfig c;  // grid-dda, grid, sw
     s.configure(c);

@@ -65,8 +65,8 @@ void exabrickSeeds(const fs::path& source) {
     m.cells = cells;
     m.fields.push_back({"scalars", a});
     const fs::path tmp = fuzz::freshScratch() / "m.bricks";
-    accel::writeBricksFile(tmp, accel::buildBricks(m));
-    seed("bricks", "five", fuzz::joinParts({bytesOf(cells), bytesOf(a), readAll(tmp)}));
+    accel::writeBricksFile(tmp, accel::buildBricks(m));  // m is now in brick order: write it so
+    seed("bricks", "five", fuzz::joinParts({bytesOf(m.cells), bytesOf(m.fields[0].values), readAll(tmp)}));
 }
 
 // ---- AMReX (the synthetic plotfiles of the reader tests, tests/amrex_synthetic.h) -----------

@@ -21,7 +21,7 @@ namespace {
 
 class DenseGridGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderWith(const amr::Model& m, scene::SamplerKind sampler, scene::TraversalKind t,
+    scene::RenderOutput renderWith(amr::Model& m, scene::SamplerKind sampler, scene::TraversalKind t,
                                     const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
         scene::StructureConfig c;
         c.sampler = sampler;

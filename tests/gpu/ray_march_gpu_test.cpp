@@ -15,7 +15,7 @@ namespace {
 
 class RayMarchGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderDvr(const amr::Model& m, const scene::TransferFunction& tf,
+    scene::RenderOutput renderDvr(amr::Model& m, const scene::TransferFunction& tf,
                                    const scene::RenderSettings& s, uint32_t spp) {
         scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "16");
         render::Renderer r(ctx(), scene);

@@ -53,7 +53,7 @@ bool holdsDeviceBuffer(gpu::Context& ctx, const std::string& name) {
 class RendererGpu : public test::GpuTest {};
 
 TEST_F(RendererGpu, EachEditRedoesOnlyWhatDependsOnIt) {
-    const amr::Model m = test::makeThreeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     scene::StructureConfig cfg;
     cfg.grid = "8";
     scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
@@ -146,7 +146,7 @@ TEST_F(RendererGpu, EachEditRedoesOnlyWhatDependsOnIt) {
 }
 
 TEST_F(RendererGpu, AccumulationResumesWhereItStopped) {
-    const amr::Model m = test::makeThreeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
     render::Renderer r(ctx(), scene);
     r.setTransferFunction(rampOver(scene));
@@ -175,7 +175,7 @@ TEST_F(RendererGpu, AccumulationResumesWhereItStopped) {
 }
 
 TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
-    const amr::Model m = test::makeThreeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     scene::StructureConfig first, last;
     first.grid = "8";
     last.traversal = scene::TraversalKind::KdTree;
@@ -213,7 +213,7 @@ TEST_F(RendererGpu, HostCullingSetEqualsTheGpuMajorants) {
     if (!std::filesystem::exists(enzo)) GTEST_SKIP() << "Enzo data absent: " << enzo;
     amr::ReadOptions ro;
     ro.fields = {"Density"};
-    const amr::Model m = amr::readModel(enzo, ro);
+    amr::Model m = amr::readModel(enzo, ro);
     for (scene::TraversalKind t : {scene::TraversalKind::GridBvh, scene::TraversalKind::Abr,
                                    scene::TraversalKind::Brick, scene::TraversalKind::ExtBrick,
                                    scene::TraversalKind::KdTree}) {

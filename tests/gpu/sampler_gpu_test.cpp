@@ -21,7 +21,7 @@ namespace {
 
 class SamplerGpu : public test::GpuTest {
 protected:
-    void compare(const amr::Model& model, const amr::Field& field) {
+    void compare(amr::Model& model, const amr::Field& field) {
         for (auto [kind, backend] : test::samplerBackendCombos(ctx())) {
             SCOPED_TRACE(std::string(scene::samplerName(kind)) + "/" + scene::backendName(backend));
             scene::StructureConfig config;

@@ -103,7 +103,7 @@ TEST_F(ShaderGuideGpu, TwoLobePhaseFunctionOfTheGuideEqualsTheMeanOfTwoStockRend
 
     // A uniform scattering cube seen from +z, lit from behind (forward scattering towards the
     // camera) and by a dim environment, which ss reaches through the phase sampler.
-    const amr::Model m = test::makeUniformBox({16, 16, 16}, 0, 1.0f);
+    amr::Model m = test::makeUniformBox({16, 16, 16}, 0, 1.0f);
     scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
     render::Renderer r(ctx(), scene);
     r.setTransferFunction(test::constantTf(glm::vec3(0.9f), 0.12f));

@@ -92,7 +92,7 @@ TEST_F(ShaderLibraryGpu, ACompileErrorNamesTheFileAndLineInOneLine) {
 }
 
 TEST_F(ShaderLibraryGpu, AFailedReloadKeepsThePreviousPipeline) {
-    const amr::Model m = test::makeThreeLevelCloud();
+    amr::Model m = test::makeThreeLevelCloud();
     scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
     render::Renderer r(ctx(), scene);
     r.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));

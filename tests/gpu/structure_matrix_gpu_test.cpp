@@ -37,7 +37,7 @@ scene::TransferFunction spikyAtQuantiles(std::vector<float> v) {
 
 class StructureMatrixGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderWith(const amr::Model& m, const scene::StructureConfig& cfg,
+    scene::RenderOutput renderWith(amr::Model& m, const scene::StructureConfig& cfg,
                                     const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
         scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
         render::Renderer r(ctx(), scene);
@@ -55,7 +55,7 @@ protected:
     // tracking transmittance is noisier per sample);
     // on Enzo and the teapot at this size and spp it does not (few paths scatter under the spiky
     // TF), so there the test guards against gross errors and majorant violations only.
-    void compareAll(const amr::Model& m, const scene::RenderSettings& base, uint32_t spp, const std::string& tag,
+    void compareAll(amr::Model& m, const scene::RenderSettings& base, uint32_t spp, const std::string& tag,
                     bool checkPower = false) {
         const scene::TransferFunction tf = spikyAtQuantiles(m.fields[0].values);
         scene::StructureConfig refCfg;

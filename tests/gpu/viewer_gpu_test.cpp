@@ -47,7 +47,7 @@ const std::string kPicture = " --size 48x32 --tf ramp --tf-range 0 1.2 --density
 scene::RenderOutput renderSession(gpu::Context& ctx, const session::Session& s, uint32_t seedOffset, double densityFactor) {
     amr::ReadOptions ro = s.read;
     ro.fields = {s.field};
-    const amr::Model model = amr::readModel(s.input, ro);
+    amr::Model model = amr::readModel(s.input, ro);
     scene::StructureConfig cfg = s.structure;
     cfg.backend = scene::resolveBackend(cfg.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
     scene::VolumeScene scene = scene::buildVolumeScene(model, model.field(s.field), cfg);
