@@ -27,8 +27,9 @@ namespace amrvk::cli {
 namespace {
 
 const char* kRenderHelp =
-    "Unbiased volumetric path tracing of the input's field on a Vulkan device (samples per pixel "
-    "accumulated over dispatches; --samples-per-invocation per GPU thread). Extinction = TF alpha x density scale per finest cell width; albedo = "
+    "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel "
+    "per "
+    "dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width; albedo = "
     "TF "
     "colour. Every majorant traversal x sample reconstruction structure of the paper is "
     "selectable; box "
