@@ -8,24 +8,34 @@ void addBrickContribution(const Brick& b, std::span<const float> brickValues, gl
                           double& sumW, double& sumWV) {
     const double w = double(b.cellWidth());
     // Cell-centre-aligned coordinates: cell k's centre sits at local = k.
-    glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
-    glm::dvec3 i0 = glm::floor(local);
-    glm::dvec3 f = local - i0;
-    for (int corner = 0; corner < 8; ++corner) {
-        glm::ivec3 bit(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-        glm::dvec3 idx = i0 + glm::dvec3(bit);
-        if (idx.x < 0 || idx.y < 0 || idx.z < 0 || idx.x >= b.size.x || idx.y >= b.size.y ||
-            idx.z >= b.size.z)
-            continue;
-        double phi = 1.0;
-        for (int a = 0; a < 3; ++a) phi *= bit[a] ? f[a] : 1.0 - f[a];
-        if (phi <= 0) continue;
-        size_t slot = b.begin + size_t((idx.z * b.size.y + idx.y) * b.size.x + idx.x);
-        float v = brickValues[slot];
-        if (std::isnan(v)) continue;
-        sumW += phi;
-        sumWV += phi * double(v);
+    const glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
+    const glm::dvec3 i0 = glm::floor(local);
+    const glm::dvec3 f = local - i0;
+    // Per axis, the two corner cells inside the brick with their linear weights (x fastest, as
+    // corners 0..7; a weight of 0 or a cell outside the brick drops the corner).
+    int idx[3][2], count[3];
+    double wt[3][2];
+    for (int a = 0; a < 3; ++a) {
+        count[a] = 0;
+        for (int bit = 0; bit < 2; ++bit) {
+            const double i = i0[a] + double(bit);
+            if (i < 0 || i >= double(b.size[a])) continue;
+            idx[a][count[a]] = int(i);
+            wt[a][count[a]++] = bit ? f[a] : 1.0 - f[a];
+        }
     }
+    for (int z = 0; z < count[2]; ++z)
+        for (int y = 0; y < count[1]; ++y)
+            for (int x = 0; x < count[0]; ++x) {
+                const double phi = 1.0 * wt[0][x] * wt[1][y] * wt[2][z];
+                if (phi <= 0) continue;
+                const size_t slot =
+                    b.begin + size_t((int64_t(idx[2][z]) * b.size.y + idx[1][y]) * b.size.x + idx[0][x]);
+                const float v = brickValues[slot];
+                if (std::isnan(v)) continue;
+                sumW += phi;
+                sumWV += phi * double(v);
+            }
 }
 
 bool halfBoxContains(const HalfBox& box, glm::dvec3 p) {

@@ -187,15 +187,69 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
         vertices *= pl.size();
         if (vertices > kMaxLatticeVertices) return false;
     }
+    // N and D at every vertex, brick by brick: a brick's tent weights are products of per-axis
+    // factors, so each axis's corner cells and weights are found once per plane, not per vertex
+    // (the sums of sampleBricks, regrouped; empty slots skipped as there).
+    const size_t nx = planes[0].size(), ny = planes[1].size(), nz = planes[2].size();
+    double num[kMaxLatticeVertices] = {}, den[kMaxLatticeVertices] = {};
+    struct Factor {
+        int cell[2];
+        double weight[2];
+        int count;  // 0: the plane is outside the brick's domain
+    };
+    Factor factor[3][kMaxLatticeVertices];
     double mlo = INFINITY, mhi = -INFINITY;
-    for (double z : planes[2])
-        for (double y : planes[1])
-            for (double x : planes[0]) {
-                const amr::Sample f = sampleBricks(ids, bricks, values, glm::dvec3(x, y, z));
-                if (!f.valid()) continue;
-                mlo = std::min(mlo, f.value);
-                mhi = std::max(mhi, f.value);
+    for (uint32_t id : ids) {
+        const Brick& b = bricks.bricks[id];
+        const HalfBox d = brickDomain(b);
+        const double w = double(b.cellWidth());
+        for (int a = 0; a < 3; ++a)
+            for (size_t q = 0; q < planes[a].size(); ++q) {
+                Factor& fa = factor[a][q];
+                fa.count = 0;
+                const double x = planes[a][q];
+                if (x < d.lower()[a] || x > d.upper()[a]) continue;
+                const double local = (x - double(b.lower[a])) / w - 0.5, i0 = std::floor(local), t = local - i0;
+                for (int bit = 0; bit < 2; ++bit) {
+                    const double c = i0 + double(bit);
+                    if (c < 0 || c >= double(b.size[a])) continue;
+                    fa.cell[fa.count] = int(c);
+                    fa.weight[fa.count++] = bit ? t : 1.0 - t;
+                }
             }
+        for (size_t k = 0; k < nz; ++k) {
+            const Factor& fz = factor[2][k];
+            for (size_t j = 0; j < ny; ++j) {
+                const Factor& fy = factor[1][j];
+                for (size_t i = 0; i < nx; ++i) {
+                    const Factor& fx = factor[0][i];
+                    if (fx.count == 0 || fy.count == 0 || fz.count == 0) continue;
+                    double sw = 0, swv = 0;
+                    for (int cz = 0; cz < fz.count; ++cz)
+                        for (int cy = 0; cy < fy.count; ++cy) {
+                            const size_t row =
+                                b.begin + size_t((int64_t(fz.cell[cz]) * b.size.y + fy.cell[cy]) * b.size.x);
+                            for (int cx = 0; cx < fx.count; ++cx) {
+                                const float value = values[row + size_t(fx.cell[cx])];
+                                if (std::isnan(value)) continue;  // an empty slot (.bricks files)
+                                const double phi = fx.weight[cx] * fy.weight[cy] * fz.weight[cz];
+                                sw += phi;
+                                swv += phi * double(value);
+                            }
+                        }
+                    const size_t v = (k * ny + j) * nx + i;
+                    num[v] += swv;
+                    den[v] += sw;
+                }
+            }
+        }
+    }
+    for (size_t v = 0; v < nx * ny * nz; ++v) {
+        if (!(den[v] > 0)) continue;
+        const double f = num[v] / den[v];
+        mlo = std::min(mlo, f);
+        mhi = std::max(mhi, f);
+    }
     if (mlo > mhi) return false;
     rlo = mlo;
     rhi = mhi;
