@@ -16,6 +16,15 @@
 
 namespace amrvk::test {
 
+// The Enzo cosmology sample, relative to dataDir() (tests skip without it: AMRVK_REQUIRE_DATA).
+inline constexpr const char* kEnzoDataSet = "enzo_tiny_cosmology/DD0018/DD0018";
+// Its Density field, the one every Enzo test uses.
+inline amr::Model readEnzoDensity() {
+    amr::ReadOptions o;
+    o.fields = {"Density"};
+    return amr::readModel(dataDir() / kEnzoDataSet, o);
+}
+
 // A synthetic cloud on exactly three levels: 7960 cells, 79 bricks, 4214 ABRs (cloud, 8000
 // cells, seed 5, 5 allowed levels, 2^3-cell blocks).
 inline amr::Model makeThreeLevelCloud() {

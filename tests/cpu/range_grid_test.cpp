@@ -125,10 +125,8 @@ void expectCampaign(const Campaign& c, size_t macrocells) {
 }  // namespace
 
 TEST(RangeGrid, BruteForceAt1e5PointsPerMacrocellOnEnzo) {
-    AMRVK_REQUIRE_DATA("enzo_tiny_cosmology/DD0018/DD0018");
-    amr::ReadOptions o;
-    o.fields = {"Density"};
-    amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", o);
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    amr::Model m = test::readEnzoDensity();
     const amr::Field& f = m.field("Density");
     const Grids g = build(m, f, autoGridDims(amr::summarize(m).bounds, 32));
     expectCampaign(bruteForce(m, f, g, 12, 1), 12);

@@ -9,6 +9,7 @@
 #include "image_compare.h"
 #include "scene/reference_integrator.h"
 #include "render/renderer.h"
+#include "model_fixtures.h"
 #include "render_fixtures.h"
 #include "test_data.h"
 
@@ -192,10 +193,8 @@ TEST_F(RenderGpu, EmptyTransferFunctionShowsTheBackground) {
 }
 
 TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
-    AMRVK_REQUIRE_DATA("enzo_tiny_cosmology/DD0018/DD0018");
-    amr::ReadOptions ro;
-    ro.fields = {"Density"};
-    amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", ro);
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    amr::Model m = test::readEnzoDensity();
     scene::TransferFunction tf = scene::makePreset("ramp", 0.0f, 3.0f);
     amr::ModelSummary sum = amr::summarize(m);
     glm::dvec3 lo = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower));
@@ -230,7 +229,7 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
     };
     const std::filesystem::path cloud = std::filesystem::path(AMRVK_SOURCE_DIR) / "assets/samples/cloud.cells";
     size_t sets = 0;
-    for (Set set : {Set{test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", "Density"},
+    for (Set set : {Set{test::dataDir() / test::kEnzoDataSet, "Density"},
                     Set{test::dataDir() / "amrex_pelelm_3d/example_plt_3d", "temp"},
                     Set{test::dataDir() / "chombo_mushy_layer_2d/plt025000.2d.hdf5", "Temperature"},
                     Set{test::dataDir() / "chombo_mushy_layer_2d/plt000100.2d.hdf5", "Temperature"},

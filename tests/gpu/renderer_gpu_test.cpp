@@ -209,11 +209,8 @@ TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
 }
 
 TEST_F(RendererGpu, HostCullingSetEqualsTheGpuMajorants) {
-    const std::filesystem::path enzo = test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018";
-    if (!std::filesystem::exists(enzo)) GTEST_SKIP() << "Enzo data absent: " << enzo;
-    amr::ReadOptions ro;
-    ro.fields = {"Density"};
-    amr::Model m = amr::readModel(enzo, ro);
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    amr::Model m = test::readEnzoDensity();
     for (scene::TraversalKind t : {scene::TraversalKind::GridBvh, scene::TraversalKind::Abr,
                                    scene::TraversalKind::Brick, scene::TraversalKind::ExtBrick,
                                    scene::TraversalKind::KdTree}) {

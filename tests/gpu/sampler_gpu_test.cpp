@@ -11,6 +11,7 @@
 #include "gpu_fixture.h"
 #include "kernels.h"
 #include "render/renderer.h"
+#include "model_fixtures.h"
 #include "render_fixtures.h"
 #include "shared/render_params.h"
 #include "test_data.h"
@@ -77,10 +78,8 @@ protected:
 }  // namespace
 
 TEST_F(SamplerGpu, EqualsBruteForceOnEnzo) {
-    AMRVK_REQUIRE_DATA("enzo_tiny_cosmology/DD0018/DD0018");
-    amr::ReadOptions o;
-    o.fields = {"Density"};
-    amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", o);
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    amr::Model m = test::readEnzoDensity();
     compare(m, m.field("Density"));
 }
 

@@ -99,10 +99,8 @@ scene::RenderSettings settingsFor(const amr::Model& m) {
 }  // namespace
 
 TEST_F(StructureMatrixGpu, EnzoEveryCombinationAgrees) {
-    AMRVK_REQUIRE_DATA("enzo_tiny_cosmology/DD0018/DD0018");
-    amr::ReadOptions o;
-    o.fields = {"Density"};
-    amr::Model m = amr::readModel(test::dataDir() / "enzo_tiny_cosmology/DD0018/DD0018", o);
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    amr::Model m = test::readEnzoDensity();
     compareAll(m, settingsFor(m), 24, "enzo");
 }
 
