@@ -95,9 +95,9 @@ public:
     }
 
     // Builds the subtree over cells [begin, end) (bounds `info`; `cubes`: an ancestor's cube grid)
-    // and returns its bricks in left-to-right order. The two sides of a node of at least kParallelCells cells are built
-    // concurrently: they own disjoint parts of the arrays, so the result does not depend on the
-    // schedule.
+    // and returns its bricks in left-to-right order. The two sides of a node of at least
+    // kParallelCells cells are built concurrently: they own disjoint parts of the arrays, so the
+    // result does not depend on the schedule.
     std::vector<Brick> build(size_t begin, size_t end, const NodeInfo& info,
                              std::shared_ptr<const CubeGrid> cubes = nullptr) {
         std::vector<Brick> bricks;
@@ -403,7 +403,6 @@ BrickSet buildBricks(amr::Model& model) {
         throw;
     }
     model.cellOrder += builder.moved();
-    out.slots = n;
     out.buildSeconds = timer.seconds();
     return out;
 }
@@ -463,7 +462,6 @@ BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& mod
     }
     AMRVK_CHECK(usedCount == n, path.string(), ": ", n - usedCount,
                 " cells of the model are in no brick");
-    out.slots = out.cellIds.size();
     out.buildSeconds = timer.seconds();
     return out;
 }
@@ -486,7 +484,7 @@ void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks) 
 
 std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field) {
     if (bricks.cellIds.empty()) return field.values;
-    std::vector<float> out(bricks.slots);
+    std::vector<float> out(bricks.slotCount());
     for (size_t i = 0; i < out.size(); ++i) {
         uint32_t id = bricks.cellIds[i];
         out[i] = id == BrickSet::kEmptySlot ? std::numeric_limits<float>::quiet_NaN()
@@ -502,7 +500,7 @@ BrickStats computeBrickStats(const BrickSet& bricks) {
         s.singleCellBricks += b.cellCount() == 1;
         s.largestBrickCells = std::max(s.largestBrickCells, b.cellCount());
     }
-    s.averageCellsPerBrick = s.brickCount ? double(bricks.slots) / double(s.brickCount) : 0;
+    s.averageCellsPerBrick = s.brickCount ? double(bricks.slotCount()) / double(s.brickCount) : 0;
     return s;
 }
 

@@ -26,13 +26,14 @@ constexpr int32_t kMaxBrickCells = 127;  // per axis, as exaBuilder's default --
 
 struct BrickSet {
     std::vector<Brick> bricks;
-    uint64_t slots = 0;             // brick slots in all (= cells, plus holes of a .bricks file)
     // Brick order -> model cell index (kEmptySlot for a hole); empty when the model itself is in
     // brick order (buildBricks), i.e. slot i is cell i.
     std::vector<uint32_t> cellIds;
     static constexpr uint32_t kEmptySlot = UINT32_MAX;
     double buildSeconds = 0;
     uint32_t cellId(uint64_t slot) const { return cellIds.empty() ? uint32_t(slot) : cellIds[slot]; }
+    // Brick slots in all (= cells, plus the holes of a .bricks file); bricks are in slot order.
+    uint64_t slotCount() const { return bricks.empty() ? 0 : bricks.back().begin + bricks.back().cellCount(); }
     uint64_t memoryBytes() const {
         return bricks.size() * sizeof(Brick) + cellIds.size() * sizeof(uint32_t);
     }

@@ -41,8 +41,8 @@ bool within(const ValueRange& part, const ValueRange& r) {
 
 SupportRangeQuery::SupportRangeQuery(const BrickSet& bricks, std::span<const float> brickValues)
     : mBricks(&bricks), mValues(brickValues) {
-    AMRVK_CHECK(brickValues.size() == bricks.slots, "support ranges: ", brickValues.size(),
-                " brick values for ", bricks.slots, " brick slots");
+    AMRVK_CHECK(brickValues.size() == bricks.slotCount(), "support ranges: ", brickValues.size(),
+                " brick values for ", bricks.slotCount(), " brick slots");
     for (uint32_t bi = 0; bi < bricks.bricks.size(); ++bi) {
         const Brick& b = bricks.bricks[bi];
         const int64_t w = b.cellWidth();

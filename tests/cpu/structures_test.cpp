@@ -42,7 +42,7 @@ TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
     // What indexed the cells by position before the build says so instead of reading wrong cells.
     EXPECT_THROW(stale.sample(glm::dvec3(m.cells[0].lower) + 0.5), Error);
     EXPECT_TRUE(bs.cellIds.empty()) << "the model itself is in brick order";
-    ASSERT_EQ(bs.slots, m.cells.size());
+    ASSERT_EQ(bs.slotCount(), m.cells.size());
     // The model is a permutation of the original: every (cell, value) pair once.
     auto key = [](const amr::Model& x, size_t i) {
         const amr::Cell& c = x.cells[i];
@@ -142,8 +142,8 @@ TEST(Bricks, BricksFileRoundTripAndErrors) {
     writeBricksFile(dir / "m.bricks", bs);
     BrickSet back = readBricksFile(dir / "m.bricks", m);
     ASSERT_EQ(back.bricks.size(), bs.bricks.size());
-    ASSERT_EQ(back.slots, bs.slots);
-    for (uint64_t k = 0; k < bs.slots; ++k) ASSERT_EQ(back.cellId(k), bs.cellId(k)) << k;
+    ASSERT_EQ(back.slotCount(), bs.slotCount());
+    for (uint64_t k = 0; k < bs.slotCount(); ++k) ASSERT_EQ(back.cellId(k), bs.cellId(k)) << k;
 
     // Truncated: the error names the file and the byte count.
     auto bytes = std::filesystem::file_size(dir / "m.bricks");

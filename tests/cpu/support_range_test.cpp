@@ -270,7 +270,7 @@ TEST(SupportRange, EmptySlotsAreSkipped) {
     // Mark every 7th cell empty (as -1 ids of .bricks files are): brute force skips them too.
     std::vector<float> cellValues = b.model.fields[0].values;
     for (size_t i = 0; i < cellValues.size(); i += 7) cellValues[i] = NAN;
-    for (size_t s = 0; s < b.bricks.slots; ++s)
+    for (size_t s = 0; s < b.bricks.slotCount(); ++s)
         if (std::isnan(cellValues[b.bricks.cellId(s)])) b.values[s] = NAN;
     SupportRangeQuery q(b.bricks, b.values);
     expectMatchesBruteForce(b.model, cellValues, q, queryBoxes(b.model, 1500, 10));
