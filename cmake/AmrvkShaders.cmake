@@ -33,10 +33,14 @@ function(amrvk_embed_shaders)
     if(define)
       set(defs -D${define})
     endif()
+    set(opt)
+    if(AMRVK_SPIRV_OPT)
+      set(opt -O)
+    endif()
     set(inc ${outdir}/${name}.spv.inc)
     add_custom_command(
       OUTPUT ${inc}
-      COMMAND ${GLSLC} --target-env=vulkan1.2 -O -I ${CMAKE_SOURCE_DIR}/shaders ${defs}
+      COMMAND ${GLSLC} --target-env=vulkan1.2 ${opt} -I ${CMAKE_SOURCE_DIR}/shaders ${defs}
               -MD -MF ${inc}.d -mfmt=c -o ${inc} ${src}
       DEPENDS ${src}
       DEPFILE ${inc}.d

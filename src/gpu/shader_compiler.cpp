@@ -93,7 +93,8 @@ std::vector<uint32_t> compileComputeShader(const fs::path& source, const std::ve
     AMRVK_CHECK(compiler.IsValid(), "shaderc: the shader compiler failed to initialise");
     shaderc::CompileOptions options;
     options.SetTargetEnvironment(shaderc_target_env_vulkan, shaderc_env_version_vulkan_1_2);
-    options.SetOptimizationLevel(shaderc_optimization_level_performance);
+    options.SetOptimizationLevel(AMRVK_SPIRV_OPT ? shaderc_optimization_level_performance
+                                                 : shaderc_optimization_level_zero);
     for (const std::string& d : defines) {
         const size_t eq = d.find('=');
         if (eq == std::string::npos) options.AddMacroDefinition(d);

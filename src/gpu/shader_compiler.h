@@ -1,6 +1,7 @@
 #pragma once
 // GLSL -> SPIR-V in process (shaderc; no shell, no temporary files), for --shader-dir and hot
-// reload. Targets Vulkan 1.2 SPIR-V with optimisation, as the build-time glslc does.
+// reload. Targets Vulkan 1.2 SPIR-V, optimised by spirv-opt only where the build-time glslc is
+// (CMake AMRVK_SPIRV_OPT, off by default: the driver's compiler optimises).
 #include <cstdint>
 #include <filesystem>
 #include <string>
