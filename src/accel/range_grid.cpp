@@ -161,10 +161,11 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
 // sub-box's vertices where D > 0, N - M D <= 0 at every vertex (where D = 0 also N = 0), hence
 // everywhere in the sub-box: f <= M wherever D > 0. The same holds for the minimum. So f's range
 // over the box is its range over the lattice of breakpoints. Returns false (and leaves the range
-// alone) when the lattice would have more than kMaxLatticeVertices vertices (4^3: macrocells at
-// most a cell or two wide, where the per-brick union is loose; beyond, it costs seconds per 10^6
-// macrocells).
-constexpr size_t kMaxLatticeVertices = 64;
+// alone) when the lattice would have more than kMaxLatticeVertices vertices (8^3: up to six
+// breakpoints inside the macrocell per axis, i.e. a few cells of the finest listed brick; 64 left
+// Enzo's ranges at --grid 64 as loose as the dense grid's, 1.22 null collisions per real one
+// instead of 1.14, for 5% less build time).
+constexpr size_t kMaxLatticeVertices = 512;
 
 bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> values, glm::dvec3 lo,
                   glm::dvec3 hi, std::vector<double> (&planes)[3], double& rlo, double& rhi) {
@@ -266,7 +267,6 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                     strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
     g.ranges.resize(total);
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    const double minSide = std::min({g.cellSize.x, g.cellSize.y, g.cellSize.z});
     parallelForRanges(0, total, 64, [&](size_t begin, size_t end) {
         Scratch scratch;
         for (size_t cell = begin; cell < end; ++cell) {
@@ -280,14 +280,12 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
             }
             double rlo = INFINITY, rhi = -INFINITY, maxAbs = 0;
             glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
-            double widest = 0;  // cell width of the coarsest listed brick
             for (uint32_t id : lists.bricksOf(cell)) {
                 const Brick& b = bricks.bricks[id];
                 const HalfBox d = brickDomain(b);
                 const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
                 if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
                 extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, maxAbs);
-                widest = std::max(widest, double(b.cellWidth()));
                 hullLo = glm::min(hullLo, blo);
                 hullHi = glm::max(hullHi, bhi);
             }
@@ -295,9 +293,8 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
             // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
             // small against the cells, the mixing of two bricks covers a small part of their
             // union) the lattice gives f's exact range when it is small enough to evaluate.
-            // With one brick (f = t_b) or a constant range there is nothing to gain, nor where
-            // every listed cell is narrower than the macrocell (the per-brick bound is near exact).
-            if (lists.bricksOf(cell).size() > 1 && rhi > rlo && widest > minSide)
+            // With one brick (f = t_b) or a constant range there is nothing to gain.
+            if (lists.bricksOf(cell).size() > 1 && rhi > rlo)
                 latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
             // Outward to float, then 8 ulps of the largest magnitude read (GPU float sums).
             const double pad = 8.0 * double(std::numeric_limits<float>::epsilon()) * maxAbs;
