@@ -62,6 +62,7 @@ ValueRange splatRange(const amr::Model& m, const amr::Field& f, glm::dvec3 lo, g
 struct Campaign {
     size_t macrocells = 0, points = 0, outside = 0, outsideShrunk = 0;
     double tightToSplat = 0;  // mean width ratio tight / splat over the sampled macrocells
+    double coverage = 0;      // mean (largest - smallest value found) / range width
 };
 
 Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, size_t count, uint32_t seed) {
@@ -85,6 +86,7 @@ Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, si
         const glm::ivec3 c = rg.coordOf(cell);
         const glm::dvec3 lo = rg.origin + rg.cellSize * glm::dvec3(c), size = rg.cellSize;
         const double rlo = rg.ranges[cell].lo, rhi = rg.ranges[cell].hi, shrink = 0.1 * (rhi - rlo);
+        double foundLo = INFINITY, foundHi = -INFINITY;
         for (int k = 0; k < 100000; ++k) {
             glm::dvec3 t(u(rng), u(rng), u(rng));
             if (k % 10 == 0)  // on the boundary: 1-3 coordinates at 0 or 1
@@ -93,6 +95,8 @@ Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, si
             const amr::Sample s = ref.sample(lo + size * t);
             if (!s.valid()) continue;
             ++out.points;
+            foundLo = std::min(foundLo, double(s.value));
+            foundHi = std::max(foundHi, double(s.value));
             if (!rangeHolds(rlo, rhi, s.value) && ++out.outside <= 5)
                 ADD_FAILURE() << "macrocell " << c.x << "," << c.y << "," << c.z << " range [" << rlo << ", " << rhi
                               << "] value " << s.value;
@@ -104,13 +108,19 @@ Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, si
         EXPECT_LE(double(splat.lo), rlo + pad) << "wider than the splat at " << cell;
         EXPECT_GE(double(splat.hi), rhi - pad) << "wider than the splat at " << cell;
         out.tightToSplat += splat.hi > splat.lo ? (rhi - rlo) / double(splat.hi - splat.lo) : 1.0;
+        out.coverage += rhi > rlo && foundHi >= foundLo ? (foundHi - foundLo) / (rhi - rlo) : 1.0;
         ++out.macrocells;
     }
     out.tightToSplat /= double(std::max<size_t>(1, out.macrocells));
+    out.coverage /= double(std::max<size_t>(1, out.macrocells));
     return out;
 }
 
-void expectCampaign(const Campaign& c, size_t macrocells) {
+// minCoverage: the values found must span that much of each range on average. Exact ranges (the
+// lattice) leave only the gap between random points and the extremes; the looser ranges of a
+// 64-vertex lattice cap kept only where cells are wider than the macrocell scored 0.946 on Enzo
+// and 0.851 on the synthetic cloud (0.975 and 0.923 exact), so the floors below reject them.
+void expectCampaign(const Campaign& c, size_t macrocells, double minCoverage) {
     EXPECT_EQ(c.macrocells, macrocells);
     EXPECT_EQ(c.outside, 0u) << "of " << c.points << " points";
     EXPECT_GT(c.points, macrocells * 50000);
@@ -118,8 +128,9 @@ void expectCampaign(const Campaign& c, size_t macrocells) {
     EXPECT_GT(c.outsideShrunk, 0u);
     // And the bound is strictly tighter than the paper's splat on average.
     EXPECT_LT(c.tightToSplat, 0.95);
-    std::printf("  %zu macrocells, %zu points, %zu outside 10%%-shrunk ranges, width tight/splat %.3f\n", c.macrocells,
-                c.points, c.outsideShrunk, c.tightToSplat);
+    EXPECT_GT(c.coverage, minCoverage);
+    std::printf("  %zu macrocells, %zu points, %zu outside 10%%-shrunk ranges, width tight/splat %.3f, found/range %.3f\n",
+                c.macrocells, c.points, c.outsideShrunk, c.tightToSplat, c.coverage);
 }
 
 }  // namespace
@@ -129,7 +140,7 @@ TEST(RangeGrid, BruteForceAt1e5PointsPerMacrocellOnEnzo) {
     amr::Model m = test::readEnzoDensity();
     const amr::Field& f = m.field("Density");
     const Grids g = build(m, f, autoGridDims(amr::summarize(m).bounds, 32));
-    expectCampaign(bruteForce(m, f, g, 12, 1), 12);
+    expectCampaign(bruteForce(m, f, g, 12, 1), 12, 0.96);
 }
 
 TEST(RangeGrid, BruteForceAt1e5PointsPerMacrocellOnASyntheticCloud) {
@@ -141,7 +152,7 @@ TEST(RangeGrid, BruteForceAt1e5PointsPerMacrocellOnASyntheticCloud) {
     ASSERT_GE(amr::summarize(m).maxLevel - amr::summarize(m).minLevel, 2);
     // Macrocells finer than the coarse cells (where the splat is loosest) and coarser than the fine.
     const Grids g = build(m, m.defaultField(), autoGridDims(amr::summarize(m).bounds, 24));
-    expectCampaign(bruteForce(m, m.defaultField(), g, 12, 2), 12);
+    expectCampaign(bruteForce(m, m.defaultField(), g, 12, 2), 12, 0.9);
 }
 
 TEST(RangeGrid, RangesContainReconstructedValuesAtAnyResolution) {
