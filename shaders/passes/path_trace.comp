@@ -1,6 +1,8 @@
 #version 460
-// One sample per pixel per dispatch: camera ray -> estimator of the chosen mode -> accumulate
-// radiance and its square. Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense | grid),
+// pc.samples samples per pixel per dispatch (numbered pc.frameIndex.., each seeded by its number,
+// so the image does not depend on how samples are grouped): camera ray -> estimator of the chosen
+// mode -> radiance and its square summed in registers, added to the accumulation once.
+// Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense | grid),
 // kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
 // Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
 // (-DAMRVK_RAY_QUERY: also the VK_KHR_ray_query back-end; needs the rayQuery feature).
@@ -107,17 +109,22 @@ void main() {
     uint nanSamples = 0u;
     if (inImage) {
         uint pixel = pix.y * P.view.width + pix.x;
-        uint rng = seedRng(pixel, pc.frameIndex, P.view.seed);
-        vec2 jitter = vec2(rand(rng), rand(rng));
-        vec3 d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
-        vec3 L = radiance(P.view.eye, d, rng, c);
-        if (any(isnan(L)) || any(isinf(L))) {
-            L = vec3(0.0);
-            nanSamples = 1u;
+        vec4 sum = vec4(0.0), sumSq = vec4(0.0);
+        for (uint k = 0u; k < pc.samples; ++k) {
+            uint rng = seedRng(pixel, pc.frameIndex + k, P.view.seed);
+            vec2 jitter = vec2(rand(rng), rand(rng));
+            vec3 d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
+            vec3 L = radiance(P.view.eye, d, rng, c);
+            if (any(isnan(L)) || any(isinf(L))) {
+                L = vec3(0.0);
+                ++nanSamples;
+            }
+            sum += vec4(L, 1.0);
+            sumSq += vec4(L * L, 0.0);
         }
         Vec4RW acc = Vec4RW(P.accum);
-        acc.v[2u * pixel] += vec4(L, 1.0);
-        acc.v[2u * pixel + 1u] += vec4(L * L, 0.0);
+        acc.v[2u * pixel] += sum;
+        acc.v[2u * pixel + 1u] += sumSq;
     }
     UintRW counters = UintRW(P.counters);
     uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);

@@ -124,10 +124,10 @@ struct RenderParams {
 
 struct PushConstants {
     uint64_t params;  // RenderParams address
-    uint frameIndex;  // sample number of this dispatch
+    uint frameIndex;  // number of the dispatch's first sample
     uint rowOffset;   // first image row of this dispatch (time-budgeted tiles: a band of rows)
     uint rowEnd;      // one past its last row (the image height for a whole sample)
-    uint pad;
+    uint samples;     // samples each invocation takes, numbered frameIndex.. (>= 1)
 };
 AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 24);
 
@@ -207,6 +207,7 @@ AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowEnd) == 16);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, samples) == 20);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, source) == 8);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, target) == 16);

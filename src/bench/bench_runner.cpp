@@ -347,6 +347,7 @@ BenchResults Runner::run() {
     mRes.device = mCtx.deviceReport().name;
     mRes.driver = mCtx.deviceReport().driver;
     mRes.deviceType = mCtx.deviceReport().type;
+    mRes.samplesPerInvocation = mCtx.samplesPerInvocation();
     mRes.commandLine = mOpt.commandLine;
     {
         std::time_t now = std::time(nullptr);

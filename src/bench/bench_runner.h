@@ -108,6 +108,7 @@ struct BenchResults {
     std::string device, driver, deviceType, commandLine, date;
     int width = 0, height = 0;
     uint32_t frames = 0, warmup = 0, referenceSpp = 0;
+    uint32_t samplesPerInvocation = 1;  // frames one GPU thread takes per dispatch (gpu::Context)
     std::vector<DatasetInfo> datasets;
     std::vector<ReferenceInfo> references;
     std::vector<RunResult> runs;

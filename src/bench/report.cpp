@@ -154,7 +154,7 @@ std::string resultsJson(const BenchResults& res) {
     Json j = {{"device", res.device}, {"driver", res.driver}, {"deviceType", res.deviceType},
               {"commandLine", res.commandLine}, {"date", res.date}, {"width", res.width}, {"height", res.height},
               {"frames", res.frames}, {"warmupFrames", res.warmup}, {"referenceSpp", res.referenceSpp},
-              {"samplesPerFrame", 1}};
+              {"samplesPerFrame", 1}, {"samplesPerInvocation", res.samplesPerInvocation}};
     Json& datasets = j["datasets"] = Json::array();
     for (const DatasetInfo& d : res.datasets)
         datasets.push_back({{"tag", d.tag}, {"input", d.input}, {"field", d.field}, {"cells", d.cells},
@@ -224,7 +224,8 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     md += "- date: " + res.date + "\n";
     md += "- protocol: " + std::to_string(res.width) + "x" + std::to_string(res.height) + ", 1 spp per frame, " +
           std::to_string(res.warmup) + " warm-up frames, " + std::to_string(res.frames) +
-          " timed frames (GPU timer); references " + std::to_string(res.referenceSpp) + " spp\n";
+          " timed frames (GPU timer; " + std::to_string(res.samplesPerInvocation) +
+          " frames per GPU thread and dispatch); references " + std::to_string(res.referenceSpp) + " spp\n";
     md += "- data sets:";
     for (const DatasetInfo& d : res.datasets)
         md += " " + d.tag + " (" + d.input + ", field " + d.field + ", " + std::to_string(d.cells) + " cells, " +

@@ -174,12 +174,19 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
         ->check(CLI::ExistingDirectory)
         ->type_name("DIR");
     app.add_flag("--validation", a.validation, "enable the Vulkan validation layer");
+    app.add_option("--samples-per-invocation", a.samplesPerInvocation,
+                   "samples per pixel one GPU thread takes per dispatch of whole samples (the same "
+                   "image; fewer dispatches and accumulation writes); 0 = auto: 8 on CPU devices, 1 on GPUs")
+        ->check(interval(0, 64))
+        ->capture_default_str()
+        ->type_name("N");
 }
 
 gpu::ContextOptions contextOptions(const DeviceArgs& a) {
     gpu::ContextOptions co;
     co.device = a.device;
     co.validation = a.validation;
+    co.samplesPerInvocation = a.samplesPerInvocation;
     return co;
 }
 

@@ -36,8 +36,9 @@ amr::ReadOptions readOptions(const ReadArgs& a);
 struct DeviceArgs {
     std::string device, shaderDir;
     bool validation = false;
+    uint32_t samplesPerInvocation = 0;  // 0 = auto
 };
-// --device, --shader-dir, --validation.
+// --device, --shader-dir, --validation, --samples-per-invocation.
 void addDeviceOptions(CLI::App& app, DeviceArgs& a);
 gpu::ContextOptions contextOptions(const DeviceArgs& a);
 

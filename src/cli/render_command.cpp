@@ -27,15 +27,12 @@ namespace amrvk::cli {
 namespace {
 
 const char* kRenderHelp =
-    "Unbiased volumetric path tracing of the input's field on a Vulkan device (1 sample per pixel "
-    "per "
-    "dispatch, accumulated). Extinction = TF alpha x density scale per finest cell width; albedo = "
-    "TF "
-    "colour. Every majorant traversal x sample reconstruction structure of the paper is "
-    "selectable; box "
-    "hierarchies run as software BVHs (sw) or through VK_KHR_ray_query (rq). --session FILE "
-    "renders a "
-    "picture saved by the viewer (amrvk view), with any option given here on top.";
+    "Unbiased volumetric path tracing of the input's field on a Vulkan device (samples per pixel "
+    "accumulated over dispatches; --samples-per-invocation per GPU thread). Extinction = TF alpha "
+    "x density scale per finest cell width; albedo = TF colour. Every majorant traversal x sample "
+    "reconstruction structure of the paper is selectable; box hierarchies run as software BVHs "
+    "(sw) or through VK_KHR_ray_query (rq). --session FILE renders a picture saved by the viewer "
+    "(amrvk view), with any option given here on top.";
 
 // Fails before the render, not after it, when an output cannot be written.
 void checkWritable(const std::string& file, const char* what) {
@@ -200,6 +197,7 @@ int runRender(const std::vector<std::string>& argv) {
         j["input"] = model.source;
         j["field"] = field.name;
         j["device"] = ctx.deviceReport().name;
+        j["samplesPerInvocation"] = ctx.samplesPerInvocation();
         j["width"] = rs.width;
         j["height"] = rs.height;
         j["spp"] = s.spp;

@@ -101,6 +101,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.shaderDir = dev.shaderDir;
     vo.device = dev.device;
     vo.validation = dev.validation;
+    vo.samplesPerInvocation = dev.samplesPerInvocation;
     vo.frameBudgetSeconds = budgetMs * 1e-3;
     if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
     return viewer::runViewer(vo, std::move(model));

@@ -291,6 +291,9 @@ Context::Context(const ContextOptions& options) {
         const Probe& pick = probes[size_t(chosen)];
         mPhysical = pds[size_t(chosen)];
         mReport = pick.report;
+        mSamplesPerInvocation = options.samplesPerInvocation > 0 ? options.samplesPerInvocation
+                                : pick.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u
+                                                                           : 1u;
         mQueueFamily = pick.queueFamily;
         mRayQuery = pick.report.rayQuery && !options.disableRayQuery;
         VkPhysicalDeviceProperties props{};

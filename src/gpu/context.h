@@ -22,6 +22,9 @@ struct ContextOptions {
     bool validation = false;  // also on when AMRVK_VALIDATION=1
     bool requireRayQuery = false;
     bool disableRayQuery = false;  // leave ray queries off even where supported (tests, comparisons)
+    // Samples per pixel one path-trace invocation takes in a whole-image dispatch; 0 = automatic
+    // (8 on CPU devices, where it was measured to help; 1 on GPUs until measured there).
+    uint32_t samplesPerInvocation = 0;
     // Presentation (the viewer): instance extensions the window system needs, and a function that
     // creates the window's surface once the instance exists. The device picked must then present
     // to that surface from its queue and gets VK_KHR_swapchain; the Context destroys the surface.
@@ -78,6 +81,8 @@ public:
     const DeviceReport& deviceReport() const { return mReport; }
     const VkPhysicalDeviceLimits& limits() const { return mLimits; }
     bool hasRayQuery() const { return mRayQuery; }
+    // ContextOptions::samplesPerInvocation resolved for this device (>= 1).
+    uint32_t samplesPerInvocation() const { return mSamplesPerInvocation; }
     bool validationEnabled() const { return mMessenger != VK_NULL_HANDLE; }
     uint64_t validationErrors() const { return mValidationErrors; }
     const std::string& lastValidationMessage() const { return mLastValidationMessage; }
@@ -108,6 +113,7 @@ private:
     VkPhysicalDeviceMemoryProperties mMemoryProperties{};
     DeviceReport mReport;
     bool mRayQuery = false;
+    uint32_t mSamplesPerInvocation = 1;
     bool mDebugUtils = false;
     uint64_t mValidationErrors = 0;
     std::string mLastValidationMessage;

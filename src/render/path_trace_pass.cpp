@@ -77,7 +77,7 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
         vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
         gpu::computeBarrier(cmd);
         const uint32_t scope = timer.begin(cmd, "path_trace");
-        shared::PushConstants push{paramsAddress, mSpp, first, first + count, 0};
+        shared::PushConstants push{paramsAddress, mSpp, first, first + count, 1u};
         pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (count + 7) / 8);
         timer.end(cmd, scope);
         gpu::computeBarrier(cmd);
@@ -113,12 +113,16 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
             timer.reset(cmd);
             vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
             gpu::computeBarrier(cmd);
-            for (uint32_t i = 0; i < count; ++i) {
+            // Context::samplesPerInvocation() samples per invocation: fewer dispatches and one
+            // accumulation write per pixel for several samples.
+            for (uint32_t i = 0; i < count;) {
+                const uint32_t samples = std::min(mCtx.samplesPerInvocation(), count - i);
                 const uint32_t scope = timer.begin(cmd, "path_trace");
-                shared::PushConstants push{paramsAddress, mSpp + i, 0u, uint32_t(mHeight), 0};
+                shared::PushConstants push{paramsAddress, mSpp + i, 0u, uint32_t(mHeight), samples};
                 pipeline.dispatch(cmd, &push, gx, gy);
                 timer.end(cmd, scope);
                 gpu::computeBarrier(cmd);
+                i += samples;
             }
         });
         mCounters.download(counters.data(), sizeof counters);

@@ -247,6 +247,7 @@ int ViewerApp::run() {
     gpu::ContextOptions co;
     co.device = mOpt.device;
     co.validation = mOpt.validation;
+    co.samplesPerInvocation = mOpt.samplesPerInvocation;
     co.requireRayQuery = mState.structure.backend == scene::Backend::Rq;
     if (!mOpt.headless) {
         const int w = mOpt.windowWidth > 0 ? mOpt.windowWidth : mState.settings.width;

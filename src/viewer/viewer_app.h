@@ -25,6 +25,7 @@ struct ViewerOptions {
     std::filesystem::path statsJson;        // at exit: frame times, times to the first full sample, resets
     std::filesystem::path saveSession;      // at exit: the state as a session file
     std::string device;                     // --device
+    uint32_t samplesPerInvocation = 0;      // --samples-per-invocation (0 = auto)
     bool validation = false;                // any Vulkan validation error makes the exit status non-zero
     double frameBudgetSeconds = 0.05;       // target frame time; path tracing gets what the UI leaves of it
     int windowWidth = 0, windowHeight = 0;  // 0: the session's image size

@@ -274,3 +274,37 @@ TEST_F(RendererGpu, TrackingCapIsCountedNotSilent) {
     EXPECT_EQ(capped.stats.counter(shared::kCounterRealCollisions), 0u);
     EXPECT_EQ(capped.stats.counter(shared::kCounterMajorantViolations), 0u) << "a cap is not a violation";
 }
+
+// Samples per invocation only regroups the same samples (each is seeded by its own number): 1 and
+// 8 per invocation give the same counters and the same means up to float rounding, at 13 spp (not
+// a multiple of 8, so the last dispatch takes 5); another seed does not (the check has power).
+TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
+    amr::Model m = test::makeThreeLevelCloud();
+    scene::StructureConfig cfg;
+    cfg.grid = "8";
+    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
+    auto renderOn = [&](uint32_t perInvocation, uint32_t seed) {
+        gpu::ContextOptions o;
+        o.validation = true;
+        o.samplesPerInvocation = perInvocation;
+        gpu::Context c(o);
+        EXPECT_EQ(c.samplesPerInvocation(), perInvocation);
+        scene::RenderOutput out;
+        {
+            render::Renderer r(c, scene);
+            r.setTransferFunction(rampOver(scene));
+            scene::RenderSettings s = smallSettings(m);
+            s.seed = seed;
+            out = r.render(s, 13);
+        }
+        EXPECT_EQ(c.validationErrors(), 0u) << c.lastValidationMessage();
+        return out;
+    };
+    const scene::RenderOutput one = renderOn(1, 3), eight = renderOn(8, 3), other = renderOn(8, 4);
+    EXPECT_EQ(eight.spp, 13u);
+    for (uint32_t k = 0; k < shared::kCounterCount; ++k) EXPECT_EQ(one.stats.counters[k], eight.stats.counters[k]) << k;
+    EXPECT_GT(one.stats.counters[shared::kCounterRealCollisions], 1000u);
+    EXPECT_LT(maxRelativeDifference(one.mean, eight.mean), 1e-5);
+    EXPECT_GT(maxRelativeDifference(one.mean, other.mean), 1e-2);
+    EXPECT_NE(one.stats.counters[shared::kCounterDensityLookups], other.stats.counters[shared::kCounterDensityLookups]);
+}
