@@ -192,11 +192,13 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
     // factors, so each axis's corner cells and weights are found once per plane, not per vertex
     // (the sums of sampleBricks, regrouped; empty slots skipped as there).
     const size_t nx = planes[0].size(), ny = planes[1].size(), nz = planes[2].size();
-    double num[kMaxLatticeVertices] = {}, den[kMaxLatticeVertices] = {};
+    double num[kMaxLatticeVertices], den[kMaxLatticeVertices];
+    std::fill_n(num, nx * ny * nz, 0.0);
+    std::fill_n(den, nx * ny * nz, 0.0);
     struct Factor {
         int cell[2];
         double weight[2];
-        int count;  // 0: the plane is outside the brick's domain
+        int count;  // cells with a weight there (0 at the domain's upper end)
     };
     Factor factor[3][kMaxLatticeVertices];
     double mlo = INFINITY, mhi = -INFINITY;
@@ -204,13 +206,16 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
         const Brick& b = bricks.bricks[id];
         const HalfBox d = brickDomain(b);
         const double w = double(b.cellWidth());
-        for (int a = 0; a < 3; ++a)
-            for (size_t q = 0; q < planes[a].size(); ++q) {
+        // The planes inside the brick's closed domain: [first[a], end[a]) (planes are sorted).
+        size_t first[3], end[3];
+        for (int a = 0; a < 3; ++a) {
+            const std::vector<double>& pl = planes[a];
+            first[a] = size_t(std::lower_bound(pl.begin(), pl.end(), d.lower()[a]) - pl.begin());
+            end[a] = size_t(std::upper_bound(pl.begin(), pl.end(), d.upper()[a]) - pl.begin());
+            for (size_t q = first[a]; q < end[a]; ++q) {
                 Factor& fa = factor[a][q];
                 fa.count = 0;
-                const double x = planes[a][q];
-                if (x < d.lower()[a] || x > d.upper()[a]) continue;
-                const double local = (x - double(b.lower[a])) / w - 0.5, i0 = std::floor(local), t = local - i0;
+                const double local = (pl[q] - double(b.lower[a])) / w - 0.5, i0 = std::floor(local), t = local - i0;
                 for (int bit = 0; bit < 2; ++bit) {
                     const double c = i0 + double(bit);
                     if (c < 0 || c >= double(b.size[a])) continue;
@@ -218,13 +223,13 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
                     fa.weight[fa.count++] = bit ? t : 1.0 - t;
                 }
             }
-        for (size_t k = 0; k < nz; ++k) {
+        }
+        for (size_t k = first[2]; k < end[2]; ++k) {
             const Factor& fz = factor[2][k];
-            for (size_t j = 0; j < ny; ++j) {
+            for (size_t j = first[1]; j < end[1]; ++j) {
                 const Factor& fy = factor[1][j];
-                for (size_t i = 0; i < nx; ++i) {
+                for (size_t i = first[0]; i < end[0]; ++i) {
                     const Factor& fx = factor[0][i];
-                    if (fx.count == 0 || fy.count == 0 || fz.count == 0) continue;
                     double sw = 0, swv = 0;
                     for (int cz = 0; cz < fz.count; ++cz)
                         for (int cy = 0; cy < fy.count; ++cy) {
