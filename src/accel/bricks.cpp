@@ -35,41 +35,28 @@ const std::array<double, 32> kCellVolume = [] {
 
 double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 
-// Bounds and level set of a range of cells (voxel space).
-struct NodeInfo {
-    glm::i64vec3 lo{std::numeric_limits<int64_t>::max()}, hi{std::numeric_limits<int64_t>::min()};
+// Level set, used volume and bounds of a set of cells (voxel space): a node of the kd build, or one
+// slab or coarse cube of it. Bounds are int32: validated cells end at or below 2^31-1.
+struct CellStats {
     uint32_t levelMask = 0;
+    double volume = 0;
+    glm::ivec3 lo{std::numeric_limits<int32_t>::max()}, hi{std::numeric_limits<int32_t>::min()};
     void add(const amr::Cell& c) {
-        const glm::i64vec3 l(c.lower);
-        lo = glm::min(lo, l);
-        hi = glm::max(hi, l + amr::cellWidth(c.level));
         levelMask |= 1u << c.level;
+        volume += kCellVolume[size_t(c.level)];
+        lo = glm::min(lo, c.lower);
+        hi = glm::max(hi, c.lower + (int32_t{1} << c.level));
     }
-    void merge(const NodeInfo& o) {
+    void merge(const CellStats& o) {
+        levelMask |= o.levelMask;
+        volume += o.volume;
         lo = glm::min(lo, o.lo);
         hi = glm::max(hi, o.hi);
-        levelMask |= o.levelMask;
     }
     int32_t minLevel() const { return std::countr_zero(levelMask); }
     int32_t maxLevel() const { return 31 - std::countl_zero(levelMask); }
 };
-
-// Per-slab statistics along one axis: cells' level set, used volume and bounds. Bounds are int32:
-// validated cells end at or below 2^31-1.
-struct Slab {
-    uint32_t levelMask = 0;
-    double volume = 0;
-    glm::ivec3 lo{std::numeric_limits<int32_t>::max()}, hi{std::numeric_limits<int32_t>::min()};
-};
-Slab merge(const Slab& a, const Slab& s) {
-    Slab m;
-    m.levelMask = a.levelMask | s.levelMask;
-    m.volume = a.volume + s.volume;
-    m.lo = glm::min(a.lo, s.lo);
-    m.hi = glm::max(a.hi, s.hi);
-    return m;
-}
-double sahCost(const Slab& s) {
+double sahCost(const CellStats& s) {
     if (s.levelMask == 0) return 0;
     const glm::dvec3 size = glm::dvec3(s.hi) - glm::dvec3(s.lo);
     return halfArea(size) * (size.x * size.y * size.z) * std::popcount(s.levelMask);
@@ -79,7 +66,7 @@ double sahCost(const Slab& s) {
 struct CubeGrid {
     glm::i64vec3 lo{0}, dims{0};
     int64_t cw = 1;
-    std::vector<Slab> cubes;
+    std::vector<CellStats> cubes;
 };
 
 std::string describe(const amr::Cell& c) {
@@ -98,12 +85,12 @@ public:
     // and returns its bricks in left-to-right order. The two sides of a node of at least
     // kParallelCells cells are built concurrently: they own disjoint parts of the arrays, so the
     // result does not depend on the schedule.
-    std::vector<Brick> build(size_t begin, size_t end, const NodeInfo& info,
+    std::vector<Brick> build(size_t begin, size_t end, const CellStats& info,
                              std::shared_ptr<const CubeGrid> cubes = nullptr) {
         std::vector<Brick> bricks;
         struct Node {
             size_t b, e;
-            NodeInfo info;
+            CellStats info;
             std::shared_ptr<const CubeGrid> cubes;
         };
         std::vector<Node> stack{{begin, end, info, cubes}};
@@ -111,7 +98,7 @@ public:
             Node n = std::move(stack.back());
             stack.pop_back();
             if (tryLeaf(n.b, n.e, n.info, bricks)) continue;
-            NodeInfo left, right;
+            CellStats left, right;
             const size_t mid = split(n.b, n.e, n.info, n.cubes, left, right);
             if (n.e - n.b >= kParallelCells) {
                 std::vector<Brick> l, r;
@@ -129,15 +116,15 @@ public:
 
     bool moved() const { return mMoved.load(); }
 
-    NodeInfo info(size_t b, size_t e) const {
-        return parallelReduce<NodeInfo>(
+    CellStats info(size_t b, size_t e) const {
+        return parallelReduce<CellStats>(
             b, e, 64,
             [&](size_t lo, size_t hi) {
-                NodeInfo in;
+                CellStats in;
                 for (size_t i = lo; i < hi; ++i) in.add(mCells[i]);
                 return in;
             },
-            [](NodeInfo& a, NodeInfo&& o) { a.merge(o); });
+            [](CellStats& a, CellStats&& o) { a.merge(o); });
     }
 
 private:
@@ -153,11 +140,11 @@ private:
 
     // A node becomes a brick when it is one level, completely filled and at most kMaxBrickCells
     // wide; its cells are then put in brick order. Two cells on one slot overlap.
-    bool tryLeaf(size_t b, size_t e, const NodeInfo& in, std::vector<Brick>& bricks) {
+    bool tryLeaf(size_t b, size_t e, const CellStats& in, std::vector<Brick>& bricks) {
         const int32_t level = in.minLevel();
         if (level != in.maxLevel()) return false;
         const int64_t w = amr::cellWidth(level);
-        const glm::i64vec3 dims = (in.hi - in.lo) / w;
+        const glm::i64vec3 dims = (glm::i64vec3(in.hi) - glm::i64vec3(in.lo)) / w;
         if (dims.x > kMaxBrickCells || dims.y > kMaxBrickCells || dims.z > kMaxBrickCells) return false;
         if (uint64_t(dims.x * dims.y * dims.z) != e - b) return false;  // not completely filled
         const Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), level, static_cast<uint32_t>(b)};
@@ -196,7 +183,7 @@ private:
         }
     }
 
-    using Slabs = std::array<std::vector<Slab>, 3>;
+    using Slabs = std::array<std::vector<CellStats>, 3>;
 
     // Slab statistics of cells [b, e) along every axis: slab k of axis a covers
     // [lo[a] + k cw, lo[a] + (k + 1) cw), `slabs` per axis; an axis with `used[a] == 0` is skipped.
@@ -217,14 +204,11 @@ private:
         if (cubes) return slabsFromCubes(*cubes, lo, slabs, used);
         auto gather = [&](size_t from, size_t to) {
             Slabs s;
-            for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), Slab{});
+            for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), CellStats{});
             for (size_t i = from; i < to; ++i) {
                 const amr::Cell& c = mCells[i];
-                const glm::ivec3 l = c.lower, u = l + (int32_t{1} << c.level);
-                const uint32_t bit = 1u << c.level;
-                const double volume = kCellVolume[size_t(c.level)];
                 for (int a = 0; a < 3; ++a)
-                    if (used[a] > 0) add(s[size_t(a)][size_t((int64_t(l[a]) - lo[a]) >> shift)], l, u, bit, volume);
+                    if (used[a] > 0) s[size_t(a)][size_t((int64_t(c.lower[a]) - lo[a]) >> shift)].add(c);
             }
             return s;
         };
@@ -233,15 +217,9 @@ private:
         return parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs);
     }
 
-    static void add(Slab& sl, glm::ivec3 l, glm::ivec3 u, uint32_t bit, double volume) {
-        sl.levelMask |= bit;
-        sl.volume += volume;
-        sl.lo = glm::min(sl.lo, l);
-        sl.hi = glm::max(sl.hi, u);
-    }
     static void mergeSlabs(Slabs& acc, Slabs&& part) {
         for (size_t a = 0; a < 3; ++a)
-            for (size_t k = 0; k < acc[a].size(); ++k) acc[a][k] = merge(acc[a][k], part[a][k]);
+            for (size_t k = 0; k < acc[a].size(); ++k) acc[a][k].merge(part[a][k]);
     }
 
     std::shared_ptr<const CubeGrid> gatherCubes(size_t b, size_t e, glm::i64vec3 lo, int64_t cw, glm::i64vec3 dims,
@@ -249,12 +227,11 @@ private:
         const int64_t shift = std::countr_zero(uint64_t(cw));
         auto gather = [&](size_t from, size_t to) {
             Slabs s;
-            s[0].assign(count, Slab{});
+            s[0].assign(count, CellStats{});
             for (size_t i = from; i < to; ++i) {
                 const amr::Cell& c = mCells[i];
                 const glm::i64vec3 q = (glm::i64vec3(c.lower) - lo) >> shift;
-                add(s[0][size_t((q.z * dims.y + q.y) * dims.x + q.x)], c.lower, c.lower + (int32_t{1} << c.level),
-                    1u << c.level, kCellVolume[size_t(c.level)]);
+                s[0][size_t((q.z * dims.y + q.y) * dims.x + q.x)].add(c);
             }
             return s;
         };
@@ -273,17 +250,17 @@ private:
     // Slabs of the box [lo, lo + slabs cw) from the cubes that lie in it.
     static Slabs slabsFromCubes(const CubeGrid& g, glm::i64vec3 lo, glm::i64vec3 slabs, glm::i64vec3 used) {
         Slabs s;
-        for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), Slab{});
+        for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), CellStats{});
         const glm::i64vec3 q0 = (lo - g.lo) / g.cw;
         for (int64_t z = 0; z < slabs.z; ++z)
             for (int64_t y = 0; y < slabs.y; ++y) {
                 const size_t row = size_t(((q0.z + z) * g.dims.y + q0.y + y) * g.dims.x + q0.x);
                 for (int64_t x = 0; x < slabs.x; ++x) {
-                    const Slab& c = g.cubes[row + size_t(x)];
+                    const CellStats& c = g.cubes[row + size_t(x)];
                     if (c.levelMask == 0) continue;
                     const int64_t q[3] = {x, y, z};
                     for (int a = 0; a < 3; ++a)
-                        if (used[a] > 0) s[size_t(a)][size_t(q[a])] = merge(s[size_t(a)][size_t(q[a])], c);
+                        if (used[a] > 0) s[size_t(a)][size_t(q[a])].merge(c);
                 }
             }
         return s;
@@ -293,8 +270,8 @@ private:
     // else the spatial median of the longest axis) and partitions; returns the split index and the
     // sides' bounds. Planes lie on multiples of the node's coarsest cell width, so no cell straddles
     // one: the subtrees' regions are disjoint and cells in different bricks never overlap.
-    size_t split(size_t b, size_t e, const NodeInfo& in, std::shared_ptr<const CubeGrid>& cubes, NodeInfo& left,
-                 NodeInfo& right) {
+    size_t split(size_t b, size_t e, const CellStats& in, std::shared_ptr<const CubeGrid>& cubes, CellStats& left,
+                 CellStats& right) {
         const int64_t cw = amr::cellWidth(in.maxLevel());
         glm::i64vec3 lo, hi, slabs, used;
         const uint64_t slabLimit = 4 * (e - b) + 1024;
@@ -308,19 +285,22 @@ private:
         int bestAxis = -1;
         int64_t bestPlane = 0;
         const Slabs stats = slabStats(b, e, lo, cw, slabs, used, cubes);
-        std::vector<Slab> suffix;
+        std::vector<CellStats> suffix;
         for (int a = 0; a < 3; ++a) {
-            const std::vector<Slab>& slab = stats[size_t(a)];
+            const std::vector<CellStats>& slab = stats[size_t(a)];
             if (slab.empty()) continue;
             const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
             const double fullVolume = double(cw) * double(hi[b1] - lo[b1]) * double(hi[b2] - lo[b2]);
-            suffix.assign(slab.size() + 1, Slab{});
-            for (size_t k = slab.size(); k-- > 0;) suffix[k] = merge(suffix[k + 1], slab[k]);
-            Slab prefix;
+            suffix.assign(slab.size() + 1, CellStats{});
+            for (size_t k = slab.size(); k-- > 0;) {
+                suffix[k] = suffix[k + 1];
+                suffix[k].merge(slab[k]);
+            }
+            CellStats prefix;
             for (size_t k = 1; k < slab.size(); ++k) {
-                prefix = merge(prefix, slab[k - 1]);
-                const Slab& l = slab[k - 1];
-                const Slab& r = slab[k];
+                prefix.merge(slab[k - 1]);
+                const CellStats& l = slab[k - 1];
+                const CellStats& r = slab[k];
                 bool boundary = l.levelMask != r.levelMask || l.volume < fullVolume || r.volume < fullVolume;
                 if (!boundary) continue;
                 double cost = sahCost(prefix) + sahCost(suffix[k]);
@@ -340,14 +320,11 @@ private:
             bestPlane = lo[a] + slabs[a] / 2 * cw;
         }
         // The sides' bounds come from the slabs when the split axis has them, else from the cells.
-        const std::vector<Slab>& slab = stats[size_t(bestAxis)];
+        const std::vector<CellStats>& slab = stats[size_t(bestAxis)];
         const bool sidesFromSlabs = !slab.empty();
         if (sidesFromSlabs) {
             const size_t k = size_t((bestPlane - lo[bestAxis]) / cw);
-            Slab l, r;
-            for (size_t m = 0; m < slab.size(); ++m) (m < k ? l : r) = merge(m < k ? l : r, slab[m]);
-            left = {glm::i64vec3(l.lo), glm::i64vec3(l.hi), l.levelMask};
-            right = {glm::i64vec3(r.lo), glm::i64vec3(r.hi), r.levelMask};
+            for (size_t m = 0; m < slab.size(); ++m) (m < k ? left : right).merge(slab[m]);
         }
         // Hoare partition of cells and values.
         size_t i = b, j = e;
@@ -369,7 +346,7 @@ private:
     }
 
     // A node of several cells inside one cell of its coarsest level: that cell overlaps the others.
-    [[noreturn]] void reportOverlap(size_t b, size_t e, const NodeInfo& in) const {
+    [[noreturn]] void reportOverlap(size_t b, size_t e, const CellStats& in) const {
         size_t big = b;
         while (mCells[big].level != in.maxLevel()) ++big;
         const size_t other = big == b ? b + 1 : b;
