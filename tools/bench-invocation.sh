@@ -9,18 +9,12 @@
 # Usage: tools/bench-invocation.sh [OUT_DIR] (default out/bench-invocation). Environment: AMRVK_BIN
 # (default build/bin/amrvk), AMRVK_BIN_OPT, SIZE (default 128x128), SPP (default 64), REPEATS.
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
+source "$(dirname "$0")/bench-env.sh"
 out="${1:-$here/out/bench-invocation}"
-bin="${AMRVK_BIN:-$here/build/bin/amrvk}"
 bin_opt="${AMRVK_BIN_OPT:-}"
-data="${AMRVK_DATA_DIR:-$here/../shared/data/amr}"
-repeats="${REPEATS:-3}"
 mkdir -p "$out"
 rm -f "$out"/*.json
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp/amrvk-xdg-$UID}"
-mkdir -p "$XDG_RUNTIME_DIR"
 
-enzo="$data/enzo_tiny_cosmology/DD0018/DD0018"
 common=(--mode ms --size "${SIZE:-128x128}" --spp "${SPP:-64}" --backend sw --light-dir 1 -1 2 3 3 3)
 declare -A scenes=(
   [cloud]="$here/assets/samples/cloud.cells --tf ramp --tf-range 0 1 --grid 64"

@@ -8,13 +8,10 @@
 # and bytes per cell. Usage: tools/bench-load.sh [OUT_DIR] (default out/bench-load); CELLS
 # overrides the list (e.g. CELLS="1e6 1e7"); AMRVK_BIN the binary (default build/bin/amrvk).
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
+source "$(dirname "$0")/bench-env.sh"
 out="${1:-$here/out/bench-load}"
-bin="${AMRVK_BIN:-$here/build/bin/amrvk}"
 read -r -a counts <<<"${CELLS:-1e6 1e7 1e8}"
 mkdir -p "$out"
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp/amrvk-xdg-$UID}"
-mkdir -p "$XDG_RUNTIME_DIR"
 
 for n in "${counts[@]}"; do
   base="$out/cloud-$n"

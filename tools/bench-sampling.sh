@@ -6,19 +6,14 @@
 # dense. Usage: tools/bench-sampling.sh [OUT_DIR] (default out/bench-sampling); AMRVK_BIN overrides
 # the binary (default build/bin/amrvk).
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
+source "$(dirname "$0")/bench-env.sh"
 out="${1:-$here/out/bench-sampling}"
-bin="${AMRVK_BIN:-$here/build/bin/amrvk}"
-data="${AMRVK_DATA_DIR:-$here/../shared/data/amr}"
-repeats="${REPEATS:-3}"
 mkdir -p "$out"
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp/amrvk-xdg-$UID}"
-mkdir -p "$XDG_RUNTIME_DIR"
 
 common=(--mode ms --size 128x128 --spp 8 --grid 64 --traversal grid-dda --backend sw --light-dir 1 -1 2 3 3 3)
 declare -A scenes=(
   [cloud]="$here/assets/samples/cloud.cells --tf ramp --tf-range 0 1"
-  [enzo]="$data/enzo_tiny_cosmology/DD0018/DD0018 --field Density --tf ramp --tf-range 0 3 --density-scale 0.05"
+  [enzo]="$enzo --field Density --tf ramp --tf-range 0 3 --density-scale 0.05"
 )
 samplers=(dense grid abr ext-brick)
 for r in $(seq 1 "$repeats"); do
