@@ -4,33 +4,31 @@
 
 namespace amrvk::accel {
 
+TentAxis tentAxis(double local, int32_t size) {
+    TentAxis t{};
+    const double i0 = std::floor(local), f = local - i0;
+    for (int bit = 0; bit < 2; ++bit) {
+        const double i = i0 + double(bit);
+        if (i < 0 || i >= double(size)) continue;
+        t.cell[t.count] = int(i);
+        t.weight[t.count++] = bit ? f : 1.0 - f;
+    }
+    return t;
+}
+
 void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
                           double& sumW, double& sumWV) {
     const double w = double(b.cellWidth());
     // Cell-centre-aligned coordinates: cell k's centre sits at local = k.
     const glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
-    const glm::dvec3 i0 = glm::floor(local);
-    const glm::dvec3 f = local - i0;
-    // Per axis, the two corner cells inside the brick with their linear weights (x fastest, as
-    // corners 0..7; a weight of 0 or a cell outside the brick drops the corner).
-    int idx[3][2], count[3];
-    double wt[3][2];
-    for (int a = 0; a < 3; ++a) {
-        count[a] = 0;
-        for (int bit = 0; bit < 2; ++bit) {
-            const double i = i0[a] + double(bit);
-            if (i < 0 || i >= double(b.size[a])) continue;
-            idx[a][count[a]] = int(i);
-            wt[a][count[a]++] = bit ? f[a] : 1.0 - f[a];
-        }
-    }
-    for (int z = 0; z < count[2]; ++z)
-        for (int y = 0; y < count[1]; ++y)
-            for (int x = 0; x < count[0]; ++x) {
-                const double phi = 1.0 * wt[0][x] * wt[1][y] * wt[2][z];
+    const TentAxis ax[3] = {tentAxis(local.x, b.size.x), tentAxis(local.y, b.size.y), tentAxis(local.z, b.size.z)};
+    for (int z = 0; z < ax[2].count; ++z)
+        for (int y = 0; y < ax[1].count; ++y)
+            for (int x = 0; x < ax[0].count; ++x) {
+                const double phi = ax[0].weight[x] * ax[1].weight[y] * ax[2].weight[z];
                 if (phi <= 0) continue;
                 const size_t slot =
-                    b.begin + size_t((int64_t(idx[2][z]) * b.size.y + idx[1][y]) * b.size.x + idx[0][x]);
+                    b.begin + size_t((int64_t(ax[2].cell[z]) * b.size.y + ax[1].cell[y]) * b.size.x + ax[0].cell[x]);
                 const float v = brickValues[slot];
                 if (std::isnan(v)) continue;
                 sumW += phi;

@@ -16,6 +16,16 @@
 
 namespace amrvk::accel {
 
+// One axis of a brick's clamped trilinear weights at cell-centre coordinate `local` (cell k's centre
+// at k): the (at most two) cells inside the brick, [0, size), with their linear weights, lower
+// cell first. The tent weight of a cell is the product of its three axes' weights.
+struct TentAxis {
+    int cell[2];
+    double weight[2];
+    int count;  // no default, so arrays of them cost nothing to declare
+};
+TentAxis tentAxis(double local, int32_t size);
+
 // Adds brick b's tent weights at voxel-space p to (sumW, sumWV); p must lie in the brick domain.
 // NaN (empty) slots are skipped.
 void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,

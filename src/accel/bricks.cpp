@@ -26,13 +26,6 @@ namespace {
 int64_t floorTo(int64_t v, int64_t w) { return v >= 0 ? v / w * w : -((-v + w - 1) / w) * w; }
 int64_t ceilTo(int64_t v, int64_t w) { return -floorTo(-v, w); }
 
-// Volume of a cell of each level, voxel units^3.
-const std::array<double, 32> kCellVolume = [] {
-    std::array<double, 32> v{};
-    for (int l = 0; l < 32; ++l) v[size_t(l)] = std::ldexp(1.0, 3 * l);
-    return v;
-}();
-
 double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 
 // Level set, used volume and bounds of a set of cells (voxel space): a node of the kd build, or one
@@ -43,7 +36,7 @@ struct CellStats {
     glm::ivec3 lo{std::numeric_limits<int32_t>::max()}, hi{std::numeric_limits<int32_t>::min()};
     void add(const amr::Cell& c) {
         levelMask |= 1u << c.level;
-        volume += kCellVolume[size_t(c.level)];
+        volume += amr::cellVolume(c.level);
         lo = glm::min(lo, c.lower);
         hi = glm::max(hi, c.lower + (int32_t{1} << c.level));
     }

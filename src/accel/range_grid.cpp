@@ -195,12 +195,7 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
     double num[kMaxLatticeVertices], den[kMaxLatticeVertices];
     std::fill_n(num, nx * ny * nz, 0.0);
     std::fill_n(den, nx * ny * nz, 0.0);
-    struct Factor {
-        int cell[2];
-        double weight[2];
-        int count;  // cells with a weight there (0 at the domain's upper end)
-    };
-    Factor factor[3][kMaxLatticeVertices];
+    TentAxis factor[3][kMaxLatticeVertices];  // per axis and plane, of the current brick
     double mlo = INFINITY, mhi = -INFINITY;
     for (uint32_t id : ids) {
         const Brick& b = bricks.bricks[id];
@@ -212,24 +207,15 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
             const std::vector<double>& pl = planes[a];
             first[a] = size_t(std::lower_bound(pl.begin(), pl.end(), d.lower()[a]) - pl.begin());
             end[a] = size_t(std::upper_bound(pl.begin(), pl.end(), d.upper()[a]) - pl.begin());
-            for (size_t q = first[a]; q < end[a]; ++q) {
-                Factor& fa = factor[a][q];
-                fa.count = 0;
-                const double local = (pl[q] - double(b.lower[a])) / w - 0.5, i0 = std::floor(local), t = local - i0;
-                for (int bit = 0; bit < 2; ++bit) {
-                    const double c = i0 + double(bit);
-                    if (c < 0 || c >= double(b.size[a])) continue;
-                    fa.cell[fa.count] = int(c);
-                    fa.weight[fa.count++] = bit ? t : 1.0 - t;
-                }
-            }
+            for (size_t q = first[a]; q < end[a]; ++q)
+                factor[a][q] = tentAxis((pl[q] - double(b.lower[a])) / w - 0.5, b.size[a]);
         }
         for (size_t k = first[2]; k < end[2]; ++k) {
-            const Factor& fz = factor[2][k];
+            const TentAxis& fz = factor[2][k];
             for (size_t j = first[1]; j < end[1]; ++j) {
-                const Factor& fy = factor[1][j];
+                const TentAxis& fy = factor[1][j];
                 for (size_t i = first[0]; i < end[0]; ++i) {
-                    const Factor& fx = factor[0][i];
+                    const TentAxis& fx = factor[0][i];
                     double sw = 0, swv = 0;
                     for (int cz = 0; cz < fz.count; ++cz)
                         for (int cy = 0; cy < fy.count; ++cy) {

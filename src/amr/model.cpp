@@ -37,15 +37,6 @@ const Field& Model::defaultField() const {
 }
 
 namespace {
-// Cell volume per level, voxel units^3.
-double cellVolume(int32_t level) {
-    static const std::array<double, kMaxLevel + 1> table = [] {
-        std::array<double, kMaxLevel + 1> t{};
-        for (int l = 0; l <= kMaxLevel; ++l) t[size_t(l)] = std::ldexp(1.0, 3 * l);
-        return t;
-    }();
-    return table[size_t(level)];
-}
 constexpr size_t kReduceChunks = 64;  // fixed, so sums are the same on every machine
 }  // namespace
 

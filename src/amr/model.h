@@ -6,6 +6,7 @@
 //  - Leaf cells never overlap; together they are the medium. Field values are cell averages.
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -23,6 +24,17 @@ static_assert(sizeof(Cell) == 16, "Cell must match the 16-byte .cells record");
 constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
 
 inline int64_t cellWidth(int32_t level) { return int64_t{1} << level; }
+// Cell volume in voxel units^3: 8^level, exact in double; level in [0, kMaxLevel].
+inline constexpr std::array<double, kMaxLevel + 1> kCellVolume = [] {
+    std::array<double, kMaxLevel + 1> v{};
+    double x = 1;
+    for (double& e : v) {
+        e = x;
+        x *= 8;
+    }
+    return v;
+}();
+inline double cellVolume(int32_t level) { return kCellVolume[size_t(level)]; }
 
 // Half-open integer box [lower, upper) in voxel space; 64-bit so lower + width cannot overflow.
 struct Box3l {

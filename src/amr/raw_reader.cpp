@@ -105,7 +105,7 @@ private:
     static BlockStats voxelStats(double v) { return {v, v, v, true, std::isnan(v)}; }
     void emit(glm::ivec3 lower, int level, const BlockStats& s) {
         mModel.cells.push_back(Cell{lower, level});
-        mValues.push_back(static_cast<float>(s.sum / std::ldexp(1.0, 3 * level)));
+        mValues.push_back(static_cast<float>(s.sum / cellVolume(level)));
     }
 
     // Fast path for the most frequent block: 2x2x2 voxels, all inside the volume.

@@ -23,7 +23,7 @@ Histogram fieldHistogram(const amr::Model& model, const amr::Field& field, float
     const double scale = double(bins) / (double(hi) - double(lo));
     for (size_t i = 0; i < field.values.size(); ++i) {
         const float v = field.values[i];
-        const double w = weight == HistogramWeight::Cells ? 1.0 : std::ldexp(1.0, 3 * model.cells[i].level);
+        const double w = weight == HistogramWeight::Cells ? 1.0 : amr::cellVolume(model.cells[i].level);
         if (std::isnan(v)) h.nan += w;
         else if (v < lo) h.below += w;
         else if (v > hi) h.above += w;
