@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "gpu/compute_pipeline.h"
 #include "gpu/vk_check.h"
 
 namespace amrvk::gpu {
@@ -49,19 +50,6 @@ VkAccelerationStructureBuildGeometryInfoKHR buildInfo(VkAccelerationStructureTyp
     return info;
 }
 
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    mb.srcStageMask = srcStage;
-    mb.srcAccessMask = srcAccess;
-    mb.dstStageMask = dstStage;
-    mb.dstAccessMask = dstAccess;
-    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    di.memoryBarrierCount = 1;
-    di.pMemoryBarriers = &mb;
-    vkCmdPipelineBarrier2(cmd, &di);
-}
-
 }  // namespace
 
 AabbAccelerationStructure::AabbAccelerationStructure(Context& ctx, uint32_t count, std::string name)
@@ -87,19 +75,16 @@ AabbAccelerationStructure::AabbAccelerationStructure(Context& ctx, uint32_t coun
         const uint64_t scratchAlign = std::max<uint64_t>(asProps.minAccelerationStructureScratchOffsetAlignment, 1);
 
         // Sizes for the worst case (count boxes, one instance); rebuilds reuse the same memory.
+        auto buildSizes = [&](VkAccelerationStructureTypeKHR type, VkAccelerationStructureGeometryKHR g,
+                              uint32_t primitives) {
+            VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+            const VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(type, &g);
+            mFn.buildSizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &primitives, &sizes);
+            return sizes;
+        };
         VkAccelerationStructureBuildSizesInfoKHR blasSizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-        if (count > 0) {
-            VkAccelerationStructureGeometryKHR g = aabbGeometry(0);
-            VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, &g);
-            mFn.buildSizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &count, &blasSizes);
-        }
-        const uint32_t instanceCount = count > 0 ? 1 : 0;
-        VkAccelerationStructureBuildSizesInfoKHR tlasSizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-        {
-            VkAccelerationStructureGeometryKHR g = instanceGeometry(0);
-            VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, &g);
-            mFn.buildSizes(dev, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &instanceCount, &tlasSizes);
-        }
+        if (count > 0) blasSizes = buildSizes(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, aabbGeometry(0), count);
+        const auto tlasSizes = buildSizes(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, instanceGeometry(0), count > 0);
 
         auto createStructure = [&](Buffer& storage, uint64_t bytes, VkAccelerationStructureTypeKHR type,
                                    const std::string& suffix) {
@@ -166,19 +151,7 @@ void AabbAccelerationStructure::release() {
     mCtx = nullptr;
 }
 
-AabbAccelerationStructure::AabbAccelerationStructure(AabbAccelerationStructure&& o) noexcept
-    : mCtx(std::exchange(o.mCtx, nullptr)),
-      mFn(o.mFn),
-      mCount(std::exchange(o.mCount, 0)),
-      mName(std::move(o.mName)),
-      mBlas(std::exchange(o.mBlas, VK_NULL_HANDLE)),
-      mTlas(std::exchange(o.mTlas, VK_NULL_HANDLE)),
-      mBlasBuffer(std::move(o.mBlasBuffer)),
-      mTlasBuffer(std::move(o.mTlasBuffer)),
-      mScratch(std::move(o.mScratch)),
-      mInstances(std::move(o.mInstances)),
-      mScratchAddress(std::exchange(o.mScratchAddress, 0)),
-      mTlasAddress(std::exchange(o.mTlasAddress, 0)) {}
+AabbAccelerationStructure::AabbAccelerationStructure(AabbAccelerationStructure&& o) noexcept { *this = std::move(o); }
 
 AabbAccelerationStructure& AabbAccelerationStructure::operator=(AabbAccelerationStructure&& o) noexcept {
     if (this != &o) {
@@ -221,25 +194,21 @@ void AabbAccelerationStructure::build(VkCommandBuffer cmd, const Buffer& aabbBuf
                   VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | kAsWrite, kBuild,
                   VK_ACCESS_2_SHADER_READ_BIT | kAsRead | kAsWrite);
 
-    if (mCount > 0) {
-        VkAccelerationStructureGeometryKHR g = aabbGeometry(aabbBuffer.address());
-        VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, &g);
-        info.dstAccelerationStructure = mBlas;
+    auto record = [&](VkAccelerationStructureTypeKHR type, VkAccelerationStructureGeometryKHR g,
+                      VkAccelerationStructureKHR dst, uint32_t primitives) {
+        VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(type, &g);
+        info.dstAccelerationStructure = dst;
         info.scratchData.deviceAddress = mScratchAddress;
-        VkAccelerationStructureBuildRangeInfoKHR range{mCount, 0, 0, 0};
+        const VkAccelerationStructureBuildRangeInfoKHR range{primitives, 0, 0, 0};
         const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
         mFn.cmdBuild(cmd, 1, &info, &ranges);
+    };
+    if (mCount > 0) {
+        record(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, aabbGeometry(aabbBuffer.address()), mBlas, mCount);
         // The top level reads the bottom level and reuses the scratch memory.
         memoryBarrier(cmd, kBuild, kAsWrite, kBuild, kAsRead | kAsWrite);
     }
-
-    VkAccelerationStructureGeometryKHR g = instanceGeometry(mInstances.address());
-    VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, &g);
-    info.dstAccelerationStructure = mTlas;
-    info.scratchData.deviceAddress = mScratchAddress;
-    VkAccelerationStructureBuildRangeInfoKHR range{mCount > 0 ? 1u : 0u, 0, 0, 0};
-    const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
-    mFn.cmdBuild(cmd, 1, &info, &ranges);
+    record(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, instanceGeometry(mInstances.address()), mTlas, mCount > 0);
 
     memoryBarrier(cmd, kBuild, kAsWrite, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kAsRead);
 }

@@ -72,16 +72,7 @@ void Buffer::release() {
     mCtx = nullptr;
 }
 
-Buffer::Buffer(Buffer&& o) noexcept
-    : mCtx(std::exchange(o.mCtx, nullptr)),
-      mBuffer(std::exchange(o.mBuffer, VK_NULL_HANDLE)),
-      mMemory(std::exchange(o.mMemory, VK_NULL_HANDLE)),
-      mAddress(std::exchange(o.mAddress, 0)),
-      mSize(std::exchange(o.mSize, 0)),
-      mAllocated(std::exchange(o.mAllocated, 0)),
-      mMapped(std::exchange(o.mMapped, nullptr)),
-      mCoherent(o.mCoherent),
-      mName(std::move(o.mName)) {}
+Buffer::Buffer(Buffer&& o) noexcept { *this = std::move(o); }
 
 Buffer& Buffer::operator=(Buffer&& o) noexcept {
     if (this != &o) {

@@ -37,8 +37,6 @@ public:
     uint64_t allocatedBytes() const { return mAllocated; }
     const std::string& name() const { return mName; }
     bool valid() const { return mBuffer != VK_NULL_HANDLE; }
-    // Host pointer when the memory is host-visible, else nullptr.
-    void* mapped() const { return mMapped; }
 
     // Copies bytes into the buffer (directly if mapped, else through a staging buffer).
     void upload(const void* data, uint64_t bytes, uint64_t offset = 0);
@@ -69,10 +67,11 @@ private:
     std::string mName;
 };
 
-// A device buffer holding `values` (at least 4 bytes so empty arrays still have an address).
+// A device buffer holding `values` (at least 16 bytes so empty arrays still have an address).
 template <typename T>
-Buffer makeBuffer(Context& ctx, std::span<const T> values, const std::string& name) {
-    Buffer b(ctx, std::max<uint64_t>(values.size_bytes(), 16), MemoryKind::Device, name);
+Buffer makeBuffer(Context& ctx, std::span<const T> values, const std::string& name,
+                  VkBufferUsageFlags extraUsage = 0) {
+    Buffer b(ctx, std::max<uint64_t>(values.size_bytes(), 16), MemoryKind::Device, name, extraUsage);
     if (!values.empty()) b.upload(values);
     return b;
 }

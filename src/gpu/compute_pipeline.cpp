@@ -58,13 +58,7 @@ void ComputePipeline::release() {
     mCtx = nullptr;
 }
 
-ComputePipeline::ComputePipeline(ComputePipeline&& o) noexcept
-    : mCtx(std::exchange(o.mCtx, nullptr)),
-      mModule(std::exchange(o.mModule, VK_NULL_HANDLE)),
-      mLayout(std::exchange(o.mLayout, VK_NULL_HANDLE)),
-      mPipeline(std::exchange(o.mPipeline, VK_NULL_HANDLE)),
-      mPushBytes(o.mPushBytes),
-      mName(std::move(o.mName)) {}
+ComputePipeline::ComputePipeline(ComputePipeline&& o) noexcept { *this = std::move(o); }
 
 ComputePipeline& ComputePipeline::operator=(ComputePipeline&& o) noexcept {
     if (this != &o) {
@@ -110,17 +104,20 @@ VkBufferImageCopy wholeImageCopy(VkExtent2D extent) {
     return region;
 }
 
-void computeBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-    mb.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
-                       VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    const VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, srcStage, srcAccess, dstStage, dstAccess};
     VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     di.memoryBarrierCount = 1;
     di.pMemoryBarriers = &mb;
     vkCmdPipelineBarrier2(cmd, &di);
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+    constexpr VkPipelineStageFlags2 kStages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    memoryBarrier(cmd, kStages, VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, kStages,
+                  VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
 GpuTimer::GpuTimer(Context& ctx, uint32_t maxScopes) : mCtx(ctx), mMax(maxScopes) {
@@ -136,39 +133,28 @@ GpuTimer::~GpuTimer() {
 
 void GpuTimer::reset(VkCommandBuffer cmd) {
     vkCmdResetQueryPool(cmd, mPool, 0, 2 * mMax);
-    mNames.clear();
+    mScopes = 0;
 }
 
-uint32_t GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
-    AMRVK_CHECK(mNames.size() < mMax, "too many timed GPU scopes (", mMax, ")");
-    uint32_t scope = uint32_t(mNames.size());
-    mNames.push_back(name);
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool, 2 * scope);
-    return scope;
+uint32_t GpuTimer::begin(VkCommandBuffer cmd) {
+    AMRVK_CHECK(mScopes < mMax, "too many timed GPU scopes (", mMax, ")");
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool, 2 * mScopes);
+    return mScopes++;
 }
 
 void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool, 2 * scope + 1);
 }
 
-std::vector<std::pair<std::string, double>> GpuTimer::results() const {
-    std::vector<std::pair<std::string, double>> out;
-    if (mNames.empty()) return out;
-    std::vector<uint64_t> ticks(2 * mNames.size());
+double GpuTimer::seconds() const {
+    if (mScopes == 0) return 0;
+    std::vector<uint64_t> ticks(2 * mScopes);
     AMRVK_VK_CHECK(vkGetQueryPoolResults(mCtx.device(), mPool, 0, uint32_t(ticks.size()),
                                          ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double period = double(mCtx.limits().timestampPeriod) * 1e-9;
-    for (size_t i = 0; i < mNames.size(); ++i)
-        out.emplace_back(mNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * period);
-    return out;
-}
-
-double GpuTimer::total(const std::string& name) const {
     double s = 0;
-    for (const auto& [n, sec] : results())
-        if (n == name) s += sec;
-    return s;
+    for (uint32_t i = 0; i < mScopes; ++i) s += double(ticks[2 * i + 1] - ticks[2 * i]);
+    return s * double(mCtx.limits().timestampPeriod) * 1e-9;
 }
 
 }  // namespace amrvk::gpu

@@ -43,6 +43,9 @@ private:
     std::string mName;
 };
 
+// A memory barrier on the whole device memory from (srcStage, srcAccess) to (dstStage, dstAccess).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 // A compute-to-compute (and compute-to-transfer) memory barrier on the whole device memory.
 void computeBarrier(VkCommandBuffer cmd);
 
@@ -57,7 +60,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, const ImageUse& from, cons
 // The copy region of a whole single-level colour image, tightly packed rows.
 VkBufferImageCopy wholeImageCopy(VkExtent2D extent);
 
-// Named GPU timestamps: scope(cmd, name) ... end(cmd); results in seconds after the submit.
+// GPU timestamps around scopes: begin(cmd) ... end(cmd, scope); seconds() after the submit.
 class GpuTimer {
 public:
     GpuTimer(Context& ctx, uint32_t maxScopes = 256);
@@ -65,18 +68,16 @@ public:
     GpuTimer(const GpuTimer&) = delete;
     GpuTimer& operator=(const GpuTimer&) = delete;
     void reset(VkCommandBuffer cmd);
-    uint32_t begin(VkCommandBuffer cmd, const std::string& name);
+    uint32_t begin(VkCommandBuffer cmd);
     void end(VkCommandBuffer cmd, uint32_t scope);
-    // (name, seconds) per scope since the last reset; call after the submit completed.
-    std::vector<std::pair<std::string, double>> results() const;
-    // Sum of the seconds of every scope with this name.
-    double total(const std::string& name) const;
+    // Sum of the seconds of every scope since the last reset; call after the submit completed.
+    double seconds() const;
 
 private:
     Context& mCtx;
     VkQueryPool mPool = VK_NULL_HANDLE;
     uint32_t mMax;
-    std::vector<std::string> mNames;
+    uint32_t mScopes = 0;  // begun since the last reset
 };
 
 }  // namespace amrvk::gpu

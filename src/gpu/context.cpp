@@ -19,54 +19,35 @@ std::string lower(std::string s) {
     return s;
 }
 
-const char* typeName(VkPhysicalDeviceType t) {
-    switch (t) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-        default: return "other";
-    }
-}
+// Device types in order of preference: the rank is the index; any other type ranks last as "other".
+constexpr std::pair<VkPhysicalDeviceType, const char*> kDeviceTypes[] = {
+    {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, "discrete GPU"},
+    {VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU, "integrated GPU"},
+    {VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU, "virtual GPU"},
+    {VK_PHYSICAL_DEVICE_TYPE_CPU, "CPU"}};
 
 int typeRank(VkPhysicalDeviceType t) {
-    switch (t) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-        default: return 4;
-    }
+    int rank = 0;
+    while (rank < 4 && kDeviceTypes[rank].first != t) ++rank;
+    return rank;
 }
+
+const char* typeName(VkPhysicalDeviceType t) { return typeRank(t) < 4 ? kDeviceTypes[typeRank(t)].second : "other"; }
 
 bool hasExtension(const std::vector<VkExtensionProperties>& exts, const char* name) {
     return std::any_of(exts.begin(), exts.end(),
                        [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
-std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice pd) {
-    uint32_t n = 0;
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
-    std::vector<VkExtensionProperties> exts(n);
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
-    return exts;
-}
-
 bool validationAvailable() {
-    uint32_t n = 0;
-    vkEnumerateInstanceLayerProperties(&n, nullptr);
-    std::vector<VkLayerProperties> layers(n);
-    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    const auto layers = vkList<VkLayerProperties>(vkEnumerateInstanceLayerProperties);
     return std::any_of(layers.begin(), layers.end(),
                        [](const VkLayerProperties& l) { return std::strcmp(l.layerName, kValidationLayer) == 0; });
 }
 
 bool instanceExtensionAvailable(const char* name) {
-    uint32_t n = 0;
-    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
-    std::vector<VkExtensionProperties> exts(n);
-    vkEnumerateInstanceExtensionProperties(nullptr, &n, exts.data());
-    return hasExtension(exts, name);
+    return hasExtension(vkList<VkExtensionProperties>(vkEnumerateInstanceExtensionProperties, (const char*)nullptr),
+                        name);
 }
 
 VkInstance createInstance(bool validation, bool debugUtils, const std::vector<std::string>& extra = {}) {
@@ -117,7 +98,7 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK
     for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
         if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) r.deviceLocalBytes += mem.memoryHeaps[i].size;
 
-    auto exts = deviceExtensions(pd);
+    const auto exts = vkList<VkExtensionProperties>(vkEnumerateDeviceExtensionProperties, pd, (const char*)nullptr);
     VkPhysicalDeviceRayQueryFeaturesKHR rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
     VkPhysicalDeviceAccelerationStructureFeaturesKHR as{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
     bool rqExts = hasExtension(exts, VK_KHR_RAY_QUERY_EXTENSION_NAME) &&
@@ -133,10 +114,8 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK
     if (v >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(pd, &f);
     r.rayQuery = rqExts && rq.rayQuery && as.accelerationStructure;
 
-    uint32_t qn = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
-    std::vector<VkQueueFamilyProperties> qs(qn);
-    vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qs.data());
+    const auto qs = vkList<VkQueueFamilyProperties>(vkGetPhysicalDeviceQueueFamilyProperties, pd);
+    const uint32_t qn = uint32_t(qs.size());
     bool compute = false;
     for (uint32_t i = 0; i < qn && !compute; ++i) {
         VkBool32 present = VK_TRUE;

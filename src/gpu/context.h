@@ -83,7 +83,6 @@ public:
     bool hasRayQuery() const { return mRayQuery; }
     // ContextOptions::samplesPerInvocation resolved for this device (>= 1).
     uint32_t samplesPerInvocation() const { return mSamplesPerInvocation; }
-    bool validationEnabled() const { return mMessenger != VK_NULL_HANDLE; }
     uint64_t validationErrors() const { return mValidationErrors; }
     const std::string& lastValidationMessage() const { return mLastValidationMessage; }
     MemoryTracker& memory() { return mMemory; }

@@ -37,11 +37,6 @@ void setShaderDirectory(const fs::path& dir) {
     gDirectory = dir;
 }
 
-fs::path shaderDirectory() {
-    std::lock_guard lock(gMutex);
-    return gDirectory;
-}
-
 fs::path shaderSourceRoot(const fs::path& dir) { return fs::is_directory(dir / "passes") ? dir : dir / ".."; }
 
 std::vector<uint32_t> loadShader(const std::string& name) {

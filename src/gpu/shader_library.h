@@ -39,7 +39,6 @@ std::vector<std::filesystem::path> exportShaderSources(std::span<const ShaderSou
 void registerShaders(std::span<const EmbeddedShader> shaders);
 // Where loadShader looks first; an empty path goes back to the embedded shaders only.
 void setShaderDirectory(const std::filesystem::path& dir);
-std::filesystem::path shaderDirectory();
 // The folder that holds passes/, lib/ and shared/ for a --shader-dir DIR: DIR itself when it has
 // passes/, else DIR/.. (DIR is a passes folder). What the viewer watches for edits.
 std::filesystem::path shaderSourceRoot(const std::filesystem::path& dir);

@@ -8,15 +8,6 @@ using scene::Backend;
 using scene::SamplerKind;
 using scene::TraversalKind;
 
-namespace {
-gpu::Buffer rangeBuffer(gpu::Context& ctx, const std::vector<accel::ValueRange>& ranges, const std::string& name) {
-    gpu::Buffer b(ctx, std::max<uint64_t>(16, ranges.size() * sizeof(shared::ValueRangeGpu)), gpu::MemoryKind::Device,
-                  name);
-    if (!ranges.empty()) b.upload(ranges.data(), ranges.size() * sizeof(shared::ValueRangeGpu));
-    return b;
-}
-}  // namespace
-
 std::string traversalResourceName(TraversalKind traversal, const char* what) {
     return std::string(scene::traversalName(traversal)) + "Traversal" + what;
 }
@@ -63,10 +54,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
         mParams.samplerPrims = mSamplerPrims.address();
     } else {
         const auto& boxes = scene.samplerBoxes;
-        mSamplerAabbs = gpu::Buffer(ctx, std::max<uint64_t>(16, boxes.size() * sizeof(shared::AabbGpu)),
-                                    gpu::MemoryKind::Device, sampler + "Aabbs",
-                                    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR);
-        if (!boxes.empty()) mSamplerAabbs.upload(boxes.data(), boxes.size() * sizeof(shared::AabbGpu));
+        mSamplerAabbs = gpu::makeBuffer<shared::AabbGpu>(ctx, boxes, sampler + "Aabbs", kAsInput);
         mSamplerAccel = gpu::AabbAccelerationStructure(ctx, uint32_t(boxes.size()), sampler + "Accel");
         ctx.submitAndWait([&](VkCommandBuffer cmd) { mSamplerAccel.build(cmd, mSamplerAabbs); });
         mParams.samplerAccel = mSamplerAccel.tlasAddress();
@@ -84,7 +72,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
         mParams.abrBrickList = mAbrBrickList.address();
     }
     if (scene.grid) {
-        mGridRanges = rangeBuffer(ctx, scene.grid->ranges, "macrocellRanges");
+        mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid->ranges, "macrocellRanges");
         mParams.gridDims = scene.grid->dims;
         mParams.gridOrigin = glm::vec3(scene.toLocal(scene.grid->origin));
         mParams.gridCellSize = glm::vec3(scene.grid->cellSize);
@@ -93,7 +81,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
     const TraversalKind t = cfg.traversal;
     if (t == TraversalKind::Abr || t == TraversalKind::Brick || t == TraversalKind::ExtBrick) {
         mDomainBoxes = gpu::makeBuffer<shared::AabbGpu>(ctx, scene.domains.boxes, traversalResourceName(t, "Boxes"));
-        mDomainRanges = rangeBuffer(ctx, scene.domains.ranges, traversalResourceName(t, "Ranges"));
+        mDomainRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.domains.ranges, traversalResourceName(t, "Ranges"));
     }
 }
 

@@ -37,4 +37,7 @@ private:
 // "<traversal>Traversal<what>": the name of a traversal buffer in the device-memory report.
 std::string traversalResourceName(scene::TraversalKind traversal, const char* what);
 
+// Usage of buffers that feed an acceleration-structure build (AABBs).
+inline constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+
 }  // namespace amrvk::render

@@ -12,8 +12,6 @@ using scene::Backend;
 using scene::TraversalKind;
 
 namespace {
-constexpr VkBufferUsageFlags kAsInput = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
-
 gpu::Buffer floatBuffer(gpu::Context& ctx, uint64_t count, const std::string& name) {
     return gpu::Buffer(ctx, std::max<uint64_t>(16, count * sizeof(float)), gpu::MemoryKind::Device, name);
 }
@@ -68,9 +66,7 @@ void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
     mKdRanges = gpu::Buffer();
     mDomainMajorants = gpu::Buffer();
     mKdBoxes = gpu::makeBuffer<shared::AabbGpu>(mCtx, mKdBoxesHost, traversalResourceName(t, "Boxes"));
-    mKdRanges = gpu::Buffer(mCtx, std::max<uint64_t>(16, uint64_t(count) * sizeof(shared::ValueRangeGpu)),
-                            gpu::MemoryKind::Device, traversalResourceName(t, "Ranges"));
-    if (count > 0) mKdRanges.upload(mKdTree->leafRanges.data(), uint64_t(count) * sizeof(shared::ValueRangeGpu));
+    mKdRanges = gpu::makeBuffer<accel::ValueRange>(mCtx, mKdTree->leafRanges, traversalResourceName(t, "Ranges"));
     mDomainMajorants = floatBuffer(mCtx, count, traversalResourceName(t, "Majorants"));
     mParams.domainCount = count;
     mParams.domainBoxes = mKdBoxes.address();
@@ -165,7 +161,7 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
     gpu::GpuTimer timer(mCtx, 4);
     mCtx.submitAndWait([&](VkCommandBuffer cmd) {
         timer.reset(cmd);
-        const uint32_t scope = timer.begin(cmd, "majorants");
+        const uint32_t scope = timer.begin(cmd);
         if (mScene.grid) {
             const uint32_t n = uint32_t(mScene.grid->ranges.size());
             shared::StructurePush push{paramsAddress, mDevice.gridRanges().address(), mGridMajorants.address(), n, 0};
@@ -186,7 +182,7 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
         timer.end(cmd, scope);
         gpu::computeBarrier(cmd);
     });
-    mGpuSeconds = timer.total("majorants");
+    mGpuSeconds = timer.seconds();
 }
 
 std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {

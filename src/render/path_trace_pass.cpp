@@ -70,23 +70,8 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
     AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
     const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);
     if (count == 0) return 0.0;
-    gpu::GpuTimer timer(mCtx, 2);
-    std::array<uint32_t, shared::kCounterCount> counters{};
-    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
-        timer.reset(cmd);
-        vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
-        gpu::computeBarrier(cmd);
-        const uint32_t scope = timer.begin(cmd, "path_trace");
-        shared::PushConstants push{paramsAddress, mSpp, first, first + count, 1u};
-        pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (count + 7) / 8);
-        timer.end(cmd, scope);
-        gpu::computeBarrier(cmd);
-    });
-    mCounters.download(counters.data(), sizeof counters);
-    for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];
-    const double seconds = timer.total("path_trace");
-    mStats.gpuSeconds += seconds;
-    mStats.paths += uint64_t(count) * uint64_t(mWidth);
+    const double seconds = submit(pipeline, {{paramsAddress, mSpp, first, first + count, 1u}},
+                                  uint64_t(count) * uint64_t(mWidth)).first;
     mRowsDone += count;
     if (mRowsDone == uint32_t(mHeight)) {
         ++mSpp;
@@ -103,43 +88,47 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
         --n;
         if (afterBatch) afterBatch(mSpp);
     }
-    const uint32_t gx = (uint32_t(mWidth) + 7) / 8, gy = (uint32_t(mHeight) + 7) / 8;
-    gpu::GpuTimer timer(mCtx, 64);
-    std::array<uint32_t, shared::kCounterCount> counters{};
     uint32_t done = 0, batch = 1;
     while (done < n) {
         const uint32_t count = std::min({batch, maxBatch, n - done});
-        mCtx.submitAndWait([&](VkCommandBuffer cmd) {
-            timer.reset(cmd);
-            vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
-            gpu::computeBarrier(cmd);
-            // Context::samplesPerInvocation() samples per invocation: fewer dispatches and one
-            // accumulation write per pixel for several samples.
-            for (uint32_t i = 0; i < count;) {
-                const uint32_t samples = std::min(mCtx.samplesPerInvocation(), count - i);
-                const uint32_t scope = timer.begin(cmd, "path_trace");
-                shared::PushConstants push{paramsAddress, mSpp + i, 0u, uint32_t(mHeight), samples};
-                pipeline.dispatch(cmd, &push, gx, gy);
-                timer.end(cmd, scope);
-                gpu::computeBarrier(cmd);
-                i += samples;
-            }
-        });
-        mCounters.download(counters.data(), sizeof counters);
-        uint32_t largest = 0;
-        for (uint32_t k = 0; k < shared::kCounterCount; ++k) {
-            mStats.counters[k] += counters[k];
-            largest = std::max(largest, counters[k]);
-        }
-        mStats.gpuSeconds += timer.total("path_trace");
+        // Context::samplesPerInvocation() samples per invocation: fewer dispatches and one
+        // accumulation write per pixel for several samples.
+        std::vector<shared::PushConstants> dispatches;
+        for (uint32_t i = 0; i < count; i += dispatches.back().samples)
+            dispatches.push_back({paramsAddress, mSpp + i, 0u, uint32_t(mHeight),
+                                  std::min(mCtx.samplesPerInvocation(), count - i)});
+        const uint32_t largest =
+            submit(pipeline, dispatches, uint64_t(count) * uint64_t(mWidth) * uint64_t(mHeight)).second;
         mSpp += count;
         done += count;
-        mStats.paths += uint64_t(count) * uint64_t(mWidth) * uint64_t(mHeight);
         // Grow batches while the 32-bit counters stay far from overflowing.
         if (largest < (1u << 28) && batch < 64) batch *= 2;
         else if (largest >= (1u << 30) && batch > 1) batch /= 2;
         if (afterBatch) afterBatch(mSpp);
     }
+}
+
+std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pipeline,
+                                                  const std::vector<shared::PushConstants>& dispatches,
+                                                  uint64_t paths) {
+    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+        mTimer.reset(cmd);
+        vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+        gpu::computeBarrier(cmd);
+        for (const shared::PushConstants& push : dispatches) {
+            const uint32_t scope = mTimer.begin(cmd);
+            pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (push.rowEnd - push.rowOffset + 7) / 8);
+            mTimer.end(cmd, scope);
+            gpu::computeBarrier(cmd);
+        }
+    });
+    std::array<uint32_t, shared::kCounterCount> counters{};
+    mCounters.download(counters.data(), sizeof counters);
+    for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];
+    const double seconds = mTimer.seconds();
+    mStats.gpuSeconds += seconds;
+    mStats.paths += paths;
+    return {seconds, *std::max_element(counters.begin(), counters.end())};
 }
 
 scene::RenderOutput PathTracePass::read() const {

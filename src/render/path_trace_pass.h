@@ -54,9 +54,15 @@ public:
     scene::RenderOutput read() const;
 
 private:
+    // One submit: the counters zeroed, then each dispatch timed and followed by a barrier; adds the
+    // counters, GPU seconds and `paths` to the statistics. Returns the GPU seconds and the largest counter.
+    std::pair<double, uint32_t> submit(const gpu::ComputePipeline& pipeline,
+                                       const std::vector<shared::PushConstants>& dispatches, uint64_t paths);
+
     gpu::Context& mCtx;
     std::map<std::string, gpu::ComputePipeline> mPipelines;  // key: mode + structure label
     gpu::Buffer mAccum, mCounters;
+    gpu::GpuTimer mTimer{mCtx, 64};  // at most 64 dispatches per submit
     int mWidth = 0, mHeight = 0;
     uint32_t mSpp = 0, mRowsDone = 0;
     uint64_t mCompiled = 0;

@@ -159,9 +159,7 @@ void Renderer::setCamera(const scene::Camera& camera) {
 
 void Renderer::reloadShaders() {
     AMRVK_CHECK(mHasSettings, "internal: reloadShaders() before setSettings()");
-    const uint64_t before = mPathTrace.pipelinesCompiled();
     mPathTrace.recompile(mSettings.mode, mScene.config);
-    mCounts.pipelinesCompiled += mPathTrace.pipelinesCompiled() - before;
     changed();
 }
 
@@ -170,9 +168,7 @@ void Renderer::resetAccumulation() { changed(); }
 const gpu::ComputePipeline& Renderer::currentPipeline() {
     AMRVK_CHECK(mTf.has_value(), "internal: accumulate() before setTransferFunction()");
     AMRVK_CHECK(mHasSettings, "internal: accumulate() before setSettings()");
-    const uint64_t before = mPathTrace.pipelinesCompiled();
     const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config);
-    mCounts.pipelinesCompiled += mPathTrace.pipelinesCompiled() - before;
     uploadParams();
     return pipeline;
 }
@@ -197,16 +193,15 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
     setSettings(settings);
     if (accumulatedSpp() > 0) resetAccumulation();
+    auto onBatch = [&](uint32_t, uint32_t) {
+        if (progress) progress(accumulatedSpp(), spp);
+    };
     for (uint32_t next : snapshotSpp) {
         if (next <= accumulatedSpp() || next >= spp) continue;
-        accumulate(next - accumulatedSpp(), [&](uint32_t, uint32_t) {
-            if (progress) progress(accumulatedSpp(), spp);
-        });
+        accumulate(next - accumulatedSpp(), onBatch);
         if (snapshot) snapshot(output());
     }
-    accumulate(spp - accumulatedSpp(), [&](uint32_t, uint32_t) {
-        if (progress) progress(accumulatedSpp(), spp);
-    });
+    accumulate(spp - accumulatedSpp(), onBatch);
     scene::RenderOutput out = output();
     if (snapshot && std::find(snapshotSpp.begin(), snapshotSpp.end(), spp) != snapshotSpp.end()) snapshot(out);
     return out;

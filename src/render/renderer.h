@@ -86,7 +86,11 @@ public:
     // ---- State and statistics ----
     const scene::StructureConfig& config() const { return mScene.config; }
     const scene::RenderSettings& settings() const { return mSettings; }
-    const UpdateCounts& updateCounts() const { return mCounts; }
+    UpdateCounts updateCounts() const {
+        UpdateCounts c = mCounts;
+        c.pipelinesCompiled = mPathTrace.pipelinesCompiled();
+        return c;
+    }
     // GPU seconds of the last majorant pass (+ AABB pass and BLAS build for rq).
     double majorantSeconds() const { return mMajorants->gpuSeconds(); }
     // Host seconds of the last TF update spent on TF-dependent structures (kd-tree, sw culling BVH).
@@ -105,7 +109,6 @@ public:
     void overrideMajorants(const std::vector<float>& majorants);
     // Device address of the RenderParams buffer (current after any edit), for test kernels.
     uint64_t paramsAddress();
-    gpu::Context& context() { return mCtx; }
 
 private:
     void buildStructures();
