@@ -28,6 +28,31 @@ std::string join(const std::vector<T>& values, std::string_view separator = " ")
     return out;
 }
 
+// One row of an enum's name table (parseNamed, nameOf): the spelling on the command line and in files.
+template <typename E>
+struct Named {
+    const char* name;
+    E value;
+};
+
+// The value named `name`; else an error naming the option, the value and the choices.
+template <typename E, size_t N>
+E parseNamed(const Named<E> (&table)[N], std::string_view name, const char* option) {
+    std::string choices;
+    for (const Named<E>& n : table) {
+        if (name == n.name) return n.value;
+        choices += choices.empty() ? n.name : std::string("|") + n.name;
+    }
+    throw Error(strCat(option, " '", name, "': expected ", choices));
+}
+
+template <typename E, size_t N>
+const char* nameOf(const Named<E> (&table)[N], E value) {
+    for (const Named<E>& n : table)
+        if (n.value == value) return n.name;
+    return "?";
+}
+
 // `s` without leading and trailing spaces, tabs and carriage returns.
 inline std::string trim(std::string_view s) {
     const size_t first = s.find_first_not_of(" \t\r");

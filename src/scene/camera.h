@@ -10,6 +10,7 @@ namespace amrvk::scene {
 struct Camera {
     glm::dvec3 eye{0.0}, target{0.0, 0.0, -1.0}, up{0.0, 1.0, 0.0};  // world space
     double fovYDegrees = 40.0;
+    bool operator==(const Camera&) const = default;
 };
 
 // A three-quarter view from (+x, -y, +z) that frames the world box with z up.

@@ -19,15 +19,13 @@ std::string shellQuote(const std::string& s) {
 }
 
 std::string formatNumber(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    // Shortest text that reads back the same double.
+    char s[64];
+    // Shortest text that reads back the same double (17 digits for NaN, which never does).
     for (int digits = 1; digits <= 17; ++digits) {
-        char s[64];
         std::snprintf(s, sizeof s, "%.*g", digits, v);
-        if (std::strtod(s, nullptr) == v) return s;
+        if (std::strtod(s, nullptr) == v) break;
     }
-    return buf;
+    return s;
 }
 
 std::string settingsOptions(const RenderSettings& s, bool withCamera) {

@@ -2,17 +2,6 @@
 
 namespace amrvk::scene {
 
-namespace {
-
-bool sameLights(const std::vector<Light>& a, const std::vector<Light>& b) {
-    if (a.size() != b.size()) return false;
-    for (size_t i = 0; i < a.size(); ++i)
-        if (a[i].point != b[i].point || a[i].posOrDir != b[i].posOrDir || a[i].radiance != b[i].radiance) return false;
-    return true;
-}
-
-}  // namespace
-
 Invalidation invalidatedBy(ChangeSet c) {
     Invalidation v;
     v.accumulation = !c.empty();
@@ -30,13 +19,11 @@ Invalidation invalidatedBy(ChangeSet c) {
 
 ChangeSet settingsChanges(const RenderSettings& a, const RenderSettings& b) {
     ChangeSet c;
-    if (a.camera.eye != b.camera.eye || a.camera.target != b.camera.target || a.camera.up != b.camera.up ||
-        a.camera.fovYDegrees != b.camera.fovYDegrees)
-        c |= Change::Camera;
+    if (a.camera != b.camera) c |= Change::Camera;
     if (a.width != b.width || a.height != b.height) c |= Change::ImageSize;
     if (a.seed != b.seed) c |= Change::Seed;
     if (a.mode != b.mode) c |= Change::Mode;
-    if (a.ambient != b.ambient || a.background != b.background || !sameLights(a.lights, b.lights))
+    if (a.ambient != b.ambient || a.background != b.background || a.lights != b.lights)
         c |= Change::Lighting;
     if (a.densityScale != b.densityScale || a.g != b.g || a.maxTrackingSteps != b.maxTrackingSteps)
         c |= Change::Medium;

@@ -3,27 +3,17 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "shared/render_params.h"
 
 namespace amrvk::scene {
 
-Mode parseMode(const std::string& name) {
-    if (name == "ae") return Mode::Ae;
-    if (name == "ss") return Mode::Ss;
-    if (name == "ms") return Mode::Ms;
-    if (name == "dvr") return Mode::Dvr;
-    AMRVK_CHECK(false, "--mode '", name, "': expected ae, ss, ms or dvr");
-    return Mode::Ms;
+namespace {
+constexpr Named<Mode> kModes[] = {{"ae", Mode::Ae}, {"ss", Mode::Ss}, {"ms", Mode::Ms}, {"dvr", Mode::Dvr}};
 }
 
-const char* modeName(Mode mode) {
-    switch (mode) {
-        case Mode::Ae: return "ae";
-        case Mode::Ss: return "ss";
-        case Mode::Dvr: return "dvr";
-        default: return "ms";
-    }
-}
+Mode parseMode(const std::string& name) { return parseNamed(kModes, name, "--mode"); }
+const char* modeName(Mode mode) { return nameOf(kModes, mode); }
 
 std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& s, const amr::Transform& xf) {
     AMRVK_CHECK(s.lights.size() <= shared::kMaxLights, "at most ", shared::kMaxLights, " lights (got ",

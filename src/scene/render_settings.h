@@ -25,6 +25,7 @@ struct Light {
     bool point = false;
     glm::dvec3 posOrDir{0.0, 0.0, 1.0};  // world position, or world direction towards the light
     glm::dvec3 radiance{1.0};            // radiance (directional) or intensity (point, 1/d^2 in world units)
+    bool operator==(const Light&) const = default;
 };
 
 // A light in voxel space: point position or unit direction towards the light; radiance

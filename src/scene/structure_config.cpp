@@ -1,52 +1,31 @@
 #include "scene/structure_config.h"
 
 #include "core/error.h"
+#include "core/strings.h"
 
 namespace amrvk::scene {
 
 namespace {
-struct Named {
-    const char* name;
-    int value;
-};
-constexpr Named kSamplers[] = {{"ext-brick", int(SamplerKind::ExtBrick)}, {"abr", int(SamplerKind::Abr)},
-                               {"dense", int(SamplerKind::Dense)}, {"grid", int(SamplerKind::Grid)}};
-constexpr Named kTraversals[] = {{"grid-dda", int(TraversalKind::GridDda)}, {"grid-bvh", int(TraversalKind::GridBvh)},
-                                 {"abr", int(TraversalKind::Abr)},          {"brick", int(TraversalKind::Brick)},
-                                 {"ext-brick", int(TraversalKind::ExtBrick)}, {"kdtree", int(TraversalKind::KdTree)}};
-constexpr Named kBackends[] = {{"sw", int(Backend::Sw)}, {"rq", int(Backend::Rq)}, {"auto", int(Backend::Auto)}};
-
-template <size_t N>
-int parseNamed(const Named (&table)[N], const std::string& name, const char* option) {
-    std::string choices;
-    for (const Named& n : table) {
-        if (name == n.name) return n.value;
-        choices += choices.empty() ? n.name : std::string("|") + n.name;
-    }
-    AMRVK_CHECK(false, option, " '", name, "': expected ", choices);
-    return 0;
-}
-
-template <size_t N>
-const char* nameOf(const Named (&table)[N], int value) {
-    for (const Named& n : table)
-        if (n.value == value) return n.name;
-    return "?";
-}
+constexpr Named<SamplerKind> kSamplers[] = {{"ext-brick", SamplerKind::ExtBrick},
+                                            {"abr", SamplerKind::Abr},
+                                            {"dense", SamplerKind::Dense},
+                                            {"grid", SamplerKind::Grid}};
+constexpr Named<TraversalKind> kTraversals[] = {
+    {"grid-dda", TraversalKind::GridDda}, {"grid-bvh", TraversalKind::GridBvh},   {"abr", TraversalKind::Abr},
+    {"brick", TraversalKind::Brick},      {"ext-brick", TraversalKind::ExtBrick}, {"kdtree", TraversalKind::KdTree}};
+constexpr Named<Backend> kBackends[] = {{"sw", Backend::Sw}, {"rq", Backend::Rq}, {"auto", Backend::Auto}};
 }  // namespace
 
-SamplerKind parseSampler(const std::string& name) { return SamplerKind(parseNamed(kSamplers, name, "--sampler")); }
-const char* samplerName(SamplerKind kind) { return nameOf(kSamplers, int(kind)); }
-TraversalKind parseTraversal(const std::string& name) {
-    return TraversalKind(parseNamed(kTraversals, name, "--traversal"));
-}
-const char* traversalName(TraversalKind kind) { return nameOf(kTraversals, int(kind)); }
-Backend parseBackend(const std::string& name) { return Backend(parseNamed(kBackends, name, "--backend")); }
-const char* backendName(Backend backend) { return nameOf(kBackends, int(backend)); }
+SamplerKind parseSampler(const std::string& name) { return parseNamed(kSamplers, name, "--sampler"); }
+const char* samplerName(SamplerKind kind) { return nameOf(kSamplers, kind); }
+TraversalKind parseTraversal(const std::string& name) { return parseNamed(kTraversals, name, "--traversal"); }
+const char* traversalName(TraversalKind kind) { return nameOf(kTraversals, kind); }
+Backend parseBackend(const std::string& name) { return parseNamed(kBackends, name, "--backend"); }
+const char* backendName(Backend backend) { return nameOf(kBackends, backend); }
 
 std::vector<TraversalKind> allTraversals() {
     std::vector<TraversalKind> out;
-    for (const Named& n : kTraversals) out.push_back(TraversalKind(n.value));
+    for (const Named<TraversalKind>& n : kTraversals) out.push_back(n.value);
     return out;
 }
 std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr, SamplerKind::Grid}; }

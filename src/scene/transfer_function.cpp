@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -106,17 +107,12 @@ TransferFunction TfChannels::merged() const {
     AMRVK_CHECK(!colorPositions.empty() && colorPositions.size() == colors.size() && !opacityPositions.empty() &&
                     opacityPositions.size() == alphas.size(),
                 name, ": colour and opacity need at least one node each");
-    Channel<glm::dvec3> rgb;
-    Channel<double> alpha;
-    rgb.positions = colorPositions;
-    for (const glm::vec3& c : colors) rgb.values.emplace_back(c);
-    alpha.positions = opacityPositions;
-    for (float a : alphas) alpha.values.push_back(a);
+    const Channel<glm::dvec3> rgb{colorPositions, {colors.begin(), colors.end()}};
+    const Channel<double> alpha{opacityPositions, {alphas.begin(), alphas.end()}};
     std::vector<float> positions;
     std::vector<glm::vec4> merged;
     mergeChannels(rgb, alpha, positions, merged);
-    validateNodes(positions, merged, name);
-    return TransferFunction(positions, merged, name);
+    return TransferFunction(positions, merged, name);  // validates the merged nodes
 }
 
 TfChannels TfChannels::split(const TransferFunction& tf) {
@@ -242,12 +238,6 @@ const std::vector<PresetNodes>& presetTable() {
     return table;
 }
 
-std::string joinedPresetNames() {
-    std::string s;
-    for (const std::string& n : presetNames()) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
-
 }  // namespace
 
 TransferFunction::TransferFunction()
@@ -324,15 +314,21 @@ const std::vector<std::string>& presetNames() {
     return names;
 }
 
+namespace {
+std::string joinedPresetNames() { return join(presetNames(), ", "); }
+
+// The built-in preset named `name`; else an error listing the presets.
+const PresetNodes& findPreset(std::string_view name) {
+    for (const PresetNodes& p : presetTable())
+        if (name == p.name) return p;
+    throw Error(strCat("unknown transfer function preset '", name, "' (presets: ", joinedPresetNames(), ")"));
+}
+}  // namespace
+
 TransferFunction makePreset(std::string_view name, float lo, float hi) {
-    for (const PresetNodes& p : presetTable()) {
-        if (name != p.name) continue;
-        checkRange(lo, hi, strCat("preset '", name, "'"));
-        return TransferFunction(p.positions, p.colors, p.name).rescaled(lo, hi);
-    }
-    AMRVK_CHECK(false, "unknown transfer function preset '", name, "' (presets: ",
-                joinedPresetNames(), ")");
-    return {};
+    const PresetNodes& p = findPreset(name);
+    checkRange(lo, hi, strCat("preset '", name, "'"));
+    return TransferFunction(p.positions, p.colors, p.name).rescaled(lo, hi);
 }
 
 namespace {
@@ -423,10 +419,8 @@ TfChannels parseParaViewPreset(const std::string& text, const std::string& where
 }
 
 TfChannels builtInChannels(std::string_view name) {
-    for (const PresetNodes& p : presetTable())
-        if (name == p.name) return TfChannels::split(TransferFunction(p.positions, p.colors, p.name));
-    AMRVK_CHECK(false, "unknown transfer function preset '", name, "' (presets: ", joinedPresetNames(), ")");
-    return {};
+    const PresetNodes& p = findPreset(name);
+    return TfChannels::split(TransferFunction(p.positions, p.colors, p.name));
 }
 
 std::string paraViewPresetJson(const TfChannels& c) {
