@@ -16,6 +16,13 @@ namespace amrvk::bench {
 
 namespace {
 
+// `s` with every character but letters, digits, '-' and '_' replaced by '_' (file names).
+std::string fileTag(const std::string& s) {
+    std::string out;
+    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return out;
+}
+
 using scene::Backend;
 using scene::Mode;
 using scene::SamplerKind;
@@ -452,12 +459,6 @@ BenchResults Runner::run() {
 }
 
 }  // namespace
-
-std::string fileTag(const std::string& s) {
-    std::string out;
-    for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return out;
-}
 
 BenchResults runBench(gpu::Context& ctx, const BenchOptions& options, const BenchProgress& progress) {
     AMRVK_CHECK(!options.datasets.empty(), "bench: no input data set");

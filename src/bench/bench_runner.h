@@ -118,9 +118,6 @@ struct BenchResults {
 // Progress: (runs done, runs total, what runs now).
 using BenchProgress = std::function<void(size_t, size_t, const std::string&)>;
 
-// `s` with every character but letters, digits, '-' and '_' replaced by '_' (file names).
-std::string fileTag(const std::string& s);
-
 // Runs everything `options` selects on `ctx`. Failing combinations are recorded, not fatal.
 BenchResults runBench(gpu::Context& ctx, const BenchOptions& options, const BenchProgress& progress = {});
 

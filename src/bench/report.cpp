@@ -39,28 +39,18 @@ Json runJson(const RunResult& r) {
               {"backend", scene::backendName(r.config.backend)}, {"grid", r.config.grid}, {"gridDims", r.gridDims},
               {"kdLeaves", r.config.kdLeaves}};
     if (r.kind == "dvr") j["dt"] = r.dvrStep;
-    j["width"] = r.width;
-    j["height"] = r.height;
-    j["frames"] = r.frames;
+    j.update({{"width", r.width}, {"height", r.height}, {"frames", r.frames}});
     if (!r.error.empty()) {
         j["error"] = r.error;
         return j;
     }
-    j["gpuSeconds"] = r.gpuSeconds;
-    j["fps"] = r.fps;
-    j["mPathsPerSecond"] = r.mPathsPerSecond;
-    j["lookupsPerPath"] = r.lookupsPerPath;
-    j["stepsPerPath"] = r.stepsPerPath;
-    j["realCollisionsPerPath"] = r.realPerPath;
-    j["nullPerRealCollision"] = r.nullPerReal;
-    j["majorantViolations"] = r.violations;
-    j["nanSamples"] = r.nanSamples;
-    j["structureBuildSeconds"] = r.buildSeconds;
-    j["majorantUpdateSeconds"] = r.majorantSeconds;
-    j["tfStructureUpdateSeconds"] = r.tfStructureSeconds;
-    j["tfUpdateWallSeconds"] = r.tfUpdateWallSeconds;
-    j["deviceBytesAfterBuild"] = r.deviceBytesAfterBuild;
-    j["deviceBytesPeak"] = r.deviceBytesPeak;
+    j.update({{"gpuSeconds", r.gpuSeconds}, {"fps", r.fps}, {"mPathsPerSecond", r.mPathsPerSecond},
+              {"lookupsPerPath", r.lookupsPerPath}, {"stepsPerPath", r.stepsPerPath},
+              {"realCollisionsPerPath", r.realPerPath}, {"nullPerRealCollision", r.nullPerReal},
+              {"majorantViolations", r.violations}, {"nanSamples", r.nanSamples},
+              {"structureBuildSeconds", r.buildSeconds}, {"majorantUpdateSeconds", r.majorantSeconds},
+              {"tfStructureUpdateSeconds", r.tfStructureSeconds}, {"tfUpdateWallSeconds", r.tfUpdateWallSeconds},
+              {"deviceBytesAfterBuild", r.deviceBytesAfterBuild}, {"deviceBytesPeak", r.deviceBytesPeak}});
     Json& device = j["deviceBytesPerResource"] = Json::object();
     for (const auto& [name, bytes] : r.deviceBytesPerResource) device[name] = bytes;
     Json& host = j["hostBytesPerStructure"] = Json::object();
@@ -148,8 +138,6 @@ std::vector<std::string> modesOf(const BenchResults& res) {
     return modes;
 }
 
-}  // namespace
-
 std::string resultsJson(const BenchResults& res) {
     Json j = {{"device", res.device}, {"driver", res.driver}, {"deviceType", res.deviceType},
               {"commandLine", res.commandLine}, {"date", res.date}, {"width", res.width}, {"height", res.height},
@@ -217,6 +205,7 @@ std::string resultsCsv(const BenchResults& res) {
     return csv;
 }
 
+// Links the PNG plots (relative names), or says why there are none.
 std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     std::string md = "# amrvk bench results\n\n";
     md += "- device: " + res.device + " (" + res.deviceType + ", driver " + res.driver + ")\n";
@@ -260,9 +249,7 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
         }
         md += "\n";
     }
-    bool anyDvr = false;
-    for (const RunResult& r : res.runs) anyDvr |= r.kind == "dvr";
-    if (anyDvr) {
+    if (std::ranges::any_of(res.runs, [](const RunResult& r) { return r.kind == "dvr"; })) {
         md += "## Ray marching (dvr) against unbiased ae tracking\n\nRMSE against the ae reference; dvr's error stops "
               "falling at its step-size bias.\n\n| data set | TF | run | frames/s | lookups/path | final RMSE | slope | "
               "seconds to target |\n|---|---|---|---:|---:|---:|---:|---:|\n";
@@ -279,9 +266,7 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
         }
         md += "\n";
     }
-    bool anySweep = false;
-    for (const RunResult& r : res.runs) anySweep |= r.kind == "grid-sweep";
-    if (anySweep) {
+    if (std::ranges::any_of(res.runs, [](const RunResult& r) { return r.kind == "grid-sweep"; })) {
         md += "## Grid sweep (frames/s against macrocell resolution)\n\n| data set | TF | traversal | grid | macrocells | "
               "frames/s | steps/path | null/real |\n|---|---|---|---:|---|---:|---:|---:|\n";
         for (const RunResult& r : res.runs) {
@@ -313,6 +298,8 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
         if (p.ends_with(".png")) md += "![" + p + "](" + p + ")\n";
     return md;
 }
+
+}  // namespace
 
 PlotOutcome writeReports(const BenchResults& results, const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);

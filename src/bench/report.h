@@ -15,10 +15,6 @@
 
 namespace amrvk::bench {
 
-std::string resultsJson(const BenchResults& results);
-std::string resultsCsv(const BenchResults& results);
-// Links the PNG plots (relative names), or says why there are none.
-std::string resultsMarkdown(const BenchResults& results, const PlotOutcome& plots);
 // results.json and .csv, then the plots (drawPlots), then results.md, into dir. Returns what
 // drawPlots reported: the plot files, or the note saying why there are none and how to draw them.
 PlotOutcome writeReports(const BenchResults& results, const std::filesystem::path& dir);
