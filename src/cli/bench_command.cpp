@@ -2,6 +2,7 @@
 // reports in an output directory (bench/report.h).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -49,6 +50,15 @@ std::vector<std::string> splitList(const std::string& text) {
     std::string item;
     while (std::getline(s, item, ','))
         if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+// A comma-separated list of names, each through `parse`; an empty list is an error naming the option.
+template <typename T>
+std::vector<T> parseList(const char* option, const std::string& text, T (*parse)(const std::string&)) {
+    std::vector<T> out;
+    for (const std::string& item : splitList(text)) out.push_back(parse(item));
+    AMRVK_CHECK(!out.empty(), option, ": empty list");
     return out;
 }
 
@@ -138,34 +148,18 @@ int runBench(const std::vector<std::string>& argv) {
         AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         o.tfRange = std::make_pair(lo, hi);
     }
-    o.modes.clear();
-    for (const auto& m : splitList(modes)) {
-        scene::Mode mode = scene::parseMode(m);
-        AMRVK_CHECK(mode != scene::Mode::Dvr, "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
-        o.modes.push_back(mode);
-    }
-    AMRVK_CHECK(!o.modes.empty(), "--modes: empty list");
-    if (app.count("--traversals")) {
-        o.traversals.clear();
-        for (const auto& t : splitList(traversals)) o.traversals.push_back(scene::parseTraversal(t));
-        AMRVK_CHECK(!o.traversals.empty(), "--traversals: empty list");
-    }
+    o.modes = parseList("--modes", modes, scene::parseMode);
+    AMRVK_CHECK(std::ranges::count(o.modes, scene::Mode::Dvr) == 0,
+                "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
+    if (app.count("--traversals")) o.traversals = parseList("--traversals", traversals, scene::parseTraversal);
     if (app.count("--samplers")) {
-        o.samplers.clear();
-        for (const auto& sm : splitList(samplers)) {
-            scene::SamplerKind k = scene::parseSampler(sm);
-            AMRVK_CHECK(k != scene::SamplerKind::Dense, "--samplers: dense runs by itself (see --no-dense)");
-            o.samplers.push_back(k);
-        }
-        AMRVK_CHECK(!o.samplers.empty(), "--samplers: empty list");
+        o.samplers = parseList("--samplers", samplers, scene::parseSampler);
+        AMRVK_CHECK(std::ranges::count(o.samplers, scene::SamplerKind::Dense) == 0,
+                    "--samplers: dense runs by itself (see --no-dense)");
     }
     if (app.count("--backends")) {
-        for (const auto& b : splitList(backends)) {
-            scene::Backend k = scene::parseBackend(b);
-            AMRVK_CHECK(k != scene::Backend::Auto, "--backends: name sw and/or rq");
-            o.backends.push_back(k);
-        }
-        AMRVK_CHECK(!o.backends.empty(), "--backends: empty list");
+        o.backends = parseList("--backends", backends, scene::parseBackend);
+        AMRVK_CHECK(std::ranges::count(o.backends, scene::Backend::Auto) == 0, "--backends: name sw and/or rq");
     }
     if (app.count("--size")) parseSize("--size", pic.size, o.width, o.height);
     o.frames = uint32_t(frames);

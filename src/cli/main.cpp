@@ -35,8 +35,7 @@ const char* kUsage =
 std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
     std::string m = e.what();
     std::smatch match;
-    if (const auto* extras = dynamic_cast<const CLI::ExtrasError*>(&e)) {
-        (void)extras;
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
         static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
         const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
         return arg.rfind("-", 0) == 0
@@ -65,21 +64,16 @@ int main(int argc, char** argv) {
     args.erase(args.begin());
     amrvk::removeTemporariesOnSignal();  // Ctrl-C leaves no *.tmp-PID files
     try {
-        if (command == "info") return amrvk::cli::runInfo(args);
-        if (command == "gen") return amrvk::cli::runGen(args);
-        if (command == "convert") return amrvk::cli::runConvert(args);
-        if (command == "render") return amrvk::cli::runRender(args);
-        if (command == "view") return amrvk::cli::runView(args);
-        if (command == "devices") return amrvk::cli::runDevices(args);
-        if (command == "bench") return amrvk::cli::runBench(args);
-        if (command == "shaders") return amrvk::cli::runShaders(args);
+        using namespace amrvk::cli;
+        const std::pair<const char*, int (*)(const std::vector<std::string>&)> commands[] = {
+            {"info", runInfo},       {"gen", runGen},     {"convert", runConvert}, {"render", runRender},
+            {"view", runView},       {"devices", runDevices}, {"bench", runBench}, {"shaders", runShaders}};
+        for (const auto& [name, run] : commands)
+            if (command == name) return run(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), parseErrorLine(e, command).c_str());
-        return 1;
-    } catch (const amrvk::Error& e) {
-        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());
         return 1;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "amrvk %s: error: out of memory\n", command.c_str());

@@ -32,9 +32,9 @@ CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
         text);
 }
 
-const CLI::Validator kFinite = interval(-INFINITY, INFINITY, true, true).description("FINITE");
-
 namespace {
+
+const CLI::Validator kFinite = interval(-INFINITY, INFINITY, true, true).description("FINITE");  // any finite number
 
 constexpr size_t kHelpWidth = 100;  // characters per help line
 
@@ -103,10 +103,10 @@ bool given(const CLI::App& app, const std::string& name) {
     return o && o->count() > 0;
 }
 
-std::vector<std::string> traversalChoices(bool withAuto) {
+std::vector<std::string> traversalChoices() {  // every traversal, then auto
     std::vector<std::string> out;
     for (scene::TraversalKind t : scene::allTraversals()) out.push_back(scene::traversalName(t));
-    if (withAuto) out.push_back("auto");
+    out.push_back("auto");
     return out;
 }
 
@@ -224,7 +224,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
                        "domains, the TF-specific kd-tree; auto = probe every combination briefly "
                        "and take the most "
                        "efficient (options given explicitly stay fixed)")
-            ->check(CLI::IsMember(traversalChoices(true)))
+            ->check(CLI::IsMember(traversalChoices()))
             ->capture_default_str()
             ->type_name("NAME");
         app.add_option("--sampler", a.sampler,
@@ -344,8 +344,7 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
     return s;
 }
 
-Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
-                           const PictureArgs& a) {
+Picture pictureFromOptions(const CLI::App& app, const std::string& input, const ReadArgs& read, const PictureArgs& a) {
     Picture p;
     const bool fromSession = given(app, "--session");
     if (fromSession) {
@@ -354,7 +353,7 @@ Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>
         p.cameraGiven = true;
     }
     session::Session& s = p.session;
-    if (input) s.input = *input;
+    if (!input.empty()) s.input = input;
     AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
     const bool all = !fromSession;
     auto use = [&](const char* name) { return all || given(app, name); };

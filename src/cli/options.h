@@ -5,7 +5,6 @@
 // where they are declared (ranges, finite numbers, names), so every command reports a bad value
 // in the same one line.
 #include <CLI/CLI.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,7 +18,6 @@ namespace amrvk::cli {
 // interval, e.g. "'0' is outside [1, 16777216]" or "'x' is not a number". CLI11 reads "nan" and
 // "inf" as numbers; these checks do not let them through.
 CLI::Validator interval(double lo, double hi, bool openLo = false, bool openHi = false);
-extern const CLI::Validator kFinite;  // any finite number
 
 struct ReadArgs {
     std::string format = "auto";
@@ -71,7 +69,8 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
 // "WxH" with 1 <= W, H <= 16384.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
-// The session a render or view starts from: --session FILE when given, then every option given
+// The session a render or view starts from (input: the data set argument, empty when none):
+// --session FILE when given, then every option given
 // explicitly on top of it; without a session the options' defaults. The TF (unless it comes from
 // the session) and the default camera need the data: see resolveAfterReading.
 struct Picture {
@@ -82,8 +81,7 @@ struct Picture {
     bool fitTraversal = false;   // no --traversal and no session: resolveAfterReading fits it to the data
     bool fitSampler = false;     // no --sampler either: sparse data gets the abr sampler too (no lookup)
 };
-Picture pictureFromOptions(const CLI::App& app, const std::optional<std::string>& input, const ReadArgs& read,
-                           const PictureArgs& a);
+Picture pictureFromOptions(const CLI::App& app, const std::string& input, const ReadArgs& read, const PictureArgs& a);
 // Loads the TF (a preset over the field's value range unless --tf-range) and, unless one was
 // given, frames the data with the default camera.
 void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,

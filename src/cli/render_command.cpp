@@ -45,8 +45,6 @@ void checkWritable(const std::string& file, const char* what) {
                 " is missing or not writable)");
 }
 
-Json vec3(glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); }
-
 }  // namespace
 
 int runDevices(const std::vector<std::string>& argv) {
@@ -111,10 +109,8 @@ int runRender(const std::vector<std::string>& argv) {
         checkWritable(output, "-o");
         checkWritable(jsonFile, "--json");
     }
-    Picture picture =
-        pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    Picture picture = pictureFromOptions(app, input, read, pic);
     session::Session& s = picture.session;
-    scene::StructureConfig config = s.structure;
 
     amr::ReadOptions ro = s.read;
     if (!s.field.empty()) ro.fields = {s.field};
@@ -127,8 +123,7 @@ int runRender(const std::vector<std::string>& argv) {
     const double readSeconds = readTimer.seconds();
     const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
     fitTraversal(picture, model);
-    config.traversal = s.structure.traversal;
-    config.sampler = s.structure.sampler;
+    scene::StructureConfig config = s.structure;
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
     gpu::ContextOptions co = contextOptions(dev);
     co.requireRayQuery = config.backend == scene::Backend::Rq;
@@ -241,7 +236,7 @@ int runRender(const std::vector<std::string>& argv) {
             device[name] = {{"current", usage.current}, {"peak", usage.peak}};
         j["deviceMemoryPerResource"] = device;
         if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
-        j["meanRGB"] = vec3(meanRgb);
+        j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
         writeFileAtomic(jsonFile, j.dump(2) + "\n");
     }
     return 0;

@@ -75,8 +75,7 @@ int runView(const std::vector<std::string>& argv) {
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
                     ": unknown image type (use .png, .exr or .pfm)");
     }
-    Picture picture =
-        pictureFromOptions(app, input.empty() ? std::nullopt : std::optional<std::string>(input), read, pic);
+    Picture picture = pictureFromOptions(app, input, read, pic);
     AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
     // The TF and the default camera need the field's range and the bounds.
@@ -99,9 +98,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.statsJson = stats;
     vo.saveSession = saveSession;
     vo.shaderDir = dev.shaderDir;
-    vo.device = dev.device;
-    vo.validation = dev.validation;
-    vo.samplesPerInvocation = dev.samplesPerInvocation;
+    vo.context = contextOptions(dev);
     vo.frameBudgetSeconds = budgetMs * 1e-3;
     if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
     return viewer::runViewer(vo, std::move(model));

@@ -11,15 +11,14 @@ namespace {
 
 constexpr double kMaxElevation = 89.0 * M_PI / 180.0;
 
+glm::dvec3 unitAxis(int k) { return glm::dvec3(k == 0, k == 1, k == 2); }
+
 // (right, forward, up) axes of the orbit frame for a world up axis: azimuth turns in the plane of
 // the first two.
 void frameAxes(int up, glm::dvec3& a, glm::dvec3& b, glm::dvec3& u) {
-    u = glm::dvec3(0.0);
-    u[up] = 1.0;
-    a = glm::dvec3(0.0);
-    b = glm::dvec3(0.0);
-    a[(up + 1) % 3] = 1.0;
-    b[(up + 2) % 3] = 1.0;
+    u = unitAxis(up);
+    a = unitAxis((up + 1) % 3);
+    b = unitAxis((up + 2) % 3);
 }
 
 }  // namespace
@@ -54,8 +53,7 @@ scene::Camera OrbitCamera::camera() const {
     scene::Camera c;
     c.target = mTarget;
     c.eye = mTarget + direction() * mDistance;
-    c.up = glm::dvec3(0.0);
-    c.up[mUp] = 1.0;
+    c.up = unitAxis(mUp);
     c.fovYDegrees = mFov;
     return c;
 }
@@ -106,8 +104,7 @@ void OrbitCamera::setFov(double fov) {
 void OrbitCamera::setUpAxis(int axis) {
     AMRVK_CHECK(axis >= 0 && axis <= 2, "up axis ", axis, " is not 0 (x), 1 (y) or 2 (z)");
     scene::Camera c = camera();
-    c.up = glm::dvec3(0.0);
-    c.up[axis] = 1.0;
+    c.up = unitAxis(axis);
     setCamera(c);
 }
 

@@ -25,8 +25,6 @@ public:
     // Whether the UI wants the mouse / keyboard this frame (then the camera does not get them).
     bool wantsMouse() const;
     bool wantsKeyboard() const;
-    // Wheel steps this frame (> 0 away from the user) and key presses (GLFW key codes, with
-    // repeat).
 
 private:
     gpu::Context& mCtx;

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.h"
 
@@ -14,12 +13,6 @@ namespace amrvk::viewer {
 namespace {
 
 const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
-
-std::string bytesText(uint64_t b) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / double(1 << 20));
-    return buf;
-}
 
 // Combo over a fixed list of names; true when the choice changed.
 bool namedCombo(const char* label, std::string& value, const std::vector<std::string>& names) {
@@ -34,6 +27,16 @@ bool namedCombo(const char* label, std::string& value, const std::vector<std::st
         ImGui::EndCombo();
     }
     return changed;
+}
+
+// namedCombo over an enum's names (parse and name convert); true when the choice changed.
+template <typename E>
+bool enumCombo(const char* label, E& value, const std::vector<std::string>& names, E (*parse)(const std::string&),
+               const char* (*name)(E)) {
+    std::string text = name(value);
+    if (!namedCombo(label, text, names)) return false;
+    value = parse(text);
+    return true;
 }
 
 bool vec3Edit(const char* label, glm::dvec3& v, float speed) {
@@ -82,7 +85,7 @@ void statisticsOverlay(const Statistics& s) {
             ImGui::TextColored(kRed, "%llu paths stopped at the tracking cap (biased)",
                                (unsigned long long)s.trackingCapHits);
         if (s.nanSamples > 0) ImGui::TextColored(kRed, "%llu NaN samples", (unsigned long long)s.nanSamples);
-        ImGui::Text("device memory %s", bytesText(s.deviceBytes).c_str());
+        ImGui::Text("device memory %.1f MiB", double(s.deviceBytes) / double(1 << 20));
         ImGui::Text("last TF edit %.1f ms, structure %.2f s", s.tfEditSeconds * 1e3, s.structureSeconds);
     }
     ImGui::End();
@@ -191,10 +194,8 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     ImGui::SameLine();
     if (ImGui::Button("data range")) r.resetRange = true;
     float density = float(p.state->settings.densityScale);
-    if (ImGui::SliderFloat("density scale", &density, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic)) {
+    if (ImGui::SliderFloat("density scale", &density, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic))
         p.state->settings.densityScale = std::max(0.0f, density);
-        r.settingsChanged = true;
-    }
     ImGui::BeginDisabled(!p.canUndo);
     if (ImGui::Button("undo")) r.undo = true;
     ImGui::EndDisabled();
@@ -208,73 +209,46 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     if (ImGui::Button("save as ParaView JSON")) r.saveTfFile = true;
 }
 
-void renderPanel(PanelState& p, PanelRequests& r) {
+// Edits the settings in place (the viewer compares them with the renderer's to see what changed).
+void renderPanel(PanelState& p) {
     scene::RenderSettings& s = p.state->settings;
-    std::string mode = scene::modeName(s.mode);
-    if (namedCombo("mode", mode, {"ae", "ss", "ms", "dvr"})) {
-        s.mode = scene::parseMode(mode);
-        r.settingsChanged = true;
-    }
+    enumCombo("mode", s.mode, {"ae", "ss", "ms", "dvr"}, scene::parseMode, scene::modeName);
     float g = float(s.g);
-    if (ImGui::SliderFloat("phase g", &g, -0.99f, 0.99f)) {
-        s.g = g;
-        r.settingsChanged = true;
-    }
+    if (ImGui::SliderFloat("phase g", &g, -0.99f, 0.99f)) s.g = g;
     if (s.mode == scene::Mode::Dvr) {
         float dt = float(s.dvrStep);
-        if (ImGui::SliderFloat("dvr step", &dt, 0.05f, 4.0f, "%.3g", ImGuiSliderFlags_Logarithmic)) {
-            s.dvrStep = dt;
-            r.settingsChanged = true;
-        }
-        r.settingsChanged |= ImGui::Checkbox("gradient shading", &s.dvrShading);
+        if (ImGui::SliderFloat("dvr step", &dt, 0.05f, 4.0f, "%.3g", ImGuiSliderFlags_Logarithmic)) s.dvrStep = dt;
+        ImGui::Checkbox("gradient shading", &s.dvrShading);
     }
     int spp = int(p.state->spp);
     if (ImGui::InputInt("stop at spp (0: never)", &spp)) p.state->spp = uint32_t(std::max(0, spp));
-    r.settingsChanged |= colorEdit("ambient", s.ambient);
+    colorEdit("ambient", s.ambient);
     glm::dvec3 bg = s.background.value_or(s.ambient);
-    if (colorEdit("background", bg)) {
-        s.background = bg;
-        r.settingsChanged = true;
-    }
+    if (colorEdit("background", bg)) s.background = bg;
     ImGui::TextUnformatted("lights");
     for (size_t i = 0; i < s.lights.size(); ++i) {
         ImGui::PushID(int(i));
         scene::Light& L = s.lights[i];
-        r.settingsChanged |= vec3Edit(L.point ? "position" : "direction", L.posOrDir, 0.01f);
-        r.settingsChanged |= colorEdit(L.point ? "intensity" : "radiance", L.radiance);
+        vec3Edit(L.point ? "position" : "direction", L.posOrDir, 0.01f);
+        colorEdit(L.point ? "intensity" : "radiance", L.radiance);
         if (ImGui::Button("remove light")) {
             s.lights.erase(s.lights.begin() + std::ptrdiff_t(i));
-            r.settingsChanged = true;
             ImGui::PopID();
             break;
         }
         ImGui::Separator();
         ImGui::PopID();
     }
-    if (s.lights.size() < 8 && ImGui::Button("add sun")) {
-        s.lights.push_back({false, {1.0, -1.0, 2.0}, glm::dvec3(3.0)});
-        r.settingsChanged = true;
-    }
+    if (s.lights.size() < 8 && ImGui::Button("add sun")) s.lights.push_back({false, {1.0, -1.0, 2.0}, glm::dvec3(3.0)});
 }
 
 void structurePanel(PanelState& p, PanelRequests& r) {
     scene::StructureConfig& c = p.state->structure;
     std::vector<std::string> traversals, samplers = {"ext-brick", "abr", "grid", "dense"};
     for (scene::TraversalKind t : scene::allTraversals()) traversals.push_back(scene::traversalName(t));
-    std::string t = scene::traversalName(c.traversal), sm = scene::samplerName(c.sampler),
-                b = scene::backendName(c.backend);
-    if (namedCombo("traversal", t, traversals)) {
-        c.traversal = scene::parseTraversal(t);
-        r.structureChanged = true;
-    }
-    if (namedCombo("sampler", sm, samplers)) {
-        c.sampler = scene::parseSampler(sm);
-        r.structureChanged = true;
-    }
-    if (namedCombo("back-end", b, {"sw", "rq", "auto"})) {
-        c.backend = scene::parseBackend(b);
-        r.structureChanged = true;
-    }
+    r.structureChanged |= enumCombo("traversal", c.traversal, traversals, scene::parseTraversal, scene::traversalName);
+    r.structureChanged |= enumCombo("sampler", c.sampler, samplers, scene::parseSampler, scene::samplerName);
+    r.structureChanged |= enumCombo("back-end", c.backend, {"sw", "rq", "auto"}, scene::parseBackend, scene::backendName);
     if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue))
         r.structureChanged = true;
     int leaves = int(c.kdLeaves);
@@ -294,7 +268,7 @@ void cameraPanel(PanelState& p, PanelRequests& r) {
         ImGui::SameLine();
         if (ImGui::RadioButton(a == 0 ? "x" : a == 1 ? "y" : "z", up == a)) cam.setUpAxis(a);
     }
-    if (ImGui::Button("reset view (R)")) r.resetView = true;
+    if (ImGui::Button("reset view (R)")) cam.reset();
     ImGui::SameLine();
     if (ImGui::Button("copy as command")) r.copyCommand = true;
     ImGui::TextDisabled("left drag orbits, right drag or wheel zooms, middle or shift drag pans");
@@ -320,7 +294,7 @@ void drawPanels(PanelState& p, PanelRequests& r) {
     ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("amrvk")) {
         if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
-        if (ImGui::CollapsingHeader("render")) renderPanel(p, r);
+        if (ImGui::CollapsingHeader("render")) renderPanel(p);
         if (ImGui::CollapsingHeader("structures")) structurePanel(p, r);
         if (ImGui::CollapsingHeader("camera")) cameraPanel(p, r);
         if (ImGui::CollapsingHeader("files")) filesPanel(p, r);

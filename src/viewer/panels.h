@@ -18,7 +18,7 @@ struct Statistics {
     std::string device, combination;
     double framesPerSecond = 0, frameMilliseconds = 0;
     double mPathsPerSecond = 0, lookupsPerPath = 0, nullPerReal = 0;
-    uint64_t violations = 0, trackingCapHits = 0, nanSamples = 0, bounceLimitHits = 0;
+    uint64_t violations = 0, trackingCapHits = 0, nanSamples = 0;
     uint32_t spp = 0, sppLimit = 0, rowsDone = 0, height = 0;
     int previewScale = 1;  // > 1: showing a preview rendered at 1/scale of the size
     uint64_t deviceBytes = 0;
@@ -29,9 +29,8 @@ struct PanelRequests {
     bool tfChanged = false;    // the editor state changed this frame (live)
     bool tfCommitted = false;  // an edit finished (push to the undo history)
     bool undo = false, redo = false;
-    bool settingsChanged = false;
     bool structureChanged = false;
-    bool resetView = false, resetRange = false;
+    bool resetRange = false;
     bool screenshot = false, saveSession = false, loadSession = false, copyCommand = false;
     bool loadTfFile = false, saveTfFile = false, applyColorMap = false;
 };

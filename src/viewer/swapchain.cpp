@@ -86,10 +86,7 @@ void Swapchain::create(int width, int height) {
     VkDevice dev = mCtx.device();
     VkSurfaceCapabilitiesKHR caps{};
     AMRVK_VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, surface, &caps));
-    uint32_t n = 0;
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, nullptr);
-    std::vector<VkSurfaceFormatKHR> formats(n);
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, formats.data());
+    const auto formats = gpu::vkList<VkSurfaceFormatKHR>(vkGetPhysicalDeviceSurfaceFormatsKHR, pd, surface);
     const bool unorm = std::any_of(formats.begin(), formats.end(), [](const VkSurfaceFormatKHR& f) {
         return f.format == VK_FORMAT_B8G8R8A8_UNORM && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
     });
@@ -123,9 +120,7 @@ void Swapchain::create(int width, int height) {
     if (mSwapchain) vkDestroySwapchainKHR(dev, mSwapchain, nullptr);
     mSwapchain = next;
 
-    vkGetSwapchainImagesKHR(dev, mSwapchain, &n, nullptr);
-    mImages.resize(n);
-    vkGetSwapchainImagesKHR(dev, mSwapchain, &n, mImages.data());
+    mImages = gpu::vkList<VkImage>(vkGetSwapchainImagesKHR, dev, mSwapchain);
     for (VkImage image : mImages) {
         VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         vci.image = image;

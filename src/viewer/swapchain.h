@@ -23,7 +23,6 @@ public:
     // For a new framebuffer size (waits for the device first).
     void recreate(int width, int height);
     VkExtent2D extent() const { return mExtent; }
-    VkFormat format() const { return mFormat; }
     VkRenderPass renderPass() const { return mRenderPass; }
     uint32_t imageCount() const { return uint32_t(mImages.size()); }
     uint32_t minImageCount() const { return mMinImageCount; }

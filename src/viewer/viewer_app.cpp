@@ -9,6 +9,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <numeric>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -27,7 +28,6 @@
 #include "render/renderer.h"
 #include "session/file_watcher.h"
 #include "session/frame_budget.h"
-#include "session/render_command.h"
 #include "session/script.h"
 #include "viewer/imgui_layer.h"
 #include "viewer/panels.h"
@@ -53,9 +53,7 @@ struct Timings {
         return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
     }
     static double mean(const std::vector<double>& v) {
-        double s = 0;
-        for (double x : v) s += x;
-        return v.empty() ? 0.0 : s / double(v.size());
+        return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
     }
 };
 
@@ -73,8 +71,7 @@ private:
     void reloadShaders();
     void handleInput();
     void applyEdits();
-    void trace();
-    void traceWithinBudget();
+    void trace();  // within the frame budget
     void present();
     void recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D extent);
     void saveCapture(VkExtent2D extent);
@@ -133,7 +130,6 @@ private:
     int mPreviewScale = 1;                        // the renderer's current size is full / scale
     bool mDisplayFresh = false;                   // the display buffer holds an image worth showing
     std::optional<Clock::time_point> mChangedAt;  // since the last change, until the first full sample
-    double mGpuSecondsEma = 0;
     double mTraceSeconds = 0;  // wall seconds spent in trace() in all
     uint64_t mValidationBefore = 0;
     scene::RenderSettings mApplied;  // what the renderer was last given
@@ -159,7 +155,6 @@ ViewerApp::ViewerApp(const ViewerOptions& o, amr::Model model)
       mTfHistory(mTf),
       mBudget(o.frameBudgetSeconds) {
     AMRVK_CHECK(o.frameBudgetSeconds > 0, "internal: the frame budget must be positive");
-    mPanel.gridText = mState.structure.grid;
 }
 
 scene::RenderSettings ViewerApp::fullSettings() const {
@@ -204,6 +199,8 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
     });
     mStats.structureSeconds = t.seconds();
     mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
+    mState.structure = requested;
+    mPanel.gridText = requested.grid;
     noteReset("structure");
 }
 
@@ -239,15 +236,13 @@ void ViewerApp::setTransferFunction() {
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
     mState.tf = mTf.channels();
+    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
     noteReset("transfer function");
 }
 
 int ViewerApp::run() {
     load();
-    gpu::ContextOptions co;
-    co.device = mOpt.device;
-    co.validation = mOpt.validation;
-    co.samplesPerInvocation = mOpt.samplesPerInvocation;
+    gpu::ContextOptions co = mOpt.context;
     co.requireRayQuery = mState.structure.backend == scene::Backend::Rq;
     if (!mOpt.headless) {
         const int w = mOpt.windowWidth > 0 ? mOpt.windowWidth : mState.settings.width;
@@ -265,7 +260,6 @@ int ViewerApp::run() {
     }
     setStructure(mState.structure);
     setTransferFunction();
-    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
     mColorMaps.push_back(mState.tf);  // the starting colour map first
     for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
     if (!mOpt.script.empty()) mScript = session::loadScript(mOpt.script);
@@ -291,7 +285,7 @@ int ViewerApp::run() {
     mImGui.reset();
     mSwapchain.reset();
     const uint64_t errors = mCtx->validationErrors() - mValidationBefore;
-    if (mOpt.validation && errors > 0) {
+    if (mOpt.context.validation && errors > 0) {
         std::fprintf(stderr, "amrvk view: error: Vulkan validation reported %llu error(s); last: %s\n",
                      (unsigned long long)errors, mCtx->lastValidationMessage().c_str());
         return 1;
@@ -360,17 +354,14 @@ bool ViewerApp::frame() {
             if (req.tfCommitted) mTfHistory.push(mTf);
             if (req.undo || req.redo || req.tfChanged) {
                 setTransferFunction();
-                mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
                 mInteracting = true;
             }
             if (req.structureChanged) {
                 scene::StructureConfig next = mState.structure;
                 next.grid = mPanel.gridText;
                 setStructure(next);
-                mState.structure = next;
                 mInteracting = true;
             }
-            if (req.resetView) mCamera.reset();
             if (req.screenshot) screenshot(mPanel.screenshotPath);
             if (req.saveSession) saveSessionFile(mPanel.sessionPath);
             if (req.loadSession) loadSessionFile(mPanel.sessionPath);
@@ -381,7 +372,9 @@ bool ViewerApp::frame() {
         handleInput();
     }
     applyEdits();
+    const Clock::time_point traceStart = Clock::now();
     trace();
+    mTraceSeconds += secondsSince(traceStart);
     if (mWindow) present();
     return !mQuit;
 }
@@ -424,16 +417,12 @@ void ViewerApp::handleInput() {
                 if (uiKeys || e.action == GLFW_RELEASE) break;
                 switch (e.code) {
                     case GLFW_KEY_LEFT:
-                        mCamera.orbit(-step, 0, h);
-                        break;
                     case GLFW_KEY_RIGHT:
-                        mCamera.orbit(step, 0, h);
+                        mCamera.orbit(e.code == GLFW_KEY_LEFT ? -step : step, 0, h);
                         break;
                     case GLFW_KEY_UP:
-                        mCamera.orbit(0, step, h);
-                        break;
                     case GLFW_KEY_DOWN:
-                        mCamera.orbit(0, -step, h);
+                        mCamera.orbit(0, e.code == GLFW_KEY_UP ? step : -step, h);
                         break;
                     case GLFW_KEY_EQUAL:
                     case GLFW_KEY_KP_ADD:
@@ -510,13 +499,10 @@ void ViewerApp::runScript() {
         if (n == "tf-preset" || n == "tf-range") {
             mTfHistory.push(mTf);
             setTransferFunction();
-            mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
         }
         if (structure.traversal != mState.structure.traversal || structure.sampler != mState.structure.sampler ||
             structure.backend != mState.structure.backend || structure.grid != mState.structure.grid) {
             setStructure(structure);
-            mState.structure = structure;
-            mPanel.gridText = structure.grid;
         }
         std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame, a.name.c_str());
     }
@@ -559,12 +545,6 @@ void ViewerApp::applyEdits() {
 }
 
 void ViewerApp::trace() {
-    const Clock::time_point start = Clock::now();
-    traceWithinBudget();
-    mTraceSeconds += secondsSince(start);
-}
-
-void ViewerApp::traceWithinBudget() {
     const scene::RenderSettings& s = mRenderer->settings();
     const uint32_t limit = mState.spp;
     const bool done = mPreviewScale == 1 && limit > 0 && mRenderer->accumulatedSpp() >= limit;
@@ -573,12 +553,10 @@ void ViewerApp::traceWithinBudget() {
         return;
     }
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
-    double gpu = 0;
+    const double gpuBefore = mRenderer->stats().gpuSeconds;
     if (mPreviewScale > 1) {
-        const double before = mRenderer->stats().gpuSeconds;
         mRenderer->accumulate(1);
-        gpu = mRenderer->stats().gpuSeconds - before;
-        mBudget.record(gpu, pixels);
+        mBudget.record(mRenderer->stats().gpuSeconds - gpuBefore, pixels);
         mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
     } else {
         const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mRenderer->rowsDone());
@@ -587,13 +565,11 @@ void ViewerApp::traceWithinBudget() {
             const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
             uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
             if (limit > 0) n = std::min(n, limit - mRenderer->accumulatedSpp());
-            const double before = mRenderer->stats().gpuSeconds;
             mRenderer->accumulate(n);
-            gpu = mRenderer->stats().gpuSeconds - before;
-            mBudget.record(gpu, pixels * n);
+            mBudget.record(mRenderer->stats().gpuSeconds - gpuBefore, pixels * n);
         } else {
             const uint32_t before = mRenderer->rowsDone();
-            gpu = mRenderer->accumulateRows(rows);
+            const double gpu = mRenderer->accumulateRows(rows);
             mBudget.recordRows(gpu, before, std::min(rows, uint32_t(s.height) - before), s.width, s.height);
         }
         if (mChangedAt && mRenderer->accumulatedSpp() >= 1) {
@@ -601,7 +577,6 @@ void ViewerApp::traceWithinBudget() {
             mChangedAt.reset();
         }
     }
-    mGpuSecondsEma = gpu;
     mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
 }
 
@@ -698,7 +673,6 @@ void ViewerApp::updateStatistics(double frameSeconds) {
     st.violations = c[shared::kCounterMajorantViolations];
     st.trackingCapHits = c[shared::kCounterTrackingCapHits];
     st.nanSamples = c[shared::kCounterNanSamples];
-    st.bounceLimitHits = c[shared::kCounterBounceLimitHits];
     st.spp = mRenderer->accumulatedSpp();
     st.sppLimit = mState.spp;
     st.rowsDone = mRenderer->rowsDone();
@@ -748,11 +722,8 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
     mTf = session::TfEditor(s.tf.merged());
     mTfHistory.push(mTf);
     setTransferFunction();
-    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
     if (s.structure.label() != mState.structure.label() || s.structure.grid != mState.structure.grid) {
         setStructure(s.structure);
-        mState.structure = s.structure;
-        mPanel.gridText = s.structure.grid;
     }
     mPanel.message = "loaded " + file.string();
 }
@@ -793,9 +764,6 @@ void ViewerApp::writeStats() const {
 
 }  // namespace
 
-int runViewer(const ViewerOptions& options, amr::Model model) {
-    ViewerApp app(options, std::move(model));
-    return app.run();
-}
+int runViewer(const ViewerOptions& options, amr::Model model) { return ViewerApp(options, std::move(model)).run(); }
 
 }  // namespace amrvk::viewer

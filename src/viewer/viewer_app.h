@@ -11,6 +11,7 @@
 #include <string>
 
 #include "amr/model.h"
+#include "gpu/context.h"
 #include "session/session.h"
 
 namespace amrvk::viewer {
@@ -24,9 +25,7 @@ struct ViewerOptions {
     std::filesystem::path shaderDir;        // watched: a saved edit recompiles and swaps the pipeline
     std::filesystem::path statsJson;        // at exit: frame times, times to the first full sample, resets
     std::filesystem::path saveSession;      // at exit: the state as a session file
-    std::string device;                     // --device
-    uint32_t samplesPerInvocation = 0;      // --samples-per-invocation (0 = auto)
-    bool validation = false;                // any Vulkan validation error makes the exit status non-zero
+    gpu::ContextOptions context;            // with validation, any validation error makes the exit status 1
     double frameBudgetSeconds = 0.05;       // target frame time; path tracing gets what the UI leaves of it
     int windowWidth = 0, windowHeight = 0;  // 0: the session's image size
 };

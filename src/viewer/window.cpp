@@ -77,7 +77,6 @@ void Window::hide() const { glfwHideWindow(mWindow); }
 void Window::pollEvents() const { glfwPollEvents(); }
 void Window::waitEvents(double seconds) const { glfwWaitEventsTimeout(seconds); }
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }
-void Window::setTitle(const std::string& title) const { glfwSetWindowTitle(mWindow, title.c_str()); }
 void Window::setClipboard(const std::string& text) const { glfwSetClipboardString(mWindow, text.c_str()); }
 std::vector<InputEvent> Window::takeEvents() { return std::exchange(mEvents, {}); }
 

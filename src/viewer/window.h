@@ -41,7 +41,6 @@ public:
     void waitEvents(double seconds) const;  // sleeps until an event or the timeout (minimised window)
     // Framebuffer size in pixels; (0, 0) while minimised.
     void framebufferSize(int& width, int& height) const;
-    void setTitle(const std::string& title) const;
     void setClipboard(const std::string& text) const;
     // The events since the last call, oldest first. Installed before ImGui's back-end, which chains
     // to these callbacks, so both see every event.
