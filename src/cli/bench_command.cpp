@@ -205,7 +205,7 @@ int runBench(const std::vector<std::string>& argv) {
     std::filesystem::create_directories(o.outDir);
     AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
-    gpu::Context ctx(contextOptions(dev));
+    gpu::Context ctx(dev.context);
 
     ProgressBar bar("bench", "runs");
     bench::BenchResults results =

@@ -8,6 +8,7 @@
 
 #include "core/checked_size.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "scene/camera.h"
 
 namespace amrvk::cli {
@@ -166,28 +167,20 @@ amr::ReadOptions readOptions(const ReadArgs& a) {
 }
 
 void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
-    app.add_option("--device", a.device, "Vulkan device by index or name part (default: a discrete GPU, else any)")
+    app.add_option("--device", a.context.device, "Vulkan device by index or name part (default: a discrete GPU, else any)")
         ->type_name("INDEX|NAME");
     app.add_option("--shader-dir", a.shaderDir,
                    "load shaders from DIR (.spv, or .comp compiled in process) instead of the "
                    "embedded ones")
         ->check(CLI::ExistingDirectory)
         ->type_name("DIR");
-    app.add_flag("--validation", a.validation, "enable the Vulkan validation layer");
-    app.add_option("--samples-per-invocation", a.samplesPerInvocation,
+    app.add_flag("--validation", a.context.validation, "enable the Vulkan validation layer");
+    app.add_option("--samples-per-invocation", a.context.samplesPerInvocation,
                    "samples per pixel one GPU thread takes per dispatch of whole samples (the same "
                    "image; fewer dispatches and accumulation writes); 0 = auto: 8 on CPU devices, 1 on GPUs")
         ->check(interval(0, 64))
         ->capture_default_str()
         ->type_name("N");
-}
-
-gpu::ContextOptions contextOptions(const DeviceArgs& a) {
-    gpu::ContextOptions co;
-    co.device = a.device;
-    co.validation = a.validation;
-    co.samplesPerInvocation = a.samplesPerInvocation;
-    return co;
 }
 
 void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
@@ -377,6 +370,13 @@ Picture pictureFromOptions(const CLI::App& app, const std::string& input, const 
     if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
     if (!p.autoTraversal) s.structure.validate();
     return p;
+}
+
+amr::Model readSessionData(const session::Session& s) {
+    amr::ReadOptions ro = s.read;
+    if (!s.field.empty()) ro.fields = {s.field};
+    ProgressStage stage("reading " + s.input);
+    return amr::readModel(s.input, ro);
 }
 
 void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,

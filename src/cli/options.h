@@ -32,13 +32,11 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField);
 amr::ReadOptions readOptions(const ReadArgs& a);
 
 struct DeviceArgs {
-    std::string device, shaderDir;
-    bool validation = false;
-    uint32_t samplesPerInvocation = 0;  // 0 = auto
+    gpu::ContextOptions context;  // --device, --validation, --samples-per-invocation
+    std::string shaderDir;
 };
 // --device, --shader-dir, --validation, --samples-per-invocation.
 void addDeviceOptions(CLI::App& app, DeviceArgs& a);
-gpu::ContextOptions contextOptions(const DeviceArgs& a);
 
 // The options that make a picture (render, view; bench takes a subset).
 struct PictureArgs {
@@ -82,6 +80,9 @@ struct Picture {
     bool fitSampler = false;     // no --sampler either: sparse data gets the abr sampler too (no lookup)
 };
 Picture pictureFromOptions(const CLI::App& app, const std::string& input, const ReadArgs& read, const PictureArgs& a);
+// Reads the data set a session names (its read options; only its field when it names one), with
+// a progress line.
+amr::Model readSessionData(const session::Session& s);
 // Loads the TF (a preset over the field's value range unless --tf-range) and, unless one was
 // given, frames the data with the default camera.
 void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,

@@ -112,20 +112,14 @@ int runRender(const std::vector<std::string>& argv) {
     Picture picture = pictureFromOptions(app, input, read, pic);
     session::Session& s = picture.session;
 
-    amr::ReadOptions ro = s.read;
-    if (!s.field.empty()) ro.fields = {s.field};
-    amr::Model model;
     Timer readTimer;
-    {
-        ProgressStage stage("reading " + s.input);
-        model = amr::readModel(s.input, ro);
-    }
+    amr::Model model = readSessionData(s);
     const double readSeconds = readTimer.seconds();
     const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
     fitTraversal(picture, model);
     scene::StructureConfig config = s.structure;
     if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
-    gpu::ContextOptions co = contextOptions(dev);
+    gpu::ContextOptions co = dev.context;
     co.requireRayQuery = config.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
     config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);

@@ -6,7 +6,6 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
-#include "core/progress.h"
 #include "scene/volume_scene.h"
 #include "viewer/viewer_app.h"
 
@@ -79,13 +78,7 @@ int runView(const std::vector<std::string>& argv) {
     AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
     // The TF and the default camera need the field's range and the bounds.
-    amr::ReadOptions ro = picture.session.read;
-    if (!picture.session.field.empty()) ro.fields = {picture.session.field};
-    amr::Model model;
-    {
-        ProgressStage stage("reading " + picture.session.input);
-        model = amr::readModel(picture.session.input, ro);
-    }
+    amr::Model model = readSessionData(picture.session);
     const amr::Field& field = picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
     picture.session.field = field.name;
     const amr::FieldStats st = amr::computeFieldStats(model, field);
@@ -98,7 +91,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.statsJson = stats;
     vo.saveSession = saveSession;
     vo.shaderDir = dev.shaderDir;
-    vo.context = contextOptions(dev);
+    vo.context = dev.context;
     vo.frameBudgetSeconds = budgetMs * 1e-3;
     if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
     return viewer::runViewer(vo, std::move(model));
