@@ -307,12 +307,10 @@ CellHeader readCellHeader(const fs::path& path, int dim) {
     for (int b = 0; b < nfabs; ++b) {
         const std::string tag = in.readWord("FabOnDisk:");
         AMRVK_CHECK(tag == "FabOnDisk:", in.where(), ": expected 'FabOnDisk:', found '", tag, "'");
-        FabOnDisk fod;
-        fod.file = in.readWord("FAB data file name");
+        std::string file = in.readWord("FAB data file name");
         const int64_t offset = in.readInt64("FAB byte offset");
         AMRVK_CHECK(offset >= 0, in.where(), ": negative FAB offset");
-        fod.offset = static_cast<uint64_t>(offset);
-        h.fabs.push_back(std::move(fod));
+        h.fabs.push_back({std::move(file), static_cast<uint64_t>(offset)});
     }
     if (h.version >= 2) {
         // Min/max lines (numbers and commas only) come first; the descriptor is the first "((".
@@ -377,9 +375,7 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
                 " bytes of data from byte ", dataStart, ", file has ", reader.size(), ")");
 
     // Each component is the whole FAB box, x fastest; keep the valid part.
-    Block block;
-    block.lo = valid.lo;
-    block.hi = valid.hi;
+    Block block{.lo = valid.lo, .hi = valid.hi};
     std::vector<unsigned char> raw(compBytes);
     for (size_t comp : components) {
         reader.seek(dataStart + comp * compBytes);
@@ -394,9 +390,7 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
 }  // namespace
 
 Model readAmrex(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "amrex";
-    model.source = path.string();
+    Model model{.format = "amrex", .source = path.string()};
     std::error_code ec;
     const bool isDir = fs::is_directory(path, ec);
     const fs::path dir = isDir ? path : path.parent_path();
