@@ -58,15 +58,6 @@ std::vector<BoxD> abrBoxes(const AbrSet& abrs) {
     return boxes;
 }
 
-namespace {
-amr::Sample finish(double sumW, double sumWV) {
-    amr::Sample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0 ? sumWV / sumW : 0.0;
-    return s;
-}
-}  // namespace
-
 amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> brickValues,
                          glm::dvec3 p) {
     double sumW = 0, sumWV = 0;
@@ -74,15 +65,14 @@ amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, 
         const Brick& b = bricks.bricks[id];
         if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, brickValues, p, sumW, sumWV);
     }
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 ExtBrickSampler::ExtBrickSampler(const BrickSet& bricks, std::span<const float> brickValues)
     : mBricks(bricks), mValues(brickValues) {
     mDomains.reserve(bricks.bricks.size());
     for (const Brick& b : bricks.bricks) mDomains.push_back(brickDomain(b));
-    auto boxes = brickDomainBoxes(bricks);
-    mBvh = buildBvh(boxes);
+    mBvh = buildBvh(brickDomainBoxes(bricks));
 }
 
 amr::Sample ExtBrickSampler::sample(glm::dvec3 p) const {
@@ -91,14 +81,13 @@ amr::Sample ExtBrickSampler::sample(glm::dvec3 p) const {
         if (halfBoxContains(mDomains[bi], p))
             addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
     });
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 AbrSampler::AbrSampler(const AbrSet& abrs, const BrickSet& bricks,
                        std::span<const float> brickValues)
     : mAbrs(abrs), mBricks(bricks), mValues(brickValues) {
-    auto boxes = abrBoxes(abrs);
-    mBvh = buildBvh(boxes);
+    mBvh = buildBvh(abrBoxes(abrs));
 }
 
 int64_t AbrSampler::findAbr(glm::dvec3 p) const {
@@ -113,7 +102,7 @@ amr::Sample AbrSampler::sampleInAbr(const Abr& abr, glm::dvec3 p) const {
     double sumW = 0, sumWV = 0;
     for (uint32_t bi : mAbrs.bricksOf(abr))
         addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 amr::Sample AbrSampler::sample(glm::dvec3 p) const {

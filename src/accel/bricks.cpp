@@ -232,12 +232,7 @@ private:
         const size_t n = e - b;
         Slabs s = n >= kParallelSlabCells && count * 256 <= n ? parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs)
                                                               : gather(b, e);
-        auto grid = std::make_shared<CubeGrid>();
-        grid->lo = lo;
-        grid->dims = dims;
-        grid->cw = cw;
-        grid->cubes = std::move(s[0]);
-        return grid;
+        return std::make_shared<const CubeGrid>(CubeGrid{lo, dims, cw, std::move(s[0])});
     }
 
     // Slabs of the box [lo, lo + slabs cw) from the cubes that lie in it.

@@ -87,10 +87,7 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
                 maxDim > int64_t(INT32_MAX) ? " (over 2^31-1 per axis)" : "", ", more than the limit ",
                 formatBytes(maxBytes), " (--dense-max-mib)");
 
-    DenseGrid g;
-    g.origin = bounds.lower;
-    g.level = level;
-    g.dims = glm::ivec3(d64);
+    DenseGrid g{.origin = bounds.lower, .level = level, .dims = glm::ivec3(d64)};
     const size_t total = size_t(bytes / sizeof(float));
     std::optional<ProgressStage> progress;
     if (total > (size_t(1) << 22)) progress.emplace("dense grid");

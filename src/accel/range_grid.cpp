@@ -54,11 +54,7 @@ glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
 
 MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
     AMRVK_CHECK(dims.x >= 1 && dims.y >= 1 && dims.z >= 1, "range grid needs at least one macrocell");
-    MacrocellLayout g;
-    g.dims = dims;
-    g.origin = glm::dvec3(bounds.lower);
-    g.cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims);
-    return g;
+    return {.dims = dims, .origin = glm::dvec3(bounds.lower), .cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims)};
 }
 
 namespace {
