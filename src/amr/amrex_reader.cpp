@@ -401,9 +401,7 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     const int levelCount = header.finestLevel + 1;
-    const std::vector<int64_t> widths = levelCellWidths(header.refRatio, headerPath.string());
-
-    std::vector<BlockLevel> levels;
+    std::vector<BlockLevel> levels = levelsWithCellWidths(header.refRatio, headerPath.string());
     std::vector<std::string> vismfVersions;
     for (int l = 0; l < levelCount; ++l) {
         const size_t li = static_cast<size_t>(l);
@@ -415,8 +413,7 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
         AMRVK_CHECK(static_cast<int>(cells.boxes.size()) == header.boxCounts[li],
                     cellHeaderPath.string(), ": ", cells.boxes.size(),
                     " boxes but the Header lists ", header.boxCounts[li], " on level ", l);
-        BlockLevel level;
-        level.cellWidth = widths[li];
+        BlockLevel& level = levels[li];
         level.indexOrigin = header.domains[li].lo;
         const fs::path dataDir = (dir / header.prefixes[li]).parent_path();
         std::unique_ptr<BinaryReader> reader;
@@ -427,7 +424,6 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
             level.blocks.push_back(readFab(*reader, cells, b, header.dim, components,
                                            cellHeaderPath.filename().string()));
         }
-        levels.push_back(std::move(level));
     }
     appendLeafCells(model, levels, header.dim == 2);
 

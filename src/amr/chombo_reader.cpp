@@ -284,15 +284,12 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
             ratios.push_back(r);
         }
     }
-    const std::vector<int64_t> widths = levelCellWidths(ratios, file.name());
-
-    std::vector<BlockLevel> levels;
+    std::vector<BlockLevel> levels = levelsWithCellWidths(ratios, file.name());
     glm::ivec3 domainLo0{0};
     for (int l = 0; l < levelCount; ++l) {
         const hid_t group = groups[static_cast<size_t>(l)].get();
         const std::string levelName = strCat("level_", l);
-        BlockLevel level;
-        level.cellWidth = widths[static_cast<size_t>(l)];
+        BlockLevel& level = levels[static_cast<size_t>(l)];
         if (file.hasAttribute(group, "prob_domain")) {
             H5Id a = file.openAttribute(group, "prob_domain");
             level.indexOrigin =
@@ -301,7 +298,6 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
         if (l == 0) domainLo0 = level.indexOrigin;
 
         level.blocks = readLevelBlocks(file, group, levelName, dim, ncomp, components);
-        levels.push_back(std::move(level));
     }
     appendLeafCells(model, levels, dim == 2);
 

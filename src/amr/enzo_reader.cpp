@@ -313,10 +313,8 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
     AMRVK_CHECK(double(finest) * std::log2(double(params.refineBy)) <= kMaxLevel,
                 hierarchyPath.string(), ": ", finest, " levels of RefineBy ", params.refineBy,
                 " exceed 2^", kMaxLevel, " finest cells per root cell");
-    const std::vector<int64_t> widths =
-        levelCellWidths(std::vector<int>(static_cast<size_t>(finest), params.refineBy), hierarchyPath.string());
-    std::vector<BlockLevel> levels(widths.size());
-    for (size_t l = 0; l < levels.size(); ++l) levels[l].cellWidth = widths[l];
+    std::vector<BlockLevel> levels =
+        levelsWithCellWidths(std::vector<int>(static_cast<size_t>(finest), params.refineBy), hierarchyPath.string());
     for (const GridInfo& g : grids) {
         const fs::path file = dataPath(g);
         const hid_t h = files.open(file);
