@@ -23,9 +23,6 @@ amr::Box3l Brick::bounds() const {
 
 namespace {
 
-int64_t floorTo(int64_t v, int64_t w) { return v >= 0 ? v / w * w : -((-v + w - 1) / w) * w; }
-int64_t ceilTo(int64_t v, int64_t w) { return -floorTo(-v, w); }
-
 double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 
 // Level set, used volume and bounds of a set of cells (voxel space): a node of the kd build, or one
@@ -264,8 +261,8 @@ private:
         glm::i64vec3 lo, hi, slabs, used;
         const uint64_t slabLimit = 4 * (e - b) + 1024;
         for (int a = 0; a < 3; ++a) {
-            lo[a] = floorTo(in.lo[a], cw);
-            hi[a] = ceilTo(in.hi[a], cw);
+            lo[a] = floorDiv(in.lo[a], cw) * cw;
+            hi[a] = ceilDiv(in.hi[a], cw) * cw;
             slabs[a] = (hi[a] - lo[a]) / cw;
             used[a] = slabs[a] < 2 || uint64_t(slabs[a]) > slabLimit ? 0 : slabs[a];
         }
