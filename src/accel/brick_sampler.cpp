@@ -16,30 +16,25 @@ TentAxis tentAxis(double local, int32_t size) {
     return t;
 }
 
-void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
-                          double& sumW, double& sumWV) {
+namespace {
+
+// Adds brick b's tent weights at voxel-space p to (sumW, sumWV); p must lie in the brick domain.
+// NaN (empty) slots are skipped.
+void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p, double& sumW,
+                          double& sumWV) {
     const double w = double(b.cellWidth());
     // Cell-centre-aligned coordinates: cell k's centre sits at local = k.
     const glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
-    const TentAxis ax[3] = {tentAxis(local.x, b.size.x), tentAxis(local.y, b.size.y), tentAxis(local.z, b.size.z)};
-    for (int z = 0; z < ax[2].count; ++z)
-        for (int y = 0; y < ax[1].count; ++y)
-            for (int x = 0; x < ax[0].count; ++x) {
-                const double phi = ax[0].weight[x] * ax[1].weight[y] * ax[2].weight[z];
-                if (phi <= 0) continue;
-                const size_t slot =
-                    b.begin + size_t((int64_t(ax[2].cell[z]) * b.size.y + ax[1].cell[y]) * b.size.x + ax[0].cell[x]);
-                const float v = brickValues[slot];
-                if (std::isnan(v)) continue;
-                sumW += phi;
-                sumWV += phi * double(v);
-            }
+    addTentCells(b, brickValues, tentAxis(local.x, b.size.x), tentAxis(local.y, b.size.y), tentAxis(local.z, b.size.z),
+                 sumW, sumWV);
 }
 
 bool halfBoxContains(const HalfBox& box, glm::dvec3 p) {
     glm::dvec3 lo = box.lower(), hi = box.upper();
     return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
 }
+
+}  // namespace
 
 std::vector<BoxD> brickDomainBoxes(const BrickSet& bricks) {
     std::vector<BoxD> boxes;

@@ -212,19 +212,8 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
                 const TentAxis& fy = factor[1][j];
                 for (size_t i = first[0]; i < end[0]; ++i) {
                     const TentAxis& fx = factor[0][i];
-                    double sw = 0, swv = 0;
-                    for (int cz = 0; cz < fz.count; ++cz)
-                        for (int cy = 0; cy < fy.count; ++cy) {
-                            const size_t row =
-                                b.begin + size_t((int64_t(fz.cell[cz]) * b.size.y + fy.cell[cy]) * b.size.x);
-                            for (int cx = 0; cx < fx.count; ++cx) {
-                                const float value = values[row + size_t(fx.cell[cx])];
-                                if (std::isnan(value)) continue;  // an empty slot (.bricks files)
-                                const double phi = fx.weight[cx] * fy.weight[cy] * fz.weight[cz];
-                                sw += phi;
-                                swv += phi * double(value);
-                            }
-                        }
+                    double sw = 0, swv = 0;  // this brick's sums, added to the vertex's as one term
+                    addTentCells(b, values, fx, fy, fz, sw, swv);
                     const size_t v = (k * ny + j) * nx + i;
                     num[v] += swv;
                     den[v] += sw;
