@@ -274,10 +274,7 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                 latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
             // Outward to float, then 8 ulps of the largest magnitude read (GPU float sums).
             const double pad = 8.0 * double(std::numeric_limits<float>::epsilon()) * maxAbs;
-            float flo = float(rlo - pad), fhi = float(rhi + pad);
-            if (double(flo) > rlo - pad) flo = std::nextafter(flo, -INFINITY);
-            if (double(fhi) < rhi + pad) fhi = std::nextafter(fhi, INFINITY);
-            g.ranges[cell] = ValueRange(flo, fhi);
+            g.ranges[cell] = ValueRange(roundDown(rlo - pad), roundUp(rhi + pad));
         }
     });
     g.buildSeconds = timer.seconds();
