@@ -59,10 +59,6 @@ struct CubeGrid {
     std::vector<CellStats> cubes;
 };
 
-std::string describe(const amr::Cell& c) {
-    return strCat("(lower ", c.lower.x, ",", c.lower.y, ",", c.lower.z, " level ", c.level, ")");
-}
-
 // The kd build over the model's own arrays: cells and every field are partitioned together, in
 // place, so no per-cell copy exists; leaves are then put in x-fastest order inside their brick.
 class BrickBuilder {
@@ -159,8 +155,8 @@ private:
         for (size_t i = b; i < e; ++i) {
             uint32_t& slot = from[slotOf(br, mCells[i])];
             if (slot != UINT32_MAX)
-                AMRVK_CHECK(false, mModel.source, ": overlapping cells: ", describe(mCells[i]), " duplicates ",
-                            describe(mCells[b + slot]));
+                AMRVK_CHECK(false, mModel.source, ": overlapping cells: ", amr::describeCell(mCells[i]), " duplicates ",
+                            amr::describeCell(mCells[b + slot]));
             slot = static_cast<uint32_t>(i - b);
         }
         std::vector<amr::Cell> cells(n);
@@ -336,8 +332,8 @@ private:
         while (mCells[big].level != in.maxLevel()) ++big;
         const size_t other = big == b ? b + 1 : b;
         const bool same = mCells[other].level == mCells[big].level;
-        throw Error(strCat(mModel.source, ": overlapping cells: ", describe(mCells[other]),
-                           same ? " duplicates " : " lies inside ", describe(mCells[big]), " (", e - b,
+        throw Error(strCat(mModel.source, ": overlapping cells: ", amr::describeCell(mCells[other]),
+                           same ? " duplicates " : " lies inside ", amr::describeCell(mCells[big]), " (", e - b,
                            " cells share that cell's box)"));
     }
 
