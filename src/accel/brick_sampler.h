@@ -5,8 +5,9 @@
 //   ExtBrick: a BVH over brick domains; every brick whose domain contains P contributes.
 //   Abr:      a BVH over ABR boxes; the one ABR containing P lists the contributing bricks.
 // Neither structure is ever culled by a transfer function.
-#include <cmath>
 #include <glm/glm.hpp>
+
+#include <cmath>
 #include <span>
 
 #include "accel/abrs.h"

@@ -25,10 +25,10 @@ constexpr int kMaxBlockCells = 32;            // largest block edge B
 // takes a few hundred leaves (with fewer its object stays unresolved).
 constexpr uint64_t kMinBlocks = 64, kMinTeapotBlocks = 512;
 
-}  // namespace
-
 constexpr std::pair<SyntheticKind, std::string_view> kKindNames[] = {
     {SyntheticKind::Cloud, "cloud"}, {SyntheticKind::Shells, "shells"}, {SyntheticKind::Teapot, "teapot"}};
+
+}  // namespace
 
 SyntheticKind parseSyntheticKind(std::string_view name) {
     for (const auto& [kind, kindName] : kKindNames)
