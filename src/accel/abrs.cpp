@@ -115,8 +115,6 @@ private:
     std::vector<HalfBox> mDomains;
 };
 
-int64_t floorDiv(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 }  // namespace
 
 AbrSet buildAbrs(const BrickSet& bricks) {
@@ -142,7 +140,7 @@ std::vector<ValueRange> computeAbrValueRanges(const AbrSet& abrs, const BrickSet
             bool any = true;
             for (int a = 0; a < 3; ++a) {
                 const int64_t L2 = 2 * int64_t(b.lower[a]);
-                k0[a] = std::max<int64_t>(0, -floorDiv(-(abr.box.lo[a] - L2 - 3 * w), 2 * w));
+                k0[a] = std::max<int64_t>(0, ceilDiv(abr.box.lo[a] - L2 - 3 * w, 2 * w));
                 k1[a] = std::min<int64_t>(b.size[a] - 1, floorDiv(abr.box.hi[a] - L2 + w, 2 * w));
                 any = any && k0[a] <= k1[a];
             }

@@ -16,30 +16,25 @@ TentAxis tentAxis(double local, int32_t size) {
     return t;
 }
 
-void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
-                          double& sumW, double& sumWV) {
+namespace {
+
+// Adds brick b's tent weights at voxel-space p to (sumW, sumWV); p must lie in the brick domain.
+// NaN (empty) slots are skipped.
+void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p, double& sumW,
+                          double& sumWV) {
     const double w = double(b.cellWidth());
     // Cell-centre-aligned coordinates: cell k's centre sits at local = k.
     const glm::dvec3 local = (p - glm::dvec3(b.lower)) / w - 0.5;
-    const TentAxis ax[3] = {tentAxis(local.x, b.size.x), tentAxis(local.y, b.size.y), tentAxis(local.z, b.size.z)};
-    for (int z = 0; z < ax[2].count; ++z)
-        for (int y = 0; y < ax[1].count; ++y)
-            for (int x = 0; x < ax[0].count; ++x) {
-                const double phi = ax[0].weight[x] * ax[1].weight[y] * ax[2].weight[z];
-                if (phi <= 0) continue;
-                const size_t slot =
-                    b.begin + size_t((int64_t(ax[2].cell[z]) * b.size.y + ax[1].cell[y]) * b.size.x + ax[0].cell[x]);
-                const float v = brickValues[slot];
-                if (std::isnan(v)) continue;
-                sumW += phi;
-                sumWV += phi * double(v);
-            }
+    addTentCells(b, brickValues, tentAxis(local.x, b.size.x), tentAxis(local.y, b.size.y), tentAxis(local.z, b.size.z),
+                 sumW, sumWV);
 }
 
 bool halfBoxContains(const HalfBox& box, glm::dvec3 p) {
     glm::dvec3 lo = box.lower(), hi = box.upper();
     return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
 }
+
+}  // namespace
 
 std::vector<BoxD> brickDomainBoxes(const BrickSet& bricks) {
     std::vector<BoxD> boxes;
@@ -58,15 +53,6 @@ std::vector<BoxD> abrBoxes(const AbrSet& abrs) {
     return boxes;
 }
 
-namespace {
-amr::Sample finish(double sumW, double sumWV) {
-    amr::Sample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0 ? sumWV / sumW : 0.0;
-    return s;
-}
-}  // namespace
-
 amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> brickValues,
                          glm::dvec3 p) {
     double sumW = 0, sumWV = 0;
@@ -74,15 +60,14 @@ amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, 
         const Brick& b = bricks.bricks[id];
         if (halfBoxContains(brickDomain(b), p)) addBrickContribution(b, brickValues, p, sumW, sumWV);
     }
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 ExtBrickSampler::ExtBrickSampler(const BrickSet& bricks, std::span<const float> brickValues)
     : mBricks(bricks), mValues(brickValues) {
     mDomains.reserve(bricks.bricks.size());
     for (const Brick& b : bricks.bricks) mDomains.push_back(brickDomain(b));
-    auto boxes = brickDomainBoxes(bricks);
-    mBvh = buildBvh(boxes);
+    mBvh = buildBvh(brickDomainBoxes(bricks));
 }
 
 amr::Sample ExtBrickSampler::sample(glm::dvec3 p) const {
@@ -91,14 +76,13 @@ amr::Sample ExtBrickSampler::sample(glm::dvec3 p) const {
         if (halfBoxContains(mDomains[bi], p))
             addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
     });
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 AbrSampler::AbrSampler(const AbrSet& abrs, const BrickSet& bricks,
                        std::span<const float> brickValues)
     : mAbrs(abrs), mBricks(bricks), mValues(brickValues) {
-    auto boxes = abrBoxes(abrs);
-    mBvh = buildBvh(boxes);
+    mBvh = buildBvh(abrBoxes(abrs));
 }
 
 int64_t AbrSampler::findAbr(glm::dvec3 p) const {
@@ -113,7 +97,7 @@ amr::Sample AbrSampler::sampleInAbr(const Abr& abr, glm::dvec3 p) const {
     double sumW = 0, sumWV = 0;
     for (uint32_t bi : mAbrs.bricksOf(abr))
         addBrickContribution(mBricks.bricks[bi], mValues, p, sumW, sumWV);
-    return finish(sumW, sumWV);
+    return amr::Sample::fromSums(sumW, sumWV);
 }
 
 amr::Sample AbrSampler::sample(glm::dvec3 p) const {

@@ -7,6 +7,7 @@
 // Neither structure is ever culled by a transfer function.
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <span>
 
 #include "accel/abrs.h"
@@ -26,10 +27,23 @@ struct TentAxis {
 };
 TentAxis tentAxis(double local, int32_t size);
 
-// Adds brick b's tent weights at voxel-space p to (sumW, sumWV); p must lie in the brick domain.
-// NaN (empty) slots are skipped.
-void addBrickContribution(const Brick& b, std::span<const float> brickValues, glm::dvec3 p,
-                          double& sumW, double& sumWV);
+// Adds the tent weights phi = x.weight * y.weight * z.weight of brick b's (at most 8) cells given
+// by the three axes, and phi * value, to (sumW, sumWV), z slowest and x fastest; cells of zero
+// weight and NaN (empty) slots are skipped.
+inline void addTentCells(const Brick& b, std::span<const float> brickValues, const TentAxis& x, const TentAxis& y,
+                         const TentAxis& z, double& sumW, double& sumWV) {
+    for (int cz = 0; cz < z.count; ++cz)
+        for (int cy = 0; cy < y.count; ++cy) {
+            const size_t row = b.begin + size_t((int64_t(z.cell[cz]) * b.size.y + y.cell[cy]) * b.size.x);
+            for (int cx = 0; cx < x.count; ++cx) {
+                const double phi = x.weight[cx] * y.weight[cy] * z.weight[cz];
+                const float v = brickValues[row + size_t(x.cell[cx])];
+                if (phi <= 0 || std::isnan(v)) continue;
+                sumW += phi;
+                sumWV += phi * double(v);
+            }
+        }
+}
 
 // The tent-weighted value at p over the listed bricks whose domain contains p, summed in list
 // order (the grid sampler's lists, the exact range lattice).
@@ -40,13 +54,10 @@ amr::Sample sampleBricks(std::span<const uint32_t> ids, const BrickSet& bricks, 
 std::vector<BoxD> brickDomainBoxes(const BrickSet& bricks);
 std::vector<BoxD> abrBoxes(const AbrSet& abrs);
 
-bool halfBoxContains(const HalfBox& box, glm::dvec3 p);
-
 class ExtBrickSampler {
 public:
     ExtBrickSampler(const BrickSet& bricks, std::span<const float> brickValues);
     amr::Sample sample(glm::dvec3 p) const;
-    const Bvh& bvh() const { return mBvh; }
 
 private:
     const BrickSet& mBricks;
@@ -63,7 +74,6 @@ public:
     amr::Sample sampleInAbr(const Abr& abr, glm::dvec3 p) const;
     // Index of an ABR whose closed box contains p, or -1.
     int64_t findAbr(glm::dvec3 p) const;
-    const Bvh& bvh() const { return mBvh; }
 
 private:
     const AbrSet& mAbrs;

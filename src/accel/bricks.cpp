@@ -23,9 +23,6 @@ amr::Box3l Brick::bounds() const {
 
 namespace {
 
-int64_t floorTo(int64_t v, int64_t w) { return v >= 0 ? v / w * w : -((-v + w - 1) / w) * w; }
-int64_t ceilTo(int64_t v, int64_t w) { return -floorTo(-v, w); }
-
 double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 
 // Level set, used volume and bounds of a set of cells (voxel space): a node of the kd build, or one
@@ -61,10 +58,6 @@ struct CubeGrid {
     int64_t cw = 1;
     std::vector<CellStats> cubes;
 };
-
-std::string describe(const amr::Cell& c) {
-    return strCat("(lower ", c.lower.x, ",", c.lower.y, ",", c.lower.z, " level ", c.level, ")");
-}
 
 // The kd build over the model's own arrays: cells and every field are partitioned together, in
 // place, so no per-cell copy exists; leaves are then put in x-fastest order inside their brick.
@@ -162,8 +155,8 @@ private:
         for (size_t i = b; i < e; ++i) {
             uint32_t& slot = from[slotOf(br, mCells[i])];
             if (slot != UINT32_MAX)
-                AMRVK_CHECK(false, mModel.source, ": overlapping cells: ", describe(mCells[i]), " duplicates ",
-                            describe(mCells[b + slot]));
+                AMRVK_CHECK(false, mModel.source, ": overlapping cells: ", amr::describeCell(mCells[i]), " duplicates ",
+                            amr::describeCell(mCells[b + slot]));
             slot = static_cast<uint32_t>(i - b);
         }
         std::vector<amr::Cell> cells(n);
@@ -232,12 +225,7 @@ private:
         const size_t n = e - b;
         Slabs s = n >= kParallelSlabCells && count * 256 <= n ? parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs)
                                                               : gather(b, e);
-        auto grid = std::make_shared<CubeGrid>();
-        grid->lo = lo;
-        grid->dims = dims;
-        grid->cw = cw;
-        grid->cubes = std::move(s[0]);
-        return grid;
+        return std::make_shared<const CubeGrid>(CubeGrid{lo, dims, cw, std::move(s[0])});
     }
 
     // Slabs of the box [lo, lo + slabs cw) from the cubes that lie in it.
@@ -269,8 +257,8 @@ private:
         glm::i64vec3 lo, hi, slabs, used;
         const uint64_t slabLimit = 4 * (e - b) + 1024;
         for (int a = 0; a < 3; ++a) {
-            lo[a] = floorTo(in.lo[a], cw);
-            hi[a] = ceilTo(in.hi[a], cw);
+            lo[a] = floorDiv(in.lo[a], cw) * cw;
+            hi[a] = ceilDiv(in.hi[a], cw) * cw;
             slabs[a] = (hi[a] - lo[a]) / cw;
             used[a] = slabs[a] < 2 || uint64_t(slabs[a]) > slabLimit ? 0 : slabs[a];
         }
@@ -344,8 +332,8 @@ private:
         while (mCells[big].level != in.maxLevel()) ++big;
         const size_t other = big == b ? b + 1 : b;
         const bool same = mCells[other].level == mCells[big].level;
-        throw Error(strCat(mModel.source, ": overlapping cells: ", describe(mCells[other]),
-                           same ? " duplicates " : " lies inside ", describe(mCells[big]), " (", e - b,
+        throw Error(strCat(mModel.source, ": overlapping cells: ", amr::describeCell(mCells[other]),
+                           same ? " duplicates " : " lies inside ", amr::describeCell(mCells[big]), " (", e - b,
                            " cells share that cell's box)"));
     }
 

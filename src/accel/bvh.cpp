@@ -8,7 +8,6 @@
 
 namespace amrvk::accel {
 
-namespace {
 float roundDown(double v) {
     float f = static_cast<float>(v);
     return double(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
@@ -17,7 +16,6 @@ float roundUp(double v) {
     float f = static_cast<float>(v);
     return double(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
-}  // namespace
 
 Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
     Bvh bvh;

@@ -31,6 +31,10 @@ struct BoxD {
     glm::dvec3 lo, hi;
 };
 
+// v rounded to float outwards: the largest float <= v / the smallest float >= v.
+float roundDown(double v);
+float roundUp(double v);
+
 // Median split on the longest centroid axis, leaves of at most maxLeafSize primitives.
 Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize = 4);
 

@@ -60,11 +60,6 @@ std::string formatDims(glm::i64vec3 d) {
     return strCat(d.x, "x", d.y, "x", d.z);
 }
 
-int64_t floorDiv(int64_t a, int64_t b) {  // b > 0
-    int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-}
-
 }  // namespace
 
 uint64_t denseGridBytes(const amr::Box3l& bounds, int32_t level) {
@@ -87,10 +82,7 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
                 maxDim > int64_t(INT32_MAX) ? " (over 2^31-1 per axis)" : "", ", more than the limit ",
                 formatBytes(maxBytes), " (--dense-max-mib)");
 
-    DenseGrid g;
-    g.origin = bounds.lower;
-    g.level = level;
-    g.dims = glm::ivec3(d64);
+    DenseGrid g{.origin = bounds.lower, .level = level, .dims = glm::ivec3(d64)};
     const size_t total = size_t(bytes / sizeof(float));
     std::optional<ProgressStage> progress;
     if (total > (size_t(1) << 22)) progress.emplace("dense grid");
@@ -106,7 +98,7 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
         bool any = true;
         for (int a = 0; a < 3; ++a) {
             const int64_t l = int64_t(c.lower[a]) - g.origin[a];
-            const int64_t first = -floorDiv(-(2 * l - w), 2 * w);  // ceil
+            const int64_t first = ceilDiv(2 * l - w, 2 * w);
             const int64_t last = floorDiv(2 * (l + cw) - w, 2 * w);
             const int64_t f = std::max<int64_t>(first, 0), e = std::min<int64_t>(last, g.dims[a] - 1);
             if (f > e) any = false;

@@ -54,11 +54,7 @@ glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
 
 MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims) {
     AMRVK_CHECK(dims.x >= 1 && dims.y >= 1 && dims.z >= 1, "range grid needs at least one macrocell");
-    MacrocellLayout g;
-    g.dims = dims;
-    g.origin = glm::dvec3(bounds.lower);
-    g.cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims);
-    return g;
+    return {.dims = dims, .origin = glm::dvec3(bounds.lower), .cellSize = glm::dvec3(bounds.size()) / glm::dvec3(dims)};
 }
 
 namespace {
@@ -216,19 +212,8 @@ bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::sp
                 const TentAxis& fy = factor[1][j];
                 for (size_t i = first[0]; i < end[0]; ++i) {
                     const TentAxis& fx = factor[0][i];
-                    double sw = 0, swv = 0;
-                    for (int cz = 0; cz < fz.count; ++cz)
-                        for (int cy = 0; cy < fy.count; ++cy) {
-                            const size_t row =
-                                b.begin + size_t((int64_t(fz.cell[cz]) * b.size.y + fy.cell[cy]) * b.size.x);
-                            for (int cx = 0; cx < fx.count; ++cx) {
-                                const float value = values[row + size_t(fx.cell[cx])];
-                                if (std::isnan(value)) continue;  // an empty slot (.bricks files)
-                                const double phi = fx.weight[cx] * fy.weight[cy] * fz.weight[cz];
-                                sw += phi;
-                                swv += phi * double(value);
-                            }
-                        }
+                    double sw = 0, swv = 0;  // this brick's sums, added to the vertex's as one term
+                    addTentCells(b, values, fx, fy, fz, sw, swv);
                     const size_t v = (k * ny + j) * nx + i;
                     num[v] += swv;
                     den[v] += sw;
@@ -289,10 +274,7 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                 latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
             // Outward to float, then 8 ulps of the largest magnitude read (GPU float sums).
             const double pad = 8.0 * double(std::numeric_limits<float>::epsilon()) * maxAbs;
-            float flo = float(rlo - pad), fhi = float(rhi + pad);
-            if (double(flo) > rlo - pad) flo = std::nextafter(flo, -INFINITY);
-            if (double(fhi) < rhi + pad) fhi = std::nextafter(fhi, INFINITY);
-            g.ranges[cell] = ValueRange(flo, fhi);
+            g.ranges[cell] = ValueRange(roundDown(rlo - pad), roundUp(rhi + pad));
         }
     });
     g.buildSeconds = timer.seconds();

@@ -11,9 +11,6 @@ namespace amrvk::accel {
 
 namespace {
 
-int64_t floorDiv(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
-
 // Half-voxel coordinates beyond any int32 voxel corner (|corner| < 2^31, so |2 corner| < 2^33):
 // clamping a query coordinate here changes no decision and keeps the integer arithmetic exact.
 constexpr double kFar = 1099511627776.0;  // 2^40

@@ -307,12 +307,10 @@ CellHeader readCellHeader(const fs::path& path, int dim) {
     for (int b = 0; b < nfabs; ++b) {
         const std::string tag = in.readWord("FabOnDisk:");
         AMRVK_CHECK(tag == "FabOnDisk:", in.where(), ": expected 'FabOnDisk:', found '", tag, "'");
-        FabOnDisk fod;
-        fod.file = in.readWord("FAB data file name");
+        std::string file = in.readWord("FAB data file name");
         const int64_t offset = in.readInt64("FAB byte offset");
         AMRVK_CHECK(offset >= 0, in.where(), ": negative FAB offset");
-        fod.offset = static_cast<uint64_t>(offset);
-        h.fabs.push_back(std::move(fod));
+        h.fabs.push_back({std::move(file), static_cast<uint64_t>(offset)});
     }
     if (h.version >= 2) {
         // Min/max lines (numbers and commas only) come first; the descriptor is the first "((".
@@ -377,9 +375,7 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
                 " bytes of data from byte ", dataStart, ", file has ", reader.size(), ")");
 
     // Each component is the whole FAB box, x fastest; keep the valid part.
-    Block block;
-    block.lo = valid.lo;
-    block.hi = valid.hi;
+    Block block{.lo = valid.lo, .hi = valid.hi};
     std::vector<unsigned char> raw(compBytes);
     for (size_t comp : components) {
         reader.seek(dataStart + comp * compBytes);
@@ -394,9 +390,7 @@ Block readFab(BinaryReader& reader, const CellHeader& cells, size_t b, int dim,
 }  // namespace
 
 Model readAmrex(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "amrex";
-    model.source = path.string();
+    Model model{.format = "amrex", .source = path.string()};
     std::error_code ec;
     const bool isDir = fs::is_directory(path, ec);
     const fs::path dir = isDir ? path : path.parent_path();
@@ -407,9 +401,7 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     const int levelCount = header.finestLevel + 1;
-    const std::vector<int64_t> widths = levelCellWidths(header.refRatio, headerPath.string());
-
-    std::vector<BlockLevel> levels;
+    std::vector<BlockLevel> levels = levelsWithCellWidths(header.refRatio, headerPath.string());
     std::vector<std::string> vismfVersions;
     for (int l = 0; l < levelCount; ++l) {
         const size_t li = static_cast<size_t>(l);
@@ -421,8 +413,7 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
         AMRVK_CHECK(static_cast<int>(cells.boxes.size()) == header.boxCounts[li],
                     cellHeaderPath.string(), ": ", cells.boxes.size(),
                     " boxes but the Header lists ", header.boxCounts[li], " on level ", l);
-        BlockLevel level;
-        level.cellWidth = widths[li];
+        BlockLevel& level = levels[li];
         level.indexOrigin = header.domains[li].lo;
         const fs::path dataDir = (dir / header.prefixes[li]).parent_path();
         std::unique_ptr<BinaryReader> reader;
@@ -433,7 +424,6 @@ Model readAmrex(const fs::path& path, const ReadOptions& options) {
             level.blocks.push_back(readFab(*reader, cells, b, header.dim, components,
                                            cellHeaderPath.filename().string()));
         }
-        levels.push_back(std::move(level));
     }
     appendLeafCells(model, levels, header.dim == 2);
 

@@ -71,17 +71,17 @@ std::vector<size_t> addSelectedFields(Model& model, const std::vector<std::strin
     return components;
 }
 
-std::vector<int64_t> levelCellWidths(const std::vector<int>& ratios, const std::string& source) {
-    std::vector<int64_t> widths(ratios.size() + 1, 1);
+std::vector<BlockLevel> levelsWithCellWidths(const std::vector<int>& ratios, const std::string& source) {
+    std::vector<BlockLevel> levels(ratios.size() + 1);  // cellWidth 1 each
     for (size_t l = ratios.size(); l-- > 0;) {
         const int r = ratios[l];
         AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), source, ": refinement ratio ", r,
                     " from level ", l, " to ", l + 1, " is not a power of two");
-        widths[l] = widths[l + 1] * r;
-        AMRVK_CHECK(widths[l] <= (int64_t{1} << kMaxLevel), source,
+        levels[l].cellWidth = levels[l + 1].cellWidth * r;
+        AMRVK_CHECK(levels[l].cellWidth <= (int64_t{1} << kMaxLevel), source,
                     ": refinement ratios multiply to more than 2^", kMaxLevel);
     }
-    return widths;
+    return levels;
 }
 
 std::vector<size_t> blockCounts(const std::vector<BlockLevel>& levels) {

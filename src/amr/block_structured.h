@@ -68,11 +68,12 @@ std::vector<std::string> selectFields(const std::vector<std::string>& available,
 // selected fields' indices in model.availableFields (the components to read), in order.
 std::vector<size_t> addSelectedFields(Model& model, const std::vector<std::string>& requested);
 
-// Cell width of every level in finest-level cells (BlockLevel::cellWidth): the product of the
-// refinement ratios from that level down to the finest; ratios[l] refines level l into l + 1.
-// Checked from the finest ratio down; throws "SOURCE: refinement ratio R from level L to L+1 is
-// not a power of two" or "SOURCE: refinement ratios multiply to more than 2^30".
-std::vector<int64_t> levelCellWidths(const std::vector<int>& ratios, const std::string& source);
+// ratios.size() + 1 empty levels, each with its cell width in finest-level cells set
+// (BlockLevel::cellWidth): the product of the refinement ratios from that level down to the
+// finest; ratios[l] refines level l into l + 1. Checked from the finest ratio down; throws
+// "SOURCE: refinement ratio R from level L to L+1 is not a power of two" or "SOURCE: refinement
+// ratios multiply to more than 2^30".
+std::vector<BlockLevel> levelsWithCellWidths(const std::vector<int>& ratios, const std::string& source);
 
 // The values of a box of `dims` cells that starts `offset` cells into a stored box of `stored`
 // cells (ghost cells, a FAB's grown box), x fastest; valueAt(i) converts stored element i (the

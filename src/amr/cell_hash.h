@@ -22,7 +22,6 @@ public:
     uint32_t duplicateOf() const { return mDuplicateOf; }
     // Sorted distinct levels present.
     const std::vector<int32_t>& levels() const { return mLevels; }
-    uint64_t memoryBytes() const { return mSlots.size() * sizeof(uint32_t); }
 
 private:
     std::span<const Cell> mCells;

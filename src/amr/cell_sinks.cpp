@@ -14,17 +14,7 @@ void SinkBase::reportProgress() const {
 
 void CellSink::fillStats(SyntheticStats& stats) const {
     stats.cells = count();
-    stats.cellsPerLevel.clear();
-    stats.minLevel = 0;
-    stats.maxLevel = 0;
-    bool any = false;
-    for (size_t l = 0; l < mPerLevel.size(); ++l) {
-        if (mPerLevel[l] == 0) continue;
-        if (!any) stats.minLevel = static_cast<int>(l);
-        stats.maxLevel = static_cast<int>(l);
-        any = true;
-    }
-    stats.cellsPerLevel.assign(mPerLevel.begin(), mPerLevel.begin() + stats.maxLevel + 1);
+    levelRange(mPerLevel, stats.minLevel, stats.maxLevel, stats.cellsPerLevel);
 }
 
 MemorySink::MemorySink(uint64_t cap, uint64_t expected, const ProgressFn* progress)

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include "amr/block_structured.h"
@@ -48,23 +49,18 @@ public:
     bool hasLink(hid_t loc, const std::string& name) const {
         return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
     }
-    // Scalar numeric attribute converted by HDF5 to `memType` (H5T_NATIVE_INT / _DOUBLE).
+    // Scalar numeric attribute converted by HDF5 to T (int or double).
     template <typename T>
-    T readScalar(hid_t loc, const std::string& name, hid_t memType) const {
+    T readScalar(hid_t loc, const std::string& name) const {
+        static_assert(std::is_same_v<T, int> || std::is_same_v<T, double>);
         H5Id a = openAttribute(loc, name);
         H5Id space(H5Aget_space(a.get()), H5Sclose);
         AMRVK_CHECK(H5Sget_simple_extent_npoints(space.get()) == 1, mName, ": attribute '", name,
                     "' is not a single value");
         T v{};
-        AMRVK_CHECK(H5Aread(a.get(), memType, &v) >= 0, mName, ": cannot read attribute '", name,
-                    "' as a number");
+        AMRVK_CHECK(H5Aread(a.get(), std::is_same_v<T, int> ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, &v) >= 0, mName,
+                    ": cannot read attribute '", name, "' as a number");
         return v;
-    }
-    int readInt(hid_t loc, const std::string& name) const {
-        return readScalar<int>(loc, name, H5T_NATIVE_INT);
-    }
-    double readDouble(hid_t loc, const std::string& name) const {
-        return readScalar<double>(loc, name, H5T_NATIVE_DOUBLE);
     }
     std::string readString(hid_t loc, const std::string& name) const {
         H5Id a = openAttribute(loc, name);
@@ -180,7 +176,7 @@ glm::ivec3 readOutputGhost(const ChomboFile& file, hid_t group, const std::strin
     if (!file.hasLink(group, "data_attributes")) return ghost;
     H5Id attrs = file.openGroup(group, "data_attributes");
     if (file.hasAttribute(attrs.get(), "comps")) {
-        const int comps = file.readInt(attrs.get(), "comps");
+        const int comps = file.readScalar<int>(attrs.get(), "comps");
         AMRVK_CHECK(comps == ncomp, file.name(), ": ", levelName, " has ", comps,
                     " components, num_components is ", ncomp);
     }
@@ -228,9 +224,7 @@ std::vector<Block> readLevelBlocks(const ChomboFile& file, hid_t group,
                     " values, expected ", n * size_t(ncomp), " (", ncomp, " components x ", n,
                     " cells)");
         // Per box: component after component, each the grown box with x fastest.
-        Block block;
-        block.lo = valid.lo;
-        block.hi = valid.hi;
+        Block block{.lo = valid.lo, .hi = valid.hi};
         checkAllocation(checkedProduct({n, sizeof(double)}, boxName), boxName);
         buffer.resize(n);
         for (size_t comp : components) {
@@ -247,17 +241,14 @@ std::vector<Block> readLevelBlocks(const ChomboFile& file, hid_t group,
 }  // namespace
 
 Model readChombo(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "chombo";
-    model.source = path.string();
+    Model model{.format = "chombo", .source = path.string()};
     const ChomboFile file(path);
     const hid_t root = file.root();
 
     int dim = 0;
     if (file.hasLink(root, "Chombo_global")) {
         H5Id global = file.openGroup(root, "Chombo_global");
-        if (file.hasAttribute(global.get(), "SpaceDim"))
-            dim = file.readInt(global.get(), "SpaceDim");
+        if (file.hasAttribute(global.get(), "SpaceDim")) dim = file.readScalar<int>(global.get(), "SpaceDim");
     }
     if (dim == 0 && file.hasLink(root, "level_0/boxes")) {
         H5Id boxes = file.openDataset(root, "level_0/boxes");
@@ -269,13 +260,13 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     AMRVK_CHECK(dim == 2 || dim == 3, file.name(), ": ", dim,
                 "-D data (only 2-D and 3-D Chombo files are supported)");
 
-    const int ncomp = file.readInt(root, "num_components");
+    const int ncomp = file.readScalar<int>(root, "num_components");
     AMRVK_CHECK(ncomp > 0, file.name(), ": num_components is ", ncomp);
     for (int c = 0; c < ncomp; ++c)
         model.availableFields.push_back(file.readString(root, strCat("component_", c)));
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
-    const int levelCount = file.readInt(root, "num_levels");
+    const int levelCount = file.readScalar<int>(root, "num_levels");
     AMRVK_CHECK(levelCount > 0 && levelCount <= kMaxLevel + 1, file.name(), ": num_levels is ",
                 levelCount);
     std::vector<H5Id> groups;
@@ -283,25 +274,22 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     std::vector<double> dx;
     for (int l = 0; l < levelCount; ++l) {
         groups.push_back(file.openGroup(root, strCat("level_", l)));
-        dx.push_back(file.readDouble(groups.back().get(), "dx"));
+        dx.push_back(file.readScalar<double>(groups.back().get(), "dx"));
         AMRVK_CHECK(std::isfinite(dx.back()) && dx.back() > 0, file.name(), ": level_", l, " dx ", dx.back(),
                     " is not a finite positive cell size");
         if (l + 1 < levelCount) {
-            const int r = file.readInt(groups.back().get(), "ref_ratio");
+            const int r = file.readScalar<int>(groups.back().get(), "ref_ratio");
             AMRVK_CHECK(r > 0 && std::has_single_bit(static_cast<unsigned>(r)), file.name(),
                         ": level_", l, " ref_ratio ", r, " is not a power of two");
             ratios.push_back(r);
         }
     }
-    const std::vector<int64_t> widths = levelCellWidths(ratios, file.name());
-
-    std::vector<BlockLevel> levels;
+    std::vector<BlockLevel> levels = levelsWithCellWidths(ratios, file.name());
     glm::ivec3 domainLo0{0};
     for (int l = 0; l < levelCount; ++l) {
         const hid_t group = groups[static_cast<size_t>(l)].get();
         const std::string levelName = strCat("level_", l);
-        BlockLevel level;
-        level.cellWidth = widths[static_cast<size_t>(l)];
+        BlockLevel& level = levels[static_cast<size_t>(l)];
         if (file.hasAttribute(group, "prob_domain")) {
             H5Id a = file.openAttribute(group, "prob_domain");
             level.indexOrigin =
@@ -310,7 +298,6 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
         if (l == 0) domainLo0 = level.indexOrigin;
 
         level.blocks = readLevelBlocks(file, group, levelName, dim, ncomp, components);
-        levels.push_back(std::move(level));
     }
     appendLeafCells(model, levels, dim == 2);
 
@@ -329,9 +316,9 @@ Model readChombo(const fs::path& path, const ReadOptions& options) {
     for (double d : dx) cellSizes.push_back(formatDouble(d));
     model.attributes.emplace_back("cellSizes", join(cellSizes));
     if (file.hasAttribute(root, "time"))
-        model.attributes.emplace_back("time", formatDouble(file.readDouble(root, "time")));
+        model.attributes.emplace_back("time", formatDouble(file.readScalar<double>(root, "time")));
     if (file.hasAttribute(root, "iteration"))
-        model.attributes.emplace_back("iteration", std::to_string(file.readInt(root, "iteration")));
+        model.attributes.emplace_back("iteration", std::to_string(file.readScalar<int>(root, "iteration")));
     return model;
 }
 

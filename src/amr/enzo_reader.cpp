@@ -255,7 +255,7 @@ std::vector<std::string> listGridFields(hid_t file, const std::string& group,
 // Reads /Grid<id>/<field> as float32, active zone only, x fastest.
 std::vector<float> readGridField(hid_t file, const std::string& fileName, const GridInfo& g,
                                  const std::string& field) {
-    const std::string dsName = "/" + gridGroupName(g.id) + "/" + field;
+    const std::string dsName = strCat("/", gridGroupName(g.id), "/", field);
     H5Id d(H5Dopen2(file, dsName.c_str(), H5P_DEFAULT), H5Dclose);
     AMRVK_CHECK(d.valid(), fileName, ": missing dataset ", dsName);
     H5Id space(H5Dget_space(d.get()), H5Sclose);
@@ -282,16 +282,13 @@ std::vector<float> readGridField(hid_t file, const std::string& fileName, const 
 }  // namespace
 
 Model readEnzo(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "enzo";
-    model.source = path.string();
+    Model model{.format = "enzo", .source = path.string()};
     fs::path paramPath = path;
     if (path.extension() == ".hierarchy") paramPath.replace_extension();
     fs::path hierarchyPath = paramPath;
     hierarchyPath += ".hierarchy";
     const fs::path dir = paramPath.parent_path();
 
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     const Parameters params = readParameters(paramPath);
     std::vector<GridInfo> grids = readHierarchy(hierarchyPath);
     placeGrids(grids, params, hierarchyPath.string());
@@ -316,18 +313,14 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
     AMRVK_CHECK(double(finest) * std::log2(double(params.refineBy)) <= kMaxLevel,
                 hierarchyPath.string(), ": ", finest, " levels of RefineBy ", params.refineBy,
                 " exceed 2^", kMaxLevel, " finest cells per root cell");
-    const std::vector<int64_t> widths =
-        levelCellWidths(std::vector<int>(static_cast<size_t>(finest), params.refineBy), hierarchyPath.string());
-    std::vector<BlockLevel> levels(widths.size());
-    for (size_t l = 0; l < levels.size(); ++l) levels[l].cellWidth = widths[l];
+    std::vector<BlockLevel> levels =
+        levelsWithCellWidths(std::vector<int>(static_cast<size_t>(finest), params.refineBy), hierarchyPath.string());
     for (const GridInfo& g : grids) {
         const fs::path file = dataPath(g);
         const hid_t h = files.open(file);
-        Block block;
         checkedBoxCells(g.position, glm::i64vec3(g.position) + glm::i64vec3(g.active()) - int64_t{1},
                         strCat(hierarchyPath.string(), ": grid ", g.id));
-        block.lo = g.position;
-        block.hi = g.position + g.active() - 1;
+        Block block{.lo = g.position, .hi = g.position + g.active() - 1};
         for (size_t f : components)
             block.values.push_back(readGridField(h, file.string(), g, model.availableFields[f]));
         levels[static_cast<size_t>(g.level)].blocks.push_back(std::move(block));

@@ -42,40 +42,30 @@ std::vector<std::pair<std::string, fs::path>> findScalarFiles(const fs::path& ce
 }  // namespace
 
 Model readExaBrick(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "exabrick";
     const fs::path cellsPath = cellsPathOf(path);
-    model.source = cellsPath.string();
+    Model model{.format = "exabrick", .source = cellsPath.string()};
     const uint64_t bytes = fileSize(cellsPath);
     AMRVK_CHECK(bytes > 0, cellsPath.string(), ": empty file (no cells)");
     AMRVK_CHECK(bytes % sizeof(Cell) == 0, cellsPath.string(), ": size ", bytes,
                 " bytes is not a multiple of the 16-byte cell record (truncated file?)");
     const uint64_t count = bytes / sizeof(Cell);
 
-    auto scalarFiles = findScalarFiles(cellsPath);
-    std::vector<std::string> available;
-    for (const auto& [name, p] : scalarFiles) available.push_back(name);
-    model.availableFields = available;
-    AMRVK_CHECK(!available.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
-                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(),
-                ".<field>.scalars)");
-    auto selected = selectFields(available, options.fields, model.source);
+    const auto scalarFiles = findScalarFiles(cellsPath);
+    for (const auto& [name, p] : scalarFiles) model.availableFields.push_back(name);
+    AMRVK_CHECK(!model.availableFields.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
+                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(), ".<field>.scalars)");
+    const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     BinaryReader cells(cellsPath);
     cells.readArray(model.cells, count);
-    for (const std::string& name : selected) {
-        const fs::path& p =
-            std::find_if(scalarFiles.begin(), scalarFiles.end(),
-                         [&](const auto& e) { return e.first == name; })->second;
+    for (size_t i = 0; i < components.size(); ++i) {
+        const fs::path& p = scalarFiles[components[i]].second;
         uint64_t sbytes = fileSize(p);
         AMRVK_CHECK(sbytes % sizeof(float) == 0, p.string(), ": size ", sbytes,
                     " bytes is not a multiple of 4 (truncated float32 file?)");
         AMRVK_CHECK(sbytes / sizeof(float) == count, p.string(), ": ", sbytes / sizeof(float),
                     " values but ", cellsPath.filename().string(), " has ", count, " cells");
-        Field f{name, {}};
-        BinaryReader r(p);
-        r.readArray(f.values, count);
-        model.fields.push_back(std::move(f));
+        BinaryReader(p).readArray(model.fields[i].values, count);
     }
     return model;
 }

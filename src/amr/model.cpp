@@ -8,26 +8,19 @@
 #include "amr/cell_hash.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/strings.h"
 
 namespace amrvk::amr {
 
-namespace {
 std::string describeCell(const Cell& c) {
     return strCat("(lower ", c.lower.x, ",", c.lower.y, ",", c.lower.z, " level ", c.level, ")");
 }
-std::string listNames(const std::vector<std::string>& names) {
-    std::string out;
-    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-    return out.empty() ? "none" : out;
-}
-}  // namespace
 
 const Field& Model::field(std::string_view name) const {
     for (const Field& f : fields)
         if (f.name == name) return f;
-    AMRVK_CHECK(false, "unknown field '", name, "' in ", source, " (available: ",
-                listNames(availableFields.empty() ? std::vector<std::string>{} : availableFields),
-                ")");
+    const std::string names = join(availableFields, ", ");
+    AMRVK_CHECK(false, "unknown field '", name, "' in ", source, " (available: ", names.empty() ? "none" : names, ")");
     return fields.front();
 }
 
@@ -70,15 +63,21 @@ ModelSummary summarize(const Model& model) {
         });
     s.bounds = {all.lo, all.hi};
     s.leafVolume = all.volume;
-    s.minLevel = kMaxLevel;
-    s.maxLevel = 0;
-    for (int l = 0; l <= kMaxLevel; ++l)
-        if (all.perLevel[size_t(l)] > 0) {
-            s.minLevel = std::min(s.minLevel, l);
-            s.maxLevel = std::max(s.maxLevel, l);
-        }
-    s.cellsPerLevel.assign(all.perLevel.begin(), all.perLevel.begin() + s.maxLevel + 1);
+    levelRange(all.perLevel, s.minLevel, s.maxLevel, s.cellsPerLevel);
     return s;
+}
+
+void levelRange(const std::array<uint64_t, kMaxLevel + 1>& perLevel, int& minLevel, int& maxLevel,
+                std::vector<uint64_t>& cellsPerLevel) {
+    minLevel = maxLevel = 0;
+    bool any = false;
+    for (int l = 0; l <= kMaxLevel; ++l) {
+        if (perLevel[size_t(l)] == 0) continue;
+        if (!any) minLevel = l;
+        maxLevel = l;
+        any = true;
+    }
+    cellsPerLevel.assign(perLevel.begin(), perLevel.begin() + maxLevel + 1);
 }
 
 FieldStats computeFieldStats(const Model& model, const Field& field) {

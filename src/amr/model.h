@@ -20,6 +20,8 @@ struct Cell {
     int32_t level;     // width = 1 << level units; 0 = finest
 };
 static_assert(sizeof(Cell) == 16, "Cell must match the 16-byte .cells record");
+// "(lower X,Y,Z level L)", for messages.
+std::string describeCell(const Cell& c);
 
 constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
 
@@ -87,6 +89,10 @@ struct ModelSummary {
 };
 // In parallel over fixed chunks (same result on every machine); the model passes validateCells.
 ModelSummary summarize(const Model& model);
+// From cell counts per level (index = level): the finest and coarsest level present (both 0 when
+// none) and the counts up to the coarsest (ModelSummary, SyntheticStats).
+void levelRange(const std::array<uint64_t, kMaxLevel + 1>& perLevel, int& minLevel, int& maxLevel,
+                std::vector<uint64_t>& cellsPerLevel);
 
 struct FieldStats {
     float minValue = 0, maxValue = 0;

@@ -9,7 +9,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <regex>
 #include <type_traits>
 
@@ -22,6 +21,9 @@
 namespace fs = std::filesystem;
 
 namespace amrvk::amr {
+
+// Raw volumes are little-endian; voxels are read as native values (as core/image_io.cpp does).
+static_assert(std::endian::native == std::endian::little, "the raw reader assumes a little-endian host");
 
 namespace {
 
@@ -59,18 +61,6 @@ void parseRawName(const std::string& stem, glm::ivec3& dims, std::string& type) 
     for (auto it = std::sregex_iterator(stem.begin(), stem.end(), tokenRe); it != std::sregex_iterator(); ++it) {
         std::string t = canonicalRawType(it->str());
         if (!t.empty()) type = t;
-    }
-}
-
-template <typename T>
-void fromLittleEndian(std::vector<T>& v) {
-    if constexpr (std::endian::native == std::endian::big && sizeof(T) > 1) {
-        for (T& x : v) {
-            unsigned char b[sizeof(T)];
-            std::memcpy(b, &x, sizeof(T));
-            std::reverse(b, b + sizeof(T));
-            std::memcpy(&x, b, sizeof(T));
-        }
     }
 }
 
@@ -182,7 +172,6 @@ void coarsen(const fs::path& path, glm::ivec3 dims, double threshold, Model& mod
     std::vector<T> voxels;
     BinaryReader in(path);
     in.readArray(voxels, static_cast<uint64_t>(dims.x) * static_cast<uint64_t>(dims.y) * static_cast<uint64_t>(dims.z));
-    fromLittleEndian(voxels);
     const int maxDim = std::max({dims.x, dims.y, dims.z});
     const int rootLevel = static_cast<int>(std::bit_width(static_cast<uint32_t>(maxDim - 1)));
     Coarsener<T>(voxels, dims, threshold, model, values).run(rootLevel);
@@ -191,10 +180,7 @@ void coarsen(const fs::path& path, glm::ivec3 dims, double threshold, Model& mod
 }  // namespace
 
 Model readRaw(const fs::path& path, const ReadOptions& options) {
-    Model model;
-    model.format = "raw";
-    model.source = path.string();
-    model.availableFields = {"value"};
+    Model model{.format = "raw", .source = path.string(), .availableFields = {"value"}};
     selectFields(model.availableFields, options.fields, model.source);
 
     glm::ivec3 dims = options.rawDims;

@@ -49,10 +49,7 @@ Sample ReferenceSampler::sample(glm::dvec3 p) const {
         sumW += phi;
         sumWV += phi * double(mField.values[idx]);
     });
-    Sample s;
-    s.weightSum = sumW;
-    s.value = sumW > 0 ? sumWV / sumW : 0.0;
-    return s;
+    return Sample::fromSums(sumW, sumWV);
 }
 
 bool ReferenceSampler::insideLeafCell(glm::dvec3 p) const {

@@ -15,6 +15,8 @@ struct Sample {
     double value = 0;
     double weightSum = 0;
     bool valid() const { return weightSum > 0; }
+    // From the sums of phi and phi * v: value = wv / w, or 0 when w == 0.
+    static Sample fromSums(double w, double wv) { return {w > 0 ? wv / w : 0.0, w}; }
 };
 
 // Tent weight of a cell at voxel-space point p (0 outside its support).

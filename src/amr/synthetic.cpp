@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 
 #include "amr/cell_sinks.h"
 #include "amr/octree_refine.h"
@@ -24,22 +25,21 @@ constexpr int kMaxBlockCells = 32;            // largest block edge B
 // takes a few hundred leaves (with fewer its object stays unresolved).
 constexpr uint64_t kMinBlocks = 64, kMinTeapotBlocks = 512;
 
+constexpr std::pair<SyntheticKind, std::string_view> kKindNames[] = {
+    {SyntheticKind::Cloud, "cloud"}, {SyntheticKind::Shells, "shells"}, {SyntheticKind::Teapot, "teapot"}};
+
 }  // namespace
 
 SyntheticKind parseSyntheticKind(std::string_view name) {
-    if (name == "cloud") return SyntheticKind::Cloud;
-    if (name == "shells") return SyntheticKind::Shells;
-    if (name == "teapot") return SyntheticKind::Teapot;
+    for (const auto& [kind, kindName] : kKindNames)
+        if (kindName == name) return kind;
     AMRVK_CHECK(false, "unknown synthetic kind '", name, "' (expected cloud, shells or teapot)");
     return SyntheticKind::Cloud;
 }
 
 std::string_view syntheticKindName(SyntheticKind kind) {
-    switch (kind) {
-        case SyntheticKind::Cloud: return "cloud";
-        case SyntheticKind::Shells: return "shells";
-        case SyntheticKind::Teapot: return "teapot";
-    }
+    for (const auto& [k, kindName] : kKindNames)
+        if (k == kind) return kindName;
     return "?";
 }
 
@@ -128,10 +128,11 @@ std::string fieldName(const SyntheticParams& params) {
     return params.field.empty() ? "scalars" : params.field;
 }
 
-// Fills stats for `params` (already checked): the threshold search over the field of `params`
-// with writePass(field, blockShift, t, cap, minAccept) -> FinalPass as its writing pass.
-template <class WritePass>
-void runSynthetic(const SyntheticParams& params, SyntheticStats& stats, WritePass&& writePass) {
+// Fills stats for `params` (already checked): the threshold search over the field of `params`,
+// whose writing pass runs into makeSink(cap) and, when its count is accepted, calls keep(sink)
+// and takes the cell statistics from the sink.
+template <class MakeSink, class Keep>
+void runSynthetic(const SyntheticParams& params, SyntheticStats& stats, MakeSink&& makeSink, Keep&& keep) {
     stats.blockCells = syntheticBlockCells(params);
     stats.rootLevel = syntheticRootLevel(params);
     withField(params, [&](const auto& field, int blockShift) {
@@ -145,7 +146,12 @@ void runSynthetic(const SyntheticParams& params, SyntheticStats& stats, WritePas
             return ThresholdSample{t, counter.count(), counter.stopped()};
         };
         passes.write = [&](float t, uint64_t cap, uint64_t minAccept) {
-            return writePass(field, blockShift, t, cap, minAccept);
+            auto sink = makeSink(cap);
+            runDepthFirst(field, blockShift, t, sink);
+            if (sink.stopped() || sink.count() < minAccept) return FinalPass{sink.count(), sink.stopped(), false};
+            keep(sink);
+            sink.fillStats(stats);
+            return FinalPass{sink.count(), false, true};
         };
         searchAndGenerate(passes, blockShift, params, stats);
     });
@@ -163,14 +169,10 @@ SyntheticStats generateSynthetic(const SyntheticParams& params, const fs::path& 
     { AtomicFileWriter probe(cellsPath); }  // fail before the search when BASE is not writable
 
     SyntheticStats stats;
-    runSynthetic(params, stats, [&](const auto& field, int blockShift, float t, uint64_t cap, uint64_t minAccept) {
-        FileSink sink(cellsPath, scalarsPath, cap, params.cells, &params.progress);
-        runDepthFirst(field, blockShift, t, sink);
-        if (sink.stopped() || sink.count() < minAccept) return FinalPass{sink.count(), sink.stopped(), false};
-        stats.bytes = sink.commit();
-        sink.fillStats(stats);
-        return FinalPass{sink.count(), false, true};
-    });
+    runSynthetic(
+        params, stats,
+        [&](uint64_t cap) { return FileSink(cellsPath, scalarsPath, cap, params.cells, &params.progress); },
+        [&](FileSink& sink) { stats.bytes = sink.commit(); });
     stats.seconds = timer.seconds();
     return stats;
 }
@@ -179,20 +181,16 @@ Model makeSyntheticModel(const SyntheticParams& params, SyntheticStats* statsOut
     const Timer timer;
     checkParams(params);
     SyntheticStats stats;
-    Model model;
-    runSynthetic(params, stats, [&](const auto& field, int blockShift, float t, uint64_t cap, uint64_t minAccept) {
-        MemorySink sink(cap, params.cells, &params.progress);
-        runDepthFirst(field, blockShift, t, sink);
-        if (sink.stopped() || sink.count() < minAccept) return FinalPass{sink.count(), sink.stopped(), false};
-        sink.fillStats(stats);
-        model.cells = sink.takeCells();
-        model.fields = {Field{fieldName(params), sink.takeValues()}};
-        return FinalPass{sink.count(), false, true};
-    });
-    model.format = "synthetic";
-    model.source = strCat("synthetic ", syntheticKindName(params.kind), " (seed ", params.seed,
-                          ", ", params.cells, " cells)");
-    model.availableFields = {fieldName(params)};
+    Model model{.format = "synthetic",
+                .source = strCat("synthetic ", syntheticKindName(params.kind), " (seed ", params.seed, ", ",
+                                 params.cells, " cells)"),
+                .availableFields = {fieldName(params)}};
+    runSynthetic(
+        params, stats, [&](uint64_t cap) { return MemorySink(cap, params.cells, &params.progress); },
+        [&](MemorySink& sink) {
+            model.cells = sink.takeCells();
+            model.fields = {Field{fieldName(params), sink.takeValues()}};
+        });
     model.attributes = {{"kind", std::string(syntheticKindName(params.kind))},
                         {"seed", std::to_string(params.seed)},
                         {"rootLevel", std::to_string(stats.rootLevel)},

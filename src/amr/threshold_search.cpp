@@ -18,79 +18,90 @@ double logCount(const ThresholdSample& s) {
     return std::log(static_cast<double>(std::max<uint64_t>(s.count, 1)));
 }
 
-}  // namespace
+// The (t, count) samples measured so far and the thresholds they predict.
+class ThresholdSearch {
+public:
+    void add(ThresholdSample s) { mSamples.push_back(s); }
 
-uint64_t ThresholdSearch::maxExactCount() const {
-    uint64_t m = 0;
-    for (const ThresholdSample& s : mSamples)
-        if (!s.capped) m = std::max(m, s.count);
-    return m;
-}
-
-bool ThresholdSearch::reached(uint64_t target) const {
-    for (const ThresholdSample& s : mSamples)
-        if (s.count >= target) return true;
-    return false;
-}
-
-bool ThresholdSearch::saturated(uint64_t target) const {
-    for (const ThresholdSample& a : mSamples)
-        for (const ThresholdSample& b : mSamples)
-            if (!a.capped && !b.capped && a.count == b.count && a.count < target && b.t > 1.5 * a.t)
-                return true;
-    return false;
-}
-
-double ThresholdSearch::predict(uint64_t target, bool accept) const {
-    const double lt = std::log(static_cast<double>(target));
-    if (accept) {
-        const ThresholdSample* best = nullptr;
+    uint64_t maxExactCount() const {
+        uint64_t m = 0;
         for (const ThresholdSample& s : mSamples)
-            if (!s.capped && std::abs(logCount(s) - lt) <= std::log(kCountTolerance) &&
-                (!best || std::abs(logCount(s) - lt) < std::abs(logCount(*best) - lt)))
-                best = &s;
-        if (best) return best->t;
+            if (!s.capped) m = std::max(m, s.count);
+        return m;
     }
-    // Bracket: the largest t giving too many cells, the smallest t giving too few.
-    const ThresholdSample* lo = nullptr;
-    const ThresholdSample* hi = nullptr;
-    for (const ThresholdSample& s : mSamples) {
-        if (s.count >= target) {
-            if (!lo || s.t > lo->t) lo = &s;
-        } else if (!s.capped && (!hi || s.t < hi->t)) {
-            hi = &s;
+
+    bool reached(uint64_t target) const {
+        for (const ThresholdSample& s : mSamples)
+            if (s.count >= target) return true;
+        return false;
+    }
+
+    // Two exact samples at clearly different t with one count below `target`: the domain is full.
+    bool saturated(uint64_t target) const {
+        for (const ThresholdSample& a : mSamples)
+            for (const ThresholdSample& b : mSamples)
+                if (!a.capped && !b.capped && a.count == b.count && a.count < target && b.t > 1.5 * a.t) return true;
+        return false;
+    }
+
+    // Threshold predicted to give `target` cells. With `accept` set, a measured threshold whose
+    // count already lies in [target / 1.4, 1.4 target] is returned as it is (passes are exact).
+    double predict(uint64_t target, bool accept) const {
+        const double lt = std::log(static_cast<double>(target));
+        if (accept) {
+            const ThresholdSample* best = nullptr;
+            for (const ThresholdSample& s : mSamples)
+                if (!s.capped && std::abs(logCount(s) - lt) <= std::log(kCountTolerance) &&
+                    (!best || std::abs(logCount(s) - lt) < std::abs(logCount(*best) - lt)))
+                    best = &s;
+            if (best) return best->t;
         }
+        // Bracket: the largest t giving too many cells, the smallest t giving too few.
+        const ThresholdSample* lo = nullptr;
+        const ThresholdSample* hi = nullptr;
+        for (const ThresholdSample& s : mSamples) {
+            if (s.count >= target) {
+                if (!lo || s.t > lo->t) lo = &s;
+            } else if (!s.capped && (!hi || s.t < hi->t)) {
+                hi = &s;
+            }
+        }
+        if (lo && hi) {
+            // Log-log interpolation inside the bracket (a capped count is a lower bound), kept
+            // 15% away from its ends so the bracket shrinks on every pass.
+            const double a = std::log(lo->t), b = std::log(hi->t), span = b - a;
+            const double ca = logCount(*lo), cb = logCount(*hi);
+            const double f = ca > cb ? (ca - lt) / (ca - cb) : 0.5;
+            return std::exp(a + span * std::clamp(f, 0.15, 0.85));
+        }
+        // Extrapolation from the nearest exact sample with the slope to the next one.
+        std::vector<ThresholdSample> exact;
+        for (const ThresholdSample& s : mSamples)
+            if (!s.capped && s.count > 0) exact.push_back(s);
+        if (exact.empty()) return lo ? lo->t * 4.0 : hi ? hi->t / 4.0 : 1.0;
+        auto dist = [&](const ThresholdSample& s) { return std::abs(logCount(s) - lt); };
+        std::sort(exact.begin(), exact.end(),
+                  [&](const ThresholdSample& x, const ThresholdSample& y) { return dist(x) < dist(y); });
+        const ThresholdSample& a = exact[0];
+        double slope = kDefaultSlope;
+        for (size_t i = 1; i < exact.size(); ++i) {
+            const ThresholdSample& b = exact[i];
+            if (b.count == a.count || b.t == a.t) continue;
+            double sl = (std::log(b.t) - std::log(a.t)) / (logCount(b) - logCount(a));
+            if (std::isfinite(sl) && sl < 0) slope = std::max(sl, -4.0);
+            break;
+        }
+        double guess = std::log(a.t) + slope * (lt - logCount(a));
+        if (lo) guess = std::max(guess, std::log(lo->t) + std::log(1.05));
+        if (hi) guess = std::min(guess, std::log(hi->t) - std::log(1.05));
+        return std::exp(guess);
     }
-    if (lo && hi) {
-        // Log-log interpolation inside the bracket (a capped count is a lower bound), kept
-        // 15% away from its ends so the bracket shrinks on every pass.
-        const double a = std::log(lo->t), b = std::log(hi->t), span = b - a;
-        const double ca = logCount(*lo), cb = logCount(*hi);
-        const double f = ca > cb ? (ca - lt) / (ca - cb) : 0.5;
-        return std::exp(a + span * std::clamp(f, 0.15, 0.85));
-    }
-    // Extrapolation from the nearest exact sample with the slope to the next one.
-    std::vector<ThresholdSample> exact;
-    for (const ThresholdSample& s : mSamples)
-        if (!s.capped && s.count > 0) exact.push_back(s);
-    if (exact.empty()) return lo ? lo->t * 4.0 : hi ? hi->t / 4.0 : 1.0;
-    auto dist = [&](const ThresholdSample& s) { return std::abs(logCount(s) - lt); };
-    std::sort(exact.begin(), exact.end(),
-              [&](const ThresholdSample& x, const ThresholdSample& y) { return dist(x) < dist(y); });
-    const ThresholdSample& a = exact[0];
-    double slope = kDefaultSlope;
-    for (size_t i = 1; i < exact.size(); ++i) {
-        const ThresholdSample& b = exact[i];
-        if (b.count == a.count || b.t == a.t) continue;
-        double sl = (std::log(b.t) - std::log(a.t)) / (logCount(b) - logCount(a));
-        if (std::isfinite(sl) && sl < 0) slope = std::max(sl, -4.0);
-        break;
-    }
-    double guess = std::log(a.t) + slope * (lt - logCount(a));
-    if (lo) guess = std::max(guess, std::log(lo->t) + std::log(1.05));
-    if (hi) guess = std::min(guess, std::log(hi->t) - std::log(1.05));
-    return std::exp(guess);
-}
+
+private:
+    std::vector<ThresholdSample> mSamples;
+};
+
+}  // namespace
 
 void searchAndGenerate(const RefinementPasses& passes, int blockShift, const SyntheticParams& params,
                        SyntheticStats& stats) {

@@ -21,23 +21,6 @@ struct ThresholdSample {
     bool capped;  // the pass stopped early: count is a lower bound
 };
 
-// The (t, count) samples measured so far and the thresholds they predict.
-class ThresholdSearch {
-public:
-    void add(ThresholdSample s) { mSamples.push_back(s); }
-
-    uint64_t maxExactCount() const;
-    bool reached(uint64_t target) const;
-    // Two exact samples at clearly different t with one count below `target`: the domain is full.
-    bool saturated(uint64_t target) const;
-    // Threshold predicted to give `target` cells. With `accept` set, a measured threshold whose
-    // count already lies in [target / 1.4, 1.4 target] is returned as it is (passes are exact).
-    double predict(uint64_t target, bool accept) const;
-
-private:
-    std::vector<ThresholdSample> mSamples;
-};
-
 struct FinalPass {
     uint64_t count;
     bool stopped;    // passed the cap: abandoned

@@ -32,23 +32,24 @@ std::string lowerExtension(const fs::path& path) {
     return ext;
 }
 
+// Throws "FILE: LABEL WxH is not in [1, kMaxDimension] per axis" for a size outside that range.
+void checkSize(const std::string& file, const char* label, int width, int height) {
+    AMRVK_CHECK(width > 0 && height > 0 && width <= kMaxDimension && height <= kMaxDimension, file, ": ", label, " ",
+                width, "x", height, " is not in [1, ", kMaxDimension, "] per axis");
+}
+
 void checkImage(const fs::path& path, const Image& image) {
-    AMRVK_CHECK(image.width > 0 && image.height > 0 && image.width <= kMaxDimension &&
-                    image.height <= kMaxDimension,
-                path.string(), ": image size ", image.width, "x", image.height,
-                " is not in [1, ", kMaxDimension, "] per axis");
+    checkSize(path.string(), "image size", image.width, image.height);
     AMRVK_CHECK(image.pixels.size() == size_t(image.width) * size_t(image.height), path.string(),
                 ": image ", image.width, "x", image.height, " has ", image.pixels.size(), " pixels");
 }
 
 // Encodes 8-bit RGBA pixels (row 0 = top) as PNG and writes them through AtomicFileWriter.
 void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rgba) {
-    png_image png;
-    std::memset(&png, 0, sizeof(png));
-    png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(width);
-    png.height = static_cast<png_uint_32>(height);
-    png.format = PNG_FORMAT_RGBA;
+    png_image png{.version = PNG_IMAGE_VERSION,
+                  .width = static_cast<png_uint_32>(width),
+                  .height = static_cast<png_uint_32>(height),
+                  .format = PNG_FORMAT_RGBA};
     png_alloc_size_t bytes = 0;
     bool ok = png_image_write_to_memory(&png, nullptr, &bytes, 0, rgba, 0, nullptr) != 0;
     std::vector<uint8_t> encoded(ok ? bytes : 0);
@@ -179,10 +180,7 @@ void writeImage(const fs::path& path, const Image& image) {
 }
 
 void writePng8(const fs::path& path, const Image8& image) {
-    AMRVK_CHECK(image.width > 0 && image.height > 0 && image.width <= kMaxDimension &&
-                    image.height <= kMaxDimension,
-                path.string(), ": image size ", image.width, "x", image.height,
-                " is not in [1, ", kMaxDimension, "] per axis");
+    checkSize(path.string(), "image size", image.width, image.height);
     AMRVK_CHECK(image.rgba.size() == size_t(image.width) * size_t(image.height) * 4, path.string(),
                 ": image ", image.width, "x", image.height, " has ", image.rgba.size(),
                 " RGBA bytes");
@@ -214,8 +212,7 @@ Image readPfm(const fs::path& path) {
     } catch (const std::logic_error&) {
         AMRVK_CHECK(false, file, ": PFM header: width, height or scale is not a number");
     }
-    AMRVK_CHECK(width > 0 && height > 0 && width <= kMaxDimension && height <= kMaxDimension, file,
-                ": PFM size ", width, "x", height, " is not in [1, ", kMaxDimension, "] per axis");
+    checkSize(file, "PFM size", width, height);
     AMRVK_CHECK(scale != 0.0 && std::isfinite(scale), file, ": PFM scale ", scale, " is 0 or not finite");
     AMRVK_CHECK(pos < data.size() && std::isspace(data[pos]), file,
                 ": PFM header not followed by a whitespace byte at ", pos);
@@ -269,8 +266,7 @@ Image readExr(const fs::path& path) {
         AMRVK_CHECK(false, file, ": cannot read OpenEXR pixels (", takeExrError(err), ")");
     }
     const int width = exr.image.width, height = exr.image.height;
-    AMRVK_CHECK(width > 0 && height > 0 && width <= kMaxDimension && height <= kMaxDimension, file,
-                ": OpenEXR size ", width, "x", height, " is not in [1, ", kMaxDimension, "] per axis");
+    checkSize(file, "OpenEXR size", width, height);
     Image image(width, height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     for (int c = 0; c < exr.header.num_channels; ++c) {
         const std::string name = exr.header.channels[c].name;
@@ -285,9 +281,7 @@ Image readExr(const fs::path& path) {
 Image8 readPng(const fs::path& path) {
     const std::string file = path.string();
     fileSize(path);
-    png_image png;
-    std::memset(&png, 0, sizeof(png));
-    png.version = PNG_IMAGE_VERSION;
+    png_image png{.version = PNG_IMAGE_VERSION};
     bool ok = png_image_begin_read_from_file(&png, file.c_str()) != 0;
     Image8 image;
     if (ok) {

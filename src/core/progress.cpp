@@ -9,7 +9,7 @@
 
 namespace amrvk {
 
-bool progressEnabled() {
+static bool progressEnabled() {
     const char* env = std::getenv("AMRVK_PROGRESS");
     if (env && *env) return std::strcmp(env, "0") != 0;
     return isatty(STDERR_FILENO) != 0;

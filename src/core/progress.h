@@ -8,15 +8,12 @@
 
 namespace amrvk {
 
-bool progressEnabled();
-
 class ProgressStage {
 public:
     explicit ProgressStage(std::string name);
     ~ProgressStage();
     ProgressStage(const ProgressStage&) = delete;
     ProgressStage& operator=(const ProgressStage&) = delete;
-    double seconds() const { return mTimer.seconds(); }
 
 private:
     std::string mName;

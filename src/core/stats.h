@@ -19,7 +19,5 @@ private:
 
 // Peak resident set size of this process in bytes (getrusage ru_maxrss).
 uint64_t peakResidentBytes();
-// Current resident set size in bytes (/proc/self/statm), 0 where unavailable.
-uint64_t currentResidentBytes();
 
 }  // namespace amrvk
