@@ -17,6 +17,7 @@
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -29,8 +30,7 @@ namespace {
 
 // Canonical type name for a type name or alias, or "" when unknown.
 std::string canonicalRawType(std::string name) {
-    std::transform(name.begin(), name.end(), name.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    name = toLower(name);
     if (name == "uint8" || name == "uint16" || name == "float32" || name == "float64") return name;
     if (name == "float") return "float32";
     if (name == "double") return "float64";

@@ -11,6 +11,7 @@
 #include "core/file_io.h"
 #include "core/stats.h"
 #include "scene/camera.h"
+#include "scene/command_line.h"
 
 namespace amrvk::bench {
 
@@ -40,12 +41,7 @@ std::string fmt(double v) {
 
 std::string vecText(glm::dvec3 v) { return fmt(v.x) + " " + fmt(v.y) + " " + fmt(v.z); }
 
-std::string shellQuote(const std::string& s) {
-    if (s.find_first_of(" \t'\"$\\") == std::string::npos && !s.empty()) return s;
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
+using scene::shellQuote;  // quotes every character a POSIX shell would read specially
 
 // Options shared by the reference command line and the cache key.
 std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const scene::RenderSettings& rs,
@@ -191,18 +187,9 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
 }
 
 RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep) {
-    RunResult r;
-    r.dataset = mDs->tag;
-    r.tf = mTfName;
-    r.mode = scene::modeName(mode);
-    r.kind = kind;
-    r.config = config;
-    r.dvrStep = dvrStep;
-    r.width = mSettings.width;
-    r.height = mSettings.height;
-    r.frames = mOpt.frames;
-    std::string what = r.dataset + " " + r.tf + " " + r.mode + " " + config.label() +
-                       (config.usesGrid() ? " grid " + config.grid : "") +
+    RunResult r{.dataset = mDs->tag, .tf = mTfName, .mode = scene::modeName(mode), .kind = kind, .config = config,
+                .dvrStep = dvrStep, .width = mSettings.width, .height = mSettings.height, .frames = mOpt.frames};
+    std::string what = r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
                        (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "");
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
@@ -304,10 +291,7 @@ void Runner::finishGroup(size_t first, double target) {
 // --auto for the group of runs from `first`: its pick against the most efficient timed run. The
 // pick's figures come from a matching timed run, else it is timed now (kind "auto").
 AutoResult Runner::autoGroup(size_t first, Mode mode) {
-    AutoResult a;
-    a.dataset = mDs->tag;
-    a.tf = mTfName;
-    a.mode = scene::modeName(mode);
+    AutoResult a{.dataset = mDs->tag, .tf = mTfName, .mode = scene::modeName(mode)};
     scene::RenderSettings rs = mSettings;
     rs.mode = mode;
     render::AutoConstraints constraints;
@@ -334,7 +318,7 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     a.pickFps = mRes.runs[pick].fps;
     if (best) {
         const RunResult& b = mRes.runs[*best];
-        a.bestLabel = b.config.label() + (b.config.usesGrid() ? " grid " + b.config.grid : "");
+        a.bestLabel = b.config.labelWithGrid();
         a.bestEfficiency = efficiency(b);
         a.bestFps = b.fps;
     }
@@ -351,22 +335,20 @@ BenchResults Runner::run() {
         AMRVK_CHECK(b != Backend::Rq || mCtx.hasRayQuery(), "--backends rq: device '", mCtx.deviceReport().name,
                     "' has no VK_KHR_ray_query");
     const bool cpu = isCpuDevice(mCtx);
-    mRes.device = mCtx.deviceReport().name;
-    mRes.driver = mCtx.deviceReport().driver;
-    mRes.deviceType = mCtx.deviceReport().type;
-    mRes.samplesPerInvocation = mCtx.samplesPerInvocation();
-    mRes.commandLine = mOpt.commandLine;
-    {
-        std::time_t now = std::time(nullptr);
-        char buf[32];
-        std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-        mRes.date = buf;
-    }
-    mRes.width = mOpt.width > 0 ? mOpt.width : (cpu ? 256 : 1024);
-    mRes.height = mOpt.height > 0 ? mOpt.height : (cpu ? 256 : 1024);
-    mRes.frames = mOpt.frames;
-    mRes.warmup = mOpt.warmup;
-    mRes.referenceSpp = mOpt.referenceSpp > 0 ? mOpt.referenceSpp : (cpu ? 512 : 4096);
+    const std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    mRes = BenchResults{.device = mCtx.deviceReport().name,
+                        .driver = mCtx.deviceReport().driver,
+                        .deviceType = mCtx.deviceReport().type,
+                        .commandLine = mOpt.commandLine,
+                        .date = date,
+                        .width = mOpt.width > 0 ? mOpt.width : (cpu ? 256 : 1024),
+                        .height = mOpt.height > 0 ? mOpt.height : (cpu ? 256 : 1024),
+                        .frames = mOpt.frames,
+                        .warmup = mOpt.warmup,
+                        .referenceSpp = mOpt.referenceSpp > 0 ? mOpt.referenceSpp : (cpu ? 512 : 4096),
+                        .samplesPerInvocation = mCtx.samplesPerInvocation()};
     mTotal = countRuns();
 
     for (const BenchDataset& ds : mOpt.datasets) {
@@ -409,33 +391,22 @@ BenchResults Runner::run() {
                 const size_t first = mRes.runs.size();
                 for (TraversalKind t : mOpt.traversals)
                     for (SamplerKind s : mOpt.samplers)
-                        for (Backend b : mBackends) {
-                            StructureConfig c;
-                            c.traversal = t;
-                            c.sampler = s;
-                            c.backend = b;
-                            c.grid = mOpt.grid;
-                            c.kdLeaves = mOpt.kdLeaves;
-                            mRes.runs.push_back(measure("matrix", mode, c, 0));
-                        }
-                if (mOpt.dense) {
-                    StructureConfig c;
-                    c.sampler = SamplerKind::Dense;
-                    c.backend = Backend::Sw;
-                    c.grid = mOpt.grid;
-                    c.denseMaxBytes = mOpt.denseMaxBytes;
-                    mRes.runs.push_back(measure("dense", mode, c, 0));
-                }
+                        for (Backend b : mBackends)
+                            mRes.runs.push_back(measure("matrix", mode,
+                                                        {.sampler = s, .traversal = t, .backend = b,
+                                                         .grid = mOpt.grid, .kdLeaves = mOpt.kdLeaves},
+                                                        0));
+                if (mOpt.dense)
+                    mRes.runs.push_back(measure("dense", mode,
+                                                {.sampler = SamplerKind::Dense, .backend = Backend::Sw,
+                                                 .grid = mOpt.grid, .denseMaxBytes = mOpt.denseMaxBytes},
+                                                0));
                 if (mode == mOpt.modes.front()) {
                     for (TraversalKind t : {TraversalKind::GridDda, TraversalKind::GridBvh}) {
                         if (std::find(mOpt.traversals.begin(), mOpt.traversals.end(), t) == mOpt.traversals.end()) continue;
-                        for (const std::string& g : mOpt.gridSweep) {
-                            StructureConfig c;
-                            c.traversal = t;
-                            c.backend = Backend::Sw;
-                            c.grid = g;
-                            mRes.runs.push_back(measure("grid-sweep", mode, c, 0));
-                        }
+                        for (const std::string& g : mOpt.gridSweep)
+                            mRes.runs.push_back(
+                                measure("grid-sweep", mode, {.traversal = t, .backend = Backend::Sw, .grid = g}, 0));
                     }
                 }
                 finishGroup(first, mOpt.targetRmse);
@@ -445,9 +416,7 @@ BenchResults Runner::run() {
                 // The ray-marching baseline against the ae reference, next to unbiased ae tracking.
                 mRef = reference(ds, tfName, tf, Mode::Ae);
                 const size_t first = mRes.runs.size();
-                StructureConfig c;
-                c.backend = Backend::Sw;
-                c.grid = mOpt.grid;
+                const StructureConfig c{.backend = Backend::Sw, .grid = mOpt.grid};
                 mRes.runs.push_back(measure("pt-ae", Mode::Ae, c, 0));
                 for (double dt : mOpt.dvrSteps) mRes.runs.push_back(measure("dvr", Mode::Dvr, c, dt));
                 finishGroup(first, mOpt.targetRmse);

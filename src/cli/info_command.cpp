@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "core/strings.h"
 
 namespace amrvk::cli {
 
@@ -116,39 +117,27 @@ int runInfo(const std::vector<std::string>& argv) {
     if (json) {
         using Json = nlohmann::ordered_json;
         auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
-        Json j;
-        j["source"] = model.source;
-        j["format"] = model.format;
-        j["leafCells"] = model.cellCount();
-        j["cellsPerLevel"] = summary.cellsPerLevel;
-        j["minLevel"] = summary.minLevel;
-        j["maxLevel"] = summary.maxLevel;
-        j["fields"] = model.availableFields;
-        j["field"] = field.name;
-        j["valueRange"] = Json::array({double(stats.minValue), double(stats.maxValue)});
-        j["volumeWeightedMean"] = stats.volumeWeightedMean;
-        j["voxelBounds"] = {{"lower", vec(glm::dvec3(summary.bounds.lower))},
-                            {"upper", vec(glm::dvec3(summary.bounds.upper))}};
-        j["worldBounds"] = {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}};
-        j["bricks"] = brickStats.brickCount;
-        j["singleCellBricks"] = brickStats.singleCellBricks;
-        j["averageCellsPerBrick"] = brickStats.averageCellsPerBrick;
-        j["abrs"] = uint64_t(abrs.abrs.size());
-        j["averageBricksPerAbr"] = bricksPerAbr;
-        j["maxBricksPerAbr"] = maxBricksPerAbr;
-        j["macrocellDims"] = Json::array({gridDims.x, gridDims.y, gridDims.z});
-        Json mem = Json::object();
+        Json mem = Json::object(), attributes = Json::object();
         for (const auto& m : memory) mem[m.name] = m.bytes;
         mem["total"] = totalBytes;
-        j["memoryBytes"] = mem;
-        j["buildSeconds"] = {{"read", readSeconds},
-                             {"bricks", bricks.buildSeconds},
-                             {"abrs", abrSeconds},
-                             {"macrocells", grid.buildSeconds}};
-        j["peakResidentBytes"] = peakResidentBytes();
-        Json attributes = Json::object();
         for (const auto& [k, v] : model.attributes) attributes[k] = v;
-        j["attributes"] = attributes;
+        const Json j = {
+            {"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
+            {"cellsPerLevel", summary.cellsPerLevel}, {"minLevel", summary.minLevel}, {"maxLevel", summary.maxLevel},
+            {"fields", model.availableFields}, {"field", field.name},
+            {"valueRange", Json::array({double(stats.minValue), double(stats.maxValue)})},
+            {"volumeWeightedMean", stats.volumeWeightedMean},
+            {"voxelBounds",
+             {{"lower", vec(glm::dvec3(summary.bounds.lower))}, {"upper", vec(glm::dvec3(summary.bounds.upper))}}},
+            {"worldBounds", {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}}}, {"bricks", brickStats.brickCount},
+            {"singleCellBricks", brickStats.singleCellBricks},
+            {"averageCellsPerBrick", brickStats.averageCellsPerBrick}, {"abrs", uint64_t(abrs.abrs.size())},
+            {"averageBricksPerAbr", bricksPerAbr}, {"maxBricksPerAbr", maxBricksPerAbr},
+            {"macrocellDims", Json::array({gridDims.x, gridDims.y, gridDims.z})}, {"memoryBytes", mem},
+            {"buildSeconds",
+             {{"read", readSeconds}, {"bricks", bricks.buildSeconds}, {"abrs", abrSeconds},
+              {"macrocells", grid.buildSeconds}}},
+            {"peakResidentBytes", peakResidentBytes()}, {"attributes", attributes}};
         std::printf("%s\n", j.dump(2).c_str());
         return 0;
     }
@@ -156,9 +145,7 @@ int runInfo(const std::vector<std::string>& argv) {
     std::printf("source        %s\n", model.source.c_str());
     std::printf("format        %s\n", model.format.c_str());
     for (const auto& [k, v] : model.attributes) std::printf("  %-11s %s\n", k.c_str(), v.c_str());
-    std::string fieldList;
-    for (const auto& f : model.availableFields) fieldList += (fieldList.empty() ? "" : ", ") + f;
-    std::printf("fields        %s\n", fieldList.c_str());
+    std::printf("fields        %s\n", join(model.availableFields, ", ").c_str());
     std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
                 (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
                 (long long)summary.bounds.upper.x, (long long)summary.bounds.upper.y,

@@ -143,8 +143,8 @@ int runRender(const std::vector<std::string>& argv) {
         }
         config = choice.config;  // the scene is configured for it
         buildSeconds = choice.configureSeconds;
-        std::fprintf(stderr, "amrvk: --traversal auto picked %s%s from %zu probes in %.1f s\n", config.label().c_str(),
-                     config.usesGrid() ? (" grid " + config.grid).c_str() : "", choice.probes.size(), choice.seconds);
+        std::fprintf(stderr, "amrvk: --traversal auto picked %s from %zu probes in %.1f s\n",
+                     config.labelWithGrid().c_str(), choice.probes.size(), choice.seconds);
     }
 
     render::Renderer renderer(ctx, scene);

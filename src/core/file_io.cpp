@@ -6,8 +6,6 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
 
@@ -26,12 +24,10 @@ uint64_t fileSize(const fs::path& path) {
 }
 
 std::string readTextFile(const fs::path& path) {
-    fileSize(path);
-    std::ifstream in(path, std::ios::binary);
-    AMRVK_CHECK(in, path.string(), ": cannot open (", std::strerror(errno), ")");
-    std::ostringstream os;
-    os << in.rdbuf();
-    return os.str();
+    BinaryReader in(path);
+    std::string text(in.size(), '\0');
+    in.read(text.data(), text.size());
+    return text;
 }
 
 BinaryReader::BinaryReader(const fs::path& path) : mPath(path) {

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -25,12 +26,6 @@ static_assert(std::endian::native == std::endian::little, "image_io assumes a li
 namespace {
 
 constexpr int kMaxDimension = 1 << 20;
-
-std::string lowerExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext;
-}
 
 // Throws "FILE: LABEL WxH is not in [1, kMaxDimension] per axis" for a size outside that range.
 void checkSize(const std::string& file, const char* label, int width, int height) {
@@ -170,7 +165,7 @@ uint8_t encodeSrgb8(float linear) {
 }
 
 void writeImage(const fs::path& path, const Image& image) {
-    const std::string ext = lowerExtension(path);
+    const std::string ext = toLower(path.extension().string());
     AMRVK_CHECK(ext == ".png" || ext == ".pfm" || ext == ".exr", path.string(),
                 ": unknown image extension '", ext, "' (expected .png, .pfm or .exr)");
     checkImage(path, image);

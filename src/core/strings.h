@@ -1,5 +1,6 @@
 #pragma once
 // Small string helpers for messages and metadata attributes.
+#include <cctype>
 #include <charconv>
 #include <string>
 #include <string_view>
@@ -51,6 +52,12 @@ const char* nameOf(const Named<E> (&table)[N], E value) {
     for (const Named<E>& n : table)
         if (n.value == value) return n.name;
     return "?";
+}
+
+// `s` in ASCII lower case.
+inline std::string toLower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
 }
 
 // `s` without leading and trailing spaces, tabs and carriage returns.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "core/strings.h"
 #include "gpu/vk_check.h"
 
 namespace amrvk::gpu {
@@ -13,11 +14,6 @@ namespace amrvk::gpu {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
 
 // Device types in order of preference: the rank is the index; any other type ranks last as "other".
 constexpr std::pair<VkPhysicalDeviceType, const char*> kDeviceTypes[] = {
@@ -247,7 +243,7 @@ Context::Context(const ContextOptions& options) {
             bool numeric = std::all_of(options.device.begin(), options.device.end(), ::isdigit);
             for (size_t i = 0; i < probes.size() && chosen < 0; ++i) {
                 bool match = numeric ? std::to_string(i) == options.device
-                                     : lower(probes[i].report.name).find(lower(options.device)) != std::string::npos;
+                                     : toLower(probes[i].report.name).find(toLower(options.device)) != std::string::npos;
                 if (!match) continue;
                 AMRVK_CHECK(probes[i].report.usable, "--device ", options.device, ": ", describe(probes[i]));
                 AMRVK_CHECK(!options.requireRayQuery || probes[i].report.rayQuery, "--device ", options.device,

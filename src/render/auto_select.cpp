@@ -55,7 +55,7 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
     auto probe = [&](const scene::StructureConfig& config) {
         AutoProbe p;
         p.config = config;
-        if (onProbe) onProbe(config.label() + (config.usesGrid() ? " grid " + config.grid : ""));
+        if (onProbe) onProbe(config.labelWithGrid());
         Timer wall;
         try {
             volume.configure(config);

@@ -1,6 +1,6 @@
 #pragma once
 // `amrvk render` options as text: the exact command line that reproduces a picture (the viewer's
-// "copy as command", the bench's reference commands). Numbers are written with enough digits to
+// "copy as command"; the bench quotes its reference commands with shellQuote). Numbers are written with enough digits to
 // read back the same double; arguments are quoted for a POSIX shell where needed.
 #include <string>
 

@@ -39,6 +39,8 @@ std::string StructureConfig::label() const {
     return std::string(traversalName(traversal)) + "/" + samplerName(sampler) + "/" + backendName(backend);
 }
 
+std::string StructureConfig::labelWithGrid() const { return label() + (usesGrid() ? " grid " + grid : ""); }
+
 TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::string* why) {
     const double coverage = boundsVolume > 0 ? leafVolume / boundsVolume : 1.0;
     if (coverage >= kGridMinCoverage) return TraversalKind::GridDda;

@@ -42,7 +42,8 @@ struct StructureConfig {
     bool usesBricks() const { return sampler != SamplerKind::Dense; }  // on the GPU
     // Throws a one-line error for a combination that cannot run (dense without a grid traversal).
     void validate() const;
-    std::string label() const;  // e.g. "grid-dda/ext-brick/sw"
+    std::string label() const;          // e.g. "grid-dda/ext-brick/sw"
+    std::string labelWithGrid() const;  // and " grid <grid>" where a grid is used: "grid-dda/grid/sw grid 64"
 };
 
 // Which traversal fits the data when none is asked for: grid-dda (the paper's default) where the

@@ -192,12 +192,6 @@ std::string oneLine(std::string s) {
     return s;
 }
 
-std::string lowerExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext;
-}
-
 struct PresetNodes {
     const char* name;
     std::vector<float> positions;
@@ -288,17 +282,14 @@ float TransferFunction::maxAlpha(float lo, float hi) const {
 TransferFunction TransferFunction::rescaled(float lo, float hi) const {
     checkRange(lo, hi, mName + ": rescaling");
     const double a = mPositions.front(), b = mPositions.back();
-    std::vector<float> positions(mPositions.size());
-    for (size_t i = 0; i < positions.size(); ++i) {
-        if (b > a) {
-            double t = (static_cast<double>(mPositions[i]) - a) / (b - a);
-            double p = static_cast<double>(lo) + t * (static_cast<double>(hi) - lo);
-            positions[i] = static_cast<float>(std::clamp(p, double(lo), double(hi)));
-        } else {
-            positions[i] = static_cast<float>(0.5 * (static_cast<double>(lo) + hi));
-        }
-    }
+    // A single position (a == b) goes to the middle of [lo, hi].
+    std::vector<float> positions(mPositions.size(), static_cast<float>(0.5 * (static_cast<double>(lo) + hi)));
     if (b > a) {
+        for (size_t i = 0; i < positions.size(); ++i) {
+            const double t = (static_cast<double>(mPositions[i]) - a) / (b - a);
+            const double p = static_cast<double>(lo) + t * (static_cast<double>(hi) - lo);
+            positions[i] = static_cast<float>(std::clamp(p, double(lo), double(hi)));
+        }
         positions.front() = lo;
         positions.back() = hi;
     }
@@ -424,16 +415,12 @@ TfChannels builtInChannels(std::string_view name) {
 }
 
 std::string paraViewPresetJson(const TfChannels& c) {
-    nlohmann::ordered_json p;
-    p["Name"] = c.name;
-    p["ColorSpace"] = "RGB";
     nlohmann::json rgb = nlohmann::json::array(), points = nlohmann::json::array();
     for (size_t i = 0; i < c.colorPositions.size(); ++i)
         for (float v : {c.colorPositions[i], c.colors[i].r, c.colors[i].g, c.colors[i].b}) rgb.push_back(v);
     for (size_t i = 0; i < c.opacityPositions.size(); ++i)
         for (float v : {c.opacityPositions[i], c.alphas[i], 0.5f, 0.0f}) points.push_back(v);
-    p["RGBPoints"] = rgb;
-    p["Points"] = points;
+    const nlohmann::ordered_json p = {{"Name", c.name}, {"ColorSpace", "RGB"}, {"RGBPoints", rgb}, {"Points", points}};
     return nlohmann::ordered_json::array({p}).dump(1) + "\n";
 }
 
@@ -502,7 +489,7 @@ TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float
     AMRVK_CHECK(fs::exists(path, ec), "'", spec,
                 "' is neither a transfer function preset (", joinedPresetNames(),
                 ") nor an existing file");
-    const std::string ext = lowerExtension(path);
+    const std::string ext = toLower(path.extension().string());
     if (ext == ".xf") return loadXf(path, dataLo, dataHi);
     if (ext == ".json") return loadParaViewPreset(path, presetName);
     BinaryReader in(path);

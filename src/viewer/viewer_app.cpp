@@ -198,7 +198,7 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
             mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
     });
     mStats.structureSeconds = t.seconds();
-    mStats.combination = next.label() + (next.usesGrid() ? " grid " + next.grid : "");
+    mStats.combination = next.labelWithGrid();
     mState.structure = requested;
     mPanel.gridText = requested.grid;
     noteReset("structure");
