@@ -1,5 +1,6 @@
 #include "scene/command_line.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,6 +21,10 @@ std::string shellQuote(const std::string& s) {
 
 std::string formatNumber(double v) {
     char s[64];
+    if (v == std::trunc(v) && std::fabs(v) < 1e15) {  // whole numbers as such: 10, not 1e+01
+        std::snprintf(s, sizeof s, "%.0f", v);
+        return s;
+    }
     // Shortest text that reads back the same double (17 digits for NaN, which never does).
     for (int digits = 1; digits <= 17; ++digits) {
         std::snprintf(s, sizeof s, "%.*g", digits, v);

@@ -123,3 +123,21 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
     EXPECT_NE(test::errorOf([] { session::loadSession("/nonexistent/s.json"); }).find("no such session file"),
               std::string::npos);
 }
+
+// "copy as command": every read option, setting and structure choice of the session appears as the
+// render option that sets it, arguments with spaces are quoted, and an unset spp becomes render's 64.
+TEST(Session, RenderCommandLineCarriesEverySetting) {
+    Session s = fullSession();
+    s.input = "/data/my run/plt00010";
+    const std::string c = session::renderCommandLine(s, "/tmp/a tf.json", "out.png");
+    EXPECT_EQ(c.rfind("amrvk render '/data/my run/plt00010' ", 0), 0u) << c;
+    for (const char* part :
+         {" --field Density", " --format enzo", " --nan drop", " --tf '/tmp/a tf.json'", " --mode ss", " --size 320x200",
+          " --seed 77", " --camera 1.5 -2.25 3 0.5 0.5 0.5 0 0 1", " --fov 33", " --density-scale 0.05", " --g -0.3",
+          " --ambient 0.1 0.2 0.3", " --background 0 0 0.01", " --light-dir 1 -1 2 3 3 2.5",
+          " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --spp 128", " --traversal kdtree",
+          " --sampler abr", " --backend auto", " --grid 64", " --kd-leaves 512", " --dense-max-mib 300", " -o out.png"})
+        EXPECT_NE(c.find(part), std::string::npos) << part << " missing from: " << c;
+    s.spp = 0;  // the viewer's "run on"
+    EXPECT_NE(session::renderCommandLine(s, "t.json", "o.png").find(" --spp 64"), std::string::npos);
+}
