@@ -236,7 +236,9 @@ void ViewerApp::setTransferFunction() {
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
     mState.tf = mTf.channels();
-    mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+    // The histogram depends on the value range only: colour and opacity drags do not recompute it.
+    if (!mHistogram || mHistogram->lo != mTf.lo() || mHistogram->hi != mTf.hi())
+        mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
     noteReset("transfer function");
 }
 
