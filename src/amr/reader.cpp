@@ -63,7 +63,11 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "chombo") model = readChombo(path, options);
     else if (format == "raw") model = readRaw(path, options);
     else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo or raw)");
-    applyNanPolicy(model, options.nanPolicy);
+    return checkedModel(std::move(model), options.nanPolicy);
+}
+
+Model checkedModel(Model model, NanPolicy nanPolicy) {
+    applyNanPolicy(model, nanPolicy);
     validateCells(model);  // overlaps: found by the brick build (or amr::validate)
     return model;
 }

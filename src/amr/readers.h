@@ -27,6 +27,11 @@ std::string detectFormat(const std::filesystem::path& path);
 // Reads, applies the NaN policy and validates. Throws amrvk::Error with a one-line message.
 Model readModel(const std::filesystem::path& path, const ReadOptions& options);
 
+// What readModel does after a reader, for cells made anywhere (a reader, the Python module's arrays,
+// a caller's memory): the NaN policy, then every cell checked (validateCells). Overlaps are found
+// by the brick build (scene::makeVolume).
+Model checkedModel(Model model, NanPolicy nanPolicy);
+
 // Per-format readers: return the model before NaN policy and validation.
 Model readExaBrick(const std::filesystem::path& path, const ReadOptions& options);
 Model readAmrex(const std::filesystem::path& path, const ReadOptions& options);

@@ -10,8 +10,8 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/stats.h"
-#include "scene/camera.h"
-#include "scene/command_line.h"
+#include "picture/picture.h"
+#include "session/picture_description.h"
 
 namespace amrvk::bench {
 
@@ -37,31 +37,6 @@ std::string fmt(double v) {
     s.precision(9);
     s << v;
     return s.str();
-}
-
-std::string vecText(glm::dvec3 v) { return fmt(v.x) + " " + fmt(v.y) + " " + fmt(v.z); }
-
-using scene::shellQuote;  // quotes every character a POSIX shell would read specially
-
-// Options shared by the reference command line and the cache key.
-std::string sceneOptions(const BenchDataset& ds, const std::string& tf, Mode mode, const scene::RenderSettings& rs,
-                         bool explicitCamera, double fov, const std::optional<std::pair<float, float>>& tfRange) {
-    std::string s;
-    if (!ds.field.empty()) s += " --field " + shellQuote(ds.field);
-    s += " --tf " + shellQuote(tf) + " --mode " + scene::modeName(mode);
-    s += " --size " + std::to_string(rs.width) + "x" + std::to_string(rs.height);
-    s += " --seed " + std::to_string(rs.seed);
-    if (rs.densityScale != 1.0) s += " --density-scale " + fmt(rs.densityScale);
-    if (tfRange) s += " --tf-range " + fmt(tfRange->first) + " " + fmt(tfRange->second);
-    if (rs.g != 0.0) s += " --g " + fmt(rs.g);
-    s += " --ambient " + vecText(rs.ambient);
-    if (rs.background) s += " --background " + vecText(*rs.background);
-    for (const scene::Light& L : rs.lights)
-        s += std::string(L.point ? " --light-point " : " --light-dir ") + vecText(L.posOrDir) + " " + vecText(L.radiance);
-    if (explicitCamera)
-        s += " --camera " + vecText(rs.camera.eye) + " " + vecText(rs.camera.target) + " " + vecText(rs.camera.up);
-    if (fov != 40.0) s += " --fov " + fmt(fov);
-    return s;
 }
 
 std::vector<uint32_t> powersOfTwoUpTo(uint32_t n) {
@@ -90,11 +65,13 @@ private:
     void tick(const std::string& what) {
         if (mProgress) mProgress(mDone, mTotal, what);
     }
-    ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, const scene::TransferFunction& tf,
-                             Mode mode);
+    ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, Mode mode);
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
     void finishGroup(size_t first, double target);
     AutoResult autoGroup(size_t first, Mode mode);
+    // The data set's renderer switched to `config` (resolved); made through picture::makePicture
+    // on first use (the old device copy is freed before each new one).
+    render::Renderer& rendererFor(const StructureConfig& config);
 
     gpu::Context& mCtx;
     const BenchOptions& mOpt;
@@ -104,11 +81,12 @@ private:
     std::vector<Backend> mBackends;
     // Current group.
     const BenchDataset* mDs = nullptr;
-    scene::VolumeScene* mScene = nullptr;
-    const scene::TransferFunction* mTf = nullptr;
-    const scene::TransferFunction* mOtherTf = nullptr;
+    std::shared_ptr<const scene::Volume> mVolume;
+    session::PictureDescription mDesc;  // the data set's picture under the current TF (mode, structure per run)
+    std::unique_ptr<render::Renderer> mRenderer;  // one per data set, switched from run to run
+    std::optional<scene::TransferFunction> mTf, mOtherTf;
     std::string mTfName;
-    scene::RenderSettings mSettings;
+    scene::RenderSettings mSettings;  // resolved: the camera framed
     ReferenceImage mRef;
 };
 
@@ -123,26 +101,29 @@ size_t Runner::countRuns() const {
     return mOpt.datasets.size() * mOpt.tfs.size() * perTf;
 }
 
-ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfName, const scene::TransferFunction& tf,
-                                 Mode mode) {
+ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfName, Mode mode) {
     const uint32_t spp = mRes.referenceSpp;
-    scene::RenderSettings rs = mSettings;
-    rs.mode = mode;
-    rs.seed = mSettings.seed + 1000003u;  // independent of the timed runs
+    // The reference is a picture description like any other: rendered through picture::makePicture
+    // and recorded as the amrvk render command of the same description (its cache key too).
+    session::PictureDescription d = mDesc;
+    d.session.settings.mode = mode;
+    d.session.settings.seed = mSettings.seed + 1000003u;  // independent of the timed runs
+    d.session.spp = spp;
+    d.session.structure = {.sampler = SamplerKind::ExtBrick, .traversal = TraversalKind::GridDda,
+                           .backend = Backend::Sw, .grid = mOpt.grid};
     const std::filesystem::path dir = mOpt.outDir / "references";
     std::filesystem::create_directories(dir);
     const std::string name = fileTag(ds.tag) + "-" + fileTag(tfName) + "-" + scene::modeName(mode);
     const std::filesystem::path meanFile = dir / (name + ".pfm"), varFile = dir / (name + ".variance.pfm"),
                                 infoFile = dir / (name + ".json");
-    const std::string options = sceneOptions(ds, tfName, mode, rs, mOpt.camera.has_value(), mOpt.fovDegrees, mOpt.tfRange) +
-                                " --spp " + std::to_string(spp) +
-                                " --traversal grid-dda --sampler ext-brick --backend sw --grid " + mOpt.grid;
-    const std::string command = mOpt.amrvkPath + " render " + shellQuote(ds.input) + options + " -o " +
-                                shellQuote(meanFile.string());
-    const std::string key = std::filesystem::absolute(ds.input).string() + options;
+    const std::string command = session::renderCommandLine(d, "", meanFile.string(), mOpt.amrvkPath);
+    session::PictureDescription keyed = d;
+    keyed.session.input = std::filesystem::absolute(ds.input).string();
+    const std::string key = session::renderCommandLine(keyed, "", "reference.pfm");
     ReferenceInfo info{ds.tag, tfName, scene::modeName(mode), meanFile.string(), command, spp, 0, 0, false};
     ReferenceImage ref;
     ref.spp = spp;
+    const scene::RenderSettings& rs = mSettings;
     if (std::filesystem::exists(meanFile) && std::filesystem::exists(varFile) && std::filesystem::exists(infoFile)) {
         // A cache file that does not parse, or has another key, is rendered again.
         const nlohmann::json cached = nlohmann::json::parse(readTextFile(infoFile), nullptr, false);
@@ -157,14 +138,10 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     }
     if (!info.cached) {
         tick("reference " + name + " (" + std::to_string(spp) + " spp)");
-        StructureConfig c;
-        c.backend = Backend::Sw;
-        c.grid = mOpt.grid;
-        mScene->configure(c);
-        render::Renderer renderer(mCtx, *mScene);
-        renderer.setTransferFunction(tf);
-        scene::RenderOutput out = renderer.render(rs, spp, [&](uint32_t d, uint32_t t) {
-            tick("reference " + name + " " + std::to_string(d) + "/" + std::to_string(t) + " spp");
+        mRenderer.reset();  // one renderer's device memory at a time
+        picture::Picture p = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
+        scene::RenderOutput out = p.render([&](uint32_t done, uint32_t total) {
+            tick("reference " + name + " " + std::to_string(done) + "/" + std::to_string(total) + " spp");
         });
         ref.mean = out.mean;
         ref.meanVariance = scene::varianceOfMean(out);
@@ -194,26 +171,18 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
     try {
-        mScene->configure(config);
+        StructureConfig resolved = config;
+        picture::resolveStructure(mCtx, resolved);
+        mCtx.memory().resetPeak();
+        render::Renderer& renderer = rendererFor(resolved);
         // Build time of every structure this combination uses, whether built now or kept from an
         // earlier run (the kd-tree is built per TF: it is part of tfStructureSeconds instead).
-        const auto& bs = mScene->buildSeconds;
-        r.buildSeconds = bs.bricks + (config.usesAbrs() ? bs.abrs : 0.0) +
-                         (config.sampler == SamplerKind::Dense  ? bs.dense
-                          : config.usesBrickGrid() ? bs.brickGrid
-                                                   : bs.samplerBvh) +
-                         (config.usesGrid() ? bs.grid : 0.0) +
-                         (config.traversalUsesBoxes() && config.traversal != TraversalKind::GridBvh &&
-                                  config.traversal != TraversalKind::KdTree
-                              ? bs.domains
-                              : 0.0);
-        if (mScene->grid) {
-            const glm::ivec3 d = mScene->grid->dims;
+        r.buildSeconds = renderer.scene().combinationBuildSeconds();
+        if (renderer.scene().grid) {
+            const glm::ivec3 d = renderer.scene().grid->dims;
             r.gridDims = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
         }
-        for (const auto& hb : mScene->hostBytes()) r.hostBytes.push_back(hb);
-        mCtx.memory().resetPeak();
-        render::Renderer renderer(mCtx, *mScene);
+        for (const auto& hb : renderer.scene().hostBytes()) r.hostBytes.push_back(hb);
         renderer.setTransferFunction(*mOtherTf);
         Timer tfTimer;
         renderer.setTransferFunction(*mTf);  // the TF edit that is timed
@@ -266,6 +235,17 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     return r;
 }
 
+render::Renderer& Runner::rendererFor(const StructureConfig& config) {
+    if (!mRenderer) {
+        session::PictureDescription d = mDesc;
+        d.session.structure = config;
+        mRenderer = std::move(picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders}).renderer);
+    } else {
+        mRenderer->setStructure(config);
+    }
+    return *mRenderer;
+}
+
 // Target time and dense cost ratio for the runs of one group (same data set, TF and mode).
 void Runner::finishGroup(size_t first, double target) {
     double densePerPath = 0;
@@ -296,7 +276,8 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     rs.mode = mode;
     render::AutoConstraints constraints;
     if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
-    a.choice = render::autoSelect(mCtx, *mScene, *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
+    StructureConfig start{.backend = Backend::Sw, .grid = mOpt.grid};
+    a.choice = render::autoSelect(rendererFor(start), *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
     const StructureConfig& c = a.choice.config;
     auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
     auto sameAsPick = [&](const RunResult& r) {
@@ -354,40 +335,41 @@ BenchResults Runner::run() {
     for (const BenchDataset& ds : mOpt.datasets) {
         mDs = &ds;
         tick("reading " + ds.input);
-        amr::ReadOptions ro = mOpt.read;
-        ro.fields.clear();
-        if (!ds.field.empty()) ro.fields = {ds.field};
-        amr::Model model = amr::readModel(ds.input, ro);
-        const amr::Field& field = ds.field.empty() ? model.defaultField() : model.field(ds.field);
-        scene::VolumeScene scene = scene::makeVolumeScene(model, field);
-        mScene = &scene;
-        const amr::ModelSummary summary = amr::summarize(model);
-        DatasetInfo info{ds.tag, ds.input, field.name, model.cellCount(), summary.maxLevel - summary.minLevel + 1, ""};
+        session::PictureDescription base;
+        base.session.input = ds.input;
+        base.session.read = mOpt.read;
+        base.session.read.fields.clear();
+        base.session.field = ds.field;
+        mVolume = session::loadVolume(base.session);
+        const scene::Volume& volume = *mVolume;
+        const amr::ModelSummary& summary = volume.summary;
+        DatasetInfo info{ds.tag, ds.input, volume.field().name, volume.model.cellCount(),
+                         summary.maxLevel - summary.minLevel + 1, ""};
         const glm::i64vec3 size = summary.bounds.size();
         info.bounds = std::to_string(size.x) + "x" + std::to_string(size.y) + "x" + std::to_string(size.z);
         mRes.datasets.push_back(info);
 
-        mSettings = mOpt.base;
-        mSettings.width = mRes.width;
-        mSettings.height = mRes.height;
-        if (mOpt.camera) mSettings.camera = *mOpt.camera;
-        else
-            mSettings.camera = scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)),
-                                                     model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)),
-                                                     mOpt.fovDegrees);
+        base.session.settings = mOpt.base;
+        base.session.settings.width = mRes.width;
+        base.session.settings.height = mRes.height;
+        base.session.settings.camera.fovYDegrees = mOpt.fovDegrees;
+        if (mOpt.camera) base.session.settings.camera = *mOpt.camera;
+        base.fitCamera = !mOpt.camera;
         for (const std::string& tfName : mOpt.tfs) {
-            const float lo = mOpt.tfRange ? mOpt.tfRange->first : scene.valueLo;
-            const float hi = mOpt.tfRange ? mOpt.tfRange->second : scene.valueHi;
-            scene::TransferFunction tf = scene::loadTransferFunction(tfName, lo, hi);
-            if (mOpt.tfRange) tf = tf.rescaled(lo, hi);
+            mDesc = base;
+            mDesc.tfSource = session::TfSource{.name = tfName};
+            mDesc.tfRange = mOpt.tfRange;
+            const session::Session resolved = session::resolvePicture(mDesc, volume, nullptr);
+            mSettings = resolved.settings;
+            mDesc.session.settings.camera = mSettings.camera;  // framed once: runs and references agree
+            mTf = resolved.tf.merged();
             // The timed TF edit comes from another preset, so every majorant really changes.
-            const scene::TransferFunction other =
-                scene::loadTransferFunction(tfName == "foggy" ? "spiky" : "foggy", lo, hi);
-            mTf = &tf;
-            mOtherTf = &other;
+            session::PictureDescription other = mDesc;
+            other.tfSource = session::TfSource{.name = tfName == "foggy" ? "spiky" : "foggy"};
+            mOtherTf = session::resolvePicture(other, volume, nullptr).tf.merged();
             mTfName = tfName;
             for (Mode mode : mOpt.modes) {
-                mRef = reference(ds, tfName, tf, mode);
+                mRef = reference(ds, tfName, mode);
                 const size_t first = mRes.runs.size();
                 for (TraversalKind t : mOpt.traversals)
                     for (SamplerKind s : mOpt.samplers)
@@ -414,7 +396,7 @@ BenchResults Runner::run() {
             }
             if (!mOpt.dvrSteps.empty()) {
                 // The ray-marching baseline against the ae reference, next to unbiased ae tracking.
-                mRef = reference(ds, tfName, tf, Mode::Ae);
+                mRef = reference(ds, tfName, Mode::Ae);
                 const size_t first = mRes.runs.size();
                 const StructureConfig c{.backend = Backend::Sw, .grid = mOpt.grid};
                 mRes.runs.push_back(measure("pt-ae", Mode::Ae, c, 0));
@@ -422,7 +404,8 @@ BenchResults Runner::run() {
                 finishGroup(first, mOpt.targetRmse);
             }
         }
-        mScene = nullptr;
+        mRenderer.reset();
+        mVolume.reset();
     }
     return mRes;
 }

@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "render/auto_select.h"
-#include "bench/convergence.h"
 #include "amr/readers.h"
+#include "bench/convergence.h"
 #include "gpu/context.h"
+#include "gpu/shader_library.h"
+#include "render/auto_select.h"
 #include "render/renderer.h"
 
 namespace amrvk::bench {
@@ -54,6 +55,7 @@ struct BenchOptions {
     std::filesystem::path outDir;
     std::string commandLine;
     std::string amrvkPath = "amrvk";        // for the reference command lines
+    gpu::ShaderLibrary shaders;             // --shader-dir (default: the embedded shaders)
 };
 
 // One timed configuration.

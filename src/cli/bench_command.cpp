@@ -204,7 +204,7 @@ int runBench(const std::vector<std::string>& argv) {
     // Every option is valid: only now the output directory is made.
     std::filesystem::create_directories(o.outDir);
     AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
-    if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
+    o.shaders = gpu::ShaderLibrary(dev.shaderDir);
     gpu::Context ctx(dev.context);
 
     ProgressBar bar("bench", "runs");

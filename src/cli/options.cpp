@@ -8,8 +8,6 @@
 
 #include "core/checked_size.h"
 #include "core/error.h"
-#include "core/progress.h"
-#include "scene/camera.h"
 
 namespace amrvk::cli {
 
@@ -337,15 +335,12 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
     return s;
 }
 
-Picture pictureFromOptions(const CLI::App& app, const std::string& input, const ReadArgs& read, const PictureArgs& a) {
-    Picture p;
+session::PictureDescription describePicture(const CLI::App& app, const std::string& input, const ReadArgs& read,
+                                            const PictureArgs& a) {
+    session::PictureDescription d;
     const bool fromSession = given(app, "--session");
-    if (fromSession) {
-        p.session = session::loadSession(a.session);
-        p.tfFromSession = !(given(app, "--tf") || given(app, "--tf-range") || given(app, "--tf-preset"));
-        p.cameraGiven = true;
-    }
-    session::Session& s = p.session;
+    if (fromSession) d.session = session::loadSession(a.session);
+    session::Session& s = d.session;
     if (!input.empty()) s.input = input;
     AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
     const bool all = !fromSession;
@@ -357,58 +352,27 @@ Picture pictureFromOptions(const CLI::App& app, const std::string& input, const 
     if (use("--threshold")) s.read.rawThreshold = read.threshold;
     if (given(app, "--field")) s.field = read.fields.front();
     s.settings = pictureSettings(app, a, fromSession ? s.settings : scene::RenderSettings{});
-    p.cameraGiven = p.cameraGiven || given(app, "--camera");
     if (use("--spp")) s.spp = uint32_t(a.spp);
-    p.autoTraversal = a.traversal == "auto" && given(app, "--traversal");
-    p.fitTraversal = !given(app, "--traversal") && !fromSession;
-    p.fitSampler = p.fitTraversal && !given(app, "--sampler");
+    // The TF: the session's unless --tf or --tf-preset is given; --tf-range maps either.
+    if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))
+        d.tfSource = session::TfSource{.name = a.tf, .preset = a.tfPreset};
+    if (given(app, "--tf-range")) d.tfRange = std::make_pair(float(a.tfRange[0]), float(a.tfRange[1]));
+    d.fitCamera = !fromSession && !given(app, "--camera");
+    const bool autoTraversal = a.traversal == "auto" && given(app, "--traversal");
+    d.fit = autoTraversal                                   ? session::StructureFit::Probe
+            : !given(app, "--traversal") && !fromSession ? session::StructureFit::Data
+                                                            : session::StructureFit::None;
+    d.samplerGiven = given(app, "--sampler");
+    d.backendGiven = given(app, "--backend");
+    d.gridGiven = given(app, "--grid");
     if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
     if (use("--grid")) s.structure.grid = a.grid;
     if (use("--kd-leaves")) s.structure.kdLeaves = uint32_t(a.kdLeaves);
     if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
-    if (!p.autoTraversal) s.structure.validate();
-    return p;
-}
-
-amr::Model readSessionData(const session::Session& s) {
-    amr::ReadOptions ro = s.read;
-    if (!s.field.empty()) ro.fields = {s.field};
-    ProgressStage stage("reading " + s.input);
-    return amr::readModel(s.input, ro);
-}
-
-void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,
-                         float valueHi) {
-    if (!p.tfFromSession) {
-        const bool range = given(app, "--tf-range");
-        const float lo = range ? float(a.tfRange[0]) : valueLo, hi = range ? float(a.tfRange[1]) : valueHi;
-        AMRVK_CHECK(!range || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
-        scene::TransferFunction tf = scene::loadTransferFunction(a.tf, lo, hi, a.tfPreset);
-        if (range) tf = tf.rescaled(lo, hi);
-        p.session.tf = scene::TfChannels::split(tf);
-    }
-    if (!p.cameraGiven) {
-        const amr::ModelSummary sum = amr::summarize(model);
-        p.session.settings.camera = scene::defaultCamera(model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
-                                                         model.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
-                                                         p.session.settings.camera.fovYDegrees);
-    }
-}
-
-void fitTraversal(Picture& p, const amr::Model& model) {
-    if (!p.fitTraversal || p.session.structure.sampler == scene::SamplerKind::Dense) return;
-    const amr::ModelSummary sum = amr::summarize(model);
-    std::string why;
-    p.session.structure.traversal = scene::fittingTraversal(sum.leafVolume, sum.bounds.volume(), &why);
-    // Over sparse data the grid sampler's macrocells would list many far-apart bricks; with the
-    // abr traversal the abr sampler needs no lookup at all.
-    if (p.fitSampler && p.session.structure.traversal == scene::TraversalKind::Abr) {
-        p.session.structure.sampler = scene::SamplerKind::Abr;
-        if (why.rfind("traversal abr", 0) == 0) why.insert(13, " and sampler abr");
-    }
-    if (!why.empty()) std::fprintf(stderr, "amrvk: %s\n", why.c_str());
+    if (!autoTraversal) s.structure.validate();
+    return d;
 }
 
 void setUpCommand(CLI::App& app) {

@@ -10,7 +10,7 @@
 
 #include "amr/readers.h"
 #include "gpu/context.h"
-#include "session/session.h"
+#include "session/picture_description.h"
 
 namespace amrvk::cli {
 
@@ -67,30 +67,13 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
 // "WxH" with 1 <= W, H <= 16384.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);
 
-// The session a render or view starts from (input: the data set argument, empty when none):
-// --session FILE when given, then every option given
-// explicitly on top of it; without a session the options' defaults. The TF (unless it comes from
-// the session) and the default camera need the data: see resolveAfterReading.
-struct Picture {
-    session::Session session;
-    bool tfFromSession = false;
-    bool cameraGiven = false;    // --camera or the session's camera
-    bool autoTraversal = false;  // --traversal auto
-    bool fitTraversal = false;   // no --traversal and no session: resolveAfterReading fits it to the data
-    bool fitSampler = false;     // no --sampler either: sparse data gets the abr sampler too (no lookup)
-};
-Picture pictureFromOptions(const CLI::App& app, const std::string& input, const ReadArgs& read, const PictureArgs& a);
-// Reads the data set a session names (its read options; only its field when it names one), with
-// a progress line.
-amr::Model readSessionData(const session::Session& s);
-// Loads the TF (a preset over the field's value range unless --tf-range) and, unless one was
-// given, frames the data with the default camera.
-void resolveAfterReading(Picture& p, const CLI::App& app, const PictureArgs& a, const amr::Model& model, float valueLo,
-                         float valueHi);
-// Unless --traversal (or a session) chose one, the traversal that fits the data
-// (scene::fittingTraversal), said on stderr when it is not the default grid-dda. Call after
-// reading, before building structures.
-void fitTraversal(Picture& p, const amr::Model& model);
+// The picture a render or view describes (input: the data set argument, empty when none):
+// --session FILE when given, then every option given explicitly on top of it; without a session
+// the options' defaults, with what the defaults leave open fitted to the data once it is read
+// (session::resolvePicture): the TF over the field's range (unless --tf-range), the default
+// camera (unless --camera), the traversal (unless --traversal; --traversal auto probes).
+session::PictureDescription describePicture(const CLI::App& app, const std::string& input, const ReadArgs& read,
+                                            const PictureArgs& a);
 
 // amrvk's help layout (usage, wrapped descriptions with their checks and defaults), the "options"
 // group and -h,--help; every command calls it right after making its App.

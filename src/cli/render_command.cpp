@@ -16,7 +16,7 @@
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
-#include "render/auto_select.h"
+#include "picture/picture.h"
 #include "render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -109,50 +109,24 @@ int runRender(const std::vector<std::string>& argv) {
         checkWritable(output, "-o");
         checkWritable(jsonFile, "--json");
     }
-    Picture picture = pictureFromOptions(app, input, read, pic);
-    session::Session& s = picture.session;
-
-    Timer readTimer;
-    amr::Model model = readSessionData(s);
-    const double readSeconds = readTimer.seconds();
-    const amr::Field& field = s.field.empty() ? model.defaultField() : model.field(s.field);
-    fitTraversal(picture, model);
-    scene::StructureConfig config = s.structure;
-    if (!dev.shaderDir.empty()) gpu::setShaderDirectory(dev.shaderDir);
+    const session::PictureDescription description = describePicture(app, input, read, pic);
     gpu::ContextOptions co = dev.context;
-    co.requireRayQuery = config.backend == scene::Backend::Rq;
+    co.requireRayQuery = description.session.structure.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
-    config.backend = scene::resolveBackend(config.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
-    Timer buildTimer;
-    scene::VolumeScene scene =
-        picture.autoTraversal ? scene::makeVolumeScene(model, field) : scene::buildVolumeScene(model, field, config);
-    double buildSeconds = buildTimer.seconds();
-    resolveAfterReading(picture, app, pic, model, scene.valueLo, scene.valueHi);
-    const scene::RenderSettings& rs = s.settings;
-    const scene::TransferFunction tf = s.tf.merged();
-    if (picture.autoTraversal) {
-        render::AutoConstraints constraints;
-        if (app.count("--sampler")) constraints.sampler = config.sampler;
-        if (app.count("--backend") && pic.backend != "auto") constraints.backend = config.backend;
-        if (app.count("--grid")) constraints.grid = config.grid;
-        constraints.kdLeaves = config.kdLeaves;
-        render::AutoChoice choice;
-        {
-            ProgressStage stage("--traversal auto: probing structure combinations");
-            choice = render::autoSelect(ctx, scene, tf, rs, constraints);
-        }
-        config = choice.config;  // the scene is configured for it
-        buildSeconds = choice.configureSeconds;
-        std::fprintf(stderr, "amrvk: --traversal auto picked %s from %zu probes in %.1f s\n",
-                     config.labelWithGrid().c_str(), choice.probes.size(), choice.seconds);
-    }
-
-    render::Renderer renderer(ctx, scene);
-    renderer.setTransferFunction(tf);
+    picture::Picture picture =
+        picture::openPicture(ctx, description,
+                             {.shaders = gpu::ShaderLibrary(dev.shaderDir),
+                              .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }});
+    const session::Session& s = picture.session;
+    render::Renderer& renderer = *picture.renderer;
+    const scene::VolumeScene& scene = renderer.scene();
+    const scene::Volume& volume = *picture.volume;
+    const scene::StructureConfig& config = renderer.config();
+    const scene::RenderSettings& rs = renderer.settings();
     ProgressBar bar("render", "spp");
     Timer wall;
     double firstSampleSeconds = 0;
-    scene::RenderOutput out = renderer.render(rs, s.spp, [&](uint32_t d, uint32_t t) {
+    scene::RenderOutput out = picture.render([&](uint32_t d, uint32_t t) {
         if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
         bar.update(d, t);
     });
@@ -183,8 +157,8 @@ int runRender(const std::vector<std::string>& argv) {
                      (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (!jsonFile.empty()) {
         Json j;
-        j["input"] = model.source;
-        j["field"] = field.name;
+        j["input"] = volume.model.source;
+        j["field"] = volume.field().name;
         j["device"] = ctx.deviceReport().name;
         j["samplesPerInvocation"] = ctx.samplesPerInvocation();
         j["width"] = rs.width;
@@ -194,7 +168,9 @@ int runRender(const std::vector<std::string>& argv) {
         j["traversal"] = scene::traversalName(config.traversal);
         j["sampler"] = scene::samplerName(config.sampler);
         j["backend"] = scene::backendName(config.backend);
-        j["tf"] = tf.name();
+        j["backendRequested"] = scene::backendName(s.structure.backend);
+        j["backendReason"] = picture.report.backendReason;
+        j["tf"] = s.tf.name;
         j["seconds"] = out.stats.gpuSeconds;
         j["wallSeconds"] = wallSeconds;
         j["pathsPerSecond"] = out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0;
@@ -210,12 +186,12 @@ int runRender(const std::vector<std::string>& argv) {
         j["majorantSeconds"] = renderer.majorantSeconds();
         j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
         j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
-        j["readSeconds"] = readSeconds;                // read and per-cell validation
+        j["readSeconds"] = picture.report.readSeconds;  // read and per-cell validation
         j["firstSampleSeconds"] = firstSampleSeconds;  // command start to the first finished batch (--spp 1: one sample per pixel)
         j["peakHostBytes"] = peakResidentBytes();      // so far (lavapipe: device memory included)
-        j["structureBuildSeconds"] = buildSeconds;
+        j["structureBuildSeconds"] = picture.report.buildSeconds;
         j["structureBuildSecondsPer"] = {
-            {"bricks", scene.buildSeconds.bricks},           {"abrs", scene.buildSeconds.abrs},
+            {"bricks", volume.bricks.buildSeconds},          {"abrs", scene.buildSeconds.abrs},
             {"samplerBvh", scene.buildSeconds.samplerBvh},   {"macrocells", scene.buildSeconds.grid},
             {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", renderer.kdTreeBuildSeconds()},
             {"denseGrid", scene.buildSeconds.dense},         {"brickGrid", scene.buildSeconds.brickGrid}};

@@ -6,7 +6,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
-#include "scene/volume_scene.h"
+#include "session/picture_description.h"
 #include "viewer/viewer_app.h"
 
 namespace amrvk::cli {
@@ -74,17 +74,12 @@ int runView(const std::vector<std::string>& argv) {
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
                     ": unknown image type (use .png, .exr or .pfm)");
     }
-    Picture picture = pictureFromOptions(app, input, read, pic);
-    AMRVK_CHECK(!picture.autoTraversal, "--traversal auto is for amrvk render (the viewer switches structures live)");
-    if (!app.count("--spp") && app.count("--session") == 0) picture.session.spp = 0;  // run on
-    // The TF and the default camera need the field's range and the bounds.
-    amr::Model model = readSessionData(picture.session);
-    const amr::Field& field = picture.session.field.empty() ? model.defaultField() : model.field(picture.session.field);
-    picture.session.field = field.name;
-    const amr::FieldStats st = amr::computeFieldStats(model, field);
-    resolveAfterReading(picture, app, pic, model, st.minValue, st.maxValue);
-    fitTraversal(picture, model);
-    vo.start = picture.session;
+    vo.start = describePicture(app, input, read, pic);
+    AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
+                "--traversal auto is for amrvk render (the viewer switches structures live)");
+    if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on
+    // Read before a window opens: a bad data set is one line, not a window that closes.
+    std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
     vo.frames = uint64_t(frames);
     vo.screenshot = screenshot;
     vo.script = script;
@@ -94,7 +89,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.context = dev.context;
     vo.frameBudgetSeconds = budgetMs * 1e-3;
     if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
-    return viewer::runViewer(vo, std::move(model));
+    return viewer::runViewer(vo, std::move(volume));
 }
 
 }  // namespace amrvk::cli

@@ -13,8 +13,7 @@ namespace amrvk::gpu {
 
 namespace {
 std::mutex gMutex;
-std::map<std::string, EmbeddedShader> gShaders;
-fs::path gDirectory;
+std::map<std::string, EmbeddedShader> gShaders;  // the embedded catalogue
 
 std::vector<uint32_t> readSpirv(const fs::path& p) {
     BinaryReader in(p);
@@ -31,21 +30,21 @@ void registerShaders(std::span<const EmbeddedShader> shaders) {
     for (const auto& s : shaders) gShaders[s.name] = s;
 }
 
-void setShaderDirectory(const fs::path& dir) {
-    AMRVK_CHECK(dir.empty() || fs::is_directory(dir), "--shader-dir ", dir.string(), ": not a directory");
-    std::lock_guard lock(gMutex);
-    gDirectory = dir;
+ShaderLibrary::ShaderLibrary(fs::path dir) : mDir(std::move(dir)) {
+    std::error_code ec;
+    AMRVK_CHECK(mDir.empty() || fs::is_directory(mDir, ec), "--shader-dir ", mDir.string(), ": not a directory");
 }
 
 fs::path shaderSourceRoot(const fs::path& dir) { return fs::is_directory(dir / "passes") ? dir : dir / ".."; }
 
-std::vector<uint32_t> loadShader(const std::string& name) {
-    fs::path dir;
+std::vector<uint32_t> loadShader(const std::string& name) { return ShaderLibrary().load(name); }
+
+std::vector<uint32_t> ShaderLibrary::load(const std::string& name) const {
+    const fs::path& dir = mDir;
     std::string source = name, define;
     const EmbeddedShader* embedded = nullptr;
     {
         std::lock_guard lock(gMutex);
-        dir = gDirectory;
         auto it = gShaders.find(name);
         if (it != gShaders.end()) {
             embedded = &it->second;

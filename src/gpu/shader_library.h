@@ -1,6 +1,6 @@
 #pragma once
-// SPIR-V by shader name: embedded in the binary at build time (cmake/AmrvkShaders.cmake), or,
-// after setShaderDirectory(DIR), read from P/<name>.spv, or compiled in process from
+// SPIR-V by shader name: embedded in the binary at build time (cmake/AmrvkShaders.cmake), or, from
+// a ShaderLibrary over a directory DIR (--shader-dir), read from P/<name>.spv, or compiled in process from
 // P/<source>.comp (gpu/shader_compiler.h) with the variant's define, where P is DIR/passes when
 // DIR is a copy of shaders/ (as `amrvk shaders --export` writes) and DIR itself otherwise;
 // includes resolve against P/.. and P (passes/*.comp include "lib/..." and "shared/...").
@@ -35,15 +35,32 @@ struct ShaderSourceFile {
 std::vector<std::filesystem::path> exportShaderSources(std::span<const ShaderSourceFile> sources,
                                                        const std::filesystem::path& dir, bool overwrite);
 
-// Makes embedded shaders findable by name (each library of shaders registers once).
+// Makes embedded shaders findable by name (each set of embedded shaders registers once; the
+// catalogue of what is compiled into the binary, the same for every library).
 void registerShaders(std::span<const EmbeddedShader> shaders);
-// Where loadShader looks first; an empty path goes back to the embedded shaders only.
-void setShaderDirectory(const std::filesystem::path& dir);
 // The folder that holds passes/, lib/ and shared/ for a --shader-dir DIR: DIR itself when it has
 // passes/, else DIR/.. (DIR is a passes folder). What the viewer watches for edits.
 std::filesystem::path shaderSourceRoot(const std::filesystem::path& dir);
-// The SPIR-V of `name`. Throws "shader 'X' not found (...)", or gpu::ShaderCompileError (one line
-// with file and line) when a source in the shader directory does not compile.
+
+// Where a renderer's shaders come from: a directory first (when given), then the embedded ones.
+// A value: each renderer holds its own, so two renderers in one process may use different
+// directories (there is no process-wide shader directory).
+class ShaderLibrary {
+public:
+    ShaderLibrary() = default;  // the embedded shaders only
+    // DIR (--shader-dir) first; throws "--shader-dir DIR: not a directory".
+    explicit ShaderLibrary(std::filesystem::path dir);
+    const std::filesystem::path& directory() const { return mDir; }
+    // The SPIR-V of `name`. Throws "shader 'X' not found (...)", or gpu::ShaderCompileError (one
+    // line with file and line) when a source in the directory does not compile.
+    std::vector<uint32_t> load(const std::string& name) const;
+    bool operator==(const ShaderLibrary&) const = default;
+
+private:
+    std::filesystem::path mDir;
+};
+
+// The embedded SPIR-V of `name` (test kernels, the display pass): ShaderLibrary().load(name).
 std::vector<uint32_t> loadShader(const std::string& name);
 
 }  // namespace amrvk::gpu

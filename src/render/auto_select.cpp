@@ -19,7 +19,7 @@ double meanSampleVariance(const scene::RenderOutput& out) {
 
 }  // namespace
 
-AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene::TransferFunction& tf,
+AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                       const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
     AMRVK_CHECK(options.probeSize >= 8 && options.probeSpp >= 2, "internal: probe too small");
@@ -32,7 +32,7 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
         constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
     // Grid traversals and the grid sampler do not fit sparse data (scene::fittingTraversal): their
     // macrocells are mostly empty space. Not worth their probes.
-    const amr::ModelSummary summary = amr::summarize(*volume.model);
+    const amr::ModelSummary& summary = renderer.volume().summary;
     const bool sparse =
         scene::fittingTraversal(summary.leafVolume, summary.bounds.volume()) != scene::TraversalKind::GridDda;
     if (!constraints.traversal && sparse)
@@ -47,9 +47,10 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
     if (constraints.backend) backends = {*constraints.backend};
     else {
         backends = {scene::Backend::Sw};
-        if (ctx.hasRayQuery()) backends.push_back(scene::Backend::Rq);
+        if (renderer.context().hasRayQuery()) backends.push_back(scene::Backend::Rq);
     }
 
+    renderer.setTransferFunction(tf);
     AutoChoice choice;
     double bestEfficiency = -1, bestSecondsPerSpp = 0;
     auto probe = [&](const scene::StructureConfig& config) {
@@ -58,9 +59,7 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
         if (onProbe) onProbe(config.labelWithGrid());
         Timer wall;
         try {
-            volume.configure(config);
-            Renderer renderer(ctx, volume);
-            renderer.setTransferFunction(tf);
+            renderer.setStructure(config);
             scene::RenderOutput warm = renderer.render(rs, 1);
             if (bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
                 p.secondsPerSpp = warm.stats.gpuSeconds;
@@ -110,7 +109,7 @@ AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene
     }
     choice.seconds = total.seconds();
     Timer configure;
-    volume.configure(choice.config);
+    renderer.setStructure(choice.config);
     choice.configureSeconds = configure.seconds();
     return choice;
 }

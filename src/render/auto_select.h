@@ -47,10 +47,10 @@ struct AutoChoice {
     double configureSeconds = 0;  // configuring the scene for the pick at the end
 };
 
-// Probes with the scene's model and field under `tf` and `settings` (mode, camera, lights; size
-// and spp are the probe's). The scene is the driver's to change: each probe configures it, and it
-// is left configured for the pick.
-AutoChoice autoSelect(gpu::Context& ctx, scene::VolumeScene& volume, const scene::TransferFunction& tf,
+// Probes with the renderer's volume under `tf` and `settings` (mode, camera, lights; size and
+// spp are the probe's): each probe switches the renderer's structures, and it is left with the
+// pick's structures and `tf` (its settings and accumulation are the last probe's: set them next).
+AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                       const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options = {},
                       const std::function<void(const std::string&)>& onProbe = {});

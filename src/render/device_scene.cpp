@@ -13,57 +13,60 @@ std::string traversalResourceName(TraversalKind traversal, const char* what) {
 }
 
 DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
-    const scene::StructureConfig& cfg = scene.config;
-    AMRVK_CHECK(cfg.backend != Backend::Auto, "internal: DeviceScene needs a resolved back-end");
-    AMRVK_CHECK(cfg.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
+    const scene::StructurePlan& plan = scene.plan();
+    const scene::Volume& v = scene.volume();
+    AMRVK_CHECK(plan.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
                 "' has no VK_KHR_ray_query");
-    mParams.boundsHi = glm::vec3(scene.toLocal(glm::dvec3(scene.bounds.upper)));
-    mParams.invFinestCellWidth = float(1.0 / double(amr::cellWidth(scene.minLevel)));
-    if (cfg.usesBricks()) {
+    mParams.boundsHi = glm::vec3(v.toLocal(glm::dvec3(v.bounds().upper)));
+    mParams.invFinestCellWidth = float(1.0 / double(amr::cellWidth(v.minLevel())));
+    if (plan.bricksOnDevice) {
         std::vector<shared::BrickGpu> bricks;
-        bricks.reserve(scene.bricks.bricks.size());
-        for (const accel::Brick& b : scene.bricks.bricks)
-            bricks.push_back({scene.toLocal(glm::i64vec3(b.lower)), b.level, b.size, uint32_t(b.begin)});
+        bricks.reserve(v.bricks.bricks.size());
+        for (const accel::Brick& b : v.bricks.bricks)
+            bricks.push_back({v.toLocal(glm::i64vec3(b.lower)), b.level, b.size, uint32_t(b.begin)});
         mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
-        mBrickValues = gpu::makeBuffer<float>(ctx, scene.brickValues, "brickValues");
+        mBrickValues = gpu::makeBuffer<float>(ctx, v.brickValues(), "brickValues");
         mParams.bricks = mBricks.address();
         mParams.brickValues = mBrickValues.address();
     }
-    const std::string sampler = cfg.sampler == SamplerKind::Abr ? "abrSampler" : "brickDomainSampler";
-    if (cfg.sampler == SamplerKind::Dense) {
+    const std::string sampler = plan.lookup == scene::Lookup::AbrBvh ? "abrSampler" : "brickDomainSampler";
+    if (plan.denseGrid) {
         AMRVK_CHECK(scene.dense.has_value(), "internal: dense sampler without a dense grid");
         const accel::DenseGrid& d = *scene.dense;
         mDenseValues = gpu::makeBuffer<float>(ctx, d.values, "denseGrid");
         mParams.denseValues = mDenseValues.address();
         mParams.denseDims = d.dims;
         mParams.denseLevel = d.level;
-        mParams.denseOrigin = glm::vec3(scene.toLocal(glm::dvec3(d.origin)));
+        mParams.denseOrigin = glm::vec3(v.toLocal(glm::dvec3(d.origin)));
         mParams.denseSpacing = float(amr::cellWidth(d.level));
-    } else if (cfg.sampler == SamplerKind::Grid) {
+    }
+    if (plan.brickGrid) {
         AMRVK_CHECK(scene.brickGrid.has_value(), "internal: grid sampler without a brick grid");
         const accel::BrickGrid& g = *scene.brickGrid;
         mGridBrickLists = gpu::makeBuffer<uint32_t>(ctx, g.lists, "gridSamplerBrickLists");
         mParams.gridBrickLists = mGridBrickLists.address();
         mParams.gridDims = g.dims;  // the layout of the range grid too, when there is one
-        mParams.gridOrigin = glm::vec3(scene.toLocal(g.origin));
+        mParams.gridOrigin = glm::vec3(v.toLocal(g.origin));
         mParams.gridCellSize = glm::vec3(g.cellSize);
-    } else if (cfg.backend == Backend::Sw) {
+    }
+    if (plan.samplerBvh) {
         mSamplerNodes = gpu::makeBuffer<shared::BvhNodeGpu>(ctx, scene.samplerBvh.nodes, sampler + "Bvh");
         mSamplerPrims = gpu::makeBuffer<uint32_t>(ctx, scene.samplerBvh.primIds, sampler + "BvhPrims");
         mParams.samplerNodes = mSamplerNodes.address();
         mParams.samplerPrims = mSamplerPrims.address();
-    } else {
+    }
+    if (plan.samplerBoxes) {
         const auto& boxes = scene.samplerBoxes;
         mSamplerAabbs = gpu::makeBuffer<shared::AabbGpu>(ctx, boxes, sampler + "Aabbs", kAsInput);
         mSamplerAccel = gpu::AabbAccelerationStructure(ctx, uint32_t(boxes.size()), sampler + "Accel");
         ctx.submitAndWait([&](VkCommandBuffer cmd) { mSamplerAccel.build(cmd, mSamplerAabbs); });
         mParams.samplerAccel = mSamplerAccel.tlasAddress();
     }
-    if (scene.abrs) {
+    if (plan.abrs) {
         std::vector<shared::AbrGpu> abrs;
         abrs.reserve(scene.abrs->abrs.size());
         for (const accel::Abr& a : scene.abrs->abrs) {
-            const shared::AabbGpu box = scene.toLocal({a.box.lower(), a.box.upper()});
+            const shared::AabbGpu box = v.toLocal({a.box.lower(), a.box.upper()});
             abrs.push_back({box.lo, a.brickBegin, box.hi, a.brickCount});
         }
         mAbrs = gpu::makeBuffer<shared::AbrGpu>(ctx, abrs, "abrs");
@@ -71,15 +74,15 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
         mParams.abrs = mAbrs.address();
         mParams.abrBrickList = mAbrBrickList.address();
     }
-    if (scene.grid) {
+    if (plan.macrocellRanges) {
         mGridRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.grid->ranges, "macrocellRanges");
         mParams.gridDims = scene.grid->dims;
-        mParams.gridOrigin = glm::vec3(scene.toLocal(scene.grid->origin));
+        mParams.gridOrigin = glm::vec3(v.toLocal(scene.grid->origin));
         mParams.gridCellSize = glm::vec3(scene.grid->cellSize);
         mParams.gridRanges = mGridRanges.address();
     }
-    const TraversalKind t = cfg.traversal;
-    if (t == TraversalKind::Abr || t == TraversalKind::Brick || t == TraversalKind::ExtBrick) {
+    if (plan.staticBoxes) {
+        const TraversalKind t = plan.traversal;
         mDomainBoxes = gpu::makeBuffer<shared::AabbGpu>(ctx, scene.domains.boxes, traversalResourceName(t, "Boxes"));
         mDomainRanges = gpu::makeBuffer<accel::ValueRange>(ctx, scene.domains.ranges, traversalResourceName(t, "Ranges"));
     }

@@ -17,26 +17,27 @@ gpu::Buffer floatBuffer(gpu::Context& ctx, uint64_t count, const std::string& na
 }
 }  // namespace
 
-MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device)
-    : mCtx(ctx), mScene(scene), mDevice(device) {
-    const scene::StructureConfig& cfg = scene.config;
-    const TraversalKind t = cfg.traversal;
-    if (scene.grid) {
+MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device,
+                           const gpu::ShaderLibrary& shaders)
+    : mCtx(ctx), mScene(scene), mDevice(device), mShaders(shaders) {
+    const scene::StructurePlan& plan = scene.plan();
+    const TraversalKind t = plan.traversal;
+    if (plan.macrocellRanges) {
         mGridMajorants = floatBuffer(ctx, scene.grid->ranges.size(), "macrocellMajorants");
         mParams.gridMajorants = mGridMajorants.address();
     }
-    if (t == TraversalKind::GridBvh) {
+    if (plan.traversalBoxes == scene::BoxSet::Macrocells) {  // the macrocells' own majorants
         mParams.domainCount = uint32_t(scene.grid->ranges.size());
         mParams.domainRanges = device.gridRanges().address();
         mParams.domainMajorants = mGridMajorants.address();
-    } else if (cfg.traversalUsesBoxes() && t != TraversalKind::KdTree) {
+    } else if (plan.staticBoxes) {
         mParams.domainCount = uint32_t(scene.domains.boxes.size());
         mParams.domainBoxes = device.domainBoxes().address();
         mParams.domainRanges = device.domainRanges().address();
         mDomainMajorants = floatBuffer(ctx, mParams.domainCount, traversalResourceName(t, "Majorants"));
         mParams.domainMajorants = mDomainMajorants.address();
     }
-    if (cfg.backend == Backend::Rq && cfg.traversalUsesBoxes() && t != TraversalKind::KdTree) {
+    if (plan.rayQueryCulling && !plan.boxesPerTf) {  // kdtree: made with its boxes, per TF
         mDomainAabbs = gpu::Buffer(ctx, std::max<uint64_t>(24, uint64_t(mParams.domainCount) * sizeof(shared::AabbGpu)),
                                    gpu::MemoryKind::Device, traversalResourceName(t, "Aabbs"), kAsInput);
         mDomainAccel = gpu::AabbAccelerationStructure(ctx, mParams.domainCount, traversalResourceName(t, "Accel"));
@@ -45,21 +46,21 @@ MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, c
 }
 
 const std::vector<accel::ValueRange>& MajorantPass::domainRanges() const {
-    switch (mScene.config.traversal) {
-        case TraversalKind::GridBvh: return mScene.grid->ranges;
-        case TraversalKind::KdTree: return mKdTree->leafRanges;
+    switch (mScene.plan().traversalBoxes) {
+        case scene::BoxSet::Macrocells: return mScene.grid->ranges;
+        case scene::BoxSet::KdLeaves: return mKdTree->leafRanges;
         default: return mScene.domains.ranges;
     }
 }
 
 void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
     accel::KdTreeParams params;
-    params.maxLeaves = mScene.config.kdLeaves;
-    mKdTree = accel::buildKdTree(mScene.supportRangeQuery(), mScene.bounds,
+    params.maxLeaves = mScene.config().kdLeaves;
+    mKdTree = accel::buildKdTree(*mScene.supportRanges, mScene.volume().bounds(),
                                  [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
     mKdBoxesHost.clear();
     mKdBoxesHost.reserve(mKdTree->leaves.size());
-    for (const accel::BoxD& b : mKdTree->leaves) mKdBoxesHost.push_back(mScene.toLocal(b));
+    for (const accel::BoxD& b : mKdTree->leaves) mKdBoxesHost.push_back(mScene.volume().toLocal(b));
     const TraversalKind t = TraversalKind::KdTree;
     const uint32_t count = uint32_t(mKdBoxesHost.size());
     mKdBoxes = gpu::Buffer();
@@ -72,7 +73,7 @@ void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
     mParams.domainBoxes = mKdBoxes.address();
     mParams.domainRanges = mKdRanges.address();
     mParams.domainMajorants = mDomainMajorants.address();
-    if (mScene.config.backend == Backend::Rq) {
+    if (mScene.plan().rayQueryCulling) {
         mDomainAccel = {};
         mDomainAabbs = gpu::Buffer();
         mDomainAabbs = gpu::Buffer(mCtx, std::max<uint64_t>(24, uint64_t(count) * sizeof(shared::AabbGpu)),
@@ -84,7 +85,7 @@ void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
 }
 
 const std::vector<shared::AabbGpu>& MajorantPass::traversalBoxes() const {
-    return mScene.config.traversal == TraversalKind::KdTree ? mKdBoxesHost : mScene.domains.boxes;
+    return mScene.plan().boxesPerTf ? mKdBoxesHost : mScene.domains.boxes;
 }
 
 // sw back-end: a BVH over the active boxes, rebuilt only when that set changes.
@@ -93,17 +94,17 @@ void MajorantPass::updateSwCulling() {
     mBvhMask = mActive;
     std::vector<accel::BoxD> boxes;
     std::vector<uint32_t> ids;
-    const TraversalKind t = mScene.config.traversal;
+    const TraversalKind t = mScene.plan().traversal;
     const std::vector<shared::AabbGpu>& domainBoxes = traversalBoxes();
     for (uint32_t i = 0; i < mActive.size(); ++i) {
         if (!mActive[i]) continue;
         ids.push_back(i);
-        if (t == TraversalKind::GridBvh) {
+        if (mScene.plan().traversalBoxes == scene::BoxSet::Macrocells) {
             // The shader computes macrocell faces in float; pad the double box so nodes stay conservative.
             const accel::RangeGrid& g = *mScene.grid;
             const glm::ivec3 c(int(i % uint32_t(g.dims.x)), int((i / uint32_t(g.dims.x)) % uint32_t(g.dims.y)),
                                int(i / uint32_t(g.dims.x * g.dims.y)));
-            const glm::dvec3 o = mScene.toLocal(g.origin);
+            const glm::dvec3 o = mScene.volume().toLocal(g.origin);
             const glm::dvec3 lo = o + glm::dvec3(c) * g.cellSize, hi = o + glm::dvec3(c + 1) * g.cellSize;
             const glm::dvec3 pad = 1e-5 * (glm::abs(lo) + glm::abs(hi) + 1.0);
             boxes.push_back({lo - pad, hi + pad});
@@ -127,14 +128,14 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     const auto& colors = tf.colors();
     AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
     Timer host;
-    const scene::StructureConfig& cfg = mScene.config;
+    const scene::StructurePlan& plan = mScene.plan();
     mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
     mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
     mParams.tfPositions = mTfPositions.address();
     mParams.tfColors = mTfColors.address();
     mParams.tfNodeCount = uint32_t(positions.size());
-    if (cfg.traversal == TraversalKind::KdTree) buildKdTree(tf);
-    if (cfg.traversalUsesBoxes()) {
+    if (plan.boxesPerTf) buildKdTree(tf);
+    if (plan.boxMajorants) {
         // The host holds every value range: the boxes that can have a majorant > 0 are known
         // without reading the GPU's majorants back.
         const std::vector<accel::ValueRange>& ranges = domainRanges();
@@ -142,21 +143,21 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
         for (size_t i = 0; i < ranges.size(); ++i) mActive[i] = tf.maxAlpha(ranges[i].lo, ranges[i].hi) > 0.0f;
         mActiveBoxes = uint64_t(std::count(mActive.begin(), mActive.end(), uint8_t(1)));
         mParams.domainAnyActive = mActiveBoxes > 0 ? 1u : 0u;
-        if (cfg.backend == Backend::Sw) updateSwCulling();
+        if (!plan.rayQueryCulling) updateSwCulling();
     }
     mHostSeconds = host.seconds();
 }
 
 void MajorantPass::dispatch(uint64_t paramsAddress) {
-    const scene::StructureConfig& cfg = mScene.config;
+    const scene::StructurePlan& plan = mScene.plan();
     if (!mMajorantPipeline.valid())
-        mMajorantPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("majorants"), "majorants",
+        mMajorantPipeline = gpu::ComputePipeline(mCtx, mShaders.load("majorants"), "majorants",
                                                  sizeof(shared::StructurePush));
-    const bool rq = cfg.backend == Backend::Rq && cfg.traversalUsesBoxes();
+    const bool rq = plan.rayQueryCulling;
     if (rq && !mAabbPipeline.valid())
-        mAabbPipeline = gpu::ComputePipeline(mCtx, gpu::loadShader("domain_aabbs"), "domain_aabbs",
+        mAabbPipeline = gpu::ComputePipeline(mCtx, mShaders.load("domain_aabbs"), "domain_aabbs",
                                              sizeof(shared::StructurePush));
-    const uint32_t boxCount = cfg.traversalUsesBoxes() ? mParams.domainCount : 0;
+    const uint32_t boxCount = plan.boxMajorants ? mParams.domainCount : 0;
     const bool ownDomainMajorants = mDomainMajorants.valid();
     gpu::GpuTimer timer(mCtx, 4);
     mCtx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -174,7 +175,7 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
         gpu::computeBarrier(cmd);
         if (rq && boxCount > 0) {
             shared::StructurePush push{paramsAddress, mParams.domainMajorants, mDomainAabbs.address(), boxCount,
-                                       uint32_t(cfg.traversal)};
+                                       uint32_t(plan.traversal)};
             mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
             gpu::computeBarrier(cmd);
             mDomainAccel.build(cmd, mDomainAabbs);
@@ -206,7 +207,7 @@ std::vector<float> MajorantPass::downloadDomainMajorants() const {
 }
 
 void MajorantPass::overrideGridMajorants(const std::vector<float>& majorants) {
-    AMRVK_CHECK(mScene.grid && mScene.config.traversal == TraversalKind::GridDda,
+    AMRVK_CHECK(mScene.grid && mScene.plan().traversal == TraversalKind::GridDda,
                 "overrideMajorants: grid-dda traversal only");
     AMRVK_CHECK(majorants.size() == mScene.grid->ranges.size(), "overrideMajorants: ", majorants.size(),
                 " values for ", mScene.grid->ranges.size(), " macrocells");

@@ -17,6 +17,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
+#include "gpu/shader_library.h"
 #include "render/device_scene.h"
 #include "scene/transfer_function.h"
 #include "scene/volume_scene.h"
@@ -25,8 +26,10 @@ namespace amrvk::render {
 
 class MajorantPass {
 public:
-    // Both must outlive the pass and stay as they are (a structure change makes a new pass).
-    MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device);
+    // All three must outlive the pass and stay as they are (a structure change makes a new pass);
+    // the pass's pipelines come from `shaders`.
+    MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device,
+                 const gpu::ShaderLibrary& shaders);
 
     // Host part of a TF change: TF nodes, the kd-tree and its boxes (kdtree traversal), and the set
     // of traversal boxes whose value range can reach alpha > 0 (TransferFunction::maxAlpha, the
@@ -64,6 +67,7 @@ private:
     gpu::Context& mCtx;
     const scene::VolumeScene& mScene;
     const DeviceScene& mDevice;
+    const gpu::ShaderLibrary& mShaders;
     shared::MajorantsGpu mParams{};
     gpu::Buffer mTfPositions, mTfColors, mGridMajorants, mDomainMajorants;
     gpu::Buffer mKdBoxes, mKdRanges;               // kdtree traversal: the leaves of the TF's tree

@@ -13,10 +13,11 @@ std::string pipelineKey(scene::Mode mode, const scene::StructureConfig& config) 
     return std::string("path_trace.") + scene::modeName(mode) + "." + config.label();
 }
 
-gpu::ComputePipeline compile(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config) {
+gpu::ComputePipeline compile(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
+                             const gpu::ShaderLibrary& shaders) {
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
     const char* shader = config.backend == scene::Backend::Rq ? "path_trace_rq" : "path_trace";
-    return gpu::ComputePipeline(ctx, gpu::loadShader(shader), pipelineKey(mode, config), sizeof(shared::PushConstants),
+    return gpu::ComputePipeline(ctx, shaders.load(shader), pipelineKey(mode, config), sizeof(shared::PushConstants),
                                 {{0, uint32_t(mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
@@ -29,12 +30,13 @@ PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
     mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
 }
 
-const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scene::StructureConfig& config) {
+const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scene::StructureConfig& config,
+                                                    const gpu::ShaderLibrary& shaders) {
     AMRVK_CHECK(config.backend != scene::Backend::Auto, "internal: pipeline needs a resolved back-end");
     const std::string key = pipelineKey(mode, config);
     auto it = mPipelines.find(key);
     if (it == mPipelines.end()) {
-        it = mPipelines.emplace(key, compile(mCtx, mode, config)).first;
+        it = mPipelines.emplace(key, compile(mCtx, mode, config, shaders)).first;
         ++mCompiled;
     }
     return it->second;
@@ -42,21 +44,23 @@ const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scen
 
 void PathTracePass::dropPipelines() { mPipelines.clear(); }
 
-void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config) {
-    gpu::ComputePipeline fresh = compile(mCtx, mode, config);  // throws before anything is replaced
+void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config,
+                              const gpu::ShaderLibrary& shaders) {
+    gpu::ComputePipeline fresh = compile(mCtx, mode, config, shaders);  // throws before anything is replaced
     ++mCompiled;
     mPipelines.clear();
     mPipelines.emplace(pipelineKey(mode, config), std::move(fresh));
 }
 
-void PathTracePass::resize(int width, int height) {
-    if (mAccum.valid() && width == mWidth && height == mHeight) return;
+bool PathTracePass::resize(int width, int height) {
+    if (mAccum.valid() && width == mWidth && height == mHeight) return false;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     mAccum = gpu::Buffer();
     mAccum = gpu::Buffer(mCtx, pixels * 2 * sizeof(glm::vec4), gpu::MemoryKind::Device, "accumulation");
     mWidth = width;
     mHeight = height;
     reset();
+    return true;
 }
 
 void PathTracePass::reset() {

@@ -13,6 +13,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
+#include "gpu/shader_library.h"
 #include "scene/render_output.h"
 #include "scene/render_settings.h"
 #include "scene/structure_config.h"
@@ -23,17 +24,20 @@ class PathTracePass {
 public:
     explicit PathTracePass(gpu::Context& ctx);
 
-    // The pipeline for (mode, config), compiled on first use and kept until dropPipelines().
-    const gpu::ComputePipeline& pipeline(scene::Mode mode, const scene::StructureConfig& config);
+    // The pipeline for (mode, config), compiled from `shaders` on first use and kept until
+    // dropPipelines().
+    const gpu::ComputePipeline& pipeline(scene::Mode mode, const scene::StructureConfig& config,
+                                         const gpu::ShaderLibrary& shaders);
     // Forgets every pipeline (structure or shader change); the next pipeline() compiles again.
     void dropPipelines();
-    // Compiles the pipeline for (mode, config) from the current shader library and only then
-    // replaces the old one: on a compile error it throws and the previous pipeline keeps running.
-    void recompile(scene::Mode mode, const scene::StructureConfig& config);
+    // Compiles the pipeline for (mode, config) from `shaders` and only then replaces every old
+    // one: on a compile error it throws and the previous pipelines keep running.
+    void recompile(scene::Mode mode, const scene::StructureConfig& config, const gpu::ShaderLibrary& shaders);
     uint64_t pipelinesCompiled() const { return mCompiled; }
 
-    // (Re)allocates the accumulation buffer for width x height pixels when the size changes.
-    void resize(int width, int height);
+    // (Re)allocates the accumulation buffer for width x height pixels when the size changes;
+    // returns whether it did.
+    bool resize(int width, int height);
     // Zeroes the accumulation: the image holds no sample afterwards.
     void reset();
     uint64_t accumAddress() const { return mAccum.address(); }

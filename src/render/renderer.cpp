@@ -33,28 +33,59 @@ void validate(const scene::RenderSettings& s) {
 
 }  // namespace
 
-Renderer::Renderer(gpu::Context& ctx, const scene::VolumeScene& scene) : mCtx(ctx), mScene(scene), mPathTrace(ctx) {
+Renderer::Renderer(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume, const scene::StructureConfig& config,
+                   gpu::ShaderLibrary shaders)
+    : mCtx(ctx), mShaders(std::move(shaders)), mScene(std::move(volume), config), mPathTrace(ctx) {
     gpu::registerShaders(shaders::passShaders());
     mParamsBuffer = gpu::Buffer(ctx, sizeof(shared::RenderParams), gpu::MemoryKind::Device, "renderParams");
     mParams.counters = mPathTrace.countersAddress();
     writeShading(mSettings);  // defaults (density scale 1, tracking cap) for kernels run before setSettings
-    buildStructures();
+    buildDeviceScene();
 }
 
-void Renderer::buildStructures() {
+void Renderer::buildDeviceScene() {
     mMajorants.reset();  // refers to the device scene: goes first
     mDevice.reset();
     mDevice = std::make_unique<DeviceScene>(mCtx, mScene);
-    mMajorants = std::make_unique<MajorantPass>(mCtx, mScene, *mDevice);
+    mMajorants = std::make_unique<MajorantPass>(mCtx, mScene, *mDevice, mShaders);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
     mParams.majorants = mMajorants->params();
     mParamsDirty = true;
 }
 
-void Renderer::changed() {
-    mPathTrace.reset();
-    ++mCounts.accumulationResets;
+void Renderer::redo(const scene::Invalidation& inv, const scene::RenderSettings* s) {
+    if (inv.viewParams) {
+        writeView(*s);
+        ++mCounts.viewWrites;
+    }
+    if (inv.shadingParams) {
+        writeShading(*s);
+        ++mCounts.shadingWrites;
+    }
+    if (inv.viewParams || inv.shadingParams) mParamsDirty = true;
+    if (inv.accumulationBuffer && mPathTrace.resize(s->width, s->height)) {
+        ++mCounts.accumulationBuffers;
+        mParamsDirty = true;  // its address is in RenderParams
+    }
+    if (inv.deviceScene) buildDeviceScene();
+    if (inv.pipelines) {
+        mPathTrace.dropPipelines();
+        ++mCounts.pipelineDrops;
+    }
+    // Majorants, culling and the kd-tree go together (invalidatedBy sets all three); they need a TF.
+    if ((inv.majorants || inv.culling || inv.kdTree) && mTf) {
+        mMajorants->prepare(*mTf);
+        mParams.majorants = mMajorants->params();
+        mParamsDirty = true;
+        uploadParams();
+        mMajorants->dispatch(mParamsBuffer.address());
+        ++mCounts.majorantDispatches;
+    }
+    if (inv.accumulation) {
+        mPathTrace.reset();
+        ++mCounts.accumulationResets;
+    }
 }
 
 void Renderer::uploadParams() {
@@ -69,27 +100,34 @@ uint64_t Renderer::paramsAddress() {
     return mParamsBuffer.address();
 }
 
-void Renderer::setStructure() {
-    buildStructures();
-    mPathTrace.dropPipelines();
-    if (mTf) setTransferFunction(*mTf);
-    changed();
+void Renderer::setStructure(const scene::StructureConfig& config) {
+    if (config == mScene.config() && mBroken.empty()) return;
+    const scene::StructureConfig previous = mScene.config();
+    try {
+        mScene.configure(config);
+    } catch (...) {
+        // The host structures of `previous` may be freed already: build them again, so the device
+        // copy (untouched so far) and the majorant pass keep matching the scene.
+        try {
+            mScene.configure(previous);
+        } catch (const std::exception& e) {
+            mBroken = e.what();
+        }
+        throw;
+    }
+    mBroken.clear();
+    redo(scene::invalidatedBy(scene::Change::Structure));
 }
 
 void Renderer::setTransferFunction(const scene::TransferFunction& tf) {
-    mMajorants->prepare(tf);
-    mParams.majorants = mMajorants->params();
-    mParamsDirty = true;
-    uploadParams();
-    mMajorants->dispatch(mParamsBuffer.address());
-    ++mCounts.majorantDispatches;
+    AMRVK_CHECK(!tf.positions().empty() && tf.positions().size() == tf.colors().size(), "transfer function has no nodes");
     mTf = tf;
-    changed();
+    redo(scene::invalidatedBy(scene::Change::TransferFunction));
 }
 
 void Renderer::writeView(const scene::RenderSettings& s) {
-    const scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, mScene.model->voxelToWorld);
-    mParams.view.eye = glm::vec3(mScene.toLocal(rb.eye));
+    const scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, mScene.volume().model.voxelToWorld);
+    mParams.view.eye = glm::vec3(mScene.volume().toLocal(rb.eye));
     mParams.view.dir00 = glm::vec3(rb.dir00);
     mParams.view.du = glm::vec3(rb.du);
     mParams.view.dv = glm::vec3(rb.dv);
@@ -106,16 +144,16 @@ void Renderer::writeShading(const scene::RenderSettings& s) {
     sh.g = float(std::clamp(s.g, -0.999, 0.999));
     sh.densityScale = float(s.densityScale);
     sh.maxTrackingSteps = s.maxTrackingSteps;
-    const auto lights = scene::lightsInVoxelSpace(s, mScene.model->voxelToWorld);
+    const auto lights = scene::lightsInVoxelSpace(s, mScene.volume().model.voxelToWorld);
     sh.lightCount = uint32_t(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
         const scene::VoxelLight& L = lights[i];
         sh.lights[i].type = uint32_t(L.point ? shared::LightType::Point : shared::LightType::Directional);
-        sh.lights[i].posOrDir = glm::vec3(L.point ? mScene.toLocal(L.posOrDir) : L.posOrDir);
+        sh.lights[i].posOrDir = glm::vec3(L.point ? mScene.volume().toLocal(L.posOrDir) : L.posOrDir);
         sh.lights[i].radiance = glm::vec3(L.radiance);
     }
     // dvr shading light: the first directional light, else a headlight along the view direction.
-    const scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, mScene.model->voxelToWorld);
+    const scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, mScene.volume().model.voxelToWorld);
     glm::dvec3 shadeDir = -(rb.dir00 + 0.5 * double(s.width) * rb.du + 0.5 * double(s.height) * rb.dv);
     for (const scene::VoxelLight& L : lights)
         if (!L.point) {
@@ -135,20 +173,17 @@ void Renderer::setSettings(const scene::RenderSettings& s) {
                      : scene::ChangeSet(scene::Change::Camera) | scene::Change::ImageSize | scene::Change::Lighting;
     if (changes.empty()) return;
     validate(s);
-    const scene::Invalidation inv = scene::invalidatedBy(changes);
     const shared::RenderParams saved = mParams;  // an invalid camera or light changes nothing
+    const UpdateCounts counts = mCounts;
     try {
-        if (inv.viewParams) writeView(s);
-        if (inv.shadingParams) writeShading(s);
+        redo(scene::invalidatedBy(changes), &s);
     } catch (...) {
         mParams = saved;
+        mCounts = counts;
         throw;
     }
-    if (inv.accumulationBuffer) mPathTrace.resize(s.width, s.height);
     mSettings = s;
     mHasSettings = true;
-    mParamsDirty = true;
-    changed();
 }
 
 void Renderer::setCamera(const scene::Camera& camera) {
@@ -157,18 +192,26 @@ void Renderer::setCamera(const scene::Camera& camera) {
     setSettings(s);
 }
 
-void Renderer::reloadShaders() {
-    AMRVK_CHECK(mHasSettings, "internal: reloadShaders() before setSettings()");
-    mPathTrace.recompile(mSettings.mode, mScene.config);
-    changed();
+void Renderer::setShaders(gpu::ShaderLibrary shaders) {
+    // Compile first (throws before anything is replaced), then drop the rest and reset.
+    if (mHasSettings) mPathTrace.recompile(mSettings.mode, mScene.config(), shaders);
+    mShaders = std::move(shaders);
+    const scene::Invalidation inv = scene::invalidatedBy(scene::Change::Shaders);
+    if (mHasSettings) {
+        ++mCounts.pipelineDrops;  // recompile() replaced every pipeline
+        redo({.accumulation = inv.accumulation});
+    } else {
+        redo(inv);
+    }
 }
 
-void Renderer::resetAccumulation() { changed(); }
+void Renderer::resetAccumulation() { redo({.accumulation = true}); }
 
 const gpu::ComputePipeline& Renderer::currentPipeline() {
+    AMRVK_CHECK(mBroken.empty(), "no structures to render with (the last structure change failed: ", mBroken, ")");
     AMRVK_CHECK(mTf.has_value(), "internal: accumulate() before setTransferFunction()");
     AMRVK_CHECK(mHasSettings, "internal: accumulate() before setSettings()");
-    const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config);
+    const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config(), mShaders);
     uploadParams();
     return pipeline;
 }
@@ -209,7 +252,7 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
 
 void Renderer::overrideMajorants(const std::vector<float>& majorants) {
     mMajorants->overrideGridMajorants(majorants);
-    changed();
+    resetAccumulation();
 }
 
 }  // namespace amrvk::render

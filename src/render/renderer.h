@@ -1,13 +1,14 @@
 #pragma once
-// The GPU renderer: one API for `amrvk render`, `bench` and the viewer, taking incremental edits.
-// It joins three parts, each in its own file pair:
+// The GPU renderer: one API for `amrvk render`, `bench`, the viewer and every other front end,
+// taking incremental edits. It owns its structures: a VolumeScene over a shared, immutable
+// scene::Volume, configured only through setStructure(), so the device copy always matches the
+// configuration it renders with. It joins three parts, each in its own file pair:
 //   DeviceScene   the device copy of the scene's TF-independent structures (one combination)
 //   MajorantPass  the TF, majorants, culled traversal hierarchy and kd-tree (per TF)
 //   PathTracePass pipelines, accumulation and counters (per sample)
-// and composes the RenderParams buffer from their blocks. Each edit invalidates only what depends
-// on it (scene/invalidation.h): a camera move resets the accumulation and rewrites 64 bytes; a TF
-// edit reruns the majorant pass; a structure change rebuilds the device copy. The scene is only
-// read: whoever owns it configures it, then calls setStructure().
+// and composes the RenderParams buffer from their blocks. Every edit is applied through
+// scene::invalidatedBy (scene/invalidation.h), the one rule of what depends on what, and
+// redoes exactly what it lists (counted in UpdateCounts).
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,6 +19,7 @@
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
+#include "gpu/shader_library.h"
 #include "render/device_scene.h"
 #include "render/majorant_pass.h"
 #include "render/path_trace_pass.h"
@@ -30,24 +32,35 @@
 
 namespace amrvk::render {
 
-// How often each part was rebuilt since construction (the invalidation rule made observable).
+// How often each part was redone since construction: the invalidation rule made observable, one
+// counter per field of scene::Invalidation.
 struct UpdateCounts {
-    uint64_t deviceScenes = 0;        // device copies of the TF-independent structures
-    uint64_t majorantDispatches = 0;  // majorant passes over every structure
+    uint64_t deviceScenes = 0;         // device copies of the TF-independent structures
+    uint64_t majorantDispatches = 0;   // majorant passes over every structure (culling, kd-tree with them)
     uint64_t accumulationResets = 0;
-    uint64_t pipelinesCompiled = 0;   // path-trace pipelines created
+    uint64_t accumulationBuffers = 0;  // (re)allocations of the accumulation buffer
+    uint64_t viewWrites = 0;           // ViewGpu rewritten
+    uint64_t shadingWrites = 0;        // ShadingGpu rewritten
+    uint64_t pipelineDrops = 0;        // every pipeline dropped or replaced (structure, shaders)
+    uint64_t pipelinesCompiled = 0;    // path-trace pipelines created
 };
 
 class Renderer {
 public:
-    // Uploads the structures of scene.config (and only those). The scene must outlive the renderer
-    // and may change only through configure() followed by setStructure().
-    Renderer(gpu::Context& ctx, const scene::VolumeScene& scene);
+    // Builds the structures of `config` (back-end resolved: Sw or Rq) over `volume` and uploads
+    // them (and only those). Shaders come from `shaders` (default: the embedded ones).
+    Renderer(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume, const scene::StructureConfig& config,
+             gpu::ShaderLibrary shaders = {});
+    // Its passes refer to its own scene and shader library: neither copied nor moved.
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
 
     // ---- Edits (each resets the accumulation; what else it redoes is in scene/invalidation.h) ----
-    // The scene was configured for another combination: a new device copy, the majorants of the
-    // current TF, new pipelines. Device memory of the old combination is freed first.
-    void setStructure();
+    // Another combination (back-end resolved): host structures built or freed, a new device copy
+    // (the old one freed first), the majorants of the current TF, new pipelines. Equal configs
+    // change nothing. When a build fails (e.g. the dense grid over its limit) the error is thrown
+    // and the previous combination is rebuilt and stays in use.
+    void setStructure(const scene::StructureConfig& config);
     // New TF: TF nodes, majorants, culling, kd-tree. Nothing TF-independent is touched.
     void setTransferFunction(const scene::TransferFunction& tf);
     // Camera, image size, seed, mode, lighting, medium and dvr options: applies only what differs
@@ -55,9 +68,11 @@ public:
     // an invalid value, leaving the current settings in place.
     void setSettings(const scene::RenderSettings& settings);
     void setCamera(const scene::Camera& camera);
-    // Recompiles the pipelines in use from the shader library (e.g. after gpu::setShaderDirectory
-    // and an edit); on a compile error throws and the previous pipelines keep running.
-    void reloadShaders();
+    // Takes shaders from `shaders` from now on: recompiles the pipeline in use (before setSettings:
+    // at the first accumulate); on a compile error throws, and the previous pipelines and library
+    // stay. reloadShaders() does it again from the current library (a file in it was edited).
+    void setShaders(gpu::ShaderLibrary shaders);
+    void reloadShaders() { setShaders(mShaders); }
     void resetAccumulation();
 
     // ---- Accumulation ----
@@ -84,7 +99,11 @@ public:
                                const std::function<void(const scene::RenderOutput&)>& snapshot = {});
 
     // ---- State and statistics ----
-    const scene::StructureConfig& config() const { return mScene.config; }
+    const scene::StructureConfig& config() const { return mScene.config(); }
+    const scene::VolumeScene& scene() const { return mScene; }
+    const scene::Volume& volume() const { return mScene.volume(); }
+    const gpu::ShaderLibrary& shaders() const { return mShaders; }
+    gpu::Context& context() const { return mCtx; }
     const scene::RenderSettings& settings() const { return mSettings; }
     UpdateCounts updateCounts() const {
         UpdateCounts c = mCounts;
@@ -111,15 +130,17 @@ public:
     uint64_t paramsAddress();
 
 private:
-    void buildStructures();
+    // Redoes what `inv` lists (the only place an edit takes effect).
+    void redo(const scene::Invalidation& inv, const scene::RenderSettings* settings = nullptr);
+    void buildDeviceScene();
     const gpu::ComputePipeline& currentPipeline();  // compiled on first use; params uploaded
     void writeView(const scene::RenderSettings& s);
     void writeShading(const scene::RenderSettings& s);
     void uploadParams();
-    void changed();
 
     gpu::Context& mCtx;
-    const scene::VolumeScene& mScene;
+    gpu::ShaderLibrary mShaders;
+    scene::VolumeScene mScene;
     std::unique_ptr<DeviceScene> mDevice;
     std::unique_ptr<MajorantPass> mMajorants;
     PathTracePass mPathTrace;
@@ -129,6 +150,7 @@ private:
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;
     bool mHasSettings = false;
+    std::string mBroken;  // non-empty: a failed structure change left no usable structures (why)
     UpdateCounts mCounts;
 };
 

@@ -38,10 +38,8 @@ std::string settingsOptions(const RenderSettings& s, bool withCamera) {
     std::string o = std::string(" --mode ") + modeName(s.mode);
     o += " --size " + std::to_string(s.width) + "x" + std::to_string(s.height);
     o += " --seed " + std::to_string(s.seed);
-    if (withCamera) {
-        o += " --camera " + vec(s.camera.eye) + " " + vec(s.camera.target) + " " + vec(s.camera.up);
-        o += " --fov " + formatNumber(s.camera.fovYDegrees);
-    }
+    if (withCamera) o += " --camera " + vec(s.camera.eye) + " " + vec(s.camera.target) + " " + vec(s.camera.up);
+    if (withCamera || s.camera.fovYDegrees != d.camera.fovYDegrees) o += " --fov " + formatNumber(s.camera.fovYDegrees);
     if (s.densityScale != d.densityScale) o += " --density-scale " + formatNumber(s.densityScale);
     if (s.g != d.g) o += " --g " + formatNumber(s.g);
     if (s.ambient != d.ambient) o += " --ambient " + vec(s.ambient);

@@ -1,6 +1,6 @@
 #pragma once
 // `amrvk render` options as text: the exact command line that reproduces a picture (the viewer's
-// "copy as command"; the bench quotes its reference commands with shellQuote). Numbers are written with enough digits to
+// "copy as command", the bench's reference commands: session::renderCommandLine). Numbers are written with enough digits to
 // read back the same double; arguments are quoted for a POSIX shell where needed.
 #include <string>
 
@@ -13,7 +13,7 @@ std::string shellQuote(const std::string& text);
 std::string formatNumber(double v);
 
 // " --mode M --size WxH --seed S [--camera ... --fov F] [--density-scale ...] ..." for every
-// setting that differs from the default (the camera always when withCamera).
+// setting that differs from the default (the camera and fov always when withCamera).
 std::string settingsOptions(const RenderSettings& settings, bool withCamera);
 // " --traversal T --sampler S --backend B [--grid G] [--kd-leaves N] [--dense-max-mib M]".
 std::string structureOptions(const StructureConfig& config);

@@ -6,33 +6,46 @@
 namespace amrvk::scene {
 
 namespace {
-constexpr Named<SamplerKind> kSamplers[] = {{"ext-brick", SamplerKind::ExtBrick},
-                                            {"abr", SamplerKind::Abr},
-                                            {"dense", SamplerKind::Dense},
-                                            {"grid", SamplerKind::Grid}};
-constexpr Named<TraversalKind> kTraversals[] = {
-    {"grid-dda", TraversalKind::GridDda}, {"grid-bvh", TraversalKind::GridBvh},   {"abr", TraversalKind::Abr},
-    {"brick", TraversalKind::Brick},      {"ext-brick", TraversalKind::ExtBrick}, {"kdtree", TraversalKind::KdTree}};
 constexpr Named<Backend> kBackends[] = {{"sw", Backend::Sw}, {"rq", Backend::Rq}, {"auto", Backend::Auto}};
+
+template <class Traits, size_t N>
+auto parseByName(const Traits (&table)[N], const std::string& name, const char* option) {
+    for (const Traits& t : table)
+        if (name == t.name) return t.kind;
+    std::vector<std::string> names;
+    for (const Traits& t : table) names.push_back(t.name);
+    AMRVK_CHECK(false, option, " '", name, "': expected ", join(names, "|"));
+    return table[0].kind;
+}
 }  // namespace
 
-SamplerKind parseSampler(const std::string& name) { return parseNamed(kSamplers, name, "--sampler"); }
-const char* samplerName(SamplerKind kind) { return nameOf(kSamplers, kind); }
-TraversalKind parseTraversal(const std::string& name) { return parseNamed(kTraversals, name, "--traversal"); }
-const char* traversalName(TraversalKind kind) { return nameOf(kTraversals, kind); }
+SamplerKind parseSampler(const std::string& name) { return parseByName(kSamplerTraits, name, "--sampler"); }
+const char* samplerName(SamplerKind kind) { return traitsOf(kind).name; }
+TraversalKind parseTraversal(const std::string& name) { return parseByName(kTraversalTraits, name, "--traversal"); }
+const char* traversalName(TraversalKind kind) { return traitsOf(kind).name; }
 Backend parseBackend(const std::string& name) { return parseNamed(kBackends, name, "--backend"); }
 const char* backendName(Backend backend) { return nameOf(kBackends, backend); }
 
 std::vector<TraversalKind> allTraversals() {
     std::vector<TraversalKind> out;
-    for (const Named<TraversalKind>& n : kTraversals) out.push_back(n.value);
+    for (const TraversalTraits& t : kTraversalTraits) out.push_back(t.kind);
     return out;
 }
-std::vector<SamplerKind> allSamplers() { return {SamplerKind::ExtBrick, SamplerKind::Abr, SamplerKind::Grid}; }
+std::vector<SamplerKind> allSamplers() {
+    std::vector<SamplerKind> out;
+    for (const SamplerTraits& s : kSamplerTraits)
+        if (s.amr) out.push_back(s.kind);
+    return out;
+}
+
+bool StructureConfig::usesGrid() const {
+    return traitsOf(traversal).macrocellRanges || traitsOf(sampler).lookup == Lookup::BrickGrid;
+}
 
 void StructureConfig::validate() const {
-    AMRVK_CHECK(sampler != SamplerKind::Dense || usesGrid(), "--sampler dense needs --traversal grid-dda or grid-bvh ",
-                "(its majorants come from the dense samples), not ", traversalName(traversal));
+    AMRVK_CHECK(traitsOf(sampler).amr || traitsOf(traversal).macrocellRanges, "--sampler ", samplerName(sampler),
+                " needs --traversal grid-dda or grid-bvh (its majorants come from the dense samples), not ",
+                traversalName(traversal));
 }
 
 std::string StructureConfig::label() const {
@@ -50,11 +63,21 @@ TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::stri
     return TraversalKind::Abr;
 }
 
-Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName) {
-    if (requested == Backend::Auto) return deviceHasRayQuery ? Backend::Rq : Backend::Sw;
-    AMRVK_CHECK(requested != Backend::Rq || deviceHasRayQuery, "--backend rq: device '", deviceName,
-                "' has no VK_KHR_ray_query (use --backend sw or auto)");
-    return requested;
+BackendChoice resolveBackend(const StructureConfig& config, const DeviceTraits& device) {
+    if (config.backend != Backend::Auto) {
+        AMRVK_CHECK(config.backend != Backend::Rq || device.rayQuery, "--backend rq: device '", device.name,
+                    "' has no VK_KHR_ray_query (use --backend sw or auto)");
+        return {config.backend, ""};
+    }
+    const StructurePlan sw = planOf(config.traversal, config.sampler, Backend::Sw);
+    if (!sw.boxMajorants && !sw.samplerBvh)
+        return {Backend::Sw, "--backend auto: sw (" + config.label() + " uses no box hierarchy)"};
+    if (device.cpu)
+        return {Backend::Sw, "--backend auto: sw (on CPU devices ray queries were measured 3-4x slower than the "
+                             "software BVH; --backend rq to use them)"};
+    if (!device.rayQuery) return {Backend::Sw, "--backend auto: sw (device '" + device.name + "' has no ray queries)"};
+    return {Backend::Sw, "--backend auto: sw (ray queries are not measured faster on GPUs yet; --backend rq to use "
+                         "them, --traversal auto measures both)"};
 }
 
 }  // namespace amrvk::scene

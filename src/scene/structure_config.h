@@ -1,23 +1,18 @@
 #pragma once
 // Which structures a render uses: majorant traversal x sample reconstruction x back-end
-// (paper Section 5; exabrick-reference.md 3-4). Every combination is valid at run time.
+// (paper Section 5; exabrick-reference.md 3-4). Every combination but dense without a grid
+// traversal is valid at run time; what each one builds is decided by scene/structure_plan.h.
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "shared/kinds.h"
+#include "scene/structure_plan.h"
 
 namespace amrvk::scene {
 
 // The kinds are defined once for C++ and GLSL in shaders/shared/kinds.h; their values are the
-// shaders' specialization constants. Dense: the field resampled to a uniform finest-level grid
-// (clamped trilinear), the cost floor of sampling; it needs a grid traversal (its majorants come
-// from the dense samples). Backend Sw: software BVHs in GLSL; Rq: VK_KHR_ray_query over AABB
-// BLASes; Auto: Rq where the device has it (resolved before a scene is configured).
-using shared::Backend;
-using shared::SamplerKind;
-using shared::TraversalKind;
-
+// shaders' specialization constants. Backend Sw: software BVHs in GLSL; Rq: VK_KHR_ray_query over
+// AABB BLASes; Auto: chosen for the device (resolveBackend) before a scene is configured.
 SamplerKind parseSampler(const std::string& name);
 const char* samplerName(SamplerKind kind);
 TraversalKind parseTraversal(const std::string& name);
@@ -34,12 +29,12 @@ struct StructureConfig {
     std::string grid = "auto";      // macrocells (grid-dda, grid-bvh, grid sampler): auto | N | NxMxK
     uint32_t kdLeaves = 4096;       // kdtree leaves
     uint64_t denseMaxBytes = uint64_t(2) << 30;  // dense sampler: refuse larger grids
-    // Whether the combination uses a BVH (sampler always; traversal unless grid-dda).
-    bool traversalUsesBoxes() const { return traversal != TraversalKind::GridDda; }
-    bool usesGrid() const { return traversal == TraversalKind::GridDda || traversal == TraversalKind::GridBvh; }
-    bool usesAbrs() const { return sampler == SamplerKind::Abr || traversal == TraversalKind::Abr; }
-    bool usesBrickGrid() const { return sampler == SamplerKind::Grid; }
-    bool usesBricks() const { return sampler != SamplerKind::Dense; }  // on the GPU
+    // Every field takes part: two configs are equal when they build the same structures.
+    bool operator==(const StructureConfig&) const = default;
+    // What this combination builds (backend must be resolved).
+    StructurePlan plan() const { return planOf(traversal, sampler, backend); }
+    // Whether a macrocell grid (--grid) is part of the combination: grid traversals, grid sampler.
+    bool usesGrid() const;
     // Throws a one-line error for a combination that cannot run (dense without a grid traversal).
     void validate() const;
     std::string label() const;          // e.g. "grid-dda/ext-brick/sw"
@@ -54,8 +49,21 @@ struct StructureConfig {
 constexpr double kGridMinCoverage = 1e-3;
 TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::string* why = nullptr);
 
-// Resolves Backend::Auto: Rq when the device supports ray queries, else Sw; a requested Rq on a
-// device without ray queries is an error naming the device.
-Backend resolveBackend(Backend requested, bool deviceHasRayQuery, const std::string& deviceName);
+// What the back-end choice depends on, without Vulkan.
+struct DeviceTraits {
+    std::string name;
+    bool cpu = false;       // a CPU implementation (lavapipe, SwiftShader)
+    bool rayQuery = false;  // VK_KHR_ray_query available
+};
+struct BackendChoice {
+    Backend backend = Backend::Sw;
+    std::string why;  // one line: why auto chose it (empty when the back-end was given)
+};
+// Resolves Backend::Auto for `config` on `device`: sw where the combination uses no box hierarchy
+// (the back-ends are identical there), sw on CPU devices (ray queries measured 3-4x slower than
+// the software BVH on lavapipe, docs/benchmarks.md), and sw on GPUs, where ray queries have not
+// been measured faster yet (rq stays one option away; --traversal auto measures both). A given Rq
+// on a device without ray queries is an error naming the device.
+BackendChoice resolveBackend(const StructureConfig& config, const DeviceTraits& device);
 
 }  // namespace amrvk::scene

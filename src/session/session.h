@@ -33,8 +33,7 @@ Session parseSession(const std::string& text, const std::filesystem::path& where
 void saveSession(const std::filesystem::path& path, const Session& s);  // atomic: temp file + rename
 Session loadSession(const std::filesystem::path& path);
 
-// The `amrvk render` command line that renders a session's picture offline (the viewer's "copy as
-// command"). The TF travels as a ParaView JSON file the caller has written (tfFile).
-std::string renderCommandLine(const Session& s, const std::string& tfFile, const std::string& output);
+// The `amrvk render` command line of a session's picture: session::renderCommandLine
+// (session/picture_description.h).
 
 }  // namespace amrvk::session

@@ -25,6 +25,7 @@
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_library.h"
 #include "render/display_pass.h"
+#include "picture/picture.h"
 #include "render/renderer.h"
 #include "session/file_watcher.h"
 #include "session/frame_budget.h"
@@ -59,7 +60,7 @@ struct Timings {
 
 class ViewerApp {
 public:
-    ViewerApp(const ViewerOptions& o, amr::Model model);
+    ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume> volume);
     int run();
 
 private:
@@ -103,9 +104,7 @@ private:
     gpu::Buffer mDisplay;  // the window's pixels (B, G, R, A), copied into the swapchain image
     int mDisplayWidth = 0, mDisplayHeight = 0;
 
-    amr::Model mModel;
-    const amr::Field* mField = nullptr;
-    std::unique_ptr<scene::VolumeScene> mScene;
+    std::shared_ptr<const scene::Volume> mVolume;
     std::unique_ptr<render::Renderer> mRenderer;
 
     session::Session mState;  // the picture: settings at full resolution
@@ -146,12 +145,12 @@ private:
     double mLastX = 0, mLastY = 0;
 };
 
-ViewerApp::ViewerApp(const ViewerOptions& o, amr::Model model)
+ViewerApp::ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume> volume)
     : mOpt(o),
-      mModel(std::move(model)),
-      mState(o.start),
-      mCamera(glm::dvec3(0.0), glm::dvec3(1.0)),
-      mTf(o.start.tf.merged()),
+      mVolume(std::move(volume)),
+      mState(o.start.session),
+      mCamera(mVolume->worldLo(), mVolume->worldHi()),
+      mTf("ramp", 0.0f, 1.0f),  // load() sets the picture's
       mTfHistory(mTf),
       mBudget(o.frameBudgetSeconds) {
     AMRVK_CHECK(o.frameBudgetSeconds > 0, "internal: the frame budget must be positive");
@@ -164,14 +163,25 @@ scene::RenderSettings ViewerApp::fullSettings() const {
 }
 
 void ViewerApp::load() {
-    mField = mState.field.empty() ? &mModel.defaultField() : &mModel.field(mState.field);
-    mState.field = mField->name;
-    mScene = std::make_unique<scene::VolumeScene>(scene::makeVolumeScene(mModel, *mField));
-    const amr::ModelSummary sum = amr::summarize(mModel);
-    mCamera = session::OrbitCamera(mModel.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
-                                   mModel.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)),
-                                   mState.settings.camera.fovYDegrees);
+    // The same entry as amrvk render: the description fitted to the data, the back-end chosen for
+    // the device, the structures built, TF and settings applied.
+    picture::Picture p;
+    whileResponsive([&] {
+        p = picture::makePicture(*mCtx, mVolume, mOpt.start,
+                                 {.shaders = gpu::ShaderLibrary(mOpt.shaderDir), .note = [](const std::string& line) {
+                                      std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+                                  }});
+    });
+    mState = p.session;
+    mRenderer = std::move(p.renderer);
+    mStats.combination = mRenderer->config().labelWithGrid();
+    mPanel.gridText = mState.structure.grid;
+    mCamera = session::OrbitCamera(mVolume->worldLo(), mVolume->worldHi(), mState.settings.camera.fovYDegrees);
     mCamera.setCamera(mState.settings.camera);
+    mTf = session::TfEditor(mState.tf.merged());
+    mTfHistory = session::TfHistory(mTf);
+    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), mTf.lo(), mTf.hi(), 128);
+    noteReset("picture");
 }
 
 void ViewerApp::createWindowResources() {
@@ -184,18 +194,11 @@ void ViewerApp::createWindowResources() {
 
 void ViewerApp::setStructure(const scene::StructureConfig& requested) {
     scene::StructureConfig next = requested;
-    next.backend = scene::resolveBackend(requested.backend, mCtx->hasRayQuery(), mCtx->deviceReport().name);
-    next.validate();
+    picture::resolveStructure(*mCtx, next);  // validated before anything changes
     Timer t;
     whileResponsive([&] {
-        {
-            ProgressStage stage("structures for " + next.label());
-            mScene->configure(next);
-        }
-        if (mRenderer)
-            mRenderer->setStructure();
-        else
-            mRenderer = std::make_unique<render::Renderer>(*mCtx, *mScene);
+        ProgressStage stage("structures for " + next.label());
+        mRenderer->setStructure(next);
     });
     mStats.structureSeconds = t.seconds();
     mStats.combination = next.labelWithGrid();
@@ -238,12 +241,11 @@ void ViewerApp::setTransferFunction() {
     mState.tf = mTf.channels();
     // The histogram depends on the value range only: colour and opacity drags do not recompute it.
     if (!mHistogram || mHistogram->lo != mTf.lo() || mHistogram->hi != mTf.hi())
-        mHistogram = session::fieldHistogram(mModel, *mField, mTf.lo(), mTf.hi(), 128);
+        mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), mTf.lo(), mTf.hi(), 128);
     noteReset("transfer function");
 }
 
 int ViewerApp::run() {
-    load();
     gpu::ContextOptions co = mOpt.context;
     co.requireRayQuery = mState.structure.backend == scene::Backend::Rq;
     if (!mOpt.headless) {
@@ -256,12 +258,8 @@ int ViewerApp::run() {
     mCtx = std::make_unique<gpu::Context>(co);
     mValidationBefore = mCtx->validationErrors();
     mStats.device = mCtx->deviceReport().name;
-    if (!mOpt.shaderDir.empty()) {
-        gpu::setShaderDirectory(mOpt.shaderDir);
-        mWatcher.emplace(std::vector<fs::path>{gpu::shaderSourceRoot(mOpt.shaderDir)});
-    }
-    setStructure(mState.structure);
-    setTransferFunction();
+    if (!mOpt.shaderDir.empty()) mWatcher.emplace(std::vector<fs::path>{gpu::shaderSourceRoot(mOpt.shaderDir)});
+    load();
     mColorMaps.push_back(mState.tf);  // the starting colour map first
     for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
     if (!mOpt.script.empty()) mScript = session::loadScript(mOpt.script);
@@ -332,8 +330,8 @@ bool ViewerApp::frame() {
             if (req.undo) mTf = mTfHistory.undo();
             if (req.redo) mTf = mTfHistory.redo();
             if (req.resetRange) {
-                mTf.setRange(mScene->valueLo,
-                             mScene->valueHi > mScene->valueLo ? mScene->valueHi : mScene->valueLo + 1);
+                mTf.setRange(mVolume->valueLo(),
+                             mVolume->valueHi() > mVolume->valueLo() ? mVolume->valueHi() : mVolume->valueLo() + 1);
                 req.tfChanged = req.tfCommitted = true;
             }
             if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
@@ -766,6 +764,8 @@ void ViewerApp::writeStats() const {
 
 }  // namespace
 
-int runViewer(const ViewerOptions& options, amr::Model model) { return ViewerApp(options, std::move(model)).run(); }
+int runViewer(const ViewerOptions& options, std::shared_ptr<const scene::Volume> volume) {
+    return ViewerApp(options, std::move(volume)).run();
+}
 
 }  // namespace amrvk::viewer

@@ -10,14 +10,14 @@
 #include <filesystem>
 #include <string>
 
-#include "amr/model.h"
 #include "gpu/context.h"
-#include "session/session.h"
+#include "scene/volume.h"
+#include "session/picture_description.h"
 
 namespace amrvk::viewer {
 
 struct ViewerOptions {
-    session::Session start;                 // what to show first (input, field, camera, TF, every setting)
+    session::PictureDescription start;      // what to show first (fitted to the volume like render's)
     bool headless = false;                  // no window: automation and tests
     uint64_t frames = 0;                    // stop after this many frames (0: until the window closes)
     std::filesystem::path screenshot;       // at exit: the accumulated linear image (.png, .exr, .pfm), no UI
@@ -30,9 +30,9 @@ struct ViewerOptions {
     int windowWidth = 0, windowHeight = 0;  // 0: the session's image size
 };
 
-// Shows `model` (read with options.start's input, read options and field) until the window closes,
-// the frames are done or a script says quit. Returns the exit status: 0, or 1 after Vulkan
-// validation errors with `validation`.
-int runViewer(const ViewerOptions& options, amr::Model model);
+// Shows `volume` (read with options.start's input, read options and field: session::loadVolume)
+// until the window closes, the frames are done or a script says quit. Returns the exit status: 0,
+// or 1 after Vulkan validation errors with `validation`.
+int runViewer(const ViewerOptions& options, std::shared_ptr<const scene::Volume> volume);
 
 }  // namespace amrvk::viewer

@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/stats.h"
 #include "scene/structure_config.h"
-#include "scene/volume_scene.h"
+#include "scene/volume.h"
 #include "test_data.h"
 
 namespace fs = std::filesystem;
@@ -92,7 +92,7 @@ TEST(HostileInput, DomainSpanningMoreThan2To31IsRejectedNotWrapped) {
     m.cells = {{{INT32_MIN, 0, 0}, 0}, {{INT32_MAX - 1, 0, 0}, 0}};
     m.fields = {{"v", {1.0f, 2.0f}}};
     amr::validate(m);
-    expectError([&] { scene::makeVolumeScene(m, m.fields[0]); }, {"far: the data spans 4294967295 finest cells along axis x, more than 2^31"});
+    expectError([&] { scene::makeVolume(m); }, {"far: the data spans 4294967295 finest cells along axis x, more than 2^31"});
 }
 
 TEST(HostileInput, ErrorMessagesEscapeControlBytes) {

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "scene/invalidation.h"
+#include "session/picture_description.h"
 #include "session/session.h"
 #include "test_data.h"
 

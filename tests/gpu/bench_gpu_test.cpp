@@ -114,17 +114,43 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     EXPECT_GT(coarse->curve.back().rmse, 3.0 * ae->curve.back().rmse);
     EXPECT_LT(fine->curve.back().rmse, coarse->curve.back().rmse);
 
-    // --auto: a valid combination from the allowed set, no more efficient than the best measured.
+    // --auto: a valid combination from the allowed set; the report's "best" is the most efficient
+    // timed run of its group and its "pick" figures are those of the run with the pick's
+    // structures, both recomputed here from the runs (1 / (final MSE x GPU seconds)).
     ASSERT_EQ(res.autos.size(), 2u);
+    auto efficiency = [](const bench::RunResult& r) {
+        const double rmse = r.curve.back().rmse;
+        return 1.0 / (rmse * rmse * r.curve.back().seconds);
+    };
     for (const bench::AutoResult& a : res.autos) {
         EXPECT_FALSE(a.choice.probes.empty());
         EXPECT_EQ(a.choice.config.backend, scene::Backend::Sw);
         const auto samplers = scene::allSamplers();  // any AMR sampler, never dense
         EXPECT_NE(std::find(samplers.begin(), samplers.end(), a.choice.config.sampler), samplers.end());
         EXPECT_NO_THROW(a.choice.config.validate());
+        double best = 0, pick = 0;
+        std::string bestLabel;
+        size_t candidates = 0, picks = 0;
+        for (const bench::RunResult& r : res.runs) {
+            if (r.dataset != a.dataset || r.tf != a.tf || r.mode != a.mode || r.kind == "dense" || r.kind == "dvr" ||
+                r.kind == "pt-ae" || !r.error.empty())
+                continue;
+            ++candidates;
+            if (efficiency(r) > best) {
+                best = efficiency(r);
+                bestLabel = r.config.labelWithGrid();
+            }
+            const scene::StructureConfig& c = a.choice.config;
+            if (r.config.traversal == c.traversal && r.config.sampler == c.sampler && r.config.backend == c.backend &&
+                (!r.config.usesGrid() || r.config.grid == c.grid) && picks++ == 0)
+                pick = efficiency(r);
+        }
+        ASSERT_GT(candidates, 2u);
+        ASSERT_GT(picks, 0u) << "the pick was timed";
+        EXPECT_DOUBLE_EQ(a.bestEfficiency, best);
+        EXPECT_EQ(a.bestLabel, bestLabel);
+        EXPECT_DOUBLE_EQ(a.pickEfficiency, pick);
         EXPECT_GT(a.pickEfficiency, 0.0);
-        EXPECT_LE(a.pickEfficiency, a.bestEfficiency * (1 + 1e-9));
-        EXPECT_FALSE(a.bestLabel.empty());
     }
 
     // CSV: a header and one row per run; Markdown: the paper table with marks; plots readable.

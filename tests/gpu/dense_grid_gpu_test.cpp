@@ -21,14 +21,13 @@ namespace {
 
 class DenseGridGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderWith(amr::Model& m, scene::SamplerKind sampler, scene::TraversalKind t,
+    scene::RenderOutput renderWith(const amr::Model& m, scene::SamplerKind sampler, scene::TraversalKind t,
                                     const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
         scene::StructureConfig c;
         c.sampler = sampler;
         c.traversal = t;
         c.grid = "16";
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], c);
-        render::Renderer r(ctx(), scene);
+        render::Renderer r(ctx(), scene::makeVolume(m), c);
         r.setTransferFunction(tf);
         scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u) << c.label();
@@ -53,12 +52,12 @@ TEST_F(DenseGridGpu, PointValuesEqualTheCpuDefinition) {
     scene::StructureConfig c;
     c.sampler = scene::SamplerKind::Dense;
     c.grid = "16";
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], c);
+    render::Renderer renderer(ctx(), scene::makeVolume(std::move(m)), c);
+    const scene::VolumeScene& scene = renderer.scene();
     ASSERT_TRUE(scene.dense.has_value());
-    render::Renderer renderer(ctx(), scene);
-    renderer.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
-    const glm::dvec3 origin(scene.localOrigin);
-    const glm::dvec3 size(scene.bounds.size());
+    renderer.setTransferFunction(scene::makePreset("ramp", scene.volume().valueLo(), scene.volume().valueHi()));
+    const glm::dvec3 origin(scene.volume().localOrigin);
+    const glm::dvec3 size(scene.volume().bounds().size());
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.02, 1.02);  // a little outside too (clamping)
     std::vector<glm::vec4> pts;
@@ -117,10 +116,9 @@ TEST_F(DenseGridGpu, NeedsAGridTraversalAndRespectsTheMemoryLimit) {
     scene::StructureConfig c;
     c.sampler = scene::SamplerKind::Dense;
     c.traversal = scene::TraversalKind::Abr;
-    EXPECT_NE(test::errorOf([&] { scene::buildVolumeScene(m, m.fields[0], c); }).find("grid-dda or grid-bvh"),
-              std::string::npos);
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(std::move(m));
+    EXPECT_NE(test::errorOf([&] { scene::VolumeScene(v, c); }).find("grid-dda or grid-bvh"), std::string::npos);
     c.traversal = scene::TraversalKind::GridDda;
     c.denseMaxBytes = 1024;
-    EXPECT_NE(test::errorOf([&] { scene::buildVolumeScene(m, m.fields[0], c); }).find("--dense-max-mib"),
-              std::string::npos);
+    EXPECT_NE(test::errorOf([&] { scene::VolumeScene(v, c); }).find("--dense-max-mib"), std::string::npos);
 }

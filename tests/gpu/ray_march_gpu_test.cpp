@@ -15,12 +15,11 @@ namespace {
 
 class RayMarchGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderDvr(amr::Model& m, const scene::TransferFunction& tf,
+    scene::RenderOutput renderDvr(const amr::Model& m, const scene::TransferFunction& tf,
                                    const scene::RenderSettings& s, uint32_t spp) {
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "16");
-        render::Renderer r(ctx(), scene);
-        r.setTransferFunction(tf);
-        scene::RenderOutput o = r.render(s, spp);
+        auto r = test::makeRenderer(ctx(), m, test::gridDda(scene::SamplerKind::ExtBrick, "16"));
+        r->setTransferFunction(tf);
+        scene::RenderOutput o = r->render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
         return o;
     }

@@ -6,10 +6,15 @@
 #include <utility>
 #include <vector>
 
+#include <memory>
+#include <string_view>
+
 #include "amr/model.h"
 #include "gpu/context.h"
+#include "render/renderer.h"
 #include "scene/structure_config.h"
 #include "scene/transfer_function.h"
+#include "scene/volume.h"
 
 namespace amrvk::test {
 
@@ -25,6 +30,22 @@ inline amr::Model makeUniformBox(glm::ivec3 dims, int level, float v, glm::ivec3
     m.fields.push_back({"v", std::vector<float>(m.cells.size(), v)});
     m.availableFields = {"v"};
     return m;
+}
+
+// grid-dda with `sampler` over macrocells `grid`, software back-end.
+inline scene::StructureConfig gridDda(scene::SamplerKind sampler, const std::string& grid) {
+    scene::StructureConfig c;
+    c.sampler = sampler;
+    c.grid = grid;
+    return c;
+}
+
+// A renderer over `model` (the volume takes it: read the cells back from renderer->volume().model,
+// which is in brick order) with `config` (back-end resolved).
+inline std::unique_ptr<render::Renderer> makeRenderer(gpu::Context& ctx, amr::Model model,
+                                                      const scene::StructureConfig& config,
+                                                      std::string_view field = {}) {
+    return std::make_unique<render::Renderer>(ctx, scene::makeVolume(std::move(model), field), config);
 }
 
 // Constant albedo and alpha for every value.

@@ -19,12 +19,11 @@ namespace {
 
 class RenderGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderGpu(amr::Model& m, const scene::TransferFunction& tf,
+    scene::RenderOutput renderGpu(const amr::Model& m, const scene::TransferFunction& tf,
                                    const scene::RenderSettings& s, uint32_t spp,
                                    scene::SamplerKind sampler = scene::SamplerKind::ExtBrick,
                                    const std::string& grid = "32") {
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], sampler, grid);
-        render::Renderer r(ctx(), scene);
+        render::Renderer r(ctx(), scene::makeVolume(m, m.fields[0].name), test::gridDda(sampler, grid));
         r.setTransferFunction(tf);
         scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
@@ -248,10 +247,10 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
         s.densityScale = 20.0;
         s.camera = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                          m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
-        // One scene per structure; the TF changes in place, as in the viewer.
+        const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(m);
+        // One renderer per structure; the TF changes in place, as in the viewer.
         auto check = [&](scene::SamplerKind sampler, const std::string& grid, const std::vector<std::string>& presets) {
-            scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], sampler, grid);
-            render::Renderer r(ctx(), scene);
+            render::Renderer r(ctx(), volume, test::gridDda(sampler, grid));
             for (const std::string& preset : presets) {
                 SCOPED_TRACE(preset + " " + scene::samplerName(sampler) + " grid " + grid);
                 r.setTransferFunction(scene::makePreset(preset, st.minValue, st.maxValue));

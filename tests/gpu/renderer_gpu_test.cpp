@@ -1,8 +1,10 @@
 // The incremental renderer: every edit redoes exactly what scene/invalidation.h says depends on it
-// (counted by the renderer), accumulation is resumable, an edited renderer renders what a fresh
+// (counted by the renderer, checked against the rule for every kind of change), a failed structure
+// change keeps the previous structures, accumulation is resumable, an edited renderer renders what a fresh
 // one renders for the final state, the host's culling set equals the GPU majorants > 0, and a
 // tracking call that reaches the step cap is counted, never silent.
 #include <algorithm>
+#include <functional>
 
 #include "amr/readers.h"
 #include "gpu_fixture.h"
@@ -27,9 +29,7 @@ scene::RenderSettings smallSettings(const amr::Model& m) {
     return s;
 }
 
-scene::TransferFunction rampOver(const scene::VolumeScene& scene) {
-    return scene::makePreset("ramp", scene.valueLo, scene.valueHi);
-}
+scene::TransferFunction rampOver(const scene::Volume& v) { return scene::makePreset("ramp", v.valueLo(), v.valueHi()); }
 
 // Largest relative difference between two images' means (same samples: equal up to rounding).
 double maxRelativeDifference(const Image& a, const Image& b) {
@@ -52,105 +52,120 @@ bool holdsDeviceBuffer(gpu::Context& ctx, const std::string& name) {
 
 class RendererGpu : public test::GpuTest {};
 
-TEST_F(RendererGpu, EachEditRedoesOnlyWhatDependsOnIt) {
-    amr::Model m = test::makeThreeLevelCloud();
+// What an edit did, as counted by the renderer, against what scene::invalidatedBy says it must
+// do: one line per disagreement (empty when the renderer followed the rule exactly).
+std::string disagreements(const scene::Invalidation& rule, const render::UpdateCounts& a, const render::UpdateCounts& b) {
+    std::string out;
+    auto check = [&](const char* what, bool expected, uint64_t before, uint64_t after) {
+        if ((after - before == 1) != expected || after - before > 1)
+            out += std::string(what) + ": redone " + std::to_string(after - before) + " time(s), rule says " +
+                   (expected ? "once" : "never") + "; ";
+    };
+    check("accumulation", rule.accumulation, a.accumulationResets, b.accumulationResets);
+    check("accumulation buffer", rule.accumulationBuffer, a.accumulationBuffers, b.accumulationBuffers);
+    check("view params", rule.viewParams, a.viewWrites, b.viewWrites);
+    check("shading params", rule.shadingParams, a.shadingWrites, b.shadingWrites);
+    check("pipelines", rule.pipelines, a.pipelineDrops, b.pipelineDrops);
+    check("majorants", rule.majorants, a.majorantDispatches, b.majorantDispatches);
+    check("device scene", rule.deviceScene, a.deviceScenes, b.deviceScenes);
+    return out;
+}
+
+TEST_F(RendererGpu, EveryEditRedoesExactlyWhatTheInvalidationRuleSays) {
+    // The rule (scene::invalidatedBy) is the specification; for every kind of change an edit that
+    // makes exactly that change must redo exactly what the rule lists, counted by the renderer.
     scene::StructureConfig cfg;
     cfg.grid = "8";
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
-    render::Renderer r(ctx(), scene);
-    r.setTransferFunction(rampOver(scene));
-    scene::RenderSettings s = smallSettings(m);
-    r.setSettings(s);
-    r.accumulate(2);
-    render::UpdateCounts before = r.updateCounts();
-    EXPECT_EQ(before.deviceScenes, 1u);
-    EXPECT_EQ(before.majorantDispatches, 1u);
-    EXPECT_EQ(before.pipelinesCompiled, 1u);
-    EXPECT_EQ(r.accumulatedSpp(), 2u);
+    auto r = test::makeRenderer(ctx(), test::makeThreeLevelCloud(), cfg);
+    const scene::Volume& v = r->volume();
+    r->setTransferFunction(rampOver(v));
+    scene::RenderSettings s = smallSettings(v.model);
+    r->setSettings(s);
+    r->accumulate(2);
+    EXPECT_EQ(r->updateCounts().deviceScenes, 1u);
+    EXPECT_EQ(r->updateCounts().majorantDispatches, 1u);
+    EXPECT_EQ(r->updateCounts().pipelinesCompiled, 1u);
 
-    // Equal settings: nothing happens, the image keeps its samples.
-    r.setSettings(s);
-    EXPECT_EQ(r.accumulatedSpp(), 2u);
-    EXPECT_EQ(r.updateCounts().accumulationResets, before.accumulationResets);
+    // Equal settings and an equal structure: nothing happens, the image keeps its samples.
+    render::UpdateCounts before = r->updateCounts();
+    r->setSettings(s);
+    r->setStructure(cfg);
+    EXPECT_EQ(disagreements(scene::invalidatedBy(scene::ChangeSet()), before, r->updateCounts()), "");
+    EXPECT_EQ(r->accumulatedSpp(), 2u);
 
-    // Camera: only the accumulation.
-    scene::Camera cam = s.camera;
-    cam.eye += glm::dvec3(3.0, 0.0, 1.0);
-    r.setCamera(cam);
-    r.accumulate(1);
-    render::UpdateCounts now = r.updateCounts();
-    EXPECT_EQ(r.accumulatedSpp(), 1u) << "a camera move restarts the image";
-    EXPECT_EQ(now.accumulationResets, before.accumulationResets + 1);
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches);
-    EXPECT_EQ(now.deviceScenes, before.deviceScenes);
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled);
-
-    // Lighting and density: the accumulation only.
-    before = now;
-    s = r.settings();
-    s.ambient = glm::dvec3(0.2);
-    s.densityScale = 2.0;
-    r.setSettings(s);
-    r.accumulate(1);
-    now = r.updateCounts();
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches);
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled);
-    EXPECT_EQ(now.accumulationResets, before.accumulationResets + 1);
-
-    // Mode: a pipeline for the new mode, once; back to the old mode reuses the old one.
-    before = now;
-    s.mode = scene::Mode::Ae;
-    r.setSettings(s);
-    r.accumulate(1);
-    s.mode = scene::Mode::Ms;
-    r.setSettings(s);
-    r.accumulate(1);
-    now = r.updateCounts();
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled + 1);
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches);
-
-    // TF: the majorants, not the device copy, not the pipelines.
-    before = now;
-    r.setTransferFunction(scene::makePreset("foggy", scene.valueLo, scene.valueHi));
-    r.accumulate(1);
-    now = r.updateCounts();
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches + 1);
-    EXPECT_EQ(now.deviceScenes, before.deviceScenes);
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled);
-    EXPECT_EQ(r.accumulatedSpp(), 1u);
-
-    // Shaders: the pipeline, not the majorants.
-    before = now;
-    r.reloadShaders();
-    now = r.updateCounts();
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled + 1);
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches);
-    EXPECT_EQ(r.accumulatedSpp(), 0u);
-
-    // Structure: a new device copy of only what the new combination uses, majorants for the
-    // current TF, new pipelines; the old combination's buffers are freed.
-    EXPECT_TRUE(holdsDeviceBuffer(ctx(), "macrocellRanges"));
-    before = now;
-    cfg.traversal = scene::TraversalKind::Abr;
-    cfg.sampler = scene::SamplerKind::Abr;
-    scene.configure(cfg);
-    r.setStructure();
-    r.accumulate(1);
-    now = r.updateCounts();
-    EXPECT_EQ(now.deviceScenes, before.deviceScenes + 1);
-    EXPECT_EQ(now.majorantDispatches, before.majorantDispatches + 1);
-    EXPECT_EQ(now.pipelinesCompiled, before.pipelinesCompiled + 1);
+    struct Edit {
+        scene::Change change;
+        std::function<void()> apply;
+    };
+    const std::vector<Edit> edits = {
+        {scene::Change::Camera, [&] { s.camera.eye += glm::dvec3(3.0, 0.0, 1.0); r->setSettings(s); }},
+        {scene::Change::ImageSize, [&] { s.width = 20; r->setSettings(s); }},
+        {scene::Change::Seed, [&] { s.seed = 7; r->setSettings(s); }},
+        {scene::Change::Mode, [&] { s.mode = scene::Mode::Ae; r->setSettings(s); }},
+        {scene::Change::Lighting, [&] { s.ambient = glm::dvec3(0.2); r->setSettings(s); }},
+        {scene::Change::Medium, [&] { s.densityScale = 2.0; r->setSettings(s); }},
+        {scene::Change::DvrOptions, [&] { s.dvrStep = 0.25; r->setSettings(s); }},
+        {scene::Change::TransferFunction, [&] { r->setTransferFunction(scene::makePreset("foggy", v.valueLo(), v.valueHi())); }},
+        {scene::Change::Shaders, [&] { r->reloadShaders(); }},
+        {scene::Change::Structure, [&] {
+             cfg.traversal = scene::TraversalKind::Abr;
+             cfg.sampler = scene::SamplerKind::Abr;
+             r->setStructure(cfg);
+         }},
+    };
+    for (const Edit& e : edits) {
+        SCOPED_TRACE(scene::describe(e.change));
+        before = r->updateCounts();
+        e.apply();
+        const render::UpdateCounts after = r->updateCounts();
+        EXPECT_EQ(disagreements(scene::invalidatedBy(e.change), before, after), "");
+        // The check has power: the rule of another kind of change disagrees with what was done.
+        const scene::Change other = e.change == scene::Change::Camera ? scene::Change::TransferFunction : scene::Change::Camera;
+        EXPECT_NE(disagreements(scene::invalidatedBy(other), before, after), "");
+        EXPECT_EQ(r->accumulatedSpp(), 0u) << "every change restarts the image";
+        r->accumulate(1);
+        const uint64_t compiled = r->updateCounts().pipelinesCompiled - after.pipelinesCompiled;
+        // A pipeline is compiled after a drop (structure, shaders: reloadShaders compiles at once)
+        // and for a mode not used before; never otherwise.
+        const bool expectCompile = (e.change == scene::Change::Structure) || (e.change == scene::Change::Mode);
+        EXPECT_EQ(compiled, expectCompile ? 1u : 0u);
+    }
     EXPECT_TRUE(holdsDeviceBuffer(ctx(), "abrs"));
-    EXPECT_FALSE(holdsDeviceBuffer(ctx(), "macrocellRanges"));
-    EXPECT_FALSE(holdsDeviceBuffer(ctx(), "brickDomainSamplerBvh"));
+    EXPECT_FALSE(holdsDeviceBuffer(ctx(), "macrocellRanges")) << "the old combination's buffers are freed";
+    EXPECT_FALSE(holdsDeviceBuffer(ctx(), "gridSamplerBrickLists"));
+}
+
+TEST_F(RendererGpu, AFailedStructureChangeKeepsThePreviousStructures) {
+    // A renderer never runs with structures that were not built for its configuration: a change
+    // that fails (a dense grid over its limit) throws and leaves the previous combination, which
+    // renders exactly what it rendered before.
+    scene::StructureConfig cfg;
+    cfg.grid = "8";
+    auto r = test::makeRenderer(ctx(), test::makeThreeLevelCloud(), cfg);
+    r->setTransferFunction(rampOver(r->volume()));
+    const scene::RenderSettings s = smallSettings(r->volume().model);
+    const scene::RenderOutput before = r->render(s, 3);
+    scene::StructureConfig dense = cfg;
+    dense.sampler = scene::SamplerKind::Dense;
+    dense.denseMaxBytes = 1024;  // far below this cloud's dense grid
+    EXPECT_NE(test::errorOf([&] { r->setStructure(dense); }).find("--dense-max-mib"), std::string::npos);
+    EXPECT_TRUE(r->config() == cfg);
+    EXPECT_TRUE(r->scene().brickGrid.has_value() && r->scene().grid.has_value());
+    const scene::RenderOutput after = r->render(s, 3);
+    EXPECT_LT(maxRelativeDifference(after.mean, before.mean), 1e-6);
+    EXPECT_EQ(after.stats.counter(shared::kCounterDensityLookups), before.stats.counter(shared::kCounterDensityLookups));
+    scene::StructureConfig invalid = cfg;  // refused before anything is freed
+    invalid.traversal = scene::TraversalKind::Abr;
+    invalid.sampler = scene::SamplerKind::Dense;
+    EXPECT_NE(test::errorOf([&] { r->setStructure(invalid); }).find("grid-dda or grid-bvh"), std::string::npos);
+    EXPECT_TRUE(r->config() == cfg);
 }
 
 TEST_F(RendererGpu, AccumulationResumesWhereItStopped) {
-    amr::Model m = test::makeThreeLevelCloud();
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
-    render::Renderer r(ctx(), scene);
-    r.setTransferFunction(rampOver(scene));
-    const scene::RenderSettings s = smallSettings(m);
+    auto renderer = test::makeRenderer(ctx(), test::makeThreeLevelCloud(), test::gridDda(scene::SamplerKind::ExtBrick, "8"));
+    render::Renderer& r = *renderer;
+    r.setTransferFunction(rampOver(r.volume()));
+    const scene::RenderSettings s = smallSettings(r.volume().model);
     const scene::RenderOutput once = r.render(s, 8);
     r.resetAccumulation();
     r.accumulate(3);
@@ -175,15 +190,14 @@ TEST_F(RendererGpu, AccumulationResumesWhereItStopped) {
 }
 
 TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
-    amr::Model m = test::makeThreeLevelCloud();
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
     scene::StructureConfig first, last;
     first.grid = "8";
     last.traversal = scene::TraversalKind::KdTree;
     last.kdLeaves = 64;
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], first);
-    scene::RenderSettings s = smallSettings(m);
-    render::Renderer edited(ctx(), scene);
-    edited.setTransferFunction(scene::makePreset("foggy", scene.valueLo, scene.valueHi));
+    scene::RenderSettings s = smallSettings(volume->model);
+    render::Renderer edited(ctx(), volume, first);
+    edited.setTransferFunction(scene::makePreset("foggy", volume->valueLo(), volume->valueHi()));
     edited.render(s, 2);
     // Edit everything, in an order a user might.
     s.camera.eye += glm::dvec3(-2.0, 4.0, 1.0);
@@ -191,16 +205,14 @@ TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
     s.g = 0.4;
     edited.setSettings(s);
     edited.accumulate(1);
-    const scene::TransferFunction tf = rampOver(scene);
+    const scene::TransferFunction tf = rampOver(*volume);
     edited.setTransferFunction(tf);
-    scene.configure(last);
-    edited.setStructure();
+    edited.setStructure(last);
     EXPECT_EQ(edited.traversalBoxes().size(), 64u) << "the kd-tree has the requested leaves";
     edited.accumulate(6);
     const scene::RenderOutput a = edited.output();
 
-    scene::VolumeScene freshScene = scene::buildVolumeScene(m, m.fields[0], last);
-    render::Renderer fresh(ctx(), freshScene);
+    render::Renderer fresh(ctx(), volume, last);
     fresh.setTransferFunction(tf);
     const scene::RenderOutput b = fresh.render(s, 6);
     EXPECT_EQ(a.spp, b.spp);
@@ -210,7 +222,7 @@ TEST_F(RendererGpu, AnEditedRendererRendersWhatAFreshOneRenders) {
 
 TEST_F(RendererGpu, HostCullingSetEqualsTheGpuMajorants) {
     AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
-    amr::Model m = test::readEnzoDensity();
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::readEnzoDensity());
     for (scene::TraversalKind t : {scene::TraversalKind::GridBvh, scene::TraversalKind::Abr,
                                    scene::TraversalKind::Brick, scene::TraversalKind::ExtBrick,
                                    scene::TraversalKind::KdTree}) {
@@ -218,8 +230,7 @@ TEST_F(RendererGpu, HostCullingSetEqualsTheGpuMajorants) {
         c.traversal = t;
         c.grid = "32";
         c.kdLeaves = 256;
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], c);
-        render::Renderer r(ctx(), scene);
+        render::Renderer r(ctx(), volume, c);
         for (const char* preset : {"spiky", "foggy", "ramp", "empty"}) {
             SCOPED_TRACE(testing::Message() << scene::traversalName(t) << " " << preset);
             r.setTransferFunction(scene::makePreset(preset, 0.0f, 3.0f));
@@ -253,8 +264,7 @@ TEST_F(RendererGpu, TrackingCapIsCountedNotSilent) {
     amr::Model m = test::makeUniformBox({16, 16, 16}, 0, 1.0f);
     for (size_t i = 0; i < m.cells.size(); ++i)
         if (m.cells[i].lower.x < 8) m.fields[0].values[i] = 0.0f;
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "1");
-    render::Renderer r(ctx(), scene);
+    render::Renderer r(ctx(), scene::makeVolume(std::move(m)), test::gridDda(scene::SamplerKind::ExtBrick, "1"));
     r.setTransferFunction(scene::makePreset("grey", 0.0f, 1.0f));
     scene::RenderSettings s;
     s.mode = scene::Mode::Ae;
@@ -279,10 +289,9 @@ TEST_F(RendererGpu, TrackingCapIsCountedNotSilent) {
 // 8 per invocation give the same counters and the same means up to float rounding, at 13 spp (not
 // a multiple of 8, so the last dispatch takes 5); another seed does not (the check has power).
 TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
-    amr::Model m = test::makeThreeLevelCloud();
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
     scene::StructureConfig cfg;
     cfg.grid = "8";
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
     auto renderOn = [&](uint32_t perInvocation, uint32_t seed) {
         gpu::ContextOptions o;
         o.validation = true;
@@ -291,9 +300,9 @@ TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
         EXPECT_EQ(c.samplesPerInvocation(), perInvocation);
         scene::RenderOutput out;
         {
-            render::Renderer r(c, scene);
-            r.setTransferFunction(rampOver(scene));
-            scene::RenderSettings s = smallSettings(m);
+            render::Renderer r(c, volume, cfg);
+            r.setTransferFunction(rampOver(*volume));
+            scene::RenderSettings s = smallSettings(volume->model);
             s.seed = seed;
             out = r.render(s, 13);
         }

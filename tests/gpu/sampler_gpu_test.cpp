@@ -22,17 +22,18 @@ namespace {
 
 class SamplerGpu : public test::GpuTest {
 protected:
-    void compare(amr::Model& model, const amr::Field& field) {
+    void compare(const amr::Model& model, const amr::Field& field) {
+        // The volume takes a copy (in brick order); the brute-force reference reads the original.
+        const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(model, field.name);
         for (auto [kind, backend] : test::samplerBackendCombos(ctx())) {
             SCOPED_TRACE(std::string(scene::samplerName(kind)) + "/" + scene::backendName(backend));
             scene::StructureConfig config;
             config.sampler = kind;
             config.backend = backend;
             config.grid = "16";
-            scene::VolumeScene scene = scene::buildVolumeScene(model, field, config);
-            render::Renderer renderer(ctx(), scene);
-            renderer.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
-            const glm::dvec3 origin(scene.localOrigin);
+            render::Renderer renderer(ctx(), volume, config);
+            renderer.setTransferFunction(scene::makePreset("ramp", volume->valueLo(), volume->valueHi()));
+            const glm::dvec3 origin(volume->localOrigin);
             // Points in local voxel space (float): random inside cells, plus box features of bricks.
             std::vector<glm::vec4> pts;
             std::mt19937 rng(17);
@@ -44,7 +45,7 @@ protected:
                 glm::dvec3 p = glm::dvec3(c.lower) + w * glm::dvec3(u(rng), u(rng), u(rng)) - origin;
                 pts.emplace_back(glm::vec3(p), 0.0f);
             }
-            auto boxes = accel::brickDomainBoxes(scene.bricks);
+            auto boxes = accel::brickDomainBoxes(volume->bricks);
             for (size_t i = 0; pts.size() < 10000; i = (i + 1) % boxes.size()) {
                 glm::dvec3 t(double(pts.size() % 3) * 0.5, double(pts.size() / 3 % 3) * 0.5, double(pts.size() / 9 % 3) * 0.5);
                 glm::dvec3 p = boxes[i].lo + (boxes[i].hi - boxes[i].lo) * t - origin;

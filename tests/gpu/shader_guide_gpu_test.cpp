@@ -72,13 +72,7 @@ scene::RenderOutput average(const scene::RenderOutput& a, const scene::RenderOut
     return m;
 }
 
-class ShaderGuideGpu : public test::GpuTest {
-protected:
-    void TearDown() override {
-        gpu::setShaderDirectory({});  // global: the next test gets the embedded shaders
-        GpuTest::TearDown();
-    }
-};
+class ShaderGuideGpu : public test::GpuTest {};
 
 TEST_F(ShaderGuideGpu, TwoLobePhaseFunctionOfTheGuideEqualsTheMeanOfTwoStockRenders) {
     if (!fs::exists(amrvkBinary())) GTEST_SKIP() << "amrvk binary not built: " << amrvkBinary();
@@ -103,9 +97,9 @@ TEST_F(ShaderGuideGpu, TwoLobePhaseFunctionOfTheGuideEqualsTheMeanOfTwoStockRend
 
     // A uniform scattering cube seen from +z, lit from behind (forward scattering towards the
     // camera) and by a dim environment, which ss reaches through the phase sampler.
-    amr::Model m = test::makeUniformBox({16, 16, 16}, 0, 1.0f);
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
-    render::Renderer r(ctx(), scene);
+    auto renderer = test::makeRenderer(ctx(), test::makeUniformBox({16, 16, 16}, 0, 1.0f),
+                                       test::gridDda(scene::SamplerKind::ExtBrick, "8"));
+    render::Renderer& r = *renderer;
     r.setTransferFunction(test::constantTf(glm::vec3(0.9f), 0.12f));
     scene::RenderSettings s;
     s.mode = scene::Mode::Ss;
@@ -126,8 +120,7 @@ TEST_F(ShaderGuideGpu, TwoLobePhaseFunctionOfTheGuideEqualsTheMeanOfTwoStockRend
         return o;
     };
     const scene::RenderOutput forward = renderAt(0.7, 1), backward = renderAt(-0.7, 2);
-    gpu::setShaderDirectory(dir / "shaders");
-    r.reloadShaders();
+    r.setShaders(gpu::ShaderLibrary(dir / "shaders"));
     const scene::RenderOutput edited = renderAt(0.7, 3);
 
     test::expectSameImage(edited, average(forward, backward), 4, "two-lobe-vs-mean-of-stock");
@@ -147,13 +140,13 @@ TEST_F(ShaderGuideGpu, ExportRefusesToOverwriteAndTheCopyCompilesUnchanged) {
     EXPECT_TRUE(WIFEXITED(again) && WEXITSTATUS(again) == 1);
     EXPECT_NE(test::readAll(dir.string() + ".err").find("exists (give --force to overwrite)"), std::string::npos);
     // Every embedded shader compiles from the exported copy (passes/ found under the root).
-    gpu::setShaderDirectory(dir);
+    const gpu::ShaderLibrary copy(dir);
     for (const char* name : {"path_trace", "majorants", "domain_aabbs", "display"})
-        EXPECT_GT(gpu::loadShader(name).size(), 5u) << name;
+        EXPECT_GT(copy.load(name).size(), 5u) << name;
     // ... and it is the copy that is compiled: a broken copy is an error naming its file and line.
     test::writeAll(dir / "passes/majorants.comp", "#version 460\nvoid main() { undeclared = 1; }\n");
     try {
-        gpu::loadShader("majorants");
+        copy.load("majorants");
         ADD_FAILURE() << "the broken copy compiled";
     } catch (const gpu::ShaderCompileError& e) {
         EXPECT_NE(e.file().find("majorants.comp"), std::string::npos) << e.what();

@@ -43,12 +43,6 @@ int lineOf(const fs::path& file, const std::string& text) {
     return 0;
 }
 
-class ShaderDirectory {
-public:
-    explicit ShaderDirectory(const fs::path& dir) { gpu::setShaderDirectory(dir); }
-    ~ShaderDirectory() { gpu::setShaderDirectory({}); }
-};
-
 }  // namespace
 
 class ShaderLibraryGpu : public test::GpuTest {};
@@ -56,8 +50,8 @@ class ShaderLibraryGpu : public test::GpuTest {};
 TEST_F(ShaderLibraryGpu, CompilesInProcessWhateverTheFolderIsCalled) {
     const fs::path root = test::scratchDir() / "x'$(touch PWNED)'x";
     const fs::path passes = copyShaders(root);
-    ShaderDirectory use(passes);
-    const std::vector<uint32_t> majorants = gpu::loadShader("majorants");
+    const gpu::ShaderLibrary use(passes);
+    const std::vector<uint32_t> majorants = use.load("majorants");
     ASSERT_GT(majorants.size(), 5u);
     EXPECT_EQ(majorants[0], 0x07230203u);
     gpu::ComputePipeline pipe(ctx(), majorants, "majorants", sizeof(shared::StructurePush));
@@ -66,8 +60,8 @@ TEST_F(ShaderLibraryGpu, CompilesInProcessWhateverTheFolderIsCalled) {
         << "a folder name is never run as a command";
     // The ray-query variant is rebuilt from path_trace.comp with its define.
     if (ctx().hasRayQuery()) {
-        const std::vector<uint32_t> rq = gpu::loadShader("path_trace_rq");
-        const std::vector<uint32_t> sw = gpu::loadShader("path_trace");
+        const std::vector<uint32_t> rq = use.load("path_trace_rq");
+        const std::vector<uint32_t> sw = use.load("path_trace");
         EXPECT_NE(rq, sw) << "the variant must differ from the plain build";
     }
 }
@@ -78,9 +72,9 @@ TEST_F(ShaderLibraryGpu, ACompileErrorNamesTheFileAndLineInOneLine) {
     replaceInFile(lib, "if (lo > hi) return 0.0;  // empty range", "if (lo > hi) return 0.0 +;  // empty range");
     const int line = lineOf(lib, "return 0.0 +;");
     ASSERT_GT(line, 0);
-    ShaderDirectory use(passes);
+    const gpu::ShaderLibrary use(passes);
     try {
-        gpu::loadShader("majorants");
+        use.load("majorants");
         FAIL() << "a syntax error must not compile";
     } catch (const gpu::ShaderCompileError& e) {
         EXPECT_EQ(fs::path(e.file()).filename(), "tf.glsl") << e.what();
@@ -92,21 +86,19 @@ TEST_F(ShaderLibraryGpu, ACompileErrorNamesTheFileAndLineInOneLine) {
 }
 
 TEST_F(ShaderLibraryGpu, AFailedReloadKeepsThePreviousPipeline) {
-    amr::Model m = test::makeThreeLevelCloud();
-    scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], scene::SamplerKind::ExtBrick, "8");
-    render::Renderer r(ctx(), scene);
-    r.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
+    render::Renderer r(ctx(), volume, test::gridDda(scene::SamplerKind::ExtBrick, "8"));
+    r.setTransferFunction(scene::makePreset("ramp", volume->valueLo(), volume->valueHi()));
     scene::RenderSettings s;
     s.width = s.height = 16;
     s.mode = scene::Mode::Ae;
-    const amr::ModelSummary sum = amr::summarize(m);
-    s.camera = scene::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+    s.camera = scene::defaultCamera(glm::dvec3(volume->bounds().lower), glm::dvec3(volume->bounds().upper));
     const scene::RenderOutput before = r.render(s, 2);
 
     const fs::path passes = copyShaders(test::scratchDir() / "reload");
     replaceInFile(passes / "path_trace.comp", "void main() {", "void main() { syntax error here;");
-    ShaderDirectory use(passes);
-    EXPECT_THROW(r.reloadShaders(), gpu::ShaderCompileError);
+    EXPECT_THROW(r.setShaders(gpu::ShaderLibrary(passes)), gpu::ShaderCompileError);
+    EXPECT_TRUE(r.shaders().directory().empty()) << "the failed library is not taken";
     const scene::RenderOutput after = r.render(s, 2);
     ASSERT_EQ(after.mean.pixels.size(), before.mean.pixels.size());
     for (size_t i = 0; i < after.mean.pixels.size(); ++i)
@@ -118,8 +110,15 @@ TEST_F(ShaderLibraryGpu, AFailedReloadKeepsThePreviousPipeline) {
     s.camera.eye = s.camera.target + glm::dvec3(0.0, 0.0, 1e4);  // looks past the data: background only
     s.camera.target += glm::dvec3(1e4, 0.0, 0.0);
     const scene::RenderOutput plain = r.render(s, 1);
-    r.reloadShaders();
+    r.setShaders(gpu::ShaderLibrary(passes));
     const scene::RenderOutput doubled = r.render(s, 1);
     EXPECT_FLOAT_EQ(plain.mean.pixels[0].r, 1.0f);
     EXPECT_FLOAT_EQ(doubled.mean.pixels[0].r, 2.0f);
+
+    // No process-wide shader directory: a second renderer in the same process, made now, still
+    // renders with the embedded shaders, while the first keeps its own directory.
+    render::Renderer other(ctx(), volume, test::gridDda(scene::SamplerKind::ExtBrick, "8"));
+    other.setTransferFunction(scene::makePreset("ramp", volume->valueLo(), volume->valueHi()));
+    EXPECT_FLOAT_EQ(other.render(s, 1).mean.pixels[0].r, 1.0f);
+    EXPECT_FLOAT_EQ(r.render(s, 1).mean.pixels[0].r, 2.0f);
 }

@@ -37,10 +37,9 @@ scene::TransferFunction spikyAtQuantiles(std::vector<float> v) {
 
 class StructureMatrixGpu : public test::GpuTest {
 protected:
-    scene::RenderOutput renderWith(amr::Model& m, const scene::StructureConfig& cfg,
+    scene::RenderOutput renderWith(const std::shared_ptr<const scene::Volume>& v, const scene::StructureConfig& cfg,
                                     const scene::TransferFunction& tf, const scene::RenderSettings& s, uint32_t spp) {
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.fields[0], cfg);
-        render::Renderer r(ctx(), scene);
+        render::Renderer r(ctx(), v, cfg);
         r.setTransferFunction(tf);
         scene::RenderOutput o = r.render(s, spp);
         EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u) << cfg.label();
@@ -55,9 +54,10 @@ protected:
     // tracking transmittance is noisier per sample);
     // on Enzo and the teapot at this size and spp it does not (few paths scatter under the spiky
     // TF), so there the test guards against gross errors and majorant violations only.
-    void compareAll(amr::Model& m, const scene::RenderSettings& base, uint32_t spp, const std::string& tag,
+    void compareAll(amr::Model model, const scene::RenderSettings& base, uint32_t spp, const std::string& tag,
                     bool checkPower = false) {
-        const scene::TransferFunction tf = spikyAtQuantiles(m.fields[0].values);
+        const std::shared_ptr<const scene::Volume> m = scene::makeVolume(std::move(model));
+        const scene::TransferFunction tf = spikyAtQuantiles(m->field().values);
         scene::StructureConfig refCfg;
         refCfg.grid = "16";
         scene::RenderOutput ref = renderWith(m, refCfg, tf, base, spp);

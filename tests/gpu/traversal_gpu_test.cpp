@@ -106,11 +106,12 @@ struct BoxSet {
     std::vector<float> maj;
 };
 
-BoxSet traversalBoxes(const scene::VolumeScene& scene, const render::Renderer& r) {
+BoxSet traversalBoxes(const render::Renderer& r) {
     BoxSet s;
-    if (scene.config.traversal == scene::TraversalKind::GridBvh) {
+    const scene::VolumeScene& scene = r.scene();
+    if (scene.config().traversal == scene::TraversalKind::GridBvh) {
         const accel::RangeGrid& g = *scene.grid;
-        const glm::dvec3 o = scene.toLocal(g.origin);
+        const glm::dvec3 o = scene.volume().toLocal(g.origin);
         for (int z = 0; z < g.dims.z; ++z)
             for (int y = 0; y < g.dims.y; ++y)
                 for (int x = 0; x < g.dims.x; ++x)
@@ -191,9 +192,8 @@ int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vect
 }  // namespace
 
 TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
-    amr::Model m = test::makeThreeLevelCloud();
-    const amr::Field& field = m.defaultField();
-    const amr::FieldStats st = amr::computeFieldStats(m, field);
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
+    const amr::FieldStats& st = volume->fieldStats;
     // A TF that is zero below the median value: many boxes become empty (culled).
     const float mid = 0.5f * (st.minValue + st.maxValue);
     const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
@@ -208,13 +208,12 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
             cfg.grid = "12";
             cfg.kdLeaves = 300;
             SCOPED_TRACE(cfg.label());
-            scene::VolumeScene scene = scene::buildVolumeScene(m, field, cfg);
-            render::Renderer r(ctx(), scene);
+            render::Renderer r(ctx(), volume, cfg);
             r.setTransferFunction(tf);
-            const BoxSet boxes = traversalBoxes(scene, r);
+            const BoxSet boxes = traversalBoxes(r);
             EXPECT_GT(r.activeTraversalBoxes(), 0u);
             EXPECT_LT(r.activeTraversalBoxes(), boxes.boxes.size()) << "the TF should empty some boxes";
-            const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+            const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
             const std::vector<Ray> rays = testRays(glm::vec3(hi), 11);
             auto segs = segments(r, b, rays);
             size_t multi = 0;
@@ -243,7 +242,7 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
 
 TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
     if (!ctx().hasRayQuery()) GTEST_SKIP() << "device has no VK_KHR_ray_query";
-    amr::Model m = test::makeThreeLevelCloud();
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
     for (scene::SamplerKind s : scene::allSamplers()) {
         std::vector<float> values[2];
         std::vector<glm::vec4> pts;
@@ -252,21 +251,20 @@ TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
             cfg.sampler = s;
             cfg.backend = b;
             cfg.grid = "8";
-            scene::VolumeScene scene = scene::buildVolumeScene(m, m.defaultField(), cfg);
             if (pts.empty()) {
                 // Random points plus every corner, edge and face centre of each brick domain.
                 std::mt19937 rng(3);
-                const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+                const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
                 std::uniform_real_distribution<double> u(0.0, 1.0);
                 for (int i = 0; i < 4000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
-                for (const auto& box : accel::brickDomainBoxes(scene.bricks))
+                for (const auto& box : accel::brickDomainBoxes(volume->bricks))
                     for (int k = 0; k < 27; ++k) {
                         glm::dvec3 f(k % 3 * 0.5, k / 3 % 3 * 0.5, k / 9 * 0.5);
-                        pts.emplace_back(glm::vec3(box.lo + (box.hi - box.lo) * f - glm::dvec3(scene.localOrigin)), 0.0f);
+                        pts.emplace_back(glm::vec3(box.lo + (box.hi - box.lo) * f - glm::dvec3(volume->localOrigin)), 0.0f);
                     }
             }
-            render::Renderer r(ctx(), scene);
-            r.setTransferFunction(scene::makePreset("ramp", scene.valueLo, scene.valueHi));
+            render::Renderer r(ctx(), volume, cfg);
+            r.setTransferFunction(scene::makePreset("ramp", volume->valueLo(), volume->valueHi()));
             values[b == scene::Backend::Rq] = samples(r, pts);
         }
         SCOPED_TRACE(scene::samplerName(s));
@@ -289,8 +287,8 @@ TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {
 // (exabrick-reference.md 3.3). Here only the traversal structure is culled.
 using UpstreamBug_TfCulledSamplingBvh = TraversalGpu;
 TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheValues) {
-    amr::Model m = test::makeThreeLevelCloud();
-    const amr::FieldStats st = amr::computeFieldStats(m, m.defaultField());
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
+    const amr::FieldStats& st = volume->fieldStats;
     const float q = st.minValue + 0.7f * (st.maxValue - st.minValue);
     const scene::TransferFunction full = scene::makePreset("ramp", st.minValue, st.maxValue);
     const scene::TransferFunction sparse({st.minValue, q, st.maxValue},
@@ -300,12 +298,11 @@ TEST_F(UpstreamBug_TfCulledSamplingBvh, EmptyingTheTfChangesTheStructureNotTheVa
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (const scene::StructureConfig& cfg : test::allStructureConfigs(ctx(), "10", 200)) {
         SCOPED_TRACE(cfg.label());
-        scene::VolumeScene scene = scene::buildVolumeScene(m, m.defaultField(), cfg);
         if (pts.empty()) {
-            const glm::dvec3 hi(scene.bounds.upper - scene.bounds.lower);
+            const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
             for (int i = 0; i < 3000; ++i) pts.emplace_back(glm::vec3(hi * glm::dvec3(u(rng), u(rng), u(rng))), 0.0f);
         }
-        render::Renderer r(ctx(), scene);
+        render::Renderer r(ctx(), volume, cfg);
         r.setTransferFunction(full);
         const uint64_t activeFull = r.activeTraversalBoxes();
         const std::vector<float> before = samples(r, pts);

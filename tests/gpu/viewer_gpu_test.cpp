@@ -17,6 +17,7 @@
 #include "core/image_io.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
+#include "picture/picture.h"
 #include "render/renderer.h"
 #include "session/session.h"
 #include "test_data.h"
@@ -45,18 +46,11 @@ const std::string kPicture = " --size 48x32 --tf ramp --tf-range 0 1.2 --density
 
 // `render` of a session in process, with another seed (independent samples) and a density factor.
 scene::RenderOutput renderSession(gpu::Context& ctx, const session::Session& s, uint32_t seedOffset, double densityFactor) {
-    amr::ReadOptions ro = s.read;
-    ro.fields = {s.field};
-    amr::Model model = amr::readModel(s.input, ro);
-    scene::StructureConfig cfg = s.structure;
-    cfg.backend = scene::resolveBackend(cfg.backend, ctx.hasRayQuery(), ctx.deviceReport().name);
-    scene::VolumeScene scene = scene::buildVolumeScene(model, model.field(s.field), cfg);
-    render::Renderer r(ctx, scene);
-    r.setTransferFunction(s.tf.merged());
-    scene::RenderSettings rs = s.settings;
-    rs.seed += seedOffset;
-    rs.densityScale *= densityFactor;
-    return r.render(rs, s.spp);
+    session::PictureDescription d;
+    d.session = s;
+    d.session.settings.seed += seedOffset;
+    d.session.settings.densityScale *= densityFactor;
+    return picture::openPicture(ctx, d).render();
 }
 
 // The viewer's screenshot as a RenderOutput with the reference's per-pixel sample variance (same

@@ -1,6 +1,7 @@
 #version 460
-// One tracking estimate per invocation along the ray (origin, direction) over [0, tMax]:
-// out[i] = 1 if delta tracking escapes (else 0), and the ratio-tracking transmittance.
+// One tracking estimate per invocation along the ray (origin, direction) over [0, tMax], four
+// floats per invocation: 1 if delta tracking escapes (else 0), the ratio-tracking transmittance,
+// delta tracking's collision distance (tMax when it escapes), and the calls stopped at the step cap.
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/tf.glsl"
@@ -24,6 +25,8 @@ void main() {
     bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c, tHit, tf);
     float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c);
     FloatRW o = FloatRW(tp.results);
-    o.v[2u * i] = hit ? 0.0 : 1.0;
-    o.v[2u * i + 1u] = tr;
+    o.v[4u * i] = hit ? 0.0 : 1.0;
+    o.v[4u * i + 1u] = tr;
+    o.v[4u * i + 2u] = tHit;
+    o.v[4u * i + 3u] = float(c.capped);
 }

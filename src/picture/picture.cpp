@@ -1,0 +1,90 @@
+#include "picture/picture.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stats.h"
+#include "core/strings.h"
+
+namespace amrvk::picture {
+
+scene::DeviceTraits deviceTraits(const gpu::Context& ctx) {
+    return {ctx.deviceReport().name, ctx.deviceReport().type == "CPU", ctx.hasRayQuery()};
+}
+
+scene::BackendChoice resolveStructure(const gpu::Context& ctx, scene::StructureConfig& requested) {
+    requested.validate();
+    const scene::BackendChoice choice = scene::resolveBackend(requested, deviceTraits(ctx));
+    requested.backend = choice.backend;
+    return choice;
+}
+
+scene::RenderOutput Picture::render(const std::function<void(uint32_t, uint32_t)>& progress) {
+    return renderer->render(renderer->settings(), session.spp, progress);
+}
+
+Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume,
+                    const session::PictureDescription& d, Options options) {
+    AMRVK_CHECK(volume != nullptr, "internal: makePicture without a volume");
+    Picture p;
+    auto note = [&](const std::string& line) {
+        p.report.notes.push_back(line);
+        if (options.note) options.note(line);
+    };
+    std::vector<std::string> fitted;
+    p.session = session::resolvePicture(d, *volume, &fitted);
+    for (const std::string& line : fitted) note(line);
+    const scene::TransferFunction tf = p.session.tf.merged();
+    if (d.fit == session::StructureFit::Probe) {
+        // Probes start from the default combination; everything the user gave stays fixed.
+        scene::StructureConfig start;
+        start.grid = p.session.structure.grid;
+        start.kdLeaves = p.session.structure.kdLeaves;
+        resolveStructure(ctx, start);
+        p.renderer = std::make_unique<render::Renderer>(ctx, volume, start, options.shaders);
+        render::AutoConstraints constraints;
+        const scene::StructureConfig& given = p.session.structure;
+        if (d.samplerGiven) constraints.sampler = given.sampler;
+        if (d.backendGiven && given.backend != scene::Backend::Auto) constraints.backend = given.backend;
+        if (d.gridGiven) constraints.grid = given.grid;
+        constraints.kdLeaves = given.kdLeaves;
+        {
+            ProgressStage stage("--traversal auto: probing structure combinations");
+            p.report.autoChoice = render::autoSelect(*p.renderer, tf, p.session.settings, constraints, {}, options.probe);
+        }
+        const render::AutoChoice& c = *p.report.autoChoice;
+        p.session.structure = c.config;
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.1f", c.seconds);
+        note(strCat("--traversal auto picked ", c.config.labelWithGrid(), " from ", c.probes.size(), " probes in ",
+                    seconds, " s"));
+    } else {
+        scene::StructureConfig config = p.session.structure;
+        const scene::BackendChoice backend = resolveStructure(ctx, config);
+        p.report.backendReason = backend.why;
+        // Said only where it matters: a combination with a box hierarchy.
+        const scene::StructurePlan plan = config.plan();
+        if (!backend.why.empty() && (plan.boxMajorants || plan.samplerBvh || plan.samplerBoxes)) note(backend.why);
+        {
+            ProgressStage stage("structures for " + config.label());
+            p.renderer = std::make_unique<render::Renderer>(ctx, volume, config, options.shaders);
+        }
+        p.renderer->setTransferFunction(tf);
+    }
+    p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();
+    p.renderer->setSettings(p.session.settings);
+    p.volume = std::move(volume);
+    return p;
+}
+
+Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options) {
+    Timer read;
+    std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
+    const double readSeconds = read.seconds() - volume->bricks.buildSeconds;
+    Picture p = makePicture(ctx, std::move(volume), d, std::move(options));
+    p.report.readSeconds = readSeconds;
+    return p;
+}
+
+}  // namespace amrvk::picture

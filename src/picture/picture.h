@@ -1,0 +1,57 @@
+#pragma once
+// The one entry from a picture description to pixels, below every front end (render, view,
+// bench, the Python module, the MPI renderer): the data read (or given), the description fitted
+// to it (session::resolvePicture: TF, camera, traversal), the back-end chosen for the device,
+// --traversal auto probed, the structures built and a renderer ready with the TF and settings.
+// Each fitted choice is reported once, the same way (Report::notes, and Options::note as it
+// happens).
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/shader_library.h"
+#include "render/auto_select.h"
+#include "render/renderer.h"
+#include "session/picture_description.h"
+
+namespace amrvk::picture {
+
+struct Options {
+    gpu::ShaderLibrary shaders;                                // --shader-dir (default: embedded)
+    std::function<void(const std::string&)> note;              // each fitted choice, one line, as it is made
+    std::function<void(const std::string&)> probe;             // --traversal auto: each probe as it starts
+};
+
+struct Report {
+    std::vector<std::string> notes;       // fitted traversal, back-end, auto's pick: one line each
+    std::string backendReason;            // why --backend auto chose what it chose (empty when given)
+    std::optional<render::AutoChoice> autoChoice;  // StructureFit::Probe
+    double readSeconds = 0;               // reading and per-cell validation (openPicture)
+    double buildSeconds = 0;              // bricks and the structures of the combination (host)
+};
+
+struct Picture {
+    session::Session session;                   // as rendered (fitted; the back-end as requested)
+    std::shared_ptr<const scene::Volume> volume;
+    std::unique_ptr<render::Renderer> renderer;  // structures built, TF and settings applied
+    Report report;
+    // Renders session.spp samples per pixel from scratch (progress(done, spp) after each batch).
+    scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});
+};
+
+// The picture `d` describes over `volume` (its data: loadVolume's, or cells a caller made).
+Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume,
+                    const session::PictureDescription& d, Options options = {});
+// Reads d.session's data (session::loadVolume), then makePicture.
+Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options = {});
+
+// What the back-end choice reads from a device.
+scene::DeviceTraits deviceTraits(const gpu::Context& ctx);
+// `requested` with its back-end resolved for ctx's device (scene::resolveBackend) and validated:
+// what Renderer::setStructure takes. Throws a one-line error before anything is built.
+scene::BackendChoice resolveStructure(const gpu::Context& ctx, scene::StructureConfig& requested);
+
+}  // namespace amrvk::picture

@@ -1,0 +1,47 @@
+#include "scene/volume.h"
+
+#include "core/error.h"
+#include "core/progress.h"
+
+namespace amrvk::scene {
+
+glm::ivec3 Volume::toLocal(glm::i64vec3 voxel) const {
+    const glm::i64vec3 local = voxel - localOrigin;
+    for (int a = 0; a < 3; ++a)
+        AMRVK_CHECK(local[a] >= INT32_MIN && local[a] <= INT32_MAX, "voxel coordinate ", voxel[a],
+                    " is more than 2^31 from the data's lower corner ", localOrigin[a]);
+    return glm::ivec3(local);
+}
+
+shared::AabbGpu Volume::toLocal(const accel::BoxD& b) const {
+    // Box faces lie on the half-voxel lattice: exact in float for local coordinates below 2^23.
+    return {glm::vec3(toLocal(b.lo)), glm::vec3(toLocal(b.hi))};
+}
+
+uint64_t Volume::modelBytes() const {
+    uint64_t bytes = model.cells.size() * sizeof(amr::Cell);
+    for (const amr::Field& f : model.fields) bytes += f.values.size() * sizeof(float);
+    return bytes;
+}
+
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName) {
+    auto v = std::make_shared<Volume>();
+    const amr::Field& field = fieldName.empty() ? model.defaultField() : model.field(fieldName);
+    v->fieldIndex = size_t(&field - model.fields.data());
+    v->summary = amr::summarize(model);
+    v->localOrigin = v->summary.bounds.lower;
+    // Local coordinates (what the GPU sees) are int32 and float: refuse a wider domain up front.
+    for (int a = 0; a < 3; ++a)
+        AMRVK_CHECK(v->summary.bounds.size()[a] <= INT32_MAX, model.source, ": the data spans ",
+                    v->summary.bounds.size()[a], " finest cells along axis ", "xyz"[a],
+                    ", more than 2^31 from the data's lower corner (the limit)");
+    v->fieldStats = amr::computeFieldStats(model, field);
+    {
+        ProgressStage stage("bricks");
+        v->bricks = accel::buildBricks(model);
+    }
+    v->model = std::move(model);
+    return v;
+}
+
+}  // namespace amrvk::scene

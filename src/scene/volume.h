@@ -1,0 +1,54 @@
+#pragma once
+// One field of an AMR data set, in brick order with its bricks: the part of every picture that
+// depends neither on the structure combination nor on the transfer function. Immutable once made
+// and shared (std::shared_ptr<const Volume>) by the renderers and front ends that show it. It owns
+// its model: makeVolume takes the model by value (move it in), because building bricks reorders
+// cells and every field in place; nobody else holds the data it reorders. All coordinates the GPU
+// sees are local voxel space, converted in one place: toLocal().
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "accel/bricks.h"
+#include "accel/bvh.h"
+#include "amr/model.h"
+#include "shared/amr_gpu.h"
+
+namespace amrvk::scene {
+
+struct Volume {
+    amr::Model model;              // cells and every loaded field, in brick order
+    size_t fieldIndex = 0;         // the field shown: model.fields[fieldIndex]
+    amr::ModelSummary summary;     // bounds (union of leaf cells, voxel space), levels, leaf volume
+    amr::FieldStats fieldStats;    // the field's range and volume-weighted mean
+    glm::i64vec3 localOrigin{0};   // voxel space; = lower corner of the data bounds
+    accel::BrickSet bricks;
+
+    const amr::Field& field() const { return model.fields[fieldIndex]; }
+    std::span<const float> brickValues() const { return field().values; }  // the model is in brick order
+    const amr::Box3l& bounds() const { return summary.bounds; }
+    int32_t minLevel() const { return summary.minLevel; }  // sigma is per (1 << minLevel) voxel units
+    float valueLo() const { return fieldStats.minValue; }
+    float valueHi() const { return fieldStats.maxValue; }
+    // World-space corners of the bounds.
+    glm::dvec3 worldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)); }
+    glm::dvec3 worldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)); }
+    // Host bytes of the model (cells and loaded fields) and the bricks.
+    uint64_t modelBytes() const;
+
+    // Voxel space -> local voxel space (what the GPU sees): the one place localOrigin is
+    // subtracted. The integer form throws when a coordinate leaves the int32 range.
+    glm::dvec3 toLocal(glm::dvec3 voxel) const { return voxel - glm::dvec3(localOrigin); }
+    glm::ivec3 toLocal(glm::i64vec3 voxel) const;
+    shared::AabbGpu toLocal(const accel::BoxD& voxelBox) const;
+};
+
+// Takes `model` (validated cells, as amr::readModel returns them), selects `field` (a loaded
+// field's name; empty: the default field) and builds the bricks, which puts the model in brick
+// order. Throws a one-line error for an unknown field, overlapping cells or a domain wider than
+// 2^31 finest cells (what local int32 coordinates can hold).
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field = {});
+
+}  // namespace amrvk::scene

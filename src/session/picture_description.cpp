@@ -1,0 +1,83 @@
+#include "session/picture_description.h"
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "scene/camera.h"
+#include "scene/command_line.h"
+
+namespace amrvk::session {
+
+std::shared_ptr<const scene::Volume> loadVolume(const Session& s) {
+    AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
+    amr::ReadOptions ro = s.read;
+    if (!s.field.empty()) ro.fields = {s.field};
+    amr::Model model;
+    {
+        ProgressStage stage("reading " + s.input);
+        model = amr::readModel(s.input, ro);
+    }
+    return scene::makeVolume(std::move(model), s.field);
+}
+
+Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std::vector<std::string>* notes) {
+    Session s = d.session;
+    s.field = v.field().name;
+    if (d.tfSource || d.tfRange) {
+        const float lo = d.tfRange ? d.tfRange->first : v.valueLo(), hi = d.tfRange ? d.tfRange->second : v.valueHi();
+        AMRVK_CHECK(!d.tfRange || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
+        scene::TransferFunction tf =
+            d.tfSource ? scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset) : s.tf.merged();
+        if (d.tfRange) tf = tf.rescaled(lo, hi);
+        s.tf = scene::TfChannels::split(tf);
+    }
+    if (d.fitCamera) s.settings.camera = scene::defaultCamera(v.worldLo(), v.worldHi(), s.settings.camera.fovYDegrees);
+    if (d.fit == StructureFit::Data && s.structure.sampler != scene::SamplerKind::Dense) {
+        std::string why;
+        s.structure.traversal = scene::fittingTraversal(v.summary.leafVolume, v.bounds().volume(), &why);
+        // Over sparse data the grid sampler's macrocells would list many far-apart bricks; with the
+        // abr traversal the abr sampler needs no lookup at all.
+        if (!d.samplerGiven && s.structure.traversal == scene::TraversalKind::Abr) {
+            s.structure.sampler = scene::SamplerKind::Abr;
+            if (why.rfind("traversal abr", 0) == 0) why.insert(13, " and sampler abr");
+        }
+        if (!why.empty() && notes) notes->push_back(why);
+    }
+    if (d.fit != StructureFit::Probe) s.structure.validate();
+    return s;
+}
+
+std::string renderCommandLine(const PictureDescription& d, const std::string& tfFile, const std::string& output,
+                              const std::string& renderer) {
+    using scene::formatNumber;
+    using scene::shellQuote;
+    const Session& s = d.session;
+    std::string c = shellQuote(renderer) + " render " + shellQuote(s.input);
+    if (!s.field.empty()) c += " --field " + shellQuote(s.field);
+    if (s.read.format != "auto") c += " --format " + shellQuote(s.read.format);
+    if (s.read.nanPolicy == amr::NanPolicy::Drop) c += " --nan drop";
+    if (s.read.rawDims != glm::ivec3(0))
+        c += " --dims " + std::to_string(s.read.rawDims.x) + " " + std::to_string(s.read.rawDims.y) + " " +
+             std::to_string(s.read.rawDims.z);
+    if (!s.read.rawType.empty()) c += " --type " + shellQuote(s.read.rawType);
+    if (s.read.rawThreshold != 0.0) c += " --threshold " + formatNumber(s.read.rawThreshold);
+    if (d.tfSource) {
+        c += " --tf " + shellQuote(d.tfSource->name);
+        if (!d.tfSource->preset.empty()) c += " --tf-preset " + shellQuote(d.tfSource->preset);
+    } else {
+        c += " --tf " + shellQuote(tfFile);
+    }
+    if (d.tfRange) c += " --tf-range " + formatNumber(d.tfRange->first) + " " + formatNumber(d.tfRange->second);
+    c += scene::settingsOptions(s.settings, !d.fitCamera);
+    c += " --spp " + std::to_string(s.spp > 0 ? s.spp : 64);
+    c += scene::structureOptions(s.structure);
+    c += " -o " + shellQuote(output);
+    return c;
+}
+
+std::string renderCommandLine(const Session& s, const std::string& tfFile, const std::string& output) {
+    PictureDescription d;
+    d.session = s;
+    return renderCommandLine(d, tfFile, output);
+}
+
+}  // namespace amrvk::session

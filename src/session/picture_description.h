@@ -1,0 +1,65 @@
+#pragma once
+// What a front end asks for, before the data is read: a session (every field of the schema,
+// docs/sessions.md) plus what is still to be fitted to the data. `amrvk render` and `view` make
+// one from their options (a --session file fixes everything), `bench` one per reference render,
+// the Python module and the MPI renderer from their arguments. resolvePicture() fits it to the
+// data the same way for all of them; picture::makePicture (src/picture) turns the result into a
+// ready renderer. Vulkan-free.
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "amr/readers.h"
+#include "scene/volume.h"
+#include "session/session.h"
+
+namespace amrvk::session {
+
+// A transfer function to load once the field's range is known.
+struct TfSource {
+    std::string name = "ramp";  // a ParaView JSON or .xf file, or a preset (ramp, grey, spiky, ...)
+    std::string preset;         // the preset inside a ParaView JSON file (empty: the first)
+};
+
+// How the structure combination is chosen.
+enum class StructureFit : uint8_t {
+    None,   // as session.structure says
+    Data,   // the traversal that fits the data (scene::fittingTraversal) and, unless given, its sampler
+    Probe,  // --traversal auto: probe every allowed combination (render::autoSelect)
+};
+
+struct PictureDescription {
+    Session session;                  // data source, read options, field, settings, spp, structure, TF
+    std::optional<TfSource> tfSource;  // set: the TF comes from here (session.tf is ignored)
+    // Map the TF's node range (tfSource's or the session's) onto [lo, hi]; without it presets
+    // span the field's range and other TFs keep theirs.
+    std::optional<std::pair<float, float>> tfRange;
+    bool fitCamera = false;           // frame the data with the default view (session fov kept)
+    StructureFit fit = StructureFit::None;
+    // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).
+    bool samplerGiven = false, backendGiven = false, gridGiven = false;
+};
+
+// Reads the data a session names (its input, read options and field; only that field is loaded
+// when one is named) and makes the volume every picture of it shares. Progress on stderr.
+std::shared_ptr<const scene::Volume> loadVolume(const Session& s);
+
+// `d` fitted to `volume`: the field named, the TF loaded (tfSource), the camera framed
+// (fitCamera), the traversal fitted (StructureFit::Data); one line per fitted choice in `notes`.
+// Probe is left to picture::makePicture (it needs a device). Throws one-line errors (a TF file
+// that does not load, --tf-range LO >= HI, an invalid structure combination).
+Session resolvePicture(const PictureDescription& d, const scene::Volume& volume, std::vector<std::string>* notes);
+
+// The `amrvk render` command line that renders the picture `d` describes (`renderer` the amrvk
+// to call): the read options, the TF as d.tfSource or, without one, as `tfFile` (a ParaView JSON
+// file of session.tf the caller writes), the camera unless fitCamera, every setting, spp and the
+// structure (its back-end as given). What the viewer's "copy as command" and the bench's
+// reference records write; the bench's reference cache key is this text too.
+std::string renderCommandLine(const PictureDescription& d, const std::string& tfFile, const std::string& output,
+                              const std::string& renderer = "amrvk");
+// A session's picture (everything given, the TF in tfFile).
+std::string renderCommandLine(const Session& s, const std::string& tfFile, const std::string& output);
+
+}  // namespace amrvk::session
