@@ -7,6 +7,7 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "session/picture_description.h"
+#include "session/script.h"
 #include "viewer/viewer_app.h"
 
 namespace amrvk::cli {
@@ -78,6 +79,9 @@ int runView(const std::vector<std::string>& argv) {
     AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
                 "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on
+    // Checked before anything is read: a bad script line is one line naming it (the viewer checks
+    // what needs its structures and shader directory again before frame 0).
+    if (!script.empty()) session::loadScript(script);
     // Read before a window opens: a bad data set is one line, not a window that closes.
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
     vo.frames = uint64_t(frames);

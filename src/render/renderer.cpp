@@ -15,22 +15,6 @@ namespace amrvk::render {
 
 namespace {
 
-bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-void validate(const scene::RenderSettings& s) {
-    AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= 16384 && s.height <= 16384, "--size ", s.width, "x",
-                s.height, " is outside 1..16384");
-    AMRVK_CHECK(s.densityScale >= 0 && std::isfinite(s.densityScale), "--density-scale ", s.densityScale,
-                " must be finite and >= 0");
-    AMRVK_CHECK(s.dvrStep > 0 && std::isfinite(s.dvrStep), "--dt ", s.dvrStep, " must be finite and > 0");
-    AMRVK_CHECK(s.maxTrackingSteps >= 1, "internal: maxTrackingSteps must be >= 1");
-    AMRVK_CHECK(finite(s.ambient) && glm::all(glm::greaterThanEqual(s.ambient, glm::dvec3(0.0))),
-                "--ambient must be finite and >= 0");
-    AMRVK_CHECK(!s.background || (finite(*s.background) &&
-                                  glm::all(glm::greaterThanEqual(*s.background, glm::dvec3(0.0)))),
-                "--background must be finite and >= 0");
-}
-
 }  // namespace
 
 Renderer::Renderer(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume, const scene::StructureConfig& config,
@@ -172,7 +156,7 @@ void Renderer::setSettings(const scene::RenderSettings& s) {
         mHasSettings ? scene::settingsChanges(mSettings, s)
                      : scene::ChangeSet(scene::Change::Camera) | scene::Change::ImageSize | scene::Change::Lighting;
     if (changes.empty()) return;
-    validate(s);
+    scene::validateSettings(s);
     const shared::RenderParams saved = mParams;  // an invalid camera or light changes nothing
     const UpdateCounts counts = mCounts;
     try {

@@ -15,6 +15,42 @@ constexpr Named<Mode> kModes[] = {{"ae", Mode::Ae}, {"ss", Mode::Ss}, {"ms", Mod
 Mode parseMode(const std::string& name) { return parseNamed(kModes, name, "--mode"); }
 const char* modeName(Mode mode) { return nameOf(kModes, mode); }
 
+namespace {
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+void validateSettings(const RenderSettings& s) {
+    AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= 16384 && s.height <= 16384, "--size ", s.width, "x",
+                s.height, " is outside 1..16384");
+    AMRVK_CHECK(s.densityScale >= 0 && std::isfinite(s.densityScale), "--density-scale ", s.densityScale,
+                " must be finite and >= 0");
+    AMRVK_CHECK(s.dvrStep > 0 && std::isfinite(s.dvrStep), "--dt ", s.dvrStep, " must be finite and > 0");
+    AMRVK_CHECK(std::isfinite(s.g), "--g ", s.g, " must be finite");
+    AMRVK_CHECK(s.maxTrackingSteps >= 1, "internal: maxTrackingSteps must be >= 1");
+    AMRVK_CHECK(finite(s.ambient) && glm::all(glm::greaterThanEqual(s.ambient, glm::dvec3(0.0))),
+                "--ambient must be finite and >= 0");
+    AMRVK_CHECK(!s.background || (finite(*s.background) &&
+                                  glm::all(glm::greaterThanEqual(*s.background, glm::dvec3(0.0)))),
+                "--background must be finite and >= 0");
+    AMRVK_CHECK(s.lights.size() <= shared::kMaxLights, "at most ", shared::kMaxLights, " lights (got ",
+                s.lights.size(), ")");
+    for (const Light& L : s.lights) {
+        AMRVK_CHECK(finite(L.posOrDir) && finite(L.radiance) &&
+                        glm::all(glm::greaterThanEqual(L.radiance, glm::dvec3(0.0))),
+                    L.point ? "--light-point" : "--light-dir", ": position, direction and radiance must be finite, "
+                    "radiance >= 0");
+        AMRVK_CHECK(L.point || glm::length(L.posOrDir) > 0, "--light-dir: the direction 0 0 0 points nowhere");
+    }
+    AMRVK_CHECK(s.camera.fovYDegrees > 0 && s.camera.fovYDegrees < 180, "--fov ", s.camera.fovYDegrees,
+                " is outside (0, 180)");
+    AMRVK_CHECK(finite(s.camera.eye) && finite(s.camera.target) && finite(s.camera.up),
+                "--camera: eye, target and up must be finite");
+    const glm::dvec3 forward = s.camera.target - s.camera.eye;
+    AMRVK_CHECK(glm::length(forward) > 0, "--camera: eye and target coincide");
+    AMRVK_CHECK(glm::length(glm::cross(glm::normalize(forward), s.camera.up)) > 1e-12,
+                "--camera: up vector is parallel to the view direction");
+}
+
 std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& s, const amr::Transform& xf) {
     AMRVK_CHECK(s.lights.size() <= shared::kMaxLights, "at most ", shared::kMaxLights, " lights (got ",
                 s.lights.size(), ")");

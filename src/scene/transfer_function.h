@@ -89,6 +89,7 @@ struct TfChannels {
     std::vector<glm::vec3> colors;
     std::vector<float> opacityPositions;
     std::vector<float> alphas;
+    bool operator==(const TfChannels&) const = default;
     TransferFunction merged() const;
     // Both channels with the TF's own nodes.
     static TfChannels split(const TransferFunction& tf);

@@ -1,8 +1,11 @@
 #pragma once
 // Orbit / pan / zoom around a target, the camera control of the viewer (ANARI-viewer style: left
-// drag orbits, right drag or the wheel zooms, middle or shift drag pans). Window-free: mouse
-// motion arrives in pixels with the viewport height, keys as steps. World space throughout; the
-// up axis is one of +x, +y, +z (default +z, the data convention of amrvk's default camera).
+// drag orbits, right drag or the wheel zooms, middle or shift drag pans), as edits of a
+// scene::Camera: the caller's camera (the viewer's session) is the one copy of the view; this
+// class holds only the data's box, for the framing view and the zoom limits. Window-free: mouse
+// motion arrives in pixels with the viewport height, keys as steps. World space throughout. The
+// up axis is the world axis nearest to the camera's up vector (+x, +y or +z); an edit snaps the up
+// vector to it and keeps the elevation within +-89 degrees of the horizon.
 #include <glm/glm.hpp>
 
 #include "scene/camera.h"
@@ -11,40 +14,28 @@ namespace amrvk::session {
 
 class OrbitCamera {
 public:
-    // Frames the world box [lo, hi] from the default three-quarter view with `upAxis` (0 x, 1 y, 2 z).
-    OrbitCamera(glm::dvec3 worldLo, glm::dvec3 worldHi, double fovYDegrees = 40.0, int upAxis = 2);
+    // The world box [lo, hi] of the data.
+    OrbitCamera(glm::dvec3 worldLo, glm::dvec3 worldHi);
 
-    // Takes over an explicit camera (--camera, a session): target, distance and angles from it;
-    // its up vector is snapped to the nearest axis. The bounds stay for reset and zoom limits.
-    void setCamera(const scene::Camera& camera);
-    scene::Camera camera() const;
+    // The default three-quarter view of the box with `upAxis` (0 x, 1 y, 2 z): scene::defaultCamera
+    // for z, the same kind of view for the others.
+    scene::Camera framing(double fovYDegrees = 40.0, int upAxis = 2) const;
+    // The framing view keeping c's field of view and up axis (key R).
+    void reset(scene::Camera& c) const;
 
-    // A drag of (dx, dy) pixels in a viewport `height` pixels tall: a full height turns 180 degrees;
-    // elevation stays within +-89 degrees of the horizon.
-    void orbit(double dxPixels, double dyPixels, double viewportHeight);
-    // Moves the target in the view plane so the point under the cursor follows it.
-    void pan(double dxPixels, double dyPixels, double viewportHeight);
-    // steps > 0 moves closer (each step 10 %), within 1/1000 to 100 radii of the bounds.
-    void zoom(double steps);
-    void setFov(double fovYDegrees);  // (0, 180) exclusive; throws otherwise
-    void setUpAxis(int axis);         // 0, 1 or 2; keeps the view direction where it can
-    void reset();                     // the framing view of the constructor (keeps fov and up axis)
+    // A drag of (dx, dy) pixels in a viewport `height` pixels tall: a full height turns 180 degrees.
+    void orbit(scene::Camera& c, double dxPixels, double dyPixels, double viewportHeight) const;
+    // Moves target and eye in the view plane so the point under the cursor follows it.
+    void pan(scene::Camera& c, double dxPixels, double dyPixels, double viewportHeight) const;
+    // steps > 0 moves closer (each step 10 %), within 1/1000 to 100 radii of the box.
+    void zoom(scene::Camera& c, double steps) const;
 
-    glm::dvec3 target() const { return mTarget; }
-    double distance() const { return mDistance; }
-    double fovYDegrees() const { return mFov; }
-    int upAxis() const { return mUp; }
+    static void setFov(scene::Camera& c, double fovYDegrees);  // (0, 180) exclusive; throws otherwise
+    static void setUpAxis(scene::Camera& c, int axis);         // 0, 1 or 2; keeps the view direction where it can
+    static int upAxis(const scene::Camera& c);                 // the axis nearest to c.up
 
 private:
-    glm::dvec3 direction() const;  // unit vector from the target towards the eye
-    void frame();
-
     glm::dvec3 mLo, mHi;
-    glm::dvec3 mTarget{0.0};
-    double mDistance = 1;
-    double mAzimuth = 0, mElevation = 0;  // radians, around the up axis / above its plane
-    double mFov = 40;
-    int mUp = 2;
 };
 
 }  // namespace amrvk::session

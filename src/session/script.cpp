@@ -1,12 +1,17 @@
 #include "session/script.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
 #include <sstream>
 
+#include "accel/range_grid.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
+#include "scene/render_settings.h"
+#include "scene/transfer_function.h"
 
 namespace amrvk::session {
 
@@ -68,6 +73,33 @@ std::vector<std::string> words(const std::string& line, const std::string& where
     return out;
 }
 
+// The values of an action that can be checked without the viewer (names, ranges, image types).
+void checkValues(const ScriptAction& a) {
+    const std::string& n = a.name;
+    auto imageType = [&](std::initializer_list<const char*> types) {
+        const std::string ext = std::filesystem::path(a.args[0]).extension().string();
+        for (const char* t : types)
+            if (ext == t) return;
+        AMRVK_CHECK(false, "'", a.args[0], "': unknown image type (use ", join(std::vector<std::string>(types.begin(), types.end()), ", "), ")");
+    };
+    if (n == "mode") scene::parseMode(a.args[0]);
+    else if (n == "traversal") scene::parseTraversal(a.args[0]);
+    else if (n == "sampler") scene::parseSampler(a.args[0]);
+    else if (n == "backend") scene::parseBackend(a.args[0]);
+    else if (n == "grid") accel::parseGridDims(a.args[0], amr::Box3l{glm::i64vec3(0), glm::i64vec3(1)});
+    else if (n == "tf-preset") scene::builtInChannels(a.args[0]);
+    else if (n == "tf-range") AMRVK_CHECK(a.number(0) < a.number(1), "LO ", a.args[0], " must be below HI ", a.args[1]);
+    else if (n == "density") AMRVK_CHECK(a.number(0) >= 0, "density ", a.args[0], " must be >= 0");
+    else if (n == "screenshot") imageType({".png", ".exr", ".pfm"});
+    else if (n == "capture-window") imageType({".png"});
+    else if (n == "save-session") AMRVK_CHECK(!a.args[0].empty(), "empty file name");
+    else if (n == "edit-shader") {
+        AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
+                    "' must be a path relative to --shader-dir");
+        AMRVK_CHECK(!a.args[1].empty(), "the text to find is empty");
+    }
+}
+
 }  // namespace
 
 double ScriptAction::number(size_t i) const {
@@ -103,11 +135,51 @@ std::vector<ScriptAction> parseScript(const std::string& text, const std::string
         AMRVK_CHECK(a.args.size() == sig->second.count, where, ": ", a.name, " takes ", sig->second.count,
                     " argument(s), not ", a.args.size());
         for (size_t k : sig->second.numbers) a.number(k);
+        try {
+            checkValues(a);
+        } catch (const Error& e) {
+            throw Error(where + ": " + a.name + ": " + e.what());
+        }
         AMRVK_CHECK(out.empty() || a.frame >= out.back().frame, where, ": frame ", a.frame, " comes before frame ",
                     out.back().frame, " of the line above");
         out.push_back(std::move(a));
     }
     return out;
+}
+
+void checkScript(const std::vector<ScriptAction>& actions, const ScriptContext& context) {
+    scene::StructureConfig structure = context.structure;
+    for (const ScriptAction& a : actions) {
+        try {
+            if (a.name == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
+            if (a.name == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
+            if (a.name == "backend") structure.backend = scene::parseBackend(a.args[0]);
+            if (a.name == "grid") structure.grid = a.args[0];
+            if (a.name == "traversal" || a.name == "sampler") structure.validate();
+            if (a.name == "edit-shader") confinedShaderPath(context.shaderDir, a.args[0]);
+        } catch (const Error& e) {
+            throw Error(a.where + ": " + a.name + ": " + e.what());
+        }
+    }
+}
+
+std::filesystem::path confinedShaderPath(const std::filesystem::path& dir, const std::string& file) {
+    namespace fs = std::filesystem;
+    AMRVK_CHECK(!dir.empty(), "edit-shader needs --shader-dir");
+    AMRVK_CHECK(!file.empty() && fs::path(file).is_relative(), "'", file,
+                "' must be a path relative to --shader-dir");
+    // The source root as gpu::shaderSourceRoot finds it (session stays Vulkan-free).
+    const fs::path root = fs::is_directory(dir / "passes") ? dir : dir / "..";
+    std::error_code ec;
+    const fs::path canonicalRoot = fs::canonical(root, ec);
+    AMRVK_CHECK(!ec, dir.string(), ": cannot resolve the shader directory (", ec.message(), ")");
+    const fs::path target = fs::canonical(dir / file, ec);
+    AMRVK_CHECK(!ec, (dir / file).string(), ": no such shader file");
+    const auto [rootEnd, _] = std::mismatch(canonicalRoot.begin(), canonicalRoot.end(), target.begin(), target.end());
+    AMRVK_CHECK(rootEnd == canonicalRoot.end(), "'", file, "' leads outside the shader sources ",
+                canonicalRoot.string(), " (to ", target.string(), ")");
+    AMRVK_CHECK(fs::is_regular_file(target, ec), target.string(), ": not a regular file");
+    return target;
 }
 
 std::vector<ScriptAction> loadScript(const std::filesystem::path& path) {

@@ -12,11 +12,16 @@
 //   capture-window FILE              the window as shown, UI included (.png; no-op with --headless)
 //   save-session FILE                the current state as a session file (render it with amrvk render --session)
 //   quit
-// Parsing checks every action's name and argument count and every number, one line per error
-// naming the file and line.
+// Parsing checks every action's name, argument count and value (numbers finite, names of modes,
+// structures and presets known, tf-range LO < HI, density >= 0, image types by extension,
+// edit-shader paths relative); checkScript then checks what needs the viewer's context (the
+// structure combination each line leads to, edit-shader files inside --shader-dir). All before
+// frame 0, one line per error naming the file and line.
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "scene/structure_config.h"
 
 namespace amrvk::session {
 
@@ -31,5 +36,21 @@ struct ScriptAction {
 // Actions in file order; frames must not decrease.
 std::vector<ScriptAction> parseScript(const std::string& text, const std::string& fileName);
 std::vector<ScriptAction> loadScript(const std::filesystem::path& path);
+
+// What checkScript needs of the viewer: its shader directory and starting structure.
+struct ScriptContext {
+    std::filesystem::path shaderDir;  // --shader-dir (empty: none)
+    scene::StructureConfig structure;  // the combination the viewer starts with
+};
+// Walks the script in order: every structure line must lead to a valid combination, every
+// edit-shader line must name a file inside the shader sources. Throws "FILE:LINE: ...".
+void checkScript(const std::vector<ScriptAction>& actions, const ScriptContext& context);
+
+// The file edit-shader FILE may change: FILE relative to the shader directory `dir`
+// (--shader-dir), resolved with symlinks followed, must be an existing regular file inside the
+// shader sources (gpu::shaderSourceRoot(dir): the folder holding passes/, lib/, shared/). Throws a
+// one-line error for no --shader-dir, an absolute path, or a path that leads outside (a shared
+// script must not edit ~/.bashrc).
+std::filesystem::path confinedShaderPath(const std::filesystem::path& dir, const std::string& file);
 
 }  // namespace amrvk::session

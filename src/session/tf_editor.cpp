@@ -9,102 +9,149 @@ namespace amrvk::session {
 
 namespace {
 
-// Positions mapped from [first, last] onto [0, 1] (all onto 0.5 when they coincide).
-std::vector<float> normalised(const std::vector<float>& p) {
+// Positions mapped from [first, last] onto [lo, hi] in double (all onto the middle when they
+// coincide); the ends exactly on lo and hi.
+std::vector<float> mapped(const std::vector<float>& p, double lo, double hi) {
     const double a = p.front(), b = p.back();
     std::vector<float> out;
-    for (float x : p) out.push_back(b > a ? float((double(x) - a) / (b - a)) : 0.5f);
-    out.front() = b > a ? 0.0f : 0.5f;
-    out.back() = b > a ? 1.0f : 0.5f;
+    for (float x : p) out.push_back(float(b > a ? lo + (double(x) - a) / (b - a) * (hi - lo) : 0.5 * (lo + hi)));
+    if (b > a) {
+        out.front() = float(lo);
+        out.back() = float(hi);
+    }
     return out;
 }
 
-std::vector<OpacityNode> opacityOf(const scene::TfChannels& c) {
-    std::vector<OpacityNode> out;
-    const std::vector<float> x = normalised(c.opacityPositions);
-    for (size_t i = 0; i < x.size(); ++i) out.push_back({x[i], c.alphas[i]});
-    // The curve spans [0, 1] with a node at each end.
-    if (out.front().x > 0.0f) out.insert(out.begin(), {0.0f, out.front().alpha});
-    if (out.back().x < 1.0f) out.push_back({1.0f, out.back().alpha});
-    return out;
+// The opacity curve of `c` mapped onto [lo, hi] with a node at each end.
+void setOpacity(scene::TfChannels& out, const scene::TfChannels& c, float lo, float hi) {
+    AMRVK_CHECK(!c.opacityPositions.empty() && c.opacityPositions.size() == c.alphas.size(), c.name,
+                ": an opacity curve needs at least one node");
+    out.opacityPositions = mapped(c.opacityPositions, lo, hi);
+    out.alphas = c.alphas;
+    if (out.opacityPositions.front() > lo) {  // one node: the curve spans [lo, hi] at its alpha
+        out.opacityPositions.insert(out.opacityPositions.begin(), lo);
+        out.alphas.insert(out.alphas.begin(), out.alphas.front());
+    }
+    if (out.opacityPositions.back() < hi) {
+        out.opacityPositions.push_back(hi);
+        out.alphas.push_back(out.alphas.back());
+    }
+}
+
+void setColours(scene::TfChannels& out, const scene::TfChannels& c, float lo, float hi) {
+    AMRVK_CHECK(!c.colorPositions.empty() && c.colorPositions.size() == c.colors.size(), c.name,
+                ": a colour map needs at least one node");
+    out.name = c.name;
+    if (c.colorPositions.size() == 1) {  // one colour: across the whole range
+        out.colorPositions = {lo, hi};
+        out.colors = {c.colors[0], c.colors[0]};
+        return;
+    }
+    out.colorPositions = mapped(c.colorPositions, lo, hi);
+    out.colors = c.colors;
+}
+
+bool isEditable(const scene::TfChannels& c) {
+    return c.opacityPositions.size() >= 2 && c.opacityPositions.size() == c.alphas.size() && !c.colorPositions.empty() &&
+           c.colorPositions.size() == c.colors.size() && c.opacityPositions.front() < c.opacityPositions.back() &&
+           c.colorPositions.front() == c.opacityPositions.front() && c.colorPositions.back() == c.opacityPositions.back();
 }
 
 }  // namespace
 
-TfEditor::TfEditor(std::string_view preset, float lo, float hi) {
-    setPreset(scene::builtInChannels(preset));
-    setRange(lo, hi);
+scene::TfChannels TfEditor::editable(const scene::TfChannels& tf) {
+    if (isEditable(tf)) return tf;
+    // Both channels on the merged nodes: the same TF, now with the same span.
+    const scene::TransferFunction merged = tf.merged();
+    scene::TfChannels split = scene::TfChannels::split(merged);
+    split.name = tf.name;
+    float lo = merged.firstPosition(), hi = merged.lastPosition();
+    if (!(lo < hi)) {
+        lo = merged.firstPosition() - 0.5f;
+        hi = merged.firstPosition() + 0.5f;
+    }
+    scene::TfChannels out;
+    setColours(out, split, lo, hi);
+    setOpacity(out, split, lo, hi);
+    return out;
 }
 
-TfEditor::TfEditor(const scene::TransferFunction& tf) {
-    setPreset(scene::TfChannels::split(tf));
-    if (tf.firstPosition() < tf.lastPosition()) setRange(tf.firstPosition(), tf.lastPosition());
-    else setRange(tf.firstPosition() - 0.5f, tf.firstPosition() + 0.5f);
+scene::TfChannels TfEditor::preset(std::string_view name, float lo, float hi) {
+    AMRVK_CHECK(std::isfinite(lo) && std::isfinite(hi) && lo < hi, "value range [", lo, ", ", hi,
+                "]: needs finite lo < hi");
+    const scene::TfChannels c = scene::builtInChannels(name);
+    scene::TfChannels out;
+    setColours(out, c, lo, hi);
+    setOpacity(out, c, lo, hi);
+    return out;
 }
 
-void TfEditor::setColorMap(const scene::TfChannels& c) {
-    AMRVK_CHECK(!c.colorPositions.empty() && c.colorPositions.size() == c.colors.size(), c.name,
-                ": a colour map needs at least one node");
-    mColorMap = {};
-    mColorMap.name = c.name;
-    mColorMap.colorPositions = normalised(c.colorPositions);
-    mColorMap.colors = c.colors;
+TfEditor::TfEditor(scene::TfChannels& tf) : mTf(tf) { mTf = editable(mTf); }
+
+float TfEditor::toValue(float x) const {
+    if (x <= 0.0f) return lo();
+    if (x >= 1.0f) return hi();
+    return float(double(lo()) + double(x) * (double(hi()) - double(lo())));
 }
+
+float TfEditor::toX(float v) const { return float((double(v) - double(lo())) / (double(hi()) - double(lo()))); }
+
+std::vector<float> TfEditor::colorPositions() const {
+    std::vector<float> out;
+    for (float p : mTf.colorPositions) out.push_back(toX(p));
+    return out;
+}
+
+std::vector<OpacityNode> TfEditor::opacity() const {
+    std::vector<OpacityNode> out;
+    for (size_t i = 0; i < mTf.alphas.size(); ++i) out.push_back({toX(mTf.opacityPositions[i]), mTf.alphas[i]});
+    out.front().x = 0.0f;
+    out.back().x = 1.0f;
+    return out;
+}
+
+void TfEditor::setColorMap(const scene::TfChannels& c) { setColours(mTf, c, lo(), hi()); }
 
 void TfEditor::setPreset(const scene::TfChannels& c) {
-    AMRVK_CHECK(!c.opacityPositions.empty() && c.opacityPositions.size() == c.alphas.size(), c.name,
-                ": an opacity curve needs at least one node");
-    setColorMap(c);
-    mOpacity = opacityOf(c);
+    const float a = lo(), b = hi();
+    setColours(mTf, c, a, b);
+    setOpacity(mTf, c, a, b);
 }
-
-scene::TfChannels TfEditor::channels() const {
-    scene::TfChannels c = mColorMap;
-    const double span = double(mHi) - double(mLo);
-    auto toValue = [&](float x) { return float(double(mLo) + double(x) * span); };
-    for (float& p : c.colorPositions) p = toValue(p);
-    for (const OpacityNode& n : mOpacity) {
-        c.opacityPositions.push_back(toValue(n.x));
-        c.alphas.push_back(n.alpha);
-    }
-    // The ends exactly on the range (x = 1 may round past hi).
-    c.colorPositions.front() = c.opacityPositions.front() = mLo;
-    c.colorPositions.back() = c.opacityPositions.back() = mHi;
-    return c;
-}
-
-scene::TransferFunction TfEditor::transferFunction() const { return channels().merged(); }
 
 size_t TfEditor::addNode(float x, float alpha) {
     AMRVK_CHECK(std::isfinite(x) && std::isfinite(alpha), "opacity node (", x, ", ", alpha, ") is not finite");
-    const OpacityNode n{std::clamp(x, 0.0f, 1.0f), std::max(alpha, 0.0f)};
-    auto at = std::upper_bound(mOpacity.begin(), mOpacity.end(), n.x,
-                               [](float v, const OpacityNode& o) { return v < o.x; });
-    if (at == mOpacity.end()) --at;  // x == 1: before the end node
-    if (at == mOpacity.begin()) ++at;
-    const auto inserted = mOpacity.insert(at, n);
-    return size_t(inserted - mOpacity.begin());
+    const float v = toValue(std::clamp(x, 0.0f, 1.0f));
+    auto& p = mTf.opacityPositions;
+    size_t at = size_t(std::upper_bound(p.begin(), p.end(), v) - p.begin());
+    at = std::clamp<size_t>(at, 1, p.size() - 1);  // between the end nodes
+    p.insert(p.begin() + std::ptrdiff_t(at), v);
+    mTf.alphas.insert(mTf.alphas.begin() + std::ptrdiff_t(at), std::max(alpha, 0.0f));
+    return at;
 }
 
 void TfEditor::removeNode(size_t i) {
-    AMRVK_CHECK(i < mOpacity.size(), "opacity node ", i, " does not exist (", mOpacity.size(), " nodes)");
-    AMRVK_CHECK(i > 0 && i + 1 < mOpacity.size(), "the end nodes of the opacity curve cannot be removed");
-    mOpacity.erase(mOpacity.begin() + std::ptrdiff_t(i));
+    const size_t n = mTf.alphas.size();
+    AMRVK_CHECK(i < n, "opacity node ", i, " does not exist (", n, " nodes)");
+    AMRVK_CHECK(i > 0 && i + 1 < n, "the end nodes of the opacity curve cannot be removed");
+    mTf.opacityPositions.erase(mTf.opacityPositions.begin() + std::ptrdiff_t(i));
+    mTf.alphas.erase(mTf.alphas.begin() + std::ptrdiff_t(i));
 }
 
 void TfEditor::moveNode(size_t i, float x, float alpha) {
-    AMRVK_CHECK(i < mOpacity.size(), "opacity node ", i, " does not exist (", mOpacity.size(), " nodes)");
+    const size_t n = mTf.alphas.size();
+    AMRVK_CHECK(i < n, "opacity node ", i, " does not exist (", n, " nodes)");
     AMRVK_CHECK(std::isfinite(x) && std::isfinite(alpha), "opacity node (", x, ", ", alpha, ") is not finite");
-    OpacityNode& n = mOpacity[i];
-    if (i > 0 && i + 1 < mOpacity.size()) n.x = std::clamp(x, mOpacity[i - 1].x, mOpacity[i + 1].x);
-    n.alpha = std::max(alpha, 0.0f);
+    auto& p = mTf.opacityPositions;
+    if (i > 0 && i + 1 < n) p[i] = std::clamp(toValue(std::clamp(x, 0.0f, 1.0f)), p[i - 1], p[i + 1]);
+    mTf.alphas[i] = std::max(alpha, 0.0f);
 }
 
 std::optional<size_t> TfEditor::nodeNear(float x, float alpha, float tolX, float tolA) const {
     std::optional<size_t> best;
     double bestD = INFINITY;
-    for (size_t i = 0; i < mOpacity.size(); ++i) {
-        const double dx = (mOpacity[i].x - x) / tolX, da = (mOpacity[i].alpha - alpha) / tolA;
+    const std::vector<OpacityNode> nodes = opacity();
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const double dx = (nodes[i].x - x) / tolX, da = (nodes[i].alpha - alpha) / tolA;
         const double d = dx * dx + da * da;
         if (d <= 1.0 && d < bestD) {
             bestD = d;
@@ -114,32 +161,32 @@ std::optional<size_t> TfEditor::nodeNear(float x, float alpha, float tolX, float
     return best;
 }
 
-void TfEditor::setRange(float lo, float hi) {
-    AMRVK_CHECK(std::isfinite(lo) && std::isfinite(hi) && lo < hi, "value range [", lo, ", ", hi,
+void TfEditor::setRange(float newLo, float newHi) {
+    AMRVK_CHECK(std::isfinite(newLo) && std::isfinite(newHi) && newLo < newHi, "value range [", newLo, ", ", newHi,
                 "]: needs finite lo < hi");
-    mLo = lo;
-    mHi = hi;
+    mTf.colorPositions = mapped(mTf.colorPositions, newLo, newHi);
+    mTf.opacityPositions = mapped(mTf.opacityPositions, newLo, newHi);
 }
 
 std::string TfEditor::toParaViewJson(const std::string& name) const {
-    scene::TfChannels c = channels();
+    scene::TfChannels c = mTf;
     c.name = name;
     return scene::paraViewPresetJson(c);
 }
 
-void TfHistory::push(const TfEditor& state) {
+void TfHistory::push(const scene::TfChannels& state) {
     mStates.erase(mStates.begin() + std::ptrdiff_t(mAt) + 1, mStates.end());  // a new edit drops the redo branch
     mStates.push_back(state);
     if (mStates.size() > kMaxStates) mStates.erase(mStates.begin());
     mAt = mStates.size() - 1;
 }
 
-const TfEditor& TfHistory::undo() {
+const scene::TfChannels& TfHistory::undo() {
     if (mAt > 0) --mAt;
     return mStates[mAt];
 }
 
-const TfEditor& TfHistory::redo() {
+const scene::TfChannels& TfHistory::redo() {
     if (mAt + 1 < mStates.size()) ++mAt;
     return mStates[mAt];
 }

@@ -1,9 +1,11 @@
 #pragma once
-// The transfer-function editor's model (window-free): a colour map and an opacity curve over
-// normalised positions in [0, 1], and the value range [lo, hi] they are mapped onto (ParaView's
-// colour/opacity editor). The opacity curve always has a node at 0 and at 1; the nodes in between
-// can be added, dragged (between their neighbours) and removed. Every edit keeps the state valid;
-// transferFunction() gives the TF the renderer uses. History gives undo/redo of whole states.
+// The transfer-function editor (window-free), as edits of a scene::TfChannels: the caller's TF
+// (the viewer's session) is the one copy, in field units with its colour and opacity channels
+// apart (ParaView's colour/opacity editor). The editor shows it over normalised positions in
+// [0, 1] of the value range [lo, hi], which is the span of the opacity curve; the curve always has
+// a node at each end and the colour map spans the range too (editable() makes any TF so). Inner
+// nodes can be added, dragged (between their neighbours) and removed. Every edit keeps the TF
+// valid. TfHistory gives undo/redo of whole TFs.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -20,23 +22,28 @@ struct OpacityNode {
 
 class TfEditor {
 public:
-    // The built-in colour map and opacity of `preset` over [lo, hi].
-    TfEditor(std::string_view preset, float lo, float hi);
-    // Takes a TF as it is: its node range becomes the value range, both channels its nodes.
-    explicit TfEditor(const scene::TransferFunction& tf);
+    // Edits `tf`, which must stay alive and be editable() (the constructor makes it so).
+    explicit TfEditor(scene::TfChannels& tf);
 
-    scene::TransferFunction transferFunction() const;
+    // `tf` in the editor's form: the same TF (the same values everywhere) with both channels on the
+    // merged nodes when they differ, an opacity node at each end and the colour map spanning the
+    // range (a one-position TF gets the range [p - 0.5, p + 0.5]).
+    static scene::TfChannels editable(const scene::TfChannels& tf);
+    // The built-in colour map and opacity of `preset` over [lo, hi], editable.
+    static scene::TfChannels preset(std::string_view name, float lo, float hi);
 
-    // Colour map: a built-in preset's or any TfChannels' colours (positions renormalised to
-    // [0, 1]); the opacity curve stays.
+    scene::TransferFunction transferFunction() const { return mTf.merged(); }
+
+    // Colour map: a built-in preset's or any TfChannels' colours (positions renormalised onto the
+    // value range); the opacity curve stays.
     void setColorMap(const scene::TfChannels& channels);
-    const std::string& colorMapName() const { return mColorMap.name; }
-    const std::vector<float>& colorPositions() const { return mColorMap.colorPositions; }
-    const std::vector<glm::vec3>& colors() const { return mColorMap.colors; }
+    const std::string& colorMapName() const { return mTf.name; }
+    std::vector<float> colorPositions() const;  // normalised
+    const std::vector<glm::vec3>& colors() const { return mTf.colors; }
     // Colour and opacity of a loaded preset (positions renormalised), keeping the value range.
     void setPreset(const scene::TfChannels& channels);
 
-    const std::vector<OpacityNode>& opacity() const { return mOpacity; }
+    std::vector<OpacityNode> opacity() const;  // normalised positions
     // Inserts a node in order (x clamped to [0, 1], alpha to >= 0); returns its index.
     size_t addNode(float x, float alpha);
     // Removes node i; the end nodes stay (throws for them and for an index out of range).
@@ -46,36 +53,33 @@ public:
     // The node nearest to (x, alpha) within the tolerances, if any (for picking with the mouse).
     std::optional<size_t> nodeNear(float x, float alpha, float toleranceX, float toleranceAlpha) const;
 
-    float lo() const { return mLo; }
-    float hi() const { return mHi; }
-    // lo < hi, both finite; throws otherwise (one line naming the values).
+    float lo() const { return mTf.opacityPositions.front(); }
+    float hi() const { return mTf.opacityPositions.back(); }
+    // lo < hi, both finite; throws otherwise (one line naming the values). Maps every node.
     void setRange(float lo, float hi);
 
     // The current TF as a ParaView JSON preset file's text (field units, channels kept apart).
     std::string toParaViewJson(const std::string& name) const;
 
-    // Both channels in field units (positions mapped onto the value range).
-    scene::TfChannels channels() const;
-
 private:
-    scene::TfChannels mColorMap;     // colour channel only, positions in [0, 1]
-    std::vector<OpacityNode> mOpacity;
-    float mLo = 0, mHi = 1;
+    float toValue(float x) const;  // normalised -> field units (x = 0, 1 exactly lo, hi)
+    float toX(float value) const;  // field units -> normalised
+    scene::TfChannels& mTf;
 };
 
-// Undo/redo over whole editor states: push() after each finished edit (a drag counts once).
+// Undo/redo over whole TFs: push() after each finished edit (a drag counts once).
 class TfHistory {
 public:
-    explicit TfHistory(TfEditor initial) : mStates{std::move(initial)} {}
-    const TfEditor& current() const { return mStates[mAt]; }
-    void push(const TfEditor& state);
+    explicit TfHistory(scene::TfChannels initial) : mStates{std::move(initial)} {}
+    const scene::TfChannels& current() const { return mStates[mAt]; }
+    void push(const scene::TfChannels& state);
     bool canUndo() const { return mAt > 0; }
     bool canRedo() const { return mAt + 1 < mStates.size(); }
-    const TfEditor& undo();
-    const TfEditor& redo();
+    const scene::TfChannels& undo();
+    const scene::TfChannels& redo();
 
 private:
-    std::vector<TfEditor> mStates;
+    std::vector<scene::TfChannels> mStates;
     size_t mAt = 0;
     static constexpr size_t kMaxStates = 256;
 };

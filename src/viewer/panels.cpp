@@ -94,7 +94,7 @@ void statisticsOverlay(const Statistics& s) {
 // The opacity curve over the histogram and the colour map; nodes are dragged (left), added
 // (double click) and removed (right click).
 void tfCanvas(PanelState& p, PanelRequests& r) {
-    session::TfEditor& tf = *p.tf;
+    session::TfEditor tf(p.edit.tf);
     const float width = std::max(120.0f, ImGui::GetContentRegionAvail().x);
     const ImVec2 size(width, 150.0f);
     const ImVec2 o = ImGui::GetCursorScreenPos();
@@ -116,7 +116,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
                               ImVec2(o.x + float(i + 1) * bw, o.y + size.y), IM_COL32(90, 90, 100, 255));
         }
     }
-    const auto& nodes = tf.opacity();
+    const std::vector<session::OpacityNode> nodes = tf.opacity();
     for (size_t i = 0; i + 1 < nodes.size(); ++i)
         dl->AddLine(toScreen(nodes[i].x, nodes[i].alpha), toScreen(nodes[i + 1].x, nodes[i + 1].alpha),
                     IM_COL32(255, 255, 255, 255), 2.0f);
@@ -145,7 +145,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
     }
     if (p.draggingNode >= 0) {
         if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-            const auto& n = tf.opacity()[size_t(p.draggingNode)];
+            const session::OpacityNode n = tf.opacity()[size_t(p.draggingNode)];
             if (n.x != mx || n.alpha != ma) {
                 tf.moveNode(size_t(p.draggingNode), mx, ma);
                 r.tfChanged = true;
@@ -157,8 +157,8 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
     }
     // The colour map under the curve.
     const ImVec2 bar = ImGui::GetCursorScreenPos();
-    const auto& xs = tf.colorPositions();
-    const auto& cs = tf.colors();
+    const std::vector<float> xs = tf.colorPositions();
+    const std::vector<glm::vec3>& cs = tf.colors();
     auto col = [](glm::vec3 c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)); };
     for (size_t i = 0; i + 1 < xs.size(); ++i)
         dl->AddRectFilledMultiColor(ImVec2(bar.x + xs[i] * size.x, bar.y),
@@ -169,7 +169,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
 }
 
 void transferFunctionPanel(PanelState& p, PanelRequests& r) {
-    session::TfEditor& tf = *p.tf;
+    session::TfEditor tf(p.edit.tf);
     if (!p.colorMapNames.empty()) {
         std::string name = p.colorMapNames[size_t(std::clamp(p.colorMapChoice, 0, int(p.colorMapNames.size()) - 1))];
         if (namedCombo("colour map", name, p.colorMapNames)) {
@@ -193,9 +193,9 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     }
     ImGui::SameLine();
     if (ImGui::Button("data range")) r.resetRange = true;
-    float density = float(p.state->settings.densityScale);
+    float density = float(p.edit.settings.densityScale);
     if (ImGui::SliderFloat("density scale", &density, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic))
-        p.state->settings.densityScale = std::max(0.0f, density);
+        p.edit.settings.densityScale = std::max(0.0f, density);
     ImGui::BeginDisabled(!p.canUndo);
     if (ImGui::Button("undo")) r.undo = true;
     ImGui::EndDisabled();
@@ -209,9 +209,9 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     if (ImGui::Button("save as ParaView JSON")) r.saveTfFile = true;
 }
 
-// Edits the settings in place (the viewer compares them with the renderer's to see what changed).
+// Edits the settings of the copy (the viewer validates them and compares them with its state).
 void renderPanel(PanelState& p) {
-    scene::RenderSettings& s = p.state->settings;
+    scene::RenderSettings& s = p.edit.settings;
     enumCombo("mode", s.mode, {"ae", "ss", "ms", "dvr"}, scene::parseMode, scene::modeName);
     float g = float(s.g);
     if (ImGui::SliderFloat("phase g", &g, -0.99f, 0.99f)) s.g = g;
@@ -220,8 +220,8 @@ void renderPanel(PanelState& p) {
         if (ImGui::SliderFloat("dvr step", &dt, 0.05f, 4.0f, "%.3g", ImGuiSliderFlags_Logarithmic)) s.dvrStep = dt;
         ImGui::Checkbox("gradient shading", &s.dvrShading);
     }
-    int spp = int(p.state->spp);
-    if (ImGui::InputInt("stop at spp (0: never)", &spp)) p.state->spp = uint32_t(std::max(0, spp));
+    int spp = int(p.edit.spp);
+    if (ImGui::InputInt("stop at spp (0: never)", &spp)) p.edit.spp = uint32_t(std::max(0, spp));
     colorEdit("ambient", s.ambient);
     glm::dvec3 bg = s.background.value_or(s.ambient);
     if (colorEdit("background", bg)) s.background = bg;
@@ -243,32 +243,31 @@ void renderPanel(PanelState& p) {
 }
 
 void structurePanel(PanelState& p, PanelRequests& r) {
-    scene::StructureConfig& c = p.state->structure;
-    std::vector<std::string> traversals, samplers = {"ext-brick", "abr", "grid", "dense"};
+    scene::StructureConfig& c = p.edit.structure;
+    std::vector<std::string> traversals, samplers;
     for (scene::TraversalKind t : scene::allTraversals()) traversals.push_back(scene::traversalName(t));
-    r.structureChanged |= enumCombo("traversal", c.traversal, traversals, scene::parseTraversal, scene::traversalName);
-    r.structureChanged |= enumCombo("sampler", c.sampler, samplers, scene::parseSampler, scene::samplerName);
-    r.structureChanged |= enumCombo("back-end", c.backend, {"sw", "rq", "auto"}, scene::parseBackend, scene::backendName);
-    if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue))
-        r.structureChanged = true;
+    for (const scene::SamplerTraits& t : scene::kSamplerTraits) samplers.push_back(t.name);
+    enumCombo("traversal", c.traversal, traversals, scene::parseTraversal, scene::traversalName);
+    enumCombo("sampler", c.sampler, samplers, scene::parseSampler, scene::samplerName);
+    enumCombo("back-end", c.backend, {"sw", "rq", "auto"}, scene::parseBackend, scene::backendName);
+    if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue)) r.gridEntered = true;
     int leaves = int(c.kdLeaves);
-    if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue)) {
-        c.kdLeaves = uint32_t(std::clamp(leaves, 1, 1 << 24));
-        r.structureChanged = true;
-    }
+    if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue))
+        c.kdLeaves = uint32_t(std::clamp(leaves, 1, (1 << 24) - 1));
+    if (!p.structureError.empty()) ImGui::TextColored(kRed, "not applied: %s", p.structureError.c_str());
 }
 
 void cameraPanel(PanelState& p, PanelRequests& r) {
-    session::OrbitCamera& cam = *p.camera;
-    float fov = float(cam.fovYDegrees());
-    if (ImGui::SliderFloat("field of view", &fov, 5.0f, 120.0f)) cam.setFov(fov);
-    int up = cam.upAxis();
+    scene::Camera& cam = p.edit.settings.camera;
+    float fov = float(cam.fovYDegrees);
+    if (ImGui::SliderFloat("field of view", &fov, 5.0f, 120.0f)) session::OrbitCamera::setFov(cam, fov);
+    const int up = session::OrbitCamera::upAxis(cam);
     ImGui::TextUnformatted("up axis");
     for (int a = 0; a < 3; ++a) {
         ImGui::SameLine();
-        if (ImGui::RadioButton(a == 0 ? "x" : a == 1 ? "y" : "z", up == a)) cam.setUpAxis(a);
+        if (ImGui::RadioButton(a == 0 ? "x" : a == 1 ? "y" : "z", up == a)) session::OrbitCamera::setUpAxis(cam, a);
     }
-    if (ImGui::Button("reset view (R)")) cam.reset();
+    if (ImGui::Button("reset view (R)")) r.resetView = true;
     ImGui::SameLine();
     if (ImGui::Button("copy as command")) r.copyCommand = true;
     ImGui::TextDisabled("left drag orbits, right drag or wheel zooms, middle or shift drag pans");

@@ -1,8 +1,9 @@
 #pragma once
 // The viewer's ImGui panels: statistics overlay, camera, transfer-function editor (colour map,
 // draggable opacity curve over the field histogram, value range, density), render settings and
-// lights, files (screenshot, session, TF). They edit the state they are given and raise requests
-// the app carries out; all ImGui widget code is here.
+// lights, files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and
+// raise requests; the app validates the copy and applies what changed, so a rejected edit never
+// reaches its state or a session. All ImGui widget code is here.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,17 +30,16 @@ struct PanelRequests {
     bool tfChanged = false;    // the editor state changed this frame (live)
     bool tfCommitted = false;  // an edit finished (push to the undo history)
     bool undo = false, redo = false;
-    bool structureChanged = false;
+    bool gridEntered = false;  // the macrocell grid text was entered (PanelState::gridText)
     bool resetRange = false;
+    bool resetView = false;
     bool screenshot = false, saveSession = false, loadSession = false, copyCommand = false;
     bool loadTfFile = false, saveTfFile = false, applyColorMap = false;
 };
 
 struct PanelState {
     const Statistics* stats = nullptr;
-    session::Session* state = nullptr;       // settings and structure are edited in place
-    session::TfEditor* tf = nullptr;         // edited in place
-    session::OrbitCamera* camera = nullptr;  // fov and up axis
+    session::Session edit;  // this frame's copy of the picture: the panels edit it, the app applies it
     const session::Histogram* histogram = nullptr;
     bool canUndo = false, canRedo = false;
     std::vector<std::string> colorMapNames;  // built-in ones, then those of a loaded file
@@ -48,10 +48,11 @@ struct PanelState {
     float alphaDisplayMax = 1.0f;  // top of the opacity curve's axis
     std::string message;           // last status line (saved files, errors)
     std::string shaderError;       // compile error of the watched shaders (red)
+    std::string structureError;    // why the last structure choice was rejected (red; the old one stays)
     std::string screenshotPath = "amrvk-view.png";
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
-    std::string gridText;   // edited, applied with the structure
+    std::string gridText;   // the macrocell grid as typed, applied on Enter
     int draggingNode = -1;  // opacity node under a drag, between frames
 };
 

@@ -68,6 +68,11 @@ private:
     void createWindowResources();
     bool frame();
     void runScript();
+    // One script action at its frame; errors name the script line.
+    void runAction(const session::ScriptAction& a);
+    // The panels' copy of the picture, validated and applied part by part (structure, TF,
+    // settings): a rejected part leaves the state as it was and shows why.
+    void applyPanelEdits(PanelRequests& req);
     void pollShaders();
     void reloadShaders();
     void handleInput();
@@ -77,7 +82,10 @@ private:
     void recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D extent);
     void saveCapture(VkExtent2D extent);
     void updateStatistics(double frameSeconds);
+    // Validates `next` (back-end resolved for the device) and builds it; on an error nothing
+    // changes (the renderer keeps the previous structures) and the error is thrown.
     void setStructure(const scene::StructureConfig& next);
+    // The renderer takes mState.tf (majorants), the histogram follows its range.
     void setTransferFunction();
     // Runs a long CPU/GPU rebuild on a worker thread while this (the main) thread keeps handling
     // window events, so closing (the window button, q or Esc) works during it: the window is
@@ -92,7 +100,6 @@ private:
     void loadSessionFile(const fs::path& file);
     void copyCommand();
     void finishSample();
-    scene::RenderSettings fullSettings() const;
     void writeStats() const;
 
     ViewerOptions mOpt;
@@ -107,9 +114,10 @@ private:
     std::shared_ptr<const scene::Volume> mVolume;
     std::unique_ptr<render::Renderer> mRenderer;
 
-    session::Session mState;  // the picture: settings at full resolution
-    session::OrbitCamera mCamera;
-    session::TfEditor mTf;
+    // The picture: the one copy of every setting (full resolution), the camera and the TF; the
+    // camera control and the TF editor edit it in place, the panels edit a copy that is validated.
+    session::Session mState;
+    session::OrbitCamera mOrbit;  // the data's box: framing and zoom limits
     session::TfHistory mTfHistory;
     session::FrameBudget mBudget;
     std::optional<session::Histogram> mHistogram;
@@ -149,17 +157,10 @@ ViewerApp::ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume
     : mOpt(o),
       mVolume(std::move(volume)),
       mState(o.start.session),
-      mCamera(mVolume->worldLo(), mVolume->worldHi()),
-      mTf("ramp", 0.0f, 1.0f),  // load() sets the picture's
-      mTfHistory(mTf),
+      mOrbit(mVolume->worldLo(), mVolume->worldHi()),
+      mTfHistory(scene::TfChannels{}),  // load() starts it with the picture's TF
       mBudget(o.frameBudgetSeconds) {
     AMRVK_CHECK(o.frameBudgetSeconds > 0, "internal: the frame budget must be positive");
-}
-
-scene::RenderSettings ViewerApp::fullSettings() const {
-    scene::RenderSettings s = mState.settings;
-    s.camera = mCamera.camera();
-    return s;
 }
 
 void ViewerApp::load() {
@@ -174,13 +175,14 @@ void ViewerApp::load() {
     });
     mState = p.session;
     mRenderer = std::move(p.renderer);
+    // The editor's form of the TF: the same function, with both channels spanning its range.
+    mState.tf = session::TfEditor::editable(mState.tf);
+    if (!(mState.tf == p.session.tf)) mRenderer->setTransferFunction(mState.tf.merged());
+    mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
-    mCamera = session::OrbitCamera(mVolume->worldLo(), mVolume->worldHi(), mState.settings.camera.fovYDegrees);
-    mCamera.setCamera(mState.settings.camera);
-    mTf = session::TfEditor(mState.tf.merged());
-    mTfHistory = session::TfHistory(mTf);
-    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), mTf.lo(), mTf.hi(), 128);
+    const session::TfEditor tf(mState.tf);
+    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), tf.lo(), tf.hi(), 128);
     noteReset("picture");
 }
 
@@ -204,6 +206,7 @@ void ViewerApp::setStructure(const scene::StructureConfig& requested) {
     mStats.combination = next.labelWithGrid();
     mState.structure = requested;
     mPanel.gridText = requested.grid;
+    mPanel.structureError.clear();
     noteReset("structure");
 }
 
@@ -235,13 +238,13 @@ void ViewerApp::whileResponsive(const std::function<void()>& work) {
 
 void ViewerApp::setTransferFunction() {
     Timer t;
-    const scene::TransferFunction tf = mTf.transferFunction();
+    const scene::TransferFunction tf = mState.tf.merged();
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
-    mState.tf = mTf.channels();
     // The histogram depends on the value range only: colour and opacity drags do not recompute it.
-    if (!mHistogram || mHistogram->lo != mTf.lo() || mHistogram->hi != mTf.hi())
-        mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), mTf.lo(), mTf.hi(), 128);
+    const session::TfEditor editor(mState.tf);
+    if (!mHistogram || mHistogram->lo != editor.lo() || mHistogram->hi != editor.hi())
+        mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), editor.lo(), editor.hi(), 128);
     noteReset("transfer function");
 }
 
@@ -262,7 +265,10 @@ int ViewerApp::run() {
     load();
     mColorMaps.push_back(mState.tf);  // the starting colour map first
     for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
-    if (!mOpt.script.empty()) mScript = session::loadScript(mOpt.script);
+    if (!mOpt.script.empty()) {
+        mScript = session::loadScript(mOpt.script);
+        session::checkScript(mScript, {mOpt.shaderDir, mState.structure});  // every line before frame 0
+    }
     if (mWindow) {
         createWindowResources();
         mDisplayPass = std::make_unique<render::DisplayPass>(*mCtx);
@@ -316,9 +322,7 @@ bool ViewerApp::frame() {
     if (mWindow) {
         mImGui->beginFrame();
         mPanel.stats = &mStats;
-        mPanel.state = &mState;
-        mPanel.tf = &mTf;
-        mPanel.camera = &mCamera;
+        mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
         mPanel.canUndo = mTfHistory.canUndo();
         mPanel.canRedo = mTfHistory.canRedo();
@@ -327,45 +331,7 @@ bool ViewerApp::frame() {
         PanelRequests req;
         drawPanels(mPanel, req);
         try {
-            if (req.undo) mTf = mTfHistory.undo();
-            if (req.redo) mTf = mTfHistory.redo();
-            if (req.resetRange) {
-                mTf.setRange(mVolume->valueLo(),
-                             mVolume->valueHi() > mVolume->valueLo() ? mVolume->valueHi() : mVolume->valueLo() + 1);
-                req.tfChanged = req.tfCommitted = true;
-            }
-            if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
-                mTf.setColorMap(mColorMaps[size_t(mPanel.colorMapChoice)]);
-                req.tfChanged = req.tfCommitted = true;
-            }
-            if (req.loadTfFile) {
-                const scene::ParaViewPresets p = scene::loadParaViewPresets(mPanel.tfPath);
-                AMRVK_CHECK(!p.presets.empty(), mPanel.tfPath, ": no usable preset");
-                for (const scene::TfChannels& c : p.presets) mColorMaps.push_back(c);
-                mTf.setPreset(p.presets.front());
-                mPanel.message = "loaded " + std::to_string(p.presets.size()) + " preset(s) from " + mPanel.tfPath +
-                                 (p.skipped.empty() ? "" : " (" + std::to_string(p.skipped.size()) + " skipped)");
-                req.tfChanged = req.tfCommitted = true;
-            }
-            if (req.saveTfFile) {
-                writeFileAtomic(mPanel.tfPath, mTf.toParaViewJson(fs::path(mPanel.tfPath).stem().string()));
-                mPanel.message = "saved " + mPanel.tfPath;
-            }
-            if (req.tfCommitted) mTfHistory.push(mTf);
-            if (req.undo || req.redo || req.tfChanged) {
-                setTransferFunction();
-                mInteracting = true;
-            }
-            if (req.structureChanged) {
-                scene::StructureConfig next = mState.structure;
-                next.grid = mPanel.gridText;
-                setStructure(next);
-                mInteracting = true;
-            }
-            if (req.screenshot) screenshot(mPanel.screenshotPath);
-            if (req.saveSession) saveSessionFile(mPanel.sessionPath);
-            if (req.loadSession) loadSessionFile(mPanel.sessionPath);
-            if (req.copyCommand) copyCommand();
+            applyPanelEdits(req);
         } catch (const Error& e) {
             mPanel.message = std::string("error: ") + e.what();
         }
@@ -377,6 +343,64 @@ bool ViewerApp::frame() {
     mTraceSeconds += secondsSince(traceStart);
     if (mWindow) present();
     return !mQuit;
+}
+
+void ViewerApp::applyPanelEdits(PanelRequests& req) {
+    session::Session& e = mPanel.edit;
+    // Requests that edit the copy's TF or camera.
+    if (req.undo) e.tf = mTfHistory.undo();
+    if (req.redo) e.tf = mTfHistory.redo();
+    if (req.resetRange) {
+        session::TfEditor(e.tf).setRange(mVolume->valueLo(),
+                                         mVolume->valueHi() > mVolume->valueLo() ? mVolume->valueHi() : mVolume->valueLo() + 1);
+        req.tfCommitted = true;
+    }
+    if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
+        session::TfEditor(e.tf).setColorMap(mColorMaps[size_t(mPanel.colorMapChoice)]);
+        req.tfCommitted = true;
+    }
+    if (req.loadTfFile) {
+        const scene::ParaViewPresets p = scene::loadParaViewPresets(mPanel.tfPath);
+        AMRVK_CHECK(!p.presets.empty(), mPanel.tfPath, ": no usable preset");
+        for (const scene::TfChannels& c : p.presets) mColorMaps.push_back(c);
+        session::TfEditor(e.tf).setPreset(p.presets.front());
+        mPanel.message = "loaded " + std::to_string(p.presets.size()) + " preset(s) from " + mPanel.tfPath +
+                         (p.skipped.empty() ? "" : " (" + std::to_string(p.skipped.size()) + " skipped)");
+        req.tfCommitted = true;
+    }
+    if (req.saveTfFile) {
+        writeFileAtomic(mPanel.tfPath, session::TfEditor(e.tf).toParaViewJson(fs::path(mPanel.tfPath).stem().string()));
+        mPanel.message = "saved " + mPanel.tfPath;
+    }
+    if (req.resetView) mOrbit.reset(e.settings.camera);
+    if (req.gridEntered) e.structure.grid = mPanel.gridText;
+
+    // Structure first: validated and built, or rejected with its reason shown and nothing changed.
+    if (!(e.structure == mState.structure)) {
+        try {
+            setStructure(e.structure);
+        } catch (const Error& err) {
+            mPanel.structureError = err.what();
+            mPanel.gridText = mState.structure.grid;
+            mPanel.message = std::string("structure not applied: ") + err.what();
+        }
+        mInteracting = true;
+    }
+    if (!(e.tf == mState.tf)) {
+        mState.tf = e.tf;
+        setTransferFunction();
+        mInteracting = true;
+    }
+    if (req.tfCommitted) mTfHistory.push(mState.tf);
+    if (!(e.settings == mState.settings)) {
+        scene::validateSettings(e.settings);  // throws: the state keeps its settings
+        mState.settings = e.settings;
+    }
+    mState.spp = e.spp;
+    if (req.screenshot) screenshot(mPanel.screenshotPath);
+    if (req.saveSession) saveSessionFile(mPanel.sessionPath);
+    if (req.loadSession) loadSessionFile(mPanel.sessionPath);
+    if (req.copyCommand) copyCommand();
 }
 
 void ViewerApp::handleInput() {
@@ -399,43 +423,44 @@ void ViewerApp::handleInput() {
             case InputEvent::Kind::Cursor:
                 if (mDragButton >= 0) {
                     const double dx = e.x - mLastX, dy = e.y - mLastY;
+                    scene::Camera& cam = mState.settings.camera;
                     if (mDragPans)
-                        mCamera.pan(dx, dy, h);
+                        mOrbit.pan(cam, dx, dy, h);
                     else if (mDragButton == GLFW_MOUSE_BUTTON_RIGHT)
-                        mCamera.zoom(-dy / 20.0);
+                        mOrbit.zoom(cam, -dy / 20.0);
                     else
-                        mCamera.orbit(dx, dy, h);
+                        mOrbit.orbit(cam, dx, dy, h);
                     mInteracting = true;
                 }
                 mLastX = e.x;
                 mLastY = e.y;
                 break;
             case InputEvent::Kind::Scroll:
-                if (!uiMouse && e.y != 0) mCamera.zoom(e.y);
+                if (!uiMouse && e.y != 0) mOrbit.zoom(mState.settings.camera, e.y);
                 break;
             case InputEvent::Kind::Key:
                 if (uiKeys || e.action == GLFW_RELEASE) break;
                 switch (e.code) {
                     case GLFW_KEY_LEFT:
                     case GLFW_KEY_RIGHT:
-                        mCamera.orbit(e.code == GLFW_KEY_LEFT ? -step : step, 0, h);
+                        mOrbit.orbit(mState.settings.camera, e.code == GLFW_KEY_LEFT ? -step : step, 0, h);
                         break;
                     case GLFW_KEY_UP:
                     case GLFW_KEY_DOWN:
-                        mCamera.orbit(0, e.code == GLFW_KEY_UP ? step : -step, h);
+                        mOrbit.orbit(mState.settings.camera, 0, e.code == GLFW_KEY_UP ? step : -step, h);
                         break;
                     case GLFW_KEY_EQUAL:
                     case GLFW_KEY_KP_ADD:
                     case GLFW_KEY_PAGE_UP:
-                        mCamera.zoom(1);
+                        mOrbit.zoom(mState.settings.camera, 1);
                         break;
                     case GLFW_KEY_MINUS:
                     case GLFW_KEY_KP_SUBTRACT:
                     case GLFW_KEY_PAGE_DOWN:
-                        mCamera.zoom(-1);
+                        mOrbit.zoom(mState.settings.camera, -1);
                         break;
                     case GLFW_KEY_R:
-                        mCamera.reset();
+                        mOrbit.reset(mState.settings.camera);
                         break;
                     case GLFW_KEY_Q:
                     case GLFW_KEY_ESCAPE:
@@ -450,61 +475,68 @@ void ViewerApp::handleInput() {
 }
 
 void ViewerApp::runScript() {
-    while (mScriptAt < mScript.size() && mScript[mScriptAt].frame <= mFrame) {
+    while (!mQuit && mScriptAt < mScript.size() && mScript[mScriptAt].frame <= mFrame) {
         const session::ScriptAction& a = mScript[mScriptAt++];
-        const std::string& n = a.name;
-        scene::StructureConfig structure = mState.structure;
-        if (n == "orbit")
-            mCamera.orbit(a.number(0), a.number(1), double(mState.settings.height));
-        else if (n == "pan")
-            mCamera.pan(a.number(0), a.number(1), double(mState.settings.height));
-        else if (n == "zoom")
-            mCamera.zoom(a.number(0));
-        else if (n == "tf-preset") {
-            mTf.setPreset(scene::builtInChannels(a.args[0]));
-        } else if (n == "tf-range") {
-            mTf.setRange(float(a.number(0)), float(a.number(1)));
-        } else if (n == "density") {
-            AMRVK_CHECK(a.number(0) >= 0, a.where, ": density must be >= 0");
-            mState.settings.densityScale = a.number(0);
-        } else if (n == "mode")
-            mState.settings.mode = scene::parseMode(a.args[0]);
-        else if (n == "traversal")
-            structure.traversal = scene::parseTraversal(a.args[0]);
-        else if (n == "sampler")
-            structure.sampler = scene::parseSampler(a.args[0]);
-        else if (n == "backend")
-            structure.backend = scene::parseBackend(a.args[0]);
-        else if (n == "grid")
-            structure.grid = a.args[0];
-        else if (n == "edit-shader") {
-            AMRVK_CHECK(!mOpt.shaderDir.empty(), a.where, ": edit-shader needs --shader-dir");
-            const fs::path file = fs::path(a.args[0]).is_absolute() ? fs::path(a.args[0]) : mOpt.shaderDir / a.args[0];
-            std::string text = readTextFile(file);
-            const size_t at = text.find(a.args[1]);
-            AMRVK_CHECK(at != std::string::npos, a.where, ": '", a.args[1], "' not found in ", file.string());
-            text.replace(at, a.args[1].size(), a.args[2]);
-            writeFileAtomic(file, text);
-        } else if (n == "reload") {
-            reloadShaders();
-        } else if (n == "screenshot") {
-            screenshot(a.args[0]);
-        } else if (n == "save-session") {
-            saveSessionFile(a.args[0]);
-        } else if (n == "capture-window") {
-            if (mWindow) mCapturePath = a.args[0];
-        } else if (n == "quit") {
-            mQuit = true;
-        }
-        if (n == "tf-preset" || n == "tf-range") {
-            mTfHistory.push(mTf);
-            setTransferFunction();
-        }
-        if (structure.traversal != mState.structure.traversal || structure.sampler != mState.structure.sampler ||
-            structure.backend != mState.structure.backend || structure.grid != mState.structure.grid) {
-            setStructure(structure);
+        try {
+            runAction(a);
+        } catch (const gpu::ShaderCompileError&) {
+            throw;  // names its file and line
+        } catch (const Error& e) {
+            throw Error(a.where + ": " + a.name + ": " + e.what());
         }
         std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame, a.name.c_str());
+    }
+}
+
+void ViewerApp::runAction(const session::ScriptAction& a) {
+    const std::string& n = a.name;
+    scene::Camera& camera = mState.settings.camera;
+    const double height = double(mState.settings.height);
+    scene::StructureConfig structure = mState.structure;
+    if (n == "orbit") {
+        mOrbit.orbit(camera, a.number(0), a.number(1), height);
+    } else if (n == "pan") {
+        mOrbit.pan(camera, a.number(0), a.number(1), height);
+    } else if (n == "zoom") {
+        mOrbit.zoom(camera, a.number(0));
+    } else if (n == "tf-preset" || n == "tf-range") {
+        session::TfEditor editor(mState.tf);
+        if (n == "tf-preset") editor.setPreset(scene::builtInChannels(a.args[0]));
+        else editor.setRange(float(a.number(0)), float(a.number(1)));
+        mTfHistory.push(mState.tf);
+        setTransferFunction();
+    } else if (n == "density") {
+        scene::RenderSettings s = mState.settings;
+        s.densityScale = a.number(0);
+        scene::validateSettings(s);
+        mState.settings = s;
+    } else if (n == "mode") {
+        mState.settings.mode = scene::parseMode(a.args[0]);
+    } else if (n == "traversal" || n == "sampler" || n == "backend" || n == "grid") {
+        if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
+        if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
+        if (n == "backend") structure.backend = scene::parseBackend(a.args[0]);
+        if (n == "grid") structure.grid = a.args[0];
+        if (!(structure == mState.structure)) setStructure(structure);
+    } else if (n == "edit-shader") {
+        const fs::path file = session::confinedShaderPath(mOpt.shaderDir, a.args[0]);
+        std::string text = readTextFile(file);
+        const size_t at = text.find(a.args[1]);
+        AMRVK_CHECK(at != std::string::npos, "'", a.args[1], "' not found in ", file.string());
+        text.replace(at, a.args[1].size(), a.args[2]);
+        writeFileAtomic(file, text);
+    } else if (n == "reload") {
+        reloadShaders();
+    } else if (n == "screenshot") {
+        screenshot(a.args[0]);
+    } else if (n == "save-session") {
+        saveSessionFile(a.args[0]);
+    } else if (n == "capture-window") {
+        if (mWindow) mCapturePath = a.args[0];
+    } else if (n == "quit") {
+        mQuit = true;
+    } else {
+        AMRVK_CHECK(false, "the viewer has no action '", n, "'");
     }
 }
 
@@ -530,7 +562,7 @@ void ViewerApp::reloadShaders() {
 
 void ViewerApp::applyEdits() {
     // The picture the state describes, at full resolution or as a preview while interacting.
-    const scene::RenderSettings full = fullSettings();
+    const scene::RenderSettings& full = mState.settings;
     const scene::ChangeSet changes = scene::settingsChanges(mApplied, full);
     if (!changes.empty() && mFrame > 0) mInteracting = true;
     scene::RenderSettings s = full;
@@ -683,7 +715,7 @@ void ViewerApp::updateStatistics(double frameSeconds) {
 
 void ViewerApp::finishSample() {
     // The full-resolution picture with at least one complete sample (no half-traced rows).
-    scene::RenderSettings s = fullSettings();
+    const scene::RenderSettings& s = mState.settings;
     mRenderer->setSettings(s);
     mPreviewScale = 1;
     if (mRenderer->accumulatedSpp() == 0 || mRenderer->rowsDone() > 0)
@@ -699,8 +731,6 @@ void ViewerApp::screenshot(const fs::path& file) {
 
 session::Session ViewerApp::currentSession() const {
     session::Session s = mState;
-    s.settings.camera = mCamera.camera();
-    s.tf = mTf.channels();
     s.input = fs::absolute(s.input).lexically_normal().string();
     return s;
 }
@@ -716,15 +746,14 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
                           s.field == mState.field;
     AMRVK_CHECK(sameData, file.string(), ": this session shows ", s.input, " (", s.field,
                 "); open it with amrvk view --session ", file.string());
+    scene::validateSettings(s.settings);
+    // The structure first: when it cannot be built nothing of the session is taken.
+    if (!(s.structure == mState.structure)) setStructure(s.structure);
     mState.settings = s.settings;
     mState.spp = s.spp;
-    mCamera.setCamera(s.settings.camera);
-    mTf = session::TfEditor(s.tf.merged());
-    mTfHistory.push(mTf);
+    mState.tf = session::TfEditor::editable(s.tf);
+    mTfHistory.push(mState.tf);
     setTransferFunction();
-    if (s.structure.label() != mState.structure.label() || s.structure.grid != mState.structure.grid) {
-        setStructure(s.structure);
-    }
     mPanel.message = "loaded " + file.string();
 }
 
@@ -732,7 +761,7 @@ void ViewerApp::copyCommand() {
     const session::Session s = currentSession();
     // The TF beside the session file's default place, so the command does not depend on the viewer.
     const fs::path tfFile = fs::absolute(mPanel.tfPath);
-    writeFileAtomic(tfFile, mTf.toParaViewJson(tfFile.stem().string()));
+    writeFileAtomic(tfFile, session::TfEditor(mState.tf).toParaViewJson(tfFile.stem().string()));
     const std::string line = session::renderCommandLine(s, tfFile.string(), "amrvk.png");
     if (mWindow) mWindow->setClipboard(line);
     std::printf("%s\n", line.c_str());

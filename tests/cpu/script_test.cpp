@@ -1,5 +1,6 @@
 // Viewer scripts: actions with frames, quoted arguments, comments; one-line errors naming the
-// file and line for unknown actions, wrong argument counts, bad numbers and frames going back.
+// file and line, before frame 0, for unknown actions, wrong argument counts, bad numbers and
+// values, frames going back, combinations that cannot run and shader edits outside --shader-dir.
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -43,10 +44,65 @@ TEST(Script, ErrorsNameTheFileAndLine) {
         {"0 screenshot \"a.png", {"s.txt:1", "unterminated quote"}},
         {"3", {"s.txt:1", "expected FRAME ACTION"}},
         {"0 density nan", {"s.txt:1", "not a number"}},
+        {"0 density -1", {"s.txt:1", "density -1 must be >= 0"}},
+        {"0 mode pt", {"s.txt:1", "mode", "--mode 'pt'", "ae|ss|ms|dvr"}},
+        {"0 traversal octree", {"s.txt:1", "--traversal 'octree'"}},
+        {"0 sampler cube", {"s.txt:1", "--sampler 'cube'"}},
+        {"0 backend cuda", {"s.txt:1", "--backend 'cuda'"}},
+        {"0 grid 0", {"s.txt:1", "grid", "[1, 4096]"}},
+        {"0 grid 8x8", {"s.txt:1", "expected auto, N or NxMxK"}},
+        {"0 tf-preset rainbow", {"s.txt:1", "tf-preset", "rainbow"}},
+        {"0 tf-range 3 1", {"s.txt:1", "LO 3 must be below HI 1"}},
+        {"0 screenshot shot.jpg", {"s.txt:1", "unknown image type"}},
+        {"0 capture-window shot.exr", {"s.txt:1", "unknown image type (use .png)"}},
+        {"0 edit-shader /etc/passwd a b", {"s.txt:1", "must be a path relative to --shader-dir"}},
     };
     for (const auto& c : cases) {
         const std::string e = test::errorOf([&] { session::parseScript(c.text, "s.txt"); });
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
         for (const auto& f : c.fragments) EXPECT_NE(e.find(f), std::string::npos) << "'" << f << "' not in: " << e;
     }
+}
+
+TEST(Script, TheContextIsCheckedBeforeFrameZero) {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::scratchDir() / "script-context";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "shaders/passes");
+    fs::create_directories(dir / "shaders/lib");
+    test::writeAll(dir / "shaders/passes/path_trace.comp", "void main() {}\n");
+    test::writeAll(dir / "shaders/lib/tf.glsl", "// tf\n");
+    test::writeAll(dir / "victim.txt", "precious\n");
+    fs::create_symlink(dir / "victim.txt", dir / "shaders/lib/link.glsl");
+    session::ScriptContext ctx{dir / "shaders/passes", {}};
+
+    // A combination that cannot run, reached by two lines: the second is named.
+    std::string e = test::errorOf([&] {
+        session::checkScript(session::parseScript("0 traversal abr\n5 sampler dense\n", "s.txt"), ctx);
+    });
+    EXPECT_NE(e.find("s.txt:2"), std::string::npos) << e;
+    EXPECT_NE(e.find("grid-dda or grid-bvh"), std::string::npos) << e;
+    // ... and the same lines in the other order are fine (dense under grid-dda, then back to grid).
+    EXPECT_NO_THROW(session::checkScript(
+        session::parseScript("0 sampler dense\n1 sampler grid\n2 traversal abr\n", "s.txt"), ctx));
+
+    // Shader edits: inside the sources (also through ..), never outside, never through a link out.
+    EXPECT_NO_THROW(session::checkScript(session::parseScript("0 edit-shader path_trace.comp a b\n"
+                                                              "1 edit-shader ../lib/tf.glsl a b\n", "s.txt"), ctx));
+    for (const char* file : {"../../victim.txt", "../lib/link.glsl", "../lib/missing.glsl"}) {
+        e = test::errorOf([&] {
+            session::checkScript(session::parseScript(std::string("3 edit-shader ") + file + " a b\n", "s.txt"), ctx);
+        });
+        EXPECT_NE(e.find("s.txt:1"), std::string::npos) << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+    EXPECT_NE(test::errorOf([&] {
+                  session::checkScript(session::parseScript("0 edit-shader ../../victim.txt a b\n", "s.txt"), ctx);
+              }).find("leads outside the shader sources"),
+              std::string::npos);
+    e = test::errorOf([&] {
+        session::checkScript(session::parseScript("0 edit-shader path_trace.comp a b\n", "s.txt"), {{}, {}});
+    });
+    EXPECT_NE(e.find("needs --shader-dir"), std::string::npos) << e;
+    EXPECT_EQ(test::readAll(dir / "victim.txt"), "precious\n");
 }

@@ -188,6 +188,55 @@ TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
     EXPECT_NE(err.find("tf.glsl:" + std::to_string(line)), std::string::npos) << "file and line: " << err;
 }
 
+TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
+    const fs::path dir = test::scratchDir() / "viewer-all-actions";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
+    // Every documented action at frame 0 (docs/viewer.md), the same frame a script starts with.
+    test::writeAll(dir / "script.txt",
+                   "0 orbit 10 5\n0 pan 3 -2\n0 zoom 1\n0 tf-preset foggy\n0 tf-range 0.1 1.5\n0 density 2\n"
+                   "0 mode ss\n0 traversal grid-bvh\n0 sampler abr\n0 backend sw\n0 grid 8\n"
+                   "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n"
+                   "0 screenshot " + (dir / "shot.pfm").string() + "\n0 save-session " + (dir / "s.json").string() +
+                   "\n0 capture-window " + (dir / "w.png").string() + "\n1 quit\n");
+    int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --headless --shader-dir " +
+                     (dir / "shaders" / "passes").string() + " --script " + (dir / "script.txt").string() +
+                     " --validation",
+                 dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    EXPECT_TRUE(fs::exists(dir / "shot.pfm"));
+    EXPECT_FALSE(fs::exists(dir / "w.png")) << "capture-window is a no-op without a window";
+    const session::Session s = session::loadSession(dir / "s.json");
+    EXPECT_EQ(s.settings.mode, scene::Mode::Ss);
+    EXPECT_EQ(s.settings.densityScale, 2.0);
+    EXPECT_EQ(s.structure.traversal, scene::TraversalKind::GridBvh);
+    EXPECT_EQ(s.structure.sampler, scene::SamplerKind::Abr);
+    EXPECT_EQ(s.structure.grid, "8");
+    EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 1.5f);
+    EXPECT_NE(test::readAll(dir / "shaders/passes/path_trace.comp").find("// edited"), std::string::npos);
+
+    // A line that passes every check before frame 0 but fails when it runs (the dense grid over
+    // its limit) is an error naming the line; the session asked for at exit is not written.
+    test::writeAll(dir / "fails.txt", "0 mode ae\n2 sampler dense\n");
+    rc = run(amrvkBinary() + " view " + sample() + kPicture + " --dense-max-mib 1 --headless --frames 10 --script " +
+                 (dir / "fails.txt").string() + " --save-session " + (dir / "never.json").string(),
+             dir, "fails");
+    const std::string err = test::readAll(dir / "fails.err");
+    EXPECT_EQ(rc, 1) << err;
+    EXPECT_NE(err.find("fails.txt:2: sampler:"), std::string::npos) << err;
+    EXPECT_NE(err.find("--dense-max-mib"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir / "never.json"));
+    // A combination that cannot run at all is refused before frame 0 (nothing rendered).
+    test::writeAll(dir / "invalid.txt", "0 traversal abr\n0 sampler dense\n");
+    rc = run(amrvkBinary() + " view " + sample() + kPicture + " --headless --frames 10 --script " +
+                 (dir / "invalid.txt").string(),
+             dir, "invalid");
+    EXPECT_EQ(rc, 1);
+    EXPECT_NE(test::readAll(dir / "invalid.err").find("invalid.txt:2: sampler: --sampler dense needs"), std::string::npos)
+        << test::readAll(dir / "invalid.err");
+}
+
 TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
     if (!onPath("xvfb-run") || !onPath("xdotool")) GTEST_SKIP() << "xvfb-run or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-mouse";
