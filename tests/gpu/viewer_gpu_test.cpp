@@ -30,6 +30,12 @@ namespace {
 std::string amrvkBinary() { return std::string(AMRVK_BINARY_DIR) + "/bin/amrvk"; }
 std::string sample() { return std::string(AMRVK_SOURCE_DIR) + "/assets/samples/cloud.cells"; }
 
+// A command line run on an X display of its own (tests/with_xvfb.sh: Xvfb picks a free display
+// atomically, so concurrent window tests never share one, whatever ctest -j).
+std::string onOwnDisplay(const std::string& commandLine) {
+    return "bash " + std::string(AMRVK_SOURCE_DIR) + "/tests/with_xvfb.sh 800x600x24 " + commandLine;
+}
+
 bool onPath(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
 
 // Runs a shell command line with stdout and stderr into files under dir; returns the exit status.
@@ -108,10 +114,10 @@ TEST_F(ViewerGpu, HeadlessScreenshotEqualsRenderOfTheSameSession) {
 }
 
 TEST_F(ViewerGpu, WindowUnderXvfbEqualsRenderOfTheSameSession) {
-    if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
+    if (!onPath("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
     const fs::path dir = test::scratchDir() / "viewer-window";
     fs::create_directories(dir);
-    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' " + amrvkBinary() + " view " + sample() + kPicture +
+    const int rc = run(onOwnDisplay(amrvkBinary() + " view " + sample() + kPicture) +
                            " --spp 128 --frames 300 --window 640x480 --screenshot " + (dir / "final.pfm").string() +
                            " --save-session " + (dir / "final.json").string() + " --validation",
                        dir, "view");
@@ -238,7 +244,7 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
 }
 
 TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
-    if (!onPath("xvfb-run") || !onPath("xdotool")) GTEST_SKIP() << "xvfb-run or xdotool is not installed";
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-mouse";
     fs::create_directories(dir);
     test::writeAll(dir / "drive.sh",
@@ -255,7 +261,7 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
                    "wait $pid; rc=$?\n"
                    "kill $watchdog 2>/dev/null\n"
                    "exit $rc\n");
-    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' bash " + (dir / "drive.sh").string() + " " + amrvkBinary() +
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) +
                            " " + sample() + " " + dir.string(),
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
@@ -272,7 +278,7 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
 }
 
 TEST_F(ViewerGpu, ClosingDuringALongRebuildHidesTheWindowAtOnce) {
-    if (!onPath("xvfb-run") || !onPath("xdotool")) GTEST_SKIP() << "xvfb-run or xdotool is not installed";
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-close-during-build";
     fs::create_directories(dir);
     // A kd-tree of 10^6 leaves over 2 * 10^6 cells: about 15 s of building on a 2-core CPU.
@@ -295,7 +301,7 @@ TEST_F(ViewerGpu, ClosingDuringALongRebuildHidesTheWindowAtOnce) {
                    "wait $pid; rc=$?\n"
                    "kill $watchdog 2>/dev/null\n"
                    "exit $rc\n");
-    const int rc = run("xvfb-run -a -s '-screen 0 800x600x24' bash " + (dir / "drive.sh").string() + " " + amrvkBinary() +
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) +
                            " " + (dir / "big.cells").string(),
                        dir, "view");
     const std::string out = test::readAll(dir / "view.out"), err = test::readAll(dir / "view.err");
