@@ -70,8 +70,10 @@ struct Model {
     std::vector<std::string> availableFields; // every field the source offers (loaded or not)
     Transform voxelToWorld;
     std::vector<std::pair<std::string, std::string>> attributes;  // source metadata, for info
-    // Bumped whenever the cells are reordered (accel::buildBricks puts them in brick order), so
-    // whatever indexes cells by position (amr::ReferenceSampler) can tell it has gone stale.
+    // Bumped whenever the cells are reordered in place (accel::buildBricks puts them in brick
+    // order), so whatever indexes cells by position (amr::ReferenceSampler) can tell it has gone
+    // stale. Only code that calls buildBricks directly can do that: scene::makeVolume takes the
+    // model it reorders.
     uint64_t cellOrder = 0;
 
     uint64_t cellCount() const { return cells.size(); }

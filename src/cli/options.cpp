@@ -226,7 +226,8 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->capture_default_str()
             ->type_name("ext-brick|abr|grid|dense");
         app.add_option("--backend", a.backend,
-                       "box hierarchies: software BVH, VK_KHR_ray_query, or rq where the device has it")
+                       "box hierarchies: software BVH or VK_KHR_ray_query; auto = sw, which was measured faster on CPU "
+                       "devices (rq is not measured faster on a GPU yet); the choice and its reason go to stderr and --json")
             ->check(CLI::IsMember({"sw", "rq", "auto"}))
             ->capture_default_str()
             ->type_name("sw|rq|auto");

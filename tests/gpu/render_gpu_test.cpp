@@ -198,7 +198,6 @@ TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
     amr::ModelSummary sum = amr::summarize(m);
     glm::dvec3 lo = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower));
     glm::dvec3 hi = m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper));
-    (void)accel::buildBricks(m);  // brick order first: the reference integrator indexes cells by position
     scene::ReferenceIntegrator cpu(m, m.fields[0], tf);
     for (auto mode : {scene::Mode::Ae, scene::Mode::Ss, scene::Mode::Ms}) {
         SCOPED_TRACE(scene::modeName(mode));
