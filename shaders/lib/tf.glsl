@@ -1,8 +1,9 @@
 // Transfer function: piecewise linear in every channel between nodes (positions ascending, in
 // field units); constant beyond the first and last node. tfMaxAlpha is the exact maximum of the
 // same function over [lo, hi] (both ends interpolated, every node in [lo, hi] included, so a
-// step exactly on an end counts), so majorants
-// and lookups agree. CPU twin: scene/transfer_function.* (evaluate, maxAlpha).
+// step exactly on an end counts), so majorants and lookups agree. Both cost O(log nodes): binary
+// searches and a max tree over the node alphas, so a TF of 10^6 nodes costs what one of 20 does
+// per macrocell. CPU twin: scene/transfer_function.* (evaluate, maxAlpha).
 #ifndef AMRVK_TF_GLSL
 #define AMRVK_TF_GLSL
 
@@ -23,14 +24,40 @@ vec4 evalTf(float v) {
     return mix(col.v[lo], col.v[hi], f);
 }
 
+// The largest alpha of nodes a..b (inclusive) from the max tree (MajorantsGpu::tfAlphaTree).
+float tfNodesMaxAlpha(int a, int b) {
+    FloatRef tree = FloatRef(P.majorants.tfAlphaTree);
+    int n = int(P.majorants.tfNodeCount);
+    int leaves = n <= 1 ? 1 : 1 << (findMSB(n - 1) + 1);
+    float m = 0.0;
+    for (int l = a + leaves, r = b + leaves + 1; l < r; l >>= 1, r >>= 1) {
+        if ((l & 1) != 0) m = max(m, tree.v[l++]);
+        if ((r & 1) != 0) m = max(m, tree.v[--r]);
+    }
+    return m;
+}
+
 float tfMaxAlpha(float lo, float hi) {
     if (lo > hi) return 0.0;  // empty range
     FloatRef pos = FloatRef(P.majorants.tfPositions);
-    Vec4Ref col = Vec4Ref(P.majorants.tfColors);
     int n = int(P.majorants.tfNodeCount);
     float m = max(evalTf(lo).a, evalTf(hi).a);
-    for (int i = 0; i < n; ++i)
-        if (pos.v[i] >= lo && pos.v[i] <= hi) m = max(m, col.v[i].a);
+    // Nodes with lo <= position <= hi, found as std::lower_bound(lo) and std::upper_bound(hi)
+    // find them (the same predicates, so a NaN end gives the same nodes as on the CPU).
+    int first = 0, end = n;
+    while (first < end) {
+        int mid = (first + end) >> 1;
+        if (pos.v[mid] < lo) first = mid + 1;
+        else end = mid;
+    }
+    int last = first;
+    end = n;
+    while (last < end) {
+        int mid = (last + end) >> 1;
+        if (!(hi < pos.v[mid])) last = mid + 1;
+        else end = mid;
+    }
+    if (first < last) m = max(m, tfNodesMaxAlpha(first, last - 1));
     return m;
 }
 

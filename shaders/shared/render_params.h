@@ -109,7 +109,8 @@ struct MajorantsGpu {
     uint64_t domainNodes;      // BvhNodeGpu[] over the boxes with majorant > 0 (sw back-end)
     uint64_t domainPrims;      // uint[] BVH slot -> box id
     uint64_t domainAccel;      // TLAS over the boxes, culled ones collapsed to points (rq back-end)
-    uint64_t pad1;
+    uint64_t tfAlphaTree;      // float[2 * L], L = the power of two >= tfNodeCount: max tree of node alphas
+                               // (tree[L + i] = alpha_i, padding 0; tree[k] = max(tree[2k], tree[2k + 1]))
 };
 AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 96);
 

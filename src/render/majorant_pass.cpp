@@ -131,8 +131,10 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     const scene::StructurePlan& plan = mScene.plan();
     mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
     mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
+    mTfAlphaTree = gpu::makeBuffer<float>(mCtx, tf.alphaTree(), "tfAlphaTree");
     mParams.tfPositions = mTfPositions.address();
     mParams.tfColors = mTfColors.address();
+    mParams.tfAlphaTree = mTfAlphaTree.address();
     mParams.tfNodeCount = uint32_t(positions.size());
     if (plan.boxesPerTf) buildKdTree(tf);
     if (plan.boxMajorants) {

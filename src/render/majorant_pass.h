@@ -69,7 +69,7 @@ private:
     const DeviceScene& mDevice;
     const gpu::ShaderLibrary& mShaders;
     shared::MajorantsGpu mParams{};
-    gpu::Buffer mTfPositions, mTfColors, mGridMajorants, mDomainMajorants;
+    gpu::Buffer mTfPositions, mTfColors, mTfAlphaTree, mGridMajorants, mDomainMajorants;
     gpu::Buffer mKdBoxes, mKdRanges;               // kdtree traversal: the leaves of the TF's tree
     gpu::Buffer mDomainNodes, mDomainPrims;        // sw culling: BVH over the active boxes
     gpu::Buffer mDomainAabbs;                      // rq culling: BLAS input

@@ -234,8 +234,20 @@ const std::vector<PresetNodes>& presetTable() {
 
 }  // namespace
 
+namespace {
+// The max tree over node alphas (TransferFunction::alphaTree).
+std::vector<float> alphaMaxTree(const std::vector<glm::vec4>& colors) {
+    size_t leaves = 1;
+    while (leaves < colors.size()) leaves *= 2;
+    std::vector<float> tree(2 * leaves, 0.0f);
+    for (size_t i = 0; i < colors.size(); ++i) tree[leaves + i] = colors[i].a;
+    for (size_t k = leaves - 1; k >= 1; --k) tree[k] = std::max(tree[2 * k], tree[2 * k + 1]);
+    return tree;
+}
+}  // namespace
+
 TransferFunction::TransferFunction()
-    : mPositions{0.0f}, mColors{glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}, mName("empty") {}
+    : mPositions{0.0f}, mColors{glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}, mAlphaTree(alphaMaxTree(mColors)), mName("empty") {}
 
 TransferFunction::TransferFunction(const std::vector<float>& positions,
                                    const std::vector<glm::vec4>& colors, std::string name)
@@ -250,6 +262,7 @@ TransferFunction::TransferFunction(const std::vector<float>& positions,
         mPositions.push_back(positions[i]);
         mColors.push_back(colors[i]);
     }
+    mAlphaTree = alphaMaxTree(mColors);
 }
 
 glm::vec4 TransferFunction::evaluate(float v) const {
@@ -271,11 +284,15 @@ glm::vec4 TransferFunction::evaluate(float v) const {
 float TransferFunction::maxAlpha(float lo, float hi) const {
     if (lo > hi) return 0.0f;
     float m = std::max(evaluate(lo).a, evaluate(hi).a);
-    // Nodes with lo <= position <= hi (a NaN end includes every node: conservative).
-    auto first = std::lower_bound(mPositions.begin(), mPositions.end(), lo);
-    auto last = std::upper_bound(mPositions.begin(), mPositions.end(), hi);
-    for (auto it = first; it < last; ++it)
-        m = std::max(m, mColors[size_t(it - mPositions.begin())].a);
+    // Nodes with lo <= position <= hi (a NaN end includes every node: conservative), their
+    // largest alpha from the max tree (tf.glsl's tfNodesMaxAlpha).
+    const size_t first = size_t(std::lower_bound(mPositions.begin(), mPositions.end(), lo) - mPositions.begin());
+    const size_t last = size_t(std::upper_bound(mPositions.begin(), mPositions.end(), hi) - mPositions.begin());
+    const size_t leaves = mAlphaTree.size() / 2;
+    for (size_t l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
+        if (l & 1) m = std::max(m, mAlphaTree[l++]);
+        if (r & 1) m = std::max(m, mAlphaTree[--r]);
+    }
     return m;
 }
 

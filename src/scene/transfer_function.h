@@ -37,7 +37,7 @@ public:
     // for a NaN end. For a continuous TF this is the exact maximum. Unlike a strictly-inside
     // node test it also counts both sides of a step sitting exactly on an end, so it bounds the
     // left limit at hi and values that round one ulp past an end. evaluate(v).a for v in
-    // [lo, hi] exceeds it at most by the float rounding of mix (a few ulps).
+    // [lo, hi] exceeds it at most by the float rounding of mix (a few ulps). O(log nodes).
     float maxAlpha(float lo, float hi) const;
 
     // The same nodes with positions mapped linearly from [firstPosition, lastPosition] onto
@@ -46,6 +46,10 @@ public:
 
     const std::vector<float>& positions() const { return mPositions; }
     const std::vector<glm::vec4>& colors() const { return mColors; }
+    // Max tree of the node alphas (what maxAlpha reads, uploaded as MajorantsGpu::tfAlphaTree):
+    // 2 L floats, L the power of two >= nodeCount(); [L + i] = alpha_i (padding 0), [k] =
+    // max([2k], [2k + 1]); [0] unused.
+    const std::vector<float>& alphaTree() const { return mAlphaTree; }
     size_t nodeCount() const { return mPositions.size(); }
     float firstPosition() const { return mPositions.front(); }
     float lastPosition() const { return mPositions.back(); }
@@ -54,6 +58,7 @@ public:
 private:
     std::vector<float> mPositions;    // field units, non-descending
     std::vector<glm::vec4> mColors;   // rgb albedo, a = alpha per finest cell width
+    std::vector<float> mAlphaTree;    // see alphaTree()
     std::string mName;
 };
 

@@ -227,6 +227,45 @@ TEST(TransferFunction, MaxAlphaMatchesBruteForce) {
     EXPECT_GT(withNodes, 2000);
 }
 
+TEST(TransferFunction, MaxAlphaOfAMillionNodesEqualsTheLinearScan) {
+    // Work bounded by the TF's meaning, not its size: maxAlpha is two binary searches and a max
+    // tree (O(log nodes)); it must equal the definition's linear scan over every node in range.
+    const size_t n = 1000000;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<float> pos(n);
+    std::vector<glm::vec4> col(n);
+    for (size_t i = 0; i < n; ++i) {
+        pos[i] = float(i) * 1e-3f;  // distinct, ascending
+        col[i] = glm::vec4(0.5f, 0.5f, 0.5f, u(rng) < 0.999f ? 0.5f * u(rng) : 1.0f + u(rng));
+    }
+    const TransferFunction tf(pos, col, "million");
+    EXPECT_EQ(tf.alphaTree().size(), 2u * 1048576u);
+    auto linear = [&](float lo, float hi) {
+        if (lo > hi) return 0.0f;
+        float m = std::max(tf.evaluate(lo).a, tf.evaluate(hi).a);
+        for (size_t i = 0; i < n; ++i)
+            if ((std::isnan(lo) || pos[i] >= lo) && (std::isnan(hi) || pos[i] <= hi)) m = std::max(m, col[i].a);
+        return m;
+    };
+    std::uniform_real_distribution<float> v(-5.0f, 1005.0f);
+    double sum = 0;
+    for (int q = 0; q < 200000; ++q) {  // in seconds with the tree; hours with a scan per query
+        float lo = v(rng), hi = v(rng);
+        if (q % 7 == 0) hi = lo + 0.01f * u(rng);  // short ranges, often with no node inside
+        if (q % 11 == 0) lo = pos[size_t(q) % n];  // an end exactly on a node
+        sum += tf.maxAlpha(std::min(lo, hi), std::max(lo, hi));
+        if (q % 1000 == 0)
+            EXPECT_EQ(tf.maxAlpha(std::min(lo, hi), std::max(lo, hi)), linear(std::min(lo, hi), std::max(lo, hi)))
+                << "[" << lo << ", " << hi << "]";
+    }
+    EXPECT_GT(sum, 0.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(tf.maxAlpha(nan, 10.0f), linear(nan, 10.0f)) << "a NaN end counts every node up to the other end";
+    EXPECT_EQ(tf.maxAlpha(990.0f, nan), linear(990.0f, nan));
+    EXPECT_EQ(tf.maxAlpha(0.0f, 1e9f), linear(0.0f, 1e9f));
+}
+
 TEST(TransferFunction, RescaledMapsTheNodeRange) {
     TransferFunction tf({-1.0f, 0.0f, 0.0f, 3.0f}, {kA, kB, kC, kD});
     TransferFunction r = tf.rescaled(10.0f, 30.0f);

@@ -68,7 +68,7 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(m, MajorantsGpu, gridMajorants, 2), AMRVK_FIELD(m, MajorantsGpu, domainBoxes, 2),
         AMRVK_FIELD(m, MajorantsGpu, domainRanges, 2),  AMRVK_FIELD(m, MajorantsGpu, domainMajorants, 2),
         AMRVK_FIELD(m, MajorantsGpu, domainNodes, 2),   AMRVK_FIELD(m, MajorantsGpu, domainPrims, 2),
-        AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, pad1, 2),
+        AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, tfAlphaTree, 2),
         AMRVK_FIELD(0, RenderParams, accum, 2),         AMRVK_FIELD(0, RenderParams, counters, 2),
     });
     return f;

@@ -5,6 +5,7 @@
 // tracking call that reaches the step cap is counted, never silent.
 #include <algorithm>
 #include <functional>
+#include <random>
 
 #include "amr/readers.h"
 #include "gpu_fixture.h"
@@ -254,6 +255,57 @@ TEST_F(RendererGpu, HostCullingSetEqualsTheGpuMajorants) {
                 EXPECT_GT(active, 0u);
                 EXPECT_LT(active, gpu.size()) << "a spiky TF culls boxes";
             }
+        }
+    }
+}
+
+TEST_F(RendererGpu, ATfOfManyNodesCostsItsMeaningNotItsSize) {
+    // 200,000 nodes in a ParaView JSON file (issue 23: 10^5 nodes took 70 s in the majorant pass,
+    // a scan of every node per macrocell): the majorants, now O(log nodes) each, still equal the
+    // CPU's exact maxAlpha over every macrocell range, and the kd-tree (built per TF from
+    // thousands of maxAlpha calls) is built too.
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(test::makeThreeLevelCloud());
+    const size_t n = 200000;
+    scene::TfChannels c;
+    c.name = "many";
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (size_t i = 0; i < n; ++i) {
+        const float x = v->valueLo() + (v->valueHi() - v->valueLo()) * float(i) / float(n - 1);
+        c.colorPositions.push_back(x);
+        c.colors.emplace_back(u(rng), u(rng), u(rng));
+        c.opacityPositions.push_back(x);
+        c.alphas.push_back(u(rng) < 0.99f ? 0.0f : u(rng));
+    }
+    const std::filesystem::path file = test::scratchDir() / "many-nodes.json";
+    test::writeAll(file, scene::paraViewPresetJson(c));
+    const scene::TransferFunction tf = scene::loadTransferFunction(file.string(), 0.0f, 1.0f);
+    ASSERT_GE(tf.nodeCount(), n);
+    for (scene::TraversalKind t : {scene::TraversalKind::GridDda, scene::TraversalKind::KdTree}) {
+        scene::StructureConfig cfg;
+        cfg.traversal = t;
+        cfg.grid = "32";
+        cfg.kdLeaves = 512;
+        render::Renderer r(ctx(), v, cfg);
+        r.setTransferFunction(tf);
+        SCOPED_TRACE(scene::traversalName(t));
+        const std::vector<float> gpu = t == scene::TraversalKind::GridDda ? r.downloadMajorants() : r.downloadDomainMajorants();
+        const std::vector<accel::ValueRange>& ranges =
+            t == scene::TraversalKind::GridDda ? r.scene().grid->ranges : std::vector<accel::ValueRange>{};
+        if (t == scene::TraversalKind::GridDda) {
+            ASSERT_EQ(gpu.size(), ranges.size());
+            size_t bad = 0, positive = 0;
+            for (size_t i = 0; i < gpu.size(); ++i) {
+                const float cpu = tf.maxAlpha(ranges[i].lo, ranges[i].hi);
+                positive += cpu > 0.0f;
+                if (std::abs(gpu[i] - cpu) > 1e-6f * std::max(1.0f, cpu) && bad++ < 5)
+                    ADD_FAILURE() << "macrocell " << i << ": gpu " << gpu[i] << ", cpu " << cpu;
+            }
+            EXPECT_EQ(bad, 0u);
+            EXPECT_GT(positive, gpu.size() / 2) << "1% of 2e5 nodes are opaque: most macrocells see one";
+        } else {
+            EXPECT_EQ(r.traversalBoxes().size(), 512u);
+            EXPECT_GT(r.activeTraversalBoxes(), 0u);
         }
     }
 }

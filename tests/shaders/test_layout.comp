@@ -51,7 +51,7 @@ void main() {
     u(P.majorants.domainCount); u(P.majorants.domainAnyActive); u(P.majorants.pad);
     u64(P.majorants.gridMajorants); u64(P.majorants.domainBoxes); u64(P.majorants.domainRanges);
     u64(P.majorants.domainMajorants); u64(P.majorants.domainNodes); u64(P.majorants.domainPrims);
-    u64(P.majorants.domainAccel); u64(P.majorants.pad1);
+    u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
     // RenderParams tail
     u64(P.accum); u64(P.counters);
     // The structures read through buffer references.
