@@ -70,22 +70,40 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
     return model;
 }
 
+std::string scalarsName(const std::string& field) {
+    std::string out = field;
+    for (char& c : out)
+        if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
+    return out;
+}
+
+std::vector<fs::path> exaBrickFiles(const Model& model, const fs::path& base, bool writeSingleAsPlain) {
+    std::vector<fs::path> out;
+    out.push_back(fs::path(base) += ".cells");
+    for (const Field& f : model.fields)
+        out.push_back(fs::path(base) += (writeSingleAsPlain && model.fields.size() == 1)
+                                            ? std::string(".scalars")
+                                            : "." + scalarsName(f.name) + ".scalars");
+    for (size_t i = 1; i < out.size(); ++i)
+        for (size_t j = 1; j < i; ++j)
+            AMRVK_CHECK(out[i] != out[j], "fields '", model.fields[j - 1].name, "' and '", model.fields[i - 1].name,
+                        "' would both be written to ", out[i].string());
+    return out;
+}
+
 void writeExaBrick(const Model& model, const fs::path& base, bool writeSingleAsPlain) {
     for (const Field& f : model.fields)
         AMRVK_CHECK(f.values.size() == model.cells.size(), "field '", f.name, "' has ", f.values.size(),
                     " values for ", model.cells.size(), " cells");
+    const std::vector<fs::path> files = exaBrickFiles(model, base, writeSingleAsPlain);
     // Every file is written under its temporary name first; all are committed only once all are
     // written, so a failure leaves none of them behind.
     std::vector<std::unique_ptr<AtomicFileWriter>> writers;
-    fs::path cellsPath = base;
-    cellsPath += ".cells";
-    writers.push_back(std::make_unique<AtomicFileWriter>(cellsPath));
+    writers.push_back(std::make_unique<AtomicFileWriter>(files[0]));
     writers.back()->writeSpan(std::span<const Cell>(model.cells));
-    for (const Field& f : model.fields) {
-        fs::path p = base;
-        p += (writeSingleAsPlain && model.fields.size() == 1) ? ".scalars" : "." + f.name + ".scalars";
-        writers.push_back(std::make_unique<AtomicFileWriter>(p));
-        writers.back()->writeSpan(std::span<const float>(f.values));
+    for (size_t i = 0; i < model.fields.size(); ++i) {
+        writers.push_back(std::make_unique<AtomicFileWriter>(files[i + 1]));
+        writers.back()->writeSpan(std::span<const float>(model.fields[i].values));
     }
     commitAll(writers);
 }

@@ -11,6 +11,7 @@ H5Id openHdf5ReadOnly(const std::filesystem::path& path) {
     H5Id f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
     AMRVK_CHECK(f.valid(), path.string(),
                 ": cannot open as HDF5 (not an HDF5 file, or truncated/damaged)");
+    noteInputFile(path);
     return f;
 }
 

@@ -39,8 +39,17 @@ Model readEnzo(const std::filesystem::path& path, const ReadOptions& options);
 Model readChombo(const std::filesystem::path& path, const ReadOptions& options);
 Model readRaw(const std::filesystem::path& path, const ReadOptions& options);
 
-// Writes model.cells to "<base>.cells" and each field F to "<base>.F.scalars" (or
-// "<base>.scalars" when writing a single field with writeSingleAsPlain), atomically.
+// The files writeExaBrick writes for `model`: "<base>.cells", then per field F
+// "<base>.F'.scalars" with F' = scalarsName(F) (or "<base>.scalars" for a single field with
+// writeSingleAsPlain).
+std::vector<std::filesystem::path> exaBrickFiles(const Model& model, const std::filesystem::path& base,
+                                                 bool writeSingleAsPlain = false);
+// A field name as it may appear in a file name: names come from input files (Chombo components,
+// AMReX variables, Enzo datasets) and sit inside "<base>.NAME.scalars", so '/' and control bytes
+// become '_' ("/../../x" becomes "_.._.._x": one file name, never a path); "Y(H2)" stays.
+std::string scalarsName(const std::string& field);
+// Writes model.cells and every field to exaBrickFiles(...), atomically and all or none. Throws
+// when two fields get the same file name.
 void writeExaBrick(const Model& model, const std::filesystem::path& base,
                    bool writeSingleAsPlain = false);
 

@@ -9,6 +9,7 @@
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/json_text.h"
 #include "core/stats.h"
 #include "picture/picture.h"
 #include "session/picture_description.h"
@@ -126,7 +127,14 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     const scene::RenderSettings& rs = mSettings;
     if (std::filesystem::exists(meanFile) && std::filesystem::exists(varFile) && std::filesystem::exists(infoFile)) {
         // A cache file that does not parse, or has another key, is rendered again.
-        const nlohmann::json cached = nlohmann::json::parse(readTextFile(infoFile), nullptr, false);
+        const std::string text = readTextFile(infoFile);
+        bool shallow = true;
+        try {
+            checkJsonDepth(text, infoFile.string());
+        } catch (const Error&) {
+            shallow = false;
+        }
+        const nlohmann::json cached = shallow ? nlohmann::json::parse(text, nullptr, false) : nlohmann::json();
         if (cached.is_object() && cached.contains("key") && cached.at("key") == key) {
             ref.mean = readPfm(meanFile);
             Image var = readPfm(varFile);

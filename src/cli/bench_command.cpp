@@ -201,9 +201,17 @@ int runBench(const std::vector<std::string>& argv) {
         std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
         if (!ec) o.amrvkPath = self.string();
     }
-    // Every option is valid: only now the output directory is made.
-    std::filesystem::create_directories(o.outDir);
+    // Every option is valid: only now the output directory is made, never inside a data set.
+    std::vector<NamedPath> dataInputs;
+    for (const bench::BenchDataset& ds : o.datasets) dataInputs.push_back({"input", ds.input});
+    std::error_code ec;
+    AMRVK_CHECK(!std::filesystem::exists(o.outDir, ec) || std::filesystem::is_directory(o.outDir, ec), "-o ",
+                o.outDir.string(), ": exists and is not a directory");
+    std::filesystem::create_directories(o.outDir, ec);
+    AMRVK_CHECK(!ec, "-o ", o.outDir.string(), ": cannot create (", ec.message(), ")");
     AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
+    checkOutputs({{"-o", o.outDir / "results.json"}, {"-o", o.outDir / "results.csv"}, {"-o", o.outDir / "results.md"}},
+                 dataInputs);
     o.shaders = gpu::ShaderLibrary(dev.shaderDir);
     gpu::Context ctx(dev.context);
 

@@ -116,6 +116,7 @@ int runGen(const std::vector<std::string>& argv) {
     params.levels = static_cast<int>(levels);
     AMRVK_CHECK(params.field.find('/') == std::string::npos, "--field: '", params.field, "' must not contain '/'");
     AMRVK_CHECK(!base.empty(), "amrvk gen: -o BASE must not be empty");
+    checkOutputs({{"-o", base + ".cells"}, {"-o", base + (params.field.empty() ? "" : "." + params.field) + ".scalars"}}, {});
 
     const std::string kindName(amr::syntheticKindName(params.kind));
     ProgressPrinter printer("amrvk gen " + kindName);

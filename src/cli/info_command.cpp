@@ -189,8 +189,18 @@ int runConvert(const std::vector<std::string>& argv) {
         ->required()
         ->type_name("BASE");
     if (!parseCommandLine(app, argv)) return 0;
+    AMRVK_CHECK(!base.empty(), "-o BASE must not be empty");
+    checkOutputs({{"-o", base + ".cells"}}, {{"input", input}});
     amr::Model model = amr::readModel(input, readOptions(read));
     amr::validate(model);  // overlaps too: the output is never bricked here
+    // Every file checked before any is written: writable, distinct, none of them an input file.
+    std::vector<NamedPath> outputs;
+    for (const std::filesystem::path& p : amr::exaBrickFiles(model, base)) outputs.push_back({"-o", p});
+    checkOutputs(outputs, inputFilesRead());
+    for (const amr::Field& f : model.fields)
+        if (amr::scalarsName(f.name) != f.name)
+            std::fprintf(stderr, "amrvk convert: field '%s' is written as %s.%s.scalars (its name is not a file name)\n",
+                         f.name.c_str(), base.c_str(), amr::scalarsName(f.name).c_str());
     amr::writeExaBrick(model, base);
     std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());

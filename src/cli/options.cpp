@@ -376,6 +376,16 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     return d;
 }
 
+std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& input, const PictureArgs& a,
+                                     std::vector<NamedPath> extra) {
+    std::vector<NamedPath> in = std::move(extra);
+    if (!input.empty()) in.push_back({"input", input});
+    if (given(app, "--session")) in.push_back({"--session", a.session});
+    std::error_code ec;
+    if (given(app, "--tf") && std::filesystem::exists(a.tf, ec)) in.push_back({"--tf", a.tf});
+    return in;
+}
+
 void setUpCommand(CLI::App& app) {
     app.formatter(std::make_shared<HelpFormatter>());
     app.option_defaults()->group("options");

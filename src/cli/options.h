@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "amr/readers.h"
+#include "core/file_io.h"
 #include "gpu/context.h"
 #include "session/picture_description.h"
 
@@ -74,6 +75,11 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 // camera (unless --camera), the traversal (unless --traversal; --traversal auto probes).
 session::PictureDescription describePicture(const CLI::App& app, const std::string& input, const ReadArgs& read,
                                             const PictureArgs& a);
+
+// The files a picture command reads, by the option that names them: the input, --session, --tf
+// (when a file) and extra (e.g. --script), for checkOutputs before any work.
+std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& input, const PictureArgs& a,
+                                     std::vector<NamedPath> extra = {});
 
 // amrvk's help layout (usage, wrapped descriptions with their checks and defaults), the "options"
 // group and -h,--help; every command calls it right after making its App.

@@ -34,17 +34,6 @@ const char* kRenderHelp =
     "(sw) or through VK_KHR_ray_query (rq). --session FILE renders a picture saved by the viewer "
     "(amrvk view), with any option given here on top.";
 
-// Fails before the render, not after it, when an output cannot be written.
-void checkWritable(const std::string& file, const char* what) {
-    if (file.empty()) return;
-    std::error_code ec;
-    AMRVK_CHECK(!fs::is_directory(file, ec), what, " ", file, ": is a directory");
-    fs::path dir = fs::path(file).parent_path();
-    if (dir.empty()) dir = ".";
-    AMRVK_CHECK(::access(dir.c_str(), W_OK) == 0, file, ": cannot write (directory ", dir.string(),
-                " is missing or not writable)");
-}
-
 }  // namespace
 
 int runDevices(const std::vector<std::string>& argv) {
@@ -102,21 +91,25 @@ int runRender(const std::vector<std::string>& argv) {
     addDeviceOptions(app, dev);
     if (!parseCommandLine(app, argv)) return 0;
 
-    {
-        const std::string ext = fs::path(output).extension().string();
-        AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
-                    ": unknown image type (use .png, .exr or .pfm)");
-        checkWritable(output, "-o");
-        checkWritable(jsonFile, "--json");
-    }
+    const std::string ext = fs::path(output).extension().string();
+    AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
+                ": unknown image type (use .png, .exr or .pfm)");
+    // Every output checked before any work: writable, distinct, none of them an input.
+    const std::vector<NamedPath> outputs = {{"-o", output}, {"--json", jsonFile}};
+    checkOutputs(outputs, pictureInputs(app, input, pic));
     const session::PictureDescription description = describePicture(app, input, read, pic);
+    Timer readTimer;
+    std::shared_ptr<const scene::Volume> loaded = session::loadVolume(description.session);
+    const double readSeconds = readTimer.seconds() - loaded->bricks.buildSeconds;
+    checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
     gpu::ContextOptions co = dev.context;
     co.requireRayQuery = description.session.structure.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
     picture::Picture picture =
-        picture::openPicture(ctx, description,
+        picture::makePicture(ctx, std::move(loaded), description,
                              {.shaders = gpu::ShaderLibrary(dev.shaderDir),
                               .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }});
+    picture.report.readSeconds = readSeconds;
     const session::Session& s = picture.session;
     render::Renderer& renderer = *picture.renderer;
     const scene::VolumeScene& scene = renderer.scene();

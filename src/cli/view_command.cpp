@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
+#include "core/file_io.h"
 #include "session/picture_description.h"
 #include "session/script.h"
 #include "viewer/viewer_app.h"
@@ -75,6 +76,10 @@ int runView(const std::vector<std::string>& argv) {
         AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
                     ": unknown image type (use .png, .exr or .pfm)");
     }
+    // Every output checked before any work: writable, distinct, none of them an input.
+    const std::vector<NamedPath> outputs = {
+        {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}};
+    checkOutputs(outputs, pictureInputs(app, input, pic, {{"--script", script}}));
     vo.start = describePicture(app, input, read, pic);
     AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
                 "--traversal auto is for amrvk render (the viewer switches structures live)");
@@ -84,6 +89,7 @@ int runView(const std::vector<std::string>& argv) {
     if (!script.empty()) session::loadScript(script);
     // Read before a window opens: a bad data set is one line, not a window that closes.
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
+    checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
     vo.frames = uint64_t(frames);
     vo.screenshot = screenshot;
     vo.script = script;

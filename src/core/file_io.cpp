@@ -1,12 +1,19 @@
 #include "core/file_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <algorithm>
+#include <mutex>
+#include <optional>
 
+#include "core/checked_size.h"
 #include "core/error.h"
 
 namespace fs = std::filesystem;
@@ -25,6 +32,7 @@ uint64_t fileSize(const fs::path& path) {
 
 std::string readTextFile(const fs::path& path) {
     BinaryReader in(path);
+    checkAllocation(in.size(), path.string());
     std::string text(in.size(), '\0');
     in.read(text.data(), text.size());
     return text;
@@ -34,6 +42,7 @@ BinaryReader::BinaryReader(const fs::path& path) : mPath(path) {
     mSize = fileSize(path);
     mFile = std::fopen(path.c_str(), "rb");
     AMRVK_CHECK(mFile, path.string(), ": cannot open (", std::strerror(errno), ")");
+    noteInputFile(path);
 }
 
 BinaryReader::~BinaryReader() {
@@ -63,15 +72,17 @@ void BinaryReader::read(void* dst, uint64_t bytes) {
 namespace {
 
 // Temporary files being written, for the signal handler: fixed slots of NUL-terminated paths
-// that the handler reads without locks or allocation (unlink is async-signal-safe).
-constexpr int kTempSlots = 64;
+// that the handler reads without locks or allocation (unlink is async-signal-safe). BSS: pages
+// are touched only when used.
+constexpr int kTempSlots = 1024;
 constexpr size_t kTempPathBytes = 4096;
 char gTempPaths[kTempSlots][kTempPathBytes];
 enum SlotState : int { kFree, kClaimed, kReady };  // the handler unlinks kReady slots only
 std::atomic<int> gTempState[kTempSlots];
 
 int registerTemporary(const std::string& path) {
-    if (path.size() >= kTempPathBytes) return -1;
+    AMRVK_CHECK(path.size() < kTempPathBytes, path, ": temporary file name longer than ", kTempPathBytes - 1,
+                " bytes");
     for (int i = 0; i < kTempSlots; ++i) {
         int expected = kFree;
         if (!gTempState[i].compare_exchange_strong(expected, kClaimed)) continue;
@@ -79,7 +90,8 @@ int registerTemporary(const std::string& path) {
         gTempState[i].store(kReady);
         return i;
     }
-    return -1;  // more than kTempSlots at once: this one is left to the destructor
+    AMRVK_CHECK(false, "more than ", kTempSlots, " output files open at once");
+    return -1;
 }
 
 void unregisterTemporary(int& slot) {
@@ -94,27 +106,114 @@ extern "C" void removeTemporariesAndExit(int sig) {
     std::raise(sig);
 }
 
+// The process's umask, read once (umask() can only be read by setting it).
+mode_t processUmask() {
+    static const mode_t mask = [] {
+        const mode_t m = ::umask(022);
+        ::umask(m);
+        return m;
+    }();
+    return mask;
+}
+
+// Files opened for reading (canonical paths, in order).
+std::mutex gInputsMutex;
+std::vector<fs::path> gInputs;
+
+// How an output path is written (see AtomicFileWriter); throws for what is refused.
+enum class OutputKind { New, Replace, WriteThrough };
+OutputKind outputKind(const fs::path& path, const std::string& option, struct stat& target) {
+    const std::string what = option.empty() ? path.string() : option + " " + path.string();
+    struct stat link {};
+    if (::lstat(path.c_str(), &link) != 0) {
+        AMRVK_CHECK(errno == ENOENT, what, ": cannot write (", std::strerror(errno), ")");
+        fs::path dir = path.parent_path();
+        if (dir.empty()) dir = ".";
+        struct stat d {};
+        AMRVK_CHECK(::stat(dir.c_str(), &d) == 0 && S_ISDIR(d.st_mode), what, ": cannot write (directory ",
+                    dir.string(), " is missing)");
+        return OutputKind::New;
+    }
+    if (S_ISLNK(link.st_mode)) {
+        AMRVK_CHECK(::stat(path.c_str(), &target) == 0, what,
+                    ": a symbolic link to nothing (refused as an output: it would be replaced)");
+    } else {
+        target = link;
+    }
+    AMRVK_CHECK(!S_ISDIR(target.st_mode), what, ": is a directory");
+    if (S_ISCHR(target.st_mode) || S_ISFIFO(target.st_mode)) return OutputKind::WriteThrough;
+    AMRVK_CHECK(S_ISREG(target.st_mode), what, ": not a regular file, character device or FIFO (refused as an output)");
+    return OutputKind::Replace;
+}
+
 }  // namespace
 
+void noteInputFile(const fs::path& path) {
+    std::error_code ec;
+    const fs::path canonical = fs::canonical(path, ec);
+    if (ec) return;
+    std::lock_guard lock(gInputsMutex);
+    if (std::find(gInputs.begin(), gInputs.end(), canonical) == gInputs.end()) gInputs.push_back(canonical);
+}
+
+std::vector<NamedPath> inputFilesRead() {
+    std::lock_guard lock(gInputsMutex);
+    std::vector<NamedPath> out;
+    for (const fs::path& p : gInputs) out.push_back({"(read)", p});
+    return out;
+}
+
 void removeTemporariesOnSignal() {
-    for (int sig : {SIGINT, SIGTERM}) std::signal(sig, removeTemporariesAndExit);
+    processUmask();  // read now, before any thread could create a file meanwhile
+    for (int sig : {SIGHUP, SIGINT, SIGQUIT, SIGTERM}) std::signal(sig, removeTemporariesAndExit);
 }
 
 AtomicFileWriter::AtomicFileWriter(fs::path path) : mPath(std::move(path)) {
-    mTmpPath = mPath;
-    mTmpPath += strCat(".tmp-", ::getpid());
-    mSlot = registerTemporary(mTmpPath.string());
-    mFile = std::fopen(mTmpPath.c_str(), "wb");
-    if (!mFile) unregisterTemporary(mSlot);
+    struct stat target {};
+    const OutputKind kind = outputKind(mPath, "", target);
+    if (kind == OutputKind::WriteThrough) {
+        const int fd = ::open(mPath.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+        AMRVK_CHECK(fd >= 0, mPath.string(), ": cannot write (", std::strerror(errno), ")");
+        mFile = ::fdopen(fd, "wb");
+        if (!mFile) ::close(fd);
+        AMRVK_CHECK(mFile, mPath.string(), ": cannot write (", std::strerror(errno), ")");
+        mTarget = mPath;
+        return;
+    }
+    mode_t mode = 0666 & ~processUmask();
+    if (kind == OutputKind::Replace) {
+        std::error_code ec;
+        mTarget = fs::canonical(mPath, ec);  // a link stays a link: its target is replaced
+        AMRVK_CHECK(!ec, mPath.string(), ": cannot resolve (", ec.message(), ")");
+        mode = target.st_mode & 07777;
+    } else {
+        mTarget = mPath;
+    }
+    // An unpredictable name, created exclusively: never a planted file or link.
+    std::string name = mTarget.string() + ".tmp-XXXXXX";
+    const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+    AMRVK_CHECK(fd >= 0, mPath.string(), ": cannot write (", std::strerror(errno), ")");
+    mTmpPath = name;
+    ::fchmod(fd, mode);
+    try {
+        mSlot = registerTemporary(name);
+    } catch (...) {
+        ::close(fd);
+        ::unlink(name.c_str());
+        throw;
+    }
+    mFile = ::fdopen(fd, "wb");
+    if (!mFile) {
+        ::close(fd);
+        ::unlink(name.c_str());
+        unregisterTemporary(mSlot);
+    }
     AMRVK_CHECK(mFile, mPath.string(), ": cannot write (", std::strerror(errno), ")");
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
     if (mFile) std::fclose(mFile);
-    if (!mCommitted) {
-        std::error_code ec;
-        fs::remove(mTmpPath, ec);
-    }
+    if (!mCommitted && !mTmpPath.empty()) ::unlink(mTmpPath.c_str());
     unregisterTemporary(mSlot);
 }
 
@@ -139,11 +238,56 @@ void AtomicFileWriter::finish() {
 void AtomicFileWriter::commit() {
     AMRVK_CHECK(!mCommitted, mPath.string(), ": committed twice");
     finish();
-    std::error_code ec;
-    fs::rename(mTmpPath, mPath, ec);
-    AMRVK_CHECK(!ec, mPath.string(), ": cannot rename temporary file into place (", ec.message(), ")");
+    if (!mTmpPath.empty()) {
+        AMRVK_CHECK(::rename(mTmpPath.c_str(), mTarget.c_str()) == 0, mPath.string(),
+                    ": cannot rename temporary file into place (", std::strerror(errno), ")");
+    }
     mCommitted = true;
     unregisterTemporary(mSlot);
+}
+
+void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+    struct Out {
+        const NamedPath* named;
+        fs::path canonical;  // the file written (links followed; a new file: its canonical directory + name)
+    };
+    std::vector<Out> seen;
+    for (const NamedPath& o : outputs) {
+        if (o.path.empty()) continue;
+        const std::string what = o.option + " " + o.path.string();
+        struct stat target {};
+        const OutputKind kind = outputKind(o.path, o.option, target);
+        std::error_code ec;
+        fs::path canonical;
+        if (kind == OutputKind::New) {
+            fs::path dir = o.path.parent_path();
+            if (dir.empty()) dir = ".";
+            canonical = fs::canonical(dir, ec) / o.path.filename();
+        } else {
+            canonical = fs::canonical(o.path, ec);
+        }
+        AMRVK_CHECK(!ec, what, ": cannot resolve (", ec.message(), ")");
+        if (kind != OutputKind::WriteThrough)
+            AMRVK_CHECK(::access(canonical.parent_path().c_str(), W_OK) == 0, what, ": cannot write (directory ",
+                        canonical.parent_path().string(), " is not writable)");
+        for (const Out& s : seen)
+            AMRVK_CHECK(kind == OutputKind::WriteThrough || s.canonical != canonical, what, " and ", s.named->option, " ",
+                        s.named->path.string(), " are the same file");
+        for (const NamedPath& in : inputs) {
+            if (in.path.empty()) continue;
+            std::error_code e2;
+            const fs::path input = fs::canonical(in.path, e2);
+            if (e2) continue;  // a missing input is reported when it is read
+            AMRVK_CHECK(input != canonical, what, " is the input ", in.option, " ", in.path.string(),
+                        " (refused: it would be overwritten)");
+            if (fs::is_directory(input)) {
+                const auto [end, _] = std::mismatch(input.begin(), input.end(), canonical.begin(), canonical.end());
+                AMRVK_CHECK(end != input.end(), what, " lies inside the input ", in.option, " ", in.path.string(),
+                            " (refused)");
+            }
+        }
+        seen.push_back({&o, canonical});
+    }
 }
 
 void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers) {

@@ -14,7 +14,7 @@ namespace amrvk {
 // Size in bytes of an existing regular file; throws if missing or not a regular file.
 uint64_t fileSize(const std::filesystem::path& path);
 
-// Reads a whole text file.
+// Reads a whole text file (its size checked against the memory budget first).
 std::string readTextFile(const std::filesystem::path& path);
 
 // Sequential reader of a binary file with the current byte offset in every error message.
@@ -49,8 +49,15 @@ private:
     uint64_t mOffset = 0;
 };
 
-// Writes a file atomically: data goes to "<path>.tmp-<pid>" and is renamed to `path` by commit().
-// A writer destroyed without commit() removes its temporary file, so no half-written output remains.
+// How an output path is written, so that no output ever destroys what it is not meant to replace:
+//  - nothing there, or a regular file (also behind symbolic links: the link stays a link and its
+//    target is replaced): the data goes to a temporary created exclusively beside the target
+//    (mkostemp: O_CREAT|O_EXCL with a random suffix, so a link planted at a predictable name is
+//    never followed), which commit() renames over the target;
+//  - a character device or FIFO (/dev/null, /dev/stdout, a pipe): written through, nothing renamed;
+//  - a directory, a socket, a block device or a link to nothing: refused.
+// (That no output is an input of the command is checkOutputs' job, before any work.) A writer destroyed without commit() removes its temporary;
+// SIGHUP, SIGINT, SIGQUIT and SIGTERM remove every open temporary (removeTemporariesOnSignal).
 class AtomicFileWriter {
 public:
     explicit AtomicFileWriter(std::filesystem::path path);
@@ -70,11 +77,12 @@ public:
     void commit();
 
 private:
-    std::filesystem::path mPath;
-    std::filesystem::path mTmpPath;
+    std::filesystem::path mPath;     // as named (for messages)
+    std::filesystem::path mTarget;   // the file replaced: mPath with links followed
+    std::filesystem::path mTmpPath;  // empty when written through
     std::FILE* mFile = nullptr;
     bool mFinished = false, mCommitted = false;
-    int mSlot = -1;  // entry in the table of temporaries that SIGINT/SIGTERM remove
+    int mSlot = -1;  // entry in the table of temporaries that the signal handler removes
     uint64_t mBytes = 0;
 };
 
@@ -82,9 +90,26 @@ private:
 // error leaves none of them under its final name.
 void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers);
 
-// Installs SIGINT/SIGTERM handlers that remove every AtomicFileWriter's temporary file, then end
-// the process with the signal's default action. main() calls it once.
+// Installs SIGHUP, SIGINT, SIGQUIT and SIGTERM handlers that remove every AtomicFileWriter's
+// temporary file, then end the process with the signal's default action. main() calls it once.
 void removeTemporariesOnSignal();
+
+// A file a command reads or writes, named by the option that names it (for messages).
+struct NamedPath {
+    std::string option;  // e.g. "-o", "--json", "input"
+    std::filesystem::path path;
+};
+// Checks every output of a command before any work: each can be written as AtomicFileWriter
+// writes it (its directory exists and is writable; not a directory, socket, block device or link
+// to nothing), no two outputs are the same file, and none is one of `inputs` (the same file after
+// links are followed, or a file inside an input directory). Throws one line naming the option(s).
+void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
+
+// Records a file opened for reading (BinaryReader, readTextFile and the HDF5 readers call it), so
+// a command can check its outputs against every file its data set is made of once it is read
+// (checkOutputs(outputs, inputFilesRead())), not only against the path it was given.
+void noteInputFile(const std::filesystem::path& path);
+std::vector<NamedPath> inputFilesRead();
 
 // Writes a whole text/binary buffer atomically.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& contents);

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/json_text.h"
 #include "core/strings.h"
 
 namespace fs = std::filesystem;
@@ -353,7 +354,9 @@ PresetDocument readPresetDocument(const fs::path& path) {
     const std::string file = path.string();
     PresetDocument d;
     try {
-        d.doc = nlohmann::json::parse(readTextFile(path));
+        const std::string text = readTextFile(path);
+        checkJsonDepth(text, file);
+        d.doc = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         std::string msg = e.what();
         if (size_t close = msg.find("] "); msg.starts_with("[json.exception") && close != std::string::npos)
@@ -416,6 +419,7 @@ ParaViewPresets loadParaViewPresets(const fs::path& path) {
 
 TfChannels parseParaViewPreset(const std::string& text, const std::string& where) {
     nlohmann::json j;
+    checkJsonDepth(text, where);
     try {
         j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/json_text.h"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -118,6 +119,7 @@ std::string sessionJson(const Session& s) {
 Session parseSession(const std::string& text, const fs::path& path) {
     const std::string file = path.string();
     Json doc;
+    checkJsonDepth(text, file);
     try {
         doc = Json::parse(text);
     } catch (const nlohmann::json::exception& e) {

@@ -200,9 +200,9 @@ TEST(ImageIo, FailuresLeaveNoFile) {
     expectError([&] { writeImage(dir / "noext", img); }, {"noext", "unknown image extension ''"});
     for (const char* name : {"missing/a.png", "missing/a.pfm", "missing/a.exr"})
         expectError([&] { writeImage(dir / name, img); }, {name, "cannot write"});
-    // The target is a directory: the temporary is written, the rename fails, nothing remains.
+    // The target is a directory: refused before anything is written, nothing remains.
     std::filesystem::create_directory(dir / "taken.exr");
-    expectError([&] { writeImage(dir / "taken.exr", img); }, {"taken.exr", "cannot rename"});
+    expectError([&] { writeImage(dir / "taken.exr", img); }, {"taken.exr", "is a directory"});
     EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.exr"));
     EXPECT_TRUE(std::filesystem::is_empty(dir / "taken.exr"));
     Image bad = img;
