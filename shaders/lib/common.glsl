@@ -17,7 +17,7 @@ layout(buffer_reference, scalar) readonly buffer UintRef { uint v[]; };
 layout(buffer_reference, scalar) buffer UintRW { uint v[]; };
 layout(buffer_reference, scalar) readonly buffer ValueRangeRef { ValueRangeGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer Vec4Ref { vec4 v[]; };
-layout(buffer_reference, scalar) buffer Vec4RW { vec4 v[]; };
+layout(buffer_reference, scalar) buffer AccumRW { AccumPixelGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer BvhRef { BvhNodeGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer AbrRef { AbrGpu v[]; };
 layout(buffer_reference, scalar) readonly buffer AabbRef { AabbGpu v[]; };

@@ -1,20 +1,23 @@
 #version 460
-// The accumulated image as a window shows it: the per-pixel mean (sum / count; pixels without a
-// sample yet are black), scaled bilinearly from the render size to the window size (a preview
-// rendered smaller is magnified), times the exposure, clamped, sRGB encoded to 8 bits (the curve
-// of core/image_io's encodeSrgb8) and packed for a B8G8R8A8_UNORM image.
+// The accumulated image as a window shows it: the per-pixel mean ((sumHi + sumLo) / count, in
+// float: enough for 8 bits; pixels without a sample yet are black), scaled bilinearly from the
+// render size to the window size (a preview rendered smaller is magnified), times the exposure,
+// clamped, sRGB encoded to 8 bits (the curve of core/image_io's encodeSrgb8) and packed for a
+// B8G8R8A8_UNORM image.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "shared/display_gpu.h"
+#include "shared/render_params.h"
 layout(push_constant, scalar) uniform Push { DisplayPush pc; };
-layout(buffer_reference, scalar) readonly buffer AccumRef { vec4 v[]; };
+layout(buffer_reference, scalar) readonly buffer AccumRef { AccumPixelGpu v[]; };
 layout(buffer_reference, scalar) buffer PixelsRW { uint v[]; };
 layout(local_size_x = 8, local_size_y = 8) in;
 
 vec3 meanAt(ivec2 p) {
     p = clamp(p, ivec2(0), ivec2(pc.srcWidth, pc.srcHeight) - 1);
-    vec4 sum = AccumRef(pc.accum).v[2u * (uint(p.y) * pc.srcWidth + uint(p.x))];
+    uint i = uint(p.y) * pc.srcWidth + uint(p.x);
+    vec4 sum = AccumRef(pc.accum).v[i].sumHi + AccumRef(pc.accum).v[i].sumLo;
     return sum.w > 0.0 ? sum.rgb / sum.w : vec3(0.0);
 }
 

@@ -1,7 +1,8 @@
 #version 460
 // pc.samples samples per pixel per dispatch (numbered pc.frameIndex.., each seeded by its number,
 // so the image does not depend on how samples are grouped): camera ray -> estimator of the chosen
-// mode -> radiance and its square summed in registers, added to the accumulation once.
+// mode -> radiance and its square summed in registers, added to the accumulation once. Both
+// sums are double-floats (lib/double_float.glsl; layout: AccumPixelGpu), so they do not drift.
 // Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense | grid),
 // kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
 // Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
@@ -21,6 +22,7 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/tracking.glsl"
 #include "lib/phase.glsl"
 #include "lib/ray_march.glsl"
+#include "lib/double_float.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint kMode = kModeMs;            // Mode
@@ -109,7 +111,7 @@ void main() {
     uint nanSamples = 0u;
     if (inImage) {
         uint pixel = pix.y * P.view.width + pix.x;
-        vec4 sum = vec4(0.0), sumSq = vec4(0.0);
+        vec4 sumHi = vec4(0.0), sumLo = vec4(0.0), sumSqHi = vec4(0.0), sumSqLo = vec4(0.0);
         for (uint k = 0u; k < pc.samples; ++k) {
             uint rng = seedRng(pixel, pc.frameIndex + k, P.view.seed);
             vec2 jitter = vec2(rand(rng), rand(rng));
@@ -119,12 +121,14 @@ void main() {
                 L = vec3(0.0);
                 ++nanSamples;
             }
-            sum += vec4(L, 1.0);
-            sumSq += vec4(L * L, 0.0);
+            addDoubleFloat(sumHi, sumLo, vec4(L, 1.0));
+            addDoubleFloat(sumSqHi, sumSqLo, vec4(L * L, 0.0));
         }
-        Vec4RW acc = Vec4RW(P.accum);
-        acc.v[2u * pixel] += sum;
-        acc.v[2u * pixel + 1u] += sumSq;
+        AccumRW acc = AccumRW(P.accum);
+        AccumPixelGpu a = acc.v[pixel];
+        addDoubleFloat(a.sumHi, a.sumLo, sumHi, sumLo);
+        addDoubleFloat(a.sumSqHi, a.sumSqLo, sumSqHi, sumSqLo);
+        acc.v[pixel] = a;
     }
     UintRW counters = UintRW(P.counters);
     uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);

@@ -7,7 +7,7 @@
 AMRVK_NAMESPACE_BEGIN
 
 struct DisplayPush {
-    uint64_t accum;     // vec4[2 * srcWidth * srcHeight]: sum (w = count) and sum of squares per pixel
+    uint64_t accum;     // AccumPixelGpu[srcWidth * srcHeight] (render_params.h)
     uint64_t target;    // uint[dstWidth * dstHeight], row 0 = top: b | g << 8 | r << 16 | 255 << 24
     uint srcWidth;
     uint srcHeight;

@@ -114,12 +114,25 @@ struct MajorantsGpu {
 };
 AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 96);
 
+// One pixel of the accumulation buffer (path_trace.comp adds to it; display.comp and
+// PathTracePass::read() read it). Each sum is a double-float: value = hi + lo exactly, |lo| <=
+// ulp(hi) / 2, about 48 significant bits from float32 arithmetic (no shaderFloat64), so the mean
+// of a constant radiance stays exact to float precision at any spp. Readers combine hi + lo in
+// double. The count (sumHi.w + sumLo.w) is an exact integer; sumLo.w is 0 below 2^24 samples.
+struct AccumPixelGpu {
+    vec4 sumHi;    // radiance summed over samples (rgb), w = sample count
+    vec4 sumLo;    // its low part (rgb, w)
+    vec4 sumSqHi;  // squared radiance summed over samples (rgb), w = 0
+    vec4 sumSqLo;  // its low part
+};
+AMRVK_STATIC_ASSERT(sizeof(AccumPixelGpu) == 64);
+
 struct RenderParams {
     ViewGpu view;
     ShadingGpu shading;
     SceneGpu scene;
     MajorantsGpu majorants;
-    uint64_t accum;     // vec4[2 * pixels]: sum and sum of squares of radiance; w = count
+    uint64_t accum;     // AccumPixelGpu[width * height], pixel (x, y) at y * width + x
     uint64_t counters;  // uint[kCounterCount]
 };
 
@@ -197,6 +210,10 @@ AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainMajorants) == 56);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainNodes) == 64);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainPrims) == 72);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainAccel) == 80);
+AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumHi) == 0);
+AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumLo) == 16);
+AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumSqHi) == 32);
+AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumSqLo) == 48);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, view) == 0);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, shading) == 64);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);

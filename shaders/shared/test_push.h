@@ -10,7 +10,7 @@ AMRVK_NAMESPACE_BEGIN
 struct TestLayoutPush {
     uint64_t params;  // RenderParams
     uint64_t results; // uint[]
-    uint64_t structs; // BrickGpu, BvhNodeGpu, AbrGpu, AabbGpu, ValueRangeGpu, one each, tightly packed
+    uint64_t structs; // BrickGpu, BvhNodeGpu, AbrGpu, AabbGpu, ValueRangeGpu, AccumPixelGpu, one each, packed
     uint64_t pad;
 };
 AMRVK_STATIC_ASSERT(sizeof(TestLayoutPush) == 32);

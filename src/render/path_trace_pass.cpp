@@ -56,7 +56,7 @@ bool PathTracePass::resize(int width, int height) {
     if (mAccum.valid() && width == mWidth && height == mHeight) return false;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     mAccum = gpu::Buffer();
-    mAccum = gpu::Buffer(mCtx, pixels * 2 * sizeof(glm::vec4), gpu::MemoryKind::Device, "accumulation");
+    mAccum = gpu::Buffer(mCtx, pixels * sizeof(shared::AccumPixelGpu), gpu::MemoryKind::Device, "accumulation");
     mWidth = width;
     mHeight = height;
     reset();
@@ -142,13 +142,15 @@ scene::RenderOutput PathTracePass::read() const {
     o.mean = Image(mWidth, mHeight);
     o.sumSq.resize(o.mean.pixels.size());
     if (!mAccum.valid()) return o;
-    std::vector<glm::vec4> accum(o.mean.pixels.size() * 2);
-    mAccum.download(accum.data(), accum.size() * sizeof(glm::vec4));
+    std::vector<shared::AccumPixelGpu> accum(o.mean.pixels.size());
+    mAccum.download(accum.data(), accum.size() * sizeof(shared::AccumPixelGpu));
     for (size_t i = 0; i < o.mean.pixels.size(); ++i) {
-        const glm::vec4 sum = accum[2 * i];
-        const float count = sum.w > 0 ? sum.w : 1.0f;
-        o.mean.pixels[i] = glm::vec4(glm::vec3(sum) / count, 1.0f);
-        o.sumSq[i] = accum[2 * i + 1];
+        // hi + lo in double: exact (each is a float, |lo| <= ulp(hi) / 2); rounded to float once.
+        const shared::AccumPixelGpu& a = accum[i];
+        const glm::dvec4 sum = glm::dvec4(a.sumHi) + glm::dvec4(a.sumLo);
+        const double count = sum.w > 0 ? sum.w : 1.0;
+        o.mean.pixels[i] = glm::vec4(glm::vec3(glm::dvec3(sum) / count), 1.0f);
+        o.sumSq[i] = glm::vec4(glm::dvec4(a.sumSqHi) + glm::dvec4(a.sumSqLo));
     }
     return o;
 }

@@ -1,9 +1,10 @@
 #pragma once
 // The path-trace pass: one sample per pixel per dispatch of path_trace.comp (specialised for a
 // mode and structure combination; path_trace_rq for the ray-query back-end) added to an
-// accumulation buffer (sum and sum of squares per pixel), with the per-dispatch counters summed
-// on the host in 64 bits. Samples continue from the accumulated count, so adding n samples to an
-// image of k gives the same estimate as one run of k + n.
+// accumulation buffer (double-float sum and sum of squares per pixel, shared::AccumPixelGpu;
+// read() combines them in double), with the per-dispatch counters summed on the host in 64 bits.
+// Samples continue from the accumulated count, so adding n samples to an image of k gives the
+// same estimate as one run of k + n.
 #include <array>
 #include <cstdint>
 #include <functional>

@@ -84,8 +84,8 @@ public:
     // frame never waits for a whole sample). Returns the GPU seconds; rowsDone() tells how far.
     double accumulateRows(uint32_t rows);
     uint32_t rowsDone() const { return mPathTrace.rowsDone(); }
-    // The accumulation buffer (vec4 sum with count in w, then sum of squares, per pixel) at the
-    // current image size, for the display pass.
+    // The accumulation buffer (shared::AccumPixelGpu per pixel: double-float sum with the count in
+    // w, and sum of squares) at the current image size, for the display pass.
     uint64_t accumulationAddress() const { return mPathTrace.accumAddress(); }
     // The image so far: mean, sums of squares, spp and the counters of every path in it.
     scene::RenderOutput output() const { return mPathTrace.read(); }

@@ -81,12 +81,13 @@ struct Structs {
     AbrGpu abr;
     AabbGpu aabb;
     ValueRangeGpu range;
+    AccumPixelGpu accum;
 };
-static_assert(sizeof(Structs) == 32 + 32 + 32 + 24 + 8);
+static_assert(sizeof(Structs) == 32 + 32 + 32 + 24 + 8 + 64);
 
 std::vector<Field> structFields() {
     const size_t b = offsetof(Structs, brick), n = offsetof(Structs, node), a = offsetof(Structs, abr),
-                 x = offsetof(Structs, aabb), r = offsetof(Structs, range);
+                 x = offsetof(Structs, aabb), r = offsetof(Structs, range), p = offsetof(Structs, accum);
     return {
         AMRVK_FIELD(b, BrickGpu, lower, 3),   AMRVK_FIELD(b, BrickGpu, level, 1),
         AMRVK_FIELD(b, BrickGpu, size, 3),    AMRVK_FIELD(b, BrickGpu, begin, 1),
@@ -96,6 +97,8 @@ std::vector<Field> structFields() {
         AMRVK_FIELD(a, AbrGpu, hi, 3),        AMRVK_FIELD(a, AbrGpu, brickCount, 1),
         AMRVK_FIELD(x, AabbGpu, lo, 3),       AMRVK_FIELD(x, AabbGpu, hi, 3),
         AMRVK_FIELD(r, ValueRangeGpu, lo, 1), AMRVK_FIELD(r, ValueRangeGpu, hi, 1),
+        AMRVK_FIELD(p, AccumPixelGpu, sumHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumLo, 4),
+        AMRVK_FIELD(p, AccumPixelGpu, sumSqHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumSqLo, 4),
     };
 }
 
@@ -130,7 +133,7 @@ TEST_F(Layout, EverySharedFieldHasTheSameOffsetInCppAndGlsl) {
     const std::vector<Field> paramFields = renderParamsFields(), objectFields = structFields();
     std::vector<uint32_t> expect = expectedWords(paramFields, sizeof(RenderParams), "RenderParams");
     const size_t paramWords = expect.size();
-    const std::vector<uint32_t> objects = expectedWords(objectFields, sizeof(Structs), "BrickGpu..ValueRangeGpu");
+    const std::vector<uint32_t> objects = expectedWords(objectFields, sizeof(Structs), "BrickGpu..AccumPixelGpu");
     expect.insert(expect.end(), objects.begin(), objects.end());
 
     auto& c = ctx();

@@ -1,13 +1,17 @@
 // End-to-end render tests with known answers: white furnace, absorption+emission slab (also at
-// density scales 1e-4 and 1e4, at exajet-like coordinates, with the camera inside), empty TF,
-// the CPU reference integrator on a real data set, and zero majorant violations.
+// density scales 1e-4 and 1e4, at exajet-like coordinates, with the camera inside), empty TF (and
+// its background at 65,536 spp: the accumulation does not drift), the CPU reference integrator on
+// a real data set, and zero majorant violations.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "amr/readers.h"
 #include "amr/synthetic.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
 #include "scene/reference_integrator.h"
+#include "render/display_pass.h"
 #include "render/renderer.h"
 #include "model_fixtures.h"
 #include "render_fixtures.h"
@@ -189,6 +193,72 @@ TEST_F(RenderGpu, EmptyTransferFunctionShowsTheBackground) {
             EXPECT_FLOAT_EQ(px.b, 0.1f);
         }
     }
+}
+
+// The accumulation does not drift (double-float sums, AccumPixelGpu): at 65,536 spp a background
+// pixel's mean and mean square stay within 1e-7 relative of the float values the shader adds
+// (float32 sums ended at 0.3000249 for 0.3: 8.3e-5, growing with spp; so do these sums without
+// `precise`, which lavapipe then folds away). 4x4 ae: a path is cheap.
+TEST_F(RenderGpu, BackgroundMeanDoesNotDriftOver65536Samples) {
+    constexpr uint32_t kSpp = 65536;
+    constexpr double kTolerance = 1e-7;  // relative; RenderOutput's float rounding is <= 2^-24 = 6e-8
+    const glm::vec3 background(0.3f, 0.7f, 0.1f);
+    // The test's power: a plain float32 running sum of the same additions misses by far more.
+    float plainSum = 0.0f;
+    for (uint32_t k = 0; k < kSpp; ++k) plainSum += background.r;
+    const double plainError = std::abs(double(plainSum) / kSpp - double(background.r)) / double(background.r);
+    EXPECT_GT(plainError, kTolerance) << "a float32 sum would pass: the test has no power";
+
+    amr::Model m = test::makeUniformBox({4, 4, 4}, 0, 1.0f);
+    amr::ModelSummary sum = amr::summarize(m);
+    scene::RenderSettings s;
+    s.mode = scene::Mode::Ae;
+    s.width = s.height = 4;
+    s.background = glm::dvec3(background);
+    s.camera = scene::defaultCamera(glm::dvec3(sum.bounds.lower), glm::dvec3(sum.bounds.upper));
+    scene::RenderOutput o = renderGpu(m, scene::makePreset("empty", 0.0f, 1.0f), s, kSpp);
+    ASSERT_EQ(o.spp, kSpp);
+    double worstMean = 0, worstSquare = 0;
+    for (size_t i = 0; i < o.mean.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double b = background[c], bSquared = double(background[c] * background[c]);
+            worstMean = std::max(worstMean, std::abs(double(o.mean.pixels[i][c]) - b) / b);
+            worstSquare = std::max(worstSquare, std::abs(double(o.sumSq[i][c]) / kSpp - bSquared) / bSquared);
+        }
+    EXPECT_LE(worstMean, kTolerance) << "float32 running sum: " << plainError;
+    EXPECT_LE(worstSquare, kTolerance);
+    std::printf(
+        "[ accumulation ] %u spp: background mean relative error %.3g, mean square %.3g "
+        "(float32 running sum: %.3g)\n",
+        kSpp, worstMean, worstSquare, plainError);
+}
+
+// The viewer's display pass reads the same accumulation (AccumPixelGpu): at the render size each
+// window pixel is the sRGB code of the renderer's mean (+-1 code: it divides in float, read() in
+// double). A wide view of the slab: pixels of medium and of background.
+TEST_F(RenderGpu, DisplayPassShowsTheAccumulatedMean) {
+    Slab slab;
+    render::Renderer r(ctx(), scene::makeVolume(slab.model()), test::gridDda(scene::SamplerKind::ExtBrick, "32"));
+    r.setTransferFunction(test::constantTf(glm::vec3(0.9f, 0.5f, 0.2f), 0.3f));
+    scene::RenderSettings s;
+    s.mode = scene::Mode::Ae;
+    s.width = 16;
+    s.height = 12;
+    s.background = glm::dvec3(0.1, 0.3, 0.6);
+    s.camera = slab.camera(100.0);
+    s.camera.fovYDegrees = 60.0;
+    const scene::RenderOutput o = r.render(s, 16);
+    render::DisplayPass display(ctx());
+    gpu::Buffer target(ctx(), uint64_t(s.width) * uint64_t(s.height) * 4, gpu::MemoryKind::HostRead, "display");
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        display.record(cmd, r.accumulationAddress(), s.width, s.height, target, s.width, s.height);
+    });
+    const std::vector<uint32_t> pixels = target.download<uint32_t>();
+    for (size_t i = 0; i < pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const int code = int((pixels[i] >> (16 - 8 * c)) & 255u);  // bytes B, G, R, A
+            EXPECT_NEAR(code, int(encodeSrgb8(o.mean.pixels[i][c])), 1) << "pixel " << i << " channel " << c;
+        }
 }
 
 TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {

@@ -14,6 +14,7 @@ layout(buffer_reference, scalar) readonly buffer StructsRef {
     AbrGpu abr;
     AabbGpu aabb;
     ValueRangeGpu range;
+    AccumPixelGpu accum;
 };
 
 uint k = 0u;
@@ -61,4 +62,5 @@ void main() {
     f3(s.abr.lo); u(s.abr.brickBegin); f3(s.abr.hi); u(s.abr.brickCount);
     f3(s.aabb.lo); f3(s.aabb.hi);
     f(s.range.lo); f(s.range.hi);
+    f4(s.accum.sumHi); f4(s.accum.sumLo); f4(s.accum.sumSqHi); f4(s.accum.sumSqLo);
 }
