@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "gpu/context.h"
 
 namespace {
 const char* kUsage =
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
     }
     const std::string command = args[0];
     args.erase(args.begin());
-    amrvk::removeTemporariesOnSignal();  // Ctrl-C leaves no *.tmp-PID files
+    amrvk::removeTemporariesOnSignal();  // Ctrl-C, a closed terminal (HUP), kill: no temporaries left
+    amrvk::gpu::reportGpuCrashes();      // a --shader-dir shader writing outside its buffers: one line
     try {
         using namespace amrvk::cli;
         const std::pair<const char*, int (*)(const std::vector<std::string>&)> commands[] = {

@@ -173,6 +173,12 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
         ->check(CLI::ExistingDirectory)
         ->type_name("DIR");
     app.add_flag("--validation", a.context.validation, "enable the Vulkan validation layer");
+    app.add_option("--gpu-timeout", a.context.gpuTimeoutSeconds,
+                   "seconds one GPU submission may run before amrvk ends with an error naming the work (a runaway "
+                   "shader loop cannot be cancelled); 0 = 600")
+        ->check(interval(0, 1e6))
+        ->capture_default_str()
+        ->type_name("S");
     app.add_option("--samples-per-invocation", a.context.samplesPerInvocation,
                    "samples per pixel one GPU thread takes per dispatch of whole samples (the same "
                    "image; fewer dispatches and accumulation writes); 0 = auto: 8 on CPU devices, 1 on GPUs")
@@ -245,7 +251,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")
-        ->check(interval(1, 1 << 24))
+        ->check(interval(1, (1 << 24) - 1))
         ->capture_default_str()
         ->type_name("N");
     app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")

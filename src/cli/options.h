@@ -33,10 +33,10 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField);
 amr::ReadOptions readOptions(const ReadArgs& a);
 
 struct DeviceArgs {
-    gpu::ContextOptions context;  // --device, --validation, --samples-per-invocation
+    gpu::ContextOptions context;  // --device, --validation, --gpu-timeout, --samples-per-invocation
     std::string shaderDir;
 };
-// --device, --shader-dir, --validation, --samples-per-invocation.
+// --device, --shader-dir, --validation, --gpu-timeout, --samples-per-invocation.
 void addDeviceOptions(CLI::App& app, DeviceArgs& a);
 
 // The options that make a picture (render, view; bench takes a subset).

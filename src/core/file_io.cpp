@@ -100,8 +100,7 @@ void unregisterTemporary(int& slot) {
 }
 
 extern "C" void removeTemporariesAndExit(int sig) {
-    for (int i = 0; i < kTempSlots; ++i)
-        if (gTempState[i].load() == kReady) ::unlink(gTempPaths[i]);
+    removeTemporariesNow();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
@@ -147,6 +146,11 @@ OutputKind outputKind(const fs::path& path, const std::string& option, struct st
 }
 
 }  // namespace
+
+void removeTemporariesNow() {
+    for (int i = 0; i < kTempSlots; ++i)
+        if (gTempState[i].load() == kReady) ::unlink(gTempPaths[i]);
+}
 
 void noteInputFile(const fs::path& path) {
     std::error_code ec;

@@ -90,6 +90,10 @@ private:
 // error leaves none of them under its final name.
 void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers);
 
+// Removes every open AtomicFileWriter temporary now; async-signal-safe (for a process that must end
+// at once: a signal, a runaway GPU dispatch).
+void removeTemporariesNow();
+
 // Installs SIGHUP, SIGINT, SIGQUIT and SIGTERM handlers that remove every AtomicFileWriter's
 // temporary file, then end the process with the signal's default action. main() calls it once.
 void removeTemporariesOnSignal();

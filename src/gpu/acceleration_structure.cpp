@@ -213,4 +213,13 @@ void AabbAccelerationStructure::build(VkCommandBuffer cmd, const Buffer& aabbBuf
     memoryBarrier(cmd, kBuild, kAsWrite, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kAsRead);
 }
 
+uint64_t maxAccelerationPrimitives(const Context& ctx) {
+    if (!ctx.hasRayQuery()) return 0;
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &asProps};
+    vkGetPhysicalDeviceProperties2(ctx.physicalDevice(), &props);
+    return asProps.maxPrimitiveCount;
+}
+
 }  // namespace amrvk::gpu

@@ -24,6 +24,10 @@
 
 namespace amrvk::gpu {
 
+// The most boxes one AABB acceleration structure may hold on ctx's device (its
+// maxPrimitiveCount); 0 without ray queries. Checked before anything is built for --backend rq.
+uint64_t maxAccelerationPrimitives(const Context& ctx);
+
 class AabbAccelerationStructure {
 public:
     AabbAccelerationStructure() = default;

@@ -1,11 +1,16 @@
 #include "gpu/context.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include "core/file_io.h"
 #include "core/strings.h"
 #include "gpu/vk_check.h"
 
@@ -206,6 +211,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
 }
 
 Context::Context(const ContextOptions& options) {
+    if (options.gpuTimeoutSeconds > 0) mGpuTimeoutSeconds = options.gpuTimeoutSeconds;
     bool validation = options.validation;
     if (const char* env = std::getenv("AMRVK_VALIDATION"); env && std::strcmp(env, "1") == 0) validation = true;
     if (validation)
@@ -346,7 +352,39 @@ void Context::release() {
     }
 }
 
-void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+namespace {
+
+// What the device is running now, as the message to print if the process crashes meanwhile:
+// written before a wait, read by the SIGSEGV/SIGBUS handler (no allocation there).
+constexpr size_t kCrashMessageBytes = 1024;
+char gCrashMessage[kCrashMessageBytes];
+std::atomic<bool> gGpuWorkRunning{false};
+
+extern "C" void reportGpuCrash(int sig) {
+    if (gGpuWorkRunning.load()) {
+        const ssize_t n = ::write(2, gCrashMessage, ::strnlen(gCrashMessage, kCrashMessageBytes));
+        (void)n;
+        removeTemporariesNow();
+        ::_exit(1);
+    }
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+void setCrashMessage(const std::string& what) {
+    std::snprintf(gCrashMessage, kCrashMessageBytes,
+                  "amrvk: error: GPU work '%s' crashed the process: it read or wrote outside its buffers "
+                  "(a --shader-dir shader?)\n",
+                  what.c_str());
+}
+
+}  // namespace
+
+void reportGpuCrashes() {
+    for (int sig : {SIGSEGV, SIGBUS}) std::signal(sig, reportGpuCrash);
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what) {
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = mCommandPool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -370,8 +408,22 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     si.commandBufferInfoCount = 1;
     si.pCommandBufferInfos = &cbi;
     AMRVK_VK_CHECK(vkResetFences(mDevice, 1, &mFence));
+    setCrashMessage(what);
+    gGpuWorkRunning.store(true);
     AMRVK_VK_CHECK(vkQueueSubmit2(mQueue, 1, &si, mFence));
-    AMRVK_VK_CHECK(vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, UINT64_MAX));
+    const double limit = mGpuTimeoutSeconds;
+    const VkResult waited = vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, uint64_t(limit * 1e9));
+    if (waited == VK_TIMEOUT) {
+        // The device cannot cancel the dispatch, and waiting for it or destroying the device hangs:
+        // one line, the temporaries removed, and the process ends here.
+        std::fprintf(stderr, "amrvk: error: GPU work '%s' ran longer than %g s (--gpu-timeout): a runaway loop? ending\n",
+                     what.c_str(), limit);
+        std::fflush(stderr);
+        removeTemporariesNow();
+        ::_exit(1);
+    }
+    gGpuWorkRunning.store(false);
+    AMRVK_VK_CHECK(waited);
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,

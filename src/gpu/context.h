@@ -25,6 +25,10 @@ struct ContextOptions {
     // Samples per pixel one path-trace invocation takes in a whole-image dispatch; 0 = automatic
     // (8 on CPU devices, where it was measured to help; 1 on GPUs until measured there).
     uint32_t samplesPerInvocation = 0;
+    // How long one submission may run (seconds) before amrvk ends the process with one line naming
+    // the work: a runaway loop in a --shader-dir shader cannot be cancelled on the device, and
+    // waiting on, or destroying, a device that still runs it would hang. 0 = 600 s.
+    double gpuTimeoutSeconds = 0;
     // Presentation (the viewer): instance extensions the window system needs, and a function that
     // creates the window's surface once the instance exists. The device picked must then present
     // to that surface from its queue and gets VK_KHR_swapchain; the Context destroys the surface.
@@ -65,6 +69,11 @@ private:
     uint64_t mCurrent = 0, mPeak = 0;
 };
 
+// Installs SIGSEGV/SIGBUS handlers that, while a submission waits, print one line naming the GPU
+// work that crashed the process (then remove the temporaries and exit 1); other crashes keep their
+// default action. main() calls it once.
+void reportGpuCrashes();
+
 class Context {
 public:
     explicit Context(const ContextOptions& options = {});
@@ -87,8 +96,11 @@ public:
     const std::string& lastValidationMessage() const { return mLastValidationMessage; }
     MemoryTracker& memory() { return mMemory; }
 
-    // Records with `record`, submits to the queue and waits for completion.
-    void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+    // Records, submits and waits (at most gpuTimeoutSeconds). `what` names the work in the one-line
+    // error when it runs past the limit or crashes the process (e.g. "path_trace.ms.grid-dda/grid/sw
+    // from --shader-dir DIR"): a dispatch that reads or writes outside its buffers can crash a CPU
+    // device (lavapipe), where buffer device addresses have no robust access.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what = "GPU work");
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                             VkMemoryPropertyFlags preferred = 0) const;
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
@@ -113,6 +125,7 @@ private:
     DeviceReport mReport;
     bool mRayQuery = false;
     uint32_t mSamplesPerInvocation = 1;
+    double mGpuTimeoutSeconds = 600;
     bool mDebugUtils = false;
     uint64_t mValidationErrors = 0;
     std::string mLastValidationMessage;

@@ -19,24 +19,38 @@ std::string readText(const fs::path& p) {
     return s.str();
 }
 
+// Bounds on what a shader directory's preprocessing may do (a file that includes itself without
+// a guard would expand without end): include depth and the bytes read for one compile.
+constexpr size_t kMaxIncludeDepth = 32;
+constexpr uint64_t kMaxSourceBytes = uint64_t(64) << 20;
+
 // Resolves #include against the including file's folder, then the include folders.
 class Includer : public shaderc::CompileOptions::IncluderInterface {
 public:
-    explicit Includer(std::vector<fs::path> dirs) : mDirs(std::move(dirs)) {}
+    explicit Includer(std::vector<fs::path> dirs, uint64_t bytesSoFar) : mDirs(std::move(dirs)), mBytes(bytesSoFar) {}
 
     shaderc_include_result* GetInclude(const char* requested, shaderc_include_type, const char* requesting,
-                                       size_t) override {
+                                       size_t depth) override {
         auto* r = new Result;
         std::vector<fs::path> candidates{fs::path(requesting).parent_path() / requested};
         for (const fs::path& d : mDirs) candidates.push_back(d / requested);
         for (const fs::path& c : candidates) {
             std::error_code ec;
             if (!fs::is_regular_file(c, ec)) continue;
-            r->name = fs::weakly_canonical(c, ec).string();
-            r->content = readText(c);
+            const uint64_t size = fs::file_size(c, ec);
+            if (depth > kMaxIncludeDepth) {
+                r->content = "includes nested deeper than " + std::to_string(kMaxIncludeDepth) +
+                             " levels (a file that includes itself?)";
+            } else if (ec || mBytes + size > kMaxSourceBytes) {
+                r->content = "the sources of one shader exceed " + std::to_string(kMaxSourceBytes >> 20) + " MiB";
+            } else {
+                r->name = fs::weakly_canonical(c, ec).string();
+                r->content = readText(c);
+                mBytes += r->content.size();
+            }
             break;
         }
-        if (r->name.empty()) r->content = std::string("cannot find '") + requested + "'";
+        if (r->name.empty() && r->content.empty()) r->content = std::string("cannot find '") + requested + "'";
         r->result = {r->name.c_str(), r->name.size(), r->content.c_str(), r->content.size(), r};
         return &r->result;
     }
@@ -49,6 +63,7 @@ private:
         shaderc_include_result result{};
     };
     std::vector<fs::path> mDirs;
+    uint64_t mBytes;  // read so far for this compile
 };
 
 // "file:line: error: message" -> file, line; the first error line of the log is the summary.
@@ -88,6 +103,9 @@ std::vector<uint32_t> compileComputeShader(const fs::path& source, const std::ve
                                            const std::vector<fs::path>& includeDirs) {
     std::error_code ec;
     AMRVK_CHECK(fs::is_regular_file(source, ec), source.string(), ": not a shader source file");
+    const uint64_t size = fs::file_size(source, ec);
+    AMRVK_CHECK(!ec && size <= kMaxSourceBytes, source.string(), ": larger than ", kMaxSourceBytes >> 20,
+                " MiB (not a shader source?)");
     const std::string text = readText(source);
     shaderc::Compiler compiler;
     AMRVK_CHECK(compiler.IsValid(), "shaderc: the shader compiler failed to initialise");
@@ -100,7 +118,7 @@ std::vector<uint32_t> compileComputeShader(const fs::path& source, const std::ve
         if (eq == std::string::npos) options.AddMacroDefinition(d);
         else options.AddMacroDefinition(d.substr(0, eq), d.substr(eq + 1));
     }
-    options.SetIncluder(std::make_unique<Includer>(includeDirs));
+    options.SetIncluder(std::make_unique<Includer>(includeDirs, text.size()));
     const shaderc::SpvCompilationResult result =
         compiler.CompileGlslToSpv(text, shaderc_compute_shader, source.string().c_str(), options);
     if (result.GetCompilationStatus() != shaderc_compilation_status_success)

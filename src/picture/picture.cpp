@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/stats.h"
 #include "core/strings.h"
+#include "gpu/acceleration_structure.h"
 
 namespace amrvk::picture {
 
@@ -17,6 +18,14 @@ scene::BackendChoice resolveStructure(const gpu::Context& ctx, scene::StructureC
     requested.validate();
     const scene::BackendChoice choice = scene::resolveBackend(requested, deviceTraits(ctx));
     requested.backend = choice.backend;
+    // Limits known before anything is built (a kd-tree of 2^24 leaves took 88 s to build, then
+    // failed on the device's BLAS limit).
+    const scene::StructurePlan plan = requested.plan();
+    if (plan.boxesPerTf && plan.rayQueryCulling) {
+        const uint64_t most = gpu::maxAccelerationPrimitives(ctx);
+        AMRVK_CHECK(requested.kdLeaves <= most, "--kd-leaves ", requested.kdLeaves, ": more than device '",
+                    ctx.deviceReport().name, "' holds in one acceleration structure (", most, "; use --backend sw)");
+    }
     return choice;
 }
 

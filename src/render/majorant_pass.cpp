@@ -153,7 +153,9 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
 void MajorantPass::dispatch(uint64_t paramsAddress) {
     const scene::StructurePlan& plan = mScene.plan();
     if (!mMajorantPipeline.valid())
-        mMajorantPipeline = gpu::ComputePipeline(mCtx, mShaders.load("majorants"), "majorants",
+        mMajorantPipeline = gpu::ComputePipeline(
+            mCtx, mShaders.load("majorants"),
+            "majorants" + (mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string()),
                                                  sizeof(shared::StructurePush));
     const bool rq = plan.rayQueryCulling;
     if (rq && !mAabbPipeline.valid())
@@ -184,7 +186,8 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
         }
         timer.end(cmd, scope);
         gpu::computeBarrier(cmd);
-    });
+    },
+        mMajorantPipeline.name());
     mGpuSeconds = timer.seconds();
 }
 

@@ -17,7 +17,9 @@ gpu::ComputePipeline compile(gpu::Context& ctx, scene::Mode mode, const scene::S
                              const gpu::ShaderLibrary& shaders) {
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
     const char* shader = config.backend == scene::Backend::Rq ? "path_trace_rq" : "path_trace";
-    return gpu::ComputePipeline(ctx, shaders.load(shader), pipelineKey(mode, config), sizeof(shared::PushConstants),
+    // Named with where its source came from: the name a runaway or crashing dispatch is reported by.
+    const std::string origin = shaders.directory().empty() ? "" : " from --shader-dir " + shaders.directory().string();
+    return gpu::ComputePipeline(ctx, shaders.load(shader), pipelineKey(mode, config) + origin, sizeof(shared::PushConstants),
                                 {{0, uint32_t(mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
@@ -115,7 +117,8 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
 std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pipeline,
                                                   const std::vector<shared::PushConstants>& dispatches,
                                                   uint64_t paths) {
-    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+    mCtx.submitAndWait(
+        [&](VkCommandBuffer cmd) {
         mTimer.reset(cmd);
         vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
         gpu::computeBarrier(cmd);
@@ -125,7 +128,8 @@ std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pi
             mTimer.end(cmd, scope);
             gpu::computeBarrier(cmd);
         }
-    });
+    },
+        pipeline.name());
     std::array<uint32_t, shared::kCounterCount> counters{};
     mCounters.download(counters.data(), sizeof counters);
     for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];

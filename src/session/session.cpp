@@ -168,7 +168,9 @@ Session parseSession(const std::string& text, const fs::path& path) {
     rs.width = int(image.integer("width", 1, 16384));
     rs.height = int(image.integer("height", 1, 16384));
 
-    const Reader r = top.child("render");
+    // Every render.* key is optional, so the object is too.
+    const Json noRender = Json::object();
+    const Reader r = top.has("render") ? top.child("render") : Reader(noRender, file + ".render");
     rs.mode = scene::parseMode(r.text("mode", "ms"));
     s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, 1 << 24) : 64);
     rs.seed = uint32_t(r.has("seed") ? r.integer("seed", 0, UINT32_MAX) : 1);
@@ -214,7 +216,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
         s.structure.sampler = scene::parseSampler(st.text("sampler", "ext-brick"));
         s.structure.backend = scene::parseBackend(st.text("backend", "auto"));
         s.structure.grid = st.text("grid", "auto");
-        if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, int64_t(1) << 24));
+        if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, (int64_t(1) << 24) - 1));
         if (st.has("denseMaxMiB")) s.structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
         s.structure.validate();
     }
