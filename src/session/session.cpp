@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -62,9 +63,21 @@ public:
     }
     int64_t integer(const char* key, int64_t lo, int64_t hi) const {
         const double d = number(key);
-        AMRVK_CHECK(d == std::floor(d) && d >= double(lo) && d <= double(hi), mWhere, ".", key, ": ", d,
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", d);
+        AMRVK_CHECK(d == std::floor(d) && d >= double(lo) && d <= double(hi), mWhere, ".", key, ": ", text,
                     " is not an integer in [", lo, ", ", hi, "]");
         return int64_t(d);
+    }
+    // A name read with `parse` (an enum's spelling); its error names the file and the key.
+    template <typename Parse>
+    auto named(const char* key, const std::string& fallback, Parse parse) const {
+        const std::string value = text(key, fallback);
+        try {
+            return parse(value);
+        } catch (const Error& e) {
+            throw Error(mWhere + "." + key + ": " + e.what());
+        }
     }
     const Json& json() const { return mJ; }
     const std::string& where() const { return mWhere; }
@@ -141,7 +154,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
     if (top.has("read")) {
         const Reader r = top.child("read");
         s.read.format = r.text("format", "auto");
-        s.read.nanPolicy = amr::parseNanPolicy(r.text("nan", "reject"));
+        s.read.nanPolicy = r.named("nan", "reject", [](const std::string& v) { return amr::parseNanPolicy(v); });
         if (r.has("dims")) {
             const glm::dvec3 d = r.vector("dims");
             for (int a = 0; a < 3; ++a) {
@@ -171,7 +184,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
     // Every render.* key is optional, so the object is too.
     const Json noRender = Json::object();
     const Reader r = top.has("render") ? top.child("render") : Reader(noRender, file + ".render");
-    rs.mode = scene::parseMode(r.text("mode", "ms"));
+    rs.mode = r.named("mode", "ms", scene::parseMode);
     s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, 1 << 24) : 64);
     rs.seed = uint32_t(r.has("seed") ? r.integer("seed", 0, UINT32_MAX) : 1);
     rs.densityScale = r.number("densityScale", 1.0);
@@ -212,13 +225,17 @@ Session parseSession(const std::string& text, const fs::path& path) {
 
     if (top.has("structure")) {
         const Reader st = top.child("structure");
-        s.structure.traversal = scene::parseTraversal(st.text("traversal", "grid-dda"));
-        s.structure.sampler = scene::parseSampler(st.text("sampler", "ext-brick"));
-        s.structure.backend = scene::parseBackend(st.text("backend", "auto"));
+        s.structure.traversal = st.named("traversal", "grid-dda", scene::parseTraversal);
+        s.structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
+        s.structure.backend = st.named("backend", "auto", scene::parseBackend);
         s.structure.grid = st.text("grid", "auto");
         if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, (int64_t(1) << 24) - 1));
         if (st.has("denseMaxMiB")) s.structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
-        s.structure.validate();
+        try {
+            s.structure.validate();
+        } catch (const Error& e) {
+            throw Error(st.where() + ": " + e.what());
+        }
     }
 
     // One ParaView preset object, read by the same code as preset files.

@@ -19,6 +19,7 @@
 #include "amr/model.h"
 #include "fuzz_common.h"
 #include "scene/transfer_function.h"
+#include "session/session.h"
 
 namespace fs = std::filesystem;
 using namespace amrvk;
@@ -216,6 +217,29 @@ void tfSeeds(const fs::path& source) {
          R"({"Name":"x","RGBPoints":[0,0,0,0,0.5,1,0,0,1,1,1,1],"Points":[0,0,0.5,0,1,1,0.5,0]})");
 }
 
+// ---- Sessions and viewer scripts ----------------------------------------------------------------
+void sessionSeeds(const fs::path& source) {
+    session::Session s;
+    s.input = (source / "assets/samples/cloud.cells").string();
+    s.field = "scalars";
+    s.settings.lights.push_back({false, {1, -1, 2}, {5, 4.5, 3.8}});
+    s.settings.lights.push_back({true, {0, 0, 9}, {2, 2, 2}});
+    s.settings.background = glm::dvec3(0.1);
+    s.structure.traversal = scene::TraversalKind::KdTree;
+    s.tf = scene::builtInChannels("ramp");
+    seed("session", "full", session::sessionJson(s));
+    seed("session", "minimal",
+         R"({"amrvk":"session","version":1,"input":"a.cells","camera":{"eye":[1,2,3],"target":[0,0,0],"up":[0,0,1]},)"
+         R"("image":{"width":8,"height":8},"transferFunction":{"RGBPoints":[0,1,1,1,1,0,0,0],"Points":[0,0,0.5,0,1,1,0.5,0]}})");
+    seed("script", "every-action",
+         "# every action\n0 orbit 10 5\n0 pan 3 -2\n0 zoom 1\n1 tf-preset foggy\n1 tf-range 0.1 1.5\n"
+         "2 density 2\n2 mode ss\n3 traversal grid-bvh\n3 sampler abr\n3 backend sw\n3 grid 8x4x2\n"
+         "4 edit-shader path_trace.comp \"void main() {\" \"void main() { // \\\"x\\\"\"\n"
+         "5 edit-shader ../lib/tf.glsl a b\n6 reload\n7 screenshot \"a b.pfm\"\n7 save-session s.json\n"
+         "7 capture-window w.png\n8 quit\n");
+    seed("script", "dense-then-abr", "0 sampler dense\n1 traversal abr\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,6 +256,7 @@ int main(int argc, char** argv) {
     chomboSeeds(data);
     rawSeeds();
     tfSeeds(source);
+    sessionSeeds(source);
     std::cout << "amrvk_fuzz_seeds: wrote " << gCount << " seeds under " << gOut.string() << "\n";
     return 0;
 }

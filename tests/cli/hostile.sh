@@ -1,0 +1,385 @@
+#!/usr/bin/env bash
+# Usage: hostile.sh AMRVK SOURCE_DIR SCRATCH. The second hostile-input campaign (issue 23;
+# docs/fuzzing.md "Hostile input, round 2"): files written outside the place the user named,
+# outputs that would destroy other files, crashes and hangs from sessions, scripts, shaders and
+# big TFs, documented promises. Every case must end in one clean error line (exit 1) or in
+# bounded, correct work, and leave nothing behind it should not. Tiny inputs: the whole script
+# runs in about two minutes on lavapipe.
+set -u
+ulimit -c 0  # SIGQUIT below dumps no core
+amrvk="$1"; src="$2"; dir="$3"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
+fail=0
+cases=0
+source "$here/lib.sh"
+# Every helper counts one case.
+expect1() { cases=$((cases + 1)); expect "$@"; }
+check1() { cases=$((cases + 1)); check "$@"; }
+ok() {  # ok ARGS...: amrvk ARGS exits 0
+  cases=$((cases + 1))
+  "$amrvk" "$@" >"$dir/ok.out" 2>"$dir/ok.err" || { echo "FAIL: amrvk $* -> rc=$?: $(tail -2 "$dir/ok.err")"; fail=1; }
+}
+same() { cmp -s "$1" "$2" || { echo "FAIL: $1 changed"; fail=1; }; }  # part of the case before it
+no_temporaries() { check1 test -z "$(find . -name '*.tmp-*' | head -1)"; }
+
+python3 - <<'PY'
+import struct, json
+cells = [(0,0,0,1),(2,0,0,0),(3,0,0,0),(2,1,0,0),(3,1,0,0)]
+open('good.cells','wb').write(b''.join(struct.pack('<4i', *c) for c in cells))
+open('good.scalars','wb').write(struct.pack('<5f', 1, 2, 3, 4, 5))
+open('good.rho.scalars','wb').write(struct.pack('<5f', 5, 4, 3, 2, 1))
+open('tf.json','w').write(json.dumps([{"Name":"t","RGBPoints":[1,1,1,1,5,1,0,0],"Points":[1,0,0.5,0,5,1,0.5,0]}]))
+d = 100000
+open('deep.json','w').write('[' * d + ']' * d)
+PY
+cp good.cells victim.bin
+pic=(--size 8x8 --spp 1 --grid 4 --mode ae)
+ok view good.cells "${pic[@]}" --headless --frames 1 --save-session s.json
+cp s.json s.orig
+
+# ---- 1. Outputs never destroy (special files, links, inputs, each other) ---------------------
+ok render good.cells "${pic[@]}" -o a.png --json /dev/null
+check1 test -c /dev/null
+ok view good.cells "${pic[@]}" --headless --frames 1 --save-session /dev/null --stats /dev/null
+check1 test -c /dev/null
+"$amrvk" render good.cells "${pic[@]}" -o a.png --json /dev/stdout >stdout.json 2>/dev/null
+check1 python3 -c "import json; json.load(open('stdout.json'))"
+check1 test -L /dev/stdout
+mkfifo pipe.json
+(cat pipe.json > from-pipe.json &) ; ok render good.cells "${pic[@]}" -o a.png --json pipe.json
+sleep 0.3; check1 test -p pipe.json
+check1 python3 -c "import json; json.load(open('from-pipe.json'))"
+echo keep > target.json; ln -s target.json link.json
+ok render good.cells "${pic[@]}" -o a.png --json link.json
+check1 test -L link.json
+check1 python3 -c "import json; json.load(open('target.json'))"
+ln -s nowhere/x.json dangling.json
+expect1 "dangling.json: a symbolic link to nothing" -- render good.cells "${pic[@]}" -o a.png --json dangling.json
+check1 test -L dangling.json
+ln -s missing-target.png dangling.png
+expect1 "a symbolic link to nothing" -- render good.cells "${pic[@]}" -o dangling.png
+mkdir adir.png
+expect1 "-o adir.png: is a directory" -- render good.cells "${pic[@]}" -o adir.png
+expect1 "--json adir.png: is a directory" -- render good.cells "${pic[@]}" -o b.png --json adir.png
+expect1 "directory nodir is missing" -- render good.cells "${pic[@]}" -o nodir/a.png
+expect1 "directory nodir is missing" -- render good.cells "${pic[@]}" -o a.png --json nodir/a.json
+check1 test ! -e a2.png
+expect1 "--json s.json is the input --session s.json" -- render --session s.json --spp 1 -o a2.png --json s.json
+same s.json s.orig
+check1 test ! -e a2.png
+expect1 "--json tf.json is the input --tf tf.json" -- render good.cells "${pic[@]}" --tf tf.json -o a2.png --json tf.json
+expect1 "--json good.cells is the input input good.cells" -- render good.cells "${pic[@]}" -o a2.png --json good.cells
+same good.cells victim.bin
+expect1 "good.scalars" -- render good.cells "${pic[@]}" -o a2.png --json good.scalars
+expect1 "are the same file" -- render good.cells "${pic[@]}" -o a2.pfm --json a2.pfm
+echo old > a3.pfm; ln -s a3.pfm alias.pfm
+expect1 "are the same file" -- render good.cells "${pic[@]}" -o a3.pfm --json alias.pfm
+expect1 "--save-session s.json is the input --session s.json" -- view --session s.json --headless --frames 1 --save-session s.json
+same s.json s.orig
+printf '0 quit\n' > quit.txt
+expect1 "--stats quit.txt is the input --script quit.txt" -- view good.cells "${pic[@]}" --headless --script quit.txt --stats quit.txt
+expect1 "are the same file" -- view good.cells "${pic[@]}" --headless --frames 1 --screenshot v.png --stats v.png
+expect1 "--stats good.cells is the input input good.cells" -- view good.cells "${pic[@]}" --headless --frames 1 --stats good.cells
+expect1 "unknown image type" -- view good.cells "${pic[@]}" --headless --frames 1 --screenshot good.scalars
+check1 test ! -e v.png
+expect1 "-o good.cells is the input input good.cells" -- convert good.cells -o good
+same good.cells victim.bin
+expect1 "is the input" -- convert good.cells -o ./good
+# A temporary name is not predictable: a link planted at the old name is never followed.
+echo precious > victim.txt
+for p in $(seq 1 20); do ln -sf victim.txt "out.png.tmp-$p"; done
+ok render good.cells "${pic[@]}" -o out.png
+check1 test "$(cat victim.txt)" = precious
+check1 test -s out.png
+rm -f out.png.tmp-*
+no_temporaries
+# An existing output is replaced with its permissions kept.
+cp out.png perm.png; chmod 0640 perm.png
+ok render good.cells "${pic[@]}" -o perm.png
+check1 test "$(stat -c %a perm.png)" = 640
+# Bench's directory is never inside a data set.
+mkdir -p plot.d; cp good.cells good.scalars plot.d/
+expect1 "lies inside the input input plot.d" -- bench plot.d -o plot.d/results --frames 2 --warmup 0
+expect1 "exists and is not a directory" -- bench good.cells -o good.scalars --frames 2
+# gen and convert check every output before any work.
+mkdir taken.scalars
+expect1 "taken.scalars: is a directory" -- gen cloud --cells 1000 --seed 1 -o taken
+check1 test ! -e taken.cells
+mkdir conv2.rho.scalars
+expect1 "conv2.rho.scalars: is a directory" -- convert good.cells -o conv2
+check1 test ! -e conv2.cells
+no_temporaries
+
+# ---- 2. Paths from scripts stay inside the place named ---------------------------------------
+"$amrvk" shaders --export shaders >/dev/null 2>&1
+echo precious > victim.txt
+sdir=shaders/passes
+printf '0 edit-shader ../../victim.txt precious x\n1 quit\n' > esc1.txt
+expect1 "esc1.txt:1: edit-shader: '../../victim.txt' leads outside the shader sources" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc1.txt
+printf '0 edit-shader %s precious x\n1 quit\n' "$dir/victim.txt" > esc2.txt
+expect1 "esc2.txt:1: edit-shader" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc2.txt
+ln -s ../../victim.txt shaders/lib/evil.glsl
+printf '0 edit-shader ../lib/evil.glsl precious x\n1 quit\n' > esc3.txt
+expect1 "esc3.txt:1: edit-shader: '../lib/evil.glsl' leads outside" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc3.txt
+ln -s "$dir" shaders/lib/up
+printf '0 edit-shader ../lib/up/victim.txt precious x\n1 quit\n' > esc4.txt
+expect1 "leads outside" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc4.txt
+printf '0 edit-shader ../lib/missing.glsl a b\n' > esc5.txt
+expect1 "esc5.txt:1: edit-shader" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc5.txt
+printf '0 edit-shader path_trace.comp a b\n' > esc6.txt
+expect1 "esc6.txt:1: edit-shader: edit-shader needs --shader-dir" -- view good.cells "${pic[@]}" --headless --script esc6.txt
+check1 test "$(cat victim.txt)" = precious
+printf '0 edit-shader . a b\n' > esc7.txt
+expect1 "not a regular file" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc7.txt
+
+# ---- 3. Scripts keep the docs' promises: every line checked before frame 0 --------------------
+script_case() {  # script_case FRAGMENT LINE...: a script of these lines fails with FRAGMENT
+  local frag="$1"; shift
+  printf '%s\n' "$@" > sc.txt
+  expect1 "$frag" -- view good.cells "${pic[@]}" --headless --frames 2 --script sc.txt
+}
+script_case "sc.txt:1: unknown action 'fly'" "0 fly 1 2"
+script_case "sc.txt:2: orbit takes 2 argument(s), not 1" "0 zoom 1" "1 orbit 5"
+script_case "sc.txt:1: argument 1 of zoom is not a number" "0 zoom far"
+script_case "sc.txt:1: argument 2 of pan is not a number" "0 pan 1 inf"
+script_case "sc.txt:1: density: density -2 must be >= 0" "0 density -2"
+script_case "sc.txt:1: mode: --mode 'pt'" "0 mode pt"
+script_case "sc.txt:1: traversal: --traversal 'octree'" "0 traversal octree"
+script_case "sc.txt:1: sampler: --sampler 'cube'" "0 sampler cube"
+script_case "sc.txt:1: backend: --backend 'cuda'" "0 backend cuda"
+script_case "sc.txt:1: grid: --grid 'huge'" "0 grid huge"
+script_case "sc.txt:1: grid: --grid 5000" "0 grid 5000"
+script_case "sc.txt:1: grid: --grid 0x4x4" "0 grid 0x4x4"
+script_case "sc.txt:1: tf-preset" "0 tf-preset rainbow"
+script_case "sc.txt:1: tf-range: LO 2 must be below HI 1" "0 tf-range 2 1"
+script_case "sc.txt:1: tf-range: LO 1 must be below HI 1" "0 tf-range 1 1"
+script_case "sc.txt:1: screenshot: 'x.jpg': unknown image type" "0 screenshot x.jpg"
+script_case "sc.txt:1: capture-window: 'x.pfm': unknown image type" "0 capture-window x.pfm"
+script_case "sc.txt:1: edit-shader: '/etc/passwd' must be a path relative" "0 edit-shader /etc/passwd a b"
+script_case "sc.txt:1: edit-shader: the text to find is empty" '0 edit-shader lib/tf.glsl "" b'
+script_case "sc.txt:2: frame 3 comes before frame 5" "5 zoom 1" "3 zoom 1"
+script_case "sc.txt:1: frame '-1'" "-1 zoom 1"
+script_case "sc.txt:1: frame '1.5'" "1.5 zoom 1"
+script_case "sc.txt:1: frame '1e300'" "1e300 zoom 1"
+script_case "sc.txt:1: unterminated quote" '0 screenshot "a.png'
+script_case "sc.txt:1: expected FRAME ACTION" "7"
+script_case "sc.txt:1: reload takes 0 argument(s), not 1" "0 reload now"
+script_case "sc.txt:1: quit takes 0 argument(s), not 1" "0 quit now"
+script_case "sc.txt:2: sampler: --sampler dense needs --traversal grid-dda or grid-bvh" "0 traversal abr" "1 sampler dense"
+script_case "sc.txt:3: traversal: --sampler dense needs" "0 sampler dense" "1 grid 8" "2 traversal kdtree"
+script_case "sc.txt:1: argument 1 of orbit is not a number" "0 orbit 0x10 0"
+script_case "sc.txt:1: argument 1 of density is not a number" "0 density 1,5"
+printf '0 zoom 1\n' > sc.txt; mkdir scdir
+expect1 "scdir" -- view good.cells "${pic[@]}" --headless --frames 1 --script scdir
+expect1 "no-such-script.txt" -- view good.cells "${pic[@]}" --headless --frames 1 --script no-such-script.txt
+# Every documented action works at every documented frame, 0 included (reload at 0 failed).
+printf '0 reload\n0 mode ss\n0 zoom 1\n1 reload\n2 quit\n' > zero.txt
+ok view good.cells "${pic[@]}" --headless --shader-dir $sdir --script zero.txt
+printf '0 reload\n1 quit\n' > zero2.txt
+ok view good.cells "${pic[@]}" --headless --script zero2.txt
+# Script outputs never destroy: a device is written through, a directory refused at its line.
+printf '0 save-session /dev/null\n1 quit\n' > dn.txt
+ok view good.cells "${pic[@]}" --headless --script dn.txt
+check1 test -c /dev/null
+printf '0 save-session adir.png\n1 quit\n' > sd.txt
+expect1 "sd.txt:1: save-session: adir.png: is a directory" -- view good.cells "${pic[@]}" --headless --script sd.txt
+
+# ---- 4. Sessions accept what the schema calls optional; hostile ones give one line ------------
+sess() {  # sess NAME PYTHON-EDIT: s.json edited by the Python expression on dict `s`
+  python3 - "$1" "$2" <<'PY'
+import json, sys
+s = json.load(open('s.orig'))
+exec(sys.argv[2])
+open(sys.argv[1], 'w').write(json.dumps(s) if not isinstance(s, str) else s)
+PY
+}
+sess norender.json 'del s["render"]'
+ok render --session norender.json -o nr.png
+sess nolights.json 'del s["lights"]; del s["structure"]; del s["read"]; del s["field"]'
+ok render --session nolights.json -o nl.png
+sess deep.json 's["transferFunction"]["X"] = 0; s = json.dumps(s).replace("\"X\": 0", "\"X\": " + "[" * 100000 + "]" * 100000)'
+expect1 "deep.json: JSON nested deeper than 64 levels" -- render --session deep.json -o d.png
+expect1 "deep.json: JSON nested deeper than 64 levels" -- view --session deep.json --headless --frames 1
+expect1 "deep.json: JSON nested deeper than 64 levels" -- render good.cells "${pic[@]}" --tf deep.json -o d.png
+sess v2.json 's["version"] = 2'
+expect1 "v2.json: session version 2" -- render --session v2.json -o x.png
+sess notsession.json 's["amrvk"] = "image"'
+expect1 "not an amrvk session" -- render --session notsession.json -o x.png
+sess noinput.json 'del s["input"]'
+expect1 'noinput.json: missing "input"' -- render --session noinput.json -o x.png
+sess emptyinput.json 's["input"] = ""'
+expect1 "emptyinput.json.input: empty" -- render --session emptyinput.json -o x.png
+sess missinginput.json 's["input"] = "nothere.cells"'
+expect1 "nothere.cells" -- render --session missinginput.json -o x.png
+sess nocam.json 'del s["camera"]'
+expect1 'nocam.json: missing "camera"' -- render --session nocam.json -o x.png
+sess camstr.json 's["camera"]["eye"] = "up"'
+expect1 "camstr.json.camera.eye: expected an array of 3 numbers" -- render --session camstr.json -o x.png
+sess camnan.json 's["camera"]["eye"][1] = 1e400'
+expect1 "camnan.json" -- render --session camnan.json -o x.png
+sess fov.json 's["camera"]["fovY"] = 180'
+expect1 "fov.json.camera.fovY: 180 is outside (0, 180)" -- render --session fov.json -o x.png
+sess size.json 's["image"]["width"] = 16385'
+expect1 "size.json.image.width: 16385 is not an integer in [1, 16384]" -- render --session size.json -o x.png
+sess sizef.json 's["image"]["height"] = 2.5'
+expect1 "sizef.json.image.height: 2.5 is not an integer" -- render --session sizef.json -o x.png
+sess mode.json 's["render"]["mode"] = "pt"'
+expect1 "mode.json.render.mode: --mode 'pt'" -- render --session mode.json -o x.png
+sess spp.json 's["render"]["spp"] = 16777217'
+expect1 "spp.json.render.spp" -- render --session spp.json -o x.png
+sess seed.json 's["render"]["seed"] = -1'
+expect1 "seed.json.render.seed" -- render --session seed.json -o x.png
+sess dens.json 's["render"]["densityScale"] = -1'
+expect1 "dens.json.render.densityScale: -1 must be >= 0" -- render --session dens.json -o x.png
+sess g.json 's["render"]["g"] = 2'
+expect1 "g.json.render.g: 2 is outside [-1, 1]" -- render --session g.json -o x.png
+sess amb.json 's["render"]["ambient"] = [1, -1, 1]'
+expect1 "amb.json.render.ambient: radiance must be >= 0" -- render --session amb.json -o x.png
+sess dvr.json 's["render"]["dvrStep"] = 0'
+expect1 "dvr.json.render.dvrStep: 0 is outside (0, 64]" -- render --session dvr.json -o x.png
+sess shading.json 's["render"]["dvrShading"] = "yes"'
+expect1 "shading.json.render.dvrShading: expected true or false" -- render --session shading.json -o x.png
+sess light.json 's["lights"] = [{"type": "spot"}]'
+expect1 "light.json.lights[0].type: 'spot'" -- render --session light.json -o x.png
+sess light0.json 's["lights"] = [{"type": "directional", "direction": [0,0,0], "radiance": [1,1,1]}]'
+expect1 "light0.json.lights[0].direction: must not be zero" -- render --session light0.json -o x.png
+sess lights9.json 's["lights"] = [{"type": "point", "position": [0,0,i], "intensity": [1,1,1]} for i in range(9)]'
+expect1 "at most 8 lights" -- render --session lights9.json -o x.png
+sess lightsobj.json 's["lights"] = {"type": "point"}'
+expect1 "lightsobj.json.lights: expected an array" -- render --session lightsobj.json -o x.png
+sess trav.json 's["structure"]["traversal"] = "octree"'
+expect1 "trav.json.structure.traversal: --traversal 'octree'" -- render --session trav.json -o x.png
+sess densabr.json 's["structure"]["traversal"] = "abr"; s["structure"]["sampler"] = "dense"'
+expect1 "--sampler dense needs --traversal grid-dda or grid-bvh" -- render --session densabr.json -o x.png
+sess kd.json 's["structure"]["kdLeaves"] = 16777216'
+expect1 "kd.json.structure.kdLeaves: 16777216 is not an integer in [1, 16777215]" -- render --session kd.json -o x.png
+sess mib.json 's["structure"]["denseMaxMiB"] = 0'
+expect1 "mib.json.structure.denseMaxMiB" -- render --session mib.json -o x.png
+sess grid.json 's["structure"]["grid"] = "0"'
+expect1 "--grid 0" -- render --session grid.json -o x.png
+sess notf.json 'del s["transferFunction"]'
+expect1 'notf.json: missing "transferFunction"' -- render --session notf.json -o x.png
+sess tfnan.json 's["transferFunction"]["Points"][1] = "x"'
+expect1 "tfnan.json.transferFunction" -- render --session tfnan.json -o x.png
+sess tfdesc.json 's["transferFunction"]["RGBPoints"] = [5,1,1,1,1,0,0,0]'
+expect1 "tfdesc.json.transferFunction" -- render --session tfdesc.json -o x.png
+sess array.json 's = [s]'
+expect1 "not an amrvk session" -- render --session array.json -o x.png
+sess dims.json 's["read"]["dims"] = [0, 1, 1]'
+expect1 "dims.json.read.dims[0]: 0 is not an integer in [1, 2^20]" -- render --session dims.json -o x.png
+sess nan.json 's["read"]["nan"] = "ignore"'
+expect1 "nan.json.read.nan: unknown NaN policy 'ignore'" -- render --session nan.json -o x.png
+printf '{"amrvk": "session", "version": 1,' > trunc.json
+expect1 "trunc.json: not a session (malformed JSON" -- render --session trunc.json -o x.png
+: > empty.json
+expect1 "empty.json: not a session (malformed JSON" -- render --session empty.json -o x.png
+expect1 "/dev/null: no such session file" -- render --session /dev/null -o x.png
+mkdir sessions-dir
+expect1 "sessions-dir" -- render --session sessions-dir -o x.png
+check1 test ! -e x.png
+
+# ---- 5. User shaders cannot crash or hang amrvk ---------------------------------------------
+cp -r shaders sh_self
+printf '#include "self.glsl"\n' > sh_self/lib/self.glsl
+sed -i 's|#include "lib/common.glsl"|#include "lib/common.glsl"\n#include "lib/self.glsl"|' sh_self/passes/path_trace.comp
+expect1 "self.glsl:1: error: '#include' : includes nested deeper than 32 levels" -- render good.cells "${pic[@]}" --shader-dir sh_self -o x.png
+cp -r shaders sh_dev
+sed -i 's|#include "lib/common.glsl"|#include "lib/common.glsl"\n#include "/dev/zero"|' sh_dev/passes/path_trace.comp
+expect1 "cannot find '/dev/zero'" -- render good.cells "${pic[@]}" --shader-dir sh_dev -o x.png
+cp -r shaders sh_big
+head -c 70000000 /dev/zero | tr '\0' ' ' > sh_big/lib/big.glsl
+sed -i 's|#include "lib/common.glsl"|#include "lib/common.glsl"\n#include "lib/big.glsl"|' sh_big/passes/path_trace.comp
+expect1 "the sources of one shader exceed 64 MiB" -- render good.cells "${pic[@]}" --shader-dir sh_big -o x.png
+rm -rf sh_big
+cp -r shaders sh_loop
+sed -i 's|void main() {|void main() { float spin = 0.0; for (uint k = 0u; k < 0xffffffffu; ++k) spin += sin(float(k)); if (spin == 12345.0) return;|' sh_loop/passes/path_trace.comp
+expect1 "ran longer than 3 s (--gpu-timeout): a runaway loop? ending" -- render good.cells "${pic[@]}" --shader-dir sh_loop --gpu-timeout 3 -o loop.png --json loop.json
+check1 test ! -e loop.png
+check1 test ! -e loop.json
+printf '3 quit\n' > q.txt
+expect1 "ran longer than 3 s" -- view good.cells "${pic[@]}" --headless --shader-dir sh_loop --gpu-timeout 3 --script q.txt --save-session never.json
+check1 test ! -e never.json
+cp -r shaders sh_oob
+sed -i 's|void main() {|void main() { if (gl_GlobalInvocationID.x == 0u) { FloatRW wild = FloatRW(P.accum + (uint64_t(1) << 46)); wild.v[0] = 1.0; }|' sh_oob/passes/path_trace.comp
+expect1 "crashed the process: it read or wrote outside its buffers" -- render good.cells "${pic[@]}" --shader-dir sh_oob -o oob.png --json oob.json
+check1 test ! -e oob.png
+cp -r shaders sh_syntax
+sed -i 's|void main() {|void main() { nonsense here;|' sh_syntax/passes/path_trace.comp
+expect1 "path_trace.comp:" -- render good.cells "${pic[@]}" --shader-dir sh_syntax -o x.png
+expect1 "no-such-dir" -- render good.cells "${pic[@]}" --shader-dir no-such-dir -o x.png
+expect1 "--shader-dir" -- render good.cells "${pic[@]}" --shader-dir good.cells -o x.png
+expect1 "--gpu-timeout: '-1' is outside" -- render good.cells "${pic[@]}" --gpu-timeout -1 -o x.png
+no_temporaries
+
+# ---- 6. Work bounded by the input's meaning, documented limits as enforced ---------------------
+python3 - <<'PY'
+import json, random
+random.seed(1)
+n = 100000
+xs = [1 + 4.0 * i / (n - 1) for i in range(n)]
+rgb, pts = [], []
+for x in xs:
+    rgb += [x, random.random(), random.random(), random.random()]
+    pts += [x, random.random(), 0.5, 0.0]
+json.dump([{"Name": "big", "RGBPoints": rgb, "Points": pts}], open('big-tf.json', 'w'))
+PY
+ok render good.cells "${pic[@]}" --tf big-tf.json -o big.png --json big.json
+check1 python3 -c "import json; j = json.load(open('big.json')); assert j['majorantSeconds'] < 5, j['majorantSeconds']"
+ok render good.cells "${pic[@]}" --tf big-tf.json --traversal kdtree --kd-leaves 256 --backend sw -o bigk.png
+expect1 "--kd-leaves: '16777216' is outside [1, 16777215]" -- render good.cells "${pic[@]}" --traversal kdtree --kd-leaves 16777216 -o x.png
+expect1 "--kd-leaves: '16777216' is outside [1, 16777215]" -- view good.cells "${pic[@]}" --kd-leaves 16777216 --headless --frames 1
+expect1 "--spp: '16777217' is outside [1, 16777216]" -- render good.cells --spp 16777217 -o x.png
+expect1 "--size '16385x8': expected WxH with 1 <= W, H <= 16384" -- render good.cells --size 16385x8 -o x.png
+expect1 "--size '0x8'" -- render good.cells --size 0x8 -o x.png
+expect1 "--size '8x'" -- render good.cells --size 8x -o x.png
+expect1 "--grid 4097" -- render good.cells --size 8x8 --grid 4097 -o x.png
+expect1 "--dense-max-mib: '0' is outside [1, 1048576]" -- render good.cells --dense-max-mib 0 -o x.png
+expect1 "--samples-per-invocation: '65' is outside [0, 64]" -- render good.cells --samples-per-invocation 65 -o x.png
+expect1 "--dt: '0' is outside (0, 64]" -- render good.cells --dt 0 -o x.png
+expect1 "--g: '1.5' is outside [-1, 1]" -- render good.cells --g 1.5 -o x.png
+expect1 "--seed: '4294967296' is outside [0, 4294967295]" -- render good.cells --seed 4294967296 -o x.png
+expect1 "--density-scale: '-1' is outside" -- render good.cells --density-scale -1 -o x.png
+expect1 "--fov: '180' is outside (0, 180)" -- render good.cells --fov 180 -o x.png
+expect1 "at most 8 lights" -- render good.cells "${pic[@]}" $(for i in 1 2 3 4 5 6 7 8 9; do printf -- '--light-dir 0 0 1 1 1 1 '; done) -o x.png
+expect1 "--tf-range 3 1: LO must be below HI" -- render good.cells "${pic[@]}" --tf-range 3 1 -o x.png
+expect1 "--tf-range 1 1: LO must be below HI" -- render good.cells "${pic[@]}" --tf-range 1 1 -o x.png
+expect1 "--frames: '0' is outside" -- view good.cells --headless --frames 0
+expect1 "--frame-budget-ms: '0' is outside" -- view good.cells --headless --frames 1 --frame-budget-ms 0
+expect1 "--window '0x0'" -- view good.cells --headless --frames 1 --window 0x0
+expect1 "--headless needs --frames N or a --script" -- view good.cells --headless
+expect1 "--traversal auto is for amrvk render" -- view good.cells --traversal auto --headless --frames 1
+check1 test ! -e x.png
+
+# ---- 7. Signals leave nothing partial, however many outputs are open -------------------------
+for sig in HUP INT TERM QUIT; do
+  rm -f sig-*
+  "$amrvk" gen cloud --cells 100000000 --seed 1 -o sig-$sig 2>/dev/null & pid=$!
+  for _ in $(seq 300); do ls sig-$sig.cells.tmp-* >/dev/null 2>&1 && break; sleep 0.1; done
+  check1 ls sig-$sig.cells.tmp-*
+  kill -$sig $pid; wait $pid; rc=$?
+  check1 test "$rc" -gt 128
+  check1 test -z "$(ls | grep '^sig-' || true)"
+done
+no_temporaries
+
+# ---- 8. Odd names: every message one line, every name written as given ----------------------
+ok render good.cells "${pic[@]}" -o "with space.png"
+check1 test -s "with space.png"
+ok render good.cells "${pic[@]}" -o "$(printf 'new\nline.png')"
+check1 test -s "$(printf 'new\nline.png')"
+ok render good.cells "${pic[@]}" -o "ünïcode.png"
+check1 test -s "ünïcode.png"
+ok render good.cells "${pic[@]}" -o ./-dash.png
+check1 test -s ./-dash.png
+expect1 "unknown image type" -- render good.cells "${pic[@]}" -o "$(printf 'a\033[2Jb.txt')"
+expect1 "no such file" -- render "$(printf 'in\nput.cells')" -o x.png
+expect1 "unknown field" -- render good.cells --field "$(printf 'f\ti\rx')" -o x.png
+expect1 "unknown field" -- convert good.cells --field "../../etc" -o conv3
+check1 test ! -e conv3.cells
+ok convert good.cells --field rho -o "conv 4"
+check1 test -s "conv 4.rho.scalars"
+
+echo "hostile.sh: $cases cases"
+test "$cases" -ge 150 || { echo "FAIL: only $cases cases"; fail=1; }
+exit $fail

@@ -1,0 +1,131 @@
+// The one entry from a picture description to pixels (src/picture): cells given in memory render
+// exactly what the same cells read from a file render; what the description leaves open is fitted
+// once and reported; and the amrvk render command line of a description (what the bench records for
+// its references, and its cache key) renders the picture the description renders in process.
+#include <cstdlib>
+#include <filesystem>
+
+#include "amr/readers.h"
+#include "core/image_io.h"
+#include "gpu_fixture.h"
+#include "model_fixtures.h"
+#include "picture/picture.h"
+#include "render_fixtures.h"
+#include "scene/camera.h"
+#include "test_data.h"
+
+using namespace amrvk;
+namespace fs = std::filesystem;
+
+namespace {
+
+class PictureGpu : public test::GpuTest {};
+
+double maxRelativeDifference(const Image& a, const Image& b) {
+    double worst = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double x = a.pixels[i][c], y = b.pixels[i][c];
+            worst = std::max(worst, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-3}));
+        }
+    return worst;
+}
+
+session::PictureDescription cloudDescription(const fs::path& input) {
+    session::PictureDescription d;
+    d.session.input = input.string();
+    d.session.settings.width = d.session.settings.height = 20;
+    d.session.settings.mode = scene::Mode::Ss;
+    d.session.settings.densityScale = 3;
+    d.session.settings.lights.push_back({false, {1.0, -1.0, 2.0}, glm::dvec3(3.0)});
+    d.session.spp = 6;
+    d.session.structure = {.sampler = scene::SamplerKind::ExtBrick, .grid = "8"};
+    d.tfSource = session::TfSource{.name = "foggy"};
+    d.fitCamera = true;
+    return d;
+}
+
+}  // namespace
+
+TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
+    const fs::path dir = test::scratchDir();
+    const amr::Model cloud = test::makeThreeLevelCloud();
+    amr::writeExaBrick(cloud, dir / "cloud", true);
+    const session::PictureDescription d = cloudDescription(dir / "cloud.cells");
+    picture::Picture fromFile = picture::openPicture(ctx(), d);
+    // The caller's cells, validated as a reader's are (NaN policy, alignment, overlaps).
+    amr::Model memory = cloud;
+    memory.source = "memory";
+    picture::Picture fromMemory =
+        picture::makePicture(ctx(), scene::makeVolume(amr::checkedModel(std::move(memory), amr::NanPolicy::Reject)), d);
+    const scene::RenderOutput a = fromFile.render(), b = fromMemory.render();
+    EXPECT_EQ(a.stats.counter(shared::kCounterDensityLookups), b.stats.counter(shared::kCounterDensityLookups));
+    EXPECT_GT(a.stats.counter(shared::kCounterRealCollisions), 0u);
+    EXPECT_LT(maxRelativeDifference(a.mean, b.mean), 1e-6);
+    EXPECT_TRUE(fromFile.session.settings == fromMemory.session.settings);
+    // Bad cells from memory get the readers' one-line errors.
+    amr::Model bad = cloud;
+    bad.cells[3].lower.x += 1;  // misaligned
+    EXPECT_NE(test::errorOf([&] { amr::checkedModel(std::move(bad), amr::NanPolicy::Reject); }).find("aligned"),
+              std::string::npos);
+}
+
+TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
+    // Four cells at the corners of a 4096-wide box: sparse (they fill 6e-11 of it), so the
+    // data-fitted traversal is abr, with the abr sampler unless one was given; the TF spans the
+    // field, the camera frames the data.
+    amr::Model sparse;
+    sparse.source = "sparse";
+    sparse.cells = {{{0, 0, 0}, 0}, {{4095, 0, 0}, 0}, {{0, 4095, 0}, 0}, {{0, 0, 4095}, 0}};
+    sparse.fields = {{"v", {1.0f, 2.0f, 3.0f, 4.0f}}};
+    const std::shared_ptr<const scene::Volume> v =
+        scene::makeVolume(amr::checkedModel(std::move(sparse), amr::NanPolicy::Reject));
+    session::PictureDescription d = cloudDescription("sparse");
+    d.fit = session::StructureFit::Data;
+    d.session.structure.backend = scene::Backend::Auto;
+    std::vector<std::string> noted;
+    picture::Picture pic = picture::makePicture(ctx(), v, d, {.note = [&](const std::string& l) { noted.push_back(l); }});
+    EXPECT_EQ(pic.session.structure.traversal, scene::TraversalKind::Abr);
+    EXPECT_EQ(pic.session.structure.sampler, scene::SamplerKind::Abr);
+    EXPECT_EQ(pic.renderer->config().traversal, scene::TraversalKind::Abr);
+    EXPECT_EQ(pic.renderer->config().backend, scene::Backend::Sw) << "auto is sw until rq is measured faster";
+    EXPECT_EQ(pic.session.structure.backend, scene::Backend::Auto) << "the session keeps what was asked";
+    ASSERT_EQ(noted, pic.report.notes);
+    ASSERT_EQ(noted.size(), 2u);
+    EXPECT_EQ(noted[0].rfind("traversal abr and sampler abr:", 0), 0u) << noted[0];
+    EXPECT_EQ(noted[1].rfind("--backend auto: sw", 0), 0u) << noted[1];
+    EXPECT_FALSE(pic.report.backendReason.empty());
+    const scene::Camera framed = scene::defaultCamera(v->worldLo(), v->worldHi(), 40.0);
+    EXPECT_TRUE(pic.session.settings.camera == framed);
+    const scene::TransferFunction tf = pic.session.tf.merged();
+    EXPECT_EQ(tf.firstPosition(), v->valueLo());
+    EXPECT_EQ(tf.lastPosition(), v->valueHi());
+    // A sampler given stays; nothing is fitted for a description that fixes everything.
+    d.samplerGiven = true;
+    EXPECT_EQ(picture::makePicture(ctx(), v, d).session.structure.sampler, scene::SamplerKind::ExtBrick);
+    d.fit = session::StructureFit::None;
+    d.session.structure.backend = scene::Backend::Sw;
+    EXPECT_TRUE(picture::makePicture(ctx(), v, d).report.notes.empty());
+}
+
+TEST_F(PictureGpu, TheCommandLineOfADescriptionRendersItsPicture) {
+    // What the bench records for a reference (and keys its cache by): run as a command, it must
+    // render the image the description renders in process (same seed: the same samples).
+    const std::string binary = std::string(AMRVK_BINARY_DIR) + "/bin/amrvk";
+    if (!fs::exists(binary)) GTEST_SKIP() << "amrvk binary not built: " << binary;
+    const fs::path dir = test::scratchDir();
+    amr::writeExaBrick(test::makeThreeLevelCloud(), dir / "cloud", true);
+    session::PictureDescription d = cloudDescription(dir / "cloud.cells");
+    d.tfRange = std::make_pair(0.2f, 1.7f);
+    d.session.settings.seed = 1000004;
+    const std::string command =
+        session::renderCommandLine(d, "", (dir / "command.pfm").string(), binary) + " 2>" + (dir / "command.err").string();
+    ASSERT_EQ(std::system(command.c_str()), 0) << command << "\n" << test::readAll(dir / "command.err");
+    const Image viaCommand = readPfm(dir / "command.pfm");
+    const scene::RenderOutput inProcess = picture::openPicture(ctx(), d).render();
+    ASSERT_EQ(viaCommand.pixels.size(), inProcess.mean.pixels.size());
+    EXPECT_LT(maxRelativeDifference(viaCommand, inProcess.mean), 1e-5) << command;
+    // Power: the comparison tells another seed's samples apart.
+    d.session.settings.seed += 1;
+    EXPECT_GT(maxRelativeDifference(viaCommand, picture::openPicture(ctx(), d).render().mean), 1e-3);
+}
