@@ -22,6 +22,11 @@ ok() {  # ok ARGS...: amrvk ARGS exits 0
 }
 same() { cmp -s "$1" "$2" || { echo "FAIL: $1 changed"; fail=1; }; }  # part of the case before it
 no_temporaries() { check1 test -z "$(find . -name '*.tmp-*' | head -1)"; }
+section_name=""; section_start=0
+section() {  # prints the case count of the section that ends here
+  [ -n "$section_name" ] && echo "hostile.sh: $((cases - section_start)) cases: $section_name"
+  section_name="$1"; section_start=$cases
+}
 
 python3 - <<'PY'
 import struct, json
@@ -39,6 +44,7 @@ ok view good.cells "${pic[@]}" --headless --frames 1 --save-session s.json
 cp s.json s.orig
 
 # ---- 1. Outputs never destroy (special files, links, inputs, each other) ---------------------
+section "outputs"
 ok render good.cells "${pic[@]}" -o a.png --json /dev/null
 check1 test -c /dev/null
 ok view good.cells "${pic[@]}" --headless --frames 1 --save-session /dev/null --stats /dev/null
@@ -112,6 +118,7 @@ check1 test ! -e conv2.cells
 no_temporaries
 
 # ---- 2. Paths from scripts stay inside the place named ---------------------------------------
+section "script paths"
 "$amrvk" shaders --export shaders >/dev/null 2>&1
 echo precious > victim.txt
 sdir=shaders/passes
@@ -134,6 +141,7 @@ printf '0 edit-shader . a b\n' > esc7.txt
 expect1 "not a regular file" -- view good.cells "${pic[@]}" --headless --shader-dir $sdir --script esc7.txt
 
 # ---- 3. Scripts keep the docs' promises: every line checked before frame 0 --------------------
+section "script values and promises"
 script_case() {  # script_case FRAGMENT LINE...: a script of these lines fails with FRAGMENT
   local frag="$1"; shift
   printf '%s\n' "$@" > sc.txt
@@ -186,6 +194,7 @@ printf '0 save-session adir.png\n1 quit\n' > sd.txt
 expect1 "sd.txt:1: save-session: adir.png: is a directory" -- view good.cells "${pic[@]}" --headless --script sd.txt
 
 # ---- 4. Sessions accept what the schema calls optional; hostile ones give one line ------------
+section "sessions"
 sess() {  # sess NAME PYTHON-EDIT: s.json edited by the Python expression on dict `s`
   python3 - "$1" "$2" <<'PY'
 import json, sys
@@ -280,6 +289,7 @@ expect1 "sessions-dir" -- render --session sessions-dir -o x.png
 check1 test ! -e x.png
 
 # ---- 5. User shaders cannot crash or hang amrvk ---------------------------------------------
+section "user shaders"
 cp -r shaders sh_self
 printf '#include "self.glsl"\n' > sh_self/lib/self.glsl
 sed -i 's|#include "lib/common.glsl"|#include "lib/common.glsl"\n#include "lib/self.glsl"|' sh_self/passes/path_trace.comp
@@ -313,6 +323,7 @@ expect1 "--gpu-timeout: '-1' is outside" -- render good.cells "${pic[@]}" --gpu-
 no_temporaries
 
 # ---- 6. Work bounded by the input's meaning, documented limits as enforced ---------------------
+section "bounded work and limits"
 python3 - <<'PY'
 import json, random
 random.seed(1)
@@ -352,6 +363,7 @@ expect1 "--traversal auto is for amrvk render" -- view good.cells --traversal au
 check1 test ! -e x.png
 
 # ---- 7. Signals leave nothing partial, however many outputs are open -------------------------
+section "signals"
 for sig in HUP INT TERM QUIT; do
   rm -f sig-*
   "$amrvk" gen cloud --cells 100000000 --seed 1 -o sig-$sig 2>/dev/null & pid=$!
@@ -364,6 +376,7 @@ done
 no_temporaries
 
 # ---- 8. Odd names: every message one line, every name written as given ----------------------
+section "odd names"
 ok render good.cells "${pic[@]}" -o "with space.png"
 check1 test -s "with space.png"
 ok render good.cells "${pic[@]}" -o "$(printf 'new\nline.png')"
@@ -380,6 +393,7 @@ check1 test ! -e conv3.cells
 ok convert good.cells --field rho -o "conv 4"
 check1 test -s "conv 4.rho.scalars"
 
+section ""
 echo "hostile.sh: $cases cases"
 test "$cases" -ge 150 || { echo "FAIL: only $cases cases"; fail=1; }
 exit $fail
