@@ -112,8 +112,6 @@ int runRender(const std::vector<std::string>& argv) {
     picture.report.readSeconds = readSeconds;
     const session::Session& s = picture.session;
     render::Renderer& renderer = *picture.renderer;
-    const scene::VolumeScene& scene = renderer.scene();
-    const scene::Volume& volume = *picture.volume;
     const scene::StructureConfig& config = renderer.config();
     const scene::RenderSettings& rs = renderer.settings();
     ProgressBar bar("render", "spp");
@@ -129,9 +127,6 @@ int runRender(const std::vector<std::string>& argv) {
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
 
-    glm::dvec3 meanRgb(0.0);
-    for (const auto& p : out.mean.pixels) meanRgb += glm::dvec3(p);
-    meanRgb /= double(out.mean.pixels.size());
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
     std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(), rs.width,
@@ -149,57 +144,7 @@ int runRender(const std::vector<std::string>& argv) {
                      (unsigned long long)c[shared::kCounterBounceLimitHits],
                      (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (!jsonFile.empty()) {
-        Json j;
-        j["input"] = volume.model.source;
-        j["field"] = volume.field().name;
-        j["device"] = ctx.deviceReport().name;
-        j["samplesPerInvocation"] = ctx.samplesPerInvocation();
-        j["width"] = rs.width;
-        j["height"] = rs.height;
-        j["spp"] = s.spp;
-        j["mode"] = scene::modeName(rs.mode);
-        j["traversal"] = scene::traversalName(config.traversal);
-        j["sampler"] = scene::samplerName(config.sampler);
-        j["backend"] = scene::backendName(config.backend);
-        j["backendRequested"] = scene::backendName(s.structure.backend);
-        j["backendReason"] = picture.report.backendReason;
-        j["tf"] = s.tf.name;
-        j["seconds"] = out.stats.gpuSeconds;
-        j["wallSeconds"] = wallSeconds;
-        j["pathsPerSecond"] = out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0;
-        j["paths"] = out.stats.paths;
-        j["densityLookups"] = c[shared::kCounterDensityLookups];
-        j["realCollisions"] = c[shared::kCounterRealCollisions];
-        j["nullCollisions"] = c[shared::kCounterNullCollisions];
-        j["traversalSteps"] = c[shared::kCounterTraversalSteps];
-        j["majorantViolations"] = c[shared::kCounterMajorantViolations];
-        j["nanSamples"] = c[shared::kCounterNanSamples];
-        j["bounceLimitHits"] = c[shared::kCounterBounceLimitHits];
-        j["trackingCapHits"] = c[shared::kCounterTrackingCapHits];
-        j["majorantSeconds"] = renderer.majorantSeconds();
-        j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
-        j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
-        j["readSeconds"] = picture.report.readSeconds;  // read and per-cell validation
-        j["firstSampleSeconds"] = firstSampleSeconds;  // command start to the first finished batch (--spp 1: one sample per pixel)
-        j["peakHostBytes"] = peakResidentBytes();      // so far (lavapipe: device memory included)
-        j["structureBuildSeconds"] = picture.report.buildSeconds;
-        j["structureBuildSecondsPer"] = {
-            {"bricks", volume.bricks.buildSeconds},          {"abrs", scene.buildSeconds.abrs},
-            {"samplerBvh", scene.buildSeconds.samplerBvh},   {"macrocells", scene.buildSeconds.grid},
-            {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", renderer.kdTreeBuildSeconds()},
-            {"denseGrid", scene.buildSeconds.dense},         {"brickGrid", scene.buildSeconds.brickGrid}};
-        Json host = Json::object();
-        for (const auto& [name, bytes] : scene.hostBytes()) host[name] = bytes;
-        for (const auto& [name, bytes] : renderer.hostBytes()) host[name] = bytes;
-        j["hostMemoryPerStructure"] = host;
-        j["deviceMemoryBytes"] = ctx.memory().currentBytes();
-        j["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
-        Json device = Json::object();
-        for (const auto& [name, usage] : ctx.memory().perResource())
-            device[name] = {{"current", usage.current}, {"peak", usage.peak}};
-        j["deviceMemoryPerResource"] = device;
-        if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
-        j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
+        Json j = picture::renderStats(picture, out, {.wallSeconds = wallSeconds, .firstSampleSeconds = firstSampleSeconds});
         writeFileAtomic(jsonFile, j.dump(2) + "\n");
     }
     return 0;

@@ -39,8 +39,8 @@ void checkImage(const fs::path& path, const Image& image) {
                 ": image ", image.width, "x", image.height, " has ", image.pixels.size(), " pixels");
 }
 
-// Encodes 8-bit RGBA pixels (row 0 = top) as PNG and writes them through AtomicFileWriter.
-void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rgba) {
+// 8-bit RGBA pixels (row 0 = top) encoded as a PNG file's bytes; `what` names it in errors.
+std::vector<uint8_t> encodePngRgba(const std::string& what, int width, int height, const uint8_t* rgba) {
     png_image png{.version = PNG_IMAGE_VERSION,
                   .width = static_cast<png_uint_32>(width),
                   .height = static_cast<png_uint_32>(height),
@@ -51,19 +51,31 @@ void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rg
     if (ok) ok = png_image_write_to_memory(&png, encoded.data(), &bytes, 0, rgba, 0, nullptr) != 0;
     std::string message = png.message;
     png_image_free(&png);
-    AMRVK_CHECK(ok, path.string(), ": PNG encoding failed (", message, ")");
+    AMRVK_CHECK(ok, what, ": PNG encoding failed (", message, ")");
+    encoded.resize(bytes);
+    return encoded;
+}
+
+// Encodes 8-bit RGBA pixels (row 0 = top) as PNG and writes them through AtomicFileWriter.
+void writePngRgba(const fs::path& path, int width, int height, const uint8_t* rgba) {
+    const std::vector<uint8_t> encoded = encodePngRgba(path.string(), width, height, rgba);
     AtomicFileWriter out(path);
-    out.write(encoded.data(), bytes);
+    out.write(encoded.data(), encoded.size());
     out.commit();
 }
 
-void writePng(const fs::path& path, const Image& image) {
+// The tone-mapped 8-bit pixels writeImage puts in a PNG.
+std::vector<uint8_t> srgbRgba(const Image& image) {
     std::vector<uint8_t> rgba(image.pixels.size() * 4);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         for (int k = 0; k < 3; ++k) rgba[4 * i + size_t(k)] = encodeSrgb8(image.pixels[i][k]);
         rgba[4 * i + 3] = 255;
     }
-    writePngRgba(path, image.width, image.height, rgba.data());
+    return rgba;
+}
+
+void writePng(const fs::path& path, const Image& image) {
+    writePngRgba(path, image.width, image.height, srgbRgba(image).data());
 }
 
 void writePfm(const fs::path& path, const Image& image) {
@@ -172,6 +184,11 @@ void writeImage(const fs::path& path, const Image& image) {
     if (ext == ".png") writePng(path, image);
     else if (ext == ".pfm") writePfm(path, image);
     else writeExr(path, image);
+}
+
+std::vector<uint8_t> pngBytes(const Image& image) {
+    checkImage("the image", image);
+    return encodePngRgba("the image", image.width, image.height, srgbRgba(image).data());
 }
 
 void writePng8(const fs::path& path, const Image8& image) {

@@ -40,6 +40,9 @@ uint8_t encodeSrgb8(float linear);
 // whose size does not match its pixels, or a write failure (leaving no file).
 void writeImage(const std::filesystem::path& path, const Image& image);
 
+// The PNG file writeImage would write for `image`, as bytes (a notebook's inline picture).
+std::vector<uint8_t> pngBytes(const Image& image);
+
 // Writes 8-bit RGBA pixels to a PNG as they are (no tone mapping, alpha kept). Throws for a size
 // outside [1, 2^20] per axis, rgba.size() != 4 * width * height, or a write failure (leaving no file).
 void writePng8(const std::filesystem::path& path, const Image8& image);

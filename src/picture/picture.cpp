@@ -87,6 +87,73 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     return p;
 }
 
+nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& out, const RenderTimes& times) {
+    using Json = nlohmann::ordered_json;
+    const render::Renderer& renderer = *p.renderer;
+    const scene::VolumeScene& scene = renderer.scene();
+    const scene::Volume& volume = *p.volume;
+    const scene::StructureConfig& config = renderer.config();
+    const scene::RenderSettings& rs = renderer.settings();
+    gpu::Context& ctx = renderer.context();
+    const auto& c = out.stats.counters;
+    const double paths = double(out.stats.paths);
+    glm::dvec3 meanRgb(0.0);
+    for (const auto& px : out.mean.pixels) meanRgb += glm::dvec3(px);
+    if (!out.mean.pixels.empty()) meanRgb /= double(out.mean.pixels.size());
+    Json j;
+    j["input"] = volume.model.source;
+    j["field"] = volume.field().name;
+    j["device"] = ctx.deviceReport().name;
+    j["samplesPerInvocation"] = ctx.samplesPerInvocation();
+    j["width"] = rs.width;
+    j["height"] = rs.height;
+    j["spp"] = out.spp;
+    j["mode"] = scene::modeName(rs.mode);
+    j["traversal"] = scene::traversalName(config.traversal);
+    j["sampler"] = scene::samplerName(config.sampler);
+    j["backend"] = scene::backendName(config.backend);
+    j["backendRequested"] = scene::backendName(p.session.structure.backend);
+    j["backendReason"] = p.report.backendReason;
+    j["tf"] = p.session.tf.name;
+    j["seconds"] = out.stats.gpuSeconds;
+    j["wallSeconds"] = times.wallSeconds;
+    j["pathsPerSecond"] = out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0;
+    j["paths"] = out.stats.paths;
+    j["densityLookups"] = c[shared::kCounterDensityLookups];
+    j["realCollisions"] = c[shared::kCounterRealCollisions];
+    j["nullCollisions"] = c[shared::kCounterNullCollisions];
+    j["traversalSteps"] = c[shared::kCounterTraversalSteps];
+    j["majorantViolations"] = c[shared::kCounterMajorantViolations];
+    j["nanSamples"] = c[shared::kCounterNanSamples];
+    j["bounceLimitHits"] = c[shared::kCounterBounceLimitHits];
+    j["trackingCapHits"] = c[shared::kCounterTrackingCapHits];
+    j["majorantSeconds"] = renderer.majorantSeconds();
+    j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
+    j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
+    j["readSeconds"] = p.report.readSeconds;           // read and per-cell validation
+    j["firstSampleSeconds"] = times.firstSampleSeconds;  // command start to the first finished batch
+    j["peakHostBytes"] = peakResidentBytes();           // so far (lavapipe: device memory included)
+    j["structureBuildSeconds"] = p.report.buildSeconds;
+    j["structureBuildSecondsPer"] = {
+        {"bricks", volume.bricks.buildSeconds},          {"abrs", scene.buildSeconds.abrs},
+        {"samplerBvh", scene.buildSeconds.samplerBvh},   {"macrocells", scene.buildSeconds.grid},
+        {"traversalRanges", scene.buildSeconds.domains}, {"kdTree", renderer.kdTreeBuildSeconds()},
+        {"denseGrid", scene.buildSeconds.dense},         {"brickGrid", scene.buildSeconds.brickGrid}};
+    Json host = Json::object();
+    for (const auto& [name, bytes] : scene.hostBytes()) host[name] = bytes;
+    for (const auto& [name, bytes] : renderer.hostBytes()) host[name] = bytes;
+    j["hostMemoryPerStructure"] = host;
+    j["deviceMemoryBytes"] = ctx.memory().currentBytes();
+    j["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
+    Json device = Json::object();
+    for (const auto& [name, usage] : ctx.memory().perResource())
+        device[name] = {{"current", usage.current}, {"peak", usage.peak}};
+    j["deviceMemoryPerResource"] = device;
+    if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
+    j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
+    return j;
+}
+
 Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options) {
     Timer read;
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 #include "render/auto_select.h"
@@ -47,6 +49,16 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
                     const session::PictureDescription& d, Options options = {});
 // Reads d.session's data (session::loadVolume), then makePicture.
 Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options = {});
+
+// Wall-clock times only the caller knows (0 when not measured).
+struct RenderTimes {
+    double wallSeconds = 0;         // the render call
+    double firstSampleSeconds = 0;  // command start to the first finished batch
+};
+// The statistics of a render of `p` that produced `out`: what `amrvk render --json` writes and
+// the Python module's Renderer.stats holds (keys in docs/architecture.md's order, every counter,
+// timings, host bytes per structure, device bytes per buffer, the mean RGB).
+nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& out, const RenderTimes& times = {});
 
 // What the back-end choice reads from a device.
 scene::DeviceTraits deviceTraits(const gpu::Context& ctx);

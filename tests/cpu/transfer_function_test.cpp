@@ -255,9 +255,10 @@ TEST(TransferFunction, MaxAlphaOfAMillionNodesEqualsTheLinearScan) {
         if (q % 7 == 0) hi = lo + 0.01f * u(rng);  // short ranges, often with no node inside
         if (q % 11 == 0) lo = pos[size_t(q) % n];  // an end exactly on a node
         sum += tf.maxAlpha(std::min(lo, hi), std::max(lo, hi));
-        if (q % 1000 == 0)
+        if (q % 1000 == 0) {
             EXPECT_EQ(tf.maxAlpha(std::min(lo, hi), std::max(lo, hi)), linear(std::min(lo, hi), std::max(lo, hi)))
                 << "[" << lo << ", " << hi << "]";
+        }
     }
     EXPECT_GT(sum, 0.0);
     const float nan = std::numeric_limits<float>::quiet_NaN();
