@@ -1,0 +1,748 @@
+// The Python module `amrvk` (its compiled part, `amrvk._amrvk`; python/amrvk/ adds the yt bridge,
+// tqdm progress and Jupyter display). A thin layer over the one entry from a picture description
+// to pixels (picture::makePicture): Volume is a scene::Volume (from a file through the readers, or
+// from numpy arrays validated as the readers validate), TransferFunction a scene::TfChannels,
+// Camera a scene::Camera, and Renderer a picture with its session kept in step with every edit.
+// The GIL is released while the device works; long work runs in chunks of about a quarter of a
+// second (whole samples, or tiles of rows when one sample takes longer), so Ctrl-C
+// (KeyboardInterrupt) and a progress callback are served between chunks. Errors are the CLI's
+// one-line messages: amrvk::Error -> ValueError (bad input) or RuntimeError (device, state).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "amr/readers.h"
+#include "core/checked_size.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/image_io.h"
+#include "core/stats.h"
+#include "gpu/context.h"
+#include "gpu/shader_compiler.h"
+#include "picture/picture.h"
+#include "scene/camera.h"
+#include "scene/transfer_function.h"
+#include "session/picture_description.h"
+#include "session/session.h"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+using namespace amrvk;
+
+namespace {
+
+// ---- Contexts: one per device choice, shared by the renderers that name it ---------------------
+
+std::shared_ptr<gpu::Context> contextFor(const gpu::ContextOptions& o) {
+    static std::mutex mutex;
+    static std::map<std::string, std::weak_ptr<gpu::Context>> contexts;
+    const std::string key = o.device + "|" + std::to_string(o.validation) + "|" + std::to_string(o.gpuTimeoutSeconds) +
+                            "|" + std::to_string(o.samplesPerInvocation);
+    std::lock_guard lock(mutex);
+    if (auto ctx = contexts[key].lock()) return ctx;
+    auto ctx = std::make_shared<gpu::Context>(o);
+    contexts[key] = ctx;
+    return ctx;
+}
+
+// ---- numpy helpers ---------------------------------------------------------------------------
+
+// A numpy array's element (i, k) as T, whatever its strides (non-contiguous and read-only arrays
+// are only read).
+template <typename T>
+T element(const py::array& a, py::ssize_t i, py::ssize_t k = 0) {
+    const char* p = static_cast<const char*>(a.data()) + i * a.strides(0) + (a.ndim() > 1 ? k * a.strides(1) : 0);
+    const py::dtype dt = a.dtype();
+    switch (dt.kind()) {
+        case 'i':
+            if (dt.itemsize() == 8) return T(*reinterpret_cast<const int64_t*>(p));
+            if (dt.itemsize() == 4) return T(*reinterpret_cast<const int32_t*>(p));
+            if (dt.itemsize() == 2) return T(*reinterpret_cast<const int16_t*>(p));
+            return T(*reinterpret_cast<const int8_t*>(p));
+        case 'u':
+            if (dt.itemsize() == 8) return T(*reinterpret_cast<const uint64_t*>(p));
+            if (dt.itemsize() == 4) return T(*reinterpret_cast<const uint32_t*>(p));
+            if (dt.itemsize() == 2) return T(*reinterpret_cast<const uint16_t*>(p));
+            return T(*reinterpret_cast<const uint8_t*>(p));
+        case 'f':
+            if (dt.itemsize() == 8) return T(*reinterpret_cast<const double*>(p));
+            if (dt.itemsize() == 4) return T(*reinterpret_cast<const float*>(p));
+            break;
+        default:
+            break;
+    }
+    throw py::type_error("unsupported array dtype " + std::string(py::str(py::handle(dt))));
+}
+
+// `a` as an array, checked: `kinds` are the dtype kinds allowed ("iu", "iuf"), ndim and the
+// length of axis 1 where it has two.
+py::array checkedArray(const py::object& obj, const char* name, const char* kinds, int ndim, py::ssize_t columns = 0) {
+    if (!py::isinstance<py::array>(obj))
+        throw py::type_error(std::string(name) + ": expected a numpy array, got " +
+                             std::string(py::str(obj.get_type().attr("__name__"))));
+    py::array a = py::reinterpret_borrow<py::array>(obj);
+    const char kind = a.dtype().kind();
+    if (std::string(kinds).find(kind) == std::string::npos || (kind == 'f' && a.dtype().itemsize() < 4) ||
+        a.dtype().itemsize() > 8)
+        throw py::type_error(std::string(name) + ": dtype " + std::string(py::str(py::handle(a.dtype()))) + " is not " +
+                             (std::string(kinds) == "iu" ? "an integer type" : "an integer or float32/float64 type"));
+    if (a.ndim() != ndim || (ndim == 2 && a.shape(1) != columns))
+        throw py::value_error(std::string(name) + ": expected shape " + (ndim == 1 ? "(N,)" : "(N, " + std::to_string(columns) + ")") +
+                              ", got " + std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
+    return a;
+}
+
+glm::dvec3 vec3(const std::vector<double>& v, const char* name) {
+    if (v.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers, got " + std::to_string(v.size()));
+    for (double x : v)
+        if (!std::isfinite(x)) throw py::value_error(std::string(name) + ": " + std::to_string(x) + " is not finite");
+    return {v[0], v[1], v[2]};
+}
+
+std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
+
+// An image as numpy float32 (H, W, 4), row 0 = top.
+py::array_t<float> imageArray(const Image& image) {
+    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
+    std::memcpy(out.mutable_data(), image.pixels.data(), image.pixels.size() * sizeof(glm::vec4));
+    return out;
+}
+
+// ---- Volume ----------------------------------------------------------------------------------
+
+struct PyVolume {
+    std::shared_ptr<const scene::Volume> volume;
+    session::Session source;  // input, read options and field (sessions name them); input "" for arrays
+    std::string units;        // the field's units where known (yt), else ""
+
+    py::dict summary() const {
+        const scene::Volume& v = *volume;
+        py::dict d;
+        d["source"] = v.model.source;
+        d["field"] = v.field().name;
+        d["units"] = units;
+        d["cells"] = v.model.cellCount();
+        std::vector<uint64_t> perLevel = v.summary.cellsPerLevel;
+        d["cells_per_level"] = perLevel;  // index = level, 0 = finest
+        d["finest_level"] = v.minLevel();
+        d["coarsest_level"] = v.summary.maxLevel;
+        d["value_range"] = py::make_tuple(v.valueLo(), v.valueHi());
+        d["volume_weighted_mean"] = v.fieldStats.volumeWeightedMean;
+        d["world_lo"] = list3(v.worldLo());
+        d["world_hi"] = list3(v.worldHi());
+        d["bricks"] = v.bricks.bricks.size();
+        d["host_bytes"] = v.modelBytes() + v.bricks.memoryBytes();
+        return d;
+    }
+};
+
+std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string& field, const std::string& format,
+                                         const std::string& nan, const std::optional<std::vector<int>>& dims,
+                                         const std::string& type, double threshold) {
+    auto v = std::make_shared<PyVolume>();
+    session::Session& s = v->source;
+    s.input = path.string();
+    s.field = field;
+    s.read.format = format;
+    s.read.nanPolicy = amr::parseNanPolicy(nan);
+    if (dims) {
+        if (dims->size() != 3) throw py::value_error("dims: expected 3 integers");
+        s.read.rawDims = {(*dims)[0], (*dims)[1], (*dims)[2]};
+    }
+    s.read.rawType = type;
+    s.read.rawThreshold = threshold;
+    {
+        py::gil_scoped_release release;
+        v->volume = session::loadVolume(s);
+    }
+    s.field = v->volume->field().name;
+    return v;
+}
+
+std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py::object& levelObj,
+                                           const py::object& valuesObj, const std::string& field,
+                                           const std::vector<double>& origin, const std::vector<double>& spacing,
+                                           const std::string& nan, const std::string& units, const std::string& source) {
+    const py::array lower = checkedArray(lowerObj, "lower", "iu", 2, 3);
+    const py::array level = checkedArray(levelObj, "level", "iu", 1);
+    const py::array values = checkedArray(valuesObj, "values", "iuf", 1);
+    const py::ssize_t n = lower.shape(0);
+    if (level.shape(0) != n || values.shape(0) != n)
+        throw py::value_error("lower, level and values must have the same length (got " + std::to_string(n) + ", " +
+                              std::to_string(level.shape(0)) + ", " + std::to_string(values.shape(0)) + ")");
+    if (field.empty() || field.find('/') != std::string::npos) throw py::value_error("field: '" + field + "' is not a field name");
+    amr::Model m;
+    m.format = "arrays";
+    m.source = source;
+    m.voxelToWorld.origin = vec3(origin, "origin");
+    m.voxelToWorld.scale = vec3(spacing, "spacing");
+    for (int a = 0; a < 3; ++a)
+        if (!(m.voxelToWorld.scale[a] > 0)) throw py::value_error("spacing: every component must be > 0");
+    checkAllocation(uint64_t(n) * (sizeof(amr::Cell) + sizeof(float)), "the cells");
+    m.cells.resize(size_t(n));
+    m.fields.push_back({field, std::vector<float>(size_t(n))});
+    m.availableFields = {field};
+    // One copy, numpy -> model; coordinates checked to fit the 32-bit cell format.
+    for (py::ssize_t i = 0; i < n; ++i) {
+        for (int a = 0; a < 3; ++a) {
+            const int64_t c = element<int64_t>(lower, i, a);
+            if (c < INT32_MIN || c > INT32_MAX)
+                throw py::value_error("lower[" + std::to_string(i) + "]: " + std::to_string(c) + " does not fit in 32 bits");
+            m.cells[size_t(i)].lower[a] = int32_t(c);
+        }
+        const int64_t l = element<int64_t>(level, i);
+        if (l < 0 || l > amr::kMaxLevel)
+            throw py::value_error("level[" + std::to_string(i) + "]: " + std::to_string(l) + " is outside [0, " +
+                                  std::to_string(amr::kMaxLevel) + "] (0 = finest)");
+        m.cells[size_t(i)].level = int32_t(l);
+        m.fields[0].values[size_t(i)] = element<float>(values, i);
+    }
+    auto v = std::make_shared<PyVolume>();
+    v->units = units;
+    v->source.field = field;
+    v->source.read.nanPolicy = amr::parseNanPolicy(nan);
+    const amr::NanPolicy policy = v->source.read.nanPolicy;
+    py::gil_scoped_release release;
+    v->volume = scene::makeVolume(amr::checkedModel(std::move(m), policy), field);  // the readers' checks
+    return v;
+}
+
+// ---- Transfer function -----------------------------------------------------------------------
+
+struct PyTf {
+    scene::TfChannels channels;
+    static PyTf preset(const std::string& name, float lo, float hi) {
+        return {scene::TfChannels::split(scene::makePreset(name, lo, hi))};
+    }
+    static PyTf fromFile(const fs::path& path, const std::string& preset, float lo, float hi) {
+        return {scene::TfChannels::split(scene::loadTransferFunction(path.string(), lo, hi, preset))};
+    }
+    static PyTf fromNodes(const py::object& positionsObj, const py::object& colorsObj, const std::string& name) {
+        const py::array p = checkedArray(positionsObj, "positions", "iuf", 1);
+        const py::array c = checkedArray(colorsObj, "colors", "iuf", 2, 4);
+        if (p.shape(0) != c.shape(0)) throw py::value_error("positions and colors must have the same length");
+        std::vector<float> pos(size_t(p.shape(0)));
+        std::vector<glm::vec4> col(pos.size());
+        for (py::ssize_t i = 0; i < p.shape(0); ++i) {
+            pos[size_t(i)] = element<float>(p, i);
+            for (int k = 0; k < 4; ++k) col[size_t(i)][k] = element<float>(c, i, k);
+        }
+        return {scene::TfChannels::split(scene::TransferFunction(pos, col, name))};  // validated
+    }
+    scene::TransferFunction merged() const { return channels.merged(); }
+    PyTf rescaled(float lo, float hi) const { return {scene::TfChannels::split(merged().rescaled(lo, hi))}; }
+    py::tuple range() const {
+        const scene::TransferFunction tf = merged();
+        return py::make_tuple(tf.firstPosition(), tf.lastPosition());
+    }
+    py::tuple nodes() const {
+        const scene::TransferFunction tf = merged();
+        py::array_t<float> pos(py::ssize_t(tf.nodeCount()));
+        py::array_t<float> col({py::ssize_t(tf.nodeCount()), py::ssize_t(4)});
+        std::memcpy(pos.mutable_data(), tf.positions().data(), tf.nodeCount() * sizeof(float));
+        std::memcpy(col.mutable_data(), tf.colors().data(), tf.nodeCount() * sizeof(glm::vec4));
+        return py::make_tuple(pos, col);
+    }
+    py::array_t<float> evaluate(const py::object& valuesObj) const {
+        const py::array v = checkedArray(valuesObj, "values", "iuf", 1);
+        const scene::TransferFunction tf = merged();
+        py::array_t<float> out({v.shape(0), py::ssize_t(4)});
+        auto o = out.mutable_unchecked<2>();
+        for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+            const glm::vec4 c = tf.evaluate(element<float>(v, i));
+            for (int k = 0; k < 4; ++k) o(i, k) = c[k];
+        }
+        return out;
+    }
+    std::string json() const { return scene::paraViewPresetJson(channels); }
+    void save(const fs::path& path) const { writeFileAtomic(path, json()); }
+};
+
+// ---- Renderer --------------------------------------------------------------------------------
+
+class PyRenderer {
+public:
+    PyRenderer(std::shared_ptr<gpu::Context> ctx, std::shared_ptr<const scene::Volume> volume,
+               const session::PictureDescription& d, const fs::path& shaderDir, bool quiet)
+        : mCtx(std::move(ctx)) {
+        picture::Options o;
+        o.shaders = gpu::ShaderLibrary(shaderDir);
+        if (!quiet) o.note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); };
+        py::gil_scoped_release release;
+        mPicture = picture::makePicture(*mCtx, std::move(volume), d, o);
+    }
+
+    // ---- the picture ----
+    const session::Session& session() const { return open().session; }
+    scene::Camera camera() const { return session().settings.camera; }
+    void setCamera(const scene::Camera& c) { editSettings([&](scene::RenderSettings& s) { s.camera = c; }); }
+    PyTf tf() const { return {session().tf}; }
+    void setTf(const PyTf& tf) {
+        const scene::TransferFunction merged = tf.merged();
+        locked([&] { mPicture.renderer->setTransferFunction(merged); });
+        mPicture.session.tf = tf.channels;
+    }
+    // Settings edited by `edit` on a copy, validated, then applied (the renderer redoes what the
+    // invalidation rule says); an invalid value changes nothing.
+    template <typename Edit>
+    void editSettings(Edit edit) {
+        scene::RenderSettings s = session().settings;
+        edit(s);
+        scene::validateSettings(s);
+        locked([&] { mPicture.renderer->setSettings(s); });
+        mPicture.session.settings = s;
+    }
+    void setStructure(const std::optional<std::string>& traversal, const std::optional<std::string>& sampler,
+                      const std::optional<std::string>& backend, const std::optional<std::string>& grid,
+                      std::optional<uint32_t> kdLeaves) {
+        scene::StructureConfig c = session().structure;
+        if (traversal) c.traversal = scene::parseTraversal(*traversal);
+        if (sampler) c.sampler = scene::parseSampler(*sampler);
+        if (backend) c.backend = scene::parseBackend(*backend);
+        if (grid) c.grid = *grid;
+        if (kdLeaves) c.kdLeaves = *kdLeaves;
+        scene::StructureConfig resolved = c;
+        picture::resolveStructure(*mCtx, resolved);  // validated before anything is built
+        locked([&] { mPicture.renderer->setStructure(resolved); });
+        mPicture.session.structure = c;
+    }
+    py::dict structure() const {
+        const scene::StructureConfig& c = open().renderer->config();
+        py::dict d;
+        d["traversal"] = scene::traversalName(c.traversal);
+        d["sampler"] = scene::samplerName(c.sampler);
+        d["backend"] = scene::backendName(c.backend);
+        d["backend_requested"] = scene::backendName(session().structure.backend);
+        d["grid"] = c.grid;
+        d["kd_leaves"] = c.kdLeaves;
+        return d;
+    }
+
+    // ---- accumulation ----
+    void reset() { locked([&] { mPicture.renderer->resetAccumulation(); }); }
+    uint32_t spp() const { return open().renderer->accumulatedSpp(); }
+    // Adds n samples per pixel to the current estimate in chunks of about a quarter second, serving
+    // signals (Ctrl-C) and `progress(done, n)` between chunks with the GIL held.
+    void accumulate(uint32_t n, const py::object& progress) {
+        open();
+        uint32_t done = 0;
+        while (done < n) {
+            uint32_t completed = 0;
+            {
+                py::gil_scoped_release release;
+                std::lock_guard lock(mMutex);
+                if (mClosed) break;  // closed by another thread between chunks
+                render::Renderer& r = *mPicture.renderer;
+                const uint32_t height = uint32_t(r.settings().height), before = r.accumulatedSpp();
+                uint32_t rows = 0;
+                Timer t;
+                const double perSample = mSecondsPerRow * double(height);
+                if (mSecondsPerRow > 0 && perSample < kChunkSeconds && r.rowsDone() == 0) {
+                    // Whole samples, as many as fit a chunk.
+                    const uint32_t k = std::min(n - done, uint32_t(std::clamp(kChunkSeconds / perSample, 1.0, 64.0)));
+                    r.accumulate(k, {}, k);
+                    rows = k * height;
+                } else {
+                    // Tiles of rows: the first sample (its cost unknown), and samples slower than a chunk.
+                    rows = mSecondsPerRow > 0 ? uint32_t(std::clamp(kChunkSeconds / mSecondsPerRow, 1.0, double(height)))
+                                              : std::min(height, 8u);
+                    rows = std::min(rows, height - r.rowsDone());
+                    r.accumulateRows(rows);
+                }
+                const double perRow = t.seconds() / double(std::max(rows, 1u));
+                mSecondsPerRow = mSecondsPerRow > 0 ? 0.5 * (mSecondsPerRow + perRow) : perRow;
+                completed = r.accumulatedSpp() - before;
+            }
+            done += completed;
+            // As the CLI: with validation on, any validation error fails the call (its message
+            // went to stderr when it happened).
+            AMRVK_CHECK(mCtx->validationErrors() == 0, "Vulkan validation reported ", mCtx->validationErrors(),
+                        " error(s); last: ", mCtx->lastValidationMessage());
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (!progress.is_none() && completed > 0) progress(done, n);
+        }
+    }
+    py::array_t<float> render(std::optional<uint32_t> spp, const py::object& progress) {
+        reset();
+        accumulate(spp.value_or(session().spp > 0 ? session().spp : 64), progress);
+        return image();
+    }
+    scene::RenderOutput output() const {
+        const PyRenderer& self = *this;
+        self.open();
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);
+        return mPicture.renderer->output();
+    }
+    py::array_t<float> image() const { return imageArray(output().mean); }
+    py::array_t<float> variance() const {
+        const scene::RenderOutput out = output();
+        if (out.spp < 2) throw py::value_error("variance needs at least 2 samples per pixel (have " + std::to_string(out.spp) + ")");
+        const std::vector<float> v = scene::varianceOfMean(out);
+        py::array_t<float> a({py::ssize_t(out.mean.height), py::ssize_t(out.mean.width), py::ssize_t(3)});
+        std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(float));
+        return a;
+    }
+    py::object stats() const {
+        const scene::RenderOutput out = output();
+        const std::string text = picture::renderStats(mPicture, out).dump();
+        return py::module_::import("json").attr("loads")(text);
+    }
+    std::vector<std::string> notes() const { return open().report.notes; }
+    void save(const fs::path& path) const { writeImage(path, output().mean); }
+    py::bytes png() const {
+        const std::vector<uint8_t> bytes = pngBytes(output().mean);
+        return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    }
+    void saveSession(const fs::path& path) const {
+        session::Session s = session();
+        s.input = s.input.empty() ? s.input : fs::absolute(s.input).lexically_normal().string();
+        if (s.input.empty())
+            throw py::value_error("this volume was made from arrays, not read from a file: a session needs a file "
+                                  "(write the cells with amrvk convert, or save the image instead)");
+        session::saveSession(path, s);
+    }
+    void close() {
+        std::lock_guard lock(mMutex);
+        mPicture.renderer.reset();
+        mPicture.volume.reset();
+        mClosed = true;
+    }
+    bool closed() const { return mClosed; }
+
+private:
+    static constexpr double kChunkSeconds = 0.25;
+
+    const picture::Picture& open() const {
+        if (mClosed || !mPicture.renderer) throw py::value_error("the renderer is closed");
+        return mPicture;
+    }
+    template <typename F>
+    void locked(F f) {
+        open();
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);
+        f();
+    }
+
+    std::shared_ptr<gpu::Context> mCtx;  // outlives the picture (declared first)
+    picture::Picture mPicture;
+    mutable std::mutex mMutex;  // one device call at a time (the GIL is released around them)
+    double mSecondsPerRow = 0;  // measured, for chunk sizes
+    bool mClosed = false;
+};
+
+// The description a Python Renderer(...) call makes, as `amrvk render` makes one from its options.
+session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf>& tf,
+                                     const std::optional<scene::Camera>& camera, const py::kwargs& kw) {
+    session::PictureDescription d;
+    session::Session& s = d.session;
+    s.input = v.source.input;
+    s.read = v.source.read;
+    s.field = v.volume->field().name;
+    scene::RenderSettings& rs = s.settings;
+    auto take = [&](const char* key) -> std::optional<py::object> {
+        if (!kw.contains(key)) return std::nullopt;
+        py::object o = kw[key];
+        return o.is_none() ? std::nullopt : std::optional<py::object>(o);
+    };
+    static const char* kKnown[] = {"width",    "height",  "mode",    "spp",     "seed",          "density_scale",
+                                   "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
+                                   "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
+                                   "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
+                                   "quiet",    "fov",     "tf_range"};
+    for (const auto& item : kw) {
+        const std::string key = py::str(item.first);
+        if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
+            throw py::type_error("Renderer() got an unexpected keyword argument '" + key + "'");
+    }
+    if (auto o = take("width")) rs.width = o->cast<int>();
+    if (auto o = take("height")) rs.height = o->cast<int>();
+    if (auto o = take("mode")) rs.mode = scene::parseMode(o->cast<std::string>());
+    if (auto o = take("spp")) s.spp = o->cast<uint32_t>();
+    if (auto o = take("seed")) rs.seed = o->cast<uint32_t>();
+    if (auto o = take("density_scale")) rs.densityScale = o->cast<double>();
+    if (auto o = take("g")) rs.g = o->cast<double>();
+    if (auto o = take("ambient")) rs.ambient = vec3(o->cast<std::vector<double>>(), "ambient");
+    if (auto o = take("background")) rs.background = vec3(o->cast<std::vector<double>>(), "background");
+    if (auto o = take("lights")) rs.lights = o->cast<std::vector<scene::Light>>();
+    if (auto o = take("dt")) rs.dvrStep = o->cast<double>();
+    if (auto o = take("dvr_shading")) rs.dvrShading = o->cast<bool>();
+    if (auto o = take("fov")) rs.camera.fovYDegrees = o->cast<double>();
+    if (camera) rs.camera = *camera;
+    d.fitCamera = !camera;
+    if (tf) s.tf = tf->channels;
+    else d.tfSource = session::TfSource{};  // ramp over the field's range, as amrvk render
+    if (auto o = take("tf_range")) {
+        const auto r = o->cast<std::pair<float, float>>();
+        d.tfRange = r;
+    }
+    const std::optional<py::object> traversal = take("traversal");
+    const std::string t = traversal ? traversal->cast<std::string>() : "";
+    d.fit = t == "auto" ? session::StructureFit::Probe : t.empty() ? session::StructureFit::Data : session::StructureFit::None;
+    if (!t.empty() && t != "auto") s.structure.traversal = scene::parseTraversal(t);
+    if (auto o = take("sampler")) {
+        s.structure.sampler = scene::parseSampler(o->cast<std::string>());
+        d.samplerGiven = true;
+    }
+    s.structure.backend = scene::Backend::Auto;
+    if (auto o = take("backend")) {
+        s.structure.backend = scene::parseBackend(o->cast<std::string>());
+        d.backendGiven = true;
+    }
+    if (auto o = take("grid")) {
+        s.structure.grid = o->cast<std::string>();
+        d.gridGiven = true;
+    }
+    if (auto o = take("kd_leaves")) s.structure.kdLeaves = o->cast<uint32_t>();
+    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(o->cast<uint32_t>()) << 20;
+    scene::validateSettings(rs);
+    return d;
+}
+
+gpu::ContextOptions contextOptions(const py::kwargs& kw) {
+    gpu::ContextOptions o;
+    auto has = [&](const char* k) { return kw.contains(k) && !kw[k].is_none(); };
+    if (has("device")) o.device = py::str(kw["device"]);
+    if (has("validation")) o.validation = kw["validation"].cast<bool>();
+    if (has("gpu_timeout")) o.gpuTimeoutSeconds = kw["gpu_timeout"].cast<double>();
+    if (has("samples_per_invocation")) o.samplesPerInvocation = kw["samples_per_invocation"].cast<uint32_t>();
+    return o;
+}
+
+std::shared_ptr<PyRenderer> makeRenderer(const PyVolume& volume, const std::optional<PyTf>& tf,
+                                         const std::optional<scene::Camera>& camera, const py::kwargs& kw) {
+    const session::PictureDescription d = describe(volume, tf, camera, kw);
+    gpu::ContextOptions co = contextOptions(kw);
+    co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
+    const fs::path shaderDir = kw.contains("shader_dir") && !kw["shader_dir"].is_none()
+                                   ? fs::path(py::str(kw["shader_dir"]).cast<std::string>())
+                                   : fs::path();
+    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    std::shared_ptr<gpu::Context> ctx;
+    {
+        py::gil_scoped_release release;
+        ctx = contextFor(co);
+    }
+    return std::make_shared<PyRenderer>(std::move(ctx), volume.volume, d, shaderDir, quiet);
+}
+
+std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::kwargs& kw) {
+    session::PictureDescription d;
+    d.session = session::loadSession(path);
+    std::shared_ptr<const scene::Volume> volume;
+    {
+        py::gil_scoped_release release;
+        volume = session::loadVolume(d.session);
+    }
+    gpu::ContextOptions co = contextOptions(kw);
+    co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
+    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    std::shared_ptr<gpu::Context> ctx;
+    {
+        py::gil_scoped_release release;
+        ctx = contextFor(co);
+    }
+    return std::make_shared<PyRenderer>(std::move(ctx), std::move(volume), d, fs::path(), quiet);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_amrvk, m) {
+    m.doc() = "amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device (compiled part)";
+    // One-line errors: amrvk's own errors are bad input (ValueError) unless they come from the
+    // device or the runtime, which raise RuntimeError through their own types.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const gpu::ShaderCompileError& e) {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
+        } catch (const Error& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const std::bad_alloc&) {
+            PyErr_SetString(PyExc_MemoryError, "out of memory");
+        }
+    });
+
+    py::class_<scene::Camera>(m, "Camera", "eye, target and up in world space; vertical field of view in degrees")
+        .def(py::init([](const std::vector<double>& eye, const std::vector<double>& target, const std::vector<double>& up,
+                         double fov) {
+                 scene::Camera c{vec3(eye, "eye"), vec3(target, "target"), vec3(up, "up"), fov};
+                 scene::RenderSettings s;
+                 s.camera = c;
+                 scene::validateSettings(s);
+                 return c;
+             }),
+             py::arg("eye"), py::arg("target"), py::arg("up") = std::vector<double>{0, 0, 1}, py::arg("fov") = 40.0)
+        .def_static(
+            "frame",
+            [](const PyVolume& v, double fov) {
+                return scene::defaultCamera(v.volume->worldLo(), v.volume->worldHi(), fov);
+            },
+            py::arg("volume"), py::arg("fov") = 40.0, "the default three-quarter view that frames the volume (z up)")
+        .def_property_readonly("eye", [](const scene::Camera& c) { return list3(c.eye); })
+        .def_property_readonly("target", [](const scene::Camera& c) { return list3(c.target); })
+        .def_property_readonly("up", [](const scene::Camera& c) { return list3(c.up); })
+        .def_property_readonly("fov", [](const scene::Camera& c) { return c.fovYDegrees; })
+        .def("__eq__", [](const scene::Camera& a, const scene::Camera& b) { return a == b; })
+        .def("__repr__", [](const scene::Camera& c) {
+            return strCat("Camera(eye=", c.eye.x, ",", c.eye.y, ",", c.eye.z, " target=", c.target.x, ",", c.target.y,
+                          ",", c.target.z, " fov=", c.fovYDegrees, ")");
+        });
+
+    py::class_<scene::Light>(m, "Light", "a directional light (towards direction) or a point light, world space")
+        .def_static(
+            "directional",
+            [](const std::vector<double>& direction, const std::vector<double>& radiance) {
+                return scene::Light{false, vec3(direction, "direction"), vec3(radiance, "radiance")};
+            },
+            py::arg("direction"), py::arg("radiance") = std::vector<double>{1, 1, 1})
+        .def_static(
+            "point",
+            [](const std::vector<double>& position, const std::vector<double>& intensity) {
+                return scene::Light{true, vec3(position, "position"), vec3(intensity, "intensity")};
+            },
+            py::arg("position"), py::arg("intensity") = std::vector<double>{1, 1, 1})
+        .def_property_readonly("is_point", [](const scene::Light& l) { return l.point; })
+        .def_property_readonly("position_or_direction", [](const scene::Light& l) { return list3(l.posOrDir); })
+        .def_property_readonly("radiance", [](const scene::Light& l) { return list3(l.radiance); });
+
+    py::class_<PyTf>(m, "TransferFunction",
+                     "a piecewise-linear map from field values to albedo (rgb) and alpha (extinction per finest "
+                     "cell width before the density scale); colour and opacity channels kept apart as ParaView does")
+        .def_static("preset", &PyTf::preset, py::arg("name"), py::arg("lo"), py::arg("hi"),
+                    "a built-in preset (ramp, grey, spiky, foggy, constant, empty) over [lo, hi]")
+        .def_static("from_file", &PyTf::fromFile, py::arg("path"), py::arg("preset") = "", py::arg("lo") = 0.0f,
+                    py::arg("hi") = 1.0f, "a ParaView JSON preset file (preset: its name) or .xf; lo/hi for .xf alpha tables")
+        .def_static("from_nodes", &PyTf::fromNodes, py::arg("positions"), py::arg("colors"), py::arg("name") = "nodes",
+                    "nodes: positions (N,) ascending, colors (N, 4) rgb in [0, 1] and alpha >= 0")
+        .def("rescaled", &PyTf::rescaled, py::arg("lo"), py::arg("hi"), "the nodes mapped onto [lo, hi]")
+        .def_property_readonly("range", &PyTf::range)
+        .def_property_readonly("nodes", &PyTf::nodes, "(positions (N,), colors (N, 4)) of the merged function")
+        .def_property_readonly("name", [](const PyTf& t) { return t.channels.name; })
+        .def("evaluate", &PyTf::evaluate, py::arg("values"), "rgba (N, 4) at each value")
+        .def("to_paraview_json", &PyTf::json)
+        .def("save", &PyTf::save, py::arg("path"), "as a ParaView JSON preset file");
+
+    py::class_<PyVolume, std::shared_ptr<PyVolume>>(m, "Volume",
+                                                    "one field of an AMR data set, in brick order with its bricks")
+        .def(py::init(&volumeFromFile), py::arg("path"), py::arg("field") = "", py::arg("format") = "auto",
+             py::arg("nan") = "reject", py::arg("dims") = py::none(), py::arg("type") = "", py::arg("threshold") = 0.0,
+             "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, raw .raw)")
+        .def_static("from_arrays", &volumeFromArrays, py::arg("lower"), py::arg("level"), py::arg("values"),
+                    py::arg("field") = "values", py::arg("origin") = std::vector<double>{0, 0, 0},
+                    py::arg("spacing") = std::vector<double>{1, 1, 1}, py::arg("nan") = "reject", py::arg("units") = "",
+                    py::arg("source") = "arrays",
+                    "leaf cells: lower (N, 3) integer corners in finest-level units, level (N,) with 0 = finest "
+                    "(a cell is 2^level units wide, its corner a multiple of that), values (N,); world = origin + "
+                    "spacing * voxel. Validated as the readers validate (alignment, levels, NaN policy, overlaps)")
+        .def_property_readonly("field", [](const PyVolume& v) { return v.volume->field().name; })
+        .def_property_readonly("units", [](const PyVolume& v) { return v.units; })
+        .def_property_readonly("cells", [](const PyVolume& v) { return v.volume->model.cellCount(); })
+        .def_property_readonly("value_range", [](const PyVolume& v) { return py::make_tuple(v.volume->valueLo(), v.volume->valueHi()); })
+        .def("summary", &PyVolume::summary, "cells per level, value range, world bounds, bytes")
+        .def("__repr__", [](const PyVolume& v) {
+            return strCat("Volume(", v.volume->model.source, ", field '", v.volume->field().name, "', ",
+                          v.volume->model.cellCount(), " cells)");
+        });
+
+    py::class_<PyRenderer, std::shared_ptr<PyRenderer>>(m, "Renderer",
+                                                        "a path-traced picture of a volume on a Vulkan device")
+        .def(py::init(&makeRenderer), py::arg("volume"), py::arg("tf") = py::none(), py::arg("camera") = py::none())
+        .def_static("from_session", &rendererFromSession, py::arg("path"),
+                    "the picture a session file describes (amrvk view's, amrvk render --session's)")
+        .def("render", &PyRenderer::render, py::arg("spp") = py::none(), py::arg("progress") = py::none(),
+             "from scratch: spp samples per pixel (default the session's), returns image()")
+        .def("accumulate", &PyRenderer::accumulate, py::arg("n"), py::arg("progress") = py::none(),
+             "n more samples per pixel, continuing the same estimate")
+        .def("reset", &PyRenderer::reset)
+        .def("image", &PyRenderer::image,
+             "the mean so far: float32 (height, width, 4), row 0 = top, linear radiance, alpha 1")
+        .def("variance", &PyRenderer::variance, "variance of the mean per pixel: float32 (height, width, 3)")
+        .def_property_readonly("spp", &PyRenderer::spp)
+        .def_property_readonly("stats", &PyRenderer::stats, "amrvk render --json's content for the image so far")
+        .def_property_readonly("notes", &PyRenderer::notes, "what was fitted to the data, one line each")
+        .def_property_readonly("structure", &PyRenderer::structure)
+        .def("set_structure", &PyRenderer::setStructure, py::arg("traversal") = py::none(),
+             py::arg("sampler") = py::none(), py::arg("backend") = py::none(), py::arg("grid") = py::none(),
+             py::arg("kd_leaves") = py::none())
+        .def_property("camera", &PyRenderer::camera, &PyRenderer::setCamera)
+        .def_property("tf", &PyRenderer::tf, &PyRenderer::setTf)
+        .def_property(
+            "mode", [](const PyRenderer& r) { return std::string(scene::modeName(r.session().settings.mode)); },
+            [](PyRenderer& r, const std::string& name) { r.editSettings([&](auto& s) { s.mode = scene::parseMode(name); }); })
+        .def_property(
+            "density_scale", [](const PyRenderer& r) { return r.session().settings.densityScale; },
+            [](PyRenderer& r, double d) { r.editSettings([&](auto& s) { s.densityScale = d; }); })
+        .def_property(
+            "size", [](const PyRenderer& r) { return py::make_tuple(r.session().settings.width, r.session().settings.height); },
+            [](PyRenderer& r, std::pair<int, int> wh) {
+                r.editSettings([&](auto& s) {
+                    s.width = wh.first;
+                    s.height = wh.second;
+                });
+            })
+        .def_property(
+            "seed", [](const PyRenderer& r) { return r.session().settings.seed; },
+            [](PyRenderer& r, uint32_t seed) { r.editSettings([&](auto& s) { s.seed = seed; }); })
+        .def_property(
+            "lights", [](const PyRenderer& r) { return r.session().settings.lights; },
+            [](PyRenderer& r, const std::vector<scene::Light>& l) { r.editSettings([&](auto& s) { s.lights = l; }); })
+        .def_property(
+            "ambient", [](const PyRenderer& r) { return list3(r.session().settings.ambient); },
+            [](PyRenderer& r, const std::vector<double>& a) {
+                r.editSettings([&](auto& s) { s.ambient = vec3(a, "ambient"); });
+            })
+        .def_property(
+            "background",
+            [](const PyRenderer& r) -> py::object {
+                const auto& b = r.session().settings.background;
+                return b ? py::cast(list3(*b)) : py::none();
+            },
+            [](PyRenderer& r, const std::optional<std::vector<double>>& b) {
+                r.editSettings([&](auto& s) {
+                    s.background = b ? std::optional<glm::dvec3>(vec3(*b, "background")) : std::nullopt;
+                });
+            },
+            "radiance seen by rays that escape without scattering; None = the ambient light")
+        .def_property(
+            "g", [](const PyRenderer& r) { return r.session().settings.g; },
+            [](PyRenderer& r, double g) { r.editSettings([&](auto& s) { s.g = g; }); },
+            "Henyey-Greenstein asymmetry in (-1, 1)")
+        .def("save", &PyRenderer::save, py::arg("path"), "the image so far: .png (sRGB), .exr or .pfm (linear)")
+        .def("save_session", &PyRenderer::saveSession, py::arg("path"),
+             "the picture as a session file (amrvk view --session, amrvk render --session)")
+        .def("png", &PyRenderer::png, "the image so far as PNG bytes (what save writes to a .png)")
+        .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
+        .def_property_readonly("closed", &PyRenderer::closed);
+
+    m.def(
+        "devices",
+        [] {
+            std::vector<py::dict> out;
+            for (const gpu::DeviceReport& d : gpu::listDevices()) {
+                py::dict e;
+                e["index"] = d.index;
+                e["name"] = d.name;
+                e["type"] = d.type;
+                e["driver"] = d.driver;
+                e["ray_query"] = d.rayQuery;
+                e["usable"] = d.usable;
+                e["reject_reason"] = d.rejectReason;
+                out.push_back(e);
+            }
+            return out;
+        },
+        "every Vulkan device, and why an unusable one is rejected");
+}

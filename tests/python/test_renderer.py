@@ -1,0 +1,201 @@
+"""The Renderer: it renders what `amrvk render` renders for the same description, continues an
+estimate, follows every edit, saves images and sessions the command line reads, releases the GIL
+while the device works, stops on Ctrl-C within a second, and refuses a closed renderer."""
+import json
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from conftest import SAMPLE, SOURCE, amrvk_binary, run_cli
+
+SMALL = dict(width=32, height=24, density_scale=3.0, tf_range=(0.3, 2.0), grid="16", quiet=True)
+
+
+def picture(amrvk, **kw):
+    return amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **{**SMALL, **kw})
+
+
+def test_it_renders_what_the_command_line_renders(amrvk, tmp_path):
+    r = picture(amrvk, mode="ss", seed=3, lights=[amrvk.Light.directional([1, -1, 2], [3, 3, 3])])
+    image = r.render(spp=8)
+    assert image.shape == (24, 32, 4) and image.dtype == np.float32
+    assert np.all(image[..., 3] == 1.0)
+    run_cli("render", SAMPLE, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
+            "--mode", "ss", "--seed", "3", "--light-dir", "1", "-1", "2", "3", "3", "3", "--spp", "8",
+            "-o", tmp_path / "cli.pfm")
+    from amrvk import _amrvk  # noqa: F401  (the reader below is the command line's own PFM)
+    cli = read_pfm(tmp_path / "cli.pfm")
+    assert np.max(np.abs(cli - image[..., :3]) / np.maximum(np.abs(cli), 1e-3)) < 1e-5, "same samples, same image"
+    stats = r.stats
+    assert stats["spp"] == 8 and stats["width"] == 32 and stats["mode"] == "ss"
+    assert stats["majorantViolations"] == 0 and stats["densityLookups"] > 0
+    assert abs(stats["meanRGB"][0] - float(image[..., 0].mean())) < 1e-5
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3)
+    return data[::-1]  # PFM rows run bottom to top
+
+
+def test_accumulate_continues_the_same_estimate(amrvk):
+    r = picture(amrvk)
+    whole = r.render(spp=8).copy()
+    r.reset()
+    assert r.spp == 0
+    r.accumulate(3)
+    r.accumulate(5)
+    assert r.spp == 8
+    assert np.max(np.abs(r.image() - whole)) < 1e-5
+    var = r.variance()
+    assert var.shape == (24, 32, 3) and np.all(var >= 0) and var.max() > 0
+
+
+def test_every_edit_follows_the_session(amrvk, tmp_path):
+    r = picture(amrvk)
+    base = r.render(spp=4).copy()
+    cam = r.camera
+    r.camera = amrvk.Camera([c * 1.3 for c in cam.eye], cam.target, cam.up, 30.0)
+    moved = r.render(spp=4)
+    assert np.abs(moved - base).max() > 1e-2
+    r.camera = cam
+    r.density_scale = 6.0
+    r.mode = "ae"
+    r.seed = 5
+    r.lights = [amrvk.Light.point([256, 256, 900], [20, 20, 20])]
+    r.tf = amrvk.TransferFunction.preset("foggy", 0.3, 2.0)
+    r.size = (16, 12)
+    r.background = [0.1, 0.2, 0.3]
+    r.g = 0.4
+    assert r.background == [0.1, 0.2, 0.3] and r.g == 0.4
+    r.set_structure(traversal="abr", sampler="abr", backend="sw")
+    assert r.structure["traversal"] == "abr" and r.structure["sampler"] == "abr"
+    edited = r.render(spp=4)
+    assert edited.shape == (12, 16, 4)
+    r.save_session(tmp_path / "s.json")
+    s = json.loads((tmp_path / "s.json").read_text())
+    assert s["render"]["mode"] == "ae" and s["render"]["densityScale"] == 6.0 and s["image"]["width"] == 16
+    assert s["structure"]["traversal"] == "abr" and s["transferFunction"]["Name"] == "foggy"
+    assert s["render"]["background"] == [0.1, 0.2, 0.3] and s["render"]["g"] == 0.4
+    # The command line renders the saved session as this renderer does (same seed: same samples).
+    run_cli("render", "--session", tmp_path / "s.json", "--spp", "4", "-o", tmp_path / "s.pfm")
+    assert np.max(np.abs(read_pfm(tmp_path / "s.pfm") - edited[..., :3])) < 1e-4
+    again = amrvk.Renderer.from_session(str(tmp_path / "s.json"), quiet=True)
+    assert np.max(np.abs(again.render(spp=4) - edited)) < 1e-5
+    # A rejected edit changes nothing.
+    with pytest.raises(ValueError, match="--sampler dense needs --traversal grid-dda or grid-bvh"):
+        r.set_structure(sampler="dense")
+    assert r.structure["sampler"] == "abr"
+    with pytest.raises(ValueError, match="--density-scale -1 must be finite and >= 0"):
+        r.density_scale = -1
+    assert r.density_scale == 6.0
+    with pytest.raises(ValueError, match="--background"):
+        r.background = [0, -1, 0]
+    assert r.background == [0.1, 0.2, 0.3]
+    with pytest.raises(ValueError, match="--mode 'pt'"):
+        r.mode = "pt"
+
+
+def test_images_sessions_and_notebooks(amrvk, tmp_path):
+    r = picture(amrvk)
+    assert r._repr_png_() is None, "nothing rendered yet"
+    r.render(spp=2)
+    for name in ("a.png", "a.exr", "a.pfm"):
+        r.save(str(tmp_path / name))
+        assert (tmp_path / name).stat().st_size > 0
+    png = r._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and png == r.png()
+    assert (tmp_path / "a.png").read_bytes() == png
+    shown = amrvk.show(r.image())._repr_png_()
+    assert shown[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(ValueError, match="unknown image extension '.jpg'"):
+        r.save(str(tmp_path / "a.jpg"))
+    arrays = amrvk.Renderer(amrvk.Volume.from_arrays(np.zeros((1, 3), np.int32), np.zeros(1, np.int32),
+                                                     np.ones(1, np.float32)), width=8, height=8, quiet=True)
+    with pytest.raises(ValueError, match="made from arrays"):
+        arrays.save_session(str(tmp_path / "x.json"))
+
+
+def test_progress_and_the_fitted_choices(amrvk):
+    calls = []
+    r = picture(amrvk)
+    r.render(spp=6, progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1] == (6, 6) and all(t == 6 for _, t in calls)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+    r.render(spp=2, progress=True)  # tqdm or a stderr line, whichever is there
+    sparse = amrvk.Volume.from_arrays(np.array([[0, 0, 0], [4095, 0, 0], [0, 0, 4095]]), np.zeros(3, np.int32),
+                                      np.array([1, 2, 3], np.float32))
+    fitted = amrvk.Renderer(sparse, width=8, height=8, quiet=True)
+    assert fitted.notes[0].startswith("traversal abr and sampler abr"), fitted.notes
+    assert fitted.structure["traversal"] == "abr"
+
+
+def test_a_closed_renderer_refuses_every_call(amrvk):
+    with picture(amrvk) as r:
+        r.render(spp=1)
+    assert r.closed
+    for call in (lambda: r.render(spp=1), r.image, lambda: r.stats, r.reset, lambda: r.camera):
+        with pytest.raises(ValueError, match="the renderer is closed"):
+            call()
+
+
+def test_the_gil_is_released_while_the_device_works(amrvk):
+    r = picture(amrvk, width=96, height=96)
+    counter = [0]
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            counter[0] += 1
+
+    t = threading.Thread(target=count)
+    t.start()
+    start = time.time()
+    r.render(spp=16)
+    elapsed = time.time() - start
+    stop.set()
+    t.join()
+    # A thread that holds no GIL-free time would count only in the gaps between chunks.
+    assert counter[0] > 10000, (counter[0], elapsed)
+
+
+def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
+    script = tmp_path / "long.py"
+    script.write_text(
+        "import sys, time, amrvk\n"
+        f"r = amrvk.Renderer(amrvk.Volume({str(SAMPLE)!r}), width=256, height=256, quiet=True)\n"
+        "r.render(spp=1)\n"
+        "print('ready', flush=True)\n"
+        "try:\n"
+        "    r.render(spp=100000)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', r.spp, flush=True)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    p = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True, env=env)
+    assert p.stdout.readline().strip() == "ready"
+    time.sleep(1.0)
+    sent = time.time()
+    p.send_signal(signal.SIGINT)
+    line = p.stdout.readline().split()
+    stopped = time.time() - sent
+    p.wait(timeout=30)
+    assert line[:1] == ["interrupted"], line
+    assert stopped < 1.0, f"{stopped:.2f} s after Ctrl-C"
+    assert int(line[1]) < 100000
+
+
+def test_devices(amrvk):
+    devices = amrvk.devices()
+    assert any(d["usable"] for d in devices)
+    assert all({"name", "type", "ray_query", "reject_reason"} <= set(d) for d in devices)
