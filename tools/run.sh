@@ -20,7 +20,8 @@ base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validatio
            glslc glslang-tools spirv-tools libglfw3-dev libglm-dev libgtest-dev
            libhdf5-dev libpng-dev zlib1g-dev nlohmann-json3-dev python3 python3-matplotlib
            libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev
-           libimgui-dev xvfb xauth xdotool)
+           libimgui-dev xvfb xauth xdotool
+           python3-dev pybind11-dev python3-numpy python3-pytest python3-yt python3-tqdm)
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes (libclang_rt.fuzzer-x86_64.a
 # is in libclang-rt-14-dev).
 fuzz_pkgs=(clang-14 libclang-rt-14-dev)
@@ -90,6 +91,21 @@ build() {
   local werror=OFF; [ "${CI:-}" = true ] && werror=ON
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DAMRVK_WERROR="$werror" >/dev/null
   cmake --build build -j "$jobs"
+  install_python_path
+}
+
+# `import amrvk` for Debian's python3: a .pth file naming build/python in its site directory
+# (/usr/local/lib/python3.X/dist-packages, the place Debian keeps for local additions). Written only
+# where the module was built; an amrvk.pth that names another checkout is replaced, with a note.
+install_python_path() {
+  [ -d build/python/amrvk ] && ls build/python/amrvk/_amrvk*.so >/dev/null 2>&1 || return 0
+  local site; site=$(/usr/bin/python3 -c 'import sys; print(f"/usr/local/lib/python3.{sys.version_info[1]}/dist-packages")')
+  local pth="$site/amrvk.pth" want="$here/build/python"
+  if [ "$(cat "$pth" 2>/dev/null)" != "$want" ]; then
+    [ -f "$pth" ] && say "python: $pth named $(cat "$pth"); now $want"
+    as_root mkdir -p "$site" && printf '%s\n' "$want" | as_root tee "$pth" >/dev/null
+    say "python: /usr/bin/python3 imports amrvk from $want ($pth)"
+  fi
 }
 
 # ASan + UBSan build of everything the CPU tests run (amrvk_tests_cpu and the amrvk binary the CLI
@@ -112,7 +128,20 @@ sanitize() {
   local skip=()
   local exclude=(); [ "${#skip[@]}" -gt 0 ] && exclude=(-E "$(IFS='|'; echo "${skip[*]}")")
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L cpu "${exclude[@]}"
-  say "sanitize: build and CPU tests took $((SECONDS - t0)) s"
+  sanitize_python
+  say "sanitize: build and tests took $((SECONDS - t0)) s"
+}
+
+# The Python module under ASan + UBSan: the sanitizer runtimes preloaded into Debian's python3
+# (which is not built with them), leak checking off (the interpreter keeps its objects at exit),
+# every pytest test (bad arrays, closed renderers, yt input and renders through lavapipe).
+sanitize_python() {
+  local targets; targets=$(cmake --build build-asan --target help)
+  [[ $targets == *" _amrvk"* ]] || { say "sanitize: no Python module to test"; return 0; }
+  cmake --build build-asan -j "$(nproc 2>/dev/null || echo 2)" --target _amrvk
+  local rt; rt="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)"
+  ASAN_OPTIONS="detect_leaks=0:abort_on_error=0:strict_string_checks=1:check_initialization_order=1" \
+    LD_PRELOAD="$rt" bash tests/python/run.sh /usr/bin/python3 "$here/build-asan" "$here"
 }
 
 fuzz_deps() {
