@@ -83,7 +83,7 @@ std::vector<fs::path> exaBrickFiles(const Model& model, const fs::path& base, bo
     for (const Field& f : model.fields)
         out.push_back(fs::path(base) += (writeSingleAsPlain && model.fields.size() == 1)
                                             ? std::string(".scalars")
-                                            : "." + scalarsName(f.name) + ".scalars");
+                                            : strCat(".", scalarsName(f.name), ".scalars"));  // GCC 12: no false -Wrestrict
     for (size_t i = 1; i < out.size(); ++i)
         for (size_t j = 1; j < i; ++j)
             AMRVK_CHECK(out[i] != out[j], "fields '", model.fields[j - 1].name, "' and '", model.fields[i - 1].name,
