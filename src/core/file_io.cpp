@@ -118,6 +118,7 @@ mode_t processUmask() {
 // Files opened for reading (canonical paths, in order).
 std::mutex gInputsMutex;
 std::vector<fs::path> gInputs;
+std::vector<std::vector<fs::path>*> gRecorders;  // every live InputFileRecorder's list
 
 // How an output path is written (see AtomicFileWriter); throws for what is refused.
 enum class OutputKind { New, Replace, WriteThrough };
@@ -158,6 +159,25 @@ void noteInputFile(const fs::path& path) {
     if (ec) return;
     std::lock_guard lock(gInputsMutex);
     if (std::find(gInputs.begin(), gInputs.end(), canonical) == gInputs.end()) gInputs.push_back(canonical);
+    for (std::vector<fs::path>* files : gRecorders)
+        if (std::find(files->begin(), files->end(), canonical) == files->end()) files->push_back(canonical);
+}
+
+InputFileRecorder::InputFileRecorder() {
+    std::lock_guard lock(gInputsMutex);
+    gRecorders.push_back(&mFiles);
+}
+
+InputFileRecorder::~InputFileRecorder() {
+    std::lock_guard lock(gInputsMutex);
+    gRecorders.erase(std::find(gRecorders.begin(), gRecorders.end(), &mFiles));
+}
+
+std::vector<NamedPath> InputFileRecorder::files(const std::string& option) const {
+    std::lock_guard lock(gInputsMutex);
+    std::vector<NamedPath> out;
+    for (const fs::path& p : mFiles) out.push_back({option, p});
+    return out;
 }
 
 std::vector<NamedPath> inputFilesRead() {

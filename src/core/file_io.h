@@ -115,6 +115,20 @@ void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<Named
 void noteInputFile(const std::filesystem::path& path);
 std::vector<NamedPath> inputFilesRead();
 
+// Records, while it lives, every file noteInputFile sees (from any thread; canonical paths, each
+// once): the files one data set is made of, for front ends that read several (Python).
+class InputFileRecorder {
+public:
+    InputFileRecorder();
+    ~InputFileRecorder();
+    InputFileRecorder(const InputFileRecorder&) = delete;
+    InputFileRecorder& operator=(const InputFileRecorder&) = delete;
+    std::vector<NamedPath> files(const std::string& option) const;  // each named by `option`
+
+private:
+    std::vector<std::filesystem::path> mFiles;
+};
+
 // Writes a whole text/binary buffer atomically.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& contents);
 

@@ -125,6 +125,7 @@ struct PyVolume {
     std::shared_ptr<const scene::Volume> volume;
     session::Session source;  // input, read options and field (sessions name them); input "" for arrays
     std::string units;        // the field's units where known (yt), else ""
+    std::vector<NamedPath> files;  // the files the data set was read from (none for arrays and yt)
 
     py::dict summary() const {
         const scene::Volume& v = *volume;
@@ -164,7 +165,9 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
     s.read.rawThreshold = threshold;
     {
         py::gil_scoped_release release;
+        InputFileRecorder recorder;
         v->volume = session::loadVolume(s);
+        v->files = recorder.files("the volume's data");
     }
     s.field = v->volume->field().name;
     return v;
@@ -274,8 +277,9 @@ struct PyTf {
 class PyRenderer {
 public:
     PyRenderer(std::shared_ptr<gpu::Context> ctx, std::shared_ptr<const scene::Volume> volume,
-               const session::PictureDescription& d, const fs::path& shaderDir, bool quiet)
-        : mCtx(std::move(ctx)) {
+               const session::PictureDescription& d, const fs::path& shaderDir, bool quiet,
+               std::vector<NamedPath> dataFiles)
+        : mCtx(std::move(ctx)), mDataFiles(std::move(dataFiles)) {
         picture::Options o;
         o.shaders = gpu::ShaderLibrary(shaderDir);
         if (!quiet) o.note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); };
@@ -400,7 +404,12 @@ public:
         return py::module_::import("json").attr("loads")(text);
     }
     std::vector<std::string> notes() const { return open().report.notes; }
-    void save(const fs::path& path) const { writeImage(path, output().mean); }
+    // Outputs never replace a file the renderer's data set was read from (as the CLI refuses
+    // -o onto an input); everything else is checkOutputs' and AtomicFileWriter's policy.
+    void save(const fs::path& path) const {
+        checkOutputs({{"save", path}}, mDataFiles);
+        writeImage(path, output().mean);
+    }
     py::bytes png() const {
         const std::vector<uint8_t> bytes = pngBytes(output().mean);
         return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -411,6 +420,7 @@ public:
         if (s.input.empty())
             throw py::value_error("this volume was made from arrays, not read from a file: a session needs a file "
                                   "(write the cells with amrvk convert, or save the image instead)");
+        checkOutputs({{"save_session", path}}, mDataFiles);
         session::saveSession(path, s);
     }
     void close() {
@@ -437,6 +447,7 @@ private:
     }
 
     std::shared_ptr<gpu::Context> mCtx;  // outlives the picture (declared first)
+    std::vector<NamedPath> mDataFiles;   // outputs refuse these
     picture::Picture mPicture;
     mutable std::mutex mMutex;  // one device call at a time (the GIL is released around them)
     double mSecondsPerRow = 0;  // measured, for chunk sizes
@@ -535,16 +546,19 @@ std::shared_ptr<PyRenderer> makeRenderer(const PyVolume& volume, const std::opti
         py::gil_scoped_release release;
         ctx = contextFor(co);
     }
-    return std::make_shared<PyRenderer>(std::move(ctx), volume.volume, d, shaderDir, quiet);
+    return std::make_shared<PyRenderer>(std::move(ctx), volume.volume, d, shaderDir, quiet, volume.files);
 }
 
 std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::kwargs& kw) {
     session::PictureDescription d;
     d.session = session::loadSession(path);
     std::shared_ptr<const scene::Volume> volume;
+    std::vector<NamedPath> files;
     {
         py::gil_scoped_release release;
+        InputFileRecorder recorder;
         volume = session::loadVolume(d.session);
+        files = recorder.files("the volume's data");
     }
     gpu::ContextOptions co = contextOptions(kw);
     co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
@@ -554,7 +568,7 @@ std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::
         py::gil_scoped_release release;
         ctx = contextFor(co);
     }
-    return std::make_shared<PyRenderer>(std::move(ctx), std::move(volume), d, fs::path(), quiet);
+    return std::make_shared<PyRenderer>(std::move(ctx), std::move(volume), d, fs::path(), quiet, std::move(files));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@ while the device works, stops on Ctrl-C within a second, and refuses a closed re
 import json
 import os
 import pathlib
+import shutil
 import signal
 import subprocess
 import sys
@@ -124,6 +125,32 @@ def test_images_sessions_and_notebooks(amrvk, tmp_path):
                                                      np.ones(1, np.float32)), width=8, height=8, quiet=True)
     with pytest.raises(ValueError, match="made from arrays"):
         arrays.save_session(str(tmp_path / "x.json"))
+
+
+def test_outputs_never_replace_the_data_they_were_rendered_from(amrvk, tmp_path):
+    # A copy of the sample (the check failing must not touch the repository's own file).
+    for ext in (".cells", ".scalars"):
+        shutil.copy(SAMPLE.with_suffix(ext), tmp_path / f"cloud{ext}")
+    cells = tmp_path / "cloud.cells"
+    before = cells.read_bytes()
+    (tmp_path / "out.pfm").symlink_to(cells)
+    r = amrvk.Renderer(amrvk.Volume(str(cells)), width=8, height=8, grid="16", quiet=True)
+    r.render(spp=1)
+    with pytest.raises(ValueError, match=r"save .*out.pfm.* is the input the volume's data .*cloud.cells"):
+        r.save(str(tmp_path / "out.pfm"))
+    with pytest.raises(ValueError, match=r"save_session .* is the input the volume's data .*cloud.scalars"):
+        r.save_session(str(tmp_path / "cloud.scalars"))
+    assert cells.read_bytes() == before and (tmp_path / "out.pfm").is_symlink()
+    again = amrvk.Renderer.from_session(str(session_of(r, tmp_path)), quiet=True)
+    with pytest.raises(ValueError, match="is the input the volume's data"):
+        again.save(str(cells))
+    r.save(str(tmp_path / "fine.pfm"))  # anything else is written
+
+
+def session_of(r, tmp_path):
+    path = tmp_path / "s.json"
+    r.save_session(str(path))
+    return path
 
 
 def test_progress_and_the_fitted_choices(amrvk):
