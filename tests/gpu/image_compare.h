@@ -5,6 +5,7 @@
 // images are written under build/test-artifacts/<test>/.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -32,6 +33,18 @@ inline double sidakZ(double alpha, size_t tests) {
         else hi = mid;
     }
     return hi;
+}
+
+// Largest relative difference between two images (RGB; values below 1e-3 compare absolutely): for
+// renders of the same samples, which agree up to rounding.
+inline double maxRelativeDifference(const Image& a, const Image& b) {
+    double worst = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double x = a.pixels[i][c], y = b.pixels[i][c];
+            worst = std::max(worst, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-3}));
+        }
+    return worst;
 }
 
 inline void writeArtifacts(const std::string& tag, const Image& a, const Image& b) {

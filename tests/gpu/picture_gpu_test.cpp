@@ -8,6 +8,7 @@
 #include "amr/readers.h"
 #include "core/image_io.h"
 #include "gpu_fixture.h"
+#include "image_compare.h"
 #include "model_fixtures.h"
 #include "picture/picture.h"
 #include "render_fixtures.h"
@@ -15,21 +16,12 @@
 #include "test_data.h"
 
 using namespace amrvk;
+using test::maxRelativeDifference;
 namespace fs = std::filesystem;
 
 namespace {
 
 class PictureGpu : public test::GpuTest {};
-
-double maxRelativeDifference(const Image& a, const Image& b) {
-    double worst = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double x = a.pixels[i][c], y = b.pixels[i][c];
-            worst = std::max(worst, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-3}));
-        }
-    return worst;
-}
 
 session::PictureDescription cloudDescription(const fs::path& input) {
     session::PictureDescription d;

@@ -17,6 +17,7 @@
 #include "test_data.h"
 
 using namespace amrvk;
+using test::maxRelativeDifference;
 
 namespace {
 
@@ -31,17 +32,6 @@ scene::RenderSettings smallSettings(const amr::Model& m) {
 }
 
 scene::TransferFunction rampOver(const scene::Volume& v) { return scene::makePreset("ramp", v.valueLo(), v.valueHi()); }
-
-// Largest relative difference between two images' means (same samples: equal up to rounding).
-double maxRelativeDifference(const Image& a, const Image& b) {
-    double worst = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double x = a.pixels[i][c], y = b.pixels[i][c];
-            worst = std::max(worst, std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-3}));
-        }
-    return worst;
-}
 
 bool holdsDeviceBuffer(gpu::Context& ctx, const std::string& name) {
     for (const auto& [n, usage] : ctx.memory().perResource())

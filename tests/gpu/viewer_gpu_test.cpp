@@ -36,6 +36,15 @@ std::string onOwnDisplay(const std::string& commandLine) {
     return "bash " + std::string(AMRVK_SOURCE_DIR) + "/tests/with_xvfb.sh 800x600x24 " + commandLine;
 }
 
+// A fresh scratch folder `name` holding a copy of shaders/ (for scripts that edit shaders).
+fs::path scratchWithShaders(const std::string& name) {
+    const fs::path dir = test::scratchDir() / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
+    return dir;
+}
+
 bool onPath(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
 
 // Runs a shell command line with stdout and stderr into files under dir; returns the exit status.
@@ -160,10 +169,7 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
 }
 
 TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
-    const fs::path dir = test::scratchDir() / "viewer-reload";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
+    const fs::path dir = scratchWithShaders("viewer-reload");
     // ae with a camera looking past the data: every pixel is the background radiance (ambient 1).
     test::writeAll(dir / "script.txt",
                    "3 screenshot " + (dir / "before.pfm").string() + "\n"
@@ -195,10 +201,7 @@ TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
 }
 
 TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
-    const fs::path dir = test::scratchDir() / "viewer-all-actions";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
+    const fs::path dir = scratchWithShaders("viewer-all-actions");
     // Every documented action at frame 0 (docs/viewer.md), the same frame a script starts with.
     test::writeAll(dir / "script.txt",
                    "0 orbit 10 5\n0 pan 3 -2\n0 zoom 1\n0 tf-preset foggy\n0 tf-range 0.1 1.5\n0 density 2\n"
