@@ -141,7 +141,7 @@ sanitize_python() {
   cmake --build build-asan -j "$(nproc 2>/dev/null || echo 2)" --target _amrvk
   local rt; rt="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)"
   ASAN_OPTIONS="detect_leaks=0:abort_on_error=0:strict_string_checks=1:check_initialization_order=1" \
-    LD_PRELOAD="$rt" bash tests/python/run.sh /usr/bin/python3 "$here/build-asan" "$here"
+    LD_PRELOAD="$rt" timeout 1800 bash tests/python/run.sh /usr/bin/python3 "$here/build-asan" "$here"
 }
 
 fuzz_deps() {
