@@ -21,7 +21,8 @@ base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validatio
            libhdf5-dev libpng-dev zlib1g-dev nlohmann-json3-dev python3 python3-matplotlib
            libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev
            libimgui-dev xvfb xauth xdotool
-           python3-dev pybind11-dev python3-numpy python3-pytest python3-yt python3-tqdm)
+           python3-dev pybind11-dev python3-numpy python3-pytest python3-yt python3-tqdm
+           openmpi-bin libopenmpi-dev)
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes (libclang_rt.fuzzer-x86_64.a
 # is in libclang-rt-14-dev).
 fuzz_pkgs=(clang-14 libclang-rt-14-dev)

@@ -2,13 +2,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/mpi_launch.h"
 #include "gpu/context.h"
 
 namespace {
@@ -32,27 +33,6 @@ const char* kUsage =
     "        Chombo .hdf5, raw uniform volume (.raw); the format is detected (--format to "
     "override)\n";
 
-// CLI11's messages in amrvk's form: one line naming the option and the value.
-std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
-    std::string m = e.what();
-    std::smatch match;
-    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-        static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
-        const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
-        return arg.rfind("-", 0) == 0
-                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command + " --help)"
-                   : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
-    }
-    static const std::regex missing(R"(^(\S+): (\d+) required ([^:\s]+).* missing)");
-    if (std::regex_search(m, match, missing))
-        return match[1].str() + ": expects " + (match[2].str() == "1" ? "a value" : match[2].str() + " values") + " (" +
-               match[3].str() + ") (see amrvk " + command + " --help)";
-    static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
-    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
-    for (char& c : m)
-        if (c == '\n' || c == '\r') c = ' ';
-    return m + " (see amrvk " + command + " --help)";
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -70,18 +50,17 @@ int main(int argc, char** argv) {
         const std::pair<const char*, int (*)(const std::vector<std::string>&)> commands[] = {
             {"info", runInfo},       {"gen", runGen},     {"convert", runConvert}, {"render", runRender},
             {"view", runView},       {"devices", runDevices}, {"bench", runBench}, {"shaders", runShaders}};
+        // Under mpirun only render splits its work; any other command would run N times over.
+        const int ranks = amrvk::launchedJobSize();
+        AMRVK_CHECK(ranks <= 1 || command == "render", "amrvk ", command, " was started by an MPI launcher with ", ranks,
+                    " processes; only 'amrvk render' runs on several ranks (docs/mpi.md)");
         for (const auto& [name, run] : commands)
             if (command == name) return run(args);
         std::fprintf(stderr, "amrvk: unknown command '%s' (see amrvk --help)\n", command.c_str());
         return 2;
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), parseErrorLine(e, command).c_str());
-        return 1;
-    } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "amrvk %s: error: out of memory\n", command.c_str());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(), e.what());
+    } catch (...) {
+        std::fprintf(stderr, "amrvk %s: error: %s\n", command.c_str(),
+                     amrvk::cli::errorText(std::current_exception(), command).c_str());
         return 1;
     }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <regex>
 #include <sstream>
 
 #include "core/checked_size.h"
@@ -408,6 +409,45 @@ bool parseCommandLine(CLI::App& app, const std::vector<std::string>& argv) {
         return false;
     }
     return true;
+}
+
+namespace {
+
+// CLI11's messages in amrvk's form: one line naming the option and the value.
+std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
+    std::string m = e.what();
+    std::smatch match;
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+        static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
+        const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
+        return arg.rfind("-", 0) == 0
+                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command + " --help)"
+                   : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
+    }
+    static const std::regex missing(R"(^(\S+): (\d+) required ([^:\s]+).* missing)");
+    if (std::regex_search(m, match, missing))
+        return match[1].str() + ": expects " + (match[2].str() == "1" ? "a value" : match[2].str() + " values") + " (" +
+               match[3].str() + ") (see amrvk " + command + " --help)";
+    static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
+    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
+    for (char& c : m)
+        if (c == '\n' || c == '\r') c = ' ';
+    return m + " (see amrvk " + command + " --help)";
+}
+}  // namespace
+
+std::string errorText(std::exception_ptr error, const std::string& command) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const CLI::ParseError& e) {
+        return parseErrorLine(e, command);
+    } catch (const std::bad_alloc&) {
+        return "out of memory";
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return "unknown error";
+    }
 }
 
 }  // namespace amrvk::cli

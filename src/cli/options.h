@@ -5,6 +5,7 @@
 // where they are declared (ranges, finite numbers, names), so every command reports a bad value
 // in the same one line.
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -88,5 +89,9 @@ void setUpCommand(CLI::App& app);
 // Parses argv (after the subcommand) into `app`; --help prints the help and returns false (the
 // command then exits 0). Errors throw CLI::ParseError, which main prints as one line.
 bool parseCommandLine(CLI::App& app, const std::vector<std::string>& argv);
+
+// What an error thrown by a command says, as one line (main prints "amrvk COMMAND: error: " before
+// it): CLI11's parse errors naming the option and value, "out of memory", or the message.
+std::string errorText(std::exception_ptr error, const std::string& command);
 
 }  // namespace amrvk::cli

@@ -12,12 +12,21 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/image_io.h"
+#include "core/mpi_launch.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+
+#if AMRVK_MPI
+#include "mpi/sample_parallel.h"
+#else
+namespace amrvk::mpi {
+class World;
+}
+#endif
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -70,8 +79,13 @@ int runDevices(const std::vector<std::string>& argv) {
     return 0;
 }
 
-int runRender(const std::vector<std::string>& argv) {
-    const Timer sinceStart;  // time to the first sample: reading, validating, structures, device set-up
+namespace {
+
+// One render; with `world` (mpirun) this rank's part of a sample-parallel one: every rank reads,
+// builds and renders its samples, rank 0 alone speaks and writes.
+int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
+    const Timer sinceStart;
+    const bool speaks = !world || world->rank() == 0;  // time to the first sample: reading, validating, structures, device set-up
     CLI::App app(kRenderHelp, "amrvk render");
     setUpCommand(app);
     std::string input, output = "amrvk.png", jsonFile;
@@ -103,12 +117,15 @@ int runRender(const std::vector<std::string>& argv) {
     const double readSeconds = readTimer.seconds() - loaded->bricks.buildSeconds;
     checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
     gpu::ContextOptions co = dev.context;
+    if (world) co.spread = uint32_t(world->localRank());  // one device per rank where a node has several
     co.requireRayQuery = description.session.structure.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
     picture::Picture picture =
         picture::makePicture(ctx, std::move(loaded), description,
                              {.shaders = gpu::ShaderLibrary(dev.shaderDir),
-                              .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }});
+                              .note = [speaks](const std::string& line) {
+                                  if (speaks) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+                              }});
     picture.report.readSeconds = readSeconds;
     const session::Session& s = picture.session;
     render::Renderer& renderer = *picture.renderer;
@@ -117,15 +134,29 @@ int runRender(const std::vector<std::string>& argv) {
     ProgressBar bar("render", "spp");
     Timer wall;
     double firstSampleSeconds = 0;
-    scene::RenderOutput out = picture.render([&](uint32_t d, uint32_t t) {
+    auto progress = [&](uint32_t d, uint32_t t) {
         if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
         bar.update(d, t);
-    });
+    };
+    scene::RenderOutput out;
+    Json mpiReport;
+#if AMRVK_MPI
+    if (world) {
+        mpi::SampleParallelResult part = mpi::renderSampleParallel(
+            *world, picture,
+            {{"readSeconds", readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
+            progress);
+        out = std::move(part.out);
+        mpiReport = std::move(part.mpi);
+    } else
+#endif
+        out = picture.render(progress);
     bar.finish();
     const double wallSeconds = wall.seconds();
-    writeImage(output, out.mean);
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
+    if (!speaks) return 0;  // rank 0 writes the outputs of the job
+    writeImage(output, out.mean);
 
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
@@ -145,9 +176,27 @@ int runRender(const std::vector<std::string>& argv) {
                      (unsigned long long)c[shared::kCounterTrackingCapHits]);
     if (!jsonFile.empty()) {
         Json j = picture::renderStats(picture, out, {.wallSeconds = wallSeconds, .firstSampleSeconds = firstSampleSeconds});
+        if (!mpiReport.is_null()) j["mpi"] = mpiReport;
         writeFileAtomic(jsonFile, j.dump(2) + "\n");
     }
     return 0;
 }
+
+}  // namespace
+
+#if AMRVK_MPI
+int runRender(const std::vector<std::string>& argv) {
+    if (launchedJobSize() == 0) return renderOn(argv, nullptr);
+    return mpi::runOnEveryRank(
+        "render", [&](mpi::World& world) { return renderOn(argv, &world); },
+        [](std::exception_ptr e) { return errorText(e, "render"); });
+}
+#else
+int runRender(const std::vector<std::string>& argv) {
+    AMRVK_CHECK(launchedJobSize() <= 1, "started by an MPI launcher with ", launchedJobSize(),
+                " processes, but this amrvk was built without MPI (install libopenmpi-dev and rebuild; docs/mpi.md)");
+    return renderOn(argv, nullptr);
+}
+#endif
 
 }  // namespace amrvk::cli

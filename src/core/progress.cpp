@@ -9,7 +9,12 @@
 
 namespace amrvk {
 
+static bool gSilenced = false;
+
+void silenceProgress() { gSilenced = true; }
+
 static bool progressEnabled() {
+    if (gSilenced) return false;
     const char* env = std::getenv("AMRVK_PROGRESS");
     if (env && *env) return std::strcmp(env, "0") != 0;
     return isatty(STDERR_FILENO) != 0;

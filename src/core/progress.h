@@ -8,6 +8,9 @@
 
 namespace amrvk {
 
+// Turns every progress line of this process off (MPI ranks other than 0: one bar per job).
+void silenceProgress();
+
 class ProgressStage {
 public:
     explicit ProgressStage(std::string name);

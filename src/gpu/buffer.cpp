@@ -44,6 +44,9 @@ Buffer::Buffer(Context& ctx, uint64_t bytes, MemoryKind kind, std::string name,
         AMRVK_VK_CHECK(vkBindBufferMemory(ctx.device(), mBuffer, mMemory, 0));
         if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
             AMRVK_VK_CHECK(vkMapMemory(ctx.device(), mMemory, 0, VK_WHOLE_SIZE, 0, &mMapped));
+            // lavapipe reports success with mmap's failure value when host memory runs out.
+            AMRVK_CHECK(mMapped && mMapped != reinterpret_cast<void*>(intptr_t(-1)), "out of memory mapping buffer '",
+                        mName, "' (", bytes, " bytes)");
             mCoherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
         }
         VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};

@@ -37,7 +37,10 @@ ComputePipeline::ComputePipeline(Context& ctx, const std::vector<uint32_t>& spir
         pci.stage.pName = "main";
         pci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
         pci.layout = mLayout;
-        AMRVK_VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &pci, nullptr, &mPipeline));
+        {
+            const DriverCrashScope scope("compiling pipeline '" + mName + "'");
+            AMRVK_VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &pci, nullptr, &mPipeline));
+        }
         ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(mPipeline), mName);
     } catch (...) {
         release();

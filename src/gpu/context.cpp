@@ -67,10 +67,10 @@ VkInstance createInstance(bool validation, bool debugUtils, const std::vector<st
     ci.enabledExtensionCount = uint32_t(exts.size());
     ci.ppEnabledExtensionNames = exts.data();
     VkInstance instance = VK_NULL_HANDLE;
-    VkResult r = vkCreateInstance(&ci, nullptr, &instance);
-    AMRVK_CHECK(r != VK_ERROR_INCOMPATIBLE_DRIVER,
+    const VkResult vkCreateInstanceResult = vkCreateInstance(&ci, nullptr, &instance);
+    AMRVK_CHECK(vkCreateInstanceResult != VK_ERROR_INCOMPATIBLE_DRIVER,
                 "no Vulkan 1.3 driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
-    AMRVK_VK_CHECK(r);
+    AMRVK_VK_CHECK(vkCreateInstanceResult);
     return instance;
 }
 
@@ -210,6 +210,43 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
     return VK_FALSE;
 }
 
+namespace {
+
+// What the device is running now, as the message to print if the process crashes meanwhile:
+// written before a wait, read by the SIGSEGV/SIGBUS handler (no allocation there).
+constexpr size_t kCrashMessageBytes = 1024;
+char gCrashMessage[kCrashMessageBytes];
+std::string gWho;  // "rank R of N: " in an MPI job (setErrorPrefix)
+std::atomic<bool> gGpuWorkRunning{false};
+
+extern "C" void reportGpuCrash(int sig) {
+    if (gGpuWorkRunning.load()) {
+        const ssize_t n = ::write(2, gCrashMessage, ::strnlen(gCrashMessage, kCrashMessageBytes));
+        (void)n;
+        removeTemporariesNow();
+        ::_exit(1);
+    }
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+void setCrashMessage(const std::string& what) {
+    std::snprintf(gCrashMessage, kCrashMessageBytes,
+                  "amrvk: error: %sGPU work '%s' crashed the process: it read or wrote outside its buffers "
+                  "(a --shader-dir shader?)\n",
+                  gWho.c_str(), what.c_str());
+}
+
+}  // namespace
+
+DriverCrashScope::DriverCrashScope(const std::string& what) {
+    std::snprintf(gCrashMessage, kCrashMessageBytes, "amrvk: error: %sthe Vulkan driver crashed %s (out of memory?)\n",
+                  gWho.c_str(), what.c_str());
+    gGpuWorkRunning.store(true);
+}
+
+DriverCrashScope::~DriverCrashScope() { gGpuWorkRunning.store(false); }
+
 Context::Context(const ContextOptions& options) {
     if (options.gpuTimeoutSeconds > 0) mGpuTimeoutSeconds = options.gpuTimeoutSeconds;
     bool validation = options.validation;
@@ -263,6 +300,16 @@ Context::Context(const ContextOptions& options) {
                 if (!p.report.usable || (options.requireRayQuery && !p.report.rayQuery)) continue;
                 if (chosen < 0 || typeRank(p.type) < typeRank(probes[size_t(chosen)].type)) chosen = int(i);
             }
+            if (chosen >= 0 && options.spread > 0) {  // the spread-th of the equally good ones
+                std::vector<int> best;
+                for (size_t i = 0; i < probes.size(); ++i) {
+                    const Probe& p = probes[i];
+                    if (p.report.usable && (!options.requireRayQuery || p.report.rayQuery) &&
+                        typeRank(p.type) == typeRank(probes[size_t(chosen)].type))
+                        best.push_back(int(i));
+                }
+                chosen = best[options.spread % best.size()];
+            }
             if (chosen < 0) {
                 std::string reasons;
                 for (const auto& p : probes) reasons += (reasons.empty() ? "" : "; ") + describe(p);
@@ -311,7 +358,10 @@ Context::Context(const ContextOptions& options) {
         dci.pQueueCreateInfos = &qci;
         dci.enabledExtensionCount = uint32_t(exts.size());
         dci.ppEnabledExtensionNames = exts.data();
-        AMRVK_VK_CHECK(vkCreateDevice(mPhysical, &dci, nullptr, &mDevice));
+        {
+            const DriverCrashScope scope("creating device '" + mReport.name + "'");
+            AMRVK_VK_CHECK(vkCreateDevice(mPhysical, &dci, nullptr, &mDevice));
+        }
         vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
 
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -352,33 +402,8 @@ void Context::release() {
     }
 }
 
-namespace {
 
-// What the device is running now, as the message to print if the process crashes meanwhile:
-// written before a wait, read by the SIGSEGV/SIGBUS handler (no allocation there).
-constexpr size_t kCrashMessageBytes = 1024;
-char gCrashMessage[kCrashMessageBytes];
-std::atomic<bool> gGpuWorkRunning{false};
-
-extern "C" void reportGpuCrash(int sig) {
-    if (gGpuWorkRunning.load()) {
-        const ssize_t n = ::write(2, gCrashMessage, ::strnlen(gCrashMessage, kCrashMessageBytes));
-        (void)n;
-        removeTemporariesNow();
-        ::_exit(1);
-    }
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);
-}
-
-void setCrashMessage(const std::string& what) {
-    std::snprintf(gCrashMessage, kCrashMessageBytes,
-                  "amrvk: error: GPU work '%s' crashed the process: it read or wrote outside its buffers "
-                  "(a --shader-dir shader?)\n",
-                  what.c_str());
-}
-
-}  // namespace
+void setErrorPrefix(const std::string& who) { gWho = who.empty() ? "" : who + ": "; }
 
 void reportGpuCrashes() {
     for (int sig : {SIGSEGV, SIGBUS}) std::signal(sig, reportGpuCrash);
@@ -416,8 +441,9 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, 
     if (waited == VK_TIMEOUT) {
         // The device cannot cancel the dispatch, and waiting for it or destroying the device hangs:
         // one line, the temporaries removed, and the process ends here.
-        std::fprintf(stderr, "amrvk: error: GPU work '%s' ran longer than %g s (--gpu-timeout): a runaway loop? ending\n",
-                     what.c_str(), limit);
+        std::fprintf(stderr,
+                     "amrvk: error: %sGPU work '%s' ran longer than %g s (--gpu-timeout): a runaway loop? ending\n",
+                     gWho.c_str(), what.c_str(), limit);
         std::fflush(stderr);
         removeTemporariesNow();
         ::_exit(1);

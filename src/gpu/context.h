@@ -20,6 +20,9 @@ namespace amrvk::gpu {
 struct ContextOptions {
     std::string device;       // "" = automatic; a decimal index or a case-insensitive name part
     bool validation = false;  // also on when AMRVK_VALIDATION=1
+    // Automatic choice only: among the usable devices of the best type, take the (spread % count)-th
+    // (an MPI rank passes its rank on the node: one GPU per rank where a node has several).
+    uint32_t spread = 0;
     bool requireRayQuery = false;
     bool disableRayQuery = false;  // leave ray queries off even where supported (tests, comparisons)
     // Samples per pixel one path-trace invocation takes in a whole-image dispatch; 0 = automatic
@@ -73,6 +76,18 @@ private:
 // work that crashed the process (then remove the temporaries and exit 1); other crashes keep their
 // default action. main() calls it once.
 void reportGpuCrashes();
+// Text those lines (and the --gpu-timeout line) name the process by after "error: ", e.g. "rank 1
+// of 3" in an MPI job; empty: none.
+void setErrorPrefix(const std::string& who);
+// While it lives, a crash of the process is reported as "the Vulkan driver crashed WHAT (out of
+// memory?)": drivers that JIT-compile (lavapipe) crash instead of failing when memory runs out.
+class DriverCrashScope {
+public:
+    explicit DriverCrashScope(const std::string& what);  // e.g. "creating device 'llvmpipe'"
+    ~DriverCrashScope();
+    DriverCrashScope(const DriverCrashScope&) = delete;
+    DriverCrashScope& operator=(const DriverCrashScope&) = delete;
+};
 
 class Context {
 public:

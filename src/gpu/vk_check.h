@@ -13,7 +13,11 @@ const char* resultName(VkResult result);
 class VulkanError : public Error {
 public:
     VulkanError(VkResult result, const char* call)
-        : Error(strCat("Vulkan call ", call, " failed with ", resultName(result))), mResult(result) {}
+        : Error(strCat("Vulkan call ", call, " failed with ", resultName(result),
+                       result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY
+                           ? " (out of memory)"
+                           : "")),
+          mResult(result) {}
     VkResult result() const { return mResult; }
 
 private:

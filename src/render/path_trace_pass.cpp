@@ -76,7 +76,7 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
     AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
     const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);
     if (count == 0) return 0.0;
-    const double seconds = submit(pipeline, {{paramsAddress, mSpp, first, first + count, 1u}},
+    const double seconds = submit(pipeline, {{paramsAddress, mFirstSample + mSpp, first, first + count, 1u}},
                                   uint64_t(count) * uint64_t(mWidth)).first;
     mRowsDone += count;
     if (mRowsDone == uint32_t(mHeight)) {
@@ -101,7 +101,7 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
         // accumulation write per pixel for several samples.
         std::vector<shared::PushConstants> dispatches;
         for (uint32_t i = 0; i < count; i += dispatches.back().samples)
-            dispatches.push_back({paramsAddress, mSpp + i, 0u, uint32_t(mHeight),
+            dispatches.push_back({paramsAddress, mFirstSample + mSpp + i, 0u, uint32_t(mHeight),
                                   std::min(mCtx.samplesPerInvocation(), count - i)});
         const uint32_t largest =
             submit(pipeline, dispatches, uint64_t(count) * uint64_t(mWidth) * uint64_t(mHeight)).second;
@@ -139,24 +139,25 @@ std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pi
     return {seconds, *std::max_element(counters.begin(), counters.end())};
 }
 
-scene::RenderOutput PathTracePass::read() const {
-    scene::RenderOutput o;
-    o.spp = mSpp;
-    o.stats = mStats;
-    o.mean = Image(mWidth, mHeight);
-    o.sumSq.resize(o.mean.pixels.size());
-    if (!mAccum.valid()) return o;
-    std::vector<shared::AccumPixelGpu> accum(o.mean.pixels.size());
+scene::AccumulatedSums PathTracePass::readSums() const {
+    scene::AccumulatedSums sums{.width = mWidth, .height = mHeight};
+    const size_t pixels = size_t(mWidth) * size_t(mHeight);
+    sums.values.assign(pixels * scene::AccumulatedSums::kPerPixel, 0.0);
+    if (!mAccum.valid()) return sums;
+    std::vector<shared::AccumPixelGpu> accum(pixels);
     mAccum.download(accum.data(), accum.size() * sizeof(shared::AccumPixelGpu));
-    for (size_t i = 0; i < o.mean.pixels.size(); ++i) {
-        // hi + lo in double: exact (each is a float, |lo| <= ulp(hi) / 2); rounded to float once.
+    for (size_t i = 0; i < pixels; ++i) {
+        // hi + lo in double: exact (each is a float, |lo| <= ulp(hi) / 2).
         const shared::AccumPixelGpu& a = accum[i];
         const glm::dvec4 sum = glm::dvec4(a.sumHi) + glm::dvec4(a.sumLo);
-        const double count = sum.w > 0 ? sum.w : 1.0;
-        o.mean.pixels[i] = glm::vec4(glm::vec3(glm::dvec3(sum) / count), 1.0f);
-        o.sumSq[i] = glm::vec4(glm::dvec4(a.sumSqHi) + glm::dvec4(a.sumSqLo));
+        const glm::dvec4 sumSq = glm::dvec4(a.sumSqHi) + glm::dvec4(a.sumSqLo);
+        double* v = &sums.values[i * scene::AccumulatedSums::kPerPixel];
+        for (int c = 0; c < 4; ++c) v[c] = sum[c];
+        for (int c = 0; c < 3; ++c) v[4 + c] = sumSq[c];
     }
-    return o;
+    return sums;
 }
+
+scene::RenderOutput PathTracePass::read() const { return scene::outputFromSums(readSums(), mSpp, mStats); }
 
 }  // namespace amrvk::render

@@ -41,6 +41,13 @@ public:
     bool resize(int width, int height);
     // Zeroes the accumulation: the image holds no sample afterwards.
     void reset();
+    // Samples are numbered (and seeded) from `first` on (sample-parallel ranks take disjoint
+    // ranges); resets the accumulation. Kept by reset().
+    void setFirstSample(uint32_t first) {
+        mFirstSample = first;
+        reset();
+    }
+    uint32_t firstSample() const { return mFirstSample; }
     uint64_t accumAddress() const { return mAccum.address(); }
     uint64_t countersAddress() const { return mCounters.address(); }
     uint32_t spp() const { return mSpp; }          // complete samples per pixel
@@ -57,6 +64,8 @@ public:
     double rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows);
     // The mean so far (downloads the accumulation buffer).
     scene::RenderOutput read() const;
+    // The sums behind it, in double (downloads the accumulation buffer).
+    scene::AccumulatedSums readSums() const;
 
 private:
     // One submit: the counters zeroed, then each dispatch timed and followed by a barrier; adds the
@@ -69,7 +78,7 @@ private:
     gpu::Buffer mAccum, mCounters;
     gpu::GpuTimer mTimer{mCtx, 64};  // at most 64 dispatches per submit
     int mWidth = 0, mHeight = 0;
-    uint32_t mSpp = 0, mRowsDone = 0;
+    uint32_t mSpp = 0, mRowsDone = 0, mFirstSample = 0;
     uint64_t mCompiled = 0;
     scene::RenderStats mStats;
 };

@@ -191,6 +191,11 @@ void Renderer::setShaders(gpu::ShaderLibrary shaders) {
 
 void Renderer::resetAccumulation() { redo({.accumulation = true}); }
 
+void Renderer::setFirstSample(uint32_t first) {
+    resetAccumulation();
+    mPathTrace.setFirstSample(first);
+}
+
 const gpu::ComputePipeline& Renderer::currentPipeline() {
     AMRVK_CHECK(mBroken.empty(), "no structures to render with (the last structure change failed: ", mBroken, ")");
     AMRVK_CHECK(mTf.has_value(), "internal: accumulate() before setTransferFunction()");

@@ -74,6 +74,9 @@ public:
     void setShaders(gpu::ShaderLibrary shaders);
     void reloadShaders() { setShaders(mShaders); }
     void resetAccumulation();
+    // Numbers (and seeds) the samples of the next accumulation from `first` on: a sample-parallel
+    // rank renders a range of the sample indices one process would (resets the accumulation).
+    void setFirstSample(uint32_t first);
 
     // ---- Accumulation ----
     // Adds `spp` samples per pixel to the current image; progress(done, spp) after each batch.
@@ -89,6 +92,8 @@ public:
     uint64_t accumulationAddress() const { return mPathTrace.accumAddress(); }
     // The image so far: mean, sums of squares, spp and the counters of every path in it.
     scene::RenderOutput output() const { return mPathTrace.read(); }
+    // The double sums behind output() (what ranks add up).
+    scene::AccumulatedSums sums() const { return mPathTrace.readSums(); }
     // The counters and GPU time of every path in the current image (no download).
     const scene::RenderStats& stats() const { return mPathTrace.stats(); }
     // One image from scratch: setSettings, reset, accumulate `spp`. `snapshot(out)` additionally

@@ -26,6 +26,16 @@ struct RenderOutput {
     RenderStats stats;
 };
 
+// The raw sums behind a RenderOutput, in double: what sample-parallel ranks add up (their samples
+// are disjoint, so the sum of their sums is the sum of one process over all of them).
+struct AccumulatedSums {
+    static constexpr size_t kPerPixel = 8;  // sum r, g, b, sample count, sum of squares r, g, b, 0
+    int width = 0, height = 0;
+    std::vector<double> values;  // kPerPixel per pixel, pixel (x, y) at y * width + x
+};
+// Mean = sum / count per pixel (0 where the count is 0), rounded to float once.
+RenderOutput outputFromSums(const AccumulatedSums& sums, uint32_t spp, const RenderStats& stats);
+
 // Per-pixel variance of the mean (3 per pixel, rgb) from the sums of squares; needs spp >= 2.
 std::vector<float> varianceOfMean(const RenderOutput& out);
 

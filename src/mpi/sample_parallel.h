@@ -1,0 +1,34 @@
+#pragma once
+// Sample-parallel rendering (mpirun -n N amrvk render): every rank holds the whole data set and
+// traces a disjoint range of the sample indices one process would trace (each sample is seeded by
+// its index); the double sums of the ranks are added on rank 0, so N ranks give the image of one
+// process with the same seed and spp up to float rounding (docs/mpi.md).
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "mpi/world.h"
+#include "picture/picture.h"
+
+namespace amrvk::mpi {
+
+// Rank `rank` of `size` takes samples [first, first + count): contiguous ranges covering
+// [0, spp) once, counts differing by at most one (a rank may get none when spp < size).
+struct SampleRange {
+    uint32_t first = 0, count = 0;
+};
+SampleRange sampleRange(uint32_t spp, int rank, int size);
+
+struct SampleParallelResult {
+    scene::RenderOutput out;      // rank 0: every rank's samples; other ranks: their own
+    nlohmann::ordered_json mpi;   // rank 0: the "mpi" block of --json (per-rank work and bytes)
+};
+
+// Renders this rank's range of p.session.spp (progress(done, count) on rank 0), then adds every
+// rank's sums on rank 0. Calls world.checkpoint() before the first collective, so a rank that
+// failed earlier ends the job cleanly. `rankInfo` is this rank's part of the report (read and
+// build seconds, ...), gathered with the render's own numbers.
+SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
+                                          const std::function<void(uint32_t, uint32_t)>& progress = {});
+
+}  // namespace amrvk::mpi

@@ -1,0 +1,187 @@
+#include "mpi/world.h"
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdio>
+#include <thread>
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stats.h"
+#include "gpu/context.h"
+
+namespace amrvk::mpi {
+
+namespace {
+
+constexpr int kMessageTag = 7301;
+
+void check(int rc, const char* what) {
+    if (rc == MPI_SUCCESS) return;
+    char text[MPI_MAX_ERROR_STRING];
+    int length = 0;
+    MPI_Error_string(rc, text, &length);
+    AMRVK_CHECK(false, "MPI: ", what, ": ", std::string(text, size_t(length)));
+}
+
+// Waits for a non-blocking collective; past `deadline` seconds (< 0: none) returns false.
+bool waitFor(MPI_Request& request, double deadline) {
+    const Timer timer;
+    for (;;) {
+        int done = 0;
+        check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+        if (done) return true;
+        if (deadline >= 0 && timer.seconds() > deadline) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+}
+
+// Reductions in pieces of at most 2^26 elements (MPI counts are int).
+template <typename T>
+uint64_t sumPieces(std::vector<T>& values, MPI_Datatype type, int rank) {
+    constexpr size_t kPiece = size_t(1) << 26;
+    for (size_t at = 0; at < values.size(); at += kPiece) {
+        const int n = int(std::min(kPiece, values.size() - at));
+        void* data = values.data() + at;
+        check(MPI_Reduce(rank == 0 ? MPI_IN_PLACE : data, rank == 0 ? data : nullptr, n, type, MPI_SUM, 0,
+                         MPI_COMM_WORLD),
+              "MPI_Reduce");
+    }
+    return rank == 0 ? 0 : uint64_t(values.size() * sizeof(T));
+}
+
+}  // namespace
+
+World::World() {
+    int provided = 0;
+    check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    MPI_Comm_rank(MPI_COMM_WORLD, &mRank);
+    MPI_Comm_size(MPI_COMM_WORLD, &mSize);
+    MPI_Comm node;
+    check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, mRank, MPI_INFO_NULL, &node),
+          "MPI_Comm_split_type");
+    MPI_Comm_rank(node, &mLocalRank);
+    MPI_Comm_free(&node);
+    char name[MPI_MAX_PROCESSOR_NAME];
+    int length = 0;
+    MPI_Get_processor_name(name, &length);
+    mHost.assign(name, size_t(length));
+}
+
+World::~World() { MPI_Finalize(); }
+
+Failure World::agree(const std::string& error, const std::string& lineIfAlone, double failedWaitSeconds) {
+    const int mine = error.empty() ? 0 : 1;
+    std::vector<int> all(size_t(mSize), 0);
+    MPI_Request request;
+    check(MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &request), "MPI_Iallgather");
+    // A healthy rank waits as long as the others work; a failed one only so long.
+    if (!waitFor(request, mine ? failedWaitSeconds : -1.0)) abort(lineIfAlone.empty() ? error : lineIfAlone);
+    Failure f;
+    for (int r = 0; r < mSize; ++r)
+        if (all[size_t(r)]) {
+            if (f.rank < 0) f.rank = r;
+            ++f.count;
+        }
+    if (f.rank < 0) return f;
+    if (f.rank == mRank) f.message = error;
+    if (f.rank != 0 && mRank == f.rank) {
+        const int length = int(std::min<size_t>(error.size(), 1 << 20));
+        check(MPI_Send(error.data(), length, MPI_CHAR, 0, kMessageTag, MPI_COMM_WORLD), "MPI_Send");
+    } else if (f.rank != 0 && mRank == 0) {
+        MPI_Status status;
+        check(MPI_Probe(f.rank, kMessageTag, MPI_COMM_WORLD, &status), "MPI_Probe");
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        f.message.resize(size_t(length));
+        check(MPI_Recv(f.message.data(), length, MPI_CHAR, f.rank, kMessageTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv");
+    }
+    return f;
+}
+
+void World::checkpoint() {
+    Failure f = agree("");
+    if (f.rank >= 0) throw PeerFailed(std::move(f));
+}
+
+uint64_t World::sumToRoot(std::vector<double>& values) { return sumPieces(values, MPI_DOUBLE, mRank); }
+uint64_t World::sumToRoot(std::vector<uint64_t>& values) { return sumPieces(values, MPI_UINT64_T, mRank); }
+
+std::vector<std::string> World::gatherToRoot(const std::string& text, uint64_t* sent) {
+    AMRVK_CHECK(text.size() < size_t(INT_MAX / 2), "internal: gathered text too long");
+    const int length = int(text.size());
+    std::vector<int> lengths(size_t(mSize), 0), offsets(size_t(mSize), 0);
+    check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
+    std::string all;
+    if (mRank == 0) {
+        size_t total = 0;
+        for (int r = 0; r < mSize; ++r) {
+            offsets[size_t(r)] = int(total);
+            total += size_t(lengths[size_t(r)]);
+        }
+        AMRVK_CHECK(total < size_t(INT_MAX), "internal: gathered text too long");
+        all.resize(total);
+    }
+    check(MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
+                      MPI_COMM_WORLD),
+          "MPI_Gatherv");
+    if (sent) *sent = mRank == 0 ? 0 : uint64_t(length) + sizeof(int);
+    std::vector<std::string> out;
+    if (mRank == 0)
+        for (int r = 0; r < mSize; ++r) out.push_back(all.substr(size_t(offsets[size_t(r)]), size_t(lengths[size_t(r)])));
+    return out;
+}
+
+double World::maxOverRanks(double value) {
+    double most = value;
+    check(MPI_Allreduce(&value, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+    return most;
+}
+
+void World::abort(const std::string& line) {
+    std::fprintf(stderr, "%s\n", line.c_str());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    _exit(1);
+}
+
+int runOnEveryRank(const std::string& command, const std::function<int(World&)>& body,
+                   const std::function<std::string(std::exception_ptr)>& describe) {
+    World world;
+    if (world.rank() != 0) silenceProgress();
+    gpu::reportGpuCrashes();  // again: MPI_Init put Open MPI's own SIGSEGV/SIGBUS handlers in place
+    gpu::setErrorPrefix("rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size()));
+    const std::string prefix = "amrvk " + command + ": error: ";
+    const std::string ofN = " of " + std::to_string(world.size());
+    int rc = 1;
+    std::string error;
+    Failure failure;
+    try {
+        rc = body(world);
+    } catch (const PeerFailed& e) {
+        failure = e.failure;
+    } catch (...) {
+        error = describe(std::current_exception());
+        if (error.empty()) error = "unknown error";
+    }
+    if (failure.rank < 0)
+        failure = world.agree(error, prefix + "rank " + std::to_string(world.rank()) + ofN + ": " + error);
+    if (failure.rank < 0) return rc;
+    if (world.rank() == 0) {
+        if (failure.count == world.size())
+            std::fprintf(stderr, "%s%s (every rank%s)\n", prefix.c_str(), failure.message.c_str(), ofN.c_str());
+        else
+            std::fprintf(stderr, "%srank %d%s: %s%s\n", prefix.c_str(), failure.rank, ofN.c_str(),
+                         failure.message.c_str(),
+                         failure.count > 1 ? (" (and " + std::to_string(failure.count - 1) + " more)").c_str() : "");
+    }
+    return 1;
+}
+
+}  // namespace amrvk::mpi

@@ -1,0 +1,32 @@
+# Shared by the MPI test scripts (sourced after they set $amrvk, $mpirun and $dir, and fail=0).
+# Open MPI as root needs its run-as-root settings; more ranks than cores needs --oversubscribe;
+# -q leaves amrvk's one error line alone on stderr (no launcher banners).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi=("$mpirun" -q --oversubscribe)
+check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
+# pfm_compare A B MAX_REL: the largest relative difference of two PFM images is at most MAX_REL
+# (pixels below 1e-6 in both compare absolutely); prints it. pfm_differ A B MIN_REL: at least MIN_REL.
+pfm_diff() {
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import sys, numpy as np
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF", path
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        return np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3).astype(np.float64)
+a, b = pfm(sys.argv[1]), pfm(sys.argv[2])
+assert a.shape == b.shape, (a.shape, b.shape)
+print(float((np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-6)).max()))
+PY
+}
+pfm_compare() {
+  local d; d=$(pfm_diff "$1" "$2") || { echo "FAIL: cannot compare $1 $2"; fail=1; return; }
+  if /usr/bin/python3 -c "import sys; sys.exit(0 if $d <= $3 else 1)"; then echo "ok: $2 vs $1: max rel $d <= $3"
+  else echo "FAIL: $2 vs $1: max rel $d > $3"; fail=1; fi
+}
+pfm_differ() {
+  local d; d=$(pfm_diff "$1" "$2") || { echo "FAIL: cannot compare $1 $2"; fail=1; return; }
+  if /usr/bin/python3 -c "import sys; sys.exit(0 if $d >= $3 else 1)"; then echo "ok: $2 vs $1 differ: max rel $d >= $3"
+  else echo "FAIL: $2 vs $1 should differ: max rel $d < $3"; fail=1; fi
+}
