@@ -70,6 +70,39 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
     return model;
 }
 
+void visitExaBrick(const fs::path& path, const ReadOptions& options, uint64_t chunkCells,
+                   const std::function<void(Model& chunk)>& visit, Model* head) {
+    AMRVK_CHECK(options.fields.size() <= 1, "internal: visitExaBrick takes one field");
+    const fs::path cellsPath = cellsPathOf(path);
+    Model model{.format = "exabrick", .source = cellsPath.string()};
+    const uint64_t bytes = fileSize(cellsPath);
+    AMRVK_CHECK(bytes > 0, cellsPath.string(), ": empty file (no cells)");
+    AMRVK_CHECK(bytes % sizeof(Cell) == 0, cellsPath.string(), ": size ", bytes,
+                " bytes is not a multiple of the 16-byte cell record (truncated file?)");
+    const uint64_t count = bytes / sizeof(Cell);
+    const auto scalarFiles = findScalarFiles(cellsPath);
+    for (const auto& [name, p] : scalarFiles) model.availableFields.push_back(name);
+    AMRVK_CHECK(!model.availableFields.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
+                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(), ".<field>.scalars)");
+    std::vector<std::string> wanted = options.fields;
+    if (wanted.empty()) wanted = {model.availableFields.front()};
+    const std::vector<size_t> components = addSelectedFields(model, wanted);
+    const fs::path& scalarsPath = scalarFiles[components.at(0)].second;
+    const uint64_t sbytes = fileSize(scalarsPath);
+    AMRVK_CHECK(sbytes % sizeof(float) == 0, scalarsPath.string(), ": size ", sbytes,
+                " bytes is not a multiple of 4 (truncated float32 file?)");
+    AMRVK_CHECK(sbytes / sizeof(float) == count, scalarsPath.string(), ": ", sbytes / sizeof(float), " values but ",
+                cellsPath.filename().string(), " has ", count, " cells");
+    if (head) *head = model;
+    BinaryReader cells(cellsPath), values(scalarsPath);
+    for (uint64_t at = 0; at < count; at += chunkCells) {
+        const uint64_t n = std::min(chunkCells, count - at);
+        cells.readArray(model.cells, n);
+        values.readArray(model.fields[0].values, n);
+        visit(model);
+    }
+}
+
 std::string scalarsName(const std::string& field) {
     std::string out = field;
     for (char& c : out)

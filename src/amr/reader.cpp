@@ -66,6 +66,29 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     return checkedModel(std::move(model), options.nanPolicy);
 }
 
+void visitCells(const fs::path& path, const ReadOptions& options, const std::function<void(const Model& chunk)>& visit,
+                Model* head) {
+    AMRVK_CHECK(options.fields.size() <= 1, "internal: visitCells takes one field");
+    const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
+    if (format == "exabrick") {
+        visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
+            applyNanPolicy(chunk, options.nanPolicy);
+            if (chunk.cells.empty()) return;  // every cell of it dropped
+            validateCells(chunk);
+            visit(chunk);
+        }, head);
+        return;
+    }
+    Model model = readModel(path, options);
+    if (model.fields.size() > 1) model.fields.resize(1);  // the default field
+    if (head) {
+        *head = model;
+        head->cells.clear();
+        head->fields[0].values.clear();
+    }
+    visit(model);
+}
+
 Model checkedModel(Model model, NanPolicy nanPolicy) {
     applyNanPolicy(model, nanPolicy);
     validateCells(model);  // overlaps: found by the brick build (or amr::validate)

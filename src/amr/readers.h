@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,19 @@ Model readModel(const std::filesystem::path& path, const ReadOptions& options);
 // by the brick build (scene::makeVolume).
 Model checkedModel(Model model, NanPolicy nanPolicy);
 
+// The cells of `path` in chunks, for work that must not hold them all (MPI data-parallel reading):
+// visit(chunk) gets a model of at most about 2^20 cells with the one field options.fields names
+// (empty: the default field), NaN policy applied and cells validated; `head` (optional) first
+// gets the source's metadata (format, source, availableFields, voxelToWorld) with no cells.
+// ExaBrick files are streamed (memory: one chunk); other formats are read whole, then visited.
+void visitCells(const std::filesystem::path& path, const ReadOptions& options,
+                const std::function<void(const Model& chunk)>& visit, Model* head = nullptr);
+
 // Per-format readers: return the model before NaN policy and validation.
 Model readExaBrick(const std::filesystem::path& path, const ReadOptions& options);
+// ExaBrick in chunks of `chunkCells` (before NaN policy and validation): visitCells' streaming part.
+void visitExaBrick(const std::filesystem::path& path, const ReadOptions& options, uint64_t chunkCells,
+                   const std::function<void(Model& chunk)>& visit, Model* head);
 Model readAmrex(const std::filesystem::path& path, const ReadOptions& options);
 Model readEnzo(const std::filesystem::path& path, const ReadOptions& options);
 Model readChombo(const std::filesystem::path& path, const ReadOptions& options);

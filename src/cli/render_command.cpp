@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "amr/readers.h"
@@ -21,6 +22,7 @@
 #include "render/renderer.h"
 
 #if AMRVK_MPI
+#include "mpi/data_parallel.h"
 #include "mpi/sample_parallel.h"
 #else
 namespace amrvk::mpi {
@@ -102,18 +104,47 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
         ->capture_default_str()
         ->type_name("FILE");
     app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE");
+    std::string varianceFile;
+    app.add_option("--variance", varianceFile,
+                   "also write the per-pixel variance of the mean (rgb, from the samples' squares; needs --spp >= 2) "
+                   "as .exr or .pfm: error bars for the image")
+        ->type_name("FILE");
+    std::string distribute = "samples";
+    app.add_option("--distribute", distribute,
+                   "under mpirun: samples (every rank holds the data and renders a share of the samples) or "
+                   "data (every rank reads and tracks only its box of space; ae, ss, ms; docs/mpi.md)")
+        ->check(CLI::IsMember({"samples", "data"}))
+        ->capture_default_str();
     addDeviceOptions(app, dev);
     if (!parseCommandLine(app, argv)) return 0;
+    AMRVK_CHECK(world || app.count("--distribute") == 0,
+                "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
+    [[maybe_unused]] const bool byData = distribute == "data";
 
     const std::string ext = fs::path(output).extension().string();
     AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
                 ": unknown image type (use .png, .exr or .pfm)");
     // Every output checked before any work: writable, distinct, none of them an input.
-    const std::vector<NamedPath> outputs = {{"-o", output}, {"--json", jsonFile}};
+    const std::string varianceExt = fs::path(varianceFile).extension().string();
+    AMRVK_CHECK(varianceFile.empty() || varianceExt == ".exr" || varianceExt == ".pfm", "--variance ", varianceFile,
+                ": use .exr or .pfm (linear float)");
+    const std::vector<NamedPath> outputs = {{"-o", output}, {"--json", jsonFile}, {"--variance", varianceFile}};
     checkOutputs(outputs, pictureInputs(app, input, pic));
-    const session::PictureDescription description = describePicture(app, input, read, pic);
+    session::PictureDescription description = describePicture(app, input, read, pic);
+    AMRVK_CHECK(varianceFile.empty() || description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
+                description.session.spp, ")");
     Timer readTimer;
-    std::shared_ptr<const scene::Volume> loaded = session::loadVolume(description.session);
+    std::shared_ptr<const scene::Volume> loaded;
+#if AMRVK_MPI
+    std::optional<mpi::DataPart> part;
+    if (byData) {
+        AMRVK_CHECK(description.session.settings.mode != scene::Mode::Dvr,
+                    "--distribute data: mode dvr is not supported (use ae, ss or ms)");
+        part = mpi::loadPart(*world, description);
+        loaded = part->volume;
+    } else
+#endif
+        loaded = session::loadVolume(description.session);
     const double readSeconds = readTimer.seconds() - loaded->bricks.buildSeconds;
     checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
     gpu::ContextOptions co = dev.context;
@@ -141,13 +172,20 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     scene::RenderOutput out;
     Json mpiReport;
 #if AMRVK_MPI
-    if (world) {
-        mpi::SampleParallelResult part = mpi::renderSampleParallel(
+    if (part) {
+        world->checkpoint();  // every rank has its part and structures
+        mpi::DataParallelResult r = mpi::renderDataParallel(
+            *world, picture, *part, {{"readSeconds", readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
+            progress);
+        out = std::move(r.out);
+        mpiReport = std::move(r.mpi);
+    } else if (world) {
+        mpi::SampleParallelResult share = mpi::renderSampleParallel(
             *world, picture,
             {{"readSeconds", readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
             progress);
-        out = std::move(part.out);
-        mpiReport = std::move(part.mpi);
+        out = std::move(share.out);
+        mpiReport = std::move(share.mpi);
     } else
 #endif
         out = picture.render(progress);
@@ -156,7 +194,15 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
+    Image variance;
+    if (!varianceFile.empty()) {
+        const std::vector<float> v = scene::varianceOfMean(out);
+        variance = Image(out.mean.width, out.mean.height);
+        for (size_t i = 0; i < variance.pixels.size(); ++i)
+            variance.pixels[i] = glm::vec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0f);
+    }
     writeImage(output, out.mean);
+    if (!varianceFile.empty()) writeImage(varianceFile, variance);
 
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);

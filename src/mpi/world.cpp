@@ -54,6 +54,15 @@ uint64_t sumPieces(std::vector<T>& values, MPI_Datatype type, int rank) {
     return rank == 0 ? 0 : uint64_t(values.size() * sizeof(T));
 }
 
+template <typename T>
+uint64_t allPieces(T* data, size_t count, MPI_Datatype type, MPI_Op op) {
+    constexpr size_t kPiece = size_t(1) << 26;
+    for (size_t at = 0; at < count; at += kPiece)
+        check(MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kPiece, count - at)), type, op, MPI_COMM_WORLD),
+              "MPI_Allreduce");
+    return uint64_t(count * sizeof(T));
+}
+
 }  // namespace
 
 World::World() {
@@ -142,6 +151,20 @@ double World::maxOverRanks(double value) {
     double most = value;
     check(MPI_Allreduce(&value, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
     return most;
+}
+
+uint64_t World::minLocEverywhere(std::vector<FloatRank>& values) {
+    static_assert(sizeof(FloatRank) == 8);
+    return allPieces(values.data(), values.size(), MPI_FLOAT_INT, MPI_MINLOC);
+}
+uint64_t World::sumEverywhere(std::vector<float>& values) {
+    return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_SUM);
+}
+uint64_t World::productEverywhere(std::vector<float>& values) {
+    return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_PROD);
+}
+uint64_t World::sumEverywhere(std::vector<uint64_t>& values) {
+    return allPieces(values.data(), values.size(), MPI_UINT64_T, MPI_SUM);
 }
 
 void World::abort(const std::string& line) {

@@ -55,6 +55,16 @@ public:
     std::vector<std::string> gatherToRoot(const std::string& text, uint64_t* sent = nullptr);
     // Largest value over ranks, on every rank.
     double maxOverRanks(double value);
+    // Element-wise over every rank, the result on every rank (same count on all). Each returns the
+    // bytes this rank contributed.
+    struct FloatRank {
+        float value;
+        int rank;
+    };
+    uint64_t minLocEverywhere(std::vector<FloatRank>& values);  // the least value and its rank (lowest on ties)
+    uint64_t sumEverywhere(std::vector<float>& values);
+    uint64_t productEverywhere(std::vector<float>& values);
+    uint64_t sumEverywhere(std::vector<uint64_t>& values);
 
     // Prints `line` on stderr and ends every rank of the job.
     [[noreturn]] void abort(const std::string& line);

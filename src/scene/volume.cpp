@@ -24,18 +24,42 @@ uint64_t Volume::modelBytes() const {
     return bytes;
 }
 
+namespace {
+std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName,
+                                          const VolumeFrame* frame);
+}
+
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName) {
+    return makeMutableVolume(std::move(model), fieldName, nullptr);
+}
+
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, const VolumeFrame& frame) {
+    return makeMutableVolume(std::move(model), fieldName, &frame);
+}
+
+namespace {
+std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName,
+                                          const VolumeFrame* frame) {
     auto v = std::make_shared<Volume>();
     const amr::Field& field = fieldName.empty() ? model.defaultField() : model.field(fieldName);
     v->fieldIndex = size_t(&field - model.fields.data());
     v->summary = amr::summarize(model);
-    v->localOrigin = v->summary.bounds.lower;
+    v->localOrigin = frame ? frame->localOrigin : v->summary.bounds.lower;
+    if (frame) {
+        AMRVK_CHECK(frame->minLevel <= v->summary.minLevel && glm::all(glm::lessThanEqual(frame->localOrigin, v->summary.bounds.lower)),
+                    "internal: a part reaches outside its frame");
+        v->summary.minLevel = frame->minLevel;
+    }
     // Local coordinates (what the GPU sees) are int32 and float: refuse a wider domain up front.
     for (int a = 0; a < 3; ++a)
-        AMRVK_CHECK(v->summary.bounds.size()[a] <= INT32_MAX, model.source, ": the data spans ",
-                    v->summary.bounds.size()[a], " finest cells along axis ", "xyz"[a],
+        AMRVK_CHECK(v->summary.bounds.upper[a] - v->localOrigin[a] <= INT32_MAX, model.source, ": the data spans ",
+                    v->summary.bounds.upper[a] - v->localOrigin[a], " finest cells along axis ", "xyz"[a],
                     ", more than 2^31 from the data's lower corner (the limit)");
     v->fieldStats = amr::computeFieldStats(model, field);
+    if (frame) {
+        v->fieldStats.minValue = frame->valueLo;
+        v->fieldStats.maxValue = frame->valueHi;
+    }
     {
         ProgressStage stage("bricks");
         v->bricks = accel::buildBricks(model);
@@ -43,5 +67,6 @@ std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fiel
     v->model = std::move(model);
     return v;
 }
+}  // namespace
 
 }  // namespace amrvk::scene

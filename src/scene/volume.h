@@ -51,4 +51,14 @@ struct Volume {
 // 2^31 finest cells (what local int32 coordinates can hold).
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field = {});
 
+// What a part of a larger data set (an MPI rank's cells, data-parallel rendering) takes from the
+// whole instead of from its own cells, so every part renders in one frame.
+struct VolumeFrame {
+    glm::i64vec3 localOrigin{0};  // the whole data's lower corner: one local voxel space for all
+    int32_t minLevel = 0;         // the whole data's finest level: extinction per the same width
+    float valueLo = 0, valueHi = 0;  // the whole field's range (TF fitting)
+};
+// makeVolume for a part: its own bounds and bricks, `frame`'s origin, finest level and range.
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field, const VolumeFrame& frame);
+
 }  // namespace amrvk::scene

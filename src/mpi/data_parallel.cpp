@@ -1,0 +1,245 @@
+#include "mpi/data_parallel.h"
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stats.h"
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "scene/camera.h"
+#include "shared/data_parallel_gpu.h"
+
+namespace amrvk::mpi {
+
+DataPart loadPart(World& world, session::PictureDescription& d) {
+    const session::Session& s = d.session;
+    AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
+    amr::ReadOptions ro = s.read;
+    ro.fields = s.field.empty() ? std::vector<std::string>{} : std::vector<std::string>{s.field};
+    DataPart part;
+    Timer timer;
+    {
+        ProgressStage stage("census of " + s.input);
+        part.census = amr::censusOf(s.input, ro);
+    }
+    part.censusSeconds = timer.seconds();
+    part.owned = amr::partitionByCells(part.census, world.size());
+    const amr::Box3l& mine = part.owned[size_t(world.rank())];
+    timer = Timer();
+    amr::Model model;
+    {
+        ProgressStage stage("reading this rank's part of " + s.input);
+        model = amr::readPart(s.input, ro, mine);
+    }
+    part.readSeconds = timer.seconds();
+    for (const amr::Cell& c : model.cells)
+        if (amr::ownsCell(mine, c)) ++part.ownedCells;
+    AMRVK_CHECK(!model.cells.empty(), s.input, ": rank ", world.rank(), "'s part holds no cells (use fewer ranks)");
+    const amr::CellCensus& whole = part.census;
+    part.volume = scene::makeVolume(std::move(model), s.field,
+                                    scene::VolumeFrame{.localOrigin = whole.bounds.lower,
+                                                       .minLevel = whole.minLevel,
+                                                       .valueLo = whole.valueLo,
+                                                       .valueHi = whole.valueHi});
+    // The camera frames the whole data set, not this part.
+    if (d.fitCamera) {
+        const amr::Transform& t = whole.head.voxelToWorld;
+        d.session.settings.camera = scene::defaultCamera(t.toWorld(glm::dvec3(whole.bounds.lower)),
+                                                         t.toWorld(glm::dvec3(whole.bounds.upper)),
+                                                         d.session.settings.camera.fovYDegrees);
+        d.fitCamera = false;
+    }
+    return part;
+}
+
+namespace {
+
+// The buffers and pipeline of one data-parallel render.
+struct Batch {
+    gpu::Context& ctx;
+    gpu::ComputePipeline pipeline;
+    gpu::Buffer paths, hits, shadow, counters;
+    shared::DataParallelPush push{};
+
+    void run(uint32_t stage) {
+        push.stage = stage;
+        counters.fillZero();
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { pipeline.dispatch(cmd, &push, (push.count + 63) / 64); },
+                          pipeline.name());
+    }
+    std::array<uint32_t, shared::kCounterCount + 1> readCounters() const {
+        std::array<uint32_t, shared::kCounterCount + 1> c{};
+        counters.download(c.data(), sizeof c);
+        return c;
+    }
+};
+
+}  // namespace
+
+DataParallelResult renderDataParallel(World& world, picture::Picture& p, const DataPart& part,
+                                      nlohmann::ordered_json rankInfo,
+                                      const std::function<void(uint32_t, uint32_t)>& progress) {
+    render::Renderer& renderer = *p.renderer;
+    gpu::Context& ctx = renderer.context();
+    const scene::RenderSettings& rs = renderer.settings();
+    AMRVK_CHECK(rs.mode != scene::Mode::Dvr, "--distribute data: mode dvr is not supported (use ae, ss or ms)");
+    const scene::StructureConfig& config = renderer.config();
+    const uint32_t count = uint32_t(rs.width) * uint32_t(rs.height);
+    renderer.setSettings(rs);
+    renderer.resetAccumulation();
+    const uint64_t params = renderer.paramsAddress();
+
+    const char* shader = config.backend == scene::Backend::Rq ? "path_trace_dp_rq" : "path_trace_dp";
+    Batch b{ctx,
+            gpu::ComputePipeline(ctx, renderer.shaders().load(shader),
+                                 std::string("path_trace_dp.") + scene::modeName(rs.mode) + "." + config.label(),
+                                 sizeof(shared::DataParallelPush),
+                                 {{0, uint32_t(rs.mode)},
+                                  {1, uint32_t(config.sampler)},
+                                  {2, uint32_t(config.traversal)},
+                                  {3, uint32_t(config.backend)}}),
+            gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelPathGpu), gpu::MemoryKind::Device,
+                        "dataParallelPaths"),
+            gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelHitGpu), gpu::MemoryKind::HostRead,
+                        "dataParallelHits"),
+            gpu::Buffer(ctx, uint64_t(count) * sizeof(float), gpu::MemoryKind::HostRead, "dataParallelShadow"),
+            gpu::Buffer(ctx, (shared::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::HostRead,
+                        "dataParallelCounters")};
+    const scene::Volume& v = renderer.volume();
+    const amr::Box3l& mine = part.owned[size_t(world.rank())];
+    b.push.params = params;
+    b.push.paths = b.paths.address();
+    b.push.hits = b.hits.address();
+    b.push.shadow = b.shadow.address();
+    b.push.counters = b.counters.address();
+    b.push.ownedLo = glm::vec3(v.toLocal(glm::dvec3(mine.lower)));
+    b.push.ownedHi = glm::vec3(v.toLocal(glm::dvec3(mine.upper)));
+    b.push.count = count;
+    b.push.rankSeed = 0x9E3779B9u * uint32_t(world.rank() + 1);
+
+    scene::RenderStats stats;
+    std::vector<shared::DataParallelHitGpu> hits(count);
+    std::vector<float> shadow(count);
+    std::vector<uint32_t> live;  // indices of the paths in this reduction (the same on every rank)
+    std::vector<World::FloatRank> nearest;
+    std::vector<float> colors, transmittance;
+    uint64_t bytes = 0, reductions = 0, bounces = 0;
+    double mpiSeconds = 0;
+    const Timer wall;
+    auto addCounters = [&] {
+        const auto c = b.readCounters();
+        for (uint32_t k = 0; k < shared::kCounterCount; ++k) stats.counters[k] += c[k];
+        return c[shared::kCounterCount];
+    };
+    const uint32_t spp = p.session.spp;
+    for (uint32_t sample = 0; sample < spp; ++sample) {
+        b.push.sampleIndex = sample;
+        b.run(shared::kDpStageGenerate);
+        for (;;) {
+            // Local first collisions, then the nearest over ranks with its owner's colour.
+            b.run(shared::kDpStageTrack);
+            addCounters();
+            b.hits.download(hits.data(), hits.size() * sizeof(hits[0]));
+            live.clear();
+            for (uint32_t i = 0; i < count; ++i)
+                if (hits[i].t >= 0) live.push_back(i);
+            if (live.empty()) break;
+            nearest.resize(live.size());
+            colors.assign(live.size() * 3, 0.0f);
+            for (size_t k = 0; k < live.size(); ++k) nearest[k] = {hits[live[k]].t, world.rank()};
+            Timer mpi;
+            bytes += world.minLocEverywhere(nearest);
+            for (size_t k = 0; k < live.size(); ++k)
+                if (nearest[k].rank == world.rank())
+                    for (int c = 0; c < 3; ++c) colors[3 * k + size_t(c)] = hits[live[k]].color[c];
+            bytes += world.sumEverywhere(colors);
+            mpiSeconds += mpi.seconds();
+            reductions += 2;
+            for (size_t k = 0; k < live.size(); ++k)
+                hits[live[k]] = {nearest[k].value, glm::vec3(colors[3 * k], colors[3 * k + 1], colors[3 * k + 2])};
+            b.hits.upload(hits.data(), hits.size() * sizeof(hits[0]));
+            b.run(shared::kDpStageShade);
+            const uint32_t stillLive = addCounters();
+            ++bounces;
+            // Shadow rays: the product of the local transmittances.
+            b.run(shared::kDpStageShadow);
+            addCounters();
+            b.shadow.download(shadow.data(), shadow.size() * sizeof(float));
+            live.clear();
+            for (uint32_t i = 0; i < count; ++i)
+                if (shadow[i] >= 0) live.push_back(i);
+            if (!live.empty()) {
+                transmittance.resize(live.size());
+                for (size_t k = 0; k < live.size(); ++k) transmittance[k] = shadow[live[k]];
+                mpi = Timer();
+                bytes += world.productEverywhere(transmittance);
+                mpiSeconds += mpi.seconds();
+                ++reductions;
+                for (size_t k = 0; k < live.size(); ++k) shadow[live[k]] = transmittance[k];
+                b.shadow.upload(shadow.data(), shadow.size() * sizeof(float));
+                b.run(shared::kDpStageResolve);
+            }
+            if (stillLive == 0) break;
+        }
+        b.run(shared::kDpStageAccumulate);
+        addCounters();
+        stats.paths += count;
+        if (progress) progress(sample + 1, spp);
+    }
+    stats.gpuSeconds = wall.seconds() - mpiSeconds;  // stages, downloads and uploads; MPI excluded
+
+    // Tracking counters are sums over the ranks' boxes; the shading ones (bounce limit, NaN) were
+    // counted alike on every rank.
+    std::vector<uint64_t> counts(stats.counters.begin(), stats.counters.end());
+    const uint64_t localLookups = stats.counters[shared::kCounterDensityLookups];
+    world.sumEverywhere(counts);
+    scene::RenderStats all = stats;
+    for (uint32_t k : {shared::kCounterDensityLookups, shared::kCounterRealCollisions, shared::kCounterNullCollisions,
+                       shared::kCounterTraversalSteps, shared::kCounterMajorantViolations,
+                       shared::kCounterTrackingCapHits})
+        all.counters[k] = counts[k];
+    all.gpuSeconds = world.maxOverRanks(stats.gpuSeconds);
+    DataParallelResult result;
+    result.out = scene::outputFromSums(renderer.sums(), spp, all);
+
+    const uint64_t held = v.model.cellCount();
+    rankInfo["rank"] = world.rank();
+    rankInfo["host"] = world.host();
+    rankInfo["localRank"] = world.localRank();
+    rankInfo["device"] = ctx.deviceReport().name;
+    rankInfo["ownedBox"] = {{mine.lower.x, mine.lower.y, mine.lower.z}, {mine.upper.x, mine.upper.y, mine.upper.z}};
+    rankInfo["ownedCells"] = part.ownedCells;
+    rankInfo["heldCells"] = held;
+    rankInfo["haloCells"] = held - part.ownedCells;
+    rankInfo["censusSeconds"] = part.censusSeconds;
+    rankInfo["readPartSeconds"] = part.readSeconds;
+    rankInfo["densityLookups"] = localLookups;
+    rankInfo["renderSeconds"] = wall.seconds();
+    rankInfo["mpiSeconds"] = mpiSeconds;
+    rankInfo["reductions"] = reductions;
+    rankInfo["bytesSent"] = bytes;
+    rankInfo["hostPeakBytes"] = peakResidentBytes();
+    rankInfo["hostModelBytes"] = v.modelBytes();
+    rankInfo["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
+    const std::vector<std::string> reports = world.gatherToRoot(rankInfo.dump());
+    if (world.rank() == 0) {
+        nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
+        uint64_t moved = 0;
+        for (const std::string& text : reports) {
+            ranks.push_back(nlohmann::ordered_json::parse(text));
+            moved += ranks.back()["bytesSent"].get<uint64_t>();
+        }
+        result.mpi = {{"ranks", world.size()},
+                      {"distribute", "data"},
+                      {"cells", part.census.cells},
+                      {"bounces", bounces},
+                      {"bytesMoved", moved},
+                      {"bytesMovedPerPath", all.paths > 0 ? double(moved) / double(all.paths) : 0.0},
+                      {"perRank", ranks}};
+    }
+    return result;
+}
+
+}  // namespace amrvk::mpi

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# Usage: data_parallel.sh AMRVK MPIRUN DATA_DIR SOURCE_DIR SCRATCH. Data-parallel rendering
+# (--distribute data, docs/mpi.md): each rank reads and tracks only its box of space, and the
+# image equals the single-process one statistically (tests/mpi/zcompare.py: per-pixel and pooled
+# z of the means against both variances) with 2 and 3 ranks, in ae, ss and ms, on the bundled
+# cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level.
+# Power: the same test rejects the data-parallel image when the single-process reference is made
+# from data with one rank's part 5% denser. --json: boxes that tile the data, every cell owned by
+# one rank, halos, bytes moved.
+set -u
+amrvk="$1"; mpirun="$2"; data="${AMRVK_DATA_DIR:-$3}"; src="$4"; dir="$5"
+rm -rf "$dir"; mkdir -p "$dir"
+fail=0
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+zcompare() { /usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/zcompare.py" "$@"; }
+cloud="$src/assets/samples/cloud.cells"
+enzo="$data/enzo_tiny_cosmology/DD0018/DD0018"
+[ -f "$enzo" ] || { echo "FAIL: no Enzo sample at $enzo"; exit 1; }
+# An absorber (black, alpha rising with the value) in front of a white background: the image is
+# the transmittance, which a density error changes.
+cat >"$dir/absorber.json" <<'JSON'
+[{"Name": "absorber", "ColorSpace": "RGB", "RGBPoints": [0, 0, 0, 0, 3, 0, 0, 0], "Points": [0, 0, 0.5, 0, 3, 1, 0.5, 0]}]
+JSON
+
+# same NAME N INPUT ARGS...: single process (seed 5) and N ranks (seed 7) must agree.
+same() {
+  local name="$1" n="$2" input="$3"; shift 3
+  "$amrvk" render "$input" "$@" --seed 5 -o "$dir/$name.one.pfm" --variance "$dir/$name.one.var.pfm" >/dev/null 2>&1 \
+    || { echo "FAIL: $name: single-process render"; fail=1; return; }
+  "${mpi[@]}" -n "$n" "$amrvk" render "$input" "$@" --distribute data -o "$dir/$name.pfm" --variance "$dir/$name.var.pfm" \
+    --json "$dir/$name.json" >/dev/null 2>"$dir/$name.err" || { echo "FAIL: $name: $(cat "$dir/$name.err")"; fail=1; return; }
+  local r; r=$(zcompare "$dir/$name.one.pfm" "$dir/$name.one.var.pfm" "$dir/$name.pfm" "$dir/$name.var.pfm")
+  if [ $? = 0 ]; then echo "ok: $name agrees with one process: $r"; else echo "FAIL: $name differs: $r"; fail=1; fi
+}
+absorb=(--size 40x40 --spp 1024 --tf "$dir/absorber.json" --mode ae --background 1 1 1 --density-scale 0.5)
+same cloud-ae-2 2 "$cloud" "${absorb[@]}"
+same cloud-ae-3 3 "$cloud" "${absorb[@]}"
+same cloud-ms-3 3 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2
+same cloud-ss-2 2 "$cloud" --size 32x32 --spp 128 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3
+same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf-range 0 4 --density-scale 2
+
+# The report: boxes that tile the bounds without overlap, each cell owned once, halos held.
+for name in cloud-ae-2 cloud-ae-3 enzo-ms-2; do
+  check /usr/bin/python3 - "$dir/$name.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); m = j["mpi"]; ranks = m["perRank"]
+assert m["distribute"] == "data" and m["ranks"] == len(ranks) >= 2, m
+volume = lambda b: (b[1][0] - b[0][0]) * (b[1][1] - b[0][1]) * (b[1][2] - b[0][2])
+boxes = [r["ownedBox"] for r in ranks]
+for i, a in enumerate(boxes):
+    for b in boxes[i + 1:]:
+        overlap = [min(a[1][k], b[1][k]) - max(a[0][k], b[0][k]) for k in range(3)]
+        assert min(overlap) <= 0, (a, b)
+lo = [min(b[0][k] for b in boxes) for k in range(3)]; hi = [max(b[1][k] for b in boxes) for k in range(3)]
+assert sum(volume(b) for b in boxes) == volume([lo, hi]), boxes
+assert sum(r["ownedCells"] for r in ranks) == m["cells"], (m["cells"], [r["ownedCells"] for r in ranks])
+assert all(r["heldCells"] >= r["ownedCells"] > 0 for r in ranks), ranks
+assert all(r["heldCells"] < m["cells"] for r in ranks), "a rank holds every cell"
+assert m["bytesMoved"] > 0 and m["bytesMovedPerPath"] > 0 and j["majorantViolations"] == 0, m
+print("ok: %s: owned %s, held %s, %.1f bytes per path" % (sys.argv[1].split("/")[-1], [r["ownedCells"] for r in ranks],
+      [r["heldCells"] for r in ranks], m["bytesMovedPerPath"]))
+PY
+done
+
+# Power: reference data with rank 1's part 5% denser (values x 1.05 under a linear alpha ramp).
+for n in 2; do
+  name=cloud-ae-$n
+  fine=$(/usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/perturb_part.py" "$cloud" "$dir/$name.json" 1 1.05 "$dir/denser") \
+    || { echo "FAIL: perturb"; fail=1; continue; }
+  echo "perturbed rank 1's part: $fine"
+  check /usr/bin/python3 -c 'import json,sys; assert json.loads(sys.argv[1])["fineCellsAtInteriorFaces"] > 0' "$fine"
+  "$amrvk" render "$dir/denser.cells" "${absorb[@]}" --seed 5 -o "$dir/denser.pfm" --variance "$dir/denser.var.pfm" \
+    >/dev/null 2>&1 || { echo "FAIL: denser render"; fail=1; continue; }
+  r=$(zcompare "$dir/denser.pfm" "$dir/denser.var.pfm" "$dir/$name.pfm" "$dir/$name.var.pfm")
+  if [ $? = 1 ]; then echo "ok: the test rejects a 5% denser part: $r"; else echo "FAIL: a 5% denser part passed: $r"; fail=1; fi
+done
+
+# Modes it does not do, and --distribute outside mpirun: one line each.
+"${mpi[@]}" -n 2 "$amrvk" render "$cloud" --size 8x8 --spp 2 --mode dvr --distribute data -o "$dir/x.png" 2>"$dir/dvr.err"
+check grep -q "mode dvr is not supported" "$dir/dvr.err"
+check test "$(grep -c . "$dir/dvr.err")" = 1
+"$amrvk" render "$cloud" --size 8x8 --spp 2 --distribute data -o "$dir/x.png" 2>"$dir/nompi.err"
+check grep -q "only under an MPI launcher" "$dir/nompi.err"
+check test ! -e "$dir/x.png"
+exit $fail
