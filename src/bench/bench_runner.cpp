@@ -73,6 +73,11 @@ private:
     // The data set's renderer switched to `config` (resolved); made through picture::makePicture
     // on first use (the old device copy is freed before each new one).
     render::Renderer& rendererFor(const StructureConfig& config);
+    // Renderer::render, or BenchOptions::render when set (sample-parallel MPI).
+    scene::RenderOutput renderAll(render::Renderer& renderer, const scene::RenderSettings& rs, uint32_t spp,
+                                  const std::function<void(uint32_t, uint32_t)>& progress,
+                                  const std::vector<uint32_t>& snapshotSpp,
+                                  const std::function<void(const scene::RenderOutput&)>& snapshot);
 
     gpu::Context& mCtx;
     const BenchOptions& mOpt;
@@ -144,25 +149,30 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
             }
         }
     }
+    if (mOpt.all) info.cached = mOpt.all(info.cached);
     if (!info.cached) {
         tick("reference " + name + " (" + std::to_string(spp) + " spp)");
         mRenderer.reset();  // one renderer's device memory at a time
         picture::Picture p = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
-        scene::RenderOutput out = p.render([&](uint32_t done, uint32_t total) {
+        scene::RenderOutput out = renderAll(*p.renderer, p.renderer->settings(), p.session.spp,
+                                            [&](uint32_t done, uint32_t total) {
             tick("reference " + name + " " + std::to_string(done) + "/" + std::to_string(total) + " spp");
-        });
+        }, {}, {});
         ref.mean = out.mean;
         ref.meanVariance = scene::varianceOfMean(out);
         Image var(rs.width, rs.height);
         for (size_t i = 0; i < var.pixels.size(); ++i)
             var.pixels[i] = glm::vec4(ref.meanVariance[3 * i], ref.meanVariance[3 * i + 1], ref.meanVariance[3 * i + 2], 1);
-        writeImage(meanFile, ref.mean);
-        writeImage(varFile, var);
+        if (mOpt.writesFiles) {
+            writeImage(meanFile, ref.mean);
+            writeImage(varFile, var);
+        }
         info.seconds = out.stats.gpuSeconds;
         const nlohmann::ordered_json j = {{"key", key}, {"command", command}, {"spp", spp},
                                           {"gpuSeconds", out.stats.gpuSeconds},
                                           {"device", mCtx.deviceReport().name}, {"variance", varFile.string()}};
-        writeFileAtomic(infoFile, j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+        if (mOpt.writesFiles)
+            writeFileAtomic(infoFile, j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
     }
     double v = 0;
     for (float x : ref.meanVariance) v += x;
@@ -178,6 +188,7 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
                        (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "");
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
+    render::Renderer* rendererOf = nullptr;
     try {
         StructureConfig resolved = config;
         picture::resolveStructure(mCtx, resolved);
@@ -201,6 +212,13 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.deviceBytesAfterBuild = mCtx.memory().currentBytes();
         for (const auto& [name, usage] : mCtx.memory().perResource())
             if (usage.current > 0) r.deviceBytesPerResource.emplace_back(name, usage.current);
+        rendererOf = &renderer;
+    } catch (const Error& e) {
+        r.error = e.what();
+    }
+    if (mOpt.agree) r.error = mOpt.agree(r.error);  // every rank renders, or none does
+    if (r.error.empty()) try {
+        render::Renderer& renderer = *rendererOf;
         scene::RenderSettings rs = mSettings;
         rs.mode = mode;
         rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
@@ -208,8 +226,8 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
             tick(what + " (warm-up)");
             renderer.render(rs, mOpt.warmup);
         }
-        scene::RenderOutput out = renderer.render(
-            rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
+        scene::RenderOutput out = renderAll(
+            renderer, rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
             powersOfTwoUpTo(mOpt.frames), [&](const scene::RenderOutput& partial) {
                 ImageError e = imageError(partial.mean, mRef);
                 r.curve.push_back({partial.spp, partial.stats.gpuSeconds, e.rmse(), e.relMse});
@@ -241,6 +259,14 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     ++mDone;
     tick(what + " done");
     return r;
+}
+
+scene::RenderOutput Runner::renderAll(render::Renderer& renderer, const scene::RenderSettings& rs, uint32_t spp,
+                                     const std::function<void(uint32_t, uint32_t)>& progress,
+                                     const std::vector<uint32_t>& snapshotSpp,
+                                     const std::function<void(const scene::RenderOutput&)>& snapshot) {
+    if (mOpt.render) return mOpt.render(renderer, rs, spp, progress, snapshotSpp, snapshot);
+    return renderer.render(rs, spp, progress, snapshotSpp, snapshot);
 }
 
 render::Renderer& Runner::rendererFor(const StructureConfig& config) {

@@ -12,9 +12,18 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
+#include "core/mpi_launch.h"
 #include "core/progress.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
+
+#if AMRVK_MPI
+#include "mpi/sample_parallel.h"
+#else
+namespace amrvk::mpi {
+class World;
+}
+#endif
 
 namespace amrvk::cli {
 
@@ -64,7 +73,12 @@ std::vector<T> parseList(const char* option, const std::string& text, T (*parse)
 
 }  // namespace
 
-int runBench(const std::vector<std::string>& argv) {
+namespace {
+
+// The bench; with `world` (mpirun) sample-parallel: every rank runs the protocol, each render's
+// samples split over the ranks; rank 0 alone speaks and writes.
+int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
+    const bool speaks = !world || world->rank() == 0;
     CLI::App app(kBenchHelp, "amrvk bench");
     setUpCommand(app);
     std::vector<std::string> inputs;
@@ -191,6 +205,7 @@ int runBench(const std::vector<std::string>& argv) {
     o.dense = !noDense;
     o.denseMaxBytes = uint64_t(pic.denseMaxMib) << 20;
     o.autoSelect = autoSelect;
+    AMRVK_CHECK(!world || !autoSelect, "--auto: not under mpirun (its timed pick can differ between ranks)");
     o.base = pictureSettings(app, pic, scene::RenderSettings{});
     o.fovDegrees = pic.fov;
     if (app.count("--camera")) o.camera = o.base.camera;
@@ -213,12 +228,37 @@ int runBench(const std::vector<std::string>& argv) {
     checkOutputs({{"-o", o.outDir / "results.json"}, {"-o", o.outDir / "results.csv"}, {"-o", o.outDir / "results.md"}},
                  dataInputs);
     o.shaders = gpu::ShaderLibrary(dev.shaderDir);
-    gpu::Context ctx(dev.context);
+    gpu::ContextOptions co = dev.context;
+#if AMRVK_MPI
+    if (world) {
+        co.spread = uint32_t(world->localRank());
+        o.writesFiles = speaks;
+        o.render = [world](render::Renderer& r, const scene::RenderSettings& rs, uint32_t spp,
+                           const std::function<void(uint32_t, uint32_t)>& progress, const std::vector<uint32_t>& marks,
+                           const std::function<void(const scene::RenderOutput&)>& snapshot) {
+            return mpi::renderSamplesShared(*world, r, rs, spp, progress, marks, snapshot);
+        };
+        o.agree = [world](const std::string& error) {
+            mpi::Failure f = world->agree(error, {}, 20, false);
+            if (f.fatal) throw mpi::PeerFailed(std::move(f));
+            if (f.rank < 0) return std::string();
+            return "rank " + std::to_string(f.rank) + " of " + std::to_string(world->size()) + ": " +
+                   (f.message.empty() ? std::string("failed") : f.message);
+        };
+        o.all = [world](bool mine) {
+            mpi::Failure f = world->agree(mine ? "" : "no", {}, 20, false);
+            if (f.fatal) throw mpi::PeerFailed(std::move(f));
+            return f.rank < 0;
+        };
+    }
+#endif
+    gpu::Context ctx(co);
 
     ProgressBar bar("bench", "runs");
     bench::BenchResults results =
         bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
     bar.finish();
+    if (!speaks) return 0;  // rank 0 writes the reports of the job
     const bench::PlotOutcome plots = bench::writeReports(results, o.outDir);
     size_t failed = 0;
     for (const auto& r : results.runs) failed += !r.error.empty();
@@ -229,5 +269,22 @@ int runBench(const std::vector<std::string>& argv) {
     if (!plots.note.empty()) std::fprintf(stderr, "amrvk bench: %s\n", plots.note.c_str());
     return 0;
 }
+
+}  // namespace
+
+#if AMRVK_MPI
+int runBench(const std::vector<std::string>& argv) {
+    if (launchedJobSize() == 0) return benchOn(argv, nullptr);
+    return mpi::runOnEveryRank(
+        "bench", [&](mpi::World& world) { return benchOn(argv, &world); },
+        [](std::exception_ptr e) { return errorText(e, "bench"); });
+}
+#else
+int runBench(const std::vector<std::string>& argv) {
+    AMRVK_CHECK(launchedJobSize() <= 1, "started by an MPI launcher with ", launchedJobSize(),
+                " processes, but this amrvk was built without MPI (install libopenmpi-dev and rebuild; docs/mpi.md)");
+    return benchOn(argv, nullptr);
+}
+#endif
 
 }  // namespace amrvk::cli

@@ -14,4 +14,13 @@ inline int launchedJobSize() {
     return 0;
 }
 
+// This process's rank in that job (0 when no launcher started it).
+inline int launchedRank() {
+    for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK"}) {
+        const char* v = std::getenv(name);
+        if (v && *v) return std::atoi(v);
+    }
+    return 0;
+}
+
 }  // namespace amrvk

@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
+#include "mpi/sample_parallel.h"
 #include "scene/camera.h"
 #include "shared/data_parallel_gpu.h"
 
@@ -87,6 +89,12 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     AMRVK_CHECK(rs.mode != scene::Mode::Dvr, "--distribute data: mode dvr is not supported (use ae, ss or ms)");
     const scene::StructureConfig& config = renderer.config();
     const uint32_t count = uint32_t(rs.width) * uint32_t(rs.height);
+    // Every rank must cut the same data the same way and trace the same paths.
+    std::string census = strCat(part.census.cells, "|", part.census.binWidth);
+    for (const amr::Box3l& b : part.owned)
+        for (int a = 0; a < 3; ++a) census += strCat("|", b.lower[a], ",", b.upper[a]);  // GCC 12: no false -Wrestrict
+    world.requireSame(std::hash<std::string>{}(census), "the data set (census and partition)");
+    world.requireSame(pictureFingerprint(p.session), "the picture (options or fitted choices)");
     renderer.setSettings(rs);
     renderer.resetAccumulation();
     const uint64_t params = renderer.paramsAddress();

@@ -19,6 +19,10 @@ struct SampleRange {
 };
 SampleRange sampleRange(uint32_t spp, int rank, int size);
 
+// A hash of the fitted session (data source, field, TF, camera, settings, spp; not the structure
+// choice, which may differ between ranks): equal on ranks that render the same picture.
+uint64_t pictureFingerprint(const session::Session& s);
+
 struct SampleParallelResult {
     scene::RenderOutput out;      // rank 0: every rank's samples; other ranks: their own
     nlohmann::ordered_json mpi;   // rank 0: the "mpi" block of --json (per-rank work and bytes)
@@ -30,5 +34,16 @@ struct SampleParallelResult {
 // build seconds, ...), gathered with the render's own numbers.
 SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
                                           const std::function<void(uint32_t, uint32_t)>& progress = {});
+
+// Renderer::render (settings, from scratch, snapshots at snapshotSpp) with the samples split over
+// the ranks at each step between snapshots: every rank gets the image of all samples so far at each
+// snapshot and at the end (the sums added on every rank), so every rank takes the same decisions
+// after it. Collective: every rank calls it for the same picture. A rank's error fails the call on
+// every rank (amrvk::Error naming the rank); a rank that left the job throws PeerFailed. What
+// `amrvk bench` renders under mpirun.
+scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer, const scene::RenderSettings& settings,
+                                        uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+                                        const std::vector<uint32_t>& snapshotSpp,
+                                        const std::function<void(const scene::RenderOutput&)>& snapshot);
 
 }  // namespace amrvk::mpi

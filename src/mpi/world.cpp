@@ -84,18 +84,19 @@ World::World() {
 
 World::~World() { MPI_Finalize(); }
 
-Failure World::agree(const std::string& error, const std::string& lineIfAlone, double failedWaitSeconds) {
-    const int mine = error.empty() ? 0 : 1;
+Failure World::agree(const std::string& error, const std::string& lineIfAlone, double failedWaitSeconds, bool fatal) {
+    const int mine = error.empty() ? 0 : fatal ? 2 : 1;
     std::vector<int> all(size_t(mSize), 0);
     MPI_Request request;
     check(MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &request), "MPI_Iallgather");
-    // A healthy rank waits as long as the others work; a failed one only so long.
-    if (!waitFor(request, mine ? failedWaitSeconds : -1.0)) abort(lineIfAlone.empty() ? error : lineIfAlone);
+    // A healthy rank waits as long as the others work; a rank that is leaving only so long.
+    if (!waitFor(request, mine == 2 ? failedWaitSeconds : -1.0)) abort(lineIfAlone.empty() ? error : lineIfAlone);
     Failure f;
     for (int r = 0; r < mSize; ++r)
         if (all[size_t(r)]) {
             if (f.rank < 0) f.rank = r;
             ++f.count;
+            f.fatal = f.fatal || all[size_t(r)] == 2;
         }
     if (f.rank < 0) return f;
     if (f.rank == mRank) f.message = error;
@@ -153,6 +154,13 @@ double World::maxOverRanks(double value) {
     return most;
 }
 
+void World::requireSame(uint64_t fingerprint, const std::string& what) {
+    uint64_t range[2] = {fingerprint, ~fingerprint};  // min of the value, min of its complement (max)
+    check(MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
+    AMRVK_CHECK(range[0] == fingerprint && ~range[1] == fingerprint, "ranks disagree on ", what,
+                " (every rank must run the same command on the same data)");
+}
+
 uint64_t World::minLocEverywhere(std::vector<FloatRank>& values) {
     static_assert(sizeof(FloatRank) == 8);
     return allPieces(values.data(), values.size(), MPI_FLOAT_INT, MPI_MINLOC);
@@ -162,6 +170,9 @@ uint64_t World::sumEverywhere(std::vector<float>& values) {
 }
 uint64_t World::productEverywhere(std::vector<float>& values) {
     return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_PROD);
+}
+uint64_t World::sumEverywhere(std::vector<double>& values) {
+    return allPieces(values.data(), values.size(), MPI_DOUBLE, MPI_SUM);
 }
 uint64_t World::sumEverywhere(std::vector<uint64_t>& values) {
     return allPieces(values.data(), values.size(), MPI_UINT64_T, MPI_SUM);

@@ -16,6 +16,7 @@ namespace amrvk::mpi {
 struct Failure {
     int rank = -1;
     int count = 0;        // ranks that failed at this agreement
+    bool fatal = false;   // one of them cannot go on (it is leaving the job)
     std::string message;  // the first failing rank's error (known on rank 0 and on that rank)
 };
 
@@ -40,10 +41,13 @@ public:
     const std::string& host() const { return mHost; }
 
     // Every rank calls agree() at the same points of its work, with the error it hit (empty: none).
-    // Returns which rank failed first and how many did. A failing rank waits at most
-    // `failedWaitSeconds` for the others to get there (they may be rendering): past it, it prints
-    // `line(error)` itself and aborts the job (MPI_Abort), so no fault keeps the job alive.
-    Failure agree(const std::string& error, const std::string& lineIfAlone = {}, double failedWaitSeconds = 20);
+    // Returns which rank failed first and how many did. A fatal error (the rank leaves the job)
+    // waits at most `failedWaitSeconds` for the others to get there (they may be rendering): past
+    // it, the rank prints `lineIfAlone` itself and aborts the job (MPI_Abort), so no fault keeps
+    // the job alive. A non-fatal one (the job goes on, e.g. a failed bench run) waits as long as
+    // healthy ranks do.
+    Failure agree(const std::string& error, const std::string& lineIfAlone = {}, double failedWaitSeconds = 20,
+                  bool fatal = true);
     // agree("") that throws PeerFailed when another rank failed.
     void checkpoint();
 
@@ -55,6 +59,10 @@ public:
     std::vector<std::string> gatherToRoot(const std::string& text, uint64_t* sent = nullptr);
     // Largest value over ranks, on every rank.
     double maxOverRanks(double value);
+    // Throws, on every rank, "ranks disagree on WHAT ..." unless every rank passes the same
+    // fingerprint (collective): ranks started with different data or options would otherwise
+    // combine pictures that do not belong together.
+    void requireSame(uint64_t fingerprint, const std::string& what);
     // Element-wise over every rank, the result on every rank (same count on all). Each returns the
     // bytes this rank contributed.
     struct FloatRank {
@@ -65,6 +73,7 @@ public:
     uint64_t sumEverywhere(std::vector<float>& values);
     uint64_t productEverywhere(std::vector<float>& values);
     uint64_t sumEverywhere(std::vector<uint64_t>& values);
+    uint64_t sumEverywhere(std::vector<double>& values);
 
     // Prints `line` on stderr and ends every rank of the job.
     [[noreturn]] void abort(const std::string& line);

@@ -11,6 +11,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
 #include "shared/amr_gpu.h"
+#include "shared/data_parallel_gpu.h"
 #include "shared/render_params.h"
 #include "shared/test_push.h"
 
@@ -82,12 +83,16 @@ struct Structs {
     AabbGpu aabb;
     ValueRangeGpu range;
     AccumPixelGpu accum;
+    DataParallelPathGpu dpPath;
+    DataParallelHitGpu dpHit;
+    DataParallelPush dpPush;
 };
-static_assert(sizeof(Structs) == 32 + 32 + 32 + 24 + 8 + 64);
+static_assert(sizeof(Structs) == 32 + 32 + 32 + 24 + 8 + 64 + 96 + 16 + 88);
 
 std::vector<Field> structFields() {
     const size_t b = offsetof(Structs, brick), n = offsetof(Structs, node), a = offsetof(Structs, abr),
-                 x = offsetof(Structs, aabb), r = offsetof(Structs, range), p = offsetof(Structs, accum);
+                 x = offsetof(Structs, aabb), r = offsetof(Structs, range), p = offsetof(Structs, accum),
+                 dp = offsetof(Structs, dpPath), dh = offsetof(Structs, dpHit), du = offsetof(Structs, dpPush);
     return {
         AMRVK_FIELD(b, BrickGpu, lower, 3),   AMRVK_FIELD(b, BrickGpu, level, 1),
         AMRVK_FIELD(b, BrickGpu, size, 3),    AMRVK_FIELD(b, BrickGpu, begin, 1),
@@ -99,6 +104,20 @@ std::vector<Field> structFields() {
         AMRVK_FIELD(r, ValueRangeGpu, lo, 1), AMRVK_FIELD(r, ValueRangeGpu, hi, 1),
         AMRVK_FIELD(p, AccumPixelGpu, sumHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumLo, 4),
         AMRVK_FIELD(p, AccumPixelGpu, sumSqHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumSqLo, 4),
+        AMRVK_FIELD(dp, DataParallelPathGpu, o, 3), AMRVK_FIELD(dp, DataParallelPathGpu, rng, 1),
+        AMRVK_FIELD(dp, DataParallelPathGpu, d, 3), AMRVK_FIELD(dp, DataParallelPathGpu, bounce, 1),
+        AMRVK_FIELD(dp, DataParallelPathGpu, throughput, 3), AMRVK_FIELD(dp, DataParallelPathGpu, flags, 1),
+        AMRVK_FIELD(dp, DataParallelPathGpu, radiance, 3), AMRVK_FIELD(dp, DataParallelPathGpu, pixel, 1),
+        AMRVK_FIELD(dp, DataParallelPathGpu, pending, 3), AMRVK_FIELD(dp, DataParallelPathGpu, shadowDist, 1),
+        AMRVK_FIELD(dp, DataParallelPathGpu, shadowDir, 3), AMRVK_FIELD(dp, DataParallelPathGpu, pad, 1),
+        AMRVK_FIELD(dh, DataParallelHitGpu, t, 1), AMRVK_FIELD(dh, DataParallelHitGpu, color, 3),
+        AMRVK_FIELD(du, DataParallelPush, params, 2), AMRVK_FIELD(du, DataParallelPush, paths, 2),
+        AMRVK_FIELD(du, DataParallelPush, hits, 2), AMRVK_FIELD(du, DataParallelPush, shadow, 2),
+        AMRVK_FIELD(du, DataParallelPush, counters, 2), AMRVK_FIELD(du, DataParallelPush, ownedLo, 3),
+        AMRVK_FIELD(du, DataParallelPush, stage, 1), AMRVK_FIELD(du, DataParallelPush, ownedHi, 3),
+        AMRVK_FIELD(du, DataParallelPush, count, 1), AMRVK_FIELD(du, DataParallelPush, sampleIndex, 1),
+        AMRVK_FIELD(du, DataParallelPush, rankSeed, 1), AMRVK_FIELD(du, DataParallelPush, pad0, 1),
+        AMRVK_FIELD(du, DataParallelPush, pad1, 1),
     };
 }
 

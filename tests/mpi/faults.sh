@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Usage: faults.sh AMRVK MPIRUN SOURCE_DIR SCRATCH. A rank that fails makes every rank exit within
 # 30 s with one line naming the rank and the cause, and no output is written (docs/mpi.md):
-# an error on every rank, a rank that cannot read its data, a rank out of memory, a rank that
-# fails while the others still render (it ends the job itself after 20 s), and a killed rank
-# (reported by mpirun, the launcher that saw it die).
+# an error on every rank, a rank that cannot read its data (both modes), ranks started with
+# different options, a rank out of memory, a rank that fails while the others still render (it
+# ends the job itself after 20 s), and a killed rank (reported by mpirun, which saw it die).
 set -u
 amrvk="$1"; mpirun="$2"; src="$3"; dir="$4"
 rm -rf "$dir"; mkdir -p "$dir"
@@ -41,6 +41,16 @@ expect_fault cannot-read "rank 1 of 3" "truncated.cells" "not a multiple of the 
   "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" -o "$dir/out.png" \
   : -n 1 "$amrvk" render "$dir/truncated.cells" "${small[@]}" -o "$dir/out.png" \
   : -n 1 "$amrvk" render "$cloud" "${small[@]}" -o "$dir/out.png"
+expect_fault cannot-read-data "rank 1 of 2" "truncated.cells" -- \
+  "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --distribute data -o "$dir/out.png" \
+  : -n 1 "$amrvk" render "$dir/truncated.cells" "${small[@]}" --distribute data -o "$dir/out.png"
+# Ranks started with different options would combine unrelated pictures.
+expect_fault disagree "ranks disagree on the picture" "(every rank of 2)" -- \
+  "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" -o "$dir/out.png" \
+  : -n 1 "$amrvk" render "$cloud" "${small[@]}" --seed 9 -o "$dir/out.png"
+expect_fault disagree-data "ranks disagree on the picture" "(every rank of 2)" -- \
+  "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --distribute data -o "$dir/out.png" \
+  : -n 1 "$amrvk" render "$cloud" "${small[@]}" --distribute data --density-scale 2 -o "$dir/out.png"
 # Rank 1 under a 600 MB address-space limit runs out while reading, building, mapping buffers or
 # compiling (where depends on the driver); each way ends in one line that says so.
 expect_fault out-of-memory "rank 1 of 2" "memory" -- \

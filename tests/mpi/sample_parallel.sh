@@ -3,7 +3,8 @@
 # (docs/mpi.md): N = 1, 2, 3 ranks give the single-process image of the same seed and spp to float
 # rounding (each sample is seeded by its index; the ranks' double sums are added on rank 0), on
 # real data (Enzo, ms) and the bundled cloud (ae, and fewer samples than ranks); the comparison
-# rejects another seed's image; --json reports every rank and the bytes moved; only rank 0 writes.
+# rejects another seed's image; --json reports every rank and the bytes moved; only rank 0 writes;
+# bench on 2 ranks measures the error curves of one process.
 set -u
 amrvk="$1"; mpirun="$2"; data="${AMRVK_DATA_DIR:-$3}"; src="$4"; dir="$5"
 rm -rf "$dir"; mkdir -p "$dir"
@@ -55,7 +56,37 @@ for spp in 2 9; do
     || { echo "FAIL: cloud spp $spp: $(cat "$dir/cloud.err")"; fail=1; }
   pfm_compare "$dir/cloud$spp.pfm" "$dir/cloud$spp-3.pfm" 1e-6
 done
+# bench: the same protocol on 2 ranks (each render's samples split, the reference too) measures
+# the same error curves as one process, and rank 0 alone writes the reports.
+tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --samplers grid --backends sw --modes ms
+      --traversals grid-dda --no-dense --dvr-steps none --grid-sweep none)
+"$amrvk" bench "$cloud" -o "$dir/bench1" "${tiny[@]}" >/dev/null 2>&1 || { echo "FAIL: bench on one process"; fail=1; }
+"${mpi[@]}" -n 2 "$amrvk" bench "$cloud" -o "$dir/bench2" "${tiny[@]}" >"$dir/bench2.out" 2>"$dir/bench2.err" \
+  || { echo "FAIL: bench on 2 ranks: $(cat "$dir/bench2.err")"; fail=1; }
+check test "$(grep -c '^wrote' "$dir/bench2.out")" = 1
+check test "$(cd "$dir/bench1" && find . -type f | sort)" = "$(cd "$dir/bench2" && find . -type f | sort)"
+check /usr/bin/python3 - "$dir/bench1/results.json" "$dir/bench2/results.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+ra, rb = a["runs"], b["runs"]
+assert len(ra) == len(rb) >= 1 and all(isinstance(r["error"], list) for r in ra + rb), (ra, rb)  # a list: no failure
+for x, y in zip(ra, rb):
+    ca, cb = [e["rmse"] for e in x["error"]], [e["rmse"] for e in y["error"]]
+    assert len(ca) == len(cb) >= 3, (ca, cb)
+    assert all(abs(p - q) <= 1e-4 * max(p, q) for p, q in zip(ca, cb)), (ca, cb)
+print("ok: bench on 2 ranks measures the curves of one process:", [round(e, 6) for e in cb])
+PY
+expect_line() {  # FRAGMENT -- ARGS: exit 1 with exactly one stderr line containing FRAGMENT
+  local frag="$1"; shift 2
+  "$@" >/dev/null 2>"$dir/line.err"; local rc=$?
+  if [ "$rc" = 1 ] && [ "$(grep -c . "$dir/line.err")" = 1 ] && grep -qF -- "$frag" "$dir/line.err"; then
+    echo "ok: $(cat "$dir/line.err")"; else echo "FAIL: rc=$rc: $(cat "$dir/line.err")"; fail=1; fi
+}
+expect_line "--auto: not under mpirun" -- "${mpi[@]}" -n 2 "$amrvk" bench "$cloud" -o "$dir/bench3" "${tiny[@]}" --auto
+expect_line "only 'amrvk render' and 'amrvk bench' run on several ranks" -- "${mpi[@]}" -n 2 "$amrvk" info "$cloud"
+rm -rf "$dir/bench3"
+
 # Nothing but the named outputs (no temporaries, no per-rank files).
-extra=$(ls -A "$dir" | grep -vE '^(one|n[123]|seed8|half|cloud[0-9]+(-3)?)\.(pfm|json|out|err)$|^cloud\.err$')
+extra=$(ls -A "$dir" | grep -vE '^(one|n[123]|seed8|half|cloud[0-9]+(-3)?)\.(pfm|json|out|err)$|^cloud\.err$|^bench[12](\.out|\.err)?$|^line\.err$')
 check test -z "$extra"
 exit $fail

@@ -5,6 +5,7 @@
 // (tests/gpu/layout_test.cpp). Pads are read too, so the words must tile each struct exactly.
 #include "lib/common.glsl"
 #include "shared/test_push.h"
+#include "shared/data_parallel_gpu.h"
 layout(push_constant, scalar) uniform Push { TestLayoutPush tp; };
 layout(local_size_x = 1) in;
 
@@ -15,6 +16,9 @@ layout(buffer_reference, scalar) readonly buffer StructsRef {
     AabbGpu aabb;
     ValueRangeGpu range;
     AccumPixelGpu accum;
+    DataParallelPathGpu dpPath;
+    DataParallelHitGpu dpHit;
+    DataParallelPush dpPush;
 };
 
 uint k = 0u;
@@ -63,4 +67,11 @@ void main() {
     f3(s.aabb.lo); f3(s.aabb.hi);
     f(s.range.lo); f(s.range.hi);
     f4(s.accum.sumHi); f4(s.accum.sumLo); f4(s.accum.sumSqHi); f4(s.accum.sumSqLo);
+    f3(s.dpPath.o); u(s.dpPath.rng); f3(s.dpPath.d); u(s.dpPath.bounce);
+    f3(s.dpPath.throughput); u(s.dpPath.flags); f3(s.dpPath.radiance); u(s.dpPath.pixel);
+    f3(s.dpPath.pending); f(s.dpPath.shadowDist); f3(s.dpPath.shadowDir); u(s.dpPath.pad);
+    f(s.dpHit.t); f3(s.dpHit.color);
+    u64(s.dpPush.params); u64(s.dpPush.paths); u64(s.dpPush.hits); u64(s.dpPush.shadow); u64(s.dpPush.counters);
+    f3(s.dpPush.ownedLo); u(s.dpPush.stage); f3(s.dpPush.ownedHi); u(s.dpPush.count);
+    u(s.dpPush.sampleIndex); u(s.dpPush.rankSeed); u(s.dpPush.pad0); u(s.dpPush.pad1);
 }
