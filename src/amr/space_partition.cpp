@@ -116,15 +116,16 @@ void bisect(const CellCensus& c, const BinBox& box, int parts, std::vector<BinBo
         bisect(c, hi, parts - left, out);
         return;
     }
-    AMRVK_CHECK(false, c.head.source, ": cannot split ", c.cells, " cells into ", parts,
-                " parts of cells (bins of ", c.binWidth, " voxels; use fewer ranks)");
+    AMRVK_CHECK(false, c.head.source, ": cannot split ", c.cells, " cells into ", parts, " parts of cells (bins of ",
+                c.binWidth, " voxels; use fewer ranks)");
 }
 
 }  // namespace
 
 CellCensus censusOf(const std::filesystem::path& path, const ReadOptions& options) {
     CellCensus c;
-    visitCells(path, options, [&](const Model& chunk) { addExtent(c, chunk); }, &c.head);
+    visitCells(
+        path, options, [&](const Model& chunk) { addExtent(c, chunk); }, &c.head);
     placeBins(c);
     visitCells(path, options, [&](const Model& chunk) { addCounts(c, chunk.cells); });
     return c;
@@ -143,9 +144,9 @@ CellCensus censusOf(const Model& model) {
 
 std::vector<Box3l> partitionByCells(const CellCensus& c, int parts) {
     AMRVK_CHECK(parts >= 1, "internal: ", parts, " parts");
-    AMRVK_CHECK(occupiedBins(c, {glm::ivec3(0), c.bins}) >= uint64_t(parts), c.head.source, ": cannot split ",
-                c.cells, " cells into ", parts, " parts (", occupiedBins(c, {glm::ivec3(0), c.bins}),
-                " occupied bins of ", c.binWidth, " voxels; use fewer ranks)");
+    AMRVK_CHECK(occupiedBins(c, {glm::ivec3(0), c.bins}) >= uint64_t(parts), c.head.source, ": cannot split ", c.cells,
+                " cells into ", parts, " parts (", occupiedBins(c, {glm::ivec3(0), c.bins}), " occupied bins of ",
+                c.binWidth, " voxels; use fewer ranks)");
     std::vector<BinBox> boxes;
     bisect(c, {glm::ivec3(0), c.bins}, parts, boxes);
     std::vector<Box3l> out;
@@ -160,16 +161,19 @@ std::vector<Box3l> partitionByCells(const CellCensus& c, int parts) {
 
 Model readPart(const std::filesystem::path& path, const ReadOptions& options, const Box3l& box) {
     Model out;
-    visitCells(path, options, [&](const Model& chunk) {
-        if (out.fields.empty()) {
-            out.fields = {Field{chunk.fields.at(0).name, {}}};
-        }
-        for (size_t i = 0; i < chunk.cells.size(); ++i)
-            if (supportMeets(chunk.cells[i], box)) {
-                out.cells.push_back(chunk.cells[i]);
-                out.fields[0].values.push_back(chunk.fields[0].values[i]);
+    visitCells(
+        path, options,
+        [&](const Model& chunk) {
+            if (out.fields.empty()) {
+                out.fields = {Field{chunk.fields.at(0).name, {}}};
             }
-    }, &out);
+            for (size_t i = 0; i < chunk.cells.size(); ++i)
+                if (supportMeets(chunk.cells[i], box)) {
+                    out.cells.push_back(chunk.cells[i]);
+                    out.fields[0].values.push_back(chunk.fields[0].values[i]);
+                }
+        },
+        &out);
     return out;
 }
 

@@ -15,10 +15,10 @@ namespace amrvk::amr {
 
 struct CellCensus {
     uint64_t cells = 0;
-    Box3l bounds;                  // union of the cells (voxel space)
+    Box3l bounds;  // union of the cells (voxel space)
     int minLevel = kMaxLevel, maxLevel = 0;
     float valueLo = 0, valueHi = 0;  // the field's range
-    Model head;                    // the source's metadata (no cells)
+    Model head;                      // the source's metadata (no cells)
     // Cells counted by the bin holding their lower corner: bins of binWidth voxels (a power of two)
     // from binOrigin, at most kMaxBins per axis.
     static constexpr int kMaxBins = 128;

@@ -78,7 +78,11 @@ namespace {
 // The bench; with `world` (mpirun) sample-parallel: every rank runs the protocol, each render's
 // samples split over the ranks; rank 0 alone speaks and writes.
 int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
+#if AMRVK_MPI
     const bool speaks = !world || world->rank() == 0;
+#else
+    const bool speaks = true;
+#endif
     CLI::App app(kBenchHelp, "amrvk bench");
     setUpCommand(app);
     std::vector<std::string> inputs;

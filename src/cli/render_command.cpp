@@ -83,11 +83,15 @@ int runDevices(const std::vector<std::string>& argv) {
 
 namespace {
 
-// One render; with `world` (mpirun) this rank's part of a sample-parallel one: every rank reads,
-// builds and renders its samples, rank 0 alone speaks and writes.
+// One render; with `world` (mpirun) this rank's part of a sample- or data-parallel one: rank 0
+// alone speaks and writes.
 int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
-    const Timer sinceStart;
-    const bool speaks = !world || world->rank() == 0;  // time to the first sample: reading, validating, structures, device set-up
+    const Timer sinceStart;  // time to the first sample: reading, validating, structures, device set-up
+#if AMRVK_MPI
+    const bool speaks = !world || world->rank() == 0;
+#else
+    const bool speaks = true;
+#endif
     CLI::App app(kRenderHelp, "amrvk render");
     setUpCommand(app);
     std::string input, output = "amrvk.png", jsonFile;
@@ -148,7 +152,9 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     const double readSeconds = readTimer.seconds() - loaded->bricks.buildSeconds;
     checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
     gpu::ContextOptions co = dev.context;
+#if AMRVK_MPI
     if (world) co.spread = uint32_t(world->localRank());  // one device per rank where a node has several
+#endif
     co.requireRayQuery = description.session.structure.backend == scene::Backend::Rq;
     gpu::Context ctx(co);
     picture::Picture picture =

@@ -48,9 +48,9 @@ DataPart loadPart(World& world, session::PictureDescription& d) {
     // The camera frames the whole data set, not this part.
     if (d.fitCamera) {
         const amr::Transform& t = whole.head.voxelToWorld;
-        d.session.settings.camera = scene::defaultCamera(t.toWorld(glm::dvec3(whole.bounds.lower)),
-                                                         t.toWorld(glm::dvec3(whole.bounds.upper)),
-                                                         d.session.settings.camera.fovYDegrees);
+        d.session.settings.camera =
+            scene::defaultCamera(t.toWorld(glm::dvec3(whole.bounds.lower)), t.toWorld(glm::dvec3(whole.bounds.upper)),
+                                 d.session.settings.camera.fovYDegrees);
         d.fitCamera = false;
     }
     return part;
@@ -204,9 +204,9 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     const uint64_t localLookups = stats.counters[shared::kCounterDensityLookups];
     world.sumEverywhere(counts);
     scene::RenderStats all = stats;
-    for (uint32_t k : {shared::kCounterDensityLookups, shared::kCounterRealCollisions, shared::kCounterNullCollisions,
-                       shared::kCounterTraversalSteps, shared::kCounterMajorantViolations,
-                       shared::kCounterTrackingCapHits})
+    for (uint32_t k :
+         {shared::kCounterDensityLookups, shared::kCounterRealCollisions, shared::kCounterNullCollisions,
+          shared::kCounterTraversalSteps, shared::kCounterMajorantViolations, shared::kCounterTrackingCapHits})
         all.counters[k] = counts[k];
     all.gpuSeconds = world.maxOverRanks(stats.gpuSeconds);
     DataParallelResult result;

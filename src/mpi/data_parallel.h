@@ -19,9 +19,9 @@
 namespace amrvk::mpi {
 
 struct DataPart {
-    amr::CellCensus census;          // the whole data set (every rank computes the same)
-    std::vector<amr::Box3l> owned;   // the box each rank owns (voxel space), in rank order
-    uint64_t ownedCells = 0;         // cells whose lower corner lies in this rank's box (the rest: halo)
+    amr::CellCensus census;         // the whole data set (every rank computes the same)
+    std::vector<amr::Box3l> owned;  // the box each rank owns (voxel space), in rank order
+    uint64_t ownedCells = 0;        // cells whose lower corner lies in this rank's box (the rest: halo)
     double censusSeconds = 0, readSeconds = 0;
     std::shared_ptr<const scene::Volume> volume;  // the region's cells, in the whole data's frame
 };

@@ -107,7 +107,8 @@ scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer
                 if (progress) progress(std::min(mark, done + d * uint32_t(world.size())), spp);
             });
             const scene::AccumulatedSums part = renderer.sums();
-            if (total.values.empty()) total = part;
+            if (total.values.empty())
+                total = part;
             else
                 for (size_t i = 0; i < part.values.size(); ++i) total.values[i] += part.values[i];
             const scene::RenderStats& s = renderer.stats();
@@ -130,7 +131,8 @@ scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer
         for (size_t k = 0; k < all.counters.size(); ++k) all.counters[k] = counts[k];
         all.paths = counts.back();
         all.gpuSeconds = world.maxOverRanks(mine.gpuSeconds);
-        out = scene::outputFromSums({.width = total.width, .height = total.height, .values = std::move(sums)}, mark, all);
+        out =
+            scene::outputFromSums({.width = total.width, .height = total.height, .values = std::move(sums)}, mark, all);
         done = mark;
         if (snapshot && std::find(snapshotSpp.begin(), snapshotSpp.end(), mark) != snapshotSpp.end()) snapshot(out);
     }

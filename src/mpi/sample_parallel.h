@@ -24,8 +24,8 @@ SampleRange sampleRange(uint32_t spp, int rank, int size);
 uint64_t pictureFingerprint(const session::Session& s);
 
 struct SampleParallelResult {
-    scene::RenderOutput out;      // rank 0: every rank's samples; other ranks: their own
-    nlohmann::ordered_json mpi;   // rank 0: the "mpi" block of --json (per-rank work and bytes)
+    scene::RenderOutput out;     // rank 0: every rank's samples; other ranks: their own
+    nlohmann::ordered_json mpi;  // rank 0: the "mpi" block of --json (per-rank work and bytes)
 };
 
 // Renders this rank's range of p.session.spp (progress(done, count) on rank 0), then adds every

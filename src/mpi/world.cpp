@@ -144,7 +144,8 @@ std::vector<std::string> World::gatherToRoot(const std::string& text, uint64_t* 
     if (sent) *sent = mRank == 0 ? 0 : uint64_t(length) + sizeof(int);
     std::vector<std::string> out;
     if (mRank == 0)
-        for (int r = 0; r < mSize; ++r) out.push_back(all.substr(size_t(offsets[size_t(r)]), size_t(lengths[size_t(r)])));
+        for (int r = 0; r < mSize; ++r)
+            out.push_back(all.substr(size_t(offsets[size_t(r)]), size_t(lengths[size_t(r)])));
     return out;
 }
 

@@ -3,6 +3,8 @@
 // against the cell counts, and the part's reconstruction against the whole data's at random
 // points (amr::ReferenceSampler, the brute-force tent sum), which is what makes data-parallel
 // rendering exact at partition faces.
+#include "amr/space_partition.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 
 #include "amr/readers.h"
 #include "amr/sampler.h"
-#include "amr/space_partition.h"
 #include "core/error.h"
 #include "model_fixtures.h"
 #include "test_data.h"
@@ -153,9 +154,9 @@ TEST(SpacePartition, ReadPartStreamsTheCellsThatMeetTheBox) {
     EXPECT_EQ(part.fields[0].values.size(), expected);
     // Chunks smaller than the file: the same cells in the same order.
     std::vector<amr::Cell> chunked;
-    amr::visitExaBrick(std::filesystem::path(base) += ".cells", ro, 1000,
-                       [&](amr::Model& chunk) { chunked.insert(chunked.end(), chunk.cells.begin(), chunk.cells.end()); },
-                       nullptr);
+    amr::visitExaBrick(
+        std::filesystem::path(base) += ".cells", ro, 1000,
+        [&](amr::Model& chunk) { chunked.insert(chunked.end(), chunk.cells.begin(), chunk.cells.end()); }, nullptr);
     ASSERT_EQ(chunked.size(), m.cells.size());
     EXPECT_EQ(std::memcmp(chunked.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
 }
