@@ -39,32 +39,51 @@ std::vector<std::pair<std::string, fs::path>> findScalarFiles(const fs::path& ce
     std::sort(out.begin(), out.end());
     return out;
 }
+// The checks both readers make before reading: the cell file's size, the scalar files beside it.
+struct Opened {
+    fs::path cellsPath;
+    uint64_t count = 0;
+    std::vector<std::pair<std::string, fs::path>> scalarFiles;
+};
+Opened openExaBrick(const fs::path& path, Model& model) {
+    Opened o{.cellsPath = cellsPathOf(path)};
+    model.format = "exabrick";
+    model.source = o.cellsPath.string();
+    const uint64_t bytes = fileSize(o.cellsPath);
+    AMRVK_CHECK(bytes > 0, o.cellsPath.string(), ": empty file (no cells)");
+    AMRVK_CHECK(bytes % sizeof(Cell) == 0, o.cellsPath.string(), ": size ", bytes,
+                " bytes is not a multiple of the 16-byte cell record (truncated file?)");
+    o.count = bytes / sizeof(Cell);
+    o.scalarFiles = findScalarFiles(o.cellsPath);
+    for (const auto& [name, p] : o.scalarFiles) model.availableFields.push_back(name);
+    AMRVK_CHECK(!model.availableFields.empty(), o.cellsPath.string(), ": no scalar file beside it (expected ",
+                o.cellsPath.stem().string(), ".scalars or ", o.cellsPath.stem().string(), ".<field>.scalars)");
+    return o;
+}
+
+// Checks that a scalar file holds one float per cell.
+void checkScalars(const fs::path& p, uint64_t count, const fs::path& cellsPath) {
+    const uint64_t sbytes = fileSize(p);
+    AMRVK_CHECK(sbytes % sizeof(float) == 0, p.string(), ": size ", sbytes,
+                " bytes is not a multiple of 4 (truncated float32 file?)");
+    AMRVK_CHECK(sbytes / sizeof(float) == count, p.string(), ": ", sbytes / sizeof(float), " values but ",
+                cellsPath.filename().string(), " has ", count, " cells");
+}
 }  // namespace
 
 Model readExaBrick(const fs::path& path, const ReadOptions& options) {
-    const fs::path cellsPath = cellsPathOf(path);
-    Model model{.format = "exabrick", .source = cellsPath.string()};
-    const uint64_t bytes = fileSize(cellsPath);
-    AMRVK_CHECK(bytes > 0, cellsPath.string(), ": empty file (no cells)");
-    AMRVK_CHECK(bytes % sizeof(Cell) == 0, cellsPath.string(), ": size ", bytes,
-                " bytes is not a multiple of the 16-byte cell record (truncated file?)");
-    const uint64_t count = bytes / sizeof(Cell);
-
-    const auto scalarFiles = findScalarFiles(cellsPath);
-    for (const auto& [name, p] : scalarFiles) model.availableFields.push_back(name);
-    AMRVK_CHECK(!model.availableFields.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
-                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(), ".<field>.scalars)");
+    Model model;
+    const Opened o = openExaBrick(path, model);
+    const fs::path& cellsPath = o.cellsPath;
+    const uint64_t count = o.count;
+    const auto& scalarFiles = o.scalarFiles;
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
     BinaryReader cells(cellsPath);
     cells.readArray(model.cells, count);
     for (size_t i = 0; i < components.size(); ++i) {
         const fs::path& p = scalarFiles[components[i]].second;
-        uint64_t sbytes = fileSize(p);
-        AMRVK_CHECK(sbytes % sizeof(float) == 0, p.string(), ": size ", sbytes,
-                    " bytes is not a multiple of 4 (truncated float32 file?)");
-        AMRVK_CHECK(sbytes / sizeof(float) == count, p.string(), ": ", sbytes / sizeof(float),
-                    " values but ", cellsPath.filename().string(), " has ", count, " cells");
+        checkScalars(p, count, cellsPath);
         BinaryReader(p).readArray(model.fields[i].values, count);
     }
     return model;
@@ -73,30 +92,17 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
 void visitExaBrick(const fs::path& path, const ReadOptions& options, uint64_t chunkCells,
                    const std::function<void(Model& chunk)>& visit, Model* head) {
     AMRVK_CHECK(options.fields.size() <= 1, "internal: visitExaBrick takes one field");
-    const fs::path cellsPath = cellsPathOf(path);
-    Model model{.format = "exabrick", .source = cellsPath.string()};
-    const uint64_t bytes = fileSize(cellsPath);
-    AMRVK_CHECK(bytes > 0, cellsPath.string(), ": empty file (no cells)");
-    AMRVK_CHECK(bytes % sizeof(Cell) == 0, cellsPath.string(), ": size ", bytes,
-                " bytes is not a multiple of the 16-byte cell record (truncated file?)");
-    const uint64_t count = bytes / sizeof(Cell);
-    const auto scalarFiles = findScalarFiles(cellsPath);
-    for (const auto& [name, p] : scalarFiles) model.availableFields.push_back(name);
-    AMRVK_CHECK(!model.availableFields.empty(), cellsPath.string(), ": no scalar file beside it (expected ",
-                cellsPath.stem().string(), ".scalars or ", cellsPath.stem().string(), ".<field>.scalars)");
+    Model model;
+    const Opened o = openExaBrick(path, model);
     std::vector<std::string> wanted = options.fields;
     if (wanted.empty()) wanted = {model.availableFields.front()};
     const std::vector<size_t> components = addSelectedFields(model, wanted);
-    const fs::path& scalarsPath = scalarFiles[components.at(0)].second;
-    const uint64_t sbytes = fileSize(scalarsPath);
-    AMRVK_CHECK(sbytes % sizeof(float) == 0, scalarsPath.string(), ": size ", sbytes,
-                " bytes is not a multiple of 4 (truncated float32 file?)");
-    AMRVK_CHECK(sbytes / sizeof(float) == count, scalarsPath.string(), ": ", sbytes / sizeof(float), " values but ",
-                cellsPath.filename().string(), " has ", count, " cells");
+    const fs::path& scalarsPath = o.scalarFiles[components.at(0)].second;
+    checkScalars(scalarsPath, o.count, o.cellsPath);
     if (head) *head = model;
-    BinaryReader cells(cellsPath), values(scalarsPath);
-    for (uint64_t at = 0; at < count; at += chunkCells) {
-        const uint64_t n = std::min(chunkCells, count - at);
+    BinaryReader cells(o.cellsPath), values(scalarsPath);
+    for (uint64_t at = 0; at < o.count; at += chunkCells) {
+        const uint64_t n = std::min(chunkCells, o.count - at);
         cells.readArray(model.cells, n);
         values.readArray(model.fields[0].values, n);
         visit(model);

@@ -11,18 +11,14 @@
 #include "bench/report.h"
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "cli/ranks.h"
 #include "core/error.h"
-#include "core/mpi_launch.h"
 #include "core/progress.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 
 #if AMRVK_MPI
 #include "mpi/sample_parallel.h"
-#else
-namespace amrvk::mpi {
-class World;
-}
 #endif
 
 namespace amrvk::cli {
@@ -276,19 +272,8 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
 
 }  // namespace
 
-#if AMRVK_MPI
 int runBench(const std::vector<std::string>& argv) {
-    if (launchedJobSize() == 0) return benchOn(argv, nullptr);
-    return mpi::runOnEveryRank(
-        "bench", [&](mpi::World& world) { return benchOn(argv, &world); },
-        [](std::exception_ptr e) { return errorText(e, "bench"); });
+    return runOnRanks("bench", [&](mpi::World* world) { return benchOn(argv, world); });
 }
-#else
-int runBench(const std::vector<std::string>& argv) {
-    AMRVK_CHECK(launchedJobSize() <= 1, "started by an MPI launcher with ", launchedJobSize(),
-                " processes, but this amrvk was built without MPI (install libopenmpi-dev and rebuild; docs/mpi.md)");
-    return benchOn(argv, nullptr);
-}
-#endif
 
 }  // namespace amrvk::cli

@@ -10,10 +10,10 @@
 #include "amr/readers.h"
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "cli/ranks.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/image_io.h"
-#include "core/mpi_launch.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "gpu/context.h"
@@ -24,10 +24,6 @@
 #if AMRVK_MPI
 #include "mpi/data_parallel.h"
 #include "mpi/sample_parallel.h"
-#else
-namespace amrvk::mpi {
-class World;
-}
 #endif
 
 namespace fs = std::filesystem;
@@ -236,19 +232,8 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
 
 }  // namespace
 
-#if AMRVK_MPI
 int runRender(const std::vector<std::string>& argv) {
-    if (launchedJobSize() == 0) return renderOn(argv, nullptr);
-    return mpi::runOnEveryRank(
-        "render", [&](mpi::World& world) { return renderOn(argv, &world); },
-        [](std::exception_ptr e) { return errorText(e, "render"); });
+    return runOnRanks("render", [&](mpi::World* world) { return renderOn(argv, world); });
 }
-#else
-int runRender(const std::vector<std::string>& argv) {
-    AMRVK_CHECK(launchedJobSize() <= 1, "started by an MPI launcher with ", launchedJobSize(),
-                " processes, but this amrvk was built without MPI (install libopenmpi-dev and rebuild; docs/mpi.md)");
-    return renderOn(argv, nullptr);
-}
-#endif
 
 }  // namespace amrvk::cli

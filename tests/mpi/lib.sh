@@ -7,14 +7,11 @@ check() { if ! "$@"; then echo "FAIL: $*"; fail=1; fi; }
 # pfm_compare A B MAX_REL: the largest relative difference of two PFM images is at most MAX_REL
 # (pixels below 1e-6 in both compare absolutely); prints it. pfm_differ A B MIN_REL: at least MIN_REL.
 pfm_diff() {
-  /usr/bin/python3 - "$1" "$2" <<'PY'
-import sys, numpy as np
-def pfm(path):
-    with open(path, "rb") as f:
-        assert f.readline().strip() == b"PF", path
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        return np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3).astype(np.float64)
+  /usr/bin/python3 - "$1" "$2" "$(dirname "${BASH_SOURCE[0]}")" <<'PY'
+import sys
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from zcompare import pfm
 a, b = pfm(sys.argv[1]), pfm(sys.argv[2])
 assert a.shape == b.shape, (a.shape, b.shape)
 print(float((np.abs(a - b) / np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-6)).max()))
