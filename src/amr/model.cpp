@@ -147,6 +147,45 @@ void applyNanPolicy(Model& model, NanPolicy policy) {
     model.attributes.emplace_back("droppedNonFiniteCells", std::to_string(badCount));
 }
 
+FieldScale parseFieldScale(std::string_view text) {
+    if (text == "linear") return FieldScale::Linear;
+    if (text == "log") return FieldScale::Log;
+    AMRVK_CHECK(false, "--scale: '", text, "' is not linear or log");
+    return FieldScale::Linear;
+}
+
+const char* fieldScaleName(FieldScale scale) { return scale == FieldScale::Log ? "log" : "linear"; }
+
+float smallestPositive(std::span<const float> values) {
+    float best = 0;
+    for (float v : values)
+        if (v > 0 && std::isfinite(v) && (best == 0 || v < best)) best = v;
+    return best;
+}
+
+ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
+    ScaleReport first;
+    if (scale == FieldScale::Linear) return first;
+    AMRVK_CHECK(floor >= 0 && std::isfinite(floor), "--log-floor: ", floor, " must be positive");
+    for (size_t f = 0; f < model.fields.size(); ++f) {
+        Field& field = model.fields[f];
+        const double lo = floor > 0 ? floor : double(smallestPositive(field.values));
+        AMRVK_CHECK(lo > 0, model.source, ": field '", field.name,
+                    "' has no positive value: log scale needs one (or --log-floor)");
+        uint64_t floored = 0;
+        for (float& v : field.values) {
+            if (std::isnan(v)) continue;
+            if (!(double(v) >= lo)) ++floored;  // <= 0, or below an explicit floor
+            v = float(std::log10(std::max(double(v), lo)));
+        }
+        if (f == 0) first = {floored, lo};
+    }
+    model.attributes.emplace_back("scale", "log10");
+    if (first.floored > 0)
+        model.attributes.emplace_back("logFloored", strCat(first.floored, " cells at ", first.floor));
+    return first;
+}
+
 namespace {
 // What is wrong with a cell on its own, or "" (level, alignment, the int32 voxel range).
 std::string cellProblem(const Cell& c) {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -108,6 +109,25 @@ FieldStats computeFieldStats(const Model& model, const Field& field);
 enum class NanPolicy { Reject, Drop };
 NanPolicy parseNanPolicy(std::string_view text);
 void applyNanPolicy(Model& model, NanPolicy policy);
+
+// How field values are taken. Log: log10 of each cell's value, before reconstruction (as yt does),
+// so reconstruction, ranges and exact majorants all work on the logs (a monotone map of each cell
+// range). Values <= 0 have no logarithm: they are floored at `floor` (> 0), by default the field's
+// smallest positive value; a field with no positive value is an error.
+enum class FieldScale { Linear, Log };
+FieldScale parseFieldScale(std::string_view text);
+const char* fieldScaleName(FieldScale scale);
+struct ScaleReport {
+    uint64_t floored = 0;  // cells whose value was <= 0 (or below the floor) and became log10(floor)
+    double floor = 0;      // the floor used (0 for linear)
+};
+// The smallest positive finite value of `values` (0 when there is none).
+float smallestPositive(std::span<const float> values);
+// Applies `scale` to every field of `model` (NaN policy first: NaN stays NaN); floor 0 = each
+// field's smallest positive value. Records "scale" (and "logFloored" when cells were floored) in
+// model.attributes and returns what the first field needed. Throws "SOURCE: field 'F' has no
+// positive value: log scale needs one (or --log-floor)".
+ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor = 0);
 
 // Throws amrvk::Error on: a field whose length differs from the cell count, a level outside
 // [0, kMaxLevel], a cell not aligned to its width or reaching past 2^31-1, an empty model.

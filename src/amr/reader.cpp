@@ -63,7 +63,9 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "chombo") model = readChombo(path, options);
     else if (format == "raw") model = readRaw(path, options);
     else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo or raw)");
-    return checkedModel(std::move(model), options.nanPolicy);
+    model = checkedModel(std::move(model), options.nanPolicy);
+    applyFieldScale(model, options.scale, options.logFloor);
+    return model;
 }
 
 void visitCells(const fs::path& path, const ReadOptions& options, const std::function<void(const Model& chunk)>& visit,
@@ -71,10 +73,22 @@ void visitCells(const fs::path& path, const ReadOptions& options, const std::fun
     AMRVK_CHECK(options.fields.size() <= 1, "internal: visitCells takes one field");
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
     if (format == "exabrick") {
+        // A log scale's default floor is the whole field's smallest positive value: one pass first.
+        double floor = options.logFloor;
+        if (options.scale == FieldScale::Log && floor == 0) {
+            float lo = 0;
+            visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
+                const float c = smallestPositive(chunk.fields[0].values);
+                if (c > 0 && (lo == 0 || c < lo)) lo = c;
+            }, nullptr);
+            floor = lo;
+            AMRVK_CHECK(floor > 0, path.string(), ": the field has no positive value: log scale needs one (or --log-floor)");
+        }
         visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
             applyNanPolicy(chunk, options.nanPolicy);
             if (chunk.cells.empty()) return;  // every cell of it dropped
             validateCells(chunk);
+            applyFieldScale(chunk, options.scale, floor);
             visit(chunk);
         }, head);
         return;

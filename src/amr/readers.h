@@ -15,6 +15,11 @@ struct ReadOptions {
     std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | raw
     std::vector<std::string> fields;  // fields to load; empty = every field of the source
     NanPolicy nanPolicy = NanPolicy::Reject;
+    // How field values are taken (amr::applyFieldScale): linear, or log10 of each cell's value
+    // before reconstruction (as yt does); values <= 0 are floored at logFloor, by default (0) the
+    // field's smallest positive value.
+    FieldScale scale = FieldScale::Linear;
+    double logFloor = 0;
     // Raw uniform volumes only (dims/type may instead come from a name like vol_64x64x32_uint8.raw):
     glm::ivec3 rawDims{0};            // voxels per axis
     std::string rawType;              // uint8 | uint16 | float32 | float64

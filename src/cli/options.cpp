@@ -141,6 +141,17 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
         ->check(CLI::IsMember({"reject", "drop"}))
         ->capture_default_str()
         ->type_name("reject|drop");
+    app.add_option("--scale", a.scale,
+                   "field values as they are (linear) or log10 of each cell's value, before reconstruction as yt "
+                   "takes it (log): the TF, its range, the histogram and info then work on the logs")
+        ->check(CLI::IsMember({"linear", "log"}))
+        ->capture_default_str()
+        ->type_name("linear|log");
+    app.add_option("--log-floor", a.logFloor,
+                   "--scale log: values below V (and every value <= 0) become log10(V) (default: the field's smallest "
+                   "positive value)")
+        ->check(interval(0, INFINITY, false, true))
+        ->type_name("V");
     app.add_option("--dims", a.dims, "raw volumes: voxels per axis (else from a name like v_64x64x64_uint8.raw)")
         ->expected(3)
         ->check(interval(1, 1 << 20))
@@ -159,6 +170,8 @@ amr::ReadOptions readOptions(const ReadArgs& a) {
     ro.format = a.format;
     ro.fields = a.fields;
     ro.nanPolicy = amr::parseNanPolicy(a.nan);
+    ro.scale = amr::parseFieldScale(a.scale);
+    ro.logFloor = a.logFloor;
     if (a.dims.size() == 3) ro.rawDims = glm::ivec3(a.dims[0], a.dims[1], a.dims[2]);
     ro.rawType = a.type;
     ro.rawThreshold = a.threshold;
@@ -355,6 +368,8 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     auto use = [&](const char* name) { return all || given(app, name); };
     if (use("--format")) s.read.format = read.format;
     if (use("--nan")) s.read.nanPolicy = amr::parseNanPolicy(read.nan);
+    if (use("--scale")) s.read.scale = amr::parseFieldScale(read.scale);
+    if (use("--log-floor")) s.read.logFloor = read.logFloor;
     if (given(app, "--dims")) s.read.rawDims = glm::ivec3(read.dims[0], read.dims[1], read.dims[2]);
     if (given(app, "--type")) s.read.rawType = read.type;
     if (use("--threshold")) s.read.rawThreshold = read.threshold;

@@ -28,8 +28,11 @@ struct ReadArgs {
     std::vector<int> dims;
     std::string type;
     double threshold = 0;
+    std::string scale = "linear";
+    double logFloor = 0;
 };
-// --format, --field (repeatable where multiField), --nan, --dims, --type, --threshold.
+// --format, --field (repeatable where multiField), --nan, --scale, --log-floor, --dims, --type,
+// --threshold.
 void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField);
 amr::ReadOptions readOptions(const ReadArgs& a);
 

@@ -44,6 +44,8 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     std::vector<std::string> fitted;
     p.session = session::resolvePicture(d, *volume, &fitted);
     for (const std::string& line : fitted) note(line);
+    for (const auto& [key, value] : volume->model.attributes)
+        if (key == "logFloored") note("log scale: " + value + " (values <= 0, or below --log-floor, have no logarithm)");
     const scene::TransferFunction tf = p.session.tf.merged();
     if (d.fit == session::StructureFit::Probe) {
         // Probes start from the default combination; everything the user gave stays fixed.

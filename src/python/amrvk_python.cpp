@@ -150,7 +150,8 @@ struct PyVolume {
 
 std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string& field, const std::string& format,
                                          const std::string& nan, const std::optional<std::vector<int>>& dims,
-                                         const std::string& type, double threshold) {
+                                         const std::string& type, double threshold, const std::string& scale,
+                                         double logFloor) {
     auto v = std::make_shared<PyVolume>();
     session::Session& s = v->source;
     s.input = path.string();
@@ -163,6 +164,8 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
     }
     s.read.rawType = type;
     s.read.rawThreshold = threshold;
+    s.read.scale = amr::parseFieldScale(scale);
+    s.read.logFloor = logFloor;
     {
         py::gil_scoped_release release;
         InputFileRecorder recorder;
@@ -653,7 +656,10 @@ PYBIND11_MODULE(_amrvk, m) {
                                                     "one field of an AMR data set, in brick order with its bricks")
         .def(py::init(&volumeFromFile), py::arg("path"), py::arg("field") = "", py::arg("format") = "auto",
              py::arg("nan") = "reject", py::arg("dims") = py::none(), py::arg("type") = "", py::arg("threshold") = 0.0,
-             "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, raw .raw)")
+             py::arg("scale") = "linear", py::arg("log_floor") = 0.0,
+             "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, raw .raw); "
+             "scale='log': log10 of each cell's value (values <= 0 floored at log_floor, default the smallest "
+             "positive value), as amrvk render --scale log")
         .def_static("from_arrays", &volumeFromArrays, py::arg("lower"), py::arg("level"), py::arg("values"),
                     py::arg("field") = "values", py::arg("origin") = std::vector<double>{0, 0, 0},
                     py::arg("spacing") = std::vector<double>{1, 1, 1}, py::arg("nan") = "reject", py::arg("units") = "",

@@ -55,6 +55,8 @@ std::string renderCommandLine(const PictureDescription& d, const std::string& tf
     if (!s.field.empty()) c += " --field " + shellQuote(s.field);
     if (s.read.format != "auto") c += " --format " + shellQuote(s.read.format);
     if (s.read.nanPolicy == amr::NanPolicy::Drop) c += " --nan drop";
+    if (s.read.scale == amr::FieldScale::Log) c += " --scale log";
+    if (s.read.logFloor != 0.0) c += " --log-floor " + formatNumber(s.read.logFloor);
     if (s.read.rawDims != glm::ivec3(0))
         c += " --dims " + std::to_string(s.read.rawDims.x) + " " + std::to_string(s.read.rawDims.y) + " " +
              std::to_string(s.read.rawDims.z);

@@ -104,6 +104,8 @@ std::string sessionJson(const Session& s) {
         j["read"]["dims"] = Json::array({s.read.rawDims.x, s.read.rawDims.y, s.read.rawDims.z});
     if (!s.read.rawType.empty()) j["read"]["type"] = s.read.rawType;
     if (s.read.rawThreshold != 0.0) j["read"]["threshold"] = s.read.rawThreshold;
+    if (s.read.scale != amr::FieldScale::Linear) j["read"]["scale"] = amr::fieldScaleName(s.read.scale);
+    if (s.read.logFloor != 0.0) j["read"]["logFloor"] = s.read.logFloor;
     j["field"] = s.field;
     j["camera"] = {{"eye", vec3(r.camera.eye)},
                    {"target", vec3(r.camera.target)},
@@ -166,6 +168,9 @@ Session parseSession(const std::string& text, const fs::path& path) {
         s.read.rawType = r.text("type", "");
         s.read.rawThreshold = r.number("threshold", 0.0);
         AMRVK_CHECK(s.read.rawThreshold >= 0, r.where(), ".threshold: must be >= 0");
+        s.read.scale = r.named("scale", "linear", [](const std::string& v) { return amr::parseFieldScale(v); });
+        s.read.logFloor = r.number("logFloor", 0.0);
+        AMRVK_CHECK(s.read.logFloor >= 0 && std::isfinite(s.read.logFloor), r.where(), ".logFloor: must be >= 0");
     }
     s.field = top.text("field", "");
 

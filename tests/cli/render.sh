@@ -104,4 +104,20 @@ check test ! -e "$dir/PWNED"
 AMRVK_MEMORY_BUDGET=100000000 expect "--grid 512x512x512: brick lists: needs 1610612748 bytes" \
   -- render "$sample" --size 8x8 --spp 1 --grid 512x512x512 -o "$dir/x.png"
 check test ! -e "$dir/x.png"
+# --scale log: the TF's range and info's value range are log10 of the field's (numpy computes them
+# here independently); a render, the session field and the render line carry it; bad values are
+# one line.
+"$amrvk" info "$sample" --scale log --json >"$dir/log.json" || fail=1
+check /usr/bin/python3 - "$dir/log.json" "${sample%.cells}.scalars" <<'PY'
+import json, sys
+import numpy as np
+v = np.fromfile(sys.argv[2], dtype="<f4").astype(np.float64)
+lo, hi = np.log10(v[v > 0].min()), np.log10(v.max())
+got = json.load(open(sys.argv[1]))["valueRange"]
+assert abs(got[0] - lo) < 1e-5 and abs(got[1] - hi) < 1e-5, (got, lo, hi)
+PY
+"$amrvk" render "$sample" --size 16x12 --spp 2 --scale log -o "$dir/log.png" --json "$dir/logr.json" >/dev/null || fail=1
+check test -s "$dir/log.png"
+expect "--scale: ln not in {linear,log}" -- render "$sample" --scale ln -o "$dir/x.png"
+expect "--log-floor: '-1' is outside" -- render "$sample" --scale log --log-floor -1 -o "$dir/x.png"
 exit $fail

@@ -18,6 +18,8 @@ Session fullSession() {
     s.input = "/data/enzo/DD0018/DD0018";
     s.read.format = "enzo";
     s.read.nanPolicy = amr::NanPolicy::Drop;
+    s.read.scale = amr::FieldScale::Log;
+    s.read.logFloor = 1e-3;
     s.field = "Density";
     s.spp = 128;
     scene::RenderSettings& r = s.settings;
@@ -62,6 +64,8 @@ TEST(Session, EveryFieldRoundTrips) {
     EXPECT_EQ(t.input, s.input);
     EXPECT_EQ(t.read.format, "enzo");
     EXPECT_EQ(t.read.nanPolicy, amr::NanPolicy::Drop);
+    EXPECT_EQ(t.read.scale, amr::FieldScale::Log);
+    EXPECT_EQ(t.read.logFloor, 1e-3);
     EXPECT_EQ(t.field, "Density");
     EXPECT_EQ(t.spp, 128u);
     const scene::RenderSettings &a = s.settings, &b = t.settings;
@@ -133,7 +137,7 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
     const std::string c = session::renderCommandLine(s, "/tmp/a tf.json", "out.png");
     EXPECT_EQ(c.rfind("amrvk render '/data/my run/plt00010' ", 0), 0u) << c;
     for (const char* part :
-         {" --field Density", " --format enzo", " --nan drop", " --tf '/tmp/a tf.json'", " --mode ss", " --size 320x200",
+         {" --field Density", " --format enzo", " --nan drop", " --scale log", " --log-floor 0.001", " --tf '/tmp/a tf.json'", " --mode ss", " --size 320x200",
           " --seed 77", " --camera 1.5 -2.25 3 0.5 0.5 0.5 0 0 1", " --fov 33", " --density-scale 0.05", " --g -0.3",
           " --ambient 0.1 0.2 0.3", " --background 0 0 0.01", " --light-dir 1 -1 2 3 3 2.5",
           " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --spp 128", " --traversal kdtree",

@@ -25,6 +25,17 @@ def test_a_file_and_its_summary(amrvk):
     assert s["bricks"] > 0 and s["host_bytes"] > 32768 * 20
 
 
+def test_a_log_scaled_file_has_the_logs_of_its_values(amrvk, tmp_path):
+    write_cells(tmp_path / "five", FIVE, [1e-2, 1, 10, 0, 1000])
+    v = amrvk.Volume(str(tmp_path / "five.cells"), scale="log")
+    lo, hi = v.value_range
+    assert lo == pytest.approx(-2, abs=1e-6) and hi == pytest.approx(3, abs=1e-6)  # 0 floored at 1e-2
+    floored = amrvk.Volume(str(tmp_path / "five.cells"), scale="log", log_floor=0.5)
+    assert floored.value_range[0] == pytest.approx(np.log10(0.5), abs=1e-6)
+    with pytest.raises(ValueError, match="--scale: 'ln' is not linear or log"):
+        amrvk.Volume(str(tmp_path / "five.cells"), scale="ln")
+
+
 def test_arrays_make_the_volume_the_same_cells_make_from_a_file(amrvk, tmp_path):
     write_cells(tmp_path / "five", FIVE, [1, 2, 3, 4, 5])
     from_file = amrvk.Volume(str(tmp_path / "five.cells")).summary()

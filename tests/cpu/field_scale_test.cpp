@@ -1,0 +1,87 @@
+// amr::applyFieldScale (--scale log): log10 of each cell's value, against values whose logarithms
+// are known exactly; the floor for values <= 0 (the smallest positive value, or --log-floor); NaN
+// left alone; the error for a field with no positive value; and the file readers (whole and
+// streamed) taking the same logs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "amr/readers.h"
+#include "amr/space_partition.h"
+#include "model_fixtures.h"
+#include "test_data.h"
+
+using namespace amrvk;
+
+namespace {
+
+amr::Model fiveCells(std::vector<float> values) {
+    amr::Model m;
+    m.source = "five.cells";
+    for (int i = 0; i < int(values.size()); ++i) m.cells.push_back({{i, 0, 0}, 0});
+    m.fields = {amr::Field{"rho", std::move(values)}};
+    return m;
+}
+
+}  // namespace
+
+TEST(FieldScale, LogOfPowersOfTenAndTheFloor) {
+    amr::Model m = fiveCells({1e-3f, 1.0f, 1e3f, 0.0f, -2.0f, NAN});
+    const amr::ScaleReport r = amr::applyFieldScale(m, amr::FieldScale::Log);
+    const std::vector<float>& v = m.fields[0].values;
+    EXPECT_NEAR(v[0], -3.0f, 1e-6f);
+    EXPECT_EQ(v[1], 0.0f);
+    EXPECT_NEAR(v[2], 3.0f, 1e-6f);
+    EXPECT_NEAR(v[3], -3.0f, 1e-6f);  // 0 and -2: floored at the smallest positive value, 1e-3
+    EXPECT_NEAR(v[4], -3.0f, 1e-6f);
+    EXPECT_TRUE(std::isnan(v[5]));
+    EXPECT_EQ(r.floored, 2u);
+    EXPECT_FLOAT_EQ(float(r.floor), 1e-3f);
+    bool recorded = false;
+    for (const auto& [k, text] : m.attributes) recorded = recorded || (k == "logFloored" && text.find("2 cells") == 0);
+    EXPECT_TRUE(recorded);
+}
+
+TEST(FieldScale, AnExplicitFloorAndLinearLeaveWhatTheySay) {
+    amr::Model m = fiveCells({1e-3f, 1.0f, 100.0f, 0.0f});
+    const amr::ScaleReport r = amr::applyFieldScale(m, amr::FieldScale::Log, 0.1);
+    EXPECT_NEAR(m.fields[0].values[0], -1.0f, 1e-6f);  // below the floor
+    EXPECT_NEAR(m.fields[0].values[2], 2.0f, 1e-6f);
+    EXPECT_NEAR(m.fields[0].values[3], -1.0f, 1e-6f);
+    EXPECT_EQ(r.floored, 2u);
+    amr::Model same = fiveCells({-1.0f, 2.0f});
+    amr::applyFieldScale(same, amr::FieldScale::Linear);
+    EXPECT_EQ(same.fields[0].values, (std::vector<float>{-1.0f, 2.0f}));
+}
+
+TEST(FieldScale, NoPositiveValueIsOneLine) {
+    amr::Model m = fiveCells({0.0f, -1.0f});
+    const std::string e = test::errorOf([&] { amr::applyFieldScale(m, amr::FieldScale::Log); });
+    EXPECT_NE(e.find("five.cells: field 'rho' has no positive value: log scale needs one (or --log-floor)"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(amr::parseFieldScale("log"), amr::FieldScale::Log);
+    EXPECT_NE(test::errorOf([] { amr::parseFieldScale("ln"); }).find("--scale: 'ln' is not linear or log"),
+              std::string::npos);
+}
+
+TEST(FieldScale, ReadersWholeAndStreamedTakeTheSameLogs) {
+    amr::Model m = test::makeThreeLevelCloud();
+    m.fields.resize(1);
+    m.fields[0].values[7] = 0.0f;  // one cell to floor
+    const std::filesystem::path base = test::scratchDir() / "logscale";
+    amr::writeExaBrick(m, base);
+    amr::ReadOptions ro;
+    ro.scale = amr::FieldScale::Log;
+    const amr::Model whole = amr::readModel(std::filesystem::path(base) += ".cells", ro);
+    const float lo = amr::smallestPositive(m.fields[0].values);
+    ASSERT_EQ(whole.fields[0].values.size(), m.fields[0].values.size());
+    for (size_t i = 0; i < m.cells.size(); ++i)
+        ASSERT_EQ(whole.fields[0].values[i], float(std::log10(std::max(double(m.fields[0].values[i]), double(lo)))))
+            << i;
+    // The streamed census (data-parallel MPI) sees the same range.
+    const amr::CellCensus c = amr::censusOf(std::filesystem::path(base) += ".cells", ro);
+    const auto [mn, mx] = std::minmax_element(whole.fields[0].values.begin(), whole.fields[0].values.end());
+    EXPECT_EQ(c.valueLo, *mn);
+    EXPECT_EQ(c.valueHi, *mx);
+}
