@@ -22,9 +22,8 @@ struct Brick {
     amr::Box3l bounds() const;
 };
 
-// floor(a / b) and ceil(a / b) for b > 0 (C++ division truncates towards zero).
-inline int64_t floorDiv(int64_t a, int64_t b) { return a / b - (a % b != 0 && a < 0 ? 1 : 0); }
-inline int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
+using amr::ceilDiv;
+using amr::floorDiv;
 
 constexpr int32_t kMaxBrickCells = 127;  // per axis, as exaBuilder's default --max-leaf-width
 

@@ -27,6 +27,10 @@ std::string describeCell(const Cell& c);
 constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
 
 inline int64_t cellWidth(int32_t level) { return int64_t{1} << level; }
+
+// floor(a / b) and ceil(a / b) for b > 0 (C++ division truncates towards zero).
+inline int64_t floorDiv(int64_t a, int64_t b) { return a / b - (a % b != 0 && a < 0 ? 1 : 0); }
+inline int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
 // Cell volume in voxel units^3: 8^level, exact in double; level in [0, kMaxLevel].
 inline constexpr std::array<double, kMaxLevel + 1> kCellVolume = [] {
     std::array<double, kMaxLevel + 1> v{};

@@ -68,22 +68,26 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     return model;
 }
 
+double logFloorOf(const fs::path& path, const ReadOptions& options) {
+    if (options.scale != FieldScale::Log || options.logFloor != 0) return options.logFloor;
+    const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
+    if (format != "exabrick") return 0;  // read whole: applyFieldScale finds it
+    // The whole field's smallest positive value: one streamed pass over the values.
+    float lo = 0;
+    visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
+        const float c = smallestPositive(chunk.fields[0].values);
+        if (c > 0 && (lo == 0 || c < lo)) lo = c;
+    }, nullptr);
+    AMRVK_CHECK(lo > 0, path.string(), ": the field has no positive value: log scale needs one (or --log-floor)");
+    return lo;
+}
+
 void visitCells(const fs::path& path, const ReadOptions& options, const std::function<void(const Model& chunk)>& visit,
                 Model* head) {
     AMRVK_CHECK(options.fields.size() <= 1, "internal: visitCells takes one field");
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
     if (format == "exabrick") {
-        // A log scale's default floor is the whole field's smallest positive value: one pass first.
-        double floor = options.logFloor;
-        if (options.scale == FieldScale::Log && floor == 0) {
-            float lo = 0;
-            visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
-                const float c = smallestPositive(chunk.fields[0].values);
-                if (c > 0 && (lo == 0 || c < lo)) lo = c;
-            }, nullptr);
-            floor = lo;
-            AMRVK_CHECK(floor > 0, path.string(), ": the field has no positive value: log scale needs one (or --log-floor)");
-        }
+        const double floor = logFloorOf(path, options);
         visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
             applyNanPolicy(chunk, options.nanPolicy);
             if (chunk.cells.empty()) return;  // every cell of it dropped

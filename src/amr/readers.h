@@ -46,6 +46,11 @@ Model checkedModel(Model model, NanPolicy nanPolicy);
 void visitCells(const std::filesystem::path& path, const ReadOptions& options,
                 const std::function<void(const Model& chunk)>& visit, Model* head = nullptr);
 
+// The log floor visitCells uses for `path`: options.logFloor, or for a log scale without one the
+// field's smallest positive value (ExaBrick: one streamed pass over the values; other formats: 0,
+// found when read whole). Callers that visit a file several times resolve it once.
+double logFloorOf(const std::filesystem::path& path, const ReadOptions& options);
+
 // Per-format readers: return the model before NaN policy and validation.
 Model readExaBrick(const std::filesystem::path& path, const ReadOptions& options);
 // ExaBrick in chunks of `chunkCells` (before NaN policy and validation): visitCells' streaming part.

@@ -9,8 +9,6 @@ namespace amrvk::amr {
 
 namespace {
 
-int64_t floorDivBy(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 // Pass 1 over one chunk: bounds, levels, count, field range.
 void addExtent(CellCensus& c, const Model& chunk) {
     const std::vector<float>& values = chunk.fields.at(0).values;
@@ -40,7 +38,7 @@ void placeBins(CellCensus& c) {
     c.binWidth = 1;
     while (c.binWidth * CellCensus::kMaxBins < extent + c.binWidth) c.binWidth *= 2;
     for (int a = 0; a < 3; ++a) {
-        c.binOrigin[a] = floorDivBy(c.bounds.lower[a], c.binWidth) * c.binWidth;
+        c.binOrigin[a] = floorDiv(c.bounds.lower[a], c.binWidth) * c.binWidth;
         c.bins[a] = int((c.bounds.upper[a] - c.binOrigin[a] + c.binWidth - 1) / c.binWidth);
     }
     c.counts.assign(size_t(c.bins.x) * size_t(c.bins.y) * size_t(c.bins.z), 0);

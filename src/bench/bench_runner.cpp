@@ -160,9 +160,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         }, {}, {});
         ref.mean = out.mean;
         ref.meanVariance = scene::varianceOfMean(out);
-        Image var(rs.width, rs.height);
-        for (size_t i = 0; i < var.pixels.size(); ++i)
-            var.pixels[i] = glm::vec4(ref.meanVariance[3 * i], ref.meanVariance[3 * i + 1], ref.meanVariance[3 * i + 2], 1);
+        const Image var = scene::varianceImage(ref.meanVariance, rs.width, rs.height);
         if (mOpt.writesFiles) {
             writeImage(meanFile, ref.mean);
             writeImage(varFile, var);

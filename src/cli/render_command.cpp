@@ -138,8 +138,6 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
 #if AMRVK_MPI
     std::optional<mpi::DataPart> part;
     if (byData) {
-        AMRVK_CHECK(description.session.settings.mode != scene::Mode::Dvr,
-                    "--distribute data: mode dvr is not supported (use ae, ss or ms)");
         part = mpi::loadPart(*world, description);
         loaded = part->volume;
     } else
@@ -196,15 +194,9 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    Image variance;
-    if (!varianceFile.empty()) {
-        const std::vector<float> v = scene::varianceOfMean(out);
-        variance = Image(out.mean.width, out.mean.height);
-        for (size_t i = 0; i < variance.pixels.size(); ++i)
-            variance.pixels[i] = glm::vec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0f);
-    }
     writeImage(output, out.mean);
-    if (!varianceFile.empty()) writeImage(varianceFile, variance);
+    if (!varianceFile.empty())
+        writeImage(varianceFile, scene::varianceImage(scene::varianceOfMean(out), out.mean.width, out.mean.height));
 
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);

@@ -295,26 +295,21 @@ Context::Context(const ContextOptions& options) {
             }
             AMRVK_CHECK(chosen >= 0, "--device ", options.device, ": no such device (see amrvk devices)");
         } else {
+            // The usable devices of the best type; the spread-th of them (0: the first).
+            std::vector<int> best;
             for (size_t i = 0; i < probes.size(); ++i) {
                 const Probe& p = probes[i];
                 if (!p.report.usable || (options.requireRayQuery && !p.report.rayQuery)) continue;
-                if (chosen < 0 || typeRank(p.type) < typeRank(probes[size_t(chosen)].type)) chosen = int(i);
+                if (!best.empty() && typeRank(p.type) > typeRank(probes[size_t(best[0])].type)) continue;
+                if (!best.empty() && typeRank(p.type) < typeRank(probes[size_t(best[0])].type)) best.clear();
+                best.push_back(int(i));
             }
-            if (chosen >= 0 && options.spread > 0) {  // the spread-th of the equally good ones
-                std::vector<int> best;
-                for (size_t i = 0; i < probes.size(); ++i) {
-                    const Probe& p = probes[i];
-                    if (p.report.usable && (!options.requireRayQuery || p.report.rayQuery) &&
-                        typeRank(p.type) == typeRank(probes[size_t(chosen)].type))
-                        best.push_back(int(i));
-                }
-                chosen = best[options.spread % best.size()];
-            }
-            if (chosen < 0) {
+            if (best.empty()) {
                 std::string reasons;
                 for (const auto& p : probes) reasons += (reasons.empty() ? "" : "; ") + describe(p);
                 AMRVK_CHECK(false, "no usable Vulkan device (", reasons, ")");
             }
+            chosen = best[options.spread % best.size()];
         }
         const Probe& pick = probes[size_t(chosen)];
         mPhysical = pds[size_t(chosen)];

@@ -10,6 +10,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "mpi/sample_parallel.h"
+#include "render/path_trace_pass.h"
 #include "scene/camera.h"
 #include "shared/data_parallel_gpu.h"
 
@@ -18,6 +19,7 @@ namespace amrvk::mpi {
 DataPart loadPart(World& world, session::PictureDescription& d) {
     const session::Session& s = d.session;
     AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
+    AMRVK_CHECK(s.settings.mode != scene::Mode::Dvr, "--distribute data: mode dvr is not supported (use ae, ss or ms)");
     amr::ReadOptions ro = s.read;
     ro.fields = s.field.empty() ? std::vector<std::string>{} : std::vector<std::string>{s.field};
     DataPart part;
@@ -33,6 +35,7 @@ DataPart loadPart(World& world, session::PictureDescription& d) {
     amr::Model model;
     {
         ProgressStage stage("reading this rank's part of " + s.input);
+        ro.logFloor = part.census.logFloor;  // found once by the census
         model = amr::readPart(s.input, ro, mine);
     }
     part.readSeconds = timer.seconds();
@@ -65,11 +68,16 @@ struct Batch {
     gpu::Buffer paths, hits, shadow, counters;
     shared::DataParallelPush push{};
 
+    // One stage over every path, its counters zeroed first (one submission).
     void run(uint32_t stage) {
         push.stage = stage;
-        counters.fillZero();
-        ctx.submitAndWait([&](VkCommandBuffer cmd) { pipeline.dispatch(cmd, &push, (push.count + 63) / 64); },
-                          pipeline.name());
+        ctx.submitAndWait(
+            [&](VkCommandBuffer cmd) {
+                vkCmdFillBuffer(cmd, counters.handle(), 0, VK_WHOLE_SIZE, 0);
+                gpu::computeBarrier(cmd);
+                pipeline.dispatch(cmd, &push, (push.count + 63) / 64);
+            },
+            pipeline.name());
     }
     std::array<uint32_t, shared::kCounterCount + 1> readCounters() const {
         std::array<uint32_t, shared::kCounterCount + 1> c{};
@@ -86,7 +94,6 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     render::Renderer& renderer = *p.renderer;
     gpu::Context& ctx = renderer.context();
     const scene::RenderSettings& rs = renderer.settings();
-    AMRVK_CHECK(rs.mode != scene::Mode::Dvr, "--distribute data: mode dvr is not supported (use ae, ss or ms)");
     const scene::StructureConfig& config = renderer.config();
     const uint32_t count = uint32_t(rs.width) * uint32_t(rs.height);
     // Every rank must cut the same data the same way and trace the same paths.
@@ -99,15 +106,9 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     renderer.resetAccumulation();
     const uint64_t params = renderer.paramsAddress();
 
-    const char* shader = config.backend == scene::Backend::Rq ? "path_trace_dp_rq" : "path_trace_dp";
     Batch b{ctx,
-            gpu::ComputePipeline(ctx, renderer.shaders().load(shader),
-                                 std::string("path_trace_dp.") + scene::modeName(rs.mode) + "." + config.label(),
-                                 sizeof(shared::DataParallelPush),
-                                 {{0, uint32_t(rs.mode)},
-                                  {1, uint32_t(config.sampler)},
-                                  {2, uint32_t(config.traversal)},
-                                  {3, uint32_t(config.backend)}}),
+            render::compilePathTracer(ctx, "path_trace_dp", sizeof(shared::DataParallelPush), rs.mode, config,
+                                      renderer.shaders()),
             gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelPathGpu), gpu::MemoryKind::Device,
                         "dataParallelPaths"),
             gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelHitGpu), gpu::MemoryKind::HostRead,
@@ -199,54 +200,37 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     stats.gpuSeconds = wall.seconds() - mpiSeconds;  // stages, downloads and uploads; MPI excluded
 
     // Tracking counters are sums over the ranks' boxes; the shading ones (bounce limit, NaN) were
-    // counted alike on every rank.
-    std::vector<uint64_t> counts(stats.counters.begin(), stats.counters.end());
-    const uint64_t localLookups = stats.counters[shared::kCounterDensityLookups];
-    world.sumEverywhere(counts);
-    scene::RenderStats all = stats;
-    for (uint32_t k :
-         {shared::kCounterDensityLookups, shared::kCounterRealCollisions, shared::kCounterNullCollisions,
-          shared::kCounterTraversalSteps, shared::kCounterMajorantViolations, shared::kCounterTrackingCapHits})
-        all.counters[k] = counts[k];
-    all.gpuSeconds = world.maxOverRanks(stats.gpuSeconds);
+    // counted alike on every rank, as were the paths.
+    scene::RenderStats all = statsOverRanks(world, stats, bytes);
+    for (uint32_t k : {shared::kCounterBounceLimitHits, shared::kCounterNanSamples})
+        all.counters[k] = stats.counters[k];
+    all.paths = stats.paths;
     DataParallelResult result;
     result.out = scene::outputFromSums(renderer.sums(), spp, all);
 
     const uint64_t held = v.model.cellCount();
-    rankInfo["rank"] = world.rank();
-    rankInfo["host"] = world.host();
-    rankInfo["localRank"] = world.localRank();
-    rankInfo["device"] = ctx.deviceReport().name;
     rankInfo["ownedBox"] = {{mine.lower.x, mine.lower.y, mine.lower.z}, {mine.upper.x, mine.upper.y, mine.upper.z}};
     rankInfo["ownedCells"] = part.ownedCells;
     rankInfo["heldCells"] = held;
     rankInfo["haloCells"] = held - part.ownedCells;
     rankInfo["censusSeconds"] = part.censusSeconds;
     rankInfo["readPartSeconds"] = part.readSeconds;
-    rankInfo["densityLookups"] = localLookups;
+    rankInfo["densityLookups"] = stats.counters[shared::kCounterDensityLookups];
     rankInfo["renderSeconds"] = wall.seconds();
     rankInfo["mpiSeconds"] = mpiSeconds;
     rankInfo["reductions"] = reductions;
     rankInfo["bytesSent"] = bytes;
-    rankInfo["hostPeakBytes"] = peakResidentBytes();
     rankInfo["hostModelBytes"] = v.modelBytes();
-    rankInfo["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
-    const std::vector<std::string> reports = world.gatherToRoot(rankInfo.dump());
-    if (world.rank() == 0) {
-        nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
-        uint64_t moved = 0;
-        for (const std::string& text : reports) {
-            ranks.push_back(nlohmann::ordered_json::parse(text));
-            moved += ranks.back()["bytesSent"].get<uint64_t>();
-        }
+    uint64_t moved = 0;
+    nlohmann::ordered_json ranks = gatherRankReports(world, std::move(rankInfo), ctx, moved);
+    if (world.rank() == 0)
         result.mpi = {{"ranks", world.size()},
                       {"distribute", "data"},
                       {"cells", part.census.cells},
                       {"bounces", bounces},
                       {"bytesMoved", moved},
                       {"bytesMovedPerPath", all.paths > 0 ? double(moved) / double(all.paths) : 0.0},
-                      {"perRank", ranks}};
-    }
+                      {"perRank", std::move(ranks)}};
     return result;
 }
 

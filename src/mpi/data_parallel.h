@@ -28,6 +28,7 @@ struct DataPart {
 
 // This rank's part of the data `d` names: a census of the whole (two streamed passes), the
 // partition, then the cells of its region. Fits `d` to the whole data set (camera, TF range).
+// Refuses mode dvr before reading anything (renderDataParallel has no ray marcher).
 DataPart loadPart(World& world, session::PictureDescription& d);
 
 struct DataParallelResult {

@@ -19,6 +19,37 @@ SampleRange sampleRange(uint32_t spp, int rank, int size) {
     return {at(rank), at(rank + 1) - at(rank)};
 }
 
+scene::RenderStats statsOverRanks(World& world, const scene::RenderStats& mine, uint64_t& sent) {
+    std::vector<uint64_t> counts(mine.counters.begin(), mine.counters.end());
+    counts.push_back(mine.paths);
+    sent += world.sumEverywhere(counts);
+    scene::RenderStats all;
+    for (size_t k = 0; k < all.counters.size(); ++k) all.counters[k] = counts[k];
+    all.paths = counts.back();
+    all.gpuSeconds = world.maxOverRanks(mine.gpuSeconds);
+    sent += sizeof(double);
+    return all;
+}
+
+nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json rankInfo, gpu::Context& ctx,
+                                         uint64_t& moved) {
+    rankInfo["rank"] = world.rank();
+    rankInfo["host"] = world.host();
+    rankInfo["localRank"] = world.localRank();
+    rankInfo["device"] = ctx.deviceReport().name;
+    rankInfo["hostPeakBytes"] = peakResidentBytes();
+    rankInfo["deviceMemoryPeakBytes"] = ctx.memory().peakBytes();
+    const std::vector<std::string> reports = world.gatherToRoot(rankInfo.dump());
+    if (world.rank() != 0) return nullptr;
+    nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
+    for (size_t r = 0; r < reports.size(); ++r) {
+        ranks.push_back(nlohmann::ordered_json::parse(reports[r]));
+        // what the rank sent while rendering, and (ranks > 0) this report itself
+        moved += ranks.back()["bytesSent"].get<uint64_t>() + (r > 0 ? reports[r].size() : 0);
+    }
+    return ranks;
+}
+
 SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
                                           const std::function<void(uint32_t, uint32_t)>& progress) {
     render::Renderer& renderer = *p.renderer;
@@ -38,16 +69,8 @@ SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlo
     world.requireSame(p.volume->model.cellCount(), "the data set (cell count)");
     const Timer reduceTimer;
     uint64_t sent = world.sumToRoot(sums.values);
-    std::vector<uint64_t> counts(mine.counters.begin(), mine.counters.end());
-    counts.push_back(mine.paths);
-    sent += world.sumToRoot(counts);
-    const double gpuSecondsMax = world.maxOverRanks(mine.gpuSeconds);
-    sent += sizeof(double);
+    const scene::RenderStats all = statsOverRanks(world, mine, sent);
 
-    rankInfo["rank"] = world.rank();
-    rankInfo["host"] = world.host();
-    rankInfo["localRank"] = world.localRank();
-    rankInfo["device"] = renderer.context().deviceReport().name;
     rankInfo["firstSample"] = range.first;
     rankInfo["samples"] = range.count;
     rankInfo["paths"] = mine.paths;
@@ -55,32 +78,20 @@ SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlo
     rankInfo["renderSeconds"] = renderSeconds;
     rankInfo["reduceSeconds"] = reduceTimer.seconds();
     rankInfo["bytesSent"] = sent;
-    rankInfo["hostPeakBytes"] = peakResidentBytes();
-    rankInfo["deviceMemoryPeakBytes"] = renderer.context().memory().peakBytes();
-    const std::vector<std::string> reports = world.gatherToRoot(rankInfo.dump());
+    uint64_t moved = 0;
+    nlohmann::ordered_json ranks = gatherRankReports(world, std::move(rankInfo), renderer.context(), moved);
 
     SampleParallelResult result;
     if (world.rank() != 0) {
         result.out = scene::outputFromSums(sums, range.count, mine);
         return result;
     }
-    scene::RenderStats all;
-    for (size_t k = 0; k < all.counters.size(); ++k) all.counters[k] = counts[k];
-    all.paths = counts.back();
-    all.gpuSeconds = gpuSecondsMax;  // the ranks run at once: the job's GPU time is the slowest rank's
     result.out = scene::outputFromSums(sums, p.session.spp, all);
-    nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
-    uint64_t moved = 0;
-    for (size_t r = 0; r < reports.size(); ++r) {
-        ranks.push_back(nlohmann::ordered_json::parse(reports[r]));
-        // the sums and counters, and (ranks > 0) this report itself
-        moved += ranks.back()["bytesSent"].get<uint64_t>() + (r > 0 ? reports[r].size() : 0);
-    }
     result.mpi = {{"ranks", world.size()},
                   {"distribute", "samples"},
                   {"bytesMoved", moved},
                   {"bytesMovedPerPath", all.paths > 0 ? double(moved) / double(all.paths) : 0.0},
-                  {"perRank", ranks}};
+                  {"perRank", std::move(ranks)}};
     return result;
 }
 
@@ -123,14 +134,8 @@ scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer
         AMRVK_CHECK(f.rank < 0, "rank ", f.rank, " of ", world.size(), ": ",
                     f.message.empty() ? std::string("failed") : f.message);
         std::vector<double> sums = total.values;
-        world.sumEverywhere(sums);
-        std::vector<uint64_t> counts(mine.counters.begin(), mine.counters.end());
-        counts.push_back(mine.paths);
-        world.sumEverywhere(counts);
-        scene::RenderStats all;
-        for (size_t k = 0; k < all.counters.size(); ++k) all.counters[k] = counts[k];
-        all.paths = counts.back();
-        all.gpuSeconds = world.maxOverRanks(mine.gpuSeconds);
+        uint64_t sent = world.sumEverywhere(sums);
+        const scene::RenderStats all = statsOverRanks(world, mine, sent);
         out =
             scene::outputFromSums({.width = total.width, .height = total.height, .values = std::move(sums)}, mark, all);
         done = mark;

@@ -23,6 +23,16 @@ SampleRange sampleRange(uint32_t spp, int rank, int size);
 // choice, which may differ between ranks): equal on ranks that render the same picture.
 uint64_t pictureFingerprint(const session::Session& s);
 
+// The job's statistics from each rank's: paths and counters summed, GPU seconds the slowest rank's
+// (the ranks run at once). Collective; adds the bytes this rank contributed to `sent`.
+scene::RenderStats statsOverRanks(World& world, const scene::RenderStats& mine, uint64_t& sent);
+
+// The "perRank" array of --json's mpi block (rank 0; others: null): every rank's `rankInfo` with
+// what every mode reports (rank, host, local rank, device, peak host and device memory), in rank
+// order. Adds to `moved` (rank 0) every rank's "bytesSent" and the reports themselves.
+nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json rankInfo, gpu::Context& ctx,
+                                         uint64_t& moved);
+
 struct SampleParallelResult {
     scene::RenderOutput out;     // rank 0: every rank's samples; other ranks: their own
     nlohmann::ordered_json mpi;  // rank 0: the "mpi" block of --json (per-rank work and bytes)

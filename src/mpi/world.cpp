@@ -40,26 +40,31 @@ bool waitFor(MPI_Request& request, double deadline) {
     }
 }
 
-// Reductions in pieces of at most 2^26 elements (MPI counts are int).
+// call(first, n) over [0, count) in pieces of at most 2^26 elements (MPI counts are int).
+template <typename Call>
+void inPieces(size_t count, Call call) {
+    constexpr size_t kPiece = size_t(1) << 26;
+    for (size_t at = 0; at < count; at += kPiece) call(at, int(std::min(kPiece, count - at)));
+}
+
+// Sums over the ranks into rank 0's copy; returns the bytes this rank sent.
 template <typename T>
 uint64_t sumPieces(std::vector<T>& values, MPI_Datatype type, int rank) {
-    constexpr size_t kPiece = size_t(1) << 26;
-    for (size_t at = 0; at < values.size(); at += kPiece) {
-        const int n = int(std::min(kPiece, values.size() - at));
+    inPieces(values.size(), [&](size_t at, int n) {
         void* data = values.data() + at;
         check(MPI_Reduce(rank == 0 ? MPI_IN_PLACE : data, rank == 0 ? data : nullptr, n, type, MPI_SUM, 0,
                          MPI_COMM_WORLD),
               "MPI_Reduce");
-    }
+    });
     return rank == 0 ? 0 : uint64_t(values.size() * sizeof(T));
 }
 
+// `op` over the ranks, the result on every rank; returns the bytes this rank contributed.
 template <typename T>
 uint64_t allPieces(T* data, size_t count, MPI_Datatype type, MPI_Op op) {
-    constexpr size_t kPiece = size_t(1) << 26;
-    for (size_t at = 0; at < count; at += kPiece)
-        check(MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kPiece, count - at)), type, op, MPI_COMM_WORLD),
-              "MPI_Allreduce");
+    inPieces(count, [&](size_t at, int n) {
+        check(MPI_Allreduce(MPI_IN_PLACE, data + at, n, type, op, MPI_COMM_WORLD), "MPI_Allreduce");
+    });
     return uint64_t(count * sizeof(T));
 }
 
@@ -121,9 +126,8 @@ void World::checkpoint() {
 }
 
 uint64_t World::sumToRoot(std::vector<double>& values) { return sumPieces(values, MPI_DOUBLE, mRank); }
-uint64_t World::sumToRoot(std::vector<uint64_t>& values) { return sumPieces(values, MPI_UINT64_T, mRank); }
 
-std::vector<std::string> World::gatherToRoot(const std::string& text, uint64_t* sent) {
+std::vector<std::string> World::gatherToRoot(const std::string& text) {
     AMRVK_CHECK(text.size() < size_t(INT_MAX / 2), "internal: gathered text too long");
     const int length = int(text.size());
     std::vector<int> lengths(size_t(mSize), 0), offsets(size_t(mSize), 0);
@@ -141,7 +145,6 @@ std::vector<std::string> World::gatherToRoot(const std::string& text, uint64_t* 
     check(MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
                       MPI_COMM_WORLD),
           "MPI_Gatherv");
-    if (sent) *sent = mRank == 0 ? 0 : uint64_t(length) + sizeof(int);
     std::vector<std::string> out;
     if (mRank == 0)
         for (int r = 0; r < mSize; ++r)

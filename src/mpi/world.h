@@ -54,9 +54,8 @@ public:
     // Adds `values` over every rank into rank 0's copy (the others' stay as they were). Every rank
     // passes the same count. Returns the bytes this rank sent.
     uint64_t sumToRoot(std::vector<double>& values);
-    uint64_t sumToRoot(std::vector<uint64_t>& values);
-    // Rank 0: every rank's text, in rank order (others: empty). Returns the bytes sent in `sent`.
-    std::vector<std::string> gatherToRoot(const std::string& text, uint64_t* sent = nullptr);
+    // Rank 0: every rank's text, in rank order (others: empty).
+    std::vector<std::string> gatherToRoot(const std::string& text);
     // Largest value over ranks, on every rank.
     double maxOverRanks(double value);
     // Throws, on every rank, "ranks disagree on WHAT ..." unless every rank passes the same

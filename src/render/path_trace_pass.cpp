@@ -13,20 +13,22 @@ std::string pipelineKey(scene::Mode mode, const scene::StructureConfig& config) 
     return std::string("path_trace.") + scene::modeName(mode) + "." + config.label();
 }
 
-gpu::ComputePipeline compile(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
-                             const gpu::ShaderLibrary& shaders) {
+}  // namespace
+
+gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& entry, uint32_t pushBytes,
+                                       scene::Mode mode, const scene::StructureConfig& config,
+                                       const gpu::ShaderLibrary& shaders) {
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
-    const char* shader = config.backend == scene::Backend::Rq ? "path_trace_rq" : "path_trace";
+    const std::string shader = config.backend == scene::Backend::Rq ? entry + "_rq" : entry;
     // Named with where its source came from: the name a runaway or crashing dispatch is reported by.
     const std::string origin = shaders.directory().empty() ? "" : " from --shader-dir " + shaders.directory().string();
-    return gpu::ComputePipeline(ctx, shaders.load(shader), pipelineKey(mode, config) + origin, sizeof(shared::PushConstants),
+    return gpu::ComputePipeline(ctx, shaders.load(shader),
+                                entry + "." + scene::modeName(mode) + "." + config.label() + origin, pushBytes,
                                 {{0, uint32_t(mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
                                  {3, uint32_t(config.backend)}});
 }
-
-}  // namespace
 
 PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
     mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
@@ -38,7 +40,7 @@ const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scen
     const std::string key = pipelineKey(mode, config);
     auto it = mPipelines.find(key);
     if (it == mPipelines.end()) {
-        it = mPipelines.emplace(key, compile(mCtx, mode, config, shaders)).first;
+        it = mPipelines.emplace(key, compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders)).first;
         ++mCompiled;
     }
     return it->second;
@@ -48,7 +50,7 @@ void PathTracePass::dropPipelines() { mPipelines.clear(); }
 
 void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config,
                               const gpu::ShaderLibrary& shaders) {
-    gpu::ComputePipeline fresh = compile(mCtx, mode, config, shaders);  // throws before anything is replaced
+    gpu::ComputePipeline fresh = compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders);  // throws before anything is replaced
     ++mCompiled;
     mPipelines.clear();
     mPipelines.emplace(pipelineKey(mode, config), std::move(fresh));

@@ -21,6 +21,13 @@
 
 namespace amrvk::render {
 
+// A path tracer's pipeline: shader `entry` (entry + "_rq" for the ray-query back-end) from `shaders`,
+// specialised for (mode, config) by constants 0-3, pushing `pushBytes`; named
+// "ENTRY.MODE.LABEL" (plus where --shader-dir took it from). path_trace and path_trace_dp.
+gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& entry, uint32_t pushBytes,
+                                       scene::Mode mode, const scene::StructureConfig& config,
+                                       const gpu::ShaderLibrary& shaders);
+
 class PathTracePass {
 public:
     explicit PathTracePass(gpu::Context& ctx);

@@ -38,4 +38,12 @@ std::vector<float> varianceOfMean(const RenderOutput& o) {
     return out;
 }
 
+Image varianceImage(const std::vector<float>& rgb, int width, int height) {
+    Image image(width, height);
+    AMRVK_CHECK(rgb.size() == 3 * image.pixels.size(), "internal: ", rgb.size(), " variances for ", width, "x", height);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = glm::vec4(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 1.0f);
+    return image;
+}
+
 }  // namespace amrvk::scene

@@ -38,5 +38,8 @@ RenderOutput outputFromSums(const AccumulatedSums& sums, uint32_t spp, const Ren
 
 // Per-pixel variance of the mean (3 per pixel, rgb) from the sums of squares; needs spp >= 2.
 std::vector<float> varianceOfMean(const RenderOutput& out);
+// Those variances (3 per pixel) as a width x height image, alpha 1: what --variance and the
+// bench's reference cache write.
+Image varianceImage(const std::vector<float>& rgb, int width, int height);
 
 }  // namespace amrvk::scene
