@@ -4,6 +4,7 @@
 // grid (majorant_dda.glsl); every other traversal queries its boxes (domain_traversal.glsl).
 #ifndef AMRVK_TRAVERSAL_GLSL
 #define AMRVK_TRAVERSAL_GLSL
+#include "lib/cut_away.glsl"
 
 // The structure combination a pass was specialised for.
 struct StructureConfig {
@@ -18,10 +19,17 @@ struct Traversal {
     float t, tEnd;
 };
 
-// False when the ray misses the structure within [tMin, tMax].
+// False when the ray misses the structure within [tMin, tMax]. The interval is first narrowed to
+// the cut-away's kept region (lib/cut_away.glsl), so every estimator and dvr see an empty medium
+// beyond the cut.
 bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, out Traversal tr) {
     tr.o = o;
     tr.d = d;
+    if (!clipToCutAway(o, d, tMin, tMax)) {
+        tr.t = tMin;
+        tr.tEnd = tMin;
+        return false;
+    }
     tr.t = tMin;
     tr.tEnd = tMax;
     if (cfg.traversal == kTraversalGridDda) return ddaInit(o, d, tMin, tMax, tr.dda);

@@ -4,6 +4,7 @@
 //   ShadingGpu   medium scale and lights   (Renderer: lighting, density, phase, dvr)
 //   SceneGpu     TF-independent structures (DeviceScene: one structure combination)
 //   MajorantsGpu TF and TF-dependent data  (MajorantPass: majorants, culled hierarchy, kd-tree)
+//   CutAwayGpu   crop box and clip planes  (Renderer: with the medium, cut_away_gpu.h)
 // Spaces: local voxel space (voxel - local origin). Distances along rays are in voxel units;
 // extinction sigma_t = alpha(TF(v)) * densityScale * invFinestCellWidth per voxel unit, i.e.
 // alpha * densityScale per finest cell width (architecture.md, "Units and semantics").
@@ -11,6 +12,7 @@
 // scalar; offsets are asserted below and checked on the GPU (tests/gpu/layout_test.cpp).
 #ifndef AMRVK_RENDER_PARAMS_H
 #define AMRVK_RENDER_PARAMS_H
+#include "cut_away_gpu.h"
 #include "interop.h"
 #include "kinds.h"
 
@@ -134,6 +136,7 @@ struct RenderParams {
     MajorantsGpu majorants;
     uint64_t accum;     // AccumPixelGpu[width * height], pixel (x, y) at y * width + x
     uint64_t counters;  // uint[kCounterCount]
+    CutAwayGpu cut;
 };
 
 struct PushConstants {
@@ -220,7 +223,8 @@ AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, majorants) == 576);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 672);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 680);
-AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 688);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 688);
+AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 688 + sizeof(CutAwayGpu));
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);

@@ -312,6 +312,19 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->take_all()
         ->check(kFinite)
         ->type_name("X Y Z R G B");
+    app.add_option("--crop", a.crop,
+                   "cut-away: keep only the medium inside the box X0 Y0 Z0 .. X1 Y1 Z1 (world space); the rest is "
+                   "empty, the field inside is reconstructed as before (docs/cut-aways.md)")
+        ->expected(6)
+        ->check(kFinite)
+        ->type_name("X0 Y0 Z0 X1 Y1 Z1");
+    app.add_option("--clip", a.clip,
+                   "cut-away: remove the half-space in front of the plane through PX PY PZ with normal NX NY NZ "
+                   "(world space; the side the normal points to is removed; repeatable, at most 4)")
+        ->expected(6)
+        ->take_all()
+        ->check(kFinite)
+        ->type_name("PX PY PZ NX NY NZ");
 }
 
 void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
@@ -353,6 +366,12 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
                     "--camera: the up vector is parallel to the view direction");
     }
     if (use("--fov")) s.camera.fovYDegrees = a.fov;
+    if (given(app, "--crop")) s.cut.crop = scene::CropBox{vec3At(a.crop, 0), vec3At(a.crop, 3)};
+    if (given(app, "--clip")) {
+        s.cut.clips.clear();
+        for (size_t i = 0; i + 6 <= a.clip.size(); i += 6) s.cut.clips.push_back({vec3At(a.clip, i), vec3At(a.clip, i + 3)});
+    }
+    scene::validateCutAway(s.cut);
     return s;
 }
 

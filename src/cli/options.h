@@ -60,6 +60,7 @@ struct PictureArgs {
     int64_t seed = 1;
     double densityScale = 1, g = 0;
     std::vector<double> ambient, background, lightDir, lightPoint;
+    std::vector<double> crop, clip;  // --crop X0 Y0 Z0 X1 Y1 Z1, --clip PX PY PZ NX NY NZ (repeatable)
 };
 // Every picture option; bench passes subset = true to leave out what it sets per run (mode, TF,
 // structure, spp, session, dt, dvr shading).

@@ -149,6 +149,8 @@ void Renderer::writeShading(const scene::RenderSettings& s) {
     sh.dvrOpacityStop = 0.99f;
     sh.dvrAmbient = 0.3f;
     sh.dvrLightDir = glm::vec3(glm::normalize(shadeDir));
+    // The cut-away is part of the medium; its block is rewritten with the shading block.
+    mParams.cut = scene::cutAwayGpu(s.cut, mScene.volume().model.voxelToWorld, -mScene.volume().toLocal(glm::dvec3(0.0)));
 }
 
 void Renderer::setSettings(const scene::RenderSettings& s) {

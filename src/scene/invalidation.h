@@ -3,7 +3,7 @@
 // interactive change redoes only what depends on it. Window-free and Vulkan-free.
 //   camera, image size, seed      -> accumulation (size: also the accumulation buffer)
 //   mode                          -> accumulation, pipeline selection
-//   lighting, medium, dvr options -> accumulation
+//   lighting, medium (cut-away too), dvr options -> accumulation
 //   transfer function             -> majorants, culled traversal hierarchy, kd-tree, accumulation
 //   structure combination         -> device copy, majorants, culling, kd-tree, pipelines, accumulation
 //   shader sources                -> pipelines, accumulation
@@ -21,7 +21,7 @@ enum class Change : uint32_t {
     Seed = 1u << 2,
     Mode = 1u << 3,              // ae | ss | ms | dvr
     Lighting = 1u << 4,          // ambient, background, lights
-    Medium = 1u << 5,            // density scale, phase g, tracking step cap
+    Medium = 1u << 5,            // density scale, phase g, tracking step cap, cut-away
     DvrOptions = 1u << 6,        // dvr step and shading
     TransferFunction = 1u << 7,
     Structure = 1u << 8,         // traversal, sampler, back-end, grid, kd leaves

@@ -45,6 +45,7 @@ void validateSettings(const RenderSettings& s) {
                 " is outside (0, 180)");
     AMRVK_CHECK(finite(s.camera.eye) && finite(s.camera.target) && finite(s.camera.up),
                 "--camera: eye, target and up must be finite");
+    validateCutAway(s.cut);
     const glm::dvec3 forward = s.camera.target - s.camera.eye;
     AMRVK_CHECK(glm::length(forward) > 0, "--camera: eye and target coincide");
     AMRVK_CHECK(glm::length(glm::cross(glm::normalize(forward), s.camera.up)) > 1e-12,

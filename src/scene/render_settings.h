@@ -11,6 +11,7 @@
 
 #include "amr/model.h"
 #include "scene/camera.h"
+#include "scene/cut_away.h"
 #include "shared/kinds.h"
 
 namespace amrvk::scene {
@@ -49,12 +50,13 @@ struct RenderSettings {
     uint32_t maxTrackingSteps = 1u << 22;  // per tracking call; paths reaching it are counted (biased)
     double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
     bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
+    CutAway cut;                         // crop box and clip planes (world); the medium beyond is empty
     bool operator==(const RenderSettings&) const = default;
 };
 
 // Throws a one-line error naming the option for a value no renderer takes: size outside 1..16384,
 // a negative or non-finite density scale, dt, ambient or background, more than kMaxLights lights,
-// a camera whose eye and target coincide or whose up is parallel to the view.
+// a camera whose eye and target coincide or whose up is parallel to the view, an invalid cut-away.
 void validateSettings(const RenderSettings& settings);
 
 std::vector<VoxelLight> lightsInVoxelSpace(const RenderSettings& settings, const amr::Transform& voxelToWorld);

@@ -121,6 +121,15 @@ std::string sessionJson(const Session& s) {
         j["lights"].push_back(L.point ? Json{{"type", "point"}, {"position", vec3(L.posOrDir)}, {"intensity", vec3(L.radiance)}}
                                       : Json{{"type", "directional"}, {"direction", vec3(L.posOrDir)},
                                              {"radiance", vec3(L.radiance)}});
+    if (!r.cut.empty()) {
+        j["cut"] = Json::object();
+        if (r.cut.crop) j["cut"]["crop"] = {{"lo", vec3(r.cut.crop->lo)}, {"hi", vec3(r.cut.crop->hi)}};
+        if (!r.cut.clips.empty()) {
+            j["cut"]["clip"] = Json::array();
+            for (const scene::ClipPlane& c : r.cut.clips)
+                j["cut"]["clip"].push_back({{"point", vec3(c.point)}, {"normal", vec3(c.normal)}});
+        }
+    }
     j["structure"] = {{"traversal", scene::traversalName(s.structure.traversal)},
                       {"sampler", scene::samplerName(s.structure.sampler)},
                       {"backend", scene::backendName(s.structure.backend)},
@@ -225,6 +234,29 @@ Session parseSession(const std::string& text, const fs::path& path) {
             AMRVK_CHECK(glm::all(glm::greaterThanEqual(light.radiance, glm::dvec3(0.0))), L.where(),
                         ": radiance must be >= 0");
             rs.lights.push_back(light);
+        }
+    }
+
+    if (top.has("cut")) {
+        const Reader cut = top.child("cut");
+        if (cut.has("crop")) {
+            const Reader crop = cut.child("crop");
+            rs.cut.crop = scene::CropBox{crop.vector("lo"), crop.vector("hi")};
+        }
+        if (cut.has("clip")) {
+            const Json& clips = cut.json().at("clip");
+            AMRVK_CHECK(clips.is_array(), cut.where(), ".clip: expected an array");
+            AMRVK_CHECK(clips.size() <= shared::kMaxClipPlanes, cut.where(), ".clip: at most ", shared::kMaxClipPlanes,
+                        " planes (got ", clips.size(), ")");
+            for (size_t i = 0; i < clips.size(); ++i) {
+                const Reader c(clips[i], cut.where() + ".clip[" + std::to_string(i) + "]");
+                rs.cut.clips.push_back({c.vector("point"), c.vector("normal")});
+            }
+        }
+        try {
+            scene::validateCutAway(rs.cut);
+        } catch (const Error& e) {
+            throw Error(cut.where() + ": " + e.what());
         }
     }
 

@@ -56,6 +56,12 @@ TEST(Invalidation, EachSettingMapsToExactlyItsChange) {
     s.maxTrackingSteps = 10;
     expectOnly(s, Change::Medium, "tracking cap");
     s = base;
+    s.cut.crop = scene::CropBox{glm::dvec3(0.0), glm::dvec3(1.0)};
+    expectOnly(s, Change::Medium, "a crop box");
+    s = base;
+    s.cut.clips.push_back({glm::dvec3(0.5), {0.0, 0.0, 1.0}});
+    expectOnly(s, Change::Medium, "a clip plane");
+    s = base;
     s.dvrStep = 0.25;
     expectOnly(s, Change::DvrOptions, "dt");
     s = base;

@@ -39,6 +39,9 @@ Session fullSession() {
     r.dvrShading = true;
     r.lights.push_back({false, {1.0, -1.0, 2.0}, {3.0, 3.0, 2.5}});
     r.lights.push_back({true, {0.2, 0.3, 4.0}, {10.0, 9.0, 8.0}});
+    r.cut.crop = scene::CropBox{{0.0, 0.125, 0.25}, {1.0, 0.75, 0.5}};
+    r.cut.clips.push_back({{0.5, 0.5, 0.5}, {1.0, 1.0, 0.0}});
+    r.cut.clips.push_back({{0.25, 0.5, 0.5}, {0.0, 0.0, -1.0}});
     s.structure.traversal = scene::TraversalKind::KdTree;
     s.structure.sampler = scene::SamplerKind::Abr;
     s.structure.backend = scene::Backend::Auto;
@@ -74,6 +77,8 @@ TEST(Session, EveryFieldRoundTrips) {
     EXPECT_EQ(b.width, 320);
     ASSERT_EQ(b.lights.size(), 2u);
     EXPECT_TRUE(b.lights[1].point);
+    EXPECT_EQ(b.cut, a.cut);
+    ASSERT_EQ(b.cut.clips.size(), 2u);
     EXPECT_EQ(t.structure.label(), s.structure.label());
     EXPECT_EQ(t.structure.grid, "64");
     EXPECT_EQ(t.structure.kdLeaves, 512u);
@@ -119,6 +124,11 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"traversal\": \"kdtree\"", "\"traversal\": \"octree\""), {"--traversal", "octree"}},
         {with("\"RGBPoints\"", "\"RGBPointz\""), {"transferFunction", "no RGBPoints"}},
         {with("\"eye\": [", "\"eye\": [\"x\", "), {"camera.eye"}},
+        {with("\"lo\": [", "\"lo\": [2.0, 0.0, 0.0], \"unused\": ["), {"/tmp/s.json", ".cut", "--crop", "axis x"}},
+        {with("\"normal\": [", "\"normal\": [0, 0, 0], \"unused\": ["), {".cut", "--clip", "normal 0 0 0"}},
+        {with("\"clip\": [", "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
+         {".cut.clip", "at most 4 planes (got 5)"}},
+        {with("\"point\": [", "\"pont\": ["), {".cut.clip[0]", "missing \"point\""}},
     };
     for (const auto& c : cases) {
         const std::string e = errorOfParse(c.text);
@@ -141,7 +151,8 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
           " --seed 77", " --camera 1.5 -2.25 3 0.5 0.5 0.5 0 0 1", " --fov 33", " --density-scale 0.05", " --g -0.3",
           " --ambient 0.1 0.2 0.3", " --background 0 0 0.01", " --light-dir 1 -1 2 3 3 2.5",
           " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --spp 128", " --traversal kdtree",
-          " --sampler abr", " --backend auto", " --grid 64", " --kd-leaves 512", " --dense-max-mib 300", " -o out.png"})
+          " --sampler abr", " --backend auto", " --grid 64", " --kd-leaves 512", " --dense-max-mib 300", " -o out.png",
+          " --crop 0 0.125 0.25 1 0.75 0.5", " --clip 0.5 0.5 0.5 1 1 0 --clip 0.25 0.5 0.5 0 0 -1"})
         EXPECT_NE(c.find(part), std::string::npos) << part << " missing from: " << c;
     s.spp = 0;  // the viewer's "run on"
     EXPECT_NE(session::renderCommandLine(s, "t.json", "o.png").find(" --spp 64"), std::string::npos);

@@ -72,6 +72,11 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, tfAlphaTree, 2),
         AMRVK_FIELD(0, RenderParams, accum, 2),         AMRVK_FIELD(0, RenderParams, counters, 2),
     });
+    const size_t x = offsetof(RenderParams, cut);
+    f.insert(f.end(), {AMRVK_FIELD(x, CutAwayGpu, cropLo, 3), AMRVK_FIELD(x, CutAwayGpu, flags, 1),
+                       AMRVK_FIELD(x, CutAwayGpu, cropHi, 3), AMRVK_FIELD(x, CutAwayGpu, planeCount, 1)});
+    for (size_t i = 0; i < kMaxClipPlanes; ++i)
+        f.push_back({"CutAwayGpu.planes[i]", x + offsetof(CutAwayGpu, planes) + i * sizeof(glm::vec4), 4});
     return f;
 }
 

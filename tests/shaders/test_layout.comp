@@ -59,6 +59,8 @@ void main() {
     u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
     // RenderParams tail
     u64(P.accum); u64(P.counters);
+    f3(P.cut.cropLo); u(P.cut.flags); f3(P.cut.cropHi); u(P.cut.planeCount);
+    for (uint i = 0u; i < kMaxClipPlanes; ++i) f4(P.cut.planes[i]);
     // The structures read through buffer references.
     StructsRef s = StructsRef(tp.structs);
     i3(s.brick.lower); i(s.brick.level); i3(s.brick.size); u(s.brick.begin);

@@ -1,0 +1,82 @@
+#include "scene/cut_away.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "accel/ray_box.h"
+#include "core/error.h"
+
+namespace amrvk::scene {
+
+namespace {
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+void validateCutAway(const CutAway& cut) {
+    if (cut.crop) {
+        const CropBox& b = *cut.crop;
+        AMRVK_CHECK(finite(b.lo) && finite(b.hi), "--crop: corners must be finite");
+        for (int a = 0; a < 3; ++a)
+            AMRVK_CHECK(b.lo[a] < b.hi[a], "--crop: lower corner ", b.lo[a], " is not below upper corner ", b.hi[a],
+                        " on axis ", "xyz"[a]);
+    }
+    AMRVK_CHECK(cut.clips.size() <= shared::kMaxClipPlanes, "--clip: at most ", shared::kMaxClipPlanes,
+                " planes (got ", cut.clips.size(), ")");
+    for (const ClipPlane& p : cut.clips) {
+        AMRVK_CHECK(finite(p.point) && finite(p.normal), "--clip: point and normal must be finite");
+        AMRVK_CHECK(glm::length(p.normal) > 0, "--clip: the normal 0 0 0 points nowhere");
+    }
+}
+
+bool keeps(const CutAway& cut, glm::dvec3 p) {
+    if (cut.crop && (glm::any(glm::lessThan(p, cut.crop->lo)) || glm::any(glm::greaterThan(p, cut.crop->hi))))
+        return false;
+    for (const ClipPlane& c : cut.clips)
+        if (glm::dot(c.normal, p - c.point) > 0) return false;
+    return true;
+}
+
+bool keptInterval(const CutAway& cut, glm::dvec3 o, glm::dvec3 d, double& tMin, double& tMax) {
+    if (cut.crop && !accel::clipRay(cut.crop->lo, cut.crop->hi, o, d, tMin, tMax)) return false;
+    for (const ClipPlane& c : cut.clips) {
+        const double s = glm::dot(c.normal, c.point - o), dn = glm::dot(c.normal, d);
+        if (dn == 0) {
+            if (s < 0) return false;
+        } else if (dn > 0) {
+            tMax = std::min(tMax, s / dn);
+        } else {
+            tMin = std::max(tMin, s / dn);
+        }
+    }
+    return tMin < tMax;
+}
+
+CutAway cutAwayInVoxelSpace(const CutAway& cut, const amr::Transform& xf) {
+    CutAway v;
+    if (cut.crop) {
+        const glm::dvec3 a = (cut.crop->lo - xf.origin) / xf.scale, b = (cut.crop->hi - xf.origin) / xf.scale;
+        v.crop = CropBox{glm::min(a, b), glm::max(a, b)};  // a negative scale swaps the corners
+    }
+    // n . (origin + scale v - p) <= 0  <=>  (n * scale) . (v - (p - origin) / scale) <= 0
+    for (const ClipPlane& c : cut.clips) v.clips.push_back({(c.point - xf.origin) / xf.scale, c.normal * xf.scale});
+    return v;
+}
+
+shared::CutAwayGpu cutAwayGpu(const CutAway& cut, const amr::Transform& xf, glm::dvec3 localOrigin) {
+    validateCutAway(cut);
+    const CutAway v = cutAwayInVoxelSpace(cut, xf);
+    shared::CutAwayGpu g{};
+    if (v.crop) {
+        g.flags |= shared::kCutCrop;
+        g.cropLo = glm::vec3(v.crop->lo - localOrigin);
+        g.cropHi = glm::vec3(v.crop->hi - localOrigin);
+    }
+    g.planeCount = uint32_t(v.clips.size());
+    for (size_t i = 0; i < v.clips.size(); ++i) {
+        const glm::dvec3 n = glm::normalize(v.clips[i].normal);
+        g.planes[i] = glm::vec4(glm::vec3(n), float(glm::dot(n, v.clips[i].point - localOrigin)));
+    }
+    return g;
+}
+
+}  // namespace amrvk::scene
