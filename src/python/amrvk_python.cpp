@@ -112,6 +112,28 @@ glm::dvec3 vec3(const std::vector<double>& v, const char* name) {
 
 std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
+// crop=(lo, hi) (world; None: no crop) and clip=[(point, normal), ...] (world), as --crop and --clip.
+std::optional<scene::CropBox> cropOf(const py::object& o) {
+    if (o.is_none()) return std::nullopt;
+    const auto corners = o.cast<std::pair<std::vector<double>, std::vector<double>>>();
+    return scene::CropBox{vec3(corners.first, "crop lo"), vec3(corners.second, "crop hi")};
+}
+std::vector<scene::ClipPlane> clipsOf(const py::object& o) {
+    std::vector<scene::ClipPlane> out;
+    if (o.is_none()) return out;
+    for (const auto& [point, normal] : o.cast<std::vector<std::pair<std::vector<double>, std::vector<double>>>>())
+        out.push_back({vec3(point, "clip point"), vec3(normal, "clip normal")});
+    return out;
+}
+py::object cropObject(const std::optional<scene::CropBox>& c) {
+    return c ? py::object(py::make_tuple(list3(c->lo), list3(c->hi))) : py::object(py::none());
+}
+py::list clipObject(const std::vector<scene::ClipPlane>& clips) {
+    py::list out;
+    for (const scene::ClipPlane& c : clips) out.append(py::make_tuple(list3(c.point), list3(c.normal)));
+    return out;
+}
+
 // An image as numpy float32 (H, W, 4), row 0 = top.
 py::array_t<float> imageArray(const Image& image) {
     py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
@@ -475,7 +497,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
                                    "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
-                                   "quiet",    "fov",     "tf_range"};
+                                   "quiet",    "fov",     "tf_range", "crop",    "clip"};
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
@@ -494,6 +516,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (auto o = take("dt")) rs.dvrStep = o->cast<double>();
     if (auto o = take("dvr_shading")) rs.dvrShading = o->cast<bool>();
     if (auto o = take("fov")) rs.camera.fovYDegrees = o->cast<double>();
+    if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
+    if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
     if (camera) rs.camera = *camera;
     d.fitCamera = !camera;
     if (tf) s.tf = tf->channels;
@@ -713,6 +737,14 @@ PYBIND11_MODULE(_amrvk, m) {
                     s.height = wh.second;
                 });
             })
+        .def_property(
+            "crop", [](const PyRenderer& r) { return cropObject(r.session().settings.cut.crop); },
+            [](PyRenderer& r, const py::object& o) { r.editSettings([&](auto& s) { s.cut.crop = cropOf(o); }); },
+            "cut-away box (lo, hi) in world space, or None; the medium outside is empty (docs/cut-aways.md)")
+        .def_property(
+            "clip", [](const PyRenderer& r) { return clipObject(r.session().settings.cut.clips); },
+            [](PyRenderer& r, const py::object& o) { r.editSettings([&](auto& s) { s.cut.clips = clipsOf(o); }); },
+            "clip planes [(point, normal), ...] in world space; the side each normal points to is removed (at most 4)")
         .def_property(
             "seed", [](const PyRenderer& r) { return r.session().settings.seed; },
             [](PyRenderer& r, uint32_t seed) { r.editSettings([&](auto& s) { s.seed = seed; }); })

@@ -243,3 +243,29 @@ def test_devices(amrvk):
     devices = amrvk.devices()
     assert any(d["usable"] for d in devices)
     assert all({"name", "type", "ray_query", "reject_reason"} <= set(d) for d in devices)
+
+
+def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
+    crop = ([0, 0, 0], [512, 512, 256])
+    clip = [([256, 256, 256], [1, 1, 0])]
+    r = picture(amrvk, crop=crop, clip=clip, seed=4)
+    assert r.crop == crop and r.clip == clip
+    cut = r.render(spp=4).copy()
+    run_cli("render", SAMPLE, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
+            "--seed", "4", "--crop", "0", "0", "0", "512", "512", "256", "--clip", "256", "256", "256", "1", "1", "0",
+            "--spp", "4", "-o", tmp_path / "cli.pfm")
+    assert np.max(np.abs(read_pfm(tmp_path / "cli.pfm") - cut[..., :3])) < 1e-4, "same cut, same samples"
+    r.save_session(tmp_path / "s.json")
+    s = json.loads((tmp_path / "s.json").read_text())
+    assert s["cut"]["crop"] == {"lo": [0.0, 0.0, 0.0], "hi": [512.0, 512.0, 256.0]}
+    assert s["cut"]["clip"] == [{"point": [256.0, 256.0, 256.0], "normal": [1.0, 1.0, 0.0]}]
+    # Removing the cut brings the whole picture back; a bad cut changes nothing.
+    r.crop = None
+    r.clip = []
+    assert r.crop is None and r.clip == []
+    assert np.abs(r.render(spp=4) - cut).max() > 1e-2
+    with pytest.raises(ValueError, match="--crop: lower corner 5 is not below upper corner 1 on axis x"):
+        r.crop = ([5, 0, 0], [1, 1, 1])
+    assert r.crop is None
+    with pytest.raises(ValueError, match="--clip: at most 4 planes"):
+        r.clip = [([0, 0, 0], [1, 0, 0])] * 5
