@@ -46,6 +46,12 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     for (const std::string& line : fitted) note(line);
     for (const auto& [key, value] : volume->model.attributes)
         if (key == "logFloored") note("log scale: " + value + " (values <= 0, or below --log-floor, have no logarithm)");
+    if (const auto& crop = p.session.settings.cut.crop) {
+        const glm::dvec3 lo = glm::min(volume->worldLo(), volume->worldHi()), hi = glm::max(volume->worldLo(), volume->worldHi());
+        if (glm::any(glm::lessThan(crop->hi, lo)) || glm::any(glm::greaterThan(crop->lo, hi)))
+            note(strCat("--crop keeps nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ",
+                        hi.y, " ", hi.z, "): the picture shows only the background"));
+    }
     const scene::TransferFunction tf = p.session.tf.merged();
     if (d.fit == session::StructureFit::Probe) {
         // Probes start from the default combination; everything the user gave stays fixed.

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
+#include "scene/cut_away.h"
 #include "scene/render_settings.h"
 #include "scene/transfer_function.h"
 
@@ -28,7 +29,8 @@ const std::map<std::string, Signature>& signatures() {
         {"orbit", {2, {0, 1}}},   {"pan", {2, {0, 1}}},      {"zoom", {1, {0}}},    {"tf-preset", {1, {}}},
         {"tf-range", {2, {0, 1}}}, {"density", {1, {0}}},    {"mode", {1, {}}},     {"traversal", {1, {}}},
         {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
-        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}}};
+        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}},
+        {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}}};
     return table;
 }
 
@@ -93,6 +95,15 @@ void checkValues(const ScriptAction& a) {
     else if (n == "screenshot") imageType({".png", ".exr", ".pfm"});
     else if (n == "capture-window") imageType({".png"});
     else if (n == "save-session") AMRVK_CHECK(!a.args[0].empty(), "empty file name");
+    else if (n == "crop") {
+        scene::CutAway c;
+        c.crop = scene::CropBox{{a.number(0), a.number(1), a.number(2)}, {a.number(3), a.number(4), a.number(5)}};
+        scene::validateCutAway(c);
+    } else if (n == "clip") {
+        scene::CutAway c;
+        c.clips.push_back({{a.number(0), a.number(1), a.number(2)}, {a.number(3), a.number(4), a.number(5)}});
+        scene::validateCutAway(c);
+    }
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");

@@ -242,6 +242,50 @@ void renderPanel(PanelState& p) {
     if (s.lights.size() < 8 && ImGui::Button("add sun")) s.lights.push_back({false, {1.0, -1.0, 2.0}, glm::dvec3(3.0)});
 }
 
+// Crop box (a range slider per axis over the data's world bounds) and clip planes. Switching the
+// crop off keeps its box for switching it on again.
+void cutAwayPanel(PanelState& p) {
+    scene::CutAway& cut = p.edit.settings.cut;
+    bool crop = cut.crop.has_value();
+    if (ImGui::Checkbox("crop box", &crop)) {
+        if (crop) {
+            cut.crop = p.cropMemory.value_or(scene::CropBox{p.worldLo, p.worldHi});
+        } else {
+            p.cropMemory = cut.crop;
+            cut.crop.reset();
+        }
+    }
+    if (cut.crop) {
+        for (int a = 0; a < 3; ++a) {
+            const float lo = float(p.worldLo[a]), hi = float(p.worldHi[a]);
+            float v0 = float(cut.crop->lo[a]), v1 = float(cut.crop->hi[a]);
+            const char* label = a == 0 ? "x range" : a == 1 ? "y range" : "z range";
+            if (ImGui::DragFloatRange2(label, &v0, &v1, (hi - lo) / 400.0f, lo, hi, "%.4g", "%.4g",
+                                       ImGuiSliderFlags_AlwaysClamp) &&
+                v0 < v1) {
+                cut.crop->lo[a] = v0;
+                cut.crop->hi[a] = v1;
+            }
+        }
+    }
+    for (size_t i = 0; i < cut.clips.size(); ++i) {
+        ImGui::PushID(int(i) + 100);
+        ImGui::Text("plane %zu (removes the side the normal points to)", i + 1);
+        vec3Edit("point", cut.clips[i].point, float(glm::length(p.worldHi - p.worldLo) / 400.0));
+        vec3Edit("normal", cut.clips[i].normal, 0.01f);
+        if (ImGui::Button("flip")) cut.clips[i].normal = -cut.clips[i].normal;
+        ImGui::SameLine();
+        if (ImGui::Button("remove plane")) {
+            cut.clips.erase(cut.clips.begin() + std::ptrdiff_t(i));
+            ImGui::PopID();
+            break;
+        }
+        ImGui::PopID();
+    }
+    if (cut.clips.size() < shared::kMaxClipPlanes && ImGui::Button("add clip plane"))
+        cut.clips.push_back({0.5 * (p.worldLo + p.worldHi), {1.0, 0.0, 0.0}});
+}
+
 void structurePanel(PanelState& p, PanelRequests& r) {
     scene::StructureConfig& c = p.edit.structure;
     std::vector<std::string> traversals, samplers;
@@ -294,6 +338,7 @@ void drawPanels(PanelState& p, PanelRequests& r) {
     if (ImGui::Begin("amrvk")) {
         if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
         if (ImGui::CollapsingHeader("render")) renderPanel(p);
+        if (ImGui::CollapsingHeader("cut-away")) cutAwayPanel(p);
         if (ImGui::CollapsingHeader("structures")) structurePanel(p, r);
         if (ImGui::CollapsingHeader("camera")) cameraPanel(p, r);
         if (ImGui::CollapsingHeader("files")) filesPanel(p, r);

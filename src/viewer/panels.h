@@ -5,6 +5,7 @@
 // raise requests; the app validates the copy and applies what changed, so a rejected edit never
 // reaches its state or a session. All ImGui widget code is here.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,8 @@ struct PanelState {
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
     std::string gridText;   // the macrocell grid as typed, applied on Enter
+    glm::dvec3 worldLo{0.0}, worldHi{1.0};       // the data's world bounds (cut-away sliders)
+    std::optional<scene::CropBox> cropMemory;    // the crop box while it is switched off (not lost)
     int draggingNode = -1;  // opacity node under a drag, between frames
 };
 

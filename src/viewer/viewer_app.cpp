@@ -324,6 +324,8 @@ bool ViewerApp::frame() {
         mPanel.stats = &mStats;
         mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
+        mPanel.worldLo = glm::min(mVolume->worldLo(), mVolume->worldHi());
+        mPanel.worldHi = glm::max(mVolume->worldLo(), mVolume->worldHi());
         mPanel.canUndo = mTfHistory.canUndo();
         mPanel.canRedo = mTfHistory.canRedo();
         mPanel.colorMapNames.clear();
@@ -508,6 +510,17 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
     } else if (n == "density") {
         scene::RenderSettings s = mState.settings;
         s.densityScale = a.number(0);
+        scene::validateSettings(s);
+        mState.settings = s;
+    } else if (n == "crop" || n == "clip" || n == "cut-off") {
+        scene::RenderSettings s = mState.settings;
+        if (n == "cut-off") {
+            s.cut = {};
+        } else {
+            const glm::dvec3 u(a.number(0), a.number(1), a.number(2)), v(a.number(3), a.number(4), a.number(5));
+            if (n == "crop") s.cut.crop = scene::CropBox{u, v};
+            else s.cut.clips.push_back({u, v});
+        }
         scene::validateSettings(s);
         mState.settings = s;
     } else if (n == "mode") {

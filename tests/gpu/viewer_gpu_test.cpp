@@ -141,7 +141,9 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
                                        "10 tf-range 0 0.8\n"
                                        "15 traversal abr\n"
                                        "20 mode dvr\n"
-                                       "25 zoom 1\n");
+                                       "25 zoom 1\n"
+                                       "30 crop 0 0 0 512 512 460\n"
+                                       "35 clip 420 420 256 1 1 0\n");
     const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 600 --script " +
                            (dir / "script.txt").string() + " --stats " + (dir / "stats.json").string() +
                            " --screenshot " + (dir / "final.pfm").string() + " --save-session " +
@@ -150,7 +152,8 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
     const nlohmann::json stats = readJson(dir / "stats.json");
     const std::vector<std::pair<uint64_t, std::string>> expected = {
-        {5, "camera"}, {10, "transfer function"}, {15, "structure"}, {20, "mode"}, {25, "camera"}};
+        {5, "camera"}, {10, "transfer function"}, {15, "structure"}, {20, "mode"}, {25, "camera"},
+        {30, "medium"}, {35, "medium"}};
     for (const auto& [frame, what] : expected) {
         bool found = false;
         for (const auto& r : stats["resets"])
@@ -165,6 +168,10 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
     EXPECT_EQ(s.structure.traversal, scene::TraversalKind::Abr);
     EXPECT_EQ(s.settings.mode, scene::Mode::Dvr);
     EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 0.8f);
+    ASSERT_TRUE(s.settings.cut.crop.has_value());
+    EXPECT_EQ(s.settings.cut.crop->hi, glm::dvec3(512, 512, 460));
+    ASSERT_EQ(s.settings.cut.clips.size(), 1u);
+    EXPECT_EQ(s.settings.cut.clips[0].normal, glm::dvec3(1, 1, 0));
     expectSameAsRender(dir, "viewer-script");
 }
 
@@ -206,6 +213,7 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
     test::writeAll(dir / "script.txt",
                    "0 orbit 10 5\n0 pan 3 -2\n0 zoom 1\n0 tf-preset foggy\n0 tf-range 0.1 1.5\n0 density 2\n"
                    "0 mode ss\n0 traversal grid-bvh\n0 sampler abr\n0 backend sw\n0 grid 8\n"
+                   "0 clip 1 2 3 0 0 1\n0 cut-off\n0 crop 0 0 0 512 512 400\n0 clip 256 256 256 0 1 0\n"
                    "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n"
                    "0 screenshot " + (dir / "shot.pfm").string() + "\n0 save-session " + (dir / "s.json").string() +
                    "\n0 capture-window " + (dir / "w.png").string() + "\n1 quit\n");
@@ -223,6 +231,10 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
     EXPECT_EQ(s.structure.sampler, scene::SamplerKind::Abr);
     EXPECT_EQ(s.structure.grid, "8");
     EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 1.5f);
+    ASSERT_TRUE(s.settings.cut.crop.has_value());
+    EXPECT_EQ(s.settings.cut.crop->hi.z, 400.0);
+    ASSERT_EQ(s.settings.cut.clips.size(), 1u) << "cut-off removed the first plane";
+    EXPECT_EQ(s.settings.cut.clips[0].point, glm::dvec3(256.0));
     EXPECT_NE(test::readAll(dir / "shaders/passes/path_trace.comp").find("// edited"), std::string::npos);
 
     // A line that passes every check before frame 0 but fails when it runs (the dense grid over
