@@ -281,7 +281,13 @@ Context::Context(const ContextOptions& options) {
         std::vector<Probe> probes;
         for (uint32_t i = 0; i < pds.size(); ++i) probes.push_back(probeDevice(pds[i], i, mSurface));
         int chosen = -1;
-        auto describe = [](const Probe& p) { return p.report.name + ": " + p.report.rejectReason; };
+        // Why a device cannot serve this run: its own reason, or the ray queries --backend rq asked for.
+        auto describe = [&](const Probe& p) {
+            const std::string why = !p.report.usable ? p.report.rejectReason
+                                    : options.requireRayQuery && !p.report.rayQuery ? "no VK_KHR_ray_query (--backend rq)"
+                                                                                    : "usable";
+            return p.report.name + ": " + why;
+        };
         if (!options.device.empty()) {
             bool numeric = std::all_of(options.device.begin(), options.device.end(), ::isdigit);
             for (size_t i = 0; i < probes.size() && chosen < 0; ++i) {
