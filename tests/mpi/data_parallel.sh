@@ -3,7 +3,8 @@
 # (--distribute data, docs/mpi.md): each rank reads and tracks only its box of space, and the
 # image equals the single-process one statistically (tests/mpi/zcompare.py: per-pixel and pooled
 # z of the means against both variances) with 2 and 3 ranks, in ae, ss and ms, on the bundled
-# cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level.
+# cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level, and
+# with a cut-away.
 # Power: the same test rejects the data-parallel image when the single-process reference is made
 # from data with one rank's part 5% denser. --json: boxes that tile the data, every cell owned by
 # one rank, halos, bytes moved.
@@ -38,6 +39,9 @@ same cloud-ae-3 3 "$cloud" "${absorb[@]}"
 same cloud-ms-3 3 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2
 same cloud-ss-2 2 "$cloud" --size 32x32 --spp 128 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3
 same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf-range 0 4 --density-scale 2
+# A cut-away (docs/cut-aways.md): a crop box across the partition faces and an oblique clip plane.
+same cloud-ms-cut-2 2 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2 \
+  --crop 0 0 0 512 512 300 --clip 256 256 256 1 1 0
 
 # The report: boxes that tile the bounds without overlap, each cell owned once, halos held.
 for name in cloud-ae-2 cloud-ae-3 enzo-ms-2; do
