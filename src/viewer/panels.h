@@ -1,9 +1,12 @@
 #pragma once
-// The viewer's ImGui panels: statistics overlay, camera, transfer-function editor (colour map,
-// draggable opacity curve over the field histogram, value range, density), render settings and
-// lights, files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and
-// raise requests; the app validates the copy and applies what changed, so a rejected edit never
-// reaches its state or a session. All ImGui widget code is here.
+// The viewer's ImGui panels, in one side panel docked at the window's right edge (its rectangle
+// from session/viewer_layout.h, so it never covers the picture; the user may drag its left edge):
+// statistics, transfer-function editor (colour map, draggable opacity curve over the field
+// histogram, log scale, value range, density), render settings and lights, structures, camera,
+// files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and raise
+// requests; the app validates the copy and applies what changed, so a rejected edit never reaches
+// its state or a session. Widgets leave a label column as wide as the widest label, so no label is
+// cut off at the panel's minimum width. All ImGui widget code is here.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,6 +15,7 @@
 #include "session/orbit_camera.h"
 #include "session/session.h"
 #include "session/tf_editor.h"
+#include "session/viewer_layout.h"
 
 namespace amrvk::viewer {
 
@@ -52,8 +56,11 @@ struct PanelState {
     std::string screenshotPath = "amrvk-view.png";
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
-    std::string gridText;   // the macrocell grid as typed, applied on Enter
-    int draggingNode = -1;  // opacity node under a drag, between frames
+    std::string gridText;                          // the macrocell grid as typed, applied on Enter
+    int draggingNode = -1;                         // opacity node under a drag, between frames
+    session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)
+    int panelWidth = session::kPanelDefaultWidth;  // out: the width the user dragged the panel to
+    bool imageFollowsWindow = false;               // the image size follows the picture area (camera aspect included)
 };
 
 // Draws every panel for this frame and fills `requests`.
