@@ -529,4 +529,17 @@ TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
     EXPECT_EQ(refused, 1) << err;
     EXPECT_NE(err.find("refused.txt:1: load-session:"), std::string::npos) << err;
     EXPECT_NE(err.find("read.nan drop (this viewer read reject)"), std::string::npos) << err;
+
+    // A field with no positive value cannot go to log scale: one line naming the script line and
+    // the reason, and the session asked for at exit is not written.
+    test::writeAll(dir / "zeros_4x4x4_uint8.raw", std::string(64, '\0'));
+    test::writeAll(dir / "nolog.txt", "1 scale log\n");
+    const int nolog = run(amrvkBinary() + " view " + at("zeros_4x4x4_uint8.raw") + kPicture +
+                              " --headless --frames 5 --script " + at("nolog.txt") + " --save-session " + at("never.json"),
+                          dir, "nolog");
+    const std::string why = test::readAll(dir / "nolog.err");
+    EXPECT_EQ(nolog, 1) << why;
+    EXPECT_NE(why.find("nolog.txt:1: scale:"), std::string::npos) << why;
+    EXPECT_NE(why.find("no positive value"), std::string::npos) << why;
+    EXPECT_FALSE(fs::exists(dir / "never.json"));
 }
