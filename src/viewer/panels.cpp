@@ -315,8 +315,13 @@ void drawPanels(PanelState& p, PanelRequests& r) {
     const session::PixelRect& pr = p.panelRect;
     if (pr.empty()) return;
     const float height = float(pr.height) / sy;
-    ImGui::SetNextWindowPos(ImVec2(float(pr.x) / sx, float(pr.y) / sy), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(float(pr.width) / sx, height), ImGuiCond_Always);
+    // Placed when the layout moves it; in between ImGui keeps what the user dragged it to, and the
+    // width read back below goes through the layout's limits before it is placed again.
+    if (!(pr == p.panelPlaced)) {
+        ImGui::SetNextWindowPos(ImVec2(float(pr.x) / sx, float(pr.y) / sy), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(float(pr.width) / sx, height), ImGuiCond_Always);
+        p.panelPlaced = pr;
+    }
     // Its left edge can be dragged; the app clamps the width (session::viewerLayout).
     ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(session::kPanelMinWidth, pr.width)) / sx, height),
                                         ImVec2(float(pr.right()) / sx, height));

@@ -60,6 +60,7 @@ struct PanelState {
     int draggingNode = -1;                         // opacity node under a drag, between frames
     session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)
     int panelWidth = session::kPanelDefaultWidth;  // out: the width the user dragged the panel to
+    session::PixelRect panelPlaced;  // the rectangle last handed to ImGui (a user's drag is kept between)
     bool imageFollowsWindow = false;               // the image size follows the picture area (camera aspect included)
 };
 

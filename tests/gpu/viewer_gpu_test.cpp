@@ -7,10 +7,11 @@
 // quitting during a 15 s rebuild hides the window at once; with no display, one line suggests
 // --headless. The layout: at 800x600, 1024x720, 1280x800 and 1920x1080 the picture (a uniform
 // colour) fills exactly the rectangle the viewer reports and no panel pixel covers it; a drag
-// beside the picture does not turn the camera. The log scale: a scripted toggle reads the data
-// again, keeps the camera, refits the TF (shape kept) and the histogram to log10 of the field's
-// range (computed here from the file), the floor floors it, sessions record it, loading a
-// session on another scale reads again and one with another NaN policy is refused with the reason.
+// beside the picture does not turn the camera, one of the panel's edge widens it. The log scale: a
+// scripted toggle reads the data again, keeps the camera, refits the TF (shape kept) and the
+// histogram to log10 of the field's range (computed here from the file), the floor floors it,
+// sessions record it, loading a session on another scale reads again, one with another NaN policy
+// is refused with the reason, and a field with no positive value is refused with its reason.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -397,6 +398,8 @@ TEST_F(ViewerGpu, PanelAndPictureNeverOverlapAtCommonWindowSizes) {
     }
 }
 
+// A drag and the wheel beside the picture leave the camera alone; a drag of the panel's left edge
+// widens the panel, and the picture moves aside.
 TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-drag-beside";
@@ -412,6 +415,11 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
                    "sleep 3\n"
                    "xdotool mousemove 150 500 mousedown 1 mousemove 210 520 mousemove 260 530 mouseup 1\n"
                    "xdotool mousemove 150 500 click 4 click 4\n"  // the wheel beside the picture
+                   // The panel's left edge (x = 360) dragged 100 pixels left, slowly: ImGui reads
+                   // the pointer once a frame.
+                   "xdotool mousemove 361 300; sleep 0.5; xdotool mousedown 1; sleep 0.5\n"
+                   "for x in 330 300 261; do xdotool mousemove $x 300; sleep 0.5; done\n"
+                   "xdotool mouseup 1\n"
                    "sleep 1\n"
                    "xdotool key q\n"
                    "wait $pid; rc=$?\n"
@@ -421,8 +429,13 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
                            " " + dir.string(),
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
-    const Rect picture = rectOf(readJson(dir / "stats.json")["layout"]["picture"]);
+    const nlohmann::json layout = readJson(dir / "stats.json")["layout"];
+    const Rect picture = rectOf(layout["picture"]), panel = rectOf(layout["panel"]);
     ASSERT_FALSE(picture.contains(150, 500)) << "the drag must start beside the picture";
+    // The panel took the drag of its edge (440 -> about 540 pixels) and the picture moved aside.
+    EXPECT_NEAR(panel.width, 540, 8) << layout.dump();
+    EXPECT_EQ(panel.x + panel.width, 800);
+    EXPECT_LE(picture.x + picture.width, panel.x);
     const session::Session s = session::loadSession(dir / "final.json");
     const amr::Model m = amr::readModel(sample(), {});
     const amr::ModelSummary sum = amr::summarize(m);
