@@ -445,6 +445,41 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
         << "a drag or the wheel beside the picture moved the camera";
 }
 
+// "image size = picture area" (camera panel, clicked with xdotool at 1920x1080: the camera header,
+// then the checkbox; positions of ImGui 1.86's default font with the statistics and TF sections
+// open) makes the rendered image the area beside the panel, so the camera's aspect follows it.
+TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-image-follows";
+    fs::create_directories(dir);
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --size 64x48 --window 1920x1080 --backend sw --grid 32 --spp 1 --save-session "
+                   "\"$3/final.json\" --stats \"$3/stats.json\" --validation & pid=$!\n"
+                   "( sleep 200; kill $pid 2>/dev/null ) & watchdog=$!\n"
+                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
+                   "done\n"
+                   "sleep 3\n"
+                   "xdotool mousemove 1540 660; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 1497 752; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 100 1070; sleep 1\n"
+                   "xdotool key q\n"
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary(), "3840x2160") + " " +
+                           sample() + " " + dir.string(),
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const nlohmann::json layout = readJson(dir / "stats.json")["layout"];
+    const Rect area = rectOf(layout["area"]), picture = rectOf(layout["picture"]);
+    const session::Session s = session::loadSession(dir / "final.json");
+    EXPECT_EQ(s.settings.width, area.width) << "the checkbox was not reached? " << layout.dump();
+    EXPECT_EQ(s.settings.height, area.height);
+    EXPECT_EQ(picture.width, area.width);
+    EXPECT_EQ(picture.height, area.height);
+}
+
 TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
     const fs::path dir = test::scratchDir() / "viewer-log-scale";
     fs::remove_all(dir);
