@@ -14,6 +14,13 @@ namespace {
 
 const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
 
+// Framebuffer pixels per ImGui unit, per axis (1 but on HiDPI screens).
+ImVec2 framebufferScale() {
+    const ImGuiIO& io = ImGui::GetIO();
+    return {io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f,
+            io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f};
+}
+
 // Combo over a fixed list of names; true when the choice changed.
 bool namedCombo(const char* label, std::string& value, const std::vector<std::string>& names) {
     bool changed = false;
@@ -307,11 +314,15 @@ void filesPanel(PanelState& p, PanelRequests& r) {
 
 }  // namespace
 
+UiRect toUi(const session::PixelRect& r) {
+    const ImVec2 s = framebufferScale();
+    return {float(r.x) / s.x, float(r.y) / s.y, float(r.width) / s.x, float(r.height) / s.y};
+}
+
 void drawPanels(PanelState& p, PanelRequests& r) {
     // The layout is in framebuffer pixels, ImGui in window coordinates (they differ on HiDPI screens).
-    const ImGuiIO& io = ImGui::GetIO();
-    const float sx = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
-    const float sy = io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f;
+    const ImVec2 scale = framebufferScale();
+    const float sx = scale.x, sy = scale.y;
     const session::PixelRect& pr = p.panelRect;
     if (pr.empty()) return;
     const float height = float(pr.height) / sy;

@@ -383,6 +383,7 @@ bool ViewerApp::frame() {
         updateLayout();
         mImGui->beginFrame();
         mPanel.panelRect = mLayout.panel;
+        mPanel.pictureRect = mLayout.picture;
         mPanel.stats = &mStats;
         mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
