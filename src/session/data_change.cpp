@@ -38,7 +38,9 @@ DataChangeCheck dataChange(const Session& shown, const Session& next) {
     if (n.rawThreshold != r.rawThreshold)
         return other("read.threshold " + formatDouble(n.rawThreshold) + " (this viewer read " +
                      formatDouble(r.rawThreshold) + ")");
-    if (n.scale != r.scale || n.logFloor != r.logFloor) return {DataChange::Rescale, ""};
+    // The floor matters on the log scale only.
+    if (n.scale != r.scale || (n.scale == amr::FieldScale::Log && n.logFloor != r.logFloor))
+        return {DataChange::Rescale, ""};
     return {};
 }
 

@@ -19,7 +19,8 @@ struct DataChangeCheck {
 };
 
 // How `next` (a session to load, or the viewer's state after a panel or script edit) differs
-// from `shown` in what is read. Inputs are compared as absolute, normalised paths.
+// from `shown` in what is read. Inputs are compared as absolute, normalised paths; the log floor
+// counts on the log scale only.
 DataChangeCheck dataChange(const Session& shown, const Session& next);
 
 // `tf` with its value range moved onto [lo, hi] (the shape kept: every node at the same relative

@@ -446,9 +446,12 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         session::Session next = mState;
         next.read.scale = e.read.scale;
         next.read.logFloor = e.read.logFloor;
-        reloadData(next, true);
-        mInteracting = true;
-        return;  // this frame's other edits were made on the old scale's state
+        if (session::dataChange(mState, next).kind == session::DataChange::Rescale) {
+            reloadData(next, true);
+            mInteracting = true;
+            return;  // this frame's other edits were made on the old scale's state
+        }
+        mState.read = next.read;
     }
 
     // Structure first: validated and built, or rejected with its reason shown and nothing changed.
@@ -599,7 +602,10 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         session::Session next = mState;
         if (n == "scale") next.read.scale = amr::parseFieldScale(a.args[0]);
         else next.read.logFloor = a.number(0);
-        if (session::dataChange(mState, next).kind == session::DataChange::Rescale) reloadData(next, true);
+        if (session::dataChange(mState, next).kind == session::DataChange::Rescale)
+            reloadData(next, true);
+        else
+            mState.read = next.read;  // a floor on the linear scale: recorded, no value changes
     } else if (n == "traversal" || n == "sampler" || n == "backend" || n == "grid") {
         if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
         if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);

@@ -31,9 +31,16 @@ TEST(DataChange, OnlyTheScaleAndItsFloorAreARescale) {
     EXPECT_EQ(session::dataChange(shown(), next).kind, DataChange::None);
     next.read.scale = amr::FieldScale::Log;
     EXPECT_EQ(session::dataChange(shown(), next).kind, DataChange::Rescale);
-    session::Session floorOnly = shown();
+    session::Session logShown = shown();
+    logShown.read.scale = amr::FieldScale::Log;
+    session::Session floorOnly = logShown;
     floorOnly.read.logFloor = 1e-3;
-    EXPECT_EQ(session::dataChange(shown(), floorOnly).kind, DataChange::Rescale);
+    EXPECT_EQ(session::dataChange(logShown, floorOnly).kind, DataChange::Rescale);
+    // On the linear scale the floor changes no value: nothing to read.
+    session::Session linearFloor = shown();
+    linearFloor.read.logFloor = 1e-3;
+    EXPECT_EQ(session::dataChange(shown(), linearFloor).kind, DataChange::None);
+    EXPECT_EQ(session::dataChange(floorOnly, linearFloor).kind, DataChange::Rescale) << "log -> linear";
     // The same file written another way is the same data.
     session::Session dotted = shown();
     dotted.input = "/data/enzo/./DD0018/../DD0018/DD0018";
