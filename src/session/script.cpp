@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
+#include "amr/model.h"
 #include "scene/cut_away.h"
 #include "scene/render_settings.h"
 #include "scene/transfer_function.h"
@@ -30,6 +31,7 @@ const std::map<std::string, Signature>& signatures() {
         {"tf-range", {2, {0, 1}}}, {"density", {1, {0}}},    {"mode", {1, {}}},     {"traversal", {1, {}}},
         {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
         {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}},
+        {"scale", {1, {}}},       {"log-floor", {1, {0}}},   {"load-session", {1, {}}},
         {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}}};
     return table;
 }
@@ -92,9 +94,11 @@ void checkValues(const ScriptAction& a) {
     else if (n == "tf-preset") scene::builtInChannels(a.args[0]);
     else if (n == "tf-range") AMRVK_CHECK(a.number(0) < a.number(1), "LO ", a.args[0], " must be below HI ", a.args[1]);
     else if (n == "density") AMRVK_CHECK(a.number(0) >= 0, "density ", a.args[0], " must be >= 0");
+    else if (n == "scale") amr::parseFieldScale(a.args[0]);
+    else if (n == "log-floor") AMRVK_CHECK(a.number(0) >= 0, "log floor ", a.args[0], " must be >= 0 (0: the field's smallest positive value)");
     else if (n == "screenshot") imageType({".png", ".exr", ".pfm"});
     else if (n == "capture-window") imageType({".png"});
-    else if (n == "save-session") AMRVK_CHECK(!a.args[0].empty(), "empty file name");
+    else if (n == "save-session" || n == "load-session") AMRVK_CHECK(!a.args[0].empty(), "empty file name");
     else if (n == "crop") {
         scene::CutAway c;
         c.crop = scene::CropBox{{a.number(0), a.number(1), a.number(2)}, {a.number(3), a.number(4), a.number(5)}};

@@ -5,12 +5,15 @@
 //   orbit DX DY | pan DX DY          mouse drags in pixels
 //   zoom STEPS                       wheel steps (> 0 closer)
 //   tf-preset NAME | tf-range LO HI | density SCALE
+//   scale linear|log | log-floor V   the field's scale (read again; the TF refitted to its range)
 //   mode ae|ss|ms|dvr | traversal T | sampler S | backend B | grid G
 //   edit-shader FILE FIND REPLACE    replace the first FIND in FILE (under --shader-dir) and save it
 //   reload                           recompile the shaders now (the watcher also does on a save)
 //   screenshot FILE                  the accumulated image, no UI (.png, .exr, .pfm)
 //   capture-window FILE              the window as shown, UI included (.png; no-op with --headless)
 //   save-session FILE                the current state as a session file (render it with amrvk render --session)
+//   load-session FILE                as the panel's "load session": the same data (another scale is read
+//                                    again), else refused with the reason
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,

@@ -14,6 +14,13 @@ namespace {
 
 const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
 
+// Framebuffer pixels per ImGui unit, per axis (1 but on HiDPI screens).
+ImVec2 framebufferScale() {
+    const ImGuiIO& io = ImGui::GetIO();
+    return {io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f,
+            io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f};
+}
+
 // Combo over a fixed list of names; true when the choice changed.
 bool namedCombo(const char* label, std::string& value, const std::vector<std::string>& names) {
     bool changed = false;
@@ -54,41 +61,43 @@ bool colorEdit(const char* label, glm::dvec3& v) {
     return true;
 }
 
-void statisticsOverlay(const Statistics& s) {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-    ImGui::SetNextWindowBgAlpha(0.55f);
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
-    if (ImGui::Begin("statistics", nullptr, flags)) {
-        ImGui::Text("%s", s.device.c_str());
-        ImGui::Text("%s", s.combination.c_str());
-        ImGui::Text("%.1f frames/s (%.1f ms)   %.3f M paths/s", s.framesPerSecond, s.frameMilliseconds,
-                    s.mPathsPerSecond);
-        if (s.previewScale > 1) {
-            ImGui::Text("preview 1/%d", s.previewScale);
-        } else if (s.sppLimit > 0) {
-            ImGui::Text("%u / %u spp", s.spp, s.sppLimit);
-        } else {
-            ImGui::Text("%u spp", s.spp);
-        }
-        if (s.rowsDone > 0 && s.previewScale == 1) {
-            ImGui::SameLine();
-            ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
-        }
-        ImGui::Text("%.2f lookups/path   %.2f null/real collision", s.lookupsPerPath, s.nullPerReal);
-        if (s.violations > 0)
-            ImGui::TextColored(kRed, "%llu majorant violations", (unsigned long long)s.violations);
-        else
-            ImGui::Text("0 majorant violations");
-        if (s.trackingCapHits > 0)
-            ImGui::TextColored(kRed, "%llu paths stopped at the tracking cap (biased)",
-                               (unsigned long long)s.trackingCapHits);
-        if (s.nanSamples > 0) ImGui::TextColored(kRed, "%llu NaN samples", (unsigned long long)s.nanSamples);
-        ImGui::Text("device memory %.1f MiB", double(s.deviceBytes) / double(1 << 20));
-        ImGui::Text("last TF edit %.1f ms, structure %.2f s", s.tfEditSeconds * 1e3, s.structureSeconds);
+// Text that wraps at the panel's edge (long device names, combinations, errors).
+void wrapped(const ImVec4* color, const std::string& text) {
+    ImGui::PushTextWrapPos(0.0f);
+    if (color)
+        ImGui::TextColored(*color, "%s", text.c_str());
+    else
+        ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+}
+
+void statisticsPanel(const Statistics& s) {
+    wrapped(nullptr, s.device);
+    wrapped(nullptr, s.combination);
+    ImGui::Text("%.1f frames/s (%.1f ms)", s.framesPerSecond, s.frameMilliseconds);
+    ImGui::Text("%.3f M paths/s", s.mPathsPerSecond);
+    if (s.previewScale > 1) {
+        ImGui::Text("preview 1/%d", s.previewScale);
+    } else if (s.sppLimit > 0) {
+        ImGui::Text("%u / %u spp", s.spp, s.sppLimit);
+    } else {
+        ImGui::Text("%u spp", s.spp);
     }
-    ImGui::End();
+    if (s.rowsDone > 0 && s.previewScale == 1) {
+        ImGui::SameLine();
+        ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
+    }
+    ImGui::Text("%.2f lookups/path, %.2f null/real", s.lookupsPerPath, s.nullPerReal);
+    if (s.violations > 0)
+        ImGui::TextColored(kRed, "%llu majorant violations", (unsigned long long)s.violations);
+    else
+        ImGui::Text("0 majorant violations");
+    if (s.trackingCapHits > 0)
+        wrapped(&kRed, std::to_string(s.trackingCapHits) + " paths stopped at the tracking cap (biased)");
+    if (s.nanSamples > 0) ImGui::TextColored(kRed, "%llu NaN samples", (unsigned long long)s.nanSamples);
+    ImGui::Text("device memory %.1f MiB", double(s.deviceBytes) / double(1 << 20));
+    ImGui::Text("last TF edit %.1f ms", s.tfEditSeconds * 1e3);
+    ImGui::Text("last structure build %.2f s", s.structureSeconds);
 }
 
 // The opacity curve over the histogram and the colour map; nodes are dragged (left), added
@@ -180,8 +189,23 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     }
     tfCanvas(p, r);
     ImGui::SliderFloat("alpha axis", &p.alphaDisplayMax, 1e-3f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
-    ImGui::SameLine();
     ImGui::Checkbox("log histogram", &p.logHistogram);
+    ImGui::SameLine();
+    // The field's scale: the data is read again (docs/viewer.md), the TF refitted to the new range.
+    bool logScale = p.edit.read.scale == amr::FieldScale::Log;
+    if (ImGui::Checkbox("log scale", &logScale))
+        p.edit.read.scale = logScale ? amr::FieldScale::Log : amr::FieldScale::Linear;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("log10 of each cell's value (read again; the TF keeps its shape on the new range)");
+    if (p.edit.read.scale == amr::FieldScale::Log) {
+        double floor = p.edit.read.logFloor;
+        if (ImGui::InputDouble("log floor", &floor, 0.0, 0.0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue))
+            p.edit.read.logFloor = floor;  // checked by the viewer (>= 0)
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "values below it (and every value <= 0) become log10 of it; 0: the field's smallest "
+                "positive value (Enter applies)");
+    }
     float range[2] = {tf.lo(), tf.hi()};
     if (ImGui::InputFloat2("value range", range, "%.5g", ImGuiInputTextFlags_EnterReturnsTrue)) {
         try {
@@ -191,7 +215,6 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
             p.message = e.what();
         }
     }
-    ImGui::SameLine();
     if (ImGui::Button("data range")) r.resetRange = true;
     float density = float(p.edit.settings.densityScale);
     if (ImGui::SliderFloat("density scale", &density, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic))
@@ -298,7 +321,7 @@ void structurePanel(PanelState& p, PanelRequests& r) {
     int leaves = int(c.kdLeaves);
     if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue))
         c.kdLeaves = uint32_t(std::clamp(leaves, 1, (1 << 24) - 1));
-    if (!p.structureError.empty()) ImGui::TextColored(kRed, "not applied: %s", p.structureError.c_str());
+    if (!p.structureError.empty()) wrapped(&kRed, "not applied: " + p.structureError);
 }
 
 void cameraPanel(PanelState& p, PanelRequests& r) {
@@ -314,12 +337,18 @@ void cameraPanel(PanelState& p, PanelRequests& r) {
     if (ImGui::Button("reset view (R)")) r.resetView = true;
     ImGui::SameLine();
     if (ImGui::Button("copy as command")) r.copyCommand = true;
-    ImGui::TextDisabled("left drag orbits, right drag or wheel zooms, middle or shift drag pans");
+    if (ImGui::Checkbox("image size = picture area", &p.imageFollowsWindow) && !p.imageFollowsWindow)
+        p.message = "image size kept at " + std::to_string(p.edit.settings.width) + "x" +
+                    std::to_string(p.edit.settings.height);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the rendered image (and so the camera's aspect) follows the picture area, pixel for pixel");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    wrapped(nullptr, "over the picture: left drag orbits, right drag or wheel zooms, middle or shift drag pans");
+    ImGui::PopStyleColor();
 }
 
 void filesPanel(PanelState& p, PanelRequests& r) {
     ImGui::InputText("image", &p.screenshotPath);
-    ImGui::SameLine();
     if (ImGui::Button("save image")) r.screenshot = true;
     ImGui::InputText("session", &p.sessionPath);
     if (ImGui::Button("save session")) r.saveSession = true;
@@ -329,21 +358,46 @@ void filesPanel(PanelState& p, PanelRequests& r) {
 
 }  // namespace
 
+UiRect toUi(const session::PixelRect& r) {
+    const ImVec2 s = framebufferScale();
+    return {float(r.x) / s.x, float(r.y) / s.y, float(r.width) / s.x, float(r.height) / s.y};
+}
+
 void drawPanels(PanelState& p, PanelRequests& r) {
-    statisticsOverlay(*p.stats);
-    const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x - 8, vp->WorkPos.y + 8), ImGuiCond_FirstUseEver,
-                            ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("amrvk")) {
+    // The layout is in framebuffer pixels, ImGui in window coordinates (they differ on HiDPI screens).
+    const ImVec2 scale = framebufferScale();
+    const float sx = scale.x, sy = scale.y;
+    const session::PixelRect& pr = p.panelRect;
+    if (pr.empty()) return;
+    const float height = float(pr.height) / sy;
+    // Placed when the layout moves it; in between ImGui keeps what the user dragged it to, and the
+    // width read back below goes through the layout's limits before it is placed again.
+    if (!(pr == p.panelPlaced)) {
+        ImGui::SetNextWindowPos(ImVec2(float(pr.x) / sx, float(pr.y) / sy), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(float(pr.width) / sx, height), ImGuiCond_Always);
+        p.panelPlaced = pr;
+    }
+    // Its left edge can be dragged; the app clamps the width (session::viewerLayout).
+    ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(session::kPanelMinWidth, pr.width)) / sx, height),
+                                        ImVec2(float(pr.right()) / sx, height));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
+    if (ImGui::Begin("amrvk", nullptr, flags)) {
+        p.panelWidth = int(std::lround(ImGui::GetWindowWidth() * sx));
+        // The label column: the widest label and its spacing; widgets take the rest.
+        const ImGuiStyle& style = ImGui::GetStyle();
+        const float labels = ImGui::CalcTextSize("stop at spp (0: never)").x + style.ItemInnerSpacing.x * 2;
+        ImGui::PushItemWidth(-labels);
+        if (ImGui::CollapsingHeader("statistics", ImGuiTreeNodeFlags_DefaultOpen)) statisticsPanel(*p.stats);
         if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
         if (ImGui::CollapsingHeader("render")) renderPanel(p);
         if (ImGui::CollapsingHeader("cut-away")) cutAwayPanel(p);
         if (ImGui::CollapsingHeader("structures")) structurePanel(p, r);
         if (ImGui::CollapsingHeader("camera")) cameraPanel(p, r);
         if (ImGui::CollapsingHeader("files")) filesPanel(p, r);
-        if (!p.shaderError.empty()) ImGui::TextColored(kRed, "shader: %s", p.shaderError.c_str());
-        if (!p.message.empty()) ImGui::TextWrapped("%s", p.message.c_str());
+        if (!p.shaderError.empty()) wrapped(&kRed, "shader: " + p.shaderError);
+        if (!p.message.empty()) wrapped(nullptr, p.message);
+        ImGui::PopItemWidth();
     }
     ImGui::End();
 }

@@ -1,9 +1,12 @@
 #pragma once
-// The viewer's ImGui panels: statistics overlay, camera, transfer-function editor (colour map,
-// draggable opacity curve over the field histogram, value range, density), render settings and
-// lights, files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and
-// raise requests; the app validates the copy and applies what changed, so a rejected edit never
-// reaches its state or a session. All ImGui widget code is here.
+// The viewer's ImGui panels, in one side panel docked at the window's right edge (its rectangle
+// from session/viewer_layout.h, so it never covers the picture; the user may drag its left edge):
+// statistics, transfer-function editor (colour map, draggable opacity curve over the field
+// histogram, log scale, value range, density), render settings and lights, structures, camera,
+// files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and raise
+// requests; the app validates the copy and applies what changed, so a rejected edit never reaches
+// its state or a session. Widgets leave a label column as wide as the widest label, so no label is
+// cut off at the panel's minimum width. All ImGui widget code is here.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +16,7 @@
 #include "session/orbit_camera.h"
 #include "session/session.h"
 #include "session/tf_editor.h"
+#include "session/viewer_layout.h"
 
 namespace amrvk::viewer {
 
@@ -53,13 +57,26 @@ struct PanelState {
     std::string screenshotPath = "amrvk-view.png";
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
-    std::string gridText;   // the macrocell grid as typed, applied on Enter
-    glm::dvec3 worldLo{0.0}, worldHi{1.0};       // the data's world bounds (cut-away sliders)
-    std::optional<scene::CropBox> cropMemory;    // the crop box while it is switched off (not lost)
-    int draggingNode = -1;  // opacity node under a drag, between frames
+    std::string gridText;                          // the macrocell grid as typed, applied on Enter
+    int draggingNode = -1;                         // opacity node under a drag, between frames
+    session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)
+    session::PixelRect pictureRect;                // where the picture is (framebuffer pixels): overlays draw there
+    int panelWidth = session::kPanelDefaultWidth;  // out: the width the user dragged the panel to
+    session::PixelRect panelPlaced;                // the rectangle last handed to ImGui (a user's drag is kept between)
+    glm::dvec3 worldLo{0.0}, worldHi{1.0};         // the data's world bounds (cut-away ranges and handles)
+    std::optional<scene::CropBox> cropMemory;      // the crop box while it is switched off (not lost)
+    bool imageFollowsWindow = false;               // the image size follows the picture area (camera aspect included)
 };
 
 // Draws every panel for this frame and fills `requests`.
 void drawPanels(PanelState& panel, PanelRequests& requests);
+
+// A layout rectangle (framebuffer pixels) in ImGui's coordinates (window coordinates: they differ
+// on HiDPI screens), for ImGui code that draws over the picture (e.g. a colour legend over
+// PanelState::pictureRect). Call between ImGui's NewFrame and Render.
+struct UiRect {
+    float x = 0, y = 0, width = 0, height = 0;
+};
+UiRect toUi(const session::PixelRect& r);
 
 }  // namespace amrvk::viewer

@@ -27,9 +27,11 @@
 #include "render/display_pass.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "session/data_change.h"
 #include "session/file_watcher.h"
 #include "session/frame_budget.h"
 #include "session/script.h"
+#include "session/viewer_layout.h"
 #include "viewer/imgui_layer.h"
 #include "viewer/panels.h"
 #include "viewer/swapchain.h"
@@ -42,6 +44,10 @@ namespace amrvk::viewer {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The window's pixels beside the picture (packed B, G, R, A): a dark grey, apart from black
+// backgrounds, so the picture's edge shows.
+constexpr uint32_t kLetterboxColor = 0xff262626u;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -87,6 +93,12 @@ private:
     void setStructure(const scene::StructureConfig& next);
     // The renderer takes mState.tf (majorants), the histogram follows its range.
     void setTransferFunction();
+    // The data read again with `next.read` (another scale or log floor) beside the event loop, and
+    // a renderer made for it with next's camera, settings, structure and TF (refitTf: the TF's
+    // shape moved onto the new field range). On an error nothing changes and it is thrown.
+    void reloadData(const session::Session& next, bool refitTf);
+    // Where the panel and the picture are this frame (framebuffer size, panel width, image size).
+    void updateLayout();
     // Runs a long CPU/GPU rebuild on a worker thread while this (the main) thread keeps handling
     // window events, so closing (the window button, q or Esc) works during it: the window is
     // hidden at once and the viewer ends when the build returns. Other input during it is dropped.
@@ -110,6 +122,8 @@ private:
     std::unique_ptr<render::DisplayPass> mDisplayPass;
     gpu::Buffer mDisplay;  // the window's pixels (B, G, R, A), copied into the swapchain image
     int mDisplayWidth = 0, mDisplayHeight = 0;
+    session::PixelRect mDisplayRect;  // where the display buffer's picture was drawn
+    session::ViewerLayout mLayout;    // this frame's panel and picture rectangles
 
     std::shared_ptr<const scene::Volume> mVolume;
     std::unique_ptr<render::Renderer> mRenderer;
@@ -186,6 +200,51 @@ void ViewerApp::load() {
     noteReset("picture");
 }
 
+void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
+    session::PictureDescription d;
+    d.session = next;
+    scene::StructureConfig structure = next.structure;
+    picture::resolveStructure(*mCtx, structure);  // an invalid combination fails before the read
+    std::shared_ptr<const scene::Volume> volume;
+    picture::Picture p;
+    Timer t;
+    whileResponsive([&] {
+        volume = session::loadVolume(d.session);
+        if (refitTf) d.session.tf = session::refitTfRange(d.session.tf, volume->valueLo(), volume->valueHi());
+        p = picture::makePicture(*mCtx, volume, d,
+                                 {.shaders = gpu::ShaderLibrary(mOpt.shaderDir), .note = [](const std::string& line) {
+                                      std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+                                  }});
+    });
+    // Frames in flight may still read the old accumulation: wait before it goes.
+    vkQueueWaitIdle(mCtx->queue());
+    mRenderer = std::move(p.renderer);
+    mVolume = std::move(volume);
+    mOrbit = session::OrbitCamera(mVolume->worldLo(), mVolume->worldHi());
+    mState = p.session;
+    mState.tf = session::TfEditor::editable(mState.tf);
+    if (!(mState.tf == p.session.tf)) mRenderer->setTransferFunction(mState.tf.merged());
+    // The old TFs are in the other scale's units: the undo history starts again here.
+    mTfHistory = session::TfHistory(mState.tf);
+    mApplied = mState.settings;  // the new renderer has them; the reset is noted below
+    mStats.structureSeconds = t.seconds();
+    mStats.combination = mRenderer->config().labelWithGrid();
+    mPanel.gridText = mState.structure.grid;
+    mPanel.structureError.clear();
+    const session::TfEditor tf(mState.tf);
+    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), tf.lo(), tf.hi(), 128);
+    mDisplayFresh = false;
+    noteReset("scale");
+    std::fprintf(stderr, "amrvk view: %s scale, field range [%g, %g]\n", amr::fieldScaleName(mState.read.scale),
+                 double(mVolume->valueLo()), double(mVolume->valueHi()));
+}
+
+void ViewerApp::updateLayout() {
+    int w = 0, h = 0;
+    if (mWindow) mWindow->framebufferSize(w, h);
+    mLayout = session::viewerLayout(w, h, mPanel.panelWidth, mState.settings.width, mState.settings.height);
+}
+
 void ViewerApp::createWindowResources() {
     int w = 0, h = 0;
     mWindow->framebufferSize(w, h);
@@ -252,8 +311,9 @@ int ViewerApp::run() {
     gpu::ContextOptions co = mOpt.context;
     co.requireRayQuery = mState.structure.backend == scene::Backend::Rq;
     if (!mOpt.headless) {
-        const int w = mOpt.windowWidth > 0 ? mOpt.windowWidth : mState.settings.width;
-        const int h = mOpt.windowHeight > 0 ? mOpt.windowHeight : mState.settings.height;
+        // Default: the image pixel for pixel beside the panel.
+        int w = mOpt.windowWidth, h = mOpt.windowHeight;
+        if (w <= 0 || h <= 0) session::defaultWindowSize(mState.settings.width, mState.settings.height, w, h);
         mWindow = std::make_unique<Window>(w, h, "amrvk view - " + fs::path(mState.input).filename().string());
         co.instanceExtensions = Window::requiredInstanceExtensions();
         co.createSurface = [this](VkInstance instance) { return mWindow->createSurface(instance); };
@@ -320,7 +380,10 @@ bool ViewerApp::frame() {
     if (mQuit) return false;  // a quit action, or closed during a rebuild an action started
     pollShaders();
     if (mWindow) {
+        updateLayout();
         mImGui->beginFrame();
+        mPanel.panelRect = mLayout.panel;
+        mPanel.pictureRect = mLayout.picture;
         mPanel.stats = &mStats;
         mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
@@ -353,8 +416,7 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     if (req.undo) e.tf = mTfHistory.undo();
     if (req.redo) e.tf = mTfHistory.redo();
     if (req.resetRange) {
-        session::TfEditor(e.tf).setRange(mVolume->valueLo(),
-                                         mVolume->valueHi() > mVolume->valueLo() ? mVolume->valueHi() : mVolume->valueLo() + 1);
+        e.tf = session::refitTfRange(e.tf, mVolume->valueLo(), mVolume->valueHi());
         req.tfCommitted = true;
     }
     if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
@@ -376,6 +438,23 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     }
     if (req.resetView) mOrbit.reset(e.settings.camera);
     if (req.gridEntered) e.structure.grid = mPanel.gridText;
+    if (mPanel.imageFollowsWindow && !mLayout.area.empty())
+        std::tie(e.settings.width, e.settings.height) = std::pair(mLayout.area.width, mLayout.area.height);
+
+    // The field's scale (log scale, log floor): read again, everything else of the state kept.
+    if (!(e.read.scale == mState.read.scale && e.read.logFloor == mState.read.logFloor)) {
+        AMRVK_CHECK(std::isfinite(e.read.logFloor) && e.read.logFloor >= 0, "log floor ", e.read.logFloor,
+                    " must be >= 0 (0: the field's smallest positive value)");
+        session::Session next = mState;
+        next.read.scale = e.read.scale;
+        next.read.logFloor = e.read.logFloor;
+        if (session::dataChange(mState, next).kind == session::DataChange::Rescale) {
+            reloadData(next, true);
+            mInteracting = true;
+            return;  // this frame's other edits were made on the old scale's state
+        }
+        mState.read = next.read;
+    }
 
     // Structure first: validated and built, or rejected with its reason shown and nothing changed.
     if (!(e.structure == mState.structure)) {
@@ -406,16 +485,23 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
 }
 
 void ViewerApp::handleInput() {
-    int width = 0, height = 0;
-    mWindow->framebufferSize(width, height);
-    const double h = double(height), step = h / 18.0;  // arrow keys: 10 degrees
-    // ImGui decides per frame whether the pointer or keyboard is its own; a drag that starts on the
-    // picture stays a camera drag even when it crosses a panel.
+    // Drags are measured against the picture as shown (its height in pixels): a drag across the
+    // whole picture turns as far whatever the window size.
+    const session::PixelRect& picture = mLayout.picture;
+    const double h = double(std::max(picture.height, 1)), step = h / 18.0;  // arrow keys: 10 degrees
+    // Cursor positions are in window coordinates, the layout in framebuffer pixels (HiDPI).
+    int windowW = 0, windowH = 0;
+    glfwGetWindowSize(mWindow->handle(), &windowW, &windowH);
+    const double toPixelsX = windowW > 0 ? double(mLayout.window.width) / windowW : 1.0;
+    const double toPixelsY = windowH > 0 ? double(mLayout.window.height) / windowH : 1.0;
+    auto overPicture = [&](double x, double y) { return picture.contains(x * toPixelsX, y * toPixelsY); };
+    // ImGui decides per frame whether the pointer or keyboard is its own; the camera takes the mouse
+    // only over the picture, and a drag that starts there stays a camera drag when it crosses a panel.
     const bool uiMouse = mImGui->wantsMouse(), uiKeys = mImGui->wantsKeyboard();
     for (const InputEvent& e : mWindow->takeEvents()) {
         switch (e.kind) {
             case InputEvent::Kind::Button:
-                if (e.action == GLFW_PRESS && mDragButton < 0 && !uiMouse) {
+                if (e.action == GLFW_PRESS && mDragButton < 0 && !uiMouse && overPicture(e.x, e.y)) {
                     mDragButton = e.code;
                     mDragPans = e.code == GLFW_MOUSE_BUTTON_MIDDLE || (e.mods & GLFW_MOD_SHIFT);
                 } else if (e.action == GLFW_RELEASE && e.code == mDragButton) {
@@ -438,7 +524,7 @@ void ViewerApp::handleInput() {
                 mLastY = e.y;
                 break;
             case InputEvent::Kind::Scroll:
-                if (!uiMouse && e.y != 0) mOrbit.zoom(mState.settings.camera, e.y);
+                if (!uiMouse && e.y != 0 && overPicture(mLastX, mLastY)) mOrbit.zoom(mState.settings.camera, e.y);
                 break;
             case InputEvent::Kind::Key:
                 if (uiKeys || e.action == GLFW_RELEASE) break;
@@ -525,6 +611,14 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         mState.settings = s;
     } else if (n == "mode") {
         mState.settings.mode = scene::parseMode(a.args[0]);
+    } else if (n == "scale" || n == "log-floor") {
+        session::Session next = mState;
+        if (n == "scale") next.read.scale = amr::parseFieldScale(a.args[0]);
+        else next.read.logFloor = a.number(0);
+        if (session::dataChange(mState, next).kind == session::DataChange::Rescale)
+            reloadData(next, true);
+        else
+            mState.read = next.read;  // a floor on the linear scale: recorded, no value changes
     } else if (n == "traversal" || n == "sampler" || n == "backend" || n == "grid") {
         if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
         if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
@@ -544,6 +638,8 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         screenshot(a.args[0]);
     } else if (n == "save-session") {
         saveSessionFile(a.args[0]);
+    } else if (n == "load-session") {
+        loadSessionFile(a.args[0]);
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {
@@ -627,20 +723,26 @@ void ViewerApp::trace() {
 
 void ViewerApp::present() {
     const VkExtent2D e = mSwapchain->extent();
-    if (int(e.width) != mDisplayWidth || int(e.height) != mDisplayHeight) {
+    const session::PixelRect& picture = mLayout.picture;
+    if (int(e.width) != mDisplayWidth || int(e.height) != mDisplayHeight || !(picture == mDisplayRect)) {
         mDisplay = gpu::Buffer();
         mDisplay = gpu::Buffer(*mCtx, uint64_t(e.width) * e.height * 4, gpu::MemoryKind::Device, "display");
         mDisplay.fillZero();
         mDisplayWidth = int(e.width);
         mDisplayHeight = int(e.height);
+        mDisplayRect = picture;
         mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
     }
+    // The swapchain can lag the layout by a frame while the window is resized: draw only a
+    // rectangle that lies in it.
+    const bool drawable = !picture.empty() && picture.right() <= mDisplayWidth && picture.bottom() <= mDisplayHeight;
     const scene::RenderSettings& s = mRenderer->settings();
     const bool ok = mSwapchain->frame([&](VkCommandBuffer cmd, VkImage image, VkFramebuffer framebuffer) {
         // Until the first full-resolution sample is complete the last picture stays on screen.
-        if (mDisplayFresh)
-            mDisplayPass->record(cmd, mRenderer->accumulationAddress(), s.width, s.height, mDisplay, mDisplayWidth,
-                                 mDisplayHeight);
+        if (mDisplayFresh && drawable)
+            mDisplayPass->record(cmd, mRenderer->accumulationAddress(), s.width, s.height, mDisplay,
+                                 {mDisplayWidth, mDisplayHeight, picture.x, picture.y, picture.width, picture.height,
+                                  kLetterboxColor});
         // display pass (compute) -> copy into the swapchain image -> the UI's render pass.
         const gpu::ImageUse copyDst{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
@@ -754,19 +856,25 @@ void ViewerApp::saveSessionFile(const fs::path& file) {
 }
 
 void ViewerApp::loadSessionFile(const fs::path& file) {
-    const session::Session s = session::loadSession(file);
-    const bool sameData = fs::absolute(s.input).lexically_normal() == fs::absolute(mState.input).lexically_normal() &&
-                          s.field == mState.field;
-    AMRVK_CHECK(sameData, file.string(), ": this session shows ", s.input, " (", s.field,
-                "); open it with amrvk view --session ", file.string());
+    session::Session s = session::loadSession(file);
+    const session::DataChangeCheck change = session::dataChange(mState, s);
+    AMRVK_CHECK(change.kind != session::DataChange::Other, file.string(), ": ", change.reason,
+                "; open it with amrvk view --session ", file.string());
     scene::validateSettings(s.settings);
-    // The structure first: when it cannot be built nothing of the session is taken.
-    if (!(s.structure == mState.structure)) setStructure(s.structure);
-    mState.settings = s.settings;
-    mState.spp = s.spp;
-    mState.tf = session::TfEditor::editable(s.tf);
-    mTfHistory.push(mState.tf);
-    setTransferFunction();
+    s.input = mState.input;  // the same data set (compared as absolute paths)
+    if (change.kind == session::DataChange::Rescale) {
+        // Read again on the session's scale, with its structure, settings and TF (in that scale's
+        // units) at once: when anything fails nothing of the session is taken.
+        reloadData(s, false);
+    } else {
+        // The structure first: when it cannot be built nothing of the session is taken.
+        if (!(s.structure == mState.structure)) setStructure(s.structure);
+        mState.settings = s.settings;
+        mState.spp = s.spp;
+        mState.tf = session::TfEditor::editable(s.tf);
+        mTfHistory.push(mState.tf);
+        setTransferFunction();
+    }
     mPanel.message = "loaded " + file.string();
 }
 
@@ -801,6 +909,25 @@ void ViewerApp::writeStats() const {
     for (const Reset& r : mResets)
         j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
     j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
+    // The field's scale and the histogram under the TF editor (the range it spans, cells counted).
+    j["scale"] = amr::fieldScaleName(mState.read.scale);
+    if (mHistogram) {
+        double cells = mHistogram->below + mHistogram->above + mHistogram->nan;
+        for (double c : mHistogram->counts) cells += c;
+        j["histogram"] = {{"lo", mHistogram->lo}, {"hi", mHistogram->hi}, {"bins", mHistogram->counts.size()},
+                          {"inRange", cells - mHistogram->below - mHistogram->above - mHistogram->nan},
+                          {"cells", cells}};
+    }
+    // The last frame's layout (framebuffer pixels, session/viewer_layout.h); with a window only.
+    if (mWindow) {
+        auto rect = [](const session::PixelRect& r) {
+            return nlohmann::ordered_json{{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
+        };
+        j["layout"] = {{"window", rect(mLayout.window)},
+                       {"panel", rect(mLayout.panel)},
+                       {"area", rect(mLayout.area)},
+                       {"picture", rect(mLayout.picture)}};
+    }
     writeFileAtomic(mOpt.statsJson, j.dump(2) + "\n");
 }
 

@@ -43,7 +43,9 @@ Window::Window(int width, int height, const std::string& title) {
         owner(w).push({InputEvent::Kind::Key, key, action, mods});
     });
     glfwSetMouseButtonCallback(mWindow, [](GLFWwindow* w, int button, int action, int mods) {
-        owner(w).push({InputEvent::Kind::Button, button, action, mods});
+        double x = 0, y = 0;
+        glfwGetCursorPos(w, &x, &y);  // where the press happened (decides picture or panel)
+        owner(w).push({InputEvent::Kind::Button, button, action, mods, x, y});
     });
     glfwSetCursorPosCallback(mWindow, [](GLFWwindow* w, double x, double y) {
         owner(w).push({InputEvent::Kind::Cursor, 0, 0, 0, x, y});

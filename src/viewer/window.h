@@ -19,7 +19,7 @@ struct InputEvent {
     int code = 0;         // key or mouse button
     int action = 0;       // GLFW_PRESS, GLFW_RELEASE or GLFW_REPEAT
     int mods = 0;         // GLFW_MOD_* at the time
-    double x = 0, y = 0;  // cursor position (window coordinates) or scroll offsets
+    double x = 0, y = 0;  // cursor position (window coordinates; buttons too) or scroll offsets
 };
 
 class Window {

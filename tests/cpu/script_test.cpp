@@ -14,20 +14,25 @@ TEST(Script, ParsesActionsFramesAndQuotes) {
 0 mode ae
 10 orbit 120 -40   # a drag
 10 tf-range 0 3.5
+12 scale log
+12 log-floor 1e-3
 20 edit-shader lib/phase.glsl "return kInvFourPi" "return 2.0 * kInvFourPi \"x\\"
 30 screenshot "out dir/shot.png"
 31 quit
 )", "s.txt");
-    ASSERT_EQ(actions.size(), 6u);
+    ASSERT_EQ(actions.size(), 8u);
     EXPECT_EQ(actions[0].frame, 0u);
     EXPECT_EQ(actions[1].name, "orbit");
     EXPECT_EQ(actions[1].number(0), 120.0);
     EXPECT_EQ(actions[1].number(1), -40.0);
     EXPECT_EQ(actions[1].where, "s.txt:3");
-    EXPECT_EQ(actions[3].args[1], "return kInvFourPi");
-    EXPECT_EQ(actions[3].args[2], "return 2.0 * kInvFourPi \"x\\");
-    EXPECT_EQ(actions[4].args[0], "out dir/shot.png");
-    EXPECT_EQ(actions[5].name, "quit");
+    EXPECT_EQ(actions[3].name, "scale");
+    EXPECT_EQ(actions[3].args[0], "log");
+    EXPECT_EQ(actions[4].number(0), 1e-3);
+    EXPECT_EQ(actions[5].args[1], "return kInvFourPi");
+    EXPECT_EQ(actions[5].args[2], "return 2.0 * kInvFourPi \"x\\");
+    EXPECT_EQ(actions[6].args[0], "out dir/shot.png");
+    EXPECT_EQ(actions[7].name, "quit");
 }
 
 TEST(Script, ErrorsNameTheFileAndLine) {
@@ -53,6 +58,10 @@ TEST(Script, ErrorsNameTheFileAndLine) {
         {"0 grid 8x8", {"s.txt:1", "expected auto, N or NxMxK"}},
         {"0 tf-preset rainbow", {"s.txt:1", "tf-preset", "rainbow"}},
         {"0 tf-range 3 1", {"s.txt:1", "LO 3 must be below HI 1"}},
+        {"0 scale ln", {"s.txt:1", "scale", "'ln' is not linear or log"}},
+        {"0 scale", {"s.txt:1", "scale takes 1 argument(s), not 0"}},
+        {"0 log-floor -1", {"s.txt:1", "log floor -1 must be >= 0"}},
+        {"0 log-floor tiny", {"s.txt:1", "log-floor", "not a number"}},
         {"0 screenshot shot.jpg", {"s.txt:1", "unknown image type"}},
         {"0 capture-window shot.exr", {"s.txt:1", "unknown image type (use .png)"}},
         {"0 edit-shader /etc/passwd a b", {"s.txt:1", "must be a path relative to --shader-dir"}},

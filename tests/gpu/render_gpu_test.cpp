@@ -259,6 +259,30 @@ TEST_F(RenderGpu, DisplayPassShowsTheAccumulatedMean) {
             const int code = int((pixels[i] >> (16 - 8 * c)) & 255u);  // bytes B, G, R, A
             EXPECT_NEAR(code, int(encodeSrgb8(o.mean.pixels[i][c])), 1) << "pixel " << i << " channel " << c;
         }
+    // In a rectangle of a larger target (the viewer's picture area): the same codes, shifted; every
+    // other pixel exactly the clear colour.
+    const render::DisplayTarget where{s.width + 9, s.height + 6, 5, 2, s.width, s.height, 0xff204060u};
+    gpu::Buffer window(ctx(), uint64_t(where.width) * uint64_t(where.height) * 4, gpu::MemoryKind::HostRead, "window");
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        display.record(cmd, r.accumulationAddress(), s.width, s.height, window, where);
+    });
+    const std::vector<uint32_t> shown = window.download<uint32_t>();
+    int outside = 0;
+    for (int y = 0; y < where.height; ++y)
+        for (int x = 0; x < where.width; ++x) {
+            const uint32_t p = shown[size_t(y) * size_t(where.width) + size_t(x)];
+            const int ix = x - where.rectX, iy = y - where.rectY;
+            if (ix < 0 || iy < 0 || ix >= s.width || iy >= s.height) {
+                EXPECT_EQ(p, where.clearColor) << "outside the rectangle at " << x << "," << y;
+                ++outside;
+                continue;
+            }
+            const size_t i = size_t(iy) * size_t(s.width) + size_t(ix);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(int((p >> (16 - 8 * c)) & 255u), int(encodeSrgb8(o.mean.pixels[i][c])), 1)
+                    << "pixel " << x << "," << y << " channel " << c;
+        }
+    EXPECT_EQ(outside, where.width * where.height - s.width * s.height);
 }
 
 TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {

@@ -5,10 +5,17 @@
 // state; a scripted shader edit changes the picture and a syntax error keeps the previous pipeline
 // and names file and line; a real mouse drag (xdotool) turns the camera and a key press quits;
 // quitting during a 15 s rebuild hides the window at once; with no display, one line suggests
-// --headless.
+// --headless. The layout: at 800x600, 1024x720, 1280x800 and 1920x1080 the picture (a uniform
+// colour) fills exactly the rectangle the viewer reports and no panel pixel covers it; a drag
+// beside the picture does not turn the camera, one of the panel's edge widens it. The log scale: a
+// scripted toggle reads the data again, keeps the camera, refits the TF (shape kept) and the
+// histogram to log10 of the field's range (computed here from the file), the floor floors it,
+// sessions record it, loading a session on another scale reads again, one with another NaN policy
+// is refused with the reason, and a field with no positive value is refused with its reason.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -32,8 +39,8 @@ std::string sample() { return std::string(AMRVK_SOURCE_DIR) + "/assets/samples/c
 
 // A command line run on an X display of its own (tests/with_xvfb.sh: Xvfb picks a free display
 // atomically, so concurrent window tests never share one, whatever ctest -j).
-std::string onOwnDisplay(const std::string& commandLine) {
-    return "bash " + std::string(AMRVK_SOURCE_DIR) + "/tests/with_xvfb.sh 800x600x24 " + commandLine;
+std::string onOwnDisplay(const std::string& commandLine, const std::string& screen = "800x600") {
+    return "bash " + std::string(AMRVK_SOURCE_DIR) + "/tests/with_xvfb.sh " + screen + "x24 " + commandLine;
 }
 
 // A fresh scratch folder `name` holding a copy of shaders/ (for scripts that edit shaders).
@@ -216,6 +223,7 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
                    "0 clip 1 2 3 0 0 1\n0 cut-off\n0 crop 0 0 0 512 512 400\n0 clip 256 256 256 0 1 0\n"
                    "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n"
                    "0 screenshot " + (dir / "shot.pfm").string() + "\n0 save-session " + (dir / "s.json").string() +
+                   "\n0 scale log\n0 log-floor 0.01\n0 load-session " + (dir / "s.json").string() +
                    "\n0 capture-window " + (dir / "w.png").string() + "\n1 quit\n");
     int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --headless --shader-dir " +
                      (dir / "shaders" / "passes").string() + " --script " + (dir / "script.txt").string() +
@@ -270,7 +278,8 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
                    "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
                    "done\n"
                    "sleep 3\n"  // the first frames (pipeline compiles) are slow on a CPU device
-                   "xdotool mousemove 150 450 mousedown 1 mousemove 210 470 mousemove 260 480 mouseup 1\n"
+                   // Inside the picture (x < 360, 165 <= y < 435 beside the default panel).
+                   "xdotool mousemove 150 300 mousedown 1 mousemove 210 320 mousemove 260 330 mouseup 1\n"
                    "sleep 1\n"
                    "xdotool key q\n"
                    "wait $pid; rc=$?\n"
@@ -335,4 +344,262 @@ TEST_F(ViewerGpu, WithoutADisplayTheErrorSuggestsHeadless) {
     EXPECT_EQ(rc, 1) << err;
     EXPECT_NE(err.find("--headless"), std::string::npos) << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line: " << err;
+}
+
+namespace {
+
+struct Rect {
+    int x, y, width, height;
+    bool contains(int px, int py) const { return px >= x && py >= y && px < x + width && py < y + height; }
+};
+Rect rectOf(const nlohmann::json& j) {
+    return {j["x"].get<int>(), j["y"].get<int>(), j["width"].get<int>(), j["height"].get<int>()};
+}
+
+}  // namespace
+
+// The picture looks past the data at a magenta background (ae: every pixel exactly sRGB 255, 0,
+// 255 from the first sample), so the window capture shows where it is: every pixel of the
+// reported picture rectangle is magenta, no other pixel is (the panel and the bars beside the
+// picture are not), and the reported panel and picture do not overlap.
+TEST_F(ViewerGpu, PanelAndPictureNeverOverlapAtCommonWindowSizes) {
+    if (!onPath("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+    const fs::path dir = test::scratchDir() / "viewer-layout";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const auto& [w, h] : {std::pair{800, 600}, std::pair{1024, 720}, std::pair{1280, 800}, std::pair{1920, 1080}}) {
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        SCOPED_TRACE(size);
+        const fs::path shot = dir / ("window-" + size + ".png"), stats = dir / ("stats-" + size + ".json");
+        test::writeAll(dir / "script.txt", "12 capture-window " + shot.string() + "\n13 quit\n");
+        const int rc = run(onOwnDisplay(amrvkBinary() + " view " + sample() +
+                                            " --size 64x48 --mode ae --spp 1 --backend sw --grid 8 --background 1 0 1"
+                                            " --camera 1000 0 0 2000 0 0 0 0 1 --window " + size + " --script " +
+                                            (dir / "script.txt").string() + " --stats " + stats.string() +
+                                            " --validation",
+                                        "3840x2160"),  // the pointer starts at the centre, off the window
+                           dir, "view-" + size);
+        ASSERT_EQ(rc, 0) << test::readAll(dir / ("view-" + size + ".err"));
+        const nlohmann::json layout = readJson(stats)["layout"];
+        const Rect window = rectOf(layout["window"]), panel = rectOf(layout["panel"]),
+                   picture = rectOf(layout["picture"]);
+        EXPECT_EQ(window.width, w);
+        EXPECT_EQ(window.height, h);
+        EXPECT_GT(picture.width, 0);
+        EXPECT_GT(picture.height, 0);
+        EXPECT_GE(panel.width, 300) << "room for the labels";
+        EXPECT_TRUE(picture.x + picture.width <= panel.x || panel.x + panel.width <= picture.x)
+            << "the rectangles overlap: " << layout.dump();
+        const Image8 png = readPng(shot);
+        ASSERT_EQ(png.width, w);
+        ASSERT_EQ(png.height, h);
+        long magentaInside = 0, magentaOutside = 0, panelMagenta = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const uint8_t* p = &png.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4];
+                const bool magenta = p[0] == 255 && p[1] == 0 && p[2] == 255;
+                if (picture.contains(x, y)) magentaInside += magenta;
+                else magentaOutside += magenta;
+                if (panel.contains(x, y)) panelMagenta += magenta;
+            }
+        EXPECT_EQ(magentaInside, long(picture.width) * picture.height) << "something covers the picture";
+        EXPECT_EQ(magentaOutside, 0) << "the picture reaches outside its rectangle";
+        EXPECT_EQ(panelMagenta, 0);
+        // The picture keeps the image's aspect (64x48) to a pixel.
+        EXPECT_NEAR(double(picture.width) * 48.0, double(picture.height) * 64.0, 64.0 + 48.0);
+    }
+}
+
+// A drag and the wheel beside the picture leave the camera alone; a drag of the panel's left edge
+// widens the panel, and the picture moves aside.
+TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-drag-beside";
+    fs::create_directories(dir);
+    // 800x600 with a 64x48 image: the picture is x < 360, 165 <= y < 435; (150, 500) is below it.
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\" "
+                   "--stats \"$3/stats.json\" --validation & pid=$!\n"
+                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"
+                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
+                   "done\n"
+                   "sleep 3\n"
+                   "xdotool mousemove 150 500 mousedown 1 mousemove 210 520 mousemove 260 530 mouseup 1\n"
+                   "xdotool mousemove 150 500 click 4 click 4\n"  // the wheel beside the picture
+                   // The panel's left edge (x = 360) dragged 100 pixels left, slowly: ImGui reads
+                   // the pointer once a frame.
+                   "xdotool mousemove 361 300; sleep 0.5; xdotool mousedown 1; sleep 0.5\n"
+                   "for x in 330 300 261; do xdotool mousemove $x 300; sleep 0.5; done\n"
+                   "xdotool mouseup 1\n"
+                   "sleep 1\n"
+                   "xdotool key q\n"
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) + " " + sample() +
+                           " " + dir.string(),
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const nlohmann::json layout = readJson(dir / "stats.json")["layout"];
+    const Rect picture = rectOf(layout["picture"]), panel = rectOf(layout["panel"]);
+    ASSERT_FALSE(picture.contains(150, 500)) << "the drag must start beside the picture";
+    // The panel took the drag of its edge (440 -> about 540 pixels) and the picture moved aside.
+    EXPECT_NEAR(panel.width, 540, 8) << layout.dump();
+    EXPECT_EQ(panel.x + panel.width, 800);
+    EXPECT_LE(picture.x + picture.width, panel.x);
+    const session::Session s = session::loadSession(dir / "final.json");
+    const amr::Model m = amr::readModel(sample(), {});
+    const amr::ModelSummary sum = amr::summarize(m);
+    const scene::Camera start = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                                     m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
+    EXPECT_LT(glm::length(s.settings.camera.eye - start.eye), 1e-6 * glm::length(start.eye - start.target))
+        << "a drag or the wheel beside the picture moved the camera";
+}
+
+// "image size = picture area" (camera panel, clicked with xdotool at 1920x1080: the camera header,
+// then the checkbox; positions of ImGui 1.86's default font with the statistics and TF sections
+// open) makes the rendered image the area beside the panel, so the camera's aspect follows it.
+TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-image-follows";
+    fs::create_directories(dir);
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --size 64x48 --window 1920x1080 --backend sw --grid 32 --spp 1 --save-session "
+                   "\"$3/final.json\" --stats \"$3/stats.json\" --validation & pid=$!\n"
+                   "( sleep 200; kill $pid 2>/dev/null ) & watchdog=$!\n"
+                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
+                   "done\n"
+                   "sleep 3\n"
+                   "xdotool mousemove 1540 660; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 1497 752; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 100 1070; sleep 1\n"
+                   "xdotool key q\n"
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary(), "3840x2160") + " " +
+                           sample() + " " + dir.string(),
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const nlohmann::json layout = readJson(dir / "stats.json")["layout"];
+    const Rect area = rectOf(layout["area"]), picture = rectOf(layout["picture"]);
+    const session::Session s = session::loadSession(dir / "final.json");
+    EXPECT_EQ(s.settings.width, area.width) << "the checkbox was not reached? " << layout.dump();
+    EXPECT_EQ(s.settings.height, area.height);
+    EXPECT_EQ(picture.width, area.width);
+    EXPECT_EQ(picture.height, area.height);
+}
+
+TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
+    const fs::path dir = test::scratchDir() / "viewer-log-scale";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto at = [&](const char* name) { return (dir / name).string(); };
+    test::writeAll(dir / "script.txt",
+                   "3 orbit 40 10\n"
+                   "5 save-session " + at("linear.json") + "\n"
+                   "6 scale log\n"
+                   "8 save-session " + at("log.json") + "\n"
+                   "10 scale linear\n"
+                   "12 save-session " + at("back.json") + "\n"
+                   "14 load-session " + at("log.json") + "\n"  // another scale: read again, not refused
+                   "16 save-session " + at("loaded.json") + "\n"
+                   "18 log-floor 0.01\n"
+                   "19 density 0.03\n");  // the log TF makes the cloud opaque: thinner, so the image test has power
+    const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 400 --script " +
+                           at("script.txt") + " --stats " + at("stats.json") + " --screenshot " + at("final.pfm") +
+                           " --save-session " + at("final.json") + " --validation",
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+
+    // The field's range, independently: log10 of the smallest positive and the largest value.
+    const amr::Model m = amr::readModel(sample(), {});
+    float minPositive = INFINITY, maxValue = -INFINITY, minValue = INFINITY;
+    for (float v : m.fields[0].values) {
+        if (v > 0) minPositive = std::min(minPositive, v);
+        maxValue = std::max(maxValue, v);
+        minValue = std::min(minValue, v);
+    }
+    ASSERT_GT(maxValue, 0.5f);
+    ASSERT_LT(minValue, 0.01f) << "the floor below must floor something";
+
+    const session::Session linear = session::loadSession(dir / "linear.json");
+    const session::Session log = session::loadSession(dir / "log.json");
+    const session::Session back = session::loadSession(dir / "back.json");
+    const session::Session loaded = session::loadSession(dir / "loaded.json");
+    const session::Session last = session::loadSession(dir / "final.json");
+    EXPECT_EQ(linear.read.scale, amr::FieldScale::Linear);
+    EXPECT_EQ(log.read.scale, amr::FieldScale::Log);
+    EXPECT_EQ(back.read.scale, amr::FieldScale::Linear);
+    EXPECT_EQ(loaded.read.scale, amr::FieldScale::Log);
+    EXPECT_EQ(last.read.scale, amr::FieldScale::Log);
+    EXPECT_EQ(last.read.logFloor, 0.01);
+    // The camera (turned before the toggle) is kept by every reload.
+    for (const session::Session* s : {&log, &back, &loaded, &last}) EXPECT_EQ(s->settings.camera, linear.settings.camera);
+    // The TF's range follows the field's; its shape (relative node positions, alphas) stays.
+    auto range = [](const session::Session& s) {
+        const scene::TransferFunction tf = s.tf.merged();
+        return std::pair(tf.firstPosition(), tf.lastPosition());
+    };
+    EXPECT_FLOAT_EQ(range(linear).first, 0.0f);  // --tf-range 0 1.2
+    EXPECT_FLOAT_EQ(range(linear).second, 1.2f);
+    EXPECT_NEAR(range(log).first, std::log10(minPositive), 1e-5);
+    EXPECT_NEAR(range(log).second, std::log10(maxValue), 1e-5);
+    EXPECT_NEAR(range(back).first, minValue, 1e-5);
+    EXPECT_NEAR(range(back).second, maxValue, 1e-5);
+    EXPECT_EQ(loaded.tf, log.tf) << "a loaded session's TF is taken as saved";
+    EXPECT_NEAR(range(last).first, std::log10(0.01), 1e-5) << "the floor is the field's lowest value now";
+    EXPECT_NEAR(range(last).second, std::log10(maxValue), 1e-5);
+    const scene::TransferFunction a = linear.tf.merged(), b = log.tf.merged();
+    ASSERT_EQ(a.nodeCount(), b.nodeCount());
+    for (size_t i = 0; i < a.nodeCount(); ++i) {
+        const double ra = (a.positions()[i] - range(linear).first) / (range(linear).second - range(linear).first);
+        const double rb = (b.positions()[i] - range(log).first) / (range(log).second - range(log).first);
+        EXPECT_NEAR(ra, rb, 1e-5) << "node " << i;
+        EXPECT_EQ(a.colors()[i], b.colors()[i]) << "node " << i;
+    }
+    // The histogram follows: over the final TF range, every cell in it.
+    const nlohmann::json stats = readJson(dir / "stats.json");
+    EXPECT_EQ(stats["scale"], "log");
+    EXPECT_NEAR(stats["histogram"]["lo"].get<double>(), std::log10(0.01), 1e-5);
+    EXPECT_NEAR(stats["histogram"]["hi"].get<double>(), std::log10(maxValue), 1e-5);
+    EXPECT_EQ(stats["histogram"]["cells"].get<double>(), double(m.cells.size()));
+    EXPECT_EQ(stats["histogram"]["inRange"].get<double>(), double(m.cells.size()));
+    bool scaleReset = false;
+    for (const auto& r : stats["resets"])
+        if (r["what"] == "scale") {
+            scaleReset = true;
+            EXPECT_EQ(r["samplesLeft"].get<uint32_t>(), 0u);
+        }
+    EXPECT_TRUE(scaleReset) << stats["resets"].dump();
+    // The picture is render's of the final (log) session.
+    expectSameAsRender(dir, "viewer-log-scale");
+
+    // A session of the same data read with another NaN policy is refused, with the reason.
+    nlohmann::json drop = readJson(dir / "log.json");
+    drop["read"]["nan"] = "drop";
+    test::writeAll(dir / "drop.json", drop.dump(2));
+    test::writeAll(dir / "refused.txt", "1 load-session " + at("drop.json") + "\n");
+    const int refused = run(amrvkBinary() + " view " + sample() + kPicture + " --headless --frames 5 --script " +
+                                at("refused.txt"),
+                            dir, "refused");
+    const std::string err = test::readAll(dir / "refused.err");
+    EXPECT_EQ(refused, 1) << err;
+    EXPECT_NE(err.find("refused.txt:1: load-session:"), std::string::npos) << err;
+    EXPECT_NE(err.find("read.nan drop (this viewer read reject)"), std::string::npos) << err;
+
+    // A field with no positive value cannot go to log scale: one line naming the script line and
+    // the reason, and the session asked for at exit is not written.
+    test::writeAll(dir / "zeros_4x4x4_uint8.raw", std::string(64, '\0'));
+    test::writeAll(dir / "nolog.txt", "1 scale log\n");
+    const int nolog = run(amrvkBinary() + " view " + at("zeros_4x4x4_uint8.raw") + kPicture +
+                              " --headless --frames 5 --script " + at("nolog.txt") + " --save-session " + at("never.json"),
+                          dir, "nolog");
+    const std::string why = test::readAll(dir / "nolog.err");
+    EXPECT_EQ(nolog, 1) << why;
+    EXPECT_NE(why.find("nolog.txt:1: scale:"), std::string::npos) << why;
+    EXPECT_NE(why.find("no positive value"), std::string::npos) << why;
+    EXPECT_FALSE(fs::exists(dir / "never.json"));
 }

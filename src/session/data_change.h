@@ -1,0 +1,30 @@
+#pragma once
+// What a change of session means for the data a viewer holds (window-free, unit-tested): the
+// same data (nothing to read), the same data on another scale (read again with the new
+// read.scale / read.logFloor: the viewer does it beside its event loop, keeping the camera), or
+// other data (another input, field, format, NaN policy or raw-volume option: refused with the
+// reason, since a viewer shows one data set; `amrvk view --session FILE` opens it).
+#include <string>
+
+#include "scene/transfer_function.h"
+#include "session/session.h"
+
+namespace amrvk::session {
+
+enum class DataChange { None, Rescale, Other };
+
+struct DataChangeCheck {
+    DataChange kind = DataChange::None;
+    std::string reason;  // Other: what differs, one line (names the input/option and both values)
+};
+
+// How `next` (a session to load, or the viewer's state after a panel or script edit) differs
+// from `shown` in what is read. Inputs are compared as absolute, normalised paths; the log floor
+// counts on the log scale only.
+DataChangeCheck dataChange(const Session& shown, const Session& next);
+
+// `tf` with its value range moved onto [lo, hi] (the shape kept: every node at the same relative
+// position); lo == hi (a constant field) gives [lo, lo + 1]. Throws for non-finite or lo > hi.
+scene::TfChannels refitTfRange(const scene::TfChannels& tf, float lo, float hi);
+
+}  // namespace amrvk::session

@@ -1,0 +1,57 @@
+#include "session/viewer_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace amrvk::session {
+
+namespace {
+
+// The least window height of the default window: the panel's sections need room.
+constexpr int kDefaultMinHeight = 600;
+
+}  // namespace
+
+bool PixelRect::contains(double px, double py) const {
+    return !empty() && px >= double(x) && px < double(right()) && py >= double(y) && py < double(bottom());
+}
+
+bool overlaps(const PixelRect& a, const PixelRect& b) {
+    if (a.empty() || b.empty()) return false;
+    return a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom();
+}
+
+bool inside(const PixelRect& inner, const PixelRect& outer) {
+    if (inner.empty()) return true;
+    return inner.x >= outer.x && inner.y >= outer.y && inner.right() <= outer.right() &&
+           inner.bottom() <= outer.bottom();
+}
+
+ViewerLayout viewerLayout(int windowWidth, int windowHeight, int panelWidth, int imageWidth, int imageHeight) {
+    AMRVK_CHECK(imageWidth >= 1 && imageHeight >= 1, "internal: image size ", imageWidth, "x", imageHeight,
+                " has no pixels");
+    ViewerLayout l;
+    l.window = {0, 0, std::max(windowWidth, 0), std::max(windowHeight, 0)};
+    if (l.window.empty()) return l;
+    const int w = l.window.width, h = l.window.height;
+    const int panel = w >= kPanelMinWidth + kPictureMinWidth
+                          ? std::clamp(panelWidth, kPanelMinWidth, w - kPictureMinWidth)
+                          : w / 2;  // too narrow for both: half each (a 1-pixel window keeps its picture)
+    l.panel = {w - panel, 0, panel, h};
+    l.area = {0, 0, w - panel, h};
+    // The largest rectangle of the image's aspect inside the area (at least one pixel), centred.
+    const double scale = std::min(double(l.area.width) / imageWidth, double(l.area.height) / imageHeight);
+    const int pw = std::clamp(int(std::lround(imageWidth * scale)), 1, l.area.width);
+    const int ph = std::clamp(int(std::lround(imageHeight * scale)), 1, l.area.height);
+    l.picture = {l.area.x + (l.area.width - pw) / 2, l.area.y + (l.area.height - ph) / 2, pw, ph};
+    return l;
+}
+
+void defaultWindowSize(int imageWidth, int imageHeight, int& windowWidth, int& windowHeight) {
+    windowWidth = std::max(imageWidth, kPictureMinWidth) + kPanelDefaultWidth;
+    windowHeight = std::max(imageHeight, kDefaultMinHeight);
+}
+
+}  // namespace amrvk::session
