@@ -30,7 +30,9 @@ std::string detectFormat(const fs::path& path) {
     const bool exists = fs::exists(path, ec);
     if (fs::is_directory(path, ec)) {
         if (fs::exists(path / "Header")) return "amrex";
-        AMRVK_CHECK(false, path.string(), ": directory is not an AMReX plotfile (no Header file)");
+        if (!ramsesInfoFile(path).empty()) return "ramses";
+        AMRVK_CHECK(false, path.string(),
+                    ": directory is neither an AMReX plotfile (no Header file) nor a RAMSES output (no info_NNNNN.txt)");
     }
     const std::string ext = path.extension().string();
     if (ext == ".cells") return "exabrick";
@@ -42,6 +44,7 @@ std::string detectFormat(const fs::path& path) {
         if (fs::exists(cells)) return "exabrick";
         AMRVK_CHECK(false, path.string(), ": no such file");
     }
+    if (!ramsesInfoFile(path).empty()) return "ramses";  // info_NNNNN.txt
     fileSize(path);  // a regular file, checked before it is opened: a FIFO or device would block the peeks below
     if (path.filename() == "Header" && firstLine(path).rfind("HyperCLaw", 0) == 0) return "amrex";
     fs::path hierarchy = path;
@@ -49,7 +52,7 @@ std::string detectFormat(const fs::path& path) {
     if (fs::exists(hierarchy)) return "enzo";
     if (hasHdf5Magic(path)) return "chombo";
     AMRVK_CHECK(false, path.string(),
-                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|raw)");
+                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|ramses|raw)");
     return {};
 }
 
@@ -61,8 +64,9 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "amrex") model = readAmrex(path, options);
     else if (format == "enzo") model = readEnzo(path, options);
     else if (format == "chombo") model = readChombo(path, options);
+    else if (format == "ramses") model = readRamses(path, options);
     else if (format == "raw") model = readRaw(path, options);
-    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo or raw)");
+    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, ramses or raw)");
     model = checkedModel(std::move(model), options.nanPolicy);
     applyFieldScale(model, options.scale, options.logFloor);
     return model;
