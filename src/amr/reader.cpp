@@ -5,6 +5,7 @@
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -22,6 +23,21 @@ std::string firstLine(const fs::path& p) {
     std::string line;
     std::getline(in, line);
     return line;
+}
+// With no field named, every field is read; under a log scale without a floor, a field other
+// than the first (the default) that has no positive value cannot be logged and is not loaded
+// (RAMSES's passive scalars are often zero everywhere), recorded in the "logSkipped" attribute.
+// A named field, or the first, with no positive value stays an error (applyFieldScale).
+void dropFieldsWithoutLog(Model& model) {
+    std::vector<std::string> skipped;
+    for (size_t f = model.fields.size(); f-- > 1;)
+        if (smallestPositive(model.fields[f].values) == 0) {
+            skipped.insert(skipped.begin(), model.fields[f].name);
+            model.fields.erase(model.fields.begin() + static_cast<std::ptrdiff_t>(f));
+        }
+    if (!skipped.empty())
+        model.attributes.emplace_back("logSkipped", join(skipped, ", ") + " (no positive value; name it with --field "
+                                                                           "and give --log-floor)");
 }
 }  // namespace
 
@@ -68,6 +84,8 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "raw") model = readRaw(path, options);
     else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, ramses or raw)");
     model = checkedModel(std::move(model), options.nanPolicy);
+    if (options.scale == FieldScale::Log && options.fields.empty() && options.logFloor == 0)
+        dropFieldsWithoutLog(model);
     applyFieldScale(model, options.scale, options.logFloor);
     return model;
 }

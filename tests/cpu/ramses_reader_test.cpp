@@ -222,6 +222,24 @@ TEST(RamsesReader, LogScaleTakesLog10OfEachLeaf) {
     EXPECT_NEAR(sums(logged.fields[0]).min, std::log10(0.0183587), 1e-5);
 }
 
+TEST(RamsesReader, LogScaleWithoutAFieldSkipsVariablesWithNoPositiveValue) {
+    AMRVK_REQUIRE_DATA(kSedov);
+    ReadOptions o;
+    o.scale = FieldScale::Log;
+    const Model m = readModel(dataDir() / kSedov, o);  // scalar_00 is 0 everywhere
+    std::vector<std::string> loaded;
+    for (const Field& f : m.fields) loaded.push_back(f.name);
+    EXPECT_EQ(loaded, (std::vector<std::string>{"density", "velocity_x", "velocity_y", "pressure"}));
+    expectContains(attribute(m, "logSkipped"), "scalar_00");
+    EXPECT_NEAR(sums(m.field("density")).max, std::log10(19.1204), 1e-5);
+    // Named, it has no logarithm: one line naming it.
+    o.fields = {"density", "scalar_00"};
+    expectError([&] { readModel(dataDir() / kSedov, o); }, {"field 'scalar_00' has no positive value"});
+    // With a floor every field is logged.
+    o.logFloor = 1e-3;
+    EXPECT_EQ(sums(readModel(dataDir() / kSedov, o).field("scalar_00")).max, -3.0);
+}
+
 TEST(RamsesReader, DetectsTheDirectoryAndItsInfoFile) {
     AMRVK_REQUIRE_DATA(kSedov);
     EXPECT_EQ(detectFormat(dataDir() / kSedov), "ramses");
