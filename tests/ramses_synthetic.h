@@ -6,10 +6,9 @@
 // and 2: the level-1 oct's first cell is refined into a level-2 oct; domain 1 owns the level-1
 // oct, domain 2 (when there are two) the level-2 one, and each file lists the other's oct as a
 // ghost, as RAMSES does. Layout: shared/data/amr/FORMATS.md 4.4.
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <cstring>
+#include <glm/glm.hpp>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,8 +17,8 @@ namespace amrvk::test::ramses {
 
 struct Synthetic {
     int ndim = 3;
-    int ncpu = 1;          // 1 or 2
-    int realBytes = 8;     // 4 or 8
+    int ncpu = 1;       // 1 or 2
+    int realBytes = 8;  // 4 or 8
     bool bisection = false;
     bool boundaries = false;  // nx = 3 with 2 * ndim boundary regions: the domain is the centre cell
     double boxlen = 1.0;
@@ -177,9 +176,8 @@ inline std::string infoText(const Synthetic& s) {
 }
 
 inline std::string descriptorText(const Synthetic& s) {
-    const std::vector<std::string> names = s.ndim == 3
-        ? std::vector<std::string>{"rho", "u", "v", "w", "p"}
-        : std::vector<std::string>{"rho", "u", "v", "p"};
+    const std::vector<std::string> names = s.ndim == 3 ? std::vector<std::string>{"rho", "u", "v", "w", "p"}
+                                                       : std::vector<std::string>{"rho", "u", "v", "p"};
     std::string t;
     if (s.descriptor == Synthetic::Old) {
         t = "nvar =          " + std::to_string(names.size()) + "\n";

@@ -45,16 +45,14 @@ public:
     uint64_t open(const char* what) {
         mStart = mIn.offset();
         mWhat = what;
-        AMRVK_CHECK(mIn.size() - mStart >= 4, mName, ": truncated at byte ", mStart, " (record '", what,
-                    "' expected)");
+        AMRVK_CHECK(mIn.size() - mStart >= 4, mName, ": truncated at byte ", mStart, " (record '", what, "' expected)");
         int32_t length = 0;
         mIn.read(&length, 4);
         AMRVK_CHECK(length >= 0, mName, ": record '", what, "' at byte ", mStart, " has length ", length,
                     " (negative: Fortran subrecords and big-endian files are not supported)");
         const uint64_t left = mIn.size() - mIn.offset();
-        AMRVK_CHECK(uint64_t(length) <= left && left - uint64_t(length) >= 4, mName, ": record '", what,
-                    "' at byte ", mStart, " has length ", length, " but only ", left,
-                    " bytes follow (truncated file?)");
+        AMRVK_CHECK(uint64_t(length) <= left && left - uint64_t(length) >= 4, mName, ": record '", what, "' at byte ",
+                    mStart, " has length ", length, " but only ", left, " bytes follow (truncated file?)");
         mLength = uint64_t(length);
         return mLength;
     }
@@ -63,8 +61,8 @@ public:
         mIn.seek(mStart + 4 + mLength);
         int32_t trailing = 0;
         mIn.read(&trailing, 4);
-        AMRVK_CHECK(trailing >= 0 && uint64_t(trailing) == mLength, mName, ": record '", mWhat, "' at byte ",
-                    mStart, ": leading length ", mLength, " differs from trailing length ", trailing);
+        AMRVK_CHECK(trailing >= 0 && uint64_t(trailing) == mLength, mName, ": record '", mWhat, "' at byte ", mStart,
+                    ": leading length ", mLength, " differs from trailing length ", trailing);
     }
     void skip(const char* what) {
         open(what);
@@ -99,8 +97,8 @@ public:
     // One real whose record length (4 or 8) gives the file's real size.
     double realScalar(const char* what, int& realBytes) {
         const uint64_t length = open(what);
-        AMRVK_CHECK(length == 4 || length == 8, mName, ": record '", what, "' at byte ", mStart, " has length ",
-                    length, " (expected one 4- or 8-byte real)");
+        AMRVK_CHECK(length == 4 || length == 8, mName, ": record '", what, "' at byte ", mStart, " has length ", length,
+                    " (expected one 4- or 8-byte real)");
         realBytes = int(length);
         double v = 0;
         if (length == 8) {
@@ -127,8 +125,8 @@ public:
 private:
     void expectLength(uint64_t count, uint64_t bytes) {
         const uint64_t expected = checkedProduct({count, bytes}, mName + ": record size");
-        AMRVK_CHECK(mLength == expected, mName, ": record '", mWhat, "' at byte ", mStart, " has length ",
-                    mLength, ", expected ", expected, " (", count, " values of ", bytes, " bytes)");
+        AMRVK_CHECK(mLength == expected, mName, ": record '", mWhat, "' at byte ", mStart, " has length ", mLength,
+                    ", expected ", expected, " (", count, " values of ", bytes, " bytes)");
     }
 
     BinaryReader mIn;
@@ -151,8 +149,7 @@ struct Output {
 
 // "info_NNNNN.txt" -> "NNNNN" (digits only), else "".
 std::string infoNumber(const std::string& filename) {
-    if (filename.size() <= 9 || filename.rfind("info_", 0) != 0 ||
-        filename.substr(filename.size() - 4) != ".txt")
+    if (filename.size() <= 9 || filename.rfind("info_", 0) != 0 || filename.substr(filename.size() - 4) != ".txt")
         return {};
     const std::string digits = filename.substr(5, filename.size() - 9);
     return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ? digits : "";
@@ -220,8 +217,8 @@ Info readInfo(const fs::path& path) {
         const std::string& s = get(key);
         double v = 0;
         auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-        AMRVK_CHECK(ec == std::errc() && ptr == s.data() + s.size() && std::isfinite(v), path.string(), ": ",
-                    key, " '", s, "' is not a finite number");
+        AMRVK_CHECK(ec == std::errc() && ptr == s.data() + s.size() && std::isfinite(v), path.string(), ": ", key, " '",
+                    s, "' is not a finite number");
         return v;
     };
     Info info;
@@ -271,28 +268,27 @@ std::vector<std::string> variableNames(const fs::path& descriptor, int nvar, int
         } else {  // new: " 1, density, d"
             const size_t a = line.find(',');
             const size_t b = a == std::string::npos ? a : line.find(',', a + 1);
-            AMRVK_CHECK(b != std::string::npos, descriptor.string(), ": line '", line,
-                        "' is not 'ivar, name, type'");
+            AMRVK_CHECK(b != std::string::npos, descriptor.string(), ": line '", line, "' is not 'ivar, name, type'");
             name = trim(std::string_view(line).substr(a + 1, b - a - 1));
         }
         AMRVK_CHECK(!name.empty(), descriptor.string(), ": empty variable name in line '", line, "'");
-        AMRVK_CHECK(std::find(names.begin(), names.end(), name) == names.end(), descriptor.string(),
-                    ": variable '", name, "' is named twice");
+        AMRVK_CHECK(std::find(names.begin(), names.end(), name) == names.end(), descriptor.string(), ": variable '",
+                    name, "' is named twice");
         AMRVK_CHECK(int(names.size()) < nvar, descriptor.string(), ": names more than the ", nvar,
                     " variables of the hydro files");
         names.push_back(std::move(name));
     }
-    AMRVK_CHECK(int(names.size()) == nvar, descriptor.string(), ": names ", names.size(), " variables, the hydro files hold ",
-                nvar);
+    AMRVK_CHECK(int(names.size()) == nvar, descriptor.string(), ": names ", names.size(),
+                " variables, the hydro files hold ", nvar);
     return names;
 }
 
 // What the AMR files of all domains share (the first one read sets it; the others must match).
 struct Mesh {
     int ncpu = 0, ndim = 0, nlevelmax = 0, nboundary = 0;
-    glm::ivec3 n{1};          // coarse cells per axis (nx, ny, nz)
-    glm::ivec3 skip{0};       // coarse boundary cells below the domain (nx/2 with boundaries)
-    glm::ivec3 extent{1};     // coarse cells of the domain per axis
+    glm::ivec3 n{1};       // coarse cells per axis (nx, ny, nz)
+    glm::ivec3 skip{0};    // coarse boundary cells below the domain (nx/2 with boundaries)
+    glm::ivec3 extent{1};  // coarse cells of the domain per axis
     double boxlen = 0;
 };
 
@@ -305,21 +301,21 @@ struct Leaf {
 
 // The octs a domain file owns on one level, as the hydro file needs them.
 struct OwnLevel {
-    uint64_t octs = 0;                             // ncache of ibound == domain
+    uint64_t octs = 0;                                 // ncache of ibound == domain
     std::vector<std::pair<uint32_t, uint8_t>> leaves;  // (oct, cell 0..2^ndim-1), in cell order
 };
 
 struct DomainAmr {
-    std::vector<int32_t> ncache;   // [level][ibound]: octs listed per level and ibound (1-based order)
-    std::vector<OwnLevel> own;     // per level 1..nlevelmax (index level - 1)
+    std::vector<int32_t> ncache;  // [level][ibound]: octs listed per level and ibound (1-based order)
+    std::vector<OwnLevel> own;    // per level 1..nlevelmax (index level - 1)
 };
 
 const char* kAxisNames[] = {"xg(x)", "xg(y)", "xg(z)"};
 
 // Reads one domain's AMR file: checks it against `mesh` (set from the first file), appends its
 // own leaves to `leaves`.
-DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const std::string& infoName,
-                      Mesh& mesh, std::vector<Leaf>& leaves, std::vector<uint64_t>& octsPerLevel) {
+DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const std::string& infoName, Mesh& mesh,
+                      std::vector<Leaf>& leaves, std::vector<uint64_t>& octsPerLevel) {
     RecordReader in(path);
     const std::string& name = in.name();
     const bool first = domain == 1;
@@ -349,8 +345,8 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
             // (nx = 3: its centre cell), as RAMSES's own outputs place it.
             mesh.skip[a] = mesh.nboundary > 0 ? mesh.n[a] / 2 : 0;
             mesh.extent[a] = mesh.n[a] - 2 * mesh.skip[a];
-            AMRVK_CHECK(mesh.extent[a] >= 1, name, ": ", mesh.n[a], " coarse cells on axis ", a, " leave no domain inside ",
-                        mesh.nboundary, " boundary regions");
+            AMRVK_CHECK(mesh.extent[a] >= 1, name, ": ", mesh.n[a], " coarse cells on axis ", a,
+                        " leave no domain inside ", mesh.nboundary, " boundary regions");
         }
         AMRVK_CHECK(ndim == 3 || mesh.n.z == 1, name, ": 2-D output with nz ", mesh.n.z, " (expected 1)");
         mesh.boxlen = boxlen;
@@ -364,8 +360,9 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
     AMRVK_CHECK(std::isfinite(boxlen) && boxlen > 0, name, ": boxlen ", boxlen, " is not positive");
     // noutput iout ifout | tout | aout | t | dtold | dtnew | nstep nstep_coarse | einit mass_tot_0
     // rho_tot | omega_m ... boxlen_ini | aexp hexp aexp_old epot_tot_int epot_tot_old | mass_sph
-    const char* skipped[] = {"noutput iout ifout", "tout", "aout", "t", "dtold", "dtnew", "nstep nstep_coarse",
-                             "einit mass_tot_0 rho_tot", "cosmology", "aexp hexp", "mass_sph"};
+    const char* skipped[] = {
+        "noutput iout ifout",       "tout",      "aout",      "t",       "dtold", "dtnew", "nstep nstep_coarse",
+        "einit mass_tot_0 rho_tot", "cosmology", "aexp hexp", "mass_sph"};
     for (const char* what : skipped) in.skip(what);
 
     const uint64_t levels = uint64_t(nlevelmax);
@@ -390,8 +387,8 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
     } else {
         in.skip("bound_key");  // 8 or 16-byte reals: skipped by its length
     }
-    const uint64_t ncoarse = checkedProduct({uint64_t(mesh.n.x), uint64_t(mesh.n.y), uint64_t(mesh.n.z)},
-                                            name + ": nx ny nz");
+    const uint64_t ncoarse =
+        checkedProduct({uint64_t(mesh.n.x), uint64_t(mesh.n.y), uint64_t(mesh.n.z)}, name + ": nx ny nz");
     in.skipValues("son (coarse)", ncoarse, 4);
     in.skipValues("flag1 (coarse)", ncoarse, 4);
     in.skipValues("cpu_map (coarse)", ncoarse, 4);
@@ -416,15 +413,19 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
             in.skipValues("prev", count, 4);
             std::vector<std::vector<double>> xg(static_cast<size_t>(ndim));
             for (int a = 0; a < ndim; ++a) {
-                if (own) xg[size_t(a)] = in.reals(kAxisNames[a], count, realBytes);
-                else in.skipValues(kAxisNames[a], count, uint64_t(realBytes));
+                if (own)
+                    xg[size_t(a)] = in.reals(kAxisNames[a], count, realBytes);
+                else
+                    in.skipValues(kAxisNames[a], count, uint64_t(realBytes));
             }
             in.skipValues("father", count, 4);
             for (int k = 0; k < 2 * ndim; ++k) in.skipValues("nbor", count, 4);
             std::vector<std::vector<int32_t>> son(static_cast<size_t>(twotondim));
             for (int ind = 0; ind < twotondim; ++ind) {
-                if (own) son[size_t(ind)] = in.values<int32_t>("son", count);
-                else in.skipValues("son", count, 4);
+                if (own)
+                    son[size_t(ind)] = in.values<int32_t>("son", count);
+                else
+                    in.skipValues("son", count, 4);
             }
             for (int k = 0; k < 2 * twotondim; ++k) in.skipValues(k < twotondim ? "cpu_map" : "flag1", count, 4);
             if (!own) continue;
@@ -444,10 +445,9 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
                 for (int a = 0; a < ndim; ++a) {
                     const double g = (xg[size_t(a)][i] - mesh.skip[a]) * scale - 1.0;
                     const double hi = mesh.extent[a] * scale - 2.0;
-                    AMRVK_CHECK(std::isfinite(g) && g >= 0 && g <= hi && g == std::floor(g) &&
-                                    std::fmod(g, 2.0) == 0,
-                                name, ": oct ", i, " of level ", l, " has centre ", xg[size_t(a)][i], " on axis ",
-                                a, ", not the centre of a level-", l, " oct inside the domain");
+                    AMRVK_CHECK(std::isfinite(g) && g >= 0 && g <= hi && g == std::floor(g) && std::fmod(g, 2.0) == 0,
+                                name, ": oct ", i, " of level ", l, " has centre ", xg[size_t(a)][i], " on axis ", a,
+                                ", not the centre of a level-", l, " oct inside the domain");
                     corner[a] = int64_t(g);
                 }
                 for (int ind = 0; ind < twotondim; ++ind) {
@@ -529,8 +529,7 @@ Model readRamses(const fs::path& path, const ReadOptions& options) {
         for (const char* kind : {"amr", "hydro"}) {
             const fs::path p = out.file(kind, c);
             std::error_code ec;
-            AMRVK_CHECK(fs::exists(p, ec), p.string(), ": no such file (", infoName, " lists ", info.ncpu,
-                        " domains)");
+            AMRVK_CHECK(fs::exists(p, ec), p.string(), ": no such file (", infoName, " lists ", info.ncpu, " domains)");
         }
 
     int nvar = 0;

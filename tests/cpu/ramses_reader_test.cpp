@@ -76,7 +76,8 @@ fs::path copyOutput(const char* relative) {
     const fs::path dst = scratchDir() / src.filename();
     fs::create_directories(dst);
     for (const auto& e : fs::directory_iterator(src)) writeAll(dst / e.path().filename(), readAll(e.path()));
-    for (const auto& e : fs::directory_iterator(dst)) fs::permissions(e.path(), fs::perms::owner_all, fs::perm_options::add);
+    for (const auto& e : fs::directory_iterator(dst))
+        fs::permissions(e.path(), fs::perms::owner_all, fs::perm_options::add);
     return dst;
 }
 
@@ -124,11 +125,16 @@ TEST(RamsesReader, SyntheticOutputsOfEveryLayoutReadTheirCellValues) {
                 for (bool bisection : {false, true})
                     for (bool boundaries : {false, true})
                         for (S::Descriptor d : {S::None, S::Old, S::New}) {
-                            S s{.ndim = ndim, .ncpu = ncpu, .realBytes = realBytes, .bisection = bisection,
-                                .boundaries = boundaries, .boxlen = 2.5, .descriptor = d};
+                            S s{.ndim = ndim,
+                                .ncpu = ncpu,
+                                .realBytes = realBytes,
+                                .bisection = bisection,
+                                .boundaries = boundaries,
+                                .boxlen = 2.5,
+                                .descriptor = d};
                             SCOPED_TRACE(testing::Message() << "ndim " << ndim << " ncpu " << ncpu << " reals "
-                                                            << realBytes << " bisection " << bisection
-                                                            << " boundaries " << boundaries << " descriptor " << d);
+                                                            << realBytes << " bisection " << bisection << " boundaries "
+                                                            << boundaries << " descriptor " << d);
                             const fs::path dir = writeSynthetic(scratchDir() / std::to_string(n++), s);
                             const Model m = readModel(dir, {});
                             checkSynthetic(m, s);
@@ -149,7 +155,7 @@ TEST(RamsesReader, Galaxy3dEightDomainsIsTheUniform64CubeOfFormatsMd) {
     EXPECT_EQ(s.cellsPerLevel, std::vector<uint64_t>{262144});  // all leaves on RAMSES level 6
     EXPECT_EQ(s.bounds.lower, glm::i64vec3(0));
     EXPECT_EQ(s.bounds.upper, glm::i64vec3(64));
-    validate(m);  // no two leaves overlap ...
+    validate(m);                                   // no two leaves overlap ...
     EXPECT_EQ(covered(m, false), 64.0 * 64 * 64);  // ... and they fill the domain
     const Sums d = sums(m.field("density"));
     EXPECT_NEAR(d.min, 0.0183587, 1e-7);
