@@ -393,6 +393,7 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
     in.skipValues("flag1 (coarse)", ncoarse, 4);
     in.skipValues("cpu_map (coarse)", ncoarse, 4);
 
+    octsPerLevel.resize(levels, 0);  // every file has nlevelmax == info's levelmax
     DomainAmr amr;
     const uint64_t bounds = uint64_t(ncpu) + boundaries;
     amr.ncache.resize(checkedProduct({levels, bounds}, name + ": levels x domains"));
@@ -543,7 +544,7 @@ Model readRamses(const fs::path& path, const ReadOptions& options) {
 
     Mesh mesh;
     std::vector<Leaf> leaves;
-    std::vector<uint64_t> octsPerLevel(size_t(info.levelmax), 0);
+    std::vector<uint64_t> octsPerLevel;  // sized by the first AMR file, once its records hold the levels
     for (int c = 1; c <= info.ncpu; ++c) {
         const size_t base = leaves.size();
         const DomainAmr amr = readAmrFile(out.file("amr", c), c, info, infoName, mesh, leaves, octsPerLevel);

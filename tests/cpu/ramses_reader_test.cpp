@@ -316,6 +316,11 @@ TEST(RamsesReader, HostileFilesGiveOneLineNamingTheFile) {
     badInfo.replace(badInfo.find("ncpu        =          1"), 25, "ncpu        =          0");
     writeAll(dir / "info_00001.txt", badInfo);
     expectRead({"info_00001.txt", "ncpu"});
+    // A huge level count: refused by the AMR file's header before anything is sized by it.
+    badInfo = info;
+    badInfo.replace(badInfo.find("levelmax    =          7"), 24, "levelmax    = 2147483647");
+    writeAll(dir / "info_00001.txt", badInfo);
+    expectRead({amrPath.string(), "nlevelmax 7 differs from 2147483647 in info_00001.txt"});
     writeAll(dir / "info_00001.txt", info);
 
     readModel(dir, {});  // restored: reads again
