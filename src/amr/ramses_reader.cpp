@@ -252,6 +252,7 @@ std::vector<std::string> variableNames(const fs::path& descriptor, int nvar, int
         return names;
     }
     const std::string text = readTextFile(descriptor);
+    std::set<std::string> seen;
     size_t pos = 0;
     while (pos < text.size()) {
         size_t end = text.find('\n', pos);
@@ -272,8 +273,7 @@ std::vector<std::string> variableNames(const fs::path& descriptor, int nvar, int
             name = trim(std::string_view(line).substr(a + 1, b - a - 1));
         }
         AMRVK_CHECK(!name.empty(), descriptor.string(), ": empty variable name in line '", line, "'");
-        AMRVK_CHECK(std::find(names.begin(), names.end(), name) == names.end(), descriptor.string(), ": variable '",
-                    name, "' is named twice");
+        AMRVK_CHECK(seen.insert(name).second, descriptor.string(), ": variable '", name, "' is named twice");
         AMRVK_CHECK(int(names.size()) < nvar, descriptor.string(), ": names more than the ", nvar,
                     " variables of the hydro files");
         names.push_back(std::move(name));
@@ -481,6 +481,8 @@ void readHydroFile(const fs::path& path, const Mesh& mesh, int nvar, const Domai
     in.realScalar("gamma", realBytes);
     const uint64_t bounds = uint64_t(mesh.ncpu) + uint64_t(mesh.nboundary);
     const int twotondim = 1 << mesh.ndim;
+    std::vector<int> slot(size_t(nvar), -1);  // variable -> index in `fields`, -1 when not loaded
+    for (size_t f = 0; f < components.size(); ++f) slot[components[f]] = int(f);
     size_t next = base;
     for (int l = 1; l <= mesh.nlevelmax; ++l) {
         const size_t li = size_t(l - 1);
@@ -495,13 +497,13 @@ void readHydroFile(const fs::path& path, const Mesh& mesh, int nvar, const Domai
             const OwnLevel& mine = amr.own[li];
             for (int ind = 0; ind < twotondim; ++ind)
                 for (int v = 0; v < nvar; ++v) {
-                    const auto it = std::find(components.begin(), components.end(), size_t(v));
-                    if (!own || it == components.end() || mine.leaves.empty()) {
+                    const int f = slot[size_t(v)];
+                    if (!own || f < 0 || mine.leaves.empty()) {
                         in.skipValues("hydro variable", uint64_t(ncache), uint64_t(realBytes));
                         continue;
                     }
                     const std::vector<double> values = in.reals("hydro variable", uint64_t(ncache), realBytes);
-                    std::vector<float>& out = fields[size_t(it - components.begin())].values;
+                    std::vector<float>& out = fields[size_t(f)].values;
                     for (size_t k = 0; k < mine.leaves.size(); ++k)
                         if (mine.leaves[k].second == ind) out[next + k] = float(values[mine.leaves[k].first]);
                 }

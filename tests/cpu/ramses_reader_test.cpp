@@ -308,6 +308,10 @@ TEST(RamsesReader, HostileFilesGiveOneLineNamingTheFile) {
     const std::string descriptor = readAll(dir / "hydro_file_descriptor.txt");
     writeAll(dir / "hydro_file_descriptor.txt", descriptor + " 9, extra, d\n");
     expectRead({"hydro_file_descriptor.txt", "more than the 8 variables"});
+    std::string twice = descriptor;
+    twice.replace(twice.find("velocity_y"), 10, "velocity_x");
+    writeAll(dir / "hydro_file_descriptor.txt", twice);
+    expectRead({"hydro_file_descriptor.txt", "variable 'velocity_x' is named twice"});
     writeAll(dir / "hydro_file_descriptor.txt", descriptor);
 
     // info_NNNNN.txt: ncpu out of range.
