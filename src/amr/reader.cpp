@@ -5,6 +5,7 @@
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -23,6 +24,21 @@ std::string firstLine(const fs::path& p) {
     std::getline(in, line);
     return line;
 }
+// With no field named, every field is read; under a log scale without a floor, a field other
+// than the first (the default) that has no positive value cannot be logged and is not loaded
+// (RAMSES's passive scalars are often zero everywhere), recorded in the "logSkipped" attribute.
+// A named field, or the first, with no positive value stays an error (applyFieldScale).
+void dropFieldsWithoutLog(Model& model) {
+    std::vector<std::string> skipped;
+    for (size_t f = model.fields.size(); f-- > 1;)
+        if (smallestPositive(model.fields[f].values) == 0) {
+            skipped.insert(skipped.begin(), model.fields[f].name);
+            model.fields.erase(model.fields.begin() + static_cast<std::ptrdiff_t>(f));
+        }
+    if (!skipped.empty())
+        model.attributes.emplace_back("logSkipped", join(skipped, ", ") + " (no positive value; name it with --field "
+                                                                           "and give --log-floor)");
+}
 }  // namespace
 
 std::string detectFormat(const fs::path& path) {
@@ -30,7 +46,9 @@ std::string detectFormat(const fs::path& path) {
     const bool exists = fs::exists(path, ec);
     if (fs::is_directory(path, ec)) {
         if (fs::exists(path / "Header")) return "amrex";
-        AMRVK_CHECK(false, path.string(), ": directory is not an AMReX plotfile (no Header file)");
+        if (!ramsesInfoFile(path).empty()) return "ramses";
+        AMRVK_CHECK(false, path.string(),
+                    ": directory is neither an AMReX plotfile (no Header file) nor a RAMSES output (no info_NNNNN.txt)");
     }
     const std::string ext = path.extension().string();
     if (ext == ".cells") return "exabrick";
@@ -42,6 +60,7 @@ std::string detectFormat(const fs::path& path) {
         if (fs::exists(cells)) return "exabrick";
         AMRVK_CHECK(false, path.string(), ": no such file");
     }
+    if (!ramsesInfoFile(path).empty()) return "ramses";  // info_NNNNN.txt
     fileSize(path);  // a regular file, checked before it is opened: a FIFO or device would block the peeks below
     if (path.filename() == "Header" && firstLine(path).rfind("HyperCLaw", 0) == 0) return "amrex";
     fs::path hierarchy = path;
@@ -49,7 +68,7 @@ std::string detectFormat(const fs::path& path) {
     if (fs::exists(hierarchy)) return "enzo";
     if (hasHdf5Magic(path)) return "chombo";
     AMRVK_CHECK(false, path.string(),
-                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|raw)");
+                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|ramses|raw)");
     return {};
 }
 
@@ -61,9 +80,12 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "amrex") model = readAmrex(path, options);
     else if (format == "enzo") model = readEnzo(path, options);
     else if (format == "chombo") model = readChombo(path, options);
+    else if (format == "ramses") model = readRamses(path, options);
     else if (format == "raw") model = readRaw(path, options);
-    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo or raw)");
+    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, ramses or raw)");
     model = checkedModel(std::move(model), options.nanPolicy);
+    if (options.scale == FieldScale::Log && options.fields.empty() && options.logFloor == 0)
+        dropFieldsWithoutLog(model);
     applyFieldScale(model, options.scale, options.logFloor);
     return model;
 }

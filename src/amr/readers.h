@@ -12,7 +12,7 @@
 namespace amrvk::amr {
 
 struct ReadOptions {
-    std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | raw
+    std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | ramses | raw
     std::vector<std::string> fields;  // fields to load; empty = every field of the source
     NanPolicy nanPolicy = NanPolicy::Reject;
     // How field values are taken (amr::applyFieldScale): linear, or log10 of each cell's value
@@ -59,6 +59,11 @@ void visitExaBrick(const std::filesystem::path& path, const ReadOptions& options
 Model readAmrex(const std::filesystem::path& path, const ReadOptions& options);
 Model readEnzo(const std::filesystem::path& path, const ReadOptions& options);
 Model readChombo(const std::filesystem::path& path, const ReadOptions& options);
+// A RAMSES output: its output_NNNNN directory (or a directory holding one info_NNNNN.txt), or
+// its info_NNNNN.txt; reads every domain's amr_/hydro_ files (ramses_reader.cpp).
+Model readRamses(const std::filesystem::path& path, const ReadOptions& options);
+// The info_NNNNN.txt of the RAMSES output `path` names (as readRamses finds it), or an empty path.
+std::filesystem::path ramsesInfoFile(const std::filesystem::path& path);
 Model readRaw(const std::filesystem::path& path, const ReadOptions& options);
 
 // The files writeExaBrick writes for `model`: "<base>.cells", then per field F

@@ -96,7 +96,7 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     DeviceArgs dev;
     app.add_option("input", input,
                    "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
-                   "raw .raw (optional with --session)")
+                   "RAMSES output directory, raw .raw (optional with --session)")
         ->type_name("INPUT");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);

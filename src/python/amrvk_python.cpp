@@ -681,7 +681,8 @@ PYBIND11_MODULE(_amrvk, m) {
         .def(py::init(&volumeFromFile), py::arg("path"), py::arg("field") = "", py::arg("format") = "auto",
              py::arg("nan") = "reject", py::arg("dims") = py::none(), py::arg("type") = "", py::arg("threshold") = 0.0,
              py::arg("scale") = "linear", py::arg("log_floor") = 0.0,
-             "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, raw .raw); "
+             "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, RAMSES output "
+             "directory, raw .raw); "
              "scale='log': log10 of each cell's value (values <= 0 floored at log_floor, default the smallest "
              "positive value), as amrvk render --scale log")
         .def_static("from_arrays", &volumeFromArrays, py::arg("lower"), py::arg("level"), py::arg("values"),

@@ -72,5 +72,17 @@ check ls big.cells.tmp-*
 kill -INT "$gen"; wait "$gen"; rc=$?
 check test "$rc" = 130
 check test -z "$(ls | grep '^big\.' || true)"
+# RAMSES (docs/formats.md): a missing domain file, a 1-D output, an info file with no ncpu; no
+# image is left behind by a failed render.
+mkdir -p ramses/output_00001
+info='ncpu = 2\nndim = 3\nlevelmin = 1\nlevelmax = 2\nboxlen = 1.0\ntime = 0.0\n'
+printf "$info" > ramses/output_00001/info_00001.txt
+expect "amr_00001.out00001: no such file (info_00001.txt lists 2 domains)" -- info ramses/output_00001
+expect "amr_00001.out00001: no such file" -- render ramses/output_00001/info_00001.txt -o ramses.png
+check test ! -e ramses.png
+printf "${info/ndim = 3/ndim = 1}" > ramses/output_00001/info_00001.txt
+expect "ndim 1 (only 2-D and 3-D RAMSES outputs" -- info ramses/output_00001 --format ramses
+printf "${info/ncpu = 2/}" > ramses/output_00001/info_00001.txt
+expect "info_00001.txt: no 'ncpu =' line" -- info ramses/output_00001
 ls /nonexistent-dir 2>/dev/null && fail=1
 exit $fail

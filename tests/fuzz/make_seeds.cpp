@@ -16,6 +16,7 @@
 
 #include "accel/bricks.h"
 #include "amrex_synthetic.h"
+#include "ramses_synthetic.h"
 #include "amr/model.h"
 #include "fuzz_common.h"
 #include "scene/transfer_function.h"
@@ -159,6 +160,27 @@ void enzoSeeds(const fs::path& data) {
 }
 
 // ---- Chombo ---------------------------------------------------------------------------------
+// ---- RAMSES (the synthetic outputs of the reader tests, tests/ramses_synthetic.h) -------------
+std::string ramsesSeed(const amrvk::test::ramses::Synthetic& s) {
+    auto files = amrvk::test::ramses::outputFiles(s);
+    std::vector<std::string> parts = {files["info_00001.txt"], files["hydro_file_descriptor.txt"],
+                                      files["amr_00001.out00001"], files["hydro_00001.out00001"]};
+    if (s.ncpu == 2) {
+        parts.push_back(files["amr_00001.out00002"]);
+        parts.push_back(files["hydro_00001.out00002"]);
+    }
+    return fuzz::joinParts(parts);
+}
+
+void ramsesSeeds() {
+    using S = amrvk::test::ramses::Synthetic;
+    seed("ramses", "synthetic-3d", ramsesSeed(S{}));
+    seed("ramses", "synthetic-2d-float-old-names", ramsesSeed(S{.ndim = 2, .realBytes = 4, .descriptor = S::Old}));
+    seed("ramses", "synthetic-3d-two-domains-bisection",
+         ramsesSeed(S{.ncpu = 2, .bisection = true, .descriptor = S::None}));
+    seed("ramses", "synthetic-2d-boundaries", ramsesSeed(S{.ndim = 2, .boundaries = true, .boxlen = 3}));
+}
+
 // fuzz_chombo (structured): a few byte patterns for its FuzzedDataProvider (libFuzzer finds the
 // rest). fuzz_chombo_bytes: the smaller real file (403 KB), copied at run time.
 void chomboSeeds(const fs::path& data) {
@@ -254,6 +276,7 @@ int main(int argc, char** argv) {
     amrexSeeds(data);
     enzoSeeds(data);
     chomboSeeds(data);
+    ramsesSeeds();
     rawSeeds();
     tfSeeds(source);
     sessionSeeds(source);

@@ -31,7 +31,7 @@ def yt_mean(ds, field):
     [
         ("enzo_tiny_cosmology/DD0018/DD0018", ("enzo", "Density"), "Density"),
         ("amrex_pelelm_3d/example_plt_3d", ("boxlib", "temp"), "temp"),
-        ("ramses_galaxy_3d/output_00010/info_00010.txt", ("ramses", "Density"), None),
+        ("ramses_galaxy_3d/output_00010/info_00010.txt", ("ramses", "Density"), "density"),
     ],
 )
 def test_leaf_cells_and_mean_agree_with_yt(amrvk, yt, relative, field, native):
