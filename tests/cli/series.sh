@@ -4,8 +4,9 @@
 # union TF range equal to the min/max of every output's range as `amrvk info --json` reports it;
 # a re-run that skips every frame (mtimes unchanged) and a changed command that renders anew; the
 # turntable's cameras against rotations computed here and its frame 1 against a single render
-# with that camera (tile z-test, with the power shown on the wrong frame); SIGINT in the middle
-# leaving only whole frames and a run that resumes; one-line errors for bad series.
+# with that camera (tile z-test, with the power shown on the wrong frame); a session over a series;
+# the memory peak of four outputs against one; SIGINT in the middle leaving only whole frames and
+# a run that resumes; one-line errors for bad series.
 set -u
 amrvk="$1"; dir="$2"
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -112,6 +113,40 @@ z1, z0 = worst_z(frame1), worst_z(frame0)
 assert z1 < 4.1, ("frame 1 differs from the single render with its camera", z1)
 assert z0 > 4.1, ("the test cannot tell frame 0 from frame 1", z0)
 print("ok: turntable frame 1 vs single render: worst |z| %.2f (frame 0: %.1f)" % (z1, z0))
+PY
+
+# ---- a session (the viewer's) over the series, and over its own input as a turntable ----
+"$amrvk" view out_1.cells "${pic[@]}" --tf spiky --headless --frames 1 --save-session sess.json >/dev/null 2>&1 || fail=1
+"$amrvk" render --session sess.json 'out_*.cells' -o 'sess/f_%d.png' --json sj.json >/dev/null 2>&1 || fail=1
+"$amrvk" render --session sess.json --frames 2 --orbit 180 -o 'sess2/f_%d.png' --json sj2.json >/dev/null 2>&1 || fail=1
+check "$py" - <<'PY'
+import json, os
+s, j, t = json.load(open("sess.json")), json.load(open("sj.json")), json.load(open("sj2.json"))
+assert [os.path.basename(f["input"]) for f in j["frames"]] == ["out_1.cells", "out_2.cells", "out_10.cells"], j
+# The session's own TF (no range fitted) and its camera for every frame.
+assert j["rangeSource"] == "session" and j["tfRange"] is None, j
+assert all(f["camera"]["eye"] == s["camera"]["eye"] and f["camera"]["target"] == s["camera"]["target"] for f in j["frames"])
+assert all(f["stats"]["width"] == 32 and f["stats"]["spp"] == 4 for f in j["frames"]), j["frames"][0]["stats"]
+# Without inputs the session's own is the turntable's; frame 1 is 90 degrees round.
+assert [os.path.basename(f["input"]) for f in t["frames"]] == ["out_1.cells"] * 2 and t["frames"][1]["azimuthDegrees"] == 90
+assert t["frames"][0]["camera"]["eye"] == s["camera"]["eye"] and t["frames"][1]["camera"]["eye"] != s["camera"]["eye"]
+print("ok: --session over a series and as a turntable")
+PY
+
+# ---- memory: one output at a time (the peak does not grow with the outputs rendered) ----
+for i in 0 1 2 3; do "$amrvk" gen cloud --cells 1e6 --seed 3 --time 0.$i -o big_$i >/dev/null || fail=1; done
+"$amrvk" render big_0.cells --size 16x16 --spp 1 -o one.png --json one.json >/dev/null 2>&1 || fail=1
+"$amrvk" render 'big_*.cells' --size 16x16 --spp 1 -o 'big/f_%d.png' --json big.json >/dev/null 2>&1 || fail=1
+check "$py" - <<'PY'
+import json, os
+one, big = json.load(open("one.json")), json.load(open("big.json"))
+# What one more output in memory would add: its cells and values and its device copy (host memory on lavapipe).
+per_output = os.path.getsize("big_0.cells") + os.path.getsize("big_0.scalars") + one["deviceMemoryBytes"]
+peaks = [f["stats"]["peakHostBytes"] for f in big["frames"]]
+assert big["peakResidentBytes"] - one["peakHostBytes"] < 0.75 * per_output, (big["peakResidentBytes"], one["peakHostBytes"], per_output)
+assert peaks[-1] - peaks[0] < 0.5 * per_output, (peaks, per_output)
+print("ok: 4 outputs peak at %.0f MB, one alone at %.0f MB (an output holds %.0f MB)" %
+      (big["peakResidentBytes"] / 1e6, one["peakHostBytes"] / 1e6, per_output / 1e6))
 PY
 
 # ---- SIGINT in the middle leaves whole frames only; the same command resumes ----
