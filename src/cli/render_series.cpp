@@ -129,7 +129,7 @@ bool isSeries(const CLI::App& app, const std::vector<std::string>& inputs, const
     std::error_code ec;
     if (!inputs.empty() && inputs.front().find_first_of("*?[") != std::string::npos && !fs::exists(inputs.front(), ec))
         return true;
-    return fs::path(output).extension() == ".mp4" || output.find('%') != std::string::npos ||
+    return fs::path(output).extension() == ".mp4" || session::hasFrameNumber(output) ||
            (!output.empty() && output.back() == '/');
 }
 

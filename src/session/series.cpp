@@ -110,6 +110,21 @@ std::vector<std::string> planFrames(const std::vector<std::string>& inputs, std:
 
 double frameAzimuth(uint32_t k, uint32_t n, double degrees) { return n == 0 ? 0.0 : double(k) * degrees / double(n); }
 
+bool hasFrameNumber(std::string_view text) {
+    for (size_t i = 0; i + 1 < text.size(); ++i) {
+        if (text[i] != '%') continue;
+        if (text[i + 1] == '%') {
+            ++i;
+            continue;
+        }
+        size_t j = i + 1;
+        if (text[j] == '0') ++j;
+        if (j < text.size() && isDigit(text[j])) ++j;
+        if (j < text.size() && text[j] == 'd') return true;
+    }
+    return false;
+}
+
 fs::path FrameOutput::frame(uint32_t k) const {
     char buf[4096];
     const int n = std::snprintf(buf, sizeof buf, pattern.c_str(), int(k));  // the one conversion, checked

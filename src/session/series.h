@@ -51,6 +51,9 @@ struct FrameOutput {
     std::string extension;                          // ".png", ".exr" or ".pfm"
     std::filesystem::path frame(uint32_t k) const;  // the file of frame k (numbered from 0)
 };
+// Whether `text` holds a frame number conversion (%d, %Nd or %0Nd; %% is a literal %): an -o
+// that names numbered frames. A '%' in any other form leaves a single picture's name as it is.
+bool hasFrameNumber(std::string_view text);
 // `text` (given as `option`): a pattern with exactly one %d, %Nd or %0Nd (N <= 9; %% a literal %)
 // and an image extension, or a directory (existing, or written with a trailing '/'), whose frames
 // are DIR/frame_%04d.png. A plain file name is an error when frameCount > 1.

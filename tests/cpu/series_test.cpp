@@ -111,6 +111,14 @@ TEST(Series, FrameNamesFromPatternsAndDirectories) {
     EXPECT_EQ(f.frame(0), fs::path("one.png"));
     EXPECT_EQ(f.manifest, fs::path("./one_manifest.json"));
 
+    EXPECT_TRUE(hasFrameNumber("f_%d.png"));
+    EXPECT_TRUE(hasFrameNumber("f_%04d.png"));
+    EXPECT_TRUE(hasFrameNumber("f_%4d.png"));
+    EXPECT_TRUE(hasFrameNumber("100%%_%d.png"));
+    EXPECT_FALSE(hasFrameNumber("100%.png"));
+    EXPECT_FALSE(hasFrameNumber("f_%%d.png"));
+    EXPECT_FALSE(hasFrameNumber("f_%s.png"));
+    EXPECT_FALSE(hasFrameNumber("f_%"));
     auto error = [](const std::string& text, uint32_t n) { return test::errorOf([&] { frameOutput("-o", text, n); }); };
     EXPECT_NE(error("movie.png", 3).find("-o movie.png: 3 frames need a numbered name with %d"), std::string::npos);
     EXPECT_NE(error("f_%s.png", 3).find("'%' starts a frame number only as %d"), std::string::npos);
