@@ -201,7 +201,9 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                  " frames anew");
         manifest.recipe = recipe;
     }
-    bool resolved = resume;  // the manifest holds the series' camera, centre, field and range
+    // The manifest holds the series' camera, centre, field and range once frame 0 was written
+    // (they are resolved while it is made; a run stopped before that resolves them again).
+    bool resolved = resume && !previous->done.empty();
     // One input (a turntable): its own range is the union; no pass needed.
     const bool rangeOfFirst = rangeFrom == RangeFrom::First || (rangeFrom == RangeFrom::Union && inputs.size() == 1);
     if (!resolved && rangeFrom == RangeFrom::Union && !rangeOfFirst && manifest.done.size() < n) {

@@ -150,7 +150,14 @@ print("ok: 4 outputs peak at %.0f MB, one alone at %.0f MB (an output holds %.0f
 PY
 
 # ---- SIGINT in the middle leaves whole frames only; the same command resumes ----
-"$amrvk" render out_2.cells --size 48x48 --spp 64 --grid 8 --frames 40 --orbit 360 -o 'int/i_%02d.png' >/dev/null 2>&1 &
+turn=(out_2.cells --size 48x48 --spp 64 --grid 8 --frames 40 --orbit 360 -o 'int/i_%02d.png')
+# Stopped as soon as its manifest exists (before frame 0 is done, where the camera is resolved) ...
+"$amrvk" render "${turn[@]}" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1200); do [ -e int/i_manifest.json ] && break; sleep 0.02; done
+kill -INT $pid; wait $pid
+# ... then again once a frame is written.
+"$amrvk" render "${turn[@]}" >/dev/null 2>&1 &
 pid=$!
 for _ in $(seq 600); do [ -e int/i_00.png ] && break; sleep 0.1; done
 kill -INT $pid; wait $pid; rc=$?
@@ -166,8 +173,14 @@ for f in sorted(os.listdir("int")):
         assert data[-8:-4] == b"IEND", f + " is not a whole PNG"
 assert all(os.path.exists("int/i_%02d.png" % k) for k in done), done'
 before=$("$py" -c 'import os; print(sorted((f, os.stat("int/" + f).st_mtime_ns) for f in os.listdir("int") if f.endswith(".png")))')
-"$amrvk" render out_2.cells --size 48x48 --spp 64 --grid 8 --frames 40 --orbit 360 -o 'int/i_%02d.png' >int.out 2>&1 || fail=1
+"$amrvk" render "${turn[@]}" --json int.json >int.out 2>&1 || fail=1
 check grep -q "(40 frames: $((40 - kept)) rendered, $kept already written" int.out
+# The resumed series has the camera of an uninterrupted one (frame 0: the default view of out_2).
+"$amrvk" render out_2.cells --size 16x16 --spp 1 --frames 2 --orbit 18 -o 'fresh/f_%d.png' --json fresh.json >/dev/null 2>&1 || fail=1
+check "$py" -c '
+import json
+a, b = json.load(open("int.json"))["frames"], json.load(open("fresh.json"))["frames"]
+assert a[0]["camera"] == b[0]["camera"] and a[1]["camera"] == b[1]["camera"], (a[0]["camera"], b[0]["camera"])'
 after=$("$py" -c 'import os; print(sorted((f, os.stat("int/" + f).st_mtime_ns) for f in os.listdir("int") if f.endswith(".png")))')
 check "$py" -c "b = $before; a = dict($after); assert all(a[f] == t for f, t in b), 'a frame written before the interrupt was rendered again'"
 echo "ok: interrupted after $kept of 40 frames; the re-run rendered the rest"
