@@ -283,8 +283,10 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     Json frameReports = Json::array();
     for (uint32_t k = 0; k < n; ++k) {
         const double azimuth = session::frameAzimuth(k, n, orbit);
+        // The movie's temporary frames are gone by the time the report is read.
+        const Json file = keepFrames ? Json(frames.frame(k).string()) : Json(nullptr);
         Json report = {{"index", k},
-                       {"file", frames.frame(k).string()},
+                       {"file", file},
                        {"input", frameInputs[k]},
                        {"azimuthDegrees", azimuth},
                        {"rendered", stats.count(k) > 0}};

@@ -39,7 +39,7 @@ check test "$(frames movie.mp4)" = 3
 check test "$(rate movie.mp4)" = 24/1
 check test ! -e movie.mp4.frames
 check test -z "$(ls | grep -e '\.tmp-' || true)"
-check /usr/bin/python3 -c 'import json; j = json.load(open("m.json")); assert j["movie"] == "movie.mp4" and j["framesPattern"] is None and j["rendered"] == 3, j'
+check /usr/bin/python3 -c 'import json; j = json.load(open("m.json")); assert j["movie"] == "movie.mp4" and j["framesPattern"] is None and j["rendered"] == 3 and all(f["file"] is None for f in j["frames"]), j'
 
 # A turntable of one output with its frames kept; the re-run renders nothing and writes the movie again.
 "$amrvk" render s_2.cells "${pic[@]}" --frames 6 --orbit 360 --fps 12 -o turn.mp4 --frames-dir kept >t.out 2>t.err \
