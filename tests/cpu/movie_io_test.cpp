@@ -104,9 +104,9 @@ TEST(MovieIo, EncodesTheFramesInOrder) {
     EXPECT_NE(probe.out.find("r_frame_rate=10/1"), std::string::npos) << probe.out;
     // Decoded back (34x18, padding included): each frame's mean colour over the pixels whose 2x2
     // chroma block holds no padding (32x16) is its frame's, in order.
-    const ProcessResult raw = runProcess(
-        {"ffmpeg", "-v", "error", "-i", movie.string(), "-f", "rawvideo", "-pix_fmt", "rgb24", "-"},
-        ProcessOutput::Capture);
+    const ProcessResult raw =
+        runProcess({"ffmpeg", "-v", "error", "-i", movie.string(), "-f", "rawvideo", "-pix_fmt", "rgb24", "-"},
+                   ProcessOutput::Capture);
     ASSERT_EQ(raw.status, 0);
     const int paddedW = 34, paddedH = 18;
     ASSERT_EQ(raw.out.size(), size_t(frames * paddedW * paddedH * 3));
