@@ -1,7 +1,7 @@
 // The series of `amrvk render` (session/series.h): natural order against a hand-sorted list,
 // glob expansion over real files (order, no match, duplicates, literal names with wildcard
 // characters), the frame plan's refusals, azimuths, frame names and manifests (round trip and the
-// errors of damaged ones).
+// errors of damaged ones), and the series' one TF range.
 #include "session/series.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,10 @@
 #include <random>
 
 #include "core/error.h"
+#include "model_fixtures.h"
+#include "scene/transfer_function.h"
+#include "scene/volume.h"
+#include "session/picture_description.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -157,4 +161,22 @@ TEST(Series, ManifestRoundTripAndDamage) {
     std::ofstream(dir / "broken.json") << "{\"amrvk\": \"frames\", \"recipe\": 3}";
     EXPECT_NE(test::errorOf([&] { loadFrameManifest(dir / "broken.json"); }).find("malformed frame manifest"),
               std::string::npos);
+}
+
+// One range for every output: a preset spans the series' range (PictureDescription::dataRange)
+// instead of the volume's own, and --tf-range still wins over both.
+TEST(Series, PresetsSpanTheSeriesRangeAndTfRangeWins) {
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(test::makeThreeLevelCloud());
+    PictureDescription d;
+    d.tfSource = TfSource{.name = "ramp"};
+    auto span = [&] {
+        const scene::TransferFunction tf = resolvePicture(d, *v, nullptr).tf.merged();
+        return std::make_pair(tf.firstPosition(), tf.lastPosition());
+    };
+    EXPECT_EQ(span(), std::make_pair(v->valueLo(), v->valueHi()));
+    ASSERT_LT(v->valueHi(), 7.0f);
+    d.dataRange = std::make_pair(-3.0f, 7.0f);
+    EXPECT_EQ(span(), std::make_pair(-3.0f, 7.0f));
+    d.tfRange = std::make_pair(1.0f, 2.0f);
+    EXPECT_EQ(span(), std::make_pair(1.0f, 2.0f));
 }
