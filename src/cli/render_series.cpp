@@ -196,9 +196,17 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
         for (auto it = manifest.done.begin(); it != manifest.done.end();)
             it = (*it < n && fs::is_regular_file(frames.frame(*it), ec)) ? std::next(it) : manifest.done.erase(it);
     } else {
-        if (previous)
+        if (previous) {
             note(frames.manifest.string() + " records another command: rendering all " + std::to_string(n) +
                  " frames anew");
+        } else {
+            uint32_t existing = 0;
+            std::error_code ec;
+            for (uint32_t k = 0; k < n; ++k) existing += fs::exists(frames.frame(k), ec) ? 1 : 0;
+            if (existing > 0)
+                note(std::to_string(existing) + " of the frames exist without a manifest (" + frames.manifest.string() +
+                     "): rendering all " + std::to_string(n) + " anew, replacing them");
+        }
         manifest.recipe = recipe;
     }
     // The manifest holds the series' camera, centre, field and range once frame 0 was written

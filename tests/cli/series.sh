@@ -70,6 +70,10 @@ check grep -q "(3 frames: 1 rendered, 2 already written" s3.out
 "$amrvk" render 'out_*.cells' --size 32x24 --spp 2 --grid 8 -o 'frames/f_%02d.png' >s4.out 2>s4.err || fail=1
 check grep -q "(3 frames: 3 rendered, 0 already written" s4.out
 check grep -q "f_manifest.json records another command: rendering all 3 frames anew" s4.err
+rm frames/f_manifest.json  # frames without their record: replaced, and said
+"$amrvk" render 'out_*.cells' "${pic[@]}" -o 'frames/f_%02d.png' >s5.out 2>s5.err || fail=1
+check grep -q "(3 frames: 3 rendered, 0 already written" s5.out
+check grep -q "3 of the frames exist without a manifest (frames/f_manifest.json): rendering all 3 anew" s5.err
 
 # ---- a turntable: cameras against rotations computed here, frame 1 against a single render ----
 "$amrvk" render out_1.cells --size 32x32 --spp 16 --grid 8 --frames 4 --orbit 360 -o 't_%d.pfm' --json t.json \
