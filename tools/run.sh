@@ -22,7 +22,8 @@ base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validatio
            libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev
            libimgui-dev xvfb xauth xdotool
            python3-dev pybind11-dev python3-numpy python3-pytest python3-yt python3-tqdm
-           openmpi-bin libopenmpi-dev)
+           openmpi-bin libopenmpi-dev
+           ffmpeg)  # render -o movie.mp4 runs it; its tests skip without it
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes (libclang_rt.fuzzer-x86_64.a
 # is in libclang-rt-14-dev).
 fuzz_pkgs=(clang-14 libclang-rt-14-dev)

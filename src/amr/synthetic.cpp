@@ -109,16 +109,19 @@ void withField(const SyntheticParams& params, Fn&& fn) {
     const int shift = log2Exact(block);
     const int root = syntheticRootLevel(params);
     switch (params.kind) {
-        case SyntheticKind::Cloud: fn(CloudField(params.seed, root), shift); break;
-        case SyntheticKind::Shells: fn(ShellsField(params.seed, root), shift); break;
+        case SyntheticKind::Cloud: fn(CloudField(params.seed, root, params.time), shift); break;
+        case SyntheticKind::Shells: fn(ShellsField(params.seed, root, params.time), shift); break;
         case SyntheticKind::Teapot:
-            fn(TeapotField(params.seed, root, teapotMajorRadius(targetLeaves(params, block), root - shift) * block),
+            fn(TeapotField(params.seed, root, teapotMajorRadius(targetLeaves(params, block), root - shift) * block,
+                           params.time),
                shift);
             break;
     }
 }
 
 void checkParams(const SyntheticParams& params) {
+    AMRVK_CHECK(std::isfinite(params.time) && std::abs(params.time) <= 1e6, "--time ", params.time,
+                " is outside [-1e6, 1e6]");
     AMRVK_CHECK(params.cells >= 1 && params.cells <= 100'000'000'000ull, "--cells ", params.cells,
                 " is outside [1, 1e11]");
     syntheticRootLevel(params);
@@ -196,6 +199,7 @@ Model makeSyntheticModel(const SyntheticParams& params, SyntheticStats* statsOut
                         {"rootLevel", std::to_string(stats.rootLevel)},
                         {"blockCells", std::to_string(stats.blockCells)},
                         {"threshold", strCat(stats.threshold)}};
+    if (params.time != 0) model.attributes.emplace_back("time", strCat(params.time));
     stats.seconds = timer.seconds();
     if (statsOut) *statsOut = stats;
     return model;

@@ -60,6 +60,9 @@ struct SyntheticParams {
     int levels = 0;
     int blockCells = 8;        // B: cells per block edge, power of two in [1, 32]; 1 = cell octree
     std::string field;         // field name; empty = "scalars" (files BASE.scalars)
+    // Time T of the evolving field (amr/synthetic_fields.h; period 1, 0 = the field without time):
+    // consecutive times make a time series whose values change smoothly.
+    double time = 0;
     // Called every 65536 cells with the phase ("counting pass K", "writing" or "generating")
     // and its estimated completed fraction in [0, 1); no throttling.
     std::function<void(std::string_view phase, double fraction)> progress;

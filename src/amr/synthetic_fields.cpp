@@ -55,6 +55,8 @@ inline UnitNode unitNode(glm::ivec3 lower, int level, double invDomain) {
 
 inline double ramp(double x) { return std::clamp(x + 0.5, 0.0, 1.0); }
 
+constexpr double kTwoPi = 6.283185307179586;
+
 // Cloud shape.
 constexpr float kCloudAmp = 1.0f;     // displacement amplitude at the root
 constexpr double kCloudHurst = 0.45;  // amplitude halves every 1/H levels: rough, turbulent
@@ -72,9 +74,14 @@ constexpr double kTorusValue = 1.0, kBallValue = 0.6;
 
 }  // namespace
 
-CloudField::CloudField(uint64_t seed, int rootLevel) : mRoot(rootLevel), mSeedHash(mix64(seed + 0x1234567ull)) {
+CloudField::CloudField(uint64_t seed, int rootLevel, double time)
+    : mRoot(rootLevel), mSeedHash(mix64(seed + 0x1234567ull)) {
     SeedStream s(seed);
     mCentre = glm::dvec3(s.range(0.46, 0.54), s.range(0.46, 0.54), s.range(0.46, 0.54));
+    // At T = 0 the offset is exactly 0 and the contrast exactly kCloudSigma: the field without time.
+    const double phase = kTwoPi * time;
+    mCentre += 0.06 * glm::dvec3(std::sin(phase), 1.0 - std::cos(phase), 0.0);
+    mSigma = static_cast<float>(kCloudSigma * (1.0 + 0.25 * std::sin(phase)));
     mInvDomain = std::ldexp(1.0, -rootLevel);
     for (int l = 0; l <= rootLevel; ++l)
         mAmp[static_cast<size_t>(l)] =
@@ -136,7 +143,7 @@ float CloudField::density(glm::ivec3 p, float g) const {
     glm::dvec3 d = glm::dvec3(p) * mInvDomain - mCentre;
     // Clamped at e^-40 so far-away values stay normal positive floats.
     return static_cast<float>(
-        std::exp(std::max(-40.0, static_cast<double>(kCloudSigma * g) - cloudEnvelope(glm::dot(d, d)))));
+        std::exp(std::max(-40.0, static_cast<double>(mSigma * g) - cloudEnvelope(glm::dot(d, d)))));
 }
 
 // Value: mean corner density. Score: an estimate of the density range inside the node,
@@ -157,17 +164,18 @@ NodeEval CloudField::evalCorners(const State& s, glm::ivec3 lower, int level) co
     const double eLo = cloudEnvelope(glm::dot(nearest, nearest));
     const double eHi = cloudEnvelope(glm::dot(farthest, farthest));
     const double unresolved = level > 0 ? mAmp[static_cast<size_t>(level)] : 0.0;
-    const double logRange = kCloudSigma * (gHi - gLo + unresolved) + (eHi - eLo);
-    const double densityMax = std::exp(kCloudSigma * (gHi + unresolved) - eLo);
+    const double logRange = mSigma * (gHi - gLo + unresolved) + (eHi - eLo);
+    const double densityMax = std::exp(mSigma * (gHi + unresolved) - eLo);
     return {static_cast<float>(densityMax * -std::expm1(-logRange)), sum * 0.125f};
 }
 
-ShellsField::ShellsField(uint64_t seed, int rootLevel) : PointwiseField(rootLevel) {
+ShellsField::ShellsField(uint64_t seed, int rootLevel, double time) : PointwiseField(rootLevel) {
     SeedStream s(seed);
     mCentre = glm::dvec3(s.range(0.48, 0.52), s.range(0.48, 0.52), s.range(0.48, 0.52));
+    const double breath = 1.0 + 0.15 * std::sin(kTwoPi * time);  // exactly 1 at T = 0
     for (size_t i = 0; i < kShells; ++i) {
-        double r = 0.06 + 0.045 * static_cast<double>(i) + s.range(-0.007, 0.007);
-        double h = s.range(0.008, 0.016);
+        double r = (0.06 + 0.045 * static_cast<double>(i) + s.range(-0.007, 0.007)) * breath;
+        double h = s.range(0.008, 0.016) * breath;
         mInner[i] = r - 0.5 * h;
         mOuter[i] = r + 0.5 * h;
         mValue[i] = s.range(0.3, 1.0);
@@ -191,10 +199,11 @@ NodeEval ShellsField::eval(glm::ivec3 lower, int level) const {
     return {static_cast<float>(score), static_cast<float>(value)};
 }
 
-TeapotField::TeapotField(uint64_t seed, int rootLevel, double majorRadiusUnits) : PointwiseField(rootLevel) {
+TeapotField::TeapotField(uint64_t seed, int rootLevel, double majorRadiusUnits, double time)
+    : PointwiseField(rootLevel) {
     SeedStream s(seed);
     mCentre = glm::dvec3(s.range(0.3, 0.7), s.range(0.3, 0.7), s.range(0.3, 0.7));
-    double cz = s.range(-1.0, 1.0), phi = s.range(0.0, 6.283185307179586);
+    double cz = s.range(-1.0, 1.0), phi = s.range(0.0, kTwoPi) + kTwoPi * time;  // phi unchanged at T = 0
     double sz = std::sqrt(1.0 - cz * cz);
     mAxis = glm::dvec3(sz * std::cos(phi), sz * std::sin(phi), cz);
     mMajor = majorRadiusUnits * mInvDomain;

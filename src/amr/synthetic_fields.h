@@ -26,7 +26,7 @@ public:
         std::array<float, 8> rho;  // density at the corners
     };
 
-    CloudField(uint64_t seed, int rootLevel);
+    CloudField(uint64_t seed, int rootLevel, double time = 0);
     int rootLevel() const { return mRoot; }
     NodeEval root(State& s) const;
     void refine(glm::ivec3 lower, int level, const State& s, State* cs, NodeEval* ce) const;
@@ -39,6 +39,7 @@ private:
     uint64_t mSeedHash;
     glm::dvec3 mCentre{0.5};
     double mInvDomain = 1;
+    float mSigma = 1;                         // log-density contrast at this time
     std::array<float, kMaxLevel + 2> mAmp{};  // displacement amplitude per node level
 };
 
@@ -66,7 +67,7 @@ protected:
 // ---- shells: nested spherical bands, box-filtered to the cell width. ----
 class ShellsField : public PointwiseField<ShellsField> {
 public:
-    ShellsField(uint64_t seed, int rootLevel);
+    ShellsField(uint64_t seed, int rootLevel, double time = 0);
 
 private:
     friend class PointwiseField;
@@ -84,7 +85,7 @@ private:
 class TeapotField : public PointwiseField<TeapotField> {
 public:
     // majorRadiusUnits: torus major radius in finest-cell units (teapotMajorRadius * B).
-    TeapotField(uint64_t seed, int rootLevel, double majorRadiusUnits);
+    TeapotField(uint64_t seed, int rootLevel, double majorRadiusUnits, double time = 0);
 
 private:
     friend class PointwiseField;

@@ -2,7 +2,7 @@
 // The plots of `amrvk bench` are drawn by tools/plot_bench.py (matplotlib) from DIR/results.json.
 // The build copies the script next to the binaries (build/bin/plot_bench.py); amrvk runs that copy
 // with the first interpreter that can `import matplotlib`: `python3` on PATH, then
-// /usr/bin/python3. Processes are started with an argument vector (posix_spawnp), never a shell.
+// /usr/bin/python3. Processes are started with an argument vector (core/process.h), never a shell.
 #include <filesystem>
 #include <optional>
 #include <string>

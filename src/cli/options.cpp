@@ -327,6 +327,31 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->type_name("PX PY PZ NX NY NZ");
 }
 
+void addSeriesOptions(CLI::App& app, SeriesArgs& a) {
+    app.add_option("--series-range", a.range,
+                   "several inputs: the TF is laid over the first output's field range, or the union of every "
+                   "output's (a reading pass first); --tf-range overrides both")
+        ->check(CLI::IsMember({"first", "union"}))
+        ->capture_default_str()
+        ->type_name("first|union");
+    app.add_option("--orbit", a.orbit,
+                   "the camera turns DEG degrees about the data's centre (around its up vector) over the frames; "
+                   "frame k of N at k*DEG/N")
+        ->check(kFinite)
+        ->type_name("DEG");
+    app.add_option("--frames", a.frames, "a turntable: N frames of one input (with --orbit, e.g. --frames 120 --orbit 360)")
+        ->check(interval(1, 100000))
+        ->type_name("N");
+    app.add_option("--fps", a.fps, "-o MOVIE.mp4: frames per second")
+        ->check(interval(0, 1000, true))
+        ->capture_default_str()
+        ->type_name("F");
+    app.add_option("--frames-dir", a.framesDir,
+                   "-o MOVIE.mp4: keep the frames in DIR (DIR/frame_0000.png ...; else they go to MOVIE.mp4.frames/ "
+                   "and are removed once the movie is written)")
+        ->type_name("DIR");
+}
+
 void parseSize(const std::string& option, const std::string& text, int& width, int& height) {
     int a = 0, b = 0;
     char x = 0, tail = 0;

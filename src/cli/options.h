@@ -66,6 +66,17 @@ struct PictureArgs {
 // structure, spp, session, dt, dvr shading).
 void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset = false);
 
+// A time series, turntable or movie of `amrvk render` (docs/movies.md).
+struct SeriesArgs {
+    std::string range = "union";
+    double orbit = 0;     // degrees over the series
+    int64_t frames = 0;   // frames of one input
+    double fps = 24;
+    std::string framesDir;
+};
+// --series-range, --orbit, --frames, --fps, --frames-dir.
+void addSeriesOptions(CLI::App& app, SeriesArgs& a);
+
 // Lighting, medium, camera, image size and seed from the options given on the command line, on top
 // of `base` (a session's settings or the defaults). Camera only when --camera was given.
 scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings base);

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "cli/ranks.h"
+#include "cli/render_series.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/image_io.h"
@@ -39,7 +40,11 @@ const char* kRenderHelp =
     "x density scale per finest cell width; albedo = TF colour. Every majorant traversal x sample "
     "reconstruction structure of the paper is selectable; box hierarchies run as software BVHs "
     "(sw) or through VK_KHR_ray_query (rq). --session FILE renders a picture saved by the viewer "
-    "(amrvk view), with any option given here on top.";
+    "(amrvk view), with any option given here on top. Several inputs (or a quoted glob pattern such as "
+    "'plt*', expanded by amrvk, in natural order), --frames N --orbit 360 (a turntable of one input), a "
+    "numbered -o (frames/f_%04d.png), a directory -o (frames/) or -o movie.mp4 (through ffmpeg) render a "
+    "series of frames with one camera, TF range and settings; a re-run of the same command skips the "
+    "frames already written (docs/movies.md).";
 
 }  // namespace
 
@@ -90,17 +95,23 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
 #endif
     CLI::App app(kRenderHelp, "amrvk render");
     setUpCommand(app);
-    std::string input, output = "amrvk.png", jsonFile;
+    std::vector<std::string> inputs;
+    std::string output = "amrvk.png", jsonFile;
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
-    app.add_option("input", input,
+    SeriesArgs series;
+    app.add_option("input", inputs,
                    "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
-                   "RAMSES output directory, raw .raw (optional with --session)")
-        ->type_name("INPUT");
+                   "RAMSES output directory, raw .raw (optional with --session); several, or a quoted glob pattern, "
+                   "make a series")
+        ->type_name("INPUT...");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
-    app.add_option("-o,--output", output, "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float)")
+    addSeriesOptions(app, series);
+    app.add_option("-o,--output", output,
+                   "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float); a series: frames/f_%04d.png, "
+                   "frames/ or movie.mp4")
         ->capture_default_str()
         ->type_name("FILE");
     app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE");
@@ -120,6 +131,10 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(world || app.count("--distribute") == 0,
                 "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
     [[maybe_unused]] const bool byData = distribute == "data";
+    if (isSeries(app, inputs, output))
+        return renderSeries(app, {.inputs = inputs, .output = output, .jsonFile = jsonFile, .varianceFile = varianceFile},
+                            read, pic, series, dev, world);
+    const std::string input = inputs.empty() ? std::string() : inputs.front();
 
     const std::string ext = fs::path(output).extension().string();
     AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,

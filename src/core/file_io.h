@@ -71,6 +71,9 @@ public:
         write(values.data(), values.size_bytes());
     }
     uint64_t bytesWritten() const { return mBytes; }
+    // The temporary file that commit() renames (empty when written through): where another program
+    // may write the data after finish() (a movie by ffmpeg); removed like the writer's own data.
+    const std::filesystem::path& temporaryPath() const { return mTmpPath; }
     // Flushes and closes the temporary file (where a full disk shows up); throws on failure.
     void finish();
     // finish() if not yet done, then renames the temporary file to the final path.

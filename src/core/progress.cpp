@@ -39,9 +39,13 @@ void ProgressBar::update(uint64_t done, uint64_t total, const std::string& detai
     constexpr int kWidth = 24;
     const int filled = total > 0 ? int(double(kWidth) * double(std::min(done, total)) / double(total)) : 0;
     const std::string text = detail.size() > 70 ? detail.substr(0, 70) : detail;
-    std::fprintf(stderr, "\r\033[Kamrvk: %s [%.*s%*s] %llu/%llu %s  %.1f s  %s", mName.c_str(), filled,
+    // Remaining time at the rate so far (the work is taken as evenly spread over the units).
+    char eta[32] = "";
+    if (done > 0 && done < total)
+        std::snprintf(eta, sizeof eta, "  eta %.0f s", now * double(total - done) / double(done));
+    std::fprintf(stderr, "\r\033[Kamrvk: %s [%.*s%*s] %llu/%llu %s  %.1f s%s  %s", mName.c_str(), filled,
                  "########################", kWidth - filled, "", static_cast<unsigned long long>(done),
-                 static_cast<unsigned long long>(total), mUnit.c_str(), now, text.c_str());
+                 static_cast<unsigned long long>(total), mUnit.c_str(), now, eta, text.c_str());
     std::fflush(stderr);
     mDrawn = true;
 }

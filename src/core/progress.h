@@ -25,7 +25,8 @@ private:
 };
 
 // A one-line bar on stderr, redrawn at most every 0.1 s (and at the end):
-// "amrvk: NAME [####    ] done/total UNIT  seconds  detail". Silent when progress is disabled.
+// "amrvk: NAME [####    ] done/total UNIT  seconds  eta seconds  detail" (the estimated time left
+// at the rate since the bar was made). Silent when progress is disabled.
 class ProgressBar {
 public:
     ProgressBar(std::string name, std::string unit);

@@ -103,6 +103,19 @@ void OrbitCamera::zoom(scene::Camera& c, double steps) const {
     setOrbit(c, o);
 }
 
+scene::Camera OrbitCamera::orbitedAbout(const scene::Camera& c, glm::dvec3 centre, double degrees) {
+    AMRVK_CHECK(glm::length(c.up) > 0, "camera: the up vector is zero");
+    const glm::dvec3 k = glm::normalize(c.up);
+    const double angle = degrees * M_PI / 180.0, cs = std::cos(angle), sn = std::sin(angle);
+    // Rodrigues' rotation of v about the unit axis k.
+    auto rotate = [&](glm::dvec3 v) { return v * cs + glm::cross(k, v) * sn + k * glm::dot(k, v) * (1.0 - cs); };
+    scene::Camera out = c;
+    out.eye = centre + rotate(c.eye - centre);
+    out.target = centre + rotate(c.target - centre);
+    out.up = rotate(c.up);
+    return out;
+}
+
 void OrbitCamera::setFov(scene::Camera& c, double fov) {
     AMRVK_CHECK(fov > 0 && fov < 180, "field of view ", fov, " degrees is outside (0, 180)");
     c.fovYDegrees = fov;

@@ -30,6 +30,11 @@ public:
     // steps > 0 moves closer (each step 10 %), within 1/1000 to 100 radii of the box.
     void zoom(scene::Camera& c, double steps) const;
 
+    // c turned rigidly by `degrees` about the line through `centre` along c's up vector (eye,
+    // target and up rotated alike; right-handed: counter-clockwise seen from above): the camera of
+    // a frame of `render --orbit` (session/series.h). Distances to the centre are kept.
+    static scene::Camera orbitedAbout(const scene::Camera& c, glm::dvec3 centre, double degrees);
+
     static void setFov(scene::Camera& c, double fovYDegrees);  // (0, 180) exclusive; throws otherwise
     static void setUpAxis(scene::Camera& c, int axis);         // 0, 1 or 2; keeps the view direction where it can
     static int upAxis(const scene::Camera& c);                 // the axis nearest to c.up

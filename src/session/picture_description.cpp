@@ -23,7 +23,10 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
     Session s = d.session;
     s.field = v.field().name;
     if (d.tfSource || d.tfRange) {
-        const float lo = d.tfRange ? d.tfRange->first : v.valueLo(), hi = d.tfRange ? d.tfRange->second : v.valueHi();
+        const std::pair<float, float> range = d.tfRange     ? *d.tfRange
+                                              : d.dataRange ? *d.dataRange
+                                                            : std::make_pair(v.valueLo(), v.valueHi());
+        const float lo = range.first, hi = range.second;
         AMRVK_CHECK(!d.tfRange || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         scene::TransferFunction tf =
             d.tfSource ? scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset) : s.tf.merged();

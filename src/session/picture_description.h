@@ -36,6 +36,9 @@ struct PictureDescription {
     // Map the TF's node range (tfSource's or the session's) onto [lo, hi]; without it presets
     // span the field's range and other TFs keep theirs.
     std::optional<std::pair<float, float>> tfRange;
+    // The field range presets are laid over instead of the volume's own (tfRange still wins): one
+    // range for every output of a time series (render --series-range).
+    std::optional<std::pair<float, float>> dataRange;
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
     // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).

@@ -10,12 +10,12 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 declare -A options=(
   [info]="--format --field --nan --dims --type --threshold --grid --bricks --json"
-  [gen]="--cells --seed -o,--output --block --levels --field"
+  [gen]="--cells --seed -o,--output --block --levels --field --time"
   [convert]="--format --field --nan --dims --type --threshold -o,--output"
   [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --size --seed --spp --tf
             --tf-preset --tf-range --traversal --sampler --backend --grid --kd-leaves --dense-max-mib
             --density-scale --g --ambient --background --light-dir --light-point --camera --fov -o,--output
-            --json --device --shader-dir --validation"
+            --json --device --shader-dir --validation --series-range --orbit --frames --fps --frames-dir"
   [bench]="--field -o,--output --tfs --tf-range --modes --traversals --samplers --backends --size --seed --frames
            --warmup --reference-spp --target-rmse --dvr-steps --grid-sweep --no-dense --auto --grid --kd-leaves
            --dense-max-mib --density-scale --g --ambient --background --light-dir --light-point --camera --fov

@@ -111,3 +111,29 @@ TEST(OrbitCamera, ExplicitCamerasAndUpAxes) {
     EXPECT_THROW(OrbitCamera::setUpAxis(c, 3), Error);
     EXPECT_THROW(o.framing(40.0, -1), Error);
 }
+
+// render --orbit: a rigid turn about the vertical line through the data's centre, checked against
+// rotations written out by hand (90 degrees about +z maps (x, y) to (-y, x)).
+TEST(OrbitCamera, OrbitedAboutTurnsTheWholeCameraAboutTheCentre) {
+    const scene::Camera c{.eye = {5, 1, 3}, .target = {2, 1, 1}, .up = {0, 0, 2}, .fovYDegrees = 30};
+    const glm::dvec3 centre(2, 1, 0);
+    const scene::Camera q = OrbitCamera::orbitedAbout(c, centre, 90);
+    expectNear(q.eye, glm::dvec3(2, 4, 3), 1e-12, "eye: (3, 0, 3) from the centre turns to (0, 3, 3)");
+    expectNear(q.target, glm::dvec3(2, 1, 1), 1e-12, "target on the axis stays");
+    expectNear(q.up, glm::dvec3(0, 0, 2), 1e-12, "up along the axis stays");
+    EXPECT_EQ(q.fovYDegrees, 30.0);
+    const scene::Camera h = OrbitCamera::orbitedAbout(c, centre, -180);
+    expectNear(h.eye, glm::dvec3(-1, 1, 3), 1e-12, "half a turn the other way");
+    // A tilted up vector (y up, target off the axis): the whole camera turns about y.
+    const scene::Camera t{.eye = {0, 0, 4}, .target = {1, 0, 0}, .up = {0, 1, 0}};
+    const scene::Camera r = OrbitCamera::orbitedAbout(t, glm::dvec3(0), 90);  // about +y: z -> x, x -> -z
+    expectNear(r.eye, glm::dvec3(4, 0, 0), 1e-12, "eye");
+    expectNear(r.target, glm::dvec3(0, 0, -1), 1e-12, "target");
+    // Turns compose, and a full turn (or 36 steps of 10 degrees) comes back.
+    const scene::Camera a = OrbitCamera::orbitedAbout(OrbitCamera::orbitedAbout(c, centre, 30), centre, 60);
+    expectNear(a.eye, q.eye, 1e-12, "30 + 60 = 90");
+    scene::Camera s = c;
+    for (int i = 0; i < 36; ++i) s = OrbitCamera::orbitedAbout(s, centre, 10);
+    expectNear(s.eye, c.eye, 1e-12, "36 x 10 degrees");
+    expectNear(s.target, c.target, 1e-12, "36 x 10 degrees");
+}

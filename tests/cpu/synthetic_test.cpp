@@ -10,6 +10,7 @@
 #include "amr/cell_hash.h"
 #include "amr/readers.h"
 #include "amr/synthetic.h"
+#include "amr/synthetic_fields.h"
 #include "core/error.h"
 #include "test_data.h"
 
@@ -419,4 +420,87 @@ TEST(GenCommand, HelpAndErrors) {
               0);
     EXPECT_NE(readBytes(out).find("--block"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "x.cells"));
+}
+
+namespace {
+
+// The value of node (lower, level) of a synthetic field, reached by refining down from the root.
+template <class F>
+float nodeValue(const F& field, glm::ivec3 lower, int level) {
+    typename F::State state, children[8];
+    NodeEval evals[8];
+    NodeEval eval = field.root(state);
+    glm::ivec3 at(0);
+    for (int l = field.rootLevel(); l > level; --l) {
+        field.refine(at, l, state, children, evals);
+        const int half = 1 << (l - 1);
+        const glm::ivec3 o = (lower - at) / half;  // the child holding `lower`
+        const int c = o.x | (o.y << 1) | (o.z << 2);
+        state = children[c];
+        eval = evals[c];
+        at += o * half;
+    }
+    return eval.value;
+}
+
+// Largest change of the node values at level 3 on a 16^3 lattice over the domain between times a and b.
+template <class Make>
+double largestChange(Make&& make, double a, double b) {
+    const auto fa = make(a), fb = make(b);
+    double change = 0;
+    const int step = (1 << fa.rootLevel()) / 16;
+    for (int z = 0; z < 16; ++z)
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                const glm::ivec3 lower = glm::ivec3(x, y, z) * step;
+                change = std::max(change, double(std::abs(nodeValue(fa, lower, 3) - nodeValue(fb, lower, 3))));
+            }
+    return change;
+}
+
+}  // namespace
+
+// gen --time: the field moves smoothly (changes proportional to the time step: twice the step,
+// twice the change), really moves over a quarter period, and has period 1.
+TEST(SyntheticTime, FieldsEvolveSmoothlyAndPeriodically) {
+    const int root = 10;
+    auto cloud = [&](double t) { return CloudField(3, root, t); };
+    auto shells = [&](double t) { return ShellsField(3, root, t); };
+    auto check = [](const char* name, auto&& make) {
+        const double t0 = 0.3;
+        const double small = largestChange(make, t0, t0 + 5e-4), twice = largestChange(make, t0, t0 + 1e-3);
+        const double quarter = largestChange(make, t0, t0 + 0.25), period = largestChange(make, t0, t0 + 1.0);
+        EXPECT_GT(small, 0.0) << name;
+        EXPECT_NEAR(twice / small, 2.0, 0.4) << name << ": changes " << small << " and " << twice;
+        EXPECT_GT(quarter, 50 * twice) << name << ": a quarter period changes the field";
+        EXPECT_LT(period, 1e-3 * quarter) << name << ": period 1";
+    };
+    check("cloud", cloud);
+    check("shells", shells);
+}
+
+// The outputs of a series differ: the cloud's densest cell (its contrast swings) and the cells
+// of every kind (the refinement follows the field, the teapot's tiny torus included); T = 0 is
+// the field without time.
+TEST(SyntheticTime, OutputsDifferAndTimeZeroIsTheFieldWithoutTime) {
+    auto model = [](SyntheticKind kind, double t) {
+        SyntheticParams p = params(kind, 20000, 2);
+        p.time = t;
+        return makeSyntheticModel(p);
+    };
+    auto maxValue = [&](double t) {
+        const Model m = model(SyntheticKind::Cloud, t);
+        return *std::max_element(m.fields[0].values.begin(), m.fields[0].values.end());
+    };
+    EXPECT_GT(std::abs(std::log(maxValue(0.25)) - std::log(maxValue(0.75))), 0.02);
+    for (SyntheticKind kind : {SyntheticKind::Cloud, SyntheticKind::Shells, SyntheticKind::Teapot})
+        EXPECT_NE(digest(model(kind, 0.3)), digest(model(kind, 0.35))) << syntheticKindName(kind);
+    SyntheticParams p = params(SyntheticKind::Shells, 5000, 4);
+    const uint64_t without = digest(makeSyntheticModel(p));
+    p.time = 0.0;
+    EXPECT_EQ(digest(makeSyntheticModel(p)), without);
+    p.time = 0.1;
+    EXPECT_NE(digest(makeSyntheticModel(p)), without);
+    p.time = std::nan("");
+    EXPECT_NE(test::errorOf([&] { makeSyntheticModel(p); }).find("--time nan is outside"), std::string::npos);
 }

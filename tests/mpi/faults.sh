@@ -51,6 +51,10 @@ expect_fault disagree "ranks disagree on the picture" "(every rank of 2)" -- \
 expect_fault disagree-data "ranks disagree on the picture" "(every rank of 2)" -- \
   "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --distribute data -o "$dir/out.png" \
   : -n 1 "$amrvk" render "$cloud" "${small[@]}" --distribute data --density-scale 2 -o "$dir/out.png"
+# A series or turntable (docs/movies.md) is one process's work: refused on every rank, no frame written.
+expect_fault series "is rendered by one process, not under an MPI launcher" "(every rank of 2)" -- \
+  "${mpi[@]}" -n 2 "$amrvk" render "$cloud" "${small[@]}" --frames 2 --orbit 90 -o "$dir/f_%d.png"
+check test -z "$(ls "$dir" | grep '^f_' || true)"
 # Rank 1 under a 600 MB address-space limit runs out while reading, building, mapping buffers or
 # compiling (where depends on the driver); each way ends in one line that says so.
 expect_fault out-of-memory "rank 1 of 2" "memory" -- \
