@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Usage: legend.sh AMRVK SOURCE_DIR SCRATCH. Colour legends end to end (README "Colour legends"): render
+# --legend beside and over the picture, the viewer's screenshot with the same legend, the legend
+# kept in a session, and one-line errors (missing font, non-PNG output, a picture too small) that
+# leave no output behind. The pixels themselves are checked by cpu/legend_image_test.
+set -u
+amrvk="$1"; src="$2"; dir="$3"
+rm -rf "$dir"; mkdir -p "$dir"
+sample="$src/assets/samples/cloud.cells"
+fail=0
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+size() { python3 -c 'import struct,sys; d=open(sys.argv[1],"rb").read(24); assert d[:8]==b"\x89PNG\r\n\x1a\n"; print("%dx%d" % struct.unpack(">II", d[16:24]))' "$1"; }
+
+common=(--size 64x96 --spp 1 --grid 16 --tf-range 0 1)
+if ! "$amrvk" render "$sample" "${common[@]}" --legend -o "$dir/side.png" >/dev/null 2>"$dir/side.err"; then
+  # A build without FreeType: --legend is one line saying why, and nothing is written.
+  if grep -q "built without FreeType" "$dir/side.err" && [ "$(wc -l <"$dir/side.err")" = 1 ] && [ ! -e "$dir/side.png" ]; then
+    echo "ok: built without FreeType: $(cat "$dir/side.err")"; exit 0
+  fi
+  echo "FAIL: render --legend: $(cat "$dir/side.err")"; exit 1
+fi
+# Beside the picture: as high, wider by the strip.
+w=$(size "$dir/side.png"); check test "${w#*x}" = 96
+check test "${w%x*}" -gt 64
+# Over the picture: the size of the picture.
+"$amrvk" render "$sample" --size 160x96 --spp 1 --grid 16 --legend --legend-place overlay --legend-units 'g/cm³' \
+  -o "$dir/overlay.png" >/dev/null || fail=1
+check test "$(size "$dir/overlay.png")" = 160x96
+
+# The viewer's screenshot gets the same legend, and the session keeps it for render --session.
+"$amrvk" view "$sample" "${common[@]}" --headless --frames 1 --legend --legend-title density \
+  --screenshot "$dir/view.png" --save-session "$dir/s.json" 2>/dev/null || fail=1
+check python3 -c 'import json,sys; l=json.load(open(sys.argv[1]))["legend"]; assert l["show"] and l["place"] == "side" and l["title"] == "density", l' "$dir/s.json"
+"$amrvk" render --session "$dir/s.json" -o "$dir/from-session.png" >/dev/null || fail=1
+check test "$(size "$dir/view.png")" = "$(size "$dir/from-session.png")"
+check test "${w%x*}" -ne "$(size "$dir/view.png" | cut -dx -f1)"  # another title, another strip width
+# A session's legend is not drawn into linear images (a note), but --legend asks for a PNG.
+"$amrvk" render --session "$dir/s.json" -o "$dir/from-session.pfm" >/dev/null 2>"$dir/pfm.err" || fail=1
+check grep -q "legend is drawn into PNG images only" "$dir/pfm.err"
+
+expect "--legend: /nonexistent/font.ttf: no such file" -- render "$sample" "${common[@]}" --legend \
+  --legend-font /nonexistent/font.ttf -o "$dir/x.png"
+echo "not a font" >"$dir/bad.ttf"
+expect "not a font FreeType can read" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/bad.ttf" -o "$dir/x.png"
+expect "--legend: only PNG images get a legend" -- render "$sample" "${common[@]}" --legend -o "$dir/x.exr"
+expect "is too small for a legend" -- render "$sample" --size 16x12 --spp 1 --legend -o "$dir/x.png"
+expect "--legend-place: corner not in {side,overlay}" -- render "$sample" "${common[@]}" --legend --legend-place corner -o "$dir/x.png"
+expect "--legend-font $dir/bad.ttf" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/bad.ttf" -o "$dir/bad.ttf"
+expect "--legend: /nonexistent/font.ttf: no such file" -- view "$sample" "${common[@]}" --headless --frames 1 --legend \
+  --legend-font /nonexistent/font.ttf --screenshot "$dir/x.png"
+check test ! -e "$dir/x.png"
+check test ! -e "$dir/x.exr"
+check test -s "$dir/bad.ttf"
+exit $fail
