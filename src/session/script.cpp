@@ -28,7 +28,8 @@ const std::map<std::string, Signature>& signatures() {
         {"orbit", {2, {0, 1}}},   {"pan", {2, {0, 1}}},      {"zoom", {1, {0}}},    {"tf-preset", {1, {}}},
         {"tf-range", {2, {0, 1}}}, {"density", {1, {0}}},    {"mode", {1, {}}},     {"traversal", {1, {}}},
         {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
-        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}}};
+        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"legend", {1, {}}},
+        {"quit", {0, {}}}};
     return table;
 }
 
@@ -93,6 +94,7 @@ void checkValues(const ScriptAction& a) {
     else if (n == "screenshot") imageType({".png", ".exr", ".pfm"});
     else if (n == "capture-window") imageType({".png"});
     else if (n == "save-session") AMRVK_CHECK(!a.args[0].empty(), "empty file name");
+    else if (n == "legend") AMRVK_CHECK(a.args[0] == "on" || a.args[0] == "off", "'", a.args[0], "': expected on or off");
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");

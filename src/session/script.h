@@ -11,6 +11,7 @@
 //   screenshot FILE                  the accumulated image, no UI (.png, .exr, .pfm)
 //   capture-window FILE              the window as shown, UI included (.png; no-op with --headless)
 //   save-session FILE                the current state as a session file (render it with amrvk render --session)
+//   legend on|off                    the colour legend over the picture and in PNG screenshots
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,

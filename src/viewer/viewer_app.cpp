@@ -540,6 +540,8 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         screenshot(a.args[0]);
     } else if (n == "save-session") {
         saveSessionFile(a.args[0]);
+    } else if (n == "legend") {
+        mState.legend.show = a.args[0] == "on";
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {

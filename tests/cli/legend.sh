@@ -34,6 +34,11 @@ check python3 -c 'import json,sys; l=json.load(open(sys.argv[1]))["legend"]; ass
 "$amrvk" render --session "$dir/s.json" -o "$dir/from-session.png" >/dev/null || fail=1
 check test "$(size "$dir/view.png")" = "$(size "$dir/from-session.png")"
 check test "${w%x*}" -ne "$(size "$dir/view.png" | cut -dx -f1)"  # another title, another strip width
+# The script action (and so the checkbox's state): on, a PNG screenshot with the legend; off, without.
+printf '0 legend on\n1 screenshot %s\n1 legend off\n2 screenshot %s\n3 quit\n' "$dir/on.png" "$dir/off.png" >"$dir/legend.script"
+"$amrvk" view "$sample" "${common[@]}" --headless --script "$dir/legend.script" 2>/dev/null || fail=1
+check test "$(size "$dir/on.png")" = "$w"
+check test "$(size "$dir/off.png")" = 64x96
 # A session's legend is not drawn into linear images (a note), but --legend asks for a PNG.
 "$amrvk" render --session "$dir/s.json" -o "$dir/from-session.pfm" >/dev/null 2>"$dir/pfm.err" || fail=1
 check grep -q "legend is drawn into PNG images only" "$dir/pfm.err"
