@@ -38,7 +38,9 @@ void expectOrderedInside(const std::vector<LegendTick>& ticks, double lo, double
     for (size_t i = 0; i < ticks.size(); ++i) {
         EXPECT_GE(ticks[i].position, lo);
         EXPECT_LE(ticks[i].position, hi);
-        if (i > 0) EXPECT_LT(ticks[i - 1].position, ticks[i].position);
+        if (i > 0) {
+            EXPECT_LT(ticks[i - 1].position, ticks[i].position);
+        }
     }
 }
 
