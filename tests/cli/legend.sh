@@ -28,12 +28,12 @@ check test "${w%x*}" -gt 64
 check test "$(size "$dir/overlay.png")" = 160x96
 
 # The viewer's screenshot gets the same legend, and the session keeps it for render --session.
-"$amrvk" view "$sample" "${common[@]}" --headless --frames 1 --legend --legend-title density \
+"$amrvk" view "$sample" "${common[@]}" --headless --frames 1 --legend --legend-title 'density of the cloud' \
   --screenshot "$dir/view.png" --save-session "$dir/s.json" 2>/dev/null || fail=1
-check python3 -c 'import json,sys; l=json.load(open(sys.argv[1]))["legend"]; assert l["show"] and l["place"] == "side" and l["title"] == "density", l' "$dir/s.json"
+check python3 -c 'import json,sys; l=json.load(open(sys.argv[1]))["legend"]; assert l["show"] and l["place"] == "side" and l["title"] == "density of the cloud", l' "$dir/s.json"
 "$amrvk" render --session "$dir/s.json" -o "$dir/from-session.png" >/dev/null || fail=1
 check test "$(size "$dir/view.png")" = "$(size "$dir/from-session.png")"
-check test "${w%x*}" -ne "$(size "$dir/view.png" | cut -dx -f1)"  # another title, another strip width
+check test "${w%x*}" -lt "$(size "$dir/view.png" | cut -dx -f1)"  # a longer title, a wider strip
 # The script action (and so the checkbox's state): on, a PNG screenshot with the legend; off, without.
 printf '0 legend on\n1 screenshot %s\n1 legend off\n2 screenshot %s\n3 quit\n' "$dir/on.png" "$dir/off.png" >"$dir/legend.script"
 "$amrvk" view "$sample" "${common[@]}" --headless --script "$dir/legend.script" 2>/dev/null || fail=1
@@ -50,10 +50,11 @@ expect "not a font FreeType can read" -- render "$sample" "${common[@]}" --legen
 expect "--legend: only PNG images get a legend" -- render "$sample" "${common[@]}" --legend -o "$dir/x.exr"
 expect "is too small for a legend" -- render "$sample" --size 16x12 --spp 1 --legend -o "$dir/x.png"
 expect "--legend-place: corner not in {side,overlay}" -- render "$sample" "${common[@]}" --legend --legend-place corner -o "$dir/x.png"
-expect "--legend-font $dir/bad.ttf" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/bad.ttf" -o "$dir/bad.ttf"
+cp "$dir/bad.ttf" "$dir/font.png"  # a font that is not to be overwritten by the output it names
+expect "is the input --legend-font $dir/font.png" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/font.png" -o "$dir/font.png"
 expect "--legend: /nonexistent/font.ttf: no such file" -- view "$sample" "${common[@]}" --headless --frames 1 --legend \
   --legend-font /nonexistent/font.ttf --screenshot "$dir/x.png"
 check test ! -e "$dir/x.png"
 check test ! -e "$dir/x.exr"
-check test -s "$dir/bad.ttf"
+check cmp -s "$dir/bad.ttf" "$dir/font.png"
 exit $fail
