@@ -33,6 +33,7 @@ std::string tidyExponent(std::string s) {
 
 // A value on its own (a degenerate range): six significant digits.
 std::string shortNumber(double v) {
+    if (v == 0) v = 0;  // -0 (e.g. ceil(-1e-9)) is "0"
     char text[48];
     std::snprintf(text, sizeof text, "%.6g", v);
     return tidyExponent(text);

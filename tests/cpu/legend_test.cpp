@@ -138,6 +138,11 @@ TEST(Legend, LogTicksAreDecadesWithMinorTicksAtTheDigits) {
     EXPECT_NEAR(minors.back(), 2 + std::log10(9.0), 1e-12);
 }
 
+TEST(Legend, TheDecadeAtZeroIsTenToTheZeroNotMinusZero) {
+    const auto t = session::legendTicks(0, 3, true, 6);  // ceil(0 - 1e-9) is -0
+    EXPECT_EQ(labels(t), (std::vector<std::string>{"10^0", "10^1", "10^2", "10^3"}));
+}
+
 TEST(Legend, ManyDecadesAreLabelledEverySecondFifthOrTenth) {
     auto t = session::legendTicks(-3, 3, true, 6);  // 7 decades: every 2nd
     EXPECT_EQ(labels(t), (std::vector<std::string>{"10^-2", "10^0", "10^2"}));
