@@ -182,7 +182,6 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     ImGui::SliderFloat("alpha axis", &p.alphaDisplayMax, 1e-3f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
     ImGui::SameLine();
     ImGui::Checkbox("log histogram", &p.logHistogram);
-    ImGui::SameLine();
     ImGui::Checkbox("legend", &p.edit.legend.show);
     float range[2] = {tf.lo(), tf.hi()};
     if (ImGui::InputFloat2("value range", range, "%.5g", ImGuiInputTextFlags_EnterReturnsTrue)) {

@@ -43,6 +43,43 @@ check test "$(size "$dir/off.png")" = 64x96
 "$amrvk" render --session "$dir/s.json" -o "$dir/from-session.pfm" >/dev/null 2>"$dir/pfm.err" || fail=1
 check grep -q "legend is drawn into PNG images only" "$dir/pfm.err"
 
+# The window (tests/with_xvfb.sh): the overlay darkens the picture's lower right corner under its
+# backdrop while the legend is on, and the corner is the white background again when it is off.
+if command -v Xvfb >/dev/null; then
+  printf '4 capture-window %s\n5 legend off\n8 capture-window %s\n9 quit\n' "$dir/win-on.png" "$dir/win-off.png" >"$dir/win.script"
+  bash "$src/tests/with_xvfb.sh" 800x600x24 "$amrvk" view "$sample" --size 200x150 --window 800x600 --spp 1 --grid 16 \
+    --background 1 1 1 --legend --script "$dir/win.script" --validation 2>"$dir/win.err" || { echo "FAIL: window: $(tail -1 "$dir/win.err")"; fail=1; }
+  check python3 - "$dir/win-on.png" "$dir/win-off.png" <<'PY'
+import sys, zlib, struct
+def grey(path):  # 8-bit RGB(A) PNG without interlace, as amrvk writes it: the mean of each pixel's channels
+    d = open(path, "rb").read(); pos, idat, w, h = 8, b"", 0, 0
+    while pos < len(d):
+        n, kind = struct.unpack(">I4s", d[pos:pos + 8]); body = d[pos + 8:pos + 8 + n]; pos += 12 + n
+        if kind == b"IHDR": w, h, depth, ctype = struct.unpack(">IIBB", body[:10]); assert depth == 8 and ctype in (2, 6)
+        if kind == b"IDAT": idat += body
+    raw, bpp = zlib.decompress(idat), 4 if ctype == 6 else 3
+    rows, prev = [], bytearray(w * bpp)
+    for y in range(h):
+        f, line = raw[y * (w * bpp + 1)], bytearray(raw[y * (w * bpp + 1) + 1:(y + 1) * (w * bpp + 1)])
+        for i in range(len(line)):
+            a = line[i - bpp] if i >= bpp else 0; b = prev[i]; c = prev[i - bpp] if i >= bpp else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line); prev = line
+    return lambda x, y: sum(rows[y][x * bpp:x * bpp + 3]) / 3
+on, off = grey(sys.argv[1]), grey(sys.argv[2])
+corner = [(x, y) for x in range(760, 790) for y in range(560, 590)]
+dark_on = sum(on(x, y) < 200 for x, y in corner); bright_off = sum(off(x, y) > 240 for x, y in corner)
+assert dark_on > 0.6 * len(corner) and bright_off > 0.9 * len(corner), (dark_on, bright_off, len(corner))
+PY
+else
+  echo "skip: no Xvfb for the window check"
+fi
+
 expect "--legend: /nonexistent/font.ttf: no such file" -- render "$sample" "${common[@]}" --legend \
   --legend-font /nonexistent/font.ttf -o "$dir/x.png"
 echo "not a font" >"$dir/bad.ttf"
