@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "session/legend.h"
+#include "session/picture_description.h"
 #include "session/session.h"
 
 using namespace amrvk;
@@ -189,6 +190,11 @@ TEST(Legend, SettingsRoundTripThroughSessions) {
     s.legend = {.show = true, .place = session::LegendPlace::Overlay, .title = "T", .units = "g/cm³", .font = "/f.ttf"};
     const session::Session back = session::parseSession(session::sessionJson(s), "s.json");
     EXPECT_EQ(back.legend, s.legend);
+    // The viewer's "copy as command" carries the legend.
+    const std::string command = session::renderCommandLine(s, "tf.json", "o.png");
+    EXPECT_NE(command.find(" --legend --legend-place overlay --legend-title T --legend-units 'g/cm³' --legend-font /f.ttf -o o.png"),
+              std::string::npos)
+        << command;
     const std::string bad = session::sessionJson(s);
     std::string text = bad;
     text.replace(text.find("\"overlay\""), 9, "\"corner\"");
