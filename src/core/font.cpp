@@ -148,8 +148,9 @@ bool fontRenderingAvailable() { return false; }
 struct Font::Impl {};
 
 Font::Font(const fs::path&) {
-    AMRVK_CHECK(false, "cannot draw text: this amrvk was built without FreeType (install libfreetype-dev and "
-                       "rebuild)");
+    AMRVK_CHECK(false,
+                "cannot draw text: this amrvk was built without FreeType (install libfreetype-dev and "
+                "rebuild)");
 }
 Font::~Font() = default;
 int Font::width(std::string_view, int) const { return 0; }

@@ -102,10 +102,14 @@ std::vector<LegendTick> legendTicks(double lo, double hi, bool logScale, int max
     std::vector<LegendTick> ticks;
     const auto identity = [](double v) { return v; };
     if (lo == hi) {
-        if (logScale && lo == std::round(lo)) ticks.push_back({lo, true, "10", shortNumber(lo)});
-        else if (logScale && std::isfinite(std::pow(10.0, lo))) ticks.push_back({lo, true, shortNumber(std::pow(10.0, lo)), ""});
-        else if (logScale) ticks.push_back({lo, true, "10", shortNumber(lo)});
-        else ticks.push_back({lo, true, shortNumber(lo), ""});
+        if (logScale && lo == std::round(lo))
+            ticks.push_back({lo, true, "10", shortNumber(lo)});
+        else if (logScale && std::isfinite(std::pow(10.0, lo)))
+            ticks.push_back({lo, true, shortNumber(std::pow(10.0, lo)), ""});
+        else if (logScale)
+            ticks.push_back({lo, true, "10", shortNumber(lo)});
+        else
+            ticks.push_back({lo, true, shortNumber(lo), ""});
         return ticks;
     }
     if (!logScale) {
@@ -121,8 +125,10 @@ std::vector<LegendTick> legendTicks(double lo, double hi, bool logScale, int max
                 for (double m : {2.0, 5.0, 10.0})
                     if (count(s) > maxMajor && count(m * base) >= 1) s = m * base;
             for (double k = kLo; k <= kHi; ++k) {
-                if (std::fmod(k, s) == 0) ticks.push_back({k, true, "10", shortNumber(k)});
-                else addMinor(ticks, k);
+                if (std::fmod(k, s) == 0)
+                    ticks.push_back({k, true, "10", shortNumber(k)});
+                else
+                    addMinor(ticks, k);
             }
             if (s == 1)  // every decade labelled: m x 10^k between them
                 for (double k = std::floor(lo); k <= kHi; ++k)
@@ -140,9 +146,12 @@ std::vector<LegendTick> legendTicks(double lo, double hi, bool logScale, int max
                     else
                         addMinor(digits, at);
                 }
-            const auto majors = std::count_if(digits.begin(), digits.end(), [](const LegendTick& t) { return t.major; });
-            if (majors >= 2) ticks = std::move(digits);
-            else niceTicks(ticks, vLo, vHi, maxMajor, [](double v) { return std::log10(v); });  // under a factor 2.5
+            const auto majors =
+                std::count_if(digits.begin(), digits.end(), [](const LegendTick& t) { return t.major; });
+            if (majors >= 2)
+                ticks = std::move(digits);
+            else
+                niceTicks(ticks, vLo, vHi, maxMajor, [](double v) { return std::log10(v); });  // under a factor 2.5
         } else {
             // 10^lo or 10^hi is not a double: nice ticks of the exponent, labelled 10^x.
             niceTicks(ticks, lo, hi, maxMajor, identity);
@@ -152,7 +161,8 @@ std::vector<LegendTick> legendTicks(double lo, double hi, bool logScale, int max
     }
     if (std::none_of(ticks.begin(), ticks.end(), [](const LegendTick& t) { return t.major; }))
         ticks.push_back({lo, true, logScale ? shortNumber(std::pow(10.0, lo)) : shortNumber(lo), ""});
-    std::sort(ticks.begin(), ticks.end(), [](const LegendTick& a, const LegendTick& b) { return a.position < b.position; });
+    std::sort(ticks.begin(), ticks.end(),
+              [](const LegendTick& a, const LegendTick& b) { return a.position < b.position; });
     return ticks;
 }
 

@@ -86,11 +86,12 @@ LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendConte
     const int barTop = header + m.lineHeight / 2 + m.raise;
     const int below = m.lineHeight / 2 + m.pad;
     const int needed = barTop + kMinBarRows + below;
-    const int blockHeight = place == LegendPlace::Side ? pictureHeight
-                                                       : std::max(needed, int(std::lround(pictureHeight * 0.6)));
+    const int blockHeight =
+        place == LegendPlace::Side ? pictureHeight : std::max(needed, int(std::lround(pictureHeight * 0.6)));
     const int margin = place == LegendPlace::Side ? 0 : m.pad;
-    AMRVK_CHECK(blockHeight >= needed && blockHeight + 2 * margin <= pictureHeight, "legend: the picture ", pictureWidth, "x", pictureHeight,
-                " is too small for a legend (it needs a height of at least ", needed + 2 * margin, " pixels)");
+    AMRVK_CHECK(blockHeight >= needed && blockHeight + 2 * margin <= pictureHeight, "legend: the picture ",
+                pictureWidth, "x", pictureHeight, " is too small for a legend (it needs a height of at least ",
+                needed + 2 * margin, " pixels)");
     const int rows = blockHeight - barTop - below;
     L.ticks = legendTicks(c.lo, c.hi, c.logScale, std::clamp(rows / (2 * m.lineHeight), 2, 8));
 
@@ -120,7 +121,7 @@ LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendConte
     L.tickMarks = {bx + m.pad + 2 * m.barWidth, by + barTop, m.tickLength, rows};
     L.text.push_back({bx + m.pad, by + m.pad, blockWidth - 2 * m.pad, headerLines * m.lineHeight});
     const int labelsTop = std::min(labelTop(m, by + barTop), labelTop(m, by + barTop) + m.baseline - m.raise -
-                                                                  font.render("", m.superscriptPx).baseline);
+                                                                 font.render("", m.superscriptPx).baseline);
     const int labelsBottom = labelTop(m, by + barTop + rows - 1) + m.lineHeight;
     L.text.push_back({bx + labelX, labelsTop, labels, labelsBottom - labelsTop});
     return L;

@@ -10,7 +10,6 @@
 // lower right corner on a backdrop of opacity 0.8 (the image keeps its size).
 // Sizes follow the picture's height: the font is H / 22 pixels (9 to 48).
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,9 +24,9 @@ namespace amrvk::session {
 
 // What the legend shows.
 struct LegendContent {
-    std::string title;       // legendTitle(): the title or field, "(log10 scale)" noted
-    std::string units;       // empty: no units line
-    double lo = 0, hi = 0;   // the TF axis shown: the TF's first and last node (log10 of the field for a log scale)
+    std::string title;      // legendTitle(): the title or field, "(log10 scale)" noted
+    std::string units;      // empty: no units line
+    double lo = 0, hi = 0;  // the TF axis shown: the TF's first and last node (log10 of the field for a log scale)
     bool logScale = false;
     scene::TransferFunction tf;
 };
@@ -45,13 +44,13 @@ struct PixelRect {
 
 // Where everything goes, in the pixels of the image drawLegend returns.
 struct LegendLayout {
-    int width = 0, height = 0;      // the whole image
-    PixelRect picture;              // the picture, copied unchanged (Overlay: under the block)
-    PixelRect block;                // the legend's backdrop (Side: the whole strip)
-    PixelRect opacityBar;           // TF colour at opacity alpha / (the TF's largest alpha) over a checkerboard
-    PixelRect colorBar;             // TF colour, opaque: row y shows legendBarValue(y)
-    PixelRect tickMarks;            // the tick lines, right of the colour bar
-    std::vector<PixelRect> text;    // the only places text is drawn: title and units, tick labels
+    int width = 0, height = 0;    // the whole image
+    PixelRect picture;            // the picture, copied unchanged (Overlay: under the block)
+    PixelRect block;              // the legend's backdrop (Side: the whole strip)
+    PixelRect opacityBar;         // TF colour at opacity alpha / (the TF's largest alpha) over a checkerboard
+    PixelRect colorBar;           // TF colour, opaque: row y shows legendBarValue(y)
+    PixelRect tickMarks;          // the tick lines, right of the colour bar
+    std::vector<PixelRect> text;  // the only places text is drawn: title and units, tick labels
     int fontPx = 0, superscriptPx = 0, lineHeight = 0;
     std::vector<LegendTick> ticks;  // legendTicks() with as many labels as the bar's height holds
 };

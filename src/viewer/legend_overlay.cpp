@@ -24,7 +24,9 @@ void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pict
     const float px = ImGui::GetFontSize(), sup = std::round(px * 0.7f);
     const float pad = std::round(px * 0.5f), bar = px, tick = std::round(px * 0.5f), gap = std::round(px * 0.3f);
     const float line = px * 1.2f, raise = std::round(px * 0.45f);
-    auto width = [&](const std::string& text, float size) { return font->CalcTextSizeA(size, FLT_MAX, 0, text.c_str()).x; };
+    auto width = [&](const std::string& text, float size) {
+        return font->CalcTextSizeA(size, FLT_MAX, 0, text.c_str()).x;
+    };
 
     const int headerLines = c.units.empty() ? 1 : 2;
     const float header = pad + float(headerLines) * line;
@@ -39,7 +41,8 @@ void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pict
     for (const session::LegendTick& t : ticks)
         if (t.major) labels = std::max(labels, width(t.label, px) + (t.exponent.empty() ? 0 : width(t.exponent, sup)));
     const float labelX = pad + 2 * bar + tick + gap;
-    const float blockWidth = std::max(labelX + labels + pad, 2 * pad + std::max(width(c.title, px), width(c.units, px)));
+    const float blockWidth =
+        std::max(labelX + labels + pad, 2 * pad + std::max(width(c.title, px), width(c.units, px)));
     if (blockWidth + 2 * pad > pictureWidth) return;
 
     ImDrawList* dl = ImGui::GetBackgroundDrawList();  // over the picture, under the panels

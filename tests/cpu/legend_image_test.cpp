@@ -1,6 +1,8 @@
 // The legend drawn into PNGs (session/legend_image.*), read back from the PNG file: its size, the
 // picture kept, the colour bar against the TF evaluated here by hand, the opacity strip, text drawn
 // by FreeType only where the layout says, the backdrop everywhere else; font errors.
+#include "session/legend_image.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 
 #include "core/font.h"
 #include "core/image_io.h"
-#include "session/legend_image.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -96,7 +97,8 @@ void expectOnlyBackdropOutsideElements(const Image8& png, const session::LegendL
             for (const session::PixelRect& t : L.text) element = element || t.contains(x, y);
             if (element) continue;
             ++checked;
-            if (!backdrop(pixel(png, x, y), x, y) && ++wrong <= 5) ADD_FAILURE() << "pixel " << x << "," << y << " is not backdrop";
+            if (!backdrop(pixel(png, x, y), x, y) && ++wrong <= 5)
+                ADD_FAILURE() << "pixel " << x << "," << y << " is not backdrop";
         }
     EXPECT_GT(checked, 100);
     EXPECT_EQ(wrong, 0);
@@ -175,9 +177,8 @@ TEST(LegendImage, SideStripKeepsThePictureAndShowsTheTfColoursAtTheBarsValues) {
         EXPECT_GT(drawn, 30);
         EXPECT_GT(ink, 5);
     }
-    expectOnlyBackdropOutsideElements(png, L, [&](Rgb p, int, int) {
-        return p.r == backdrop.r && p.g == backdrop.g && p.b == backdrop.b;
-    });
+    expectOnlyBackdropOutsideElements(
+        png, L, [&](Rgb p, int, int) { return p.r == backdrop.r && p.g == backdrop.g && p.b == backdrop.b; });
 }
 
 TEST(LegendImage, TheFontReallyDrawsTheTitle) {
@@ -218,9 +219,8 @@ TEST(LegendImage, LogScaleLabelsWithSuperscriptsStayInTheirArea) {
     const Image8 png = legendPng(picture, c, session::LegendPlace::Side, *font, "log.png");
     const Rgb backdrop{srgb8(0.02), srgb8(0.02), srgb8(0.02)};
     EXPECT_GT(textPixels(png, L.text[1], backdrop).first, 30);
-    expectOnlyBackdropOutsideElements(png, L, [&](Rgb p, int, int) {
-        return p.r == backdrop.r && p.g == backdrop.g && p.b == backdrop.b;
-    });
+    expectOnlyBackdropOutsideElements(
+        png, L, [&](Rgb p, int, int) { return p.r == backdrop.r && p.g == backdrop.g && p.b == backdrop.b; });
 }
 
 TEST(LegendImage, OverlaySitsInTheLowerRightCornerOnATranslucentBackdrop) {
@@ -278,8 +278,10 @@ TEST(LegendImage, TooSmallPicturesAndBadFontsAreOneLineErrors) {
                          "not a font FreeType can read");
     const auto font = defaultFont();
     const session::LegendContent c = testContent("Density");
-    test::expectContains(test::errorOf([&] { session::drawLegend(testPicture(40, 30), c, session::LegendPlace::Side, *font); }),
-                         "is too small for a legend");
-    test::expectContains(test::errorOf([&] { session::drawLegend(testPicture(30, 128), c, session::LegendPlace::Overlay, *font); }),
-                         "too narrow for the legend over it");
+    test::expectContains(
+        test::errorOf([&] { session::drawLegend(testPicture(40, 30), c, session::LegendPlace::Side, *font); }),
+        "is too small for a legend");
+    test::expectContains(
+        test::errorOf([&] { session::drawLegend(testPicture(30, 128), c, session::LegendPlace::Overlay, *font); }),
+        "too narrow for the legend over it");
 }

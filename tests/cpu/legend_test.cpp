@@ -1,5 +1,7 @@
 // The legend's ticks and labels (session/legend.*) against hand-computed answers, and the legend's
 // settings in sessions.
+#include "session/legend.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <vector>
 
 #include "core/error.h"
-#include "session/legend.h"
 #include "session/picture_description.h"
 #include "session/session.h"
 
@@ -48,10 +49,10 @@ void expectOrderedInside(const std::vector<LegendTick>& ticks, double lo, double
 }  // namespace
 
 TEST(Legend, NiceStepIsTheSmallestOneTwoOrFiveTimesAPowerOfTenAboveSpanOverCount) {
-    EXPECT_DOUBLE_EQ(session::niceStep(1, 6), 0.2);     // 1/6 = 0.167 -> 0.2
-    EXPECT_DOUBLE_EQ(session::niceStep(4, 6), 1);       // 0.667 -> 1
-    EXPECT_DOUBLE_EQ(session::niceStep(30, 6), 5);      // 5 -> 5
-    EXPECT_DOUBLE_EQ(session::niceStep(100, 6), 20);    // 16.7 -> 20
+    EXPECT_DOUBLE_EQ(session::niceStep(1, 6), 0.2);   // 1/6 = 0.167 -> 0.2
+    EXPECT_DOUBLE_EQ(session::niceStep(4, 6), 1);     // 0.667 -> 1
+    EXPECT_DOUBLE_EQ(session::niceStep(30, 6), 5);    // 5 -> 5
+    EXPECT_DOUBLE_EQ(session::niceStep(100, 6), 20);  // 16.7 -> 20
     EXPECT_DOUBLE_EQ(session::niceStep(1e-30, 6), 2e-31);
     EXPECT_DOUBLE_EQ(session::niceStep(3e30, 6), 5e29);
     EXPECT_THROW(session::niceStep(0, 6), Error);
@@ -97,7 +98,7 @@ TEST(Legend, TinyAndHugeRangesGetScientificLabelsWithTheDigitsTheStepNeeds) {
     t = session::legendTicks(1e6, 1e6 + 1e-3, false, 6);
     expectOrderedInside(t, 1e6, 1e6 + 1e-3);
     EXPECT_EQ(labels(t), (std::vector<std::string>{"1.0000000000e6", "1.0000000002e6", "1.0000000004e6",
-                                                    "1.0000000006e6", "1.0000000008e6", "1.0000000010e6"}));
+                                                   "1.0000000006e6", "1.0000000008e6", "1.0000000010e6"}));
     // Fixed point while values stay below 1e5 and the step at or above 1e-4.
     EXPECT_EQ(session::tickLabel(0.0005, 1e-4), "0.0005");
     EXPECT_EQ(session::tickLabel(0.00005, 1e-5), "5e-5");
@@ -148,7 +149,7 @@ TEST(Legend, ManyDecadesAreLabelledEverySecondFifthOrTenth) {
     auto t = session::legendTicks(-3, 3, true, 6);  // 7 decades: every 2nd
     EXPECT_EQ(labels(t), (std::vector<std::string>{"10^-2", "10^0", "10^2"}));
     EXPECT_EQ(minorPositions(t), (std::vector<double>{-3, -1, 1, 3}));  // the others, no digit minors
-    t = session::legendTicks(-30, 30, true, 6);  // 61 decades: every 20th (10th gives 7)
+    t = session::legendTicks(-30, 30, true, 6);                         // 61 decades: every 20th (10th gives 7)
     EXPECT_EQ(labels(t), (std::vector<std::string>{"10^-20", "10^0", "10^20"}));
     EXPECT_EQ(minorPositions(t).size(), 58u);
     t = session::legendTicks(-30, 30, true, 8);  // every 10th
@@ -192,8 +193,10 @@ TEST(Legend, SettingsRoundTripThroughSessions) {
     EXPECT_EQ(back.legend, s.legend);
     // The viewer's "copy as command" carries the legend.
     const std::string command = session::renderCommandLine(s, "tf.json", "o.png");
-    EXPECT_NE(command.find(" --legend --legend-place overlay --legend-title T --legend-units 'g/cm³' --legend-font /f.ttf -o o.png"),
-              std::string::npos)
+    EXPECT_NE(
+        command.find(
+            " --legend --legend-place overlay --legend-title T --legend-units 'g/cm³' --legend-font /f.ttf -o o.png"),
+        std::string::npos)
         << command;
     const std::string bad = session::sessionJson(s);
     std::string text = bad;
