@@ -10,6 +10,8 @@ namespace amrvk::session {
 namespace {
 
 constexpr int kMinBarRows = 16;
+constexpr size_t kMaxTextBytes = 256;  // title, units
+constexpr int kMaxWidthEm = 40;        // the legend block's width, in font sizes
 constexpr float kOverlayOpacity = 0.8f;
 
 // Sizes that depend only on the font size.
@@ -75,6 +77,9 @@ std::unique_ptr<Font> openLegendFont(const Legend& legend) {
 LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendContent& c, LegendPlace place,
                           const Font& font) {
     AMRVK_CHECK(pictureWidth > 0 && pictureHeight > 0, "legend: empty picture ", pictureWidth, "x", pictureHeight);
+    for (const std::string* text : {&c.title, &c.units})
+        AMRVK_CHECK(text->size() <= kMaxTextBytes, "legend: the ", text == &c.title ? "title" : "units", " text has ",
+                    text->size(), " bytes (at most ", kMaxTextBytes, ")");
     const Metrics m = metrics(pictureHeight, font);
     LegendLayout L;
     L.fontPx = m.fontPx;
@@ -101,6 +106,9 @@ LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendConte
     const int headerWidth = std::max(font.width(c.title, m.fontPx), font.width(c.units, m.fontPx));
     const int labelX = m.pad + 2 * m.barWidth + m.tickLength + m.gap;
     const int blockWidth = std::max(labelX + labels + m.pad, m.pad + headerWidth + m.pad);
+    AMRVK_CHECK(blockWidth <= kMaxWidthEm * m.fontPx, "legend: '", c.title, "' / '", c.units,
+                "' would make the legend ", blockWidth, " pixels wide (at most ", kMaxWidthEm, " times the font's ",
+                m.fontPx, " px): shorten the title or units");
 
     if (place == LegendPlace::Side) {
         L.width = pictureWidth + blockWidth;

@@ -68,7 +68,8 @@ inline constexpr glm::vec3 kLegendInk{1.0f, 1.0f, 1.0f};
 inline constexpr float kCheckerDark = 0.25f, kCheckerLight = 0.6f;
 
 // The picture with its legend (linear RGB, like the picture; PNG writing tone-maps both). Throws one
-// line when the picture is too small to hold one (the size it needs).
+// line when the picture is too small to hold one (the size it needs), or the title or units are
+// longer than 256 bytes or would make the legend wider than 40 font sizes.
 Image drawLegend(const Image& picture, const LegendContent& content, LegendPlace place, const Font& font);
 
 }  // namespace amrvk::session

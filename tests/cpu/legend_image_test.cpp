@@ -281,6 +281,14 @@ TEST(LegendImage, TooSmallPicturesAndBadFontsAreOneLineErrors) {
     test::expectContains(
         test::errorOf([&] { session::drawLegend(testPicture(40, 30), c, session::LegendPlace::Side, *font); }),
         "is too small for a legend");
+    session::LegendContent longTitle = testContent(std::string(120, 'W'));
+    test::expectContains(
+        test::errorOf([&] { session::drawLegend(testPicture(64, 128), longTitle, session::LegendPlace::Side, *font); }),
+        "shorten the title or units");
+    longTitle.title = std::string(300, 'x');
+    test::expectContains(
+        test::errorOf([&] { session::drawLegend(testPicture(64, 128), longTitle, session::LegendPlace::Side, *font); }),
+        "legend: the title text has 300 bytes (at most 256)");
     test::expectContains(
         test::errorOf([&] { session::drawLegend(testPicture(30, 128), c, session::LegendPlace::Overlay, *font); }),
         "too narrow for the legend over it");
