@@ -255,6 +255,25 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->check(interval(1, 1 << 24))
             ->capture_default_str()
             ->type_name("N");
+        app.add_flag("--legend", a.legend,
+                     "draw a colour legend into the PNG (render -o, the viewer's screenshots): the TF's colour bar with "
+                     "its opacity, ticks (decades for --scale log), the field's name and --legend-units; the viewer "
+                     "shows it over the picture");
+        app.add_option("--legend-place", a.legendPlace,
+                       "side: in a strip right of the picture (the PNG gets wider, no data hidden); overlay: over the "
+                       "picture's lower right corner on a backdrop")
+            ->check(CLI::IsMember({"side", "overlay"}))
+            ->capture_default_str()
+            ->type_name("side|overlay");
+        app.add_option("--legend-title", a.legendTitle, "the legend's title (default: the field's name)")
+            ->type_name("TEXT");
+        app.add_option("--legend-units", a.legendUnits,
+                       "units shown under the title, e.g. 'g/cm^3' (no reader stores units; default: none)")
+            ->type_name("TEXT");
+        app.add_option("--legend-font", a.legendFont,
+                       "TrueType/OpenType font of the legend's text (default: Debian's "
+                       "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf)")
+            ->type_name("FILE");
     }
     app.add_option("--tf-range", a.tfRange,
                    "map the TF's node range onto [LO, HI] (presets: default the field's range)")
@@ -439,6 +458,11 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (use("--kd-leaves")) s.structure.kdLeaves = uint32_t(a.kdLeaves);
     if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
     if (!autoTraversal) s.structure.validate();
+    if (use("--legend")) s.legend.show = a.legend;
+    if (use("--legend-place")) s.legend.place = session::parseLegendPlace(a.legendPlace);
+    if (given(app, "--legend-title")) s.legend.title = a.legendTitle;
+    if (given(app, "--legend-units")) s.legend.units = a.legendUnits;
+    if (given(app, "--legend-font")) s.legend.font = a.legendFont;
     return d;
 }
 
@@ -449,6 +473,7 @@ std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& inp
     if (given(app, "--session")) in.push_back({"--session", a.session});
     std::error_code ec;
     if (given(app, "--tf") && std::filesystem::exists(a.tf, ec)) in.push_back({"--tf", a.tf});
+    if (given(app, "--legend-font")) in.push_back({"--legend-font", a.legendFont});
     return in;
 }
 

@@ -61,6 +61,8 @@ struct PictureArgs {
     double densityScale = 1, g = 0;
     std::vector<double> ambient, background, lightDir, lightPoint;
     std::vector<double> crop, clip;  // --crop X0 Y0 Z0 X1 Y1 Z1, --clip PX PY PZ NX NY NZ (repeatable)
+    bool legend = false;  // --legend, --legend-place, --legend-title, --legend-units, --legend-font
+    std::string legendPlace = "side", legendTitle, legendUnits, legendFont;
 };
 // Every picture option; bench passes subset = true to leave out what it sets per run (mode, TF,
 // structure, spp, session, dt, dvr shading).
@@ -93,7 +95,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
                                             const PictureArgs& a);
 
 // The files a picture command reads, by the option that names them: the input, --session, --tf
-// (when a file) and extra (e.g. --script), for checkOutputs before any work.
+// (when a file), --legend-font and extra (e.g. --script), for checkOutputs before any work.
 std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& input, const PictureArgs& a,
                                      std::vector<NamedPath> extra = {});
 

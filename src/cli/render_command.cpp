@@ -21,6 +21,7 @@
 #include "gpu/shader_library.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "session/legend_image.h"
 
 #if AMRVK_MPI
 #include "mpi/data_parallel.h"
@@ -148,6 +149,14 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     session::PictureDescription description = describePicture(app, input, read, pic);
     AMRVK_CHECK(varianceFile.empty() || description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
                 description.session.spp, ")");
+    // The legend's font is read before any work (a missing font is one line, not a lost render).
+    std::unique_ptr<Font> legendFont;
+    if (description.session.legend.show) {
+        AMRVK_CHECK(ext == ".png" || app.count("--legend") == 0, "--legend: only PNG images get a legend (-o ", output,
+                    " keeps the linear radiance)");
+        if (ext == ".png") legendFont = session::openLegendFont(description.session.legend);
+        else if (speaks) std::fprintf(stderr, "amrvk: the session's legend is drawn into PNG images only\n");
+    }
     Timer readTimer;
     std::shared_ptr<const scene::Volume> loaded;
 #if AMRVK_MPI
@@ -174,6 +183,9 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
                               }});
     picture.report.readSeconds = readSeconds;
     const session::Session& s = picture.session;
+    if (legendFont)  // fits the picture (throws the size it needs), before the render
+        session::legendLayout(s.settings.width, s.settings.height, session::legendContent(s), s.legend.place,
+                              *legendFont);
     render::Renderer& renderer = *picture.renderer;
     const scene::StructureConfig& config = renderer.config();
     const scene::RenderSettings& rs = renderer.settings();
@@ -209,7 +221,10 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    writeImage(output, out.mean);
+    if (legendFont)
+        writeImage(output, session::drawLegend(out.mean, session::legendContent(s), s.legend.place, *legendFont));
+    else
+        writeImage(output, out.mean);
     if (!varianceFile.empty())
         writeImage(varianceFile, scene::varianceImage(scene::varianceOfMean(out), out.mean.width, out.mean.height));
 

@@ -7,6 +7,7 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "session/legend_image.h"
 #include "session/picture_description.h"
 #include "session/script.h"
 #include "viewer/viewer_app.h"
@@ -81,6 +82,9 @@ int runView(const std::vector<std::string>& argv) {
         {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}};
     checkOutputs(outputs, pictureInputs(app, input, pic, {{"--script", script}}));
     vo.start = describePicture(app, input, read, pic);
+    // A PNG screenshot with the legend needs its font: checked before anything is read.
+    if (vo.start.session.legend.show && std::filesystem::path(screenshot).extension() == ".png")
+        session::openLegendFont(vo.start.session.legend);
     AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
                 "--traversal auto is for amrvk render (the viewer switches structures live)");
     if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on

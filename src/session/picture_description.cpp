@@ -75,6 +75,13 @@ std::string renderCommandLine(const PictureDescription& d, const std::string& tf
     c += scene::settingsOptions(s.settings, !d.fitCamera);
     c += " --spp " + std::to_string(s.spp > 0 ? s.spp : 64);
     c += scene::structureOptions(s.structure);
+    if (s.legend.show) {
+        c += " --legend";
+        if (s.legend.place != LegendPlace::Side) c += std::string(" --legend-place ") + legendPlaceName(s.legend.place);
+    }
+    if (!s.legend.title.empty()) c += " --legend-title " + shellQuote(s.legend.title);
+    if (!s.legend.units.empty()) c += " --legend-units " + shellQuote(s.legend.units);
+    if (!s.legend.font.empty()) c += " --legend-font " + shellQuote(s.legend.font);
     c += " -o " + shellQuote(output);
     return c;
 }

@@ -32,7 +32,8 @@ const std::map<std::string, Signature>& signatures() {
         {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
         {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}},
         {"scale", {1, {}}},       {"log-floor", {1, {0}}},   {"load-session", {1, {}}},
-        {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}}};
+        {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}},
+        {"legend", {1, {}}}};
     return table;
 }
 
@@ -108,6 +109,7 @@ void checkValues(const ScriptAction& a) {
         c.clips.push_back({{a.number(0), a.number(1), a.number(2)}, {a.number(3), a.number(4), a.number(5)}});
         scene::validateCutAway(c);
     }
+    else if (n == "legend") AMRVK_CHECK(a.args[0] == "on" || a.args[0] == "off", "'", a.args[0], "': expected on or off");
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");

@@ -14,6 +14,7 @@
 //   save-session FILE                the current state as a session file (render it with amrvk render --session)
 //   load-session FILE                as the panel's "load session": the same data (another scale is read
 //                                    again), else refused with the reason
+//   legend on|off                    the colour legend over the picture and in PNG screenshots
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,

@@ -137,6 +137,12 @@ std::string sessionJson(const Session& s) {
                       {"kdLeaves", s.structure.kdLeaves},
                       {"denseMaxMiB", s.structure.denseMaxBytes >> 20}};
     j["transferFunction"] = Json::parse(scene::paraViewPresetJson(s.tf)).at(0);
+    if (!(s.legend == Legend{}))
+        j["legend"] = {{"show", s.legend.show},
+                       {"place", legendPlaceName(s.legend.place)},
+                       {"title", s.legend.title},
+                       {"units", s.legend.units},
+                       {"font", s.legend.font}};
     return j.dump(2) + "\n";
 }
 
@@ -277,6 +283,16 @@ Session parseSession(const std::string& text, const fs::path& path) {
 
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
+
+    if (top.has("legend")) {
+        const Reader L = top.child("legend");
+        AMRVK_CHECK(L.json().is_object(), L.where(), ": expected an object");
+        s.legend.show = L.flag("show", false);
+        s.legend.place = L.named("place", "side", parseLegendPlace);
+        s.legend.title = L.text("title", "");
+        s.legend.units = L.text("units", "");
+        s.legend.font = L.text("font", "");
+    }
     return s;
 }
 

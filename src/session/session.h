@@ -2,7 +2,7 @@
 // A session: everything that makes a picture, in one JSON file that both the viewer (save/load)
 // and `amrvk render --session` read, so a picture explored interactively renders the same offline.
 // Schema (docs/sessions.md): {"amrvk": "session", "version": 1, "input", "read", "field",
-// "camera", "image", "render", "lights", "structure", "transferFunction"}. The input path is
+// "camera", "image", "render", "lights", "structure", "transferFunction", "legend"}. The input path is
 // stored absolute; a relative one in a hand-written file is taken relative to the session file.
 #include <cstdint>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "scene/render_settings.h"
 #include "scene/structure_config.h"
 #include "scene/transfer_function.h"
+#include "session/legend.h"
 
 namespace amrvk::session {
 
@@ -23,6 +24,7 @@ struct Session {
     uint32_t spp = 64;               // render: samples per pixel; viewer: stop accumulating there (0: run on)
     scene::StructureConfig structure;  // backend may be Auto
     scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)
+    Legend legend;                   // the colour legend (session/legend.h)
 };
 
 // The JSON text of a session (pretty, keys in schema order).

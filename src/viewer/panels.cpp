@@ -206,6 +206,7 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
                 "values below it (and every value <= 0) become log10 of it; 0: the field's smallest "
                 "positive value (Enter applies)");
     }
+    ImGui::Checkbox("legend", &p.edit.legend.show);
     float range[2] = {tf.lo(), tf.hi()};
     if (ImGui::InputFloat2("value range", range, "%.5g", ImGuiInputTextFlags_EnterReturnsTrue)) {
         try {

@@ -20,6 +20,7 @@
 #include "core/image_io.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "core/strings.h"
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
@@ -30,9 +31,11 @@
 #include "session/data_change.h"
 #include "session/file_watcher.h"
 #include "session/frame_budget.h"
+#include "session/legend_image.h"
 #include "session/script.h"
 #include "session/viewer_layout.h"
 #include "viewer/imgui_layer.h"
+#include "viewer/legend_overlay.h"
 #include "viewer/panels.h"
 #include "viewer/swapchain.h"
 #include "viewer/window.h"
@@ -165,6 +168,8 @@ private:
     std::vector<Reset> mResets;
     gpu::Buffer mCaptureBuffer;
     double mLastX = 0, mLastY = 0;
+    std::unique_ptr<Font> mLegendFont;  // the PNG legend's font, opened at the first screenshot with the legend
+    std::string mLegendFontFile;        // the legend.font it was opened for
 };
 
 ViewerApp::ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume> volume)
@@ -395,6 +400,8 @@ bool ViewerApp::frame() {
         for (const scene::TfChannels& c : mColorMaps) mPanel.colorMapNames.push_back(c.name);
         PanelRequests req;
         drawPanels(mPanel, req);
+        const UiRect pr = toUi(mLayout.picture);
+        drawLegendOverlay(mState, ImVec2(pr.x, pr.y), ImVec2(pr.x + pr.width, pr.y + pr.height));
         try {
             applyPanelEdits(req);
         } catch (const Error& e) {
@@ -478,6 +485,7 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         mState.settings = e.settings;
     }
     mState.spp = e.spp;
+    mState.legend = e.legend;  // drawn over the picture and into PNG screenshots; the picture is unchanged
     if (req.screenshot) screenshot(mPanel.screenshotPath);
     if (req.saveSession) saveSessionFile(mPanel.sessionPath);
     if (req.loadSession) loadSessionFile(mPanel.sessionPath);
@@ -640,6 +648,8 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         saveSessionFile(a.args[0]);
     } else if (n == "load-session") {
         loadSessionFile(a.args[0]);
+    } else if (n == "legend") {
+        mState.legend.show = a.args[0] == "on";
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {
@@ -839,7 +849,16 @@ void ViewerApp::finishSample() {
 
 void ViewerApp::screenshot(const fs::path& file) {
     finishSample();
-    writeImage(file, mRenderer->output().mean);
+    if (mState.legend.show && toLower(file.extension().string()) == ".png") {
+        if (!mLegendFont || mLegendFontFile != mState.legend.font) {
+            mLegendFont = session::openLegendFont(mState.legend);
+            mLegendFontFile = mState.legend.font;
+        }
+        writeImage(file, session::drawLegend(mRenderer->output().mean, session::legendContent(mState),
+                                             mState.legend.place, *mLegendFont));
+    } else {
+        writeImage(file, mRenderer->output().mean);
+    }
     mPanel.message = "saved " + file.string() + " (" + std::to_string(mRenderer->accumulatedSpp()) + " spp)";
     std::fprintf(stderr, "amrvk view: %s\n", mPanel.message.c_str());
 }
