@@ -28,6 +28,7 @@
 #include "render/display_pass.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "session/cut_handles.h"
 #include "session/data_change.h"
 #include "session/file_watcher.h"
 #include "session/frame_budget.h"
@@ -35,6 +36,7 @@
 #include "session/script.h"
 #include "session/viewer_layout.h"
 #include "viewer/imgui_layer.h"
+#include "viewer/cut_overlay.h"
 #include "viewer/legend_overlay.h"
 #include "viewer/panels.h"
 #include "viewer/swapchain.h"
@@ -158,6 +160,7 @@ private:
     uint64_t mValidationBefore = 0;
     scene::RenderSettings mApplied;  // what the renderer was last given
     int mDragButton = -1;            // the mouse button that started the current drag, or -1
+    int mCutFace = -1;               // the crop-box face whose handle is being dragged, or -1
     bool mDragPans = false;          // the drag began as shift+left: pan
     std::string mCapturePath;        // the next presented frame is saved there (UI included)
     struct Reset {
@@ -402,6 +405,7 @@ bool ViewerApp::frame() {
         drawPanels(mPanel, req);
         const UiRect pr = toUi(mLayout.picture);
         drawLegendOverlay(mState, ImVec2(pr.x, pr.y), ImVec2(pr.x + pr.width, pr.y + pr.height));
+        drawCutOverlay(mState, ImVec2(pr.x, pr.y), ImVec2(pr.x + pr.width, pr.y + pr.height), mCutFace);
         try {
             applyPanelEdits(req);
         } catch (const Error& e) {
@@ -506,18 +510,47 @@ void ViewerApp::handleInput() {
     // ImGui decides per frame whether the pointer or keyboard is its own; the camera takes the mouse
     // only over the picture, and a drag that starts there stays a camera drag when it crosses a panel.
     const bool uiMouse = mImGui->wantsMouse(), uiKeys = mImGui->wantsKeyboard();
+    // A cursor position (window coordinates) in the pixels of the image the picture shows.
+    const scene::RenderSettings& rs = mState.settings;
+    const double toImageX = double(rs.width) / std::max(picture.width, 1), toImageY = double(rs.height) / std::max(picture.height, 1);
+    auto inImage = [&](double x, double y) {
+        return glm::dvec2((x * toPixelsX - picture.x) * toImageX, (y * toPixelsY - picture.y) * toImageY);
+    };
     for (const InputEvent& e : mWindow->takeEvents()) {
         switch (e.kind) {
             case InputEvent::Kind::Button:
+                // A left press on a crop-box handle drags that face (docs/cut-aways.md), not the camera.
+                if (e.action == GLFW_PRESS && e.code == GLFW_MOUSE_BUTTON_LEFT && mDragButton < 0 && !uiMouse &&
+                    overPicture(e.x, e.y) && rs.cut.crop) {
+                    const double radius = kCutHandleRadius * toImageX;
+                    mCutFace = session::CutHandles::pick(rs.camera, rs.width, rs.height, *rs.cut.crop, inImage(e.x, e.y), radius);
+                    if (mCutFace >= 0) {
+                        mDragButton = e.code;
+                        mLastX = e.x;
+                        mLastY = e.y;
+                        break;
+                    }
+                }
                 if (e.action == GLFW_PRESS && mDragButton < 0 && !uiMouse && overPicture(e.x, e.y)) {
                     mDragButton = e.code;
                     mDragPans = e.code == GLFW_MOUSE_BUTTON_MIDDLE || (e.mods & GLFW_MOD_SHIFT);
                 } else if (e.action == GLFW_RELEASE && e.code == mDragButton) {
                     mDragButton = -1;
+                    mCutFace = -1;
                 }
                 break;
             case InputEvent::Kind::Cursor:
-                if (mDragButton >= 0) {
+                if (mDragButton >= 0 && mCutFace >= 0) {
+                    // The face follows the pointer along its normal, inside the data, never past the
+                    // opposite face (a thousandth of the box's diagonal apart at least).
+                    const glm::dvec2 delta = inImage(e.x, e.y) - inImage(mLastX, mLastY);
+                    const glm::dvec3 lo = glm::min(mVolume->worldLo(), mVolume->worldHi()),
+                                     hi = glm::max(mVolume->worldLo(), mVolume->worldHi());
+                    scene::CropBox& box = *mState.settings.cut.crop;
+                    box = session::CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta,
+                                                    glm::min(lo, box.lo), glm::max(hi, box.hi), 1e-3 * glm::length(hi - lo));
+                    mInteracting = true;
+                } else if (mDragButton >= 0) {
                     const double dx = e.x - mLastX, dy = e.y - mLastY;
                     scene::Camera& cam = mState.settings.camera;
                     if (mDragPans)

@@ -26,6 +26,7 @@
 #include "image_compare.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "session/cut_handles.h"
 #include "session/session.h"
 #include "test_data.h"
 
@@ -300,6 +301,57 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
     EXPECT_NEAR(glm::length(s.settings.camera.eye - s.settings.camera.target), glm::length(start.eye - start.target),
                 1e-6 * glm::length(start.eye - start.target))
         << "an orbit keeps the distance";
+}
+
+TEST_F(ViewerGpu, DraggingACropHandleMovesItsFaceNotTheCamera) {
+    if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
+    const fs::path dir = test::scratchDir() / "viewer-crop-handle";
+    fs::create_directories(dir);
+    // The 64x48 image fills 360x270 pixels at (0, 165) beside the default 440-pixel panel of an
+    // 800x600 window (session/viewer_layout.h); the upper x face's handle is found as the viewer
+    // finds it, and the pointer drags it 40 pixels along the face normal's screen direction.
+    const amr::Model m = amr::readModel(sample(), {});
+    const amr::ModelSummary sum = amr::summarize(m);
+    const scene::Camera cam = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
+                                                   m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
+    const scene::CropBox box{{100, 100, 100}, {400, 400, 400}};
+    const double scale = 360.0 / 64.0;
+    const auto handle = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1));
+    const auto further = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1) + glm::dvec3(1, 0, 0));
+    ASSERT_TRUE(handle && further);
+    const glm::dvec2 along = glm::normalize(*further - *handle);
+    const int x0 = int(std::lround(handle->x * scale)), y0 = int(std::lround(165 + handle->y * scale));
+    const int x1 = int(std::lround(x0 + 40 * along.x)), y1 = int(std::lround(y0 + 40 * along.y));
+    test::writeAll(dir / "drive.sh",
+                   "set -u\n"
+                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --crop 100 100 100 400 400 400 "
+                   "--save-session \"$3/final.json\" --validation & pid=$!\n"
+                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"
+                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; done\n"
+                   "sleep 3\n"
+                   "xdotool mousemove " + std::to_string(x0) + " " + std::to_string(y0) + " sleep 0.3 mousedown 1 sleep 0.3 mousemove " +
+                       std::to_string((x0 + x1) / 2) + " " + std::to_string((y0 + y1) / 2) + " sleep 0.3 mousemove " +
+                       std::to_string(x1) + " " + std::to_string(y1) + " sleep 0.3 mouseup 1\n"
+                   "sleep 1\n"
+                   "xdotool key q\n"
+                   "wait $pid; rc=$?\n"
+                   "kill $watchdog 2>/dev/null\n"
+                   "exit $rc\n");
+    const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) + " " + sample() + " " +
+                           dir.string(),
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const session::Session s = session::loadSession(dir / "final.json");
+    EXPECT_EQ(s.settings.camera, cam) << "a press on a handle does not orbit";
+    ASSERT_TRUE(s.settings.cut.crop.has_value());
+    const scene::CropBox& got = *s.settings.cut.crop;
+    // 40 pixels along the normal's screen direction: the world distance whose projection moves the
+    // handle that far (the drag's own rule; perspective changes it a little as the face moves).
+    const double expected = 40.0 / scale / glm::length(*further - *handle);
+    EXPECT_NEAR(got.hi.x - 400.0, expected, 0.25 * expected + 1.0) << "the upper x face followed the pointer";
+    EXPECT_EQ(got.lo, box.lo);
+    EXPECT_EQ(got.hi.y, 400.0);
+    EXPECT_EQ(got.hi.z, 400.0);
 }
 
 TEST_F(ViewerGpu, ClosingDuringALongRebuildHidesTheWindowAtOnce) {
