@@ -23,6 +23,7 @@
 #include "picture/picture.h"
 #include "render/renderer.h"
 #include "scene/transfer_function.h"
+#include "session/legend_image.h"
 #include "session/orbit_camera.h"
 #include "session/series.h"
 
@@ -180,6 +181,14 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     outputs.push_back({framesOption, frames.manifest});
     for (uint32_t k = 0; k < n; ++k) outputs.push_back({framesOption, frames.frame(k)});
     checkOutputs(outputs, reads);
+    // A legend goes into every frame (PNG only), with one range for the whole series; its font is
+    // read before any work.
+    std::unique_ptr<Font> legendFont;
+    if (base.session.legend.show) {
+        AMRVK_CHECK(frames.frame(0).extension() == ".png" || !given(app, "--legend"), "--legend: only PNG frames get a legend (",
+                    framesOption, " ", framesText, ")");
+        if (frames.frame(0).extension() == ".png") legendFont = session::openLegendFont(base.session.legend);
+    }
 
     // What a re-run of the same command skips: frames its manifest records as done and that exist.
     std::set<std::string> printed;  // each note once, not once per output
@@ -280,7 +289,11 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
             doneSpp += spp;
             AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                         " error(s); last: ", ctx.lastValidationMessage());
-            writeImage(frames.frame(k), out.mean);
+            if (legendFont)
+                writeImage(frames.frame(k), session::drawLegend(out.mean, session::legendContent(picture->session),
+                                                                picture->session.legend.place, *legendFont));
+            else
+                writeImage(frames.frame(k), out.mean);
             manifest.done.insert(k);
             saveFrameManifest(frames.manifest, manifest);
             stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});

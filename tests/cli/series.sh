@@ -49,6 +49,19 @@ print("ok: union range", j["tfRange"], "over", ranges)
 PY
 check grep -q "wrote frames/f_%02d.png (3 frames: 3 rendered, 0 already written" s.out
 
+# ---- a legend in every frame (one range for the series, so every frame's legend is the same) and a cut ----
+"$amrvk" render 'out_*.cells' --size 96x64 --spp 2 --grid 8 --legend --crop 0 0 0 256 256 128 -o 'leg/l_%d.png' >/dev/null 2>leg.err || { echo "FAIL: legend series: $(tail -1 leg.err)"; fail=1; }
+check "$py" - <<'PY'
+import struct
+sizes = []
+for k in range(3):
+    d = open("leg/l_%d.png" % k, "rb").read()
+    sizes.append(struct.unpack(">II", d[16:24]))
+assert len(set(sizes)) == 1 and sizes[0][0] > 96 and sizes[0][1] == 64, sizes  # the picture, and a strip beside it
+print("ok: legend frames", sizes[0])
+PY
+expect "--legend: only PNG frames get a legend" -- render 'out_*.cells' "${pic[@]}" --legend -o 'x/x_%d.pfm'
+
 # ---- the first output's range ----
 "$amrvk" render 'out_*.cells' "${pic[@]}" --series-range first -o 'first/f_%d.png' --json first.json >/dev/null 2>&1 || fail=1
 check "$py" -c '
