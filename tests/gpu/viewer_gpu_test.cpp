@@ -512,7 +512,7 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
 
 // "image size = picture area" (camera panel, clicked with xdotool at 1920x1080: the camera header,
 // then the checkbox; positions of ImGui 1.86's default font with the statistics and TF sections
-// open) makes the rendered image the area beside the panel, so the camera's aspect follows it.
+// open and the cut-away header above the camera's; a new section above it moves them) makes the rendered image the area beside the panel, so the camera's aspect follows it.
 TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-image-follows";
@@ -525,8 +525,8 @@ TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
                    "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
                    "done\n"
                    "sleep 3\n"
-                   "xdotool mousemove 1540 660; sleep 0.4; xdotool click 1; sleep 0.6\n"
-                   "xdotool mousemove 1497 752; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 1540 706; sleep 0.4; xdotool click 1; sleep 0.6\n"
+                   "xdotool mousemove 1497 798; sleep 0.4; xdotool click 1; sleep 0.6\n"
                    "xdotool mousemove 100 1070; sleep 1\n"
                    "xdotool key q\n"
                    "wait $pid; rc=$?\n"
