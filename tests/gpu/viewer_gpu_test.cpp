@@ -512,7 +512,8 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
 
 // "image size = picture area" (camera panel, clicked with xdotool at 1920x1080: the camera header,
 // then the checkbox; positions of ImGui 1.86's default font with the statistics and TF sections
-// open and the cut-away header above the camera's; a new section above it moves them) makes the rendered image the area beside the panel, so the camera's aspect follows it.
+// open and the cut-away header above the camera's; a new section above it moves them) makes the
+// rendered image the area beside the panel, so the camera's aspect follows it.
 TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-image-follows";
