@@ -47,7 +47,7 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     for (const auto& [key, value] : volume->model.attributes)
         if (key == "logFloored") note("log scale: " + value + " (values <= 0, or below --log-floor, have no logarithm)");
     if (const auto& crop = p.session.settings.cut.crop) {
-        const glm::dvec3 lo = glm::min(volume->worldLo(), volume->worldHi()), hi = glm::max(volume->worldLo(), volume->worldHi());
+        const glm::dvec3 lo = volume->worldMin(), hi = volume->worldMax();
         if (glm::any(glm::lessThan(crop->hi, lo)) || glm::any(glm::greaterThan(crop->lo, hi)))
             note(strCat("--crop keeps nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ",
                         hi.y, " ", hi.z, "): the picture shows only the background"));

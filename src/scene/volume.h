@@ -35,6 +35,10 @@ struct Volume {
     // World-space corners of the bounds.
     glm::dvec3 worldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)); }
     glm::dvec3 worldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)); }
+    // The same box with its lower corner below the upper on every axis (a negative voxel spacing
+    // swaps worldLo and worldHi on that axis): what cut-aways are checked and clamped against.
+    glm::dvec3 worldMin() const { return glm::min(worldLo(), worldHi()); }
+    glm::dvec3 worldMax() const { return glm::max(worldLo(), worldHi()); }
     // Host bytes of the model (cells and loaded fields) and the bricks.
     uint64_t modelBytes() const;
 

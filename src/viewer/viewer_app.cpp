@@ -395,8 +395,8 @@ bool ViewerApp::frame() {
         mPanel.stats = &mStats;
         mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
-        mPanel.worldLo = glm::min(mVolume->worldLo(), mVolume->worldHi());
-        mPanel.worldHi = glm::max(mVolume->worldLo(), mVolume->worldHi());
+        mPanel.worldLo = mVolume->worldMin();
+        mPanel.worldHi = mVolume->worldMax();
         mPanel.canUndo = mTfHistory.canUndo();
         mPanel.canRedo = mTfHistory.canRedo();
         mPanel.colorMapNames.clear();
@@ -540,12 +540,11 @@ void ViewerApp::handleInput() {
                 }
                 break;
             case InputEvent::Kind::Cursor:
-                if (mDragButton >= 0 && mCutFace >= 0) {
+                if (mDragButton >= 0 && mCutFace >= 0 && mState.settings.cut.crop) {
                     // The face follows the pointer along its normal, inside the data, never past the
                     // opposite face (a thousandth of the box's diagonal apart at least).
                     const glm::dvec2 delta = inImage(e.x, e.y) - inImage(mLastX, mLastY);
-                    const glm::dvec3 lo = glm::min(mVolume->worldLo(), mVolume->worldHi()),
-                                     hi = glm::max(mVolume->worldLo(), mVolume->worldHi());
+                    const glm::dvec3 lo = mVolume->worldMin(), hi = mVolume->worldMax();
                     scene::CropBox& box = *mState.settings.cut.crop;
                     box = session::CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta,
                                                     glm::min(lo, box.lo), glm::max(hi, box.hi), 1e-3 * glm::length(hi - lo));
