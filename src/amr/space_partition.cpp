@@ -122,10 +122,14 @@ void bisect(const CellCensus& c, const BinBox& box, int parts, std::vector<BinBo
 
 CellCensus censusOf(const std::filesystem::path& path, const ReadOptions& options) {
     CellCensus c;
+    // The log floor once, for both passes here and every rank's readPart (a given --log-floor kept).
+    c.logFloor = logFloorOf(path, options);
+    ReadOptions o = options;
+    o.logFloor = c.logFloor;
     visitCells(
-        path, options, [&](const Model& chunk) { addExtent(c, chunk); }, &c.head);
+        path, o, [&](const Model& chunk) { addExtent(c, chunk); }, &c.head);
     placeBins(c);
-    visitCells(path, options, [&](const Model& chunk) { addCounts(c, chunk.cells); });
+    visitCells(path, o, [&](const Model& chunk) { addCounts(c, chunk.cells); });
     return c;
 }
 

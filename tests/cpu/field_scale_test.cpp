@@ -84,4 +84,16 @@ TEST(FieldScale, ReadersWholeAndStreamedTakeTheSameLogs) {
     const auto [mn, mx] = std::minmax_element(whole.fields[0].values.begin(), whole.fields[0].values.end());
     EXPECT_EQ(c.valueLo, *mn);
     EXPECT_EQ(c.valueHi, *mx);
+    EXPECT_EQ(c.logFloor, double(lo)) << "the floor every rank's readPart takes";
+    // A given --log-floor reaches the census and the parts: a rank's cells equal the whole read's.
+    ro.logFloor = 0.5;
+    const amr::CellCensus given = amr::censusOf(std::filesystem::path(base) += ".cells", ro);
+    EXPECT_EQ(given.logFloor, 0.5);
+    amr::ReadOptions partOptions = ro;
+    partOptions.logFloor = given.logFloor;
+    const amr::Model part = amr::readPart(std::filesystem::path(base) += ".cells", partOptions, given.bounds);
+    const amr::Model wholeGiven = amr::readModel(std::filesystem::path(base) += ".cells", ro);
+    ASSERT_EQ(part.fields[0].values.size(), wholeGiven.fields[0].values.size());
+    EXPECT_EQ(given.valueLo, *std::min_element(wholeGiven.fields[0].values.begin(), wholeGiven.fields[0].values.end()));
+    EXPECT_FLOAT_EQ(given.valueLo, float(std::log10(0.5)));
 }
