@@ -301,7 +301,6 @@ struct Leaf {
 
 // The octs a domain file owns on one level, as the hydro file needs them.
 struct OwnLevel {
-    uint64_t octs = 0;                                 // ncache of ibound == domain
     std::vector<std::pair<uint32_t, uint8_t>> leaves;  // (oct, cell 0..2^ndim-1), in cell order
 };
 
@@ -432,7 +431,6 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
             if (!own) continue;
 
             OwnLevel& mine = amr.own[li];
-            mine.octs = count;
             octsPerLevel[li] += count;
             const double scale = std::ldexp(1.0, l);  // level-l cells per coarse cell
             for (uint64_t i = 0; i < count; ++i) {
@@ -566,15 +564,11 @@ Model readRamses(const fs::path& path, const ReadOptions& options) {
     for (int a = 0; a < mesh.ndim; ++a)
         AMRVK_CHECK((int64_t(mesh.extent[a]) << deepest) <= INT32_MAX, out.dir.string(), ": ", mesh.extent[a],
                     " coarse cells refined to RAMSES level ", deepest, " exceed amrvk's 2^31 voxels per axis");
-    AMRVK_CHECK(deepest - coarsest <= kMaxLevel, out.dir.string(), ": leaves on RAMSES levels ", coarsest, "..",
-                deepest, " span more than ", kMaxLevel, " levels");
     model.cells.reserve(leaves.size());
     for (const Leaf& leaf : leaves) {
         const int shift = deepest - leaf.level;
         model.cells.push_back({glm::ivec3(leaf.index * (int64_t(1) << shift)), shift});
     }
-    if (mesh.ndim == 2)
-        for (Cell& c : model.cells) c.lower.z = 0;
 
     // world = boxlen * position in the domain (code units): a finest cell is boxlen / (extent_x 2^L).
     const double voxel = mesh.boxlen / (double(mesh.extent.x) * std::ldexp(1.0, deepest));

@@ -159,7 +159,6 @@ void enzoSeeds(const fs::path& data) {
     if (!params.empty()) seed("enzo", "dd0018-text", fuzz::joinParts({params, realHierarchy, grids}));
 }
 
-// ---- Chombo ---------------------------------------------------------------------------------
 // ---- RAMSES (the synthetic outputs of the reader tests, tests/ramses_synthetic.h) -------------
 std::string ramsesSeed(const amrvk::test::ramses::Synthetic& s) {
     auto files = amrvk::test::ramses::outputFiles(s);
@@ -181,6 +180,7 @@ void ramsesSeeds() {
     seed("ramses", "synthetic-2d-boundaries", ramsesSeed(S{.ndim = 2, .boundaries = true, .boxlen = 3}));
 }
 
+// ---- Chombo ---------------------------------------------------------------------------------
 // fuzz_chombo (structured): a few byte patterns for its FuzzedDataProvider (libFuzzer finds the
 // rest). fuzz_chombo_bytes: the smaller real file (403 KB), copied at run time.
 void chomboSeeds(const fs::path& data) {
