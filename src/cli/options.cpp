@@ -32,6 +32,12 @@ CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
         text);
 }
 
+// (options.h) Whether `name` is an option of `app` and was given on the command line.
+bool given(const CLI::App& app, const std::string& name) {
+    const CLI::Option* o = app.get_option_no_throw(name);
+    return o && o->count() > 0;
+}
+
 namespace {
 
 const CLI::Validator kFinite = interval(-INFINITY, INFINITY, true, true).description("FINITE");  // any finite number
@@ -96,12 +102,6 @@ public:
         return wrapText(notes.empty() ? desc : desc + ")", kHelpWidth - get_column_width());
     }
 };
-
-// Whether `name` is an option of `app` and was given on the command line.
-bool given(const CLI::App& app, const std::string& name) {
-    const CLI::Option* o = app.get_option_no_throw(name);
-    return o && o->count() > 0;
-}
 
 std::vector<std::string> traversalChoices() {  // every traversal, then auto
     std::vector<std::string> out;

@@ -99,6 +99,9 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
 std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& input, const PictureArgs& a,
                                      std::vector<NamedPath> extra = {});
 
+// Whether `name` is an option of `app` and was given on the command line.
+bool given(const CLI::App& app, const std::string& name);
+
 // amrvk's help layout (usage, wrapped descriptions with their checks and defaults), the "options"
 // group and -h,--help; every command calls it right after making its App.
 void setUpCommand(CLI::App& app);

@@ -183,9 +183,7 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
                               }});
     picture.report.readSeconds = readSeconds;
     const session::Session& s = picture.session;
-    if (legendFont)  // fits the picture (throws the size it needs), before the render
-        session::legendLayout(s.settings.width, s.settings.height, session::legendContent(s), s.legend.place,
-                              *legendFont);
+    if (legendFont) session::checkLegendFits(s, *legendFont);  // before the render
     render::Renderer& renderer = *picture.renderer;
     const scene::StructureConfig& config = renderer.config();
     const scene::RenderSettings& rs = renderer.settings();
@@ -221,10 +219,7 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    if (legendFont)
-        writeImage(output, session::drawLegend(out.mean, session::legendContent(s), s.legend.place, *legendFont));
-    else
-        writeImage(output, out.mean);
+    session::writePicture(output, out.mean, s, legendFont.get());
     if (!varianceFile.empty())
         writeImage(varianceFile, scene::varianceImage(scene::varianceOfMean(out), out.mean.width, out.mean.height));
 

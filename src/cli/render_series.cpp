@@ -34,8 +34,6 @@ namespace amrvk::cli {
 
 namespace {
 
-bool given(const CLI::App& app, const char* name) { return app.count(name) > 0; }
-
 // Where the series' TF range comes from.
 enum class RangeFrom { Given, Session, First, Union };
 const char* rangeFromName(RangeFrom r) {
@@ -185,9 +183,10 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     // read before any work.
     std::unique_ptr<Font> legendFont;
     if (base.session.legend.show) {
-        AMRVK_CHECK(frames.frame(0).extension() == ".png" || !given(app, "--legend"), "--legend: only PNG frames get a legend (",
-                    framesOption, " ", framesText, ")");
-        if (frames.frame(0).extension() == ".png") legendFont = session::openLegendFont(base.session.legend);
+        const bool png = frames.extension == ".png";
+        AMRVK_CHECK(png || !given(app, "--legend"), "--legend: only PNG frames get a legend (", framesOption, " ",
+                    framesText, ")");
+        if (png) legendFont = session::openLegendFont(base.session.legend);
     }
 
     // What a re-run of the same command skips: frames its manifest records as done and that exist.
@@ -223,7 +222,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     bool resolved = resume && !previous->done.empty();
     // One input (a turntable): its own range is the union; no pass needed.
     const bool rangeOfFirst = rangeFrom == RangeFrom::First || (rangeFrom == RangeFrom::Union && inputs.size() == 1);
-    if (!resolved && rangeFrom == RangeFrom::Union && !rangeOfFirst && manifest.done.size() < n) {
+    if (!resolved && rangeFrom == RangeFrom::Union && !rangeOfFirst) {
         std::string field = base.session.field;
         manifest.tfRange = unionRange(inputs, base.session.read, field);
         base.session.field = field;
@@ -247,6 +246,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
         const uint64_t totalSpp = uint64_t(todo.size()) * spp;
         uint64_t doneSpp = 0;
         std::optional<picture::Picture> picture;  // one output in memory at a time
+        size_t readsChecked = 0;  // inputFilesRead() entries already checked against the outputs
         std::string pictureInput;
         for (const uint32_t k : todo) {
             const std::string& input = frameInputs[k];
@@ -255,8 +255,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                 picture.reset();  // released before the next output is read
                 session::PictureDescription d = base;
                 d.session.input = input;
-                if (manifest.tfRange && (rangeFrom == RangeFrom::First || rangeFrom == RangeFrom::Union))
-                    d.dataRange = manifest.tfRange;
+                d.dataRange = manifest.tfRange;  // a given --tf-range wins over it in resolvePicture
                 if (resolved) {
                     d.session.field = manifest.field;
                     d.fitCamera = false;
@@ -265,8 +264,12 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                 }
                 bar.finish();
                 std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
-                checkOutputs(outputs, inputFilesRead());  // no frame is a file an output was read from
+                // No frame is a file an output was read from; the outputs are fixed, so only new reads.
+                const std::vector<NamedPath> filesRead = inputFilesRead();
+                checkOutputs(outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
+                readsChecked = filesRead.size();
                 picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
+                if (legendFont) session::checkLegendFits(picture->session, *legendFont);  // before the render
                 pictureInput = input;
                 if (!resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
                     manifest.field = picture->session.field;
@@ -289,11 +292,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
             doneSpp += spp;
             AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                         " error(s); last: ", ctx.lastValidationMessage());
-            if (legendFont)
-                writeImage(frames.frame(k), session::drawLegend(out.mean, session::legendContent(picture->session),
-                                                                picture->session.legend.place, *legendFont));
-            else
-                writeImage(frames.frame(k), out.mean);
+            session::writePicture(frames.frame(k), out.mean, picture->session, legendFont.get());
             manifest.done.insert(k);
             saveFrameManifest(frames.manifest, manifest);
             stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});

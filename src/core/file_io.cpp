@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <algorithm>
+#include <map>
 #include <mutex>
 #include <optional>
 
@@ -271,11 +272,22 @@ void AtomicFileWriter::commit() {
 }
 
 void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
-    struct Out {
+    // Each input resolved once (a missing input is reported when it is read), and the outputs seen
+    // by the file they write (links followed; a new file: its canonical directory + name), the first
+    // kept: a series checks thousands of frames against its inputs.
+    struct In {
         const NamedPath* named;
-        fs::path canonical;  // the file written (links followed; a new file: its canonical directory + name)
+        fs::path canonical;
+        bool directory;
     };
-    std::vector<Out> seen;
+    std::vector<In> resolved;
+    for (const NamedPath& in : inputs) {
+        if (in.path.empty()) continue;
+        std::error_code ec;
+        fs::path input = fs::canonical(in.path, ec);
+        if (!ec) resolved.push_back({&in, input, fs::is_directory(input)});
+    }
+    std::map<fs::path, const NamedPath*> seen;
     for (const NamedPath& o : outputs) {
         if (o.path.empty()) continue;
         const std::string what = o.option + " " + o.path.string();
@@ -294,23 +306,21 @@ void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<Named
         if (kind != OutputKind::WriteThrough)
             AMRVK_CHECK(::access(canonical.parent_path().c_str(), W_OK) == 0, what, ": cannot write (directory ",
                         canonical.parent_path().string(), " is not writable)");
-        for (const Out& s : seen)
-            AMRVK_CHECK(kind == OutputKind::WriteThrough || s.canonical != canonical, what, " and ", s.named->option, " ",
-                        s.named->path.string(), " are the same file");
-        for (const NamedPath& in : inputs) {
-            if (in.path.empty()) continue;
-            std::error_code e2;
-            const fs::path input = fs::canonical(in.path, e2);
-            if (e2) continue;  // a missing input is reported when it is read
-            AMRVK_CHECK(input != canonical, what, " is the input ", in.option, " ", in.path.string(),
-                        " (refused: it would be overwritten)");
-            if (fs::is_directory(input)) {
-                const auto [end, _] = std::mismatch(input.begin(), input.end(), canonical.begin(), canonical.end());
-                AMRVK_CHECK(end != input.end(), what, " lies inside the input ", in.option, " ", in.path.string(),
-                            " (refused)");
+        if (kind != OutputKind::WriteThrough)
+            if (const auto same = seen.find(canonical); same != seen.end())
+                AMRVK_CHECK(false, what, " and ", same->second->option, " ", same->second->path.string(),
+                            " are the same file");
+        for (const In& in : resolved) {
+            AMRVK_CHECK(in.canonical != canonical, what, " is the input ", in.named->option, " ",
+                        in.named->path.string(), " (refused: it would be overwritten)");
+            if (in.directory) {
+                const auto [end, _] =
+                    std::mismatch(in.canonical.begin(), in.canonical.end(), canonical.begin(), canonical.end());
+                AMRVK_CHECK(end != in.canonical.end(), what, " lies inside the input ", in.named->option, " ",
+                            in.named->path.string(), " (refused)");
             }
         }
-        seen.push_back({&o, canonical});
+        seen.emplace(canonical, &o);
     }
 }
 

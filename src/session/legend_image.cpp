@@ -198,4 +198,13 @@ Image drawLegend(const Image& picture, const LegendContent& c, LegendPlace place
     return out;
 }
 
+void checkLegendFits(const Session& s, const Font& font) {
+    legendLayout(s.settings.width, s.settings.height, legendContent(s), s.legend.place, font);
+}
+
+void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s, const Font* font) {
+    if (font) writeImage(path, drawLegend(picture, legendContent(s), s.legend.place, *font));
+    else writeImage(path, picture);
+}
+
 }  // namespace amrvk::session

@@ -10,6 +10,7 @@
 // lower right corner on a backdrop of opacity 0.8 (the image keeps its size).
 // Sizes follow the picture's height: the font is H / 22 pixels (9 to 48).
 #include <glm/glm.hpp>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,5 +68,11 @@ inline constexpr float kCheckerDark = 0.25f, kCheckerLight = 0.6f;
 // line when the picture is too small to hold one (the size it needs), or the title or units are
 // longer than 256 bytes or would make the legend wider than 40 font sizes.
 Image drawLegend(const Image& picture, const LegendContent& content, LegendPlace place, const Font& font);
+
+// What `render` and its series frames do with a session's legend: before the render, throw the
+// size it needs when s's picture cannot hold it; after, write the picture to `path` with the legend
+// drawn, or as it is when `font` is null (no legend, or not a PNG).
+void checkLegendFits(const Session& s, const Font& font);
+void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s, const Font* font);
 
 }  // namespace amrvk::session

@@ -89,8 +89,6 @@ SeriesRange parseSeriesRange(std::string_view name) {
     throw Error(strCat("--series-range: '", name, "' is not first or union"));
 }
 
-const char* seriesRangeName(SeriesRange r) { return r == SeriesRange::First ? "first" : "union"; }
-
 std::vector<std::string> planFrames(const std::vector<std::string>& inputs, std::optional<uint32_t> frames,
                                     bool orbitGiven) {
     AMRVK_CHECK(!inputs.empty(), "no input data set (give one, or --session FILE)");

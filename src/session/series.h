@@ -30,7 +30,6 @@ std::vector<std::string> expandInputs(const std::vector<std::string>& args);
 // the union of every output's (a pass over the outputs first, one in memory at a time).
 enum class SeriesRange : uint8_t { First, Union };
 SeriesRange parseSeriesRange(std::string_view name);  // "first" | "union"
-const char* seriesRangeName(SeriesRange r);
 
 // The input of each frame: one frame per input, or `frames` frames of a single input (a
 // turntable). One-line errors: --frames with several inputs, --orbit over one input without

@@ -61,6 +61,8 @@ assert len(set(sizes)) == 1 and sizes[0][0] > 96 and sizes[0][1] == 64, sizes  #
 print("ok: legend frames", sizes[0])
 PY
 expect "--legend: only PNG frames get a legend" -- render 'out_*.cells' "${pic[@]}" --legend -o 'x/x_%d.pfm'
+expect "too small for a legend" -- render 'out_*.cells' "${pic[@]}" --legend -o 'small/s_%d.png'
+check test ! -e small/s_0.png
 
 # ---- the first output's range ----
 "$amrvk" render 'out_*.cells' "${pic[@]}" --series-range first -o 'first/f_%d.png' --json first.json >/dev/null 2>&1 || fail=1
