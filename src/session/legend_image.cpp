@@ -135,16 +135,23 @@ LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendConte
     return L;
 }
 
-double legendBarValue(const LegendLayout& L, const LegendContent& c, int y) {
+double legendRowValue(const LegendContent& c, int row, int rows) {
     if (!(c.hi > c.lo)) return c.lo;
-    return c.hi - (double(y - L.colorBar.y) + 0.5) / double(L.colorBar.height) * (c.hi - c.lo);
+    return c.hi - (double(row) + 0.5) / double(rows) * (c.hi - c.lo);
+}
+
+int legendRowOfTick(const LegendContent& c, double position, int rows) {
+    if (!(c.hi > c.lo)) return rows / 2;
+    const double f = std::clamp((c.hi - position) / (c.hi - c.lo), 0.0, 1.0);
+    return int(std::lround(f * (rows - 1)));
+}
+
+double legendBarValue(const LegendLayout& L, const LegendContent& c, int y) {
+    return legendRowValue(c, y - L.colorBar.y, L.colorBar.height);
 }
 
 int legendTickRow(const LegendLayout& L, const LegendContent& c, double position) {
-    const int rows = L.colorBar.height;
-    if (!(c.hi > c.lo)) return L.colorBar.y + rows / 2;
-    const double f = std::clamp((c.hi - position) / (c.hi - c.lo), 0.0, 1.0);
-    return L.colorBar.y + int(std::lround(f * (rows - 1)));
+    return L.colorBar.y + legendRowOfTick(c, position, L.colorBar.height);
 }
 
 Image drawLegend(const Image& picture, const LegendContent& c, LegendPlace place, const Font& font) {
@@ -163,8 +170,7 @@ Image drawLegend(const Image& picture, const LegendContent& c, LegendPlace place
                                            : glm::vec4(glm::mix(under, kLegendBackdrop, kOverlayOpacity), 1.0f);
         }
     // The bars.
-    float maxAlpha = 0.0f;
-    for (const glm::vec4& node : c.tf.colors()) maxAlpha = std::max(maxAlpha, node.a);
+    const float maxAlpha = c.tf.maxAlpha(c.tf.firstPosition(), c.tf.lastPosition());  // of every node
     const int cell = std::max(2, m.barWidth / 2);
     for (int y = L.colorBar.y; y < L.colorBar.y + L.colorBar.height; ++y) {
         const glm::vec4 tf = c.tf.evaluate(float(legendBarValue(L, c, y)));

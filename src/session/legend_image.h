@@ -53,10 +53,14 @@ struct LegendLayout {
 };
 LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendContent& content, LegendPlace place,
                           const Font& font);
-// The value on the TF axis a colour-bar row shows: hi at the top, lo at the bottom, at row centres
-// (hi - (y + 0.5 - top) / rows * (hi - lo)); lo for a degenerate range.
+// The value on the TF axis row r (0 at the top) of a `rows`-row colour bar shows: hi at the top, lo
+// at the bottom, at row centres (hi - (r + 0.5) / rows * (hi - lo)); lo for a degenerate range.
+// The PNG legend and the viewer's overlay both lay their bars out with these two.
+double legendRowValue(const LegendContent& content, int row, int rows);
+// The row (0 at the top) of a `rows`-row bar a tick at `position` is drawn on.
+int legendRowOfTick(const LegendContent& content, double position, int rows);
+// The same in the pixels of the image drawLegend returns.
 double legendBarValue(const LegendLayout& layout, const LegendContent& content, int y);
-// The row a tick at `position` is drawn on.
 int legendTickRow(const LegendLayout& layout, const LegendContent& content, double position);
 
 // Linear colours of the legend: backdrop, text and tick marks, the checkerboard's two greys.

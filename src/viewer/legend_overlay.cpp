@@ -48,13 +48,11 @@ void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pict
     ImDrawList* dl = ImGui::GetBackgroundDrawList();  // over the picture, under the panels
     const ImVec2 o(std::floor(pictureMax.x - pad - blockWidth), std::floor(pictureMax.y - pad - blockHeight));
     dl->AddRectFilled(o, ImVec2(o.x + blockWidth, o.y + blockHeight), srgb(session::kLegendBackdrop, 0.8f));
-    float maxAlpha = 0;
-    for (const glm::vec4& node : c.tf.colors()) maxAlpha = std::max(maxAlpha, node.a);
+    const float maxAlpha = c.tf.maxAlpha(c.tf.firstPosition(), c.tf.lastPosition());  // of every node
     const float cell = std::max(2.0f, std::floor(bar / 2));
     const float y0 = o.y + barTop, xo = o.x + pad, xc = xo + bar;
     for (int r = 0; r < int(rows); ++r) {
-        const double v = c.hi > c.lo ? c.hi - (r + 0.5) / rows * (c.hi - c.lo) : c.lo;
-        const glm::vec4 tf = c.tf.evaluate(float(v));
+        const glm::vec4 tf = c.tf.evaluate(float(session::legendRowValue(c, r, int(rows))));
         const float opacity = maxAlpha > 0 ? std::clamp(tf.a / maxAlpha, 0.0f, 1.0f) : 0.0f;
         const float y = y0 + float(r);
         dl->AddRectFilled(ImVec2(xc, y), ImVec2(xc + bar, y + 1), srgb(glm::vec3(tf)));
@@ -68,8 +66,7 @@ void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pict
     const ImU32 ink = srgb(session::kLegendInk);
     const float xt = xc + bar;
     for (const session::LegendTick& t : ticks) {
-        const double f = c.hi > c.lo ? std::clamp((c.hi - t.position) / (c.hi - c.lo), 0.0, 1.0) : 0.5;
-        const float y = y0 + std::round(float(f) * (rows - 1)) + 0.5f;
+        const float y = y0 + float(session::legendRowOfTick(c, t.position, int(rows))) + 0.5f;
         dl->AddLine(ImVec2(xt, y), ImVec2(xt + (t.major ? tick : tick / 2), y), ink);
         if (!t.major) continue;
         const float top = y - px * 0.5f;

@@ -60,7 +60,6 @@ struct PanelState {
     std::string gridText;                          // the macrocell grid as typed, applied on Enter
     int draggingNode = -1;                         // opacity node under a drag, between frames
     session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)
-    session::PixelRect pictureRect;                // where the picture is (framebuffer pixels): overlays draw there
     int panelWidth = session::kPanelDefaultWidth;  // out: the width the user dragged the panel to
     session::PixelRect panelPlaced;                // the rectangle last handed to ImGui (a user's drag is kept between)
     glm::dvec3 worldLo{0.0}, worldHi{1.0};         // the data's world bounds (cut-away ranges and handles)
@@ -72,8 +71,8 @@ struct PanelState {
 void drawPanels(PanelState& panel, PanelRequests& requests);
 
 // A layout rectangle (framebuffer pixels) in ImGui's coordinates (window coordinates: they differ
-// on HiDPI screens), for ImGui code that draws over the picture (e.g. a colour legend over
-// PanelState::pictureRect). Call between ImGui's NewFrame and Render.
+// on HiDPI screens), for ImGui code that draws over the picture (the legend and crop-box overlays
+// over the layout's picture rectangle). Call between ImGui's NewFrame and Render.
 struct UiRect {
     float x = 0, y = 0, width = 0, height = 0;
 };

@@ -102,6 +102,16 @@ private:
     // a renderer made for it with next's camera, settings, structure and TF (refitTf: the TF's
     // shape moved onto the new field range). On an error nothing changes and it is thrown.
     void reloadData(const session::Session& next, bool refitTf);
+    // The field's scale and log floor of `read`: on another scale the data is read again (true, the
+    // TF refitted), else the floor is only recorded (false).
+    bool setReadScale(const amr::ReadOptions& read);
+    // What load() and reloadData() give makePicture: the shader library, notes on stderr.
+    picture::Options pictureOptions() const;
+    // A ready picture becomes the state: its renderer and session, the TF in the editor's form (the
+    // undo history starting with it), the histogram over the TF's range.
+    void adoptPicture(picture::Picture&& p);
+    // The histogram under the TF editor, recomputed when the editor's value range differs from it.
+    void updateHistogram();
     // Where the panel and the picture are this frame (framebuffer size, panel width, image size).
     void updateLayout();
     // Runs a long CPU/GPU rebuild on a worker thread while this (the main) thread keeps handling
@@ -189,12 +199,17 @@ void ViewerApp::load() {
     // The same entry as amrvk render: the description fitted to the data, the back-end chosen for
     // the device, the structures built, TF and settings applied.
     picture::Picture p;
-    whileResponsive([&] {
-        p = picture::makePicture(*mCtx, mVolume, mOpt.start,
-                                 {.shaders = gpu::ShaderLibrary(mOpt.shaderDir), .note = [](const std::string& line) {
-                                      std::fprintf(stderr, "amrvk: %s\n", line.c_str());
-                                  }});
-    });
+    whileResponsive([&] { p = picture::makePicture(*mCtx, mVolume, mOpt.start, pictureOptions()); });
+    adoptPicture(std::move(p));
+    noteReset("picture");
+}
+
+picture::Options ViewerApp::pictureOptions() const {
+    return {.shaders = gpu::ShaderLibrary(mOpt.shaderDir),
+            .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }};
+}
+
+void ViewerApp::adoptPicture(picture::Picture&& p) {
     mState = p.session;
     mRenderer = std::move(p.renderer);
     // The editor's form of the TF: the same function, with both channels spanning its range.
@@ -203,9 +218,15 @@ void ViewerApp::load() {
     mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
-    const session::TfEditor tf(mState.tf);
-    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), tf.lo(), tf.hi(), 128);
-    noteReset("picture");
+    mHistogram.reset();  // the data may be new
+    updateHistogram();
+}
+
+void ViewerApp::updateHistogram() {
+    // The histogram depends on the value range only: colour and opacity drags do not recompute it.
+    const session::TfEditor editor(mState.tf);
+    if (!mHistogram || mHistogram->lo != editor.lo() || mHistogram->hi != editor.hi())
+        mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), editor.lo(), editor.hi(), 128);
 }
 
 void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
@@ -219,32 +240,33 @@ void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
     whileResponsive([&] {
         volume = session::loadVolume(d.session);
         if (refitTf) d.session.tf = session::refitTfRange(d.session.tf, volume->valueLo(), volume->valueHi());
-        p = picture::makePicture(*mCtx, volume, d,
-                                 {.shaders = gpu::ShaderLibrary(mOpt.shaderDir), .note = [](const std::string& line) {
-                                      std::fprintf(stderr, "amrvk: %s\n", line.c_str());
-                                  }});
+        p = picture::makePicture(*mCtx, volume, d, pictureOptions());
     });
     // Frames in flight may still read the old accumulation: wait before it goes.
     vkQueueWaitIdle(mCtx->queue());
-    mRenderer = std::move(p.renderer);
     mVolume = std::move(volume);
     mOrbit = session::OrbitCamera(mVolume->worldLo(), mVolume->worldHi());
-    mState = p.session;
-    mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.session.tf)) mRenderer->setTransferFunction(mState.tf.merged());
     // The old TFs are in the other scale's units: the undo history starts again here.
-    mTfHistory = session::TfHistory(mState.tf);
+    adoptPicture(std::move(p));
     mApplied = mState.settings;  // the new renderer has them; the reset is noted below
     mStats.structureSeconds = t.seconds();
-    mStats.combination = mRenderer->config().labelWithGrid();
-    mPanel.gridText = mState.structure.grid;
     mPanel.structureError.clear();
-    const session::TfEditor tf(mState.tf);
-    mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), tf.lo(), tf.hi(), 128);
     mDisplayFresh = false;
     noteReset("scale");
     std::fprintf(stderr, "amrvk view: %s scale, field range [%g, %g]\n", amr::fieldScaleName(mState.read.scale),
                  double(mVolume->valueLo()), double(mVolume->valueHi()));
+}
+
+bool ViewerApp::setReadScale(const amr::ReadOptions& read) {
+    session::Session next = mState;
+    next.read.scale = read.scale;
+    next.read.logFloor = read.logFloor;
+    if (session::dataChange(mState, next).kind == session::DataChange::Rescale) {
+        reloadData(next, true);
+        return true;
+    }
+    mState.read = next.read;  // a floor on the linear scale: recorded, no value changes
+    return false;
 }
 
 void ViewerApp::updateLayout() {
@@ -308,10 +330,7 @@ void ViewerApp::setTransferFunction() {
     const scene::TransferFunction tf = mState.tf.merged();
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
-    // The histogram depends on the value range only: colour and opacity drags do not recompute it.
-    const session::TfEditor editor(mState.tf);
-    if (!mHistogram || mHistogram->lo != editor.lo() || mHistogram->hi != editor.hi())
-        mHistogram = session::fieldHistogram(mVolume->model, mVolume->field(), editor.lo(), editor.hi(), 128);
+    updateHistogram();
     noteReset("transfer function");
 }
 
@@ -391,7 +410,6 @@ bool ViewerApp::frame() {
         updateLayout();
         mImGui->beginFrame();
         mPanel.panelRect = mLayout.panel;
-        mPanel.pictureRect = mLayout.picture;
         mPanel.stats = &mStats;
         mPanel.edit = mState;
         mPanel.histogram = mHistogram ? &*mHistogram : nullptr;
@@ -456,15 +474,10 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     if (!(e.read.scale == mState.read.scale && e.read.logFloor == mState.read.logFloor)) {
         AMRVK_CHECK(std::isfinite(e.read.logFloor) && e.read.logFloor >= 0, "log floor ", e.read.logFloor,
                     " must be >= 0 (0: the field's smallest positive value)");
-        session::Session next = mState;
-        next.read.scale = e.read.scale;
-        next.read.logFloor = e.read.logFloor;
-        if (session::dataChange(mState, next).kind == session::DataChange::Rescale) {
-            reloadData(next, true);
+        if (setReadScale(e.read)) {
             mInteracting = true;
             return;  // this frame's other edits were made on the old scale's state
         }
-        mState.read = next.read;
     }
 
     // Structure first: validated and built, or rejected with its reason shown and nothing changed.
@@ -652,13 +665,10 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
     } else if (n == "mode") {
         mState.settings.mode = scene::parseMode(a.args[0]);
     } else if (n == "scale" || n == "log-floor") {
-        session::Session next = mState;
-        if (n == "scale") next.read.scale = amr::parseFieldScale(a.args[0]);
-        else next.read.logFloor = a.number(0);
-        if (session::dataChange(mState, next).kind == session::DataChange::Rescale)
-            reloadData(next, true);
-        else
-            mState.read = next.read;  // a floor on the linear scale: recorded, no value changes
+        amr::ReadOptions read = mState.read;
+        if (n == "scale") read.scale = amr::parseFieldScale(a.args[0]);
+        else read.logFloor = a.number(0);
+        setReadScale(read);
     } else if (n == "traversal" || n == "sampler" || n == "backend" || n == "grid") {
         if (n == "traversal") structure.traversal = scene::parseTraversal(a.args[0]);
         if (n == "sampler") structure.sampler = scene::parseSampler(a.args[0]);
@@ -963,11 +973,11 @@ void ViewerApp::writeStats() const {
     // The field's scale and the histogram under the TF editor (the range it spans, cells counted).
     j["scale"] = amr::fieldScaleName(mState.read.scale);
     if (mHistogram) {
-        double cells = mHistogram->below + mHistogram->above + mHistogram->nan;
-        for (double c : mHistogram->counts) cells += c;
+        double inRange = 0;  // counts of cells: whole numbers, exact in double
+        for (double c : mHistogram->counts) inRange += c;
+        const double cells = inRange + mHistogram->below + mHistogram->above + mHistogram->nan;
         j["histogram"] = {{"lo", mHistogram->lo}, {"hi", mHistogram->hi}, {"bins", mHistogram->counts.size()},
-                          {"inRange", cells - mHistogram->below - mHistogram->above - mHistogram->nan},
-                          {"cells", cells}};
+                          {"inRange", inRange}, {"cells", cells}};
     }
     // The last frame's layout (framebuffer pixels, session/viewer_layout.h); with a window only.
     if (mWindow) {
