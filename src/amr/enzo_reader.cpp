@@ -49,20 +49,7 @@ std::vector<T> parseNumbers(const std::string& value, size_t count, const std::s
 
 // "key = value" lines (text after '#' ignored), in file order.
 std::vector<std::pair<std::string, std::string>> readKeyValues(const fs::path& path) {
-    std::vector<std::pair<std::string, std::string>> out;
-    const std::string text = readTextFile(path);
-    size_t pos = 0;
-    while (pos < text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string_view line(text.data() + pos, end - pos);
-        pos = end + 1;
-        line = line.substr(0, line.find('#'));
-        const size_t eq = line.find('=');
-        if (eq == std::string_view::npos) continue;
-        out.emplace_back(trim(line.substr(0, eq)), trim(line.substr(eq + 1)));
-    }
-    return out;
+    return keyValueLines(readTextFile(path), true);
 }
 
 struct Parameters {

@@ -188,18 +188,8 @@ struct Info {
 };
 
 Info readInfo(const fs::path& path) {
-    const std::string text = readTextFile(path);
-    std::map<std::string, std::string> values;
-    size_t pos = 0;
-    while (pos < text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        const std::string_view line(text.data() + pos, end - pos);
-        pos = end + 1;
-        const size_t eq = line.find('=');
-        if (eq == std::string_view::npos) continue;
-        values[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
-    }
+    std::map<std::string, std::string> values;  // the last of a key wins
+    for (auto& [key, value] : keyValueLines(readTextFile(path), false)) values[key] = std::move(value);
     auto get = [&](const char* key) -> const std::string& {
         auto it = values.find(key);
         AMRVK_CHECK(it != values.end(), path.string(), ": no '", key, " =' line");

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -65,6 +66,24 @@ inline std::string trim(std::string_view s) {
     const size_t first = s.find_first_not_of(" \t\r");
     if (first == std::string_view::npos) return {};
     return std::string(s.substr(first, s.find_last_not_of(" \t\r") - first + 1));
+}
+
+// The "key = value" lines of a text (both sides trimmed; lines without '=' skipped), in order;
+// hashComments: text after '#' on a line is ignored (Enzo parameter files; RAMSES info files keep it).
+inline std::vector<std::pair<std::string, std::string>> keyValueLines(std::string_view text, bool hashComments) {
+    std::vector<std::pair<std::string, std::string>> out;
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(pos, end - pos);
+        pos = end + 1;
+        if (hashComments) line = line.substr(0, line.find('#'));
+        const size_t eq = line.find('=');
+        if (eq == std::string_view::npos) continue;
+        out.emplace_back(trim(line.substr(0, eq)), trim(line.substr(eq + 1)));
+    }
+    return out;
 }
 
 }  // namespace amrvk
