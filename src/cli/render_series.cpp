@@ -125,9 +125,7 @@ bool isSeries(const CLI::App& app, const std::vector<std::string>& inputs, const
     if (inputs.size() > 1) return true;
     for (const char* o : {"--frames", "--orbit", "--series-range", "--fps", "--frames-dir"})
         if (given(app, o)) return true;
-    std::error_code ec;
-    if (!inputs.empty() && inputs.front().find_first_of("*?[") != std::string::npos && !fs::exists(inputs.front(), ec))
-        return true;
+    if (!inputs.empty() && session::isInputPattern(inputs.front())) return true;
     return fs::path(output).extension() == ".mp4" || session::hasFrameNumber(output) ||
            (!output.empty() && output.back() == '/');
 }

@@ -48,8 +48,6 @@ int naturalCompare(std::string_view a, std::string_view b) {
     return 0;
 }
 
-bool hasWildcard(const std::string& s) { return s.find_first_of("*?[") != std::string::npos; }
-
 constexpr uint32_t kMaxFrames = 100000;
 
 }  // namespace
@@ -59,11 +57,15 @@ bool naturalLess(std::string_view a, std::string_view b) {
     return c != 0 ? c < 0 : a < b;
 }
 
+bool isInputPattern(const std::string& arg) {
+    std::error_code ec;
+    return arg.find_first_of("*?[") != std::string::npos && !fs::exists(arg, ec);
+}
+
 std::vector<std::string> expandInputs(const std::vector<std::string>& args) {
     std::vector<std::string> out;
     for (const std::string& arg : args) {
-        std::error_code ec;
-        if (arg.empty() || fs::exists(arg, ec) || !hasWildcard(arg)) {
+        if (!isInputPattern(arg)) {
             out.push_back(arg);  // a path (a missing one fails when it is read, naming it)
             continue;
         }

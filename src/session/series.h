@@ -25,6 +25,8 @@ bool naturalLess(std::string_view a, std::string_view b);
 // (quote it so the shell does not). All of them sorted in natural order, whatever order they
 // came in. One-line errors: a pattern that matches nothing, an output named twice.
 std::vector<std::string> expandInputs(const std::vector<std::string>& args);
+// Whether expandInputs takes `arg` as a glob pattern: it has * ? or [ and names no existing path.
+bool isInputPattern(const std::string& arg);
 
 // The TF range of a series when --tf-range does not give it: the first output's field range, or
 // the union of every output's (a pass over the outputs first, one in memory at a time).
