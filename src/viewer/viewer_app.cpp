@@ -776,12 +776,15 @@ void ViewerApp::trace() {
 void ViewerApp::present() {
     const VkExtent2D e = mSwapchain->extent();
     const session::PixelRect& picture = mLayout.picture;
-    if (int(e.width) != mDisplayWidth || int(e.height) != mDisplayHeight || !(picture == mDisplayRect)) {
-        mDisplay = gpu::Buffer();
-        mDisplay = gpu::Buffer(*mCtx, uint64_t(e.width) * e.height * 4, gpu::MemoryKind::Device, "display");
+    const bool resized = int(e.width) != mDisplayWidth || int(e.height) != mDisplayHeight;
+    if (resized || !(picture == mDisplayRect)) {
+        if (resized) {  // a new size needs a new buffer; a moved picture (a panel drag) only a clear
+            mDisplay = gpu::Buffer();
+            mDisplay = gpu::Buffer(*mCtx, uint64_t(e.width) * e.height * 4, gpu::MemoryKind::Device, "display");
+            mDisplayWidth = int(e.width);
+            mDisplayHeight = int(e.height);
+        }
         mDisplay.fillZero();
-        mDisplayWidth = int(e.width);
-        mDisplayHeight = int(e.height);
         mDisplayRect = picture;
         mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
     }
