@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "accel/support_range.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
@@ -126,34 +128,12 @@ AbrSet buildAbrs(const BrickSet& bricks) {
     return out;
 }
 
-std::vector<ValueRange> computeAbrValueRanges(const AbrSet& abrs, const BrickSet& bricks,
-                                              std::span<const float> brickValues) {
+std::vector<ValueRange> computeAbrValueRanges(const AbrSet& abrs, const SupportRangeQuery& query, double margin) {
     std::vector<ValueRange> ranges(abrs.abrs.size());
-    for (size_t ai = 0; ai < abrs.abrs.size(); ++ai) {
-        const Abr& abr = abrs.abrs[ai];
-        ValueRange r;
-        for (uint32_t bi : abrs.bricksOf(abr)) {
-            const Brick& b = bricks.bricks[bi];
-            const int64_t w = b.cellWidth();
-            // Cell k's support is [2(L+kw)-w, 2(L+kw)+3w] in half units; keep those touching the box.
-            glm::i64vec3 k0, k1;
-            bool any = true;
-            for (int a = 0; a < 3; ++a) {
-                const int64_t L2 = 2 * int64_t(b.lower[a]);
-                k0[a] = std::max<int64_t>(0, ceilDiv(abr.box.lo[a] - L2 - 3 * w, 2 * w));
-                k1[a] = std::min<int64_t>(b.size[a] - 1, floorDiv(abr.box.hi[a] - L2 + w, 2 * w));
-                any = any && k0[a] <= k1[a];
-            }
-            if (!any) continue;
-            for (int64_t z = k0.z; z <= k1.z; ++z)
-                for (int64_t y = k0.y; y <= k1.y; ++y)
-                    for (int64_t x = k0.x; x <= k1.x; ++x) {
-                        float v = brickValues[b.begin + size_t((z * b.size.y + y) * b.size.x + x)];
-                        if (!std::isnan(v)) r.extend(v);
-                    }
-        }
-        ranges[ai] = r;
-    }
+    parallelFor(0, ranges.size(), [&](size_t ai) {
+        const HalfBox& box = abrs.abrs[ai].box;
+        ranges[ai] = query.majorantRange({box.lower(), box.upper()}, margin);
+    });
     return ranges;
 }
 

@@ -48,9 +48,12 @@ struct AbrSet {
 
 AbrSet buildAbrs(const BrickSet& bricks);
 
-// Conservative value range per ABR: over the listed bricks, every cell whose tent support (centre
-// +- one cell width) touches the closed ABR box. brickValues in brick order; NaN slots skipped.
-std::vector<ValueRange> computeAbrValueRanges(const AbrSet& abrs, const BrickSet& bricks,
-                                              std::span<const float> brickValues);
+class SupportRangeQuery;
+
+// Majorant range per ABR (SupportRangeQuery::majorantRange, margin voxel units): every cell whose
+// tent support (centre +- one cell width) reaches the closed ABR box, also from bricks whose
+// domain only touches it (their weight is 0 on the box but not a float rounding beyond it), with
+// room for the GPU's float sums. NaN slots are skipped.
+std::vector<ValueRange> computeAbrValueRanges(const AbrSet& abrs, const SupportRangeQuery& query, double margin);
 
 }  // namespace amrvk::accel

@@ -5,6 +5,7 @@
 
 #include "accel/abrs.h"
 #include "accel/brick_sampler.h"
+#include "accel/majorant_bounds.h"
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/stats.h"
@@ -12,8 +13,10 @@
 namespace amrvk::accel {
 
 glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims) {
+    const glm::dvec3 extent = cellSize * glm::dvec3(dims);
+    const double position = positionMargin(std::max({extent.x, extent.y, extent.z}));
     glm::dvec3 m;
-    for (int d = 0; d < 3; ++d) m[d] = std::max(1e-4 * cellSize[d], std::ldexp(cellSize[d] * dims[d], -18));
+    for (int d = 0; d < 3; ++d) m[d] = std::max(1e-4 * cellSize[d], position);
     return m;
 }
 

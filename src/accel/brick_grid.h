@@ -27,9 +27,10 @@ struct BrickGrid : MacrocellLayout {
     }
 };
 
-// Margin (voxel units, per axis) by which a macrocell is grown when its list is made: at least
-// 1e-4 macrocell and 2^-18 of the grid's extent, far above the float rounding of a local-space
-// sample position and of its macrocell index on the GPU.
+// Margin (voxel units, per axis) by which a macrocell is grown when its list and its range are
+// made: at least 1e-4 macrocell and positionMargin (accel/majorant_bounds.h) of the grid's
+// longest extent, far above the float rounding of a local-space sample position and of its
+// macrocell index on the GPU.
 glm::dvec3 brickGridMargin(const glm::dvec3& cellSize, const glm::ivec3& dims);
 
 // Lists over macrocellLayout(bounds, dims). Throws when the lists would not fit in

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "accel/brick_sampler.h"
+#include "accel/majorant_bounds.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -135,10 +136,13 @@ void assignDenseRanges(const DenseGrid& dense, RangeGrid& grid) {
     if (dense.values.empty() || M.x <= 0 || M.y <= 0 || M.z <= 0) return;
     const double W = dense.width();
 
-    // Per axis and macrocell: the sample indices [first, last] read inside it.
+    // Per axis and macrocell: the sample indices [first, last] read inside it, grown by the
+    // position margin (accel/majorant_bounds.h).
+    const glm::dvec3 extent = grid.cellSize * glm::dvec3(M);
+    const double position = positionMargin(std::max({extent.x, extent.y, extent.z}));
     std::vector<glm::ivec2> span[3];
     for (int a = 0; a < 3; ++a) {
-        const double eps = 1e-5 * grid.cellSize[a];
+        const double eps = std::max(1e-5 * grid.cellSize[a], position);
         span[a].resize(size_t(M[a]));
         for (int c = 0; c < M[a]; ++c) {
             const double pa = grid.origin[a] + c * grid.cellSize[a] - eps;
@@ -179,7 +183,9 @@ void assignDenseRanges(const DenseGrid& dense, RangeGrid& grid) {
                     }
                 }
             }
-            std::copy(layer.begin(), layer.end(), grid.ranges.begin() + ptrdiff_t(grid.index({0, 0, cz})));
+            // Room for the GPU's float trilinear sums.
+            std::transform(layer.begin(), layer.end(), grid.ranges.begin() + ptrdiff_t(grid.index({0, 0, cz})),
+                           [](const ValueRange& r) { return padForGpu(r); });
         }
     });
 }

@@ -49,8 +49,9 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
 // Replaces grid.ranges (same dims/origin/cellSize) by the range of the dense samples clamped
 // trilinear interpolation can read anywhere inside each macrocell: for a macrocell [a, b], with
 // q = (p - origin) / width - 0.5, the indices floor(qa) .. floor(qb) + 1 per axis clamped to
-// [0, dims - 1]. The box is first grown by 1e-5 macrocell (as buildRangeGrid does) so float
-// rounding of GPU sample positions near a face stays covered. NaN samples are ignored; a macrocell
+// [0, dims - 1]. The box is first grown by 1e-5 macrocell or the position margin, whichever is
+// larger (accel/majorant_bounds.h), so float rounding of GPU sample positions near a face stays
+// covered, and the range is padded for the GPU's float sums. NaN samples are ignored; a macrocell
 // that reads only NaN samples gets an empty range.
 void assignDenseRanges(const DenseGrid& dense, RangeGrid& grid);
 

@@ -10,6 +10,8 @@
 
 namespace amrvk::accel {
 
+// Ranges are majorant ranges (SupportRangeQuery::majorantRange): a slab's range covers the slab
+// grown by the position margin and padded for the GPU, and so does a union of slab ranges.
 // Cost and pruning. Every split of a leaf evaluates the distinct integer planes among the 7
 // binned candidates per axis (8 bins), i.e. at most 8 slabs per axis. The closed range of a box
 // is the union of the closed ranges of slabs that cover it (a support meets the union iff it
@@ -44,8 +46,8 @@ bool splittable(const Leaf& l) {
 
 class KdBuilder {
 public:
-    KdBuilder(const SupportRangeQuery& ranges, const std::function<float(float, float)>& maxAlpha)
-        : mRanges(ranges), mMaxAlpha(maxAlpha) {}
+    KdBuilder(const SupportRangeQuery& ranges, const std::function<float(float, float)>& maxAlpha, double margin)
+        : mRanges(ranges), mMaxAlpha(maxAlpha), mMargin(margin) {}
 
     Leaf makeLeaf(const glm::i64vec3& lo, const glm::i64vec3& hi, const ValueRange& range) const {
         Leaf l{lo, hi, range, 0.0f, 0.0};
@@ -59,7 +61,7 @@ public:
     }
 
     ValueRange rangeOf(const glm::i64vec3& lo, const glm::i64vec3& hi) const {
-        return mRanges.query({glm::dvec3(lo), glm::dvec3(hi)});
+        return mRanges.majorantRange({glm::dvec3(lo), glm::dvec3(hi)}, mMargin);
     }
 
     // The cheapest binned split of `l` (children in left/right); false when no plane exists.
@@ -113,6 +115,7 @@ public:
 private:
     const SupportRangeQuery& mRanges;
     const std::function<float(float, float)>& mMaxAlpha;
+    double mMargin;  // positionMargin of the root box
 };
 
 }  // namespace
@@ -124,7 +127,7 @@ KdTree buildKdTree(const SupportRangeQuery& ranges, const amr::Box3l& bounds,
                 ",", bounds.lower.z, "]-[", bounds.upper.x, ",", bounds.upper.y, ",",
                 bounds.upper.z, "]: pass the union of the leaf cells");
     Timer timer;
-    KdBuilder builder(ranges, maxAlpha);
+    KdBuilder builder(ranges, maxAlpha, positionMargin(bounds));
     std::vector<Leaf> leaves;
     leaves.reserve(params.maxLeaves);
     leaves.push_back(

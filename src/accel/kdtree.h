@@ -23,7 +23,8 @@ struct KdTreeParams {
 struct KdTree {
     // Disjoint boxes that tile `bounds` exactly; every plane on an integer voxel coordinate.
     std::vector<BoxD> leaves;
-    // Exact: the range of every cell whose support intersects the closed leaf.
+    // The majorant range of the leaf (SupportRangeQuery::majorantRange with positionMargin of the
+    // root): every cell whose support reaches the leaf grown by the margin, padded for the GPU.
     std::vector<ValueRange> leafRanges;
     // maxAlpha(leafRanges[i]) with the TF the tree was built for (0 for an empty range).
     std::vector<float> leafMajorants;

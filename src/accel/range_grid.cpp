@@ -8,6 +8,7 @@
 #include "accel/abrs.h"
 #include "accel/brick_grid.h"
 #include "accel/brick_sampler.h"
+#include "accel/majorant_bounds.h"
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -89,9 +90,9 @@ struct Scratch {
 };
 
 // Extends `range` by the range of brick b's t_b over the closed voxel-space box [lo, hi] (already
-// cut to the brick's domain); tracks the largest |value| read in maxAbs.
+// cut to the brick's domain); tracks the range of the values read in [readLo, readHi].
 void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm::dvec3 hi, Scratch& s,
-                   double& rlo, double& rhi, double& maxAbs) {
+                   double& rlo, double& rhi, double& readLo, double& readHi) {
     const double w = double(b.cellWidth());
     for (int d = 0; d < 3; ++d)
         axisPositions((lo[d] - b.lower[d]) / w - 0.5, (hi[d] - b.lower[d]) / w - 0.5, b.size[d], s.axis[d]);
@@ -112,7 +113,8 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
                 chi = std::max(chi, double(v));
             }
     if (clo > chi) return;  // nothing but empty slots
-    maxAbs = std::max({maxAbs, std::abs(clo), std::abs(chi)});
+    readLo = std::min(readLo, clo);
+    readHi = std::max(readHi, chi);
     if (hole) {
         rlo = std::min(rlo, clo);
         rhi = std::max(rhi, chi);
@@ -254,14 +256,14 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                 if (c[a] == 0) lo[a] = -INFINITY;
                 if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
             }
-            double rlo = INFINITY, rhi = -INFINITY, maxAbs = 0;
+            double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
             glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
             for (uint32_t id : lists.bricksOf(cell)) {
                 const Brick& b = bricks.bricks[id];
                 const HalfBox d = brickDomain(b);
                 const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
                 if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
-                extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, maxAbs);
+                extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
                 hullLo = glm::min(hullLo, blo);
                 hullHi = glm::max(hullHi, bhi);
             }
@@ -272,9 +274,11 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
             // With one brick (f = t_b) or a constant range there is nothing to gain.
             if (lists.bricksOf(cell).size() > 1 && rhi > rlo)
                 latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
-            // Outward to float, then 8 ulps of the largest magnitude read (GPU float sums).
-            const double pad = 8.0 * double(std::numeric_limits<float>::epsilon()) * maxAbs;
-            g.ranges[cell] = ValueRange(roundDown(rlo - pad), roundUp(rhi + pad));
+            // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
+            // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
+            // read have one sign, else at most the largest magnitude read.
+            const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
+            g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
         }
     });
     g.buildSeconds = timer.seconds();

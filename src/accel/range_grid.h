@@ -55,7 +55,7 @@ inline RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) { re
 
 // Ranges over the layout of `lists` (which it reads: every brick meeting each grown macrocell).
 // Empty slots (NaN) make a brick's bound the range of its non-empty cells near the macrocell.
-// Bounds are widened by 8 float ulps of the largest magnitude involved (the GPU sums in float).
+// Bounds are padded for the GPU's float sums (padForGpu, accel/majorant_bounds.h).
 RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues);
 
 }  // namespace amrvk::accel

@@ -156,24 +156,29 @@ ValueRange SupportRangeQuery::query(const BoxD& box) const {
     return r;
 }
 
+ValueRange SupportRangeQuery::majorantRange(const BoxD& box, double margin) const {
+    const double grow = 0.5 * double(marginHalfUnits(margin));
+    return padForGpu(query({box.lo - grow, box.hi + grow}));
+}
+
 uint64_t SupportRangeQuery::memoryBytes() const {
     return mChunks.size() * sizeof(Chunk) + mBvh.memoryBytes() + mNodes.size() * sizeof(NodeBounds);
 }
 
-std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const BrickSet& bricks) {
+std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const BrickSet& bricks, double margin) {
     std::vector<ValueRange> out(bricks.bricks.size());
     parallelFor(0, out.size(), [&](size_t i) {
         const amr::Box3l b = bricks.bricks[i].bounds();
-        out[i] = query.query({glm::dvec3(b.lower), glm::dvec3(b.upper)});
+        out[i] = query.majorantRange({glm::dvec3(b.lower), glm::dvec3(b.upper)}, margin);
     });
     return out;
 }
 
-std::vector<ValueRange> brickDomainRanges(const SupportRangeQuery& query, const BrickSet& bricks) {
+std::vector<ValueRange> brickDomainRanges(const SupportRangeQuery& query, const BrickSet& bricks, double margin) {
     std::vector<ValueRange> out(bricks.bricks.size());
     parallelFor(0, out.size(), [&](size_t i) {
         const HalfBox d = brickDomain(bricks.bricks[i]);
-        out[i] = query.query({d.lower(), d.upper()});
+        out[i] = query.majorantRange({d.lower(), d.upper()}, margin);
     });
     return out;
 }

@@ -18,6 +18,7 @@
 
 #include "accel/bricks.h"
 #include "accel/bvh.h"
+#include "accel/majorant_bounds.h"
 #include "accel/value_range.h"
 
 namespace amrvk::accel {
@@ -35,6 +36,10 @@ public:
     // axis; zero-thickness boxes are valid. Throws amrvk::Error for a NaN coordinate.
     // Thread-safe (const, no shared scratch).
     ValueRange query(const BoxD& box) const;
+    // The range a majorant over `box` (faces on the half-voxel lattice) needs: the query over the
+    // box grown by marginHalfUnits(margin) half voxels, padded for the GPU's float sums
+    // (accel/majorant_bounds.h), so it bounds every sample within `margin` of the box.
+    ValueRange majorantRange(const BoxD& box, double margin) const;
 
     // The structures owned by the query (chunks, BVH, node boxes and ranges), not the inputs.
     uint64_t memoryBytes() const;
@@ -59,12 +64,13 @@ private:
     std::vector<NodeBounds> mNodes;  // parallel to mBvh.nodes
 };
 
-// Per brick: the range over every cell whose support intersects the brick's strict bounds
-// (closed), its neighbours' cells included: bounds f on the brick (a leaf-cell region). This is
-// the correct version of upstream's brick-range neighbour splatting (exabrick-reference.md 4.2).
-std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const BrickSet& bricks);
+// Per brick: the majorant range (majorantRange, margin voxel units) over the brick's strict bounds:
+// every cell whose support reaches them, its neighbours' cells included, so it bounds f on the
+// brick (a leaf-cell region). This is the correct version of upstream's brick-range neighbour
+// splatting (exabrick-reference.md 4.2).
+std::vector<ValueRange> brickBoundsRanges(const SupportRangeQuery& query, const BrickSet& bricks, double margin);
 
 // Per brick: the same over the brick's basis-function domain (bounds +- half a cell).
-std::vector<ValueRange> brickDomainRanges(const SupportRangeQuery& query, const BrickSet& bricks);
+std::vector<ValueRange> brickDomainRanges(const SupportRangeQuery& query, const BrickSet& bricks, double margin);
 
 }  // namespace amrvk::accel

@@ -54,10 +54,7 @@ const std::vector<accel::ValueRange>& MajorantPass::domainRanges() const {
 }
 
 void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
-    accel::KdTreeParams params;
-    params.maxLeaves = mScene.config().kdLeaves;
-    mKdTree = accel::buildKdTree(*mScene.supportRanges, mScene.volume().bounds(),
-                                 [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
+    mKdTree = mScene.kdTreeFor(tf);
     mKdBoxesHost.clear();
     mKdBoxesHost.reserve(mKdTree->leaves.size());
     for (const accel::BoxD& b : mKdTree->leaves) mKdBoxesHost.push_back(mScene.volume().toLocal(b));

@@ -1,6 +1,7 @@
 #include "scene/volume_scene.h"
 
 #include "accel/brick_sampler.h"
+#include "accel/majorant_bounds.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stats.h"
@@ -92,11 +93,12 @@ void VolumeScene::configure(const StructureConfig& next) {
     if (p.staticBoxes && domains.boxes.empty()) {
         ProgressStage stage("traversal value ranges");
         Timer t;
+        const accel::SupportRangeQuery query(v.bricks, v.brickValues());
+        const double margin = accel::positionMargin(v.bounds());
         if (p.traversalBoxes == BoxSet::Abrs) {
             for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(v.toLocal({a.box.lower(), a.box.upper()}));
-            domains.ranges = accel::computeAbrValueRanges(*abrs, v.bricks, v.brickValues());
+            domains.ranges = accel::computeAbrValueRanges(*abrs, query, margin);
         } else {
-            const accel::SupportRangeQuery query(v.bricks, v.brickValues());
             for (const accel::Brick& b : v.bricks.bricks) {
                 if (p.traversalBoxes == BoxSet::BrickBounds) {
                     const amr::Box3l bb = b.bounds();
@@ -106,12 +108,20 @@ void VolumeScene::configure(const StructureConfig& next) {
                     domains.boxes.push_back(v.toLocal({d.lower(), d.upper()}));
                 }
             }
-            domains.ranges = p.traversalBoxes == BoxSet::BrickBounds ? accel::brickBoundsRanges(query, v.bricks)
-                                                                    : accel::brickDomainRanges(query, v.bricks);
+            domains.ranges = p.traversalBoxes == BoxSet::BrickBounds ? accel::brickBoundsRanges(query, v.bricks, margin)
+                                                                    : accel::brickDomainRanges(query, v.bricks, margin);
         }
         buildSeconds.domains = t.seconds();
     }
     mConfigured = true;
+}
+
+accel::KdTree VolumeScene::kdTreeFor(const TransferFunction& tf) const {
+    AMRVK_CHECK(supportRanges.has_value(), "internal: a kd-tree needs the kdtree traversal's support ranges");
+    accel::KdTreeParams params;
+    params.maxLeaves = mConfig.kdLeaves;
+    return accel::buildKdTree(*supportRanges, mVolume->bounds(),
+                              [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
 }
 
 double VolumeScene::combinationBuildSeconds() const {

@@ -18,9 +18,11 @@
 #include "accel/brick_grid.h"
 #include "accel/bvh.h"
 #include "accel/dense_grid.h"
+#include "accel/kdtree.h"
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
 #include "scene/structure_config.h"
+#include "scene/transfer_function.h"
 #include "scene/volume.h"
 #include "shared/amr_gpu.h"
 
@@ -57,6 +59,10 @@ public:
     std::optional<accel::BrickGrid> brickGrid;           // plan.brickGrid (same layout as `grid`)
     std::optional<accel::SupportRangeQuery> supportRanges;  // plan.supportRangeQuery (kdtree, per TF)
     DomainBoxes domains;                                 // plan.staticBoxes
+
+    // The kd-tree of a kdtree combination (plan.supportRangeQuery) for `tf`, with
+    // config().kdLeaves leaves: what render::MajorantPass uploads on every TF change.
+    accel::KdTree kdTreeFor(const TransferFunction& tf) const;
 
     // Host seconds of the last build of each structure.
     struct Timing {

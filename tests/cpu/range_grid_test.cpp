@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 #include "accel/brick_grid.h"
 #include "accel/brick_sampler.h"
+#include "accel/majorant_bounds.h"
 #include "accel/range_grid.h"
 #include "amr/readers.h"
 #include "amr/sampler.h"
@@ -103,8 +105,10 @@ Campaign bruteForce(const amr::Model& m, const amr::Field& f, const Grids& g, si
             out.outsideShrunk += !rangeHolds(rlo + shrink, rhi - shrink, s.value);
         }
         const ValueRange splat = splatRange(m, f, lo, lo + size);
-        // Up to the ranges' float padding (8 ulps of the largest magnitude read, all of the splat's).
-        const double pad = 4e-6 * std::max(std::abs(double(splat.lo)), std::abs(double(splat.hi)));
+        // Up to the ranges' float padding (padForGpu: the values are positive, so of the range's
+        // own magnitude, at most the splat's; two more for the rounding outward to float).
+        const double pad = (kGpuPadUlps + 2.0) * double(std::numeric_limits<float>::epsilon()) *
+                           std::max(std::abs(double(splat.lo)), std::abs(double(splat.hi)));
         EXPECT_LE(double(splat.lo), rlo + pad) << "wider than the splat at " << cell;
         EXPECT_GE(double(splat.hi), rhi - pad) << "wider than the splat at " << cell;
         out.tightToSplat += splat.hi > splat.lo ? (rhi - rlo) / double(splat.hi - splat.lo) : 1.0;

@@ -11,7 +11,9 @@
 #include "accel/abrs.h"
 #include "accel/brick_sampler.h"
 #include "accel/bricks.h"
+#include "accel/majorant_bounds.h"
 #include "accel/range_grid.h"
+#include "accel/support_range.h"
 #include "amr/sampler.h"
 #include "core/error.h"
 #include "model_fixtures.h"
@@ -240,7 +242,7 @@ TEST(Abrs, ValueRangesContainReconstructedValues) {
     BrickSet bs = buildBricks(m);
     AbrSet abrs = buildAbrs(bs);
     auto values = brickOrderValues(bs, m.fields[0]);
-    auto ranges = computeAbrValueRanges(abrs, bs, values);
+    auto ranges = computeAbrValueRanges(abrs, SupportRangeQuery(bs, values), positionMargin(amr::summarize(m).bounds));
     amr::ReferenceSampler ref(m, m.fields[0]);
     std::mt19937 rng(4);
     std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "accel/abrs.h"
+#include "accel/majorant_bounds.h"
 #include "accel/bricks.h"
 #include "amr/readers.h"
 #include "amr/sampler.h"
@@ -282,21 +283,26 @@ TEST(SupportRange, BrickRangesEqualBruteForce) {
     test::addRandomField(m, "r", 12);
     Built b = build(std::move(m));
     SupportRangeQuery q(b.bricks, b.values);
-    const auto boundsRanges = brickBoundsRanges(q, b.bricks);
-    const auto domainRanges = brickDomainRanges(q, b.bricks);
+    // Majorant ranges: below half a voxel of margin the closed box itself, padded for the GPU.
+    const double margin = positionMargin(amr::summarize(b.model).bounds);
+    ASSERT_LT(margin, 0.5);
+    const auto boundsRanges = brickBoundsRanges(q, b.bricks, margin);
+    const auto domainRanges = brickDomainRanges(q, b.bricks, margin);
     ASSERT_EQ(boundsRanges.size(), b.bricks.bricks.size());
     ASSERT_EQ(domainRanges.size(), b.bricks.bricks.size());
     for (size_t i = 0; i < b.bricks.bricks.size(); ++i) {
         const amr::Box3l bb = b.bricks.bricks[i].bounds();
         const HalfBox d = brickDomain(b.bricks.bricks[i]);
-        EXPECT_TRUE(
-            sameRange(boundsRanges[i], bruteRange(b.model, b.model.fields[0].values,
-                                                  {glm::dvec3(bb.lower), glm::dvec3(bb.upper)})))
+        EXPECT_TRUE(sameRange(boundsRanges[i], padForGpu(bruteRange(b.model, b.model.fields[0].values,
+                                                                    {glm::dvec3(bb.lower), glm::dvec3(bb.upper)}))))
             << "brick " << i;
-        EXPECT_TRUE(sameRange(
-            domainRanges[i], bruteRange(b.model, b.model.fields[0].values, {d.lower(), d.upper()})))
+        EXPECT_TRUE(sameRange(domainRanges[i],
+                              padForGpu(bruteRange(b.model, b.model.fields[0].values, {d.lower(), d.upper()}))))
             << "brick " << i;
     }
+    // With a margin of 3 voxels the query box grows by 3 voxels (6 half units).
+    EXPECT_EQ(marginHalfUnits(3.2), 6);
+    EXPECT_EQ(marginHalfUnits(0.49), 0);
 }
 
 TEST(SupportRange, BadInputIsRejected) {
@@ -322,8 +328,9 @@ TEST(UpstreamBug_BrickNeighbourSplatting, BrickRangesContainTheReconstruction) {
         Built b = build(std::move(m));
         amr::ReferenceSampler ref(b.model, b.model.fields[0]);
         SupportRangeQuery q(b.bricks, b.values);
-        const auto boundsRanges = brickBoundsRanges(q, b.bricks);
-        const auto domainRanges = brickDomainRanges(q, b.bricks);
+        const double margin = positionMargin(amr::summarize(b.model).bounds);
+        const auto boundsRanges = brickBoundsRanges(q, b.bricks, margin);
+        const auto domainRanges = brickDomainRanges(q, b.bricks, margin);
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(0.0, 1.0);
         size_t checked = 0, failures = 0;
