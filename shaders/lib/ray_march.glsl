@@ -33,7 +33,8 @@ vec3 rayMarch(vec3 o, vec3 d, StructureConfig cfg, inout uint rng, inout Counter
     float T = 1.0;
     const float dt = P.shading.dvrStep;
     const float stopTransmittance = 1.0 - P.shading.dvrOpacityStop;
-    if (traversalInit(cfg, o, d, 0.0, kInf, s)) {
+    float tMax = kInf, tBase;
+    if (rebaseRay(o, d, tMax, tBase) && traversalInit(cfg, o, d, 0.0, tMax, s)) {
         uint seg;
         float majAlpha, t0, t1;
         float h = dt / P.scene.invFinestCellWidth;  // dt x the finest cell width of the data set, until a sample says more

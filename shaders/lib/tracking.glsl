@@ -82,9 +82,14 @@ bool onCollision(uint estimator, float t, float sigma, float maj, vec4 tfc, inou
     return true;
 }
 
-// Tracks o + t d over t in [0, tMax] through the traversal's majorant segments.
+// Tracks o + t d over t in [0, tMax] through the traversal's majorant segments. The ray is first
+// rebased where it enters the data (rebaseRay), so segments and sample positions are as accurate
+// as the data's own coordinates whatever the distance of the origin: every range covers its box
+// grown by 2^-18 of the extent (accel/majorant_bounds.h), far more than that rounding.
 void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator, inout TrackState st, inout uint rng,
                 inout Counters c) {
+    float tBase;
+    if (!rebaseRay(o, d, tMax, tBase)) return;
     Traversal s;
     if (!traversalInit(cfg, o, d, 0.0, tMax, s)) return;
     uint seg;
@@ -110,7 +115,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             vec4 tfc;
             float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
             if (sigma > maj * kViolationTolerance) c.violations++;
-            if (!onCollision(estimator, t, sigma, maj, tfc, st, rng, c)) return;
+            if (!onCollision(estimator, tBase + t, sigma, maj, tfc, st, rng, c)) return;
         }
     }
 }

@@ -19,6 +19,23 @@ struct Traversal {
     float t, tEnd;
 };
 
+// Moves the origin of o + t d, t in [0, tMax], to where the ray enters the data bounds (local
+// voxel space [0, boundsHi]) and shortens tMax to match; tBase is the parameter of the new origin
+// on the old ray (0 for a ray that starts inside). False when the ray misses the data. Positions
+// o + d t are then rounded like coordinates of the data, not like a far camera's: tracking and
+// ray marching call it before traversalInit (the medium lies inside the bounds).
+bool rebaseRay(inout vec3 o, vec3 d, inout float tMax, out float tBase) {
+    float tIn = 0.0, tOut = tMax;
+    tBase = 0.0;
+    if (!clipRay(vec3(0.0), P.scene.boundsHi, o, d, tIn, tOut) || !(tIn < tOut)) return false;
+    if (tIn > 0.0) {
+        o += d * tIn;
+        tBase = tIn;
+    }
+    tMax = tOut - tIn;
+    return true;
+}
+
 // False when the ray misses the structure within [tMin, tMax]. The interval is first narrowed to
 // the cut-away's kept region (lib/cut_away.glsl), so every estimator and dvr see an empty medium
 // beyond the cut.
