@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "bench/bench_runner.h"
 #include "bench/report.h"
@@ -14,6 +13,7 @@
 #include "cli/ranks.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "core/strings.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 
@@ -48,15 +48,6 @@ const char* kBenchHelp =
     "(paper layout, best three and worst marked), and PNG and PDF plots drawn by plot_bench.py\n"
     "(matplotlib; next to the amrvk binary). Tests never assert speed; neither\n"
     "should you compare numbers from different devices.";
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream s(text);
-    std::string item;
-    while (std::getline(s, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 
 // A comma-separated list of names, each through `parse`; an empty list is an error naming the option.
 template <typename T>

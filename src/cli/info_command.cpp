@@ -7,7 +7,9 @@
 #include "accel/abrs.h"
 #include "accel/brick_grid.h"
 #include "accel/bricks.h"
+#include "accel/majorant_bounds.h"
 #include "accel/range_grid.h"
+#include "accel/support_range.h"
 #include "amr/readers.h"
 #include "cli/commands.h"
 #include "cli/options.h"
@@ -15,6 +17,8 @@
 #include "core/progress.h"
 #include "core/stats.h"
 #include "core/strings.h"
+#include "scene/majorant_check.h"
+#include "scene/volume.h"
 
 namespace amrvk::cli {
 
@@ -27,7 +31,82 @@ const char* kInfoHelp =
     "bounds, leaf "
     "cells per level (level 0 = finest), fields, the field's range and volume-weighted mean, "
     "brick/ABR "
-    "statistics, bytes per structure and build times.";
+    "statistics, bytes per structure and build times. With --check-majorants it instead checks "
+    "every traversal's majorants against the exact reconstruction (exit status 1 on a failure).";
+
+// --check-majorants: every traversal's boxes against the exact reconstruction, for every TF.
+int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const std::string& gridSpec,
+                     uint32_t kdLeaves, const std::string& tfList, const std::vector<double>& tfRange, bool json) {
+    amr::Model model;
+    {
+        ProgressStage stage("reading " + input);
+        model = amr::readModel(input, ro);
+    }
+    const std::shared_ptr<const scene::Volume> volume =
+        scene::makeVolume(std::move(model), ro.fields.empty() ? std::string() : ro.fields[0]);
+    float lo = volume->valueLo(), hi = volume->valueHi();
+    if (tfRange.size() == 2) {
+        lo = float(tfRange[0]);
+        hi = float(tfRange[1]);
+        AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
+    }
+    scene::MajorantCheckOptions options;
+    options.grid = gridSpec;
+    accel::parseGridDims(gridSpec, volume->bounds());  // a bad --grid is an error before any work
+    options.kdLeaves = kdLeaves;
+    const std::vector<std::string> specs = tfList.empty() ? scene::presetNames() : splitList(tfList);
+    for (const std::string& spec : specs) {
+        scene::TransferFunction tf = scene::loadTransferFunction(trim(spec), lo, hi);
+        if (tfRange.size() == 2) tf = tf.rescaled(lo, hi);
+        options.tfs.push_back(std::move(tf));
+    }
+    ProgressBar bar("checking majorants", "boxes");
+    options.onProgress = [&bar](const std::string& set, uint64_t done, uint64_t total) { bar.update(done, total, set); };
+    const std::vector<scene::BoxSetCheck> checks = scene::checkMajorants(volume, options);
+    bar.finish();
+
+    uint64_t failed = 0;
+    for (const scene::BoxSetCheck& c : checks) failed += c.ok() ? 0 : 1;
+    if (json) {
+        using Json = nlohmann::ordered_json;
+        Json sets = Json::array();
+        for (const scene::BoxSetCheck& c : checks) {
+            Json tfs = Json::array();
+            for (const auto& t : c.tfs)
+                tfs.push_back({{"tf", t.tf}, {"failures", t.failures}, {"worstRatio", t.worstRatio}});
+            sets.push_back({{"boxes", c.boxes}, {"traversals", c.traversals}, {"builtForTf", c.tf}, {"count", c.count},
+                            {"withData", c.withData}, {"vertices", c.vertices}, {"rangeFailures", c.rangeFailures},
+                            {"worstExcess", c.worstExcess}, {"worst", c.worst}, {"tfs", tfs}, {"seconds", c.seconds},
+                            {"ok", c.ok()}});
+        }
+        const Json j = {{"source", volume->model.source}, {"field", volume->field().name},
+                        {"leafCells", volume->model.cellCount()},
+                        {"positionMargin", accel::positionMargin(volume->bounds())},
+                        {"gpuErrorUlps", accel::kGpuErrorUlps}, {"tfRange", Json::array({lo, hi})},
+                        {"majorantCheck", sets}, {"ok", failed == 0}};
+        std::printf("%s\n", j.dump(2).c_str());
+    } else {
+        std::printf("majorant check of %s, field '%s' (%llu cells), TFs over [%.9g, %.9g], position margin %.3g voxel\n",
+                    volume->model.source.c_str(), volume->field().name.c_str(),
+                    (unsigned long long)volume->model.cellCount(), double(lo), double(hi),
+                    accel::positionMargin(volume->bounds()));
+        for (const scene::BoxSetCheck& c : checks) {
+            std::printf("  %-22s %-18s %9llu boxes (%llu with data), %llu values, %.2f s: %s\n",
+                        (c.boxes + (c.tf.empty() ? "" : " (" + c.tf + ")")).c_str(), c.traversals.c_str(),
+                        (unsigned long long)c.count, (unsigned long long)c.withData,
+                        (unsigned long long)c.vertices, c.seconds, c.ok() ? "ok" : "FAILED");
+            if (c.rangeFailures > 0)
+                std::printf("    %llu ranges too narrow; worst by %.3g of the largest |value|: %s\n",
+                            (unsigned long long)c.rangeFailures, c.worstExcess, c.worst.c_str());
+            for (const auto& t : c.tfs)
+                if (t.failures > 0)
+                    std::printf("    %s: %llu majorants too small (worst: exact maximum %.6g x the majorant)\n",
+                                t.tf.c_str(), (unsigned long long)t.failures, t.worstRatio);
+        }
+    }
+    AMRVK_CHECK(failed == 0, "--check-majorants: ", failed, " of ", checks.size(), " box sets failed (see above)");
+    return 0;
+}
 
 std::string mib(uint64_t bytes) {
     char buf[32];
@@ -51,8 +130,31 @@ int runInfo(const std::vector<std::string>& argv) {
     app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
         ->type_name("FILE");
     app.add_flag("--json", json, "print one JSON object on stdout instead of text");
+    bool checkMajorants = false;
+    std::string tfList;
+    std::vector<double> tfRange;
+    int64_t kdLeaves = 4096;
+    app.add_flag("--check-majorants", checkMajorants,
+                 "check every traversal's boxes (macrocells, ABRs, brick bounds and domains, kd leaves per TF): the "
+                 "exact range of the reconstruction over each box, grown by the position margin, must fit its stored "
+                 "range with room for the GPU's float error, and its alpha maximum under every TF its majorant");
+    app.add_option("--tfs", tfList, "--check-majorants: TF presets or files, comma-separated (default: every preset)")
+        ->type_name("LIST");
+    app.add_option("--tf-range", tfRange, "--check-majorants: map the TFs onto [LO, HI] (default: the field's range)")
+        ->expected(2)
+        ->type_name("LO HI");
+    app.add_option("--kd-leaves", kdLeaves, "--check-majorants: leaves of the kd-trees")
+        ->check(interval(1, (1 << 24) - 1))
+        ->capture_default_str()
+        ->type_name("N");
     if (!parseCommandLine(app, argv)) return 0;
     const amr::ReadOptions ro = readOptions(read);
+    if (checkMajorants) {
+        AMRVK_CHECK(bricksFile.empty(), "--check-majorants builds its own bricks (drop --bricks)");
+        return checkMajorantsOf(input, ro, gridSpec, uint32_t(kdLeaves), tfList, tfRange, json);
+    }
+    for (const char* name : {"--tfs", "--tf-range", "--kd-leaves"})
+        AMRVK_CHECK(app.count(name) == 0, name, " applies only with --check-majorants");
 
     Timer readTimer;
     amr::Model model;
@@ -78,7 +180,8 @@ int runInfo(const std::vector<std::string>& argv) {
     {
         ProgressStage stage("active brick regions");
         abrs = accel::buildAbrs(bricks);
-        abrRanges = accel::computeAbrValueRanges(abrs, bricks, brickValues);
+        abrRanges = accel::computeAbrValueRanges(abrs, accel::SupportRangeQuery(bricks, brickValues),
+                                                 accel::positionMargin(summary.bounds));
     }
     const double abrSeconds = abrTimer.seconds();
     const glm::ivec3 gridDims = accel::parseGridDims(gridSpec, summary.bounds);

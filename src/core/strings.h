@@ -68,6 +68,19 @@ inline std::string trim(std::string_view s) {
     return std::string(s.substr(first, s.find_last_not_of(" \t\r") - first + 1));
 }
 
+// The non-empty items of a `sep`-separated list ("spiky,,foggy" -> spiky, foggy), untrimmed.
+inline std::vector<std::string> splitList(std::string_view text, char sep = ',') {
+    std::vector<std::string> out;
+    size_t pos = 0;
+    while (pos <= text.size()) {
+        size_t end = text.find(sep, pos);
+        if (end == std::string_view::npos) end = text.size();
+        if (end > pos) out.emplace_back(text.substr(pos, end - pos));
+        pos = end + 1;
+    }
+    return out;
+}
+
 // The "key = value" lines of a text (both sides trimmed; lines without '=' skipped), in order;
 // hashComments: text after '#' on a line is ignored (Enzo parameter files; RAMSES info files keep it).
 inline std::vector<std::pair<std::string, std::string>> keyValueLines(std::string_view text, bool hashComments) {
