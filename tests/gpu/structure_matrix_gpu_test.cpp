@@ -138,3 +138,56 @@ TEST_F(StructureMatrixGpu, TeapotFromInsideTheStadiumEveryCombinationAgrees) {
     s.densityScale = 1.0;
     compareAll(m, s, 24, "teapot");
 }
+
+// The two ways a correct range still let a sample past its majorant on a GPU (issue 31, the
+// violations seen at 10^8 cells): the float reconstruction leaving the exact range by a few ulps,
+// which a spiky TF turns into a large relative excess of alpha, and a sample position rounded
+// outside the box whose segment produced it (a far camera: positions rounded like the eye's
+// coordinates). Zero violations with every traversal (grid sampler, sw) for both; before the fix
+// the first case gave about 3% of lookups on every box traversal and the second some on grid-dda.
+TEST_F(StructureMatrixGpu, NoViolationAtTheFloatRoundingOfValuesOrPositions) {
+    // Values: one value everywhere on three levels, sitting on the rising flank of a narrow peak.
+    amr::Model flat = test::makeRefinedModel(7, {4, 4, 4}, 2, 0.4);
+    test::addField(flat, "v", [](glm::dvec3) { return 1.0 / 3.0; });
+    const float v = flat.fields[0].values[0];
+    const scene::TransferFunction flank({v - 0.01f, v + 0.01f, v + 0.02f},
+                                        {glm::vec4(0.8f, 0.6f, 0.3f, 0.0f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f),
+                                         glm::vec4(0.8f, 0.6f, 0.3f, 0.0f)},
+                                        "flank");
+    ASSERT_NEAR(flank.evaluate(v).a, 0.5f, 1e-3f);
+    // Positions: a field rising along x (each box's maximum on its +x face) under the ramp preset,
+    // seen from 3 x 10^4 of its widths away through a narrow lens.
+    amr::Model ramp = test::makeRefinedModel(8, {4, 4, 4}, 2, 0.4);
+    test::addField(ramp, "x", [](glm::dvec3 p) { return p.x + 0.3 * p.y; });
+    const struct {
+        amr::Model model;
+        bool far;
+    } cases[] = {{std::move(flat), false}, {std::move(ramp), true}};
+    for (const auto& c : cases) {
+        const std::shared_ptr<const scene::Volume> vol = scene::makeVolume(amr::Model(c.model));
+        scene::RenderSettings s = settingsFor(c.model);
+        s.mode = scene::Mode::Ae;
+        s.width = s.height = 32;
+        scene::TransferFunction tf = c.far ? scene::makePreset("ramp", vol->valueLo(), vol->valueHi()) : flank;
+        if (c.far) {
+            const glm::dvec3 lo = vol->worldLo(), hi = vol->worldHi(), centre = 0.5 * (lo + hi);
+            const double size = glm::length(hi - lo);
+            s.camera.target = centre;
+            s.camera.eye = centre + glm::dvec3(1.0, 0.8, 0.6) * 3e4 * size;
+            s.camera.up = {0.0, 0.0, 1.0};
+            s.camera.fovYDegrees = 2.0 * std::atan(0.4 / 3e4) * 180.0 / 3.14159265358979;  // the data's middle
+        }
+        for (scene::TraversalKind t : scene::allTraversals()) {
+            scene::StructureConfig cfg;
+            cfg.traversal = t;
+            cfg.grid = "16";
+            cfg.kdLeaves = 256;
+            SCOPED_TRACE(std::string(c.far ? "far camera " : "flat field ") + cfg.label());
+            render::Renderer r(ctx(), vol, cfg);
+            r.setTransferFunction(tf);
+            const scene::RenderOutput o = r.render(s, 16);
+            EXPECT_GT(o.stats.counter(shared::kCounterDensityLookups), 4000u);
+            EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
+        }
+    }
+}
