@@ -8,6 +8,7 @@
 // Built twice: path_trace (software BVHs only, runs everywhere) and path_trace_rq
 // (-DAMRVK_RAY_QUERY: also the VK_KHR_ray_query back-end; needs the rayQuery feature).
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 #ifdef AMRVK_RAY_QUERY
 #extension GL_EXT_ray_query : require
 #endif
@@ -103,8 +104,17 @@ vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
     return L;
 }
 
+// Histogram bin of a per-path count (shared/render_params.h, kPathBins).
+uint pathBin(uint n) {
+    if (n < 8u) return n;
+    int e = findMSB(n);
+    return min(4u * uint(e - 1) + ((n >> uint(e - 2)) & 3u), kPathBins - 1u);
+}
+
 void main() {
     gParams = ParamsRef(pc.params);
+    UintRW pathStats = UintRW(P.pathStats);
+    uint pathMaxLookups = 0u, pathMaxNulls = 0u;
     uvec2 pix = gl_GlobalInvocationID.xy + uvec2(0u, pc.rowOffset);
     bool inImage = pix.x < P.view.width && pix.y < min(P.view.height, pc.rowEnd);
     Counters c = newCounters();
@@ -116,7 +126,13 @@ void main() {
             uint rng = seedRng(pixel, pc.frameIndex + k, P.view.seed);
             vec2 jitter = vec2(rand(rng), rand(rng));
             vec3 d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
+            uint lookups0 = c.lookups, nulls0 = c.nulls;
             vec3 L = radiance(P.view.eye, d, rng, c);
+            uint pathLookups = c.lookups - lookups0, pathNulls = c.nulls - nulls0;
+            atomicAdd(pathStats.v[kPathStatsLookupBins + pathBin(pathLookups)], 1u);
+            atomicAdd(pathStats.v[kPathStatsNullBins + pathBin(pathNulls)], 1u);
+            pathMaxLookups = max(pathMaxLookups, pathLookups);
+            pathMaxNulls = max(pathMaxNulls, pathNulls);
             if (any(isnan(L)) || any(isinf(L))) {
                 L = vec3(0.0);
                 ++nanSamples;
@@ -134,6 +150,8 @@ void main() {
     uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);
     uint v3 = subgroupAdd(c.steps), v4 = subgroupAdd(c.violations), v5 = subgroupAdd(nanSamples);
     uint v6 = subgroupAdd(c.capped);
+    uint v7 = subgroupMax(c.lookups) * gl_SubgroupSize;
+    uint m0 = subgroupMax(pathMaxLookups), m1 = subgroupMax(pathMaxNulls);
     if (subgroupElect()) {
         atomicAdd(counters.v[kCounterDensityLookups], v0);
         atomicAdd(counters.v[kCounterRealCollisions], v1);
@@ -142,5 +160,8 @@ void main() {
         atomicAdd(counters.v[kCounterMajorantViolations], v4);
         atomicAdd(counters.v[kCounterNanSamples], v5);
         atomicAdd(counters.v[kCounterTrackingCapHits], v6);
+        atomicAdd(counters.v[kCounterLookupLaneSlots], v7);
+        atomicMax(pathStats.v[kPathStatsMaxLookups], m0);
+        atomicMax(pathStats.v[kPathStatsMaxNulls], m1);
     }
 }

@@ -29,7 +29,22 @@ AMRVK_CONST uint kCounterMajorantViolations = 4u;  // sigma > majorant (1 + 1e-6
 AMRVK_CONST uint kCounterBounceLimitHits = 5u;     // ms paths stopped at kMaxBounces
 AMRVK_CONST uint kCounterNanSamples = 6u;          // NaN/Inf radiance samples (zeroed)
 AMRVK_CONST uint kCounterTrackingCapHits = 7u;     // tracking stopped at the step cap or stalled in float (biased)
-AMRVK_CONST uint kCounterCount = 8u;
+// Lookup slots of the subgroups: per subgroup, its size x the most lookups one invocation made.
+// densityLookups / this = the SIMD lanes' share of useful lookup work (1: no divergence).
+AMRVK_CONST uint kCounterLookupLaneSlots = 8u;
+AMRVK_CONST uint kCounterCount = 9u;
+
+// Per-path statistics (single-process passes; RenderParams::pathStats, reset per dispatch): the
+// largest lookup and null-collision counts of one path (a sample: camera ray, bounces, shadow
+// rays) and histograms of both over kPathBins bins, 4 per octave: bin(n) = n for n < 8, else
+// 4 (e - 1) + ((n >> (e - 2)) & 3) with e = the highest set bit of n (scene/render_output.h
+// turns bins into percentiles).
+AMRVK_CONST uint kPathBins = 128u;
+AMRVK_CONST uint kPathStatsMaxLookups = 0u;
+AMRVK_CONST uint kPathStatsMaxNulls = 1u;
+AMRVK_CONST uint kPathStatsLookupBins = 2u;
+AMRVK_CONST uint kPathStatsNullBins = 2u + kPathBins;
+AMRVK_CONST uint kPathStatsCount = 2u + 2u * kPathBins;
 
 AMRVK_CONST uint kMaxBounces = 65536u;  // ms path length cap; paths reaching it are counted
 
@@ -136,6 +151,7 @@ struct RenderParams {
     MajorantsGpu majorants;
     uint64_t accum;     // AccumPixelGpu[width * height], pixel (x, y) at y * width + x
     uint64_t counters;  // uint[kCounterCount]
+    uint64_t pathStats;  // uint[kPathStatsCount]
     CutAwayGpu cut;
 };
 
@@ -223,8 +239,9 @@ AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, majorants) == 576);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 672);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 680);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 688);
-AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 688 + sizeof(CutAwayGpu));
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, pathStats) == 688);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 696);
+AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 696 + sizeof(CutAwayGpu));
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);

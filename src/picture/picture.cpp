@@ -135,6 +135,23 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["nanSamples"] = c[shared::kCounterNanSamples];
     j["bounceLimitHits"] = c[shared::kCounterBounceLimitHits];
     j["trackingCapHits"] = c[shared::kCounterTrackingCapHits];
+    // Where the time goes: per-path distributions (exact below 8, 4 bins per octave above), the
+    // SIMD lanes' share of useful lookup work, and GPU time per lookup.
+    const scene::PathStats& ps = out.stats.path;
+    if (ps.paths() > 0) {
+        auto distribution = [&](const std::array<uint64_t, shared::kPathBins>& bins, uint64_t sum, uint64_t max) {
+            return Json{{"mean", double(sum) / double(ps.paths())}, {"p50", scene::pathQuantile(bins, 0.5)},
+                        {"p90", scene::pathQuantile(bins, 0.9)},    {"p99", scene::pathQuantile(bins, 0.99)},
+                        {"p999", scene::pathQuantile(bins, 0.999)}, {"max", max}};
+        };
+        j["perPath"] = {
+            {"lookups", distribution(ps.lookupBins, c[shared::kCounterDensityLookups], ps.maxLookups)},
+            {"nullCollisions", distribution(ps.nullBins, c[shared::kCounterNullCollisions], ps.maxNulls)}};
+    }
+    const uint64_t slots = c[shared::kCounterLookupLaneSlots];
+    j["lookupLaneUtilization"] = slots > 0 ? double(c[shared::kCounterDensityLookups]) / double(slots) : 0.0;
+    j["gpuNanosecondsPerLookup"] =
+        c[shared::kCounterDensityLookups] > 0 ? 1e9 * out.stats.gpuSeconds / double(c[shared::kCounterDensityLookups]) : 0.0;
     j["majorantSeconds"] = renderer.majorantSeconds();
     j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
     j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();

@@ -32,6 +32,7 @@ gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& ent
 
 PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
     mCounters = gpu::Buffer(ctx, shared::kCounterCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "counters");
+    mPathStats = gpu::Buffer(ctx, shared::kPathStatsCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "pathStats");
 }
 
 const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scene::StructureConfig& config,
@@ -123,6 +124,7 @@ std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pi
         [&](VkCommandBuffer cmd) {
         mTimer.reset(cmd);
         vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, mPathStats.handle(), 0, VK_WHOLE_SIZE, 0);
         gpu::computeBarrier(cmd);
         for (const shared::PushConstants& push : dispatches) {
             const uint32_t scope = mTimer.begin(cmd);
@@ -135,6 +137,9 @@ std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pi
     std::array<uint32_t, shared::kCounterCount> counters{};
     mCounters.download(counters.data(), sizeof counters);
     for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];
+    std::array<uint32_t, shared::kPathStatsCount> path{};
+    mPathStats.download(path.data(), sizeof path);
+    mStats.path.add(path);
     const double seconds = mTimer.seconds();
     mStats.gpuSeconds += seconds;
     mStats.paths += paths;

@@ -57,6 +57,7 @@ public:
     uint32_t firstSample() const { return mFirstSample; }
     uint64_t accumAddress() const { return mAccum.address(); }
     uint64_t countersAddress() const { return mCounters.address(); }
+    uint64_t pathStatsAddress() const { return mPathStats.address(); }
     uint32_t spp() const { return mSpp; }          // complete samples per pixel
     uint32_t rowsDone() const { return mRowsDone; }  // rows of the image that have sample spp() + 1
     const scene::RenderStats& stats() const { return mStats; }
@@ -82,7 +83,7 @@ private:
 
     gpu::Context& mCtx;
     std::map<std::string, gpu::ComputePipeline> mPipelines;  // key: mode + structure label
-    gpu::Buffer mAccum, mCounters;
+    gpu::Buffer mAccum, mCounters, mPathStats;
     gpu::GpuTimer mTimer{mCtx, 64};  // at most 64 dispatches per submit
     int mWidth = 0, mHeight = 0;
     uint32_t mSpp = 0, mRowsDone = 0, mFirstSample = 0;

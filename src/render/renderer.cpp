@@ -23,6 +23,7 @@ Renderer::Renderer(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volum
     gpu::registerShaders(shaders::passShaders());
     mParamsBuffer = gpu::Buffer(ctx, sizeof(shared::RenderParams), gpu::MemoryKind::Device, "renderParams");
     mParams.counters = mPathTrace.countersAddress();
+    mParams.pathStats = mPathTrace.pathStatsAddress();
     writeShading(mSettings);  // defaults (density scale 1, tracking cap) for kernels run before setSettings
     buildDeviceScene();
 }

@@ -6,6 +6,43 @@
 
 namespace amrvk::scene {
 
+void PathStats::add(const std::array<uint32_t, shared::kPathStatsCount>& gpu) {
+    for (uint32_t b = 0; b < shared::kPathBins; ++b) {
+        lookupBins[b] += gpu[shared::kPathStatsLookupBins + b];
+        nullBins[b] += gpu[shared::kPathStatsNullBins + b];
+    }
+    maxLookups = std::max<uint64_t>(maxLookups, gpu[shared::kPathStatsMaxLookups]);
+    maxNulls = std::max<uint64_t>(maxNulls, gpu[shared::kPathStatsMaxNulls]);
+}
+
+uint64_t PathStats::paths() const {
+    uint64_t n = 0;
+    for (uint64_t c : lookupBins) n += c;
+    return n;
+}
+
+uint64_t pathBinLow(uint32_t b) {
+    if (b < 8) return b;
+    const uint32_t e = b / 4 + 1, sub = b % 4;  // inverse of pathBin in path_trace.comp
+    return uint64_t(4 + sub) << (e - 2);
+}
+
+uint64_t pathBinHigh(uint32_t b) { return b + 1 < shared::kPathBins ? pathBinLow(b + 1) - 1 : UINT32_MAX; }
+
+uint64_t pathQuantile(const std::array<uint64_t, shared::kPathBins>& bins, double q) {
+    uint64_t total = 0;
+    for (uint64_t c : bins) total += c;
+    if (total == 0) return 0;
+    // The smallest bin whose cumulative count reaches q of all paths.
+    const double want = std::clamp(q, 0.0, 1.0) * double(total);
+    uint64_t cumulative = 0;
+    for (uint32_t b = 0; b < shared::kPathBins; ++b) {
+        cumulative += bins[b];
+        if (bins[b] > 0 && double(cumulative) >= want) return pathBinHigh(b);
+    }
+    return pathBinHigh(shared::kPathBins - 1);
+}
+
 RenderOutput outputFromSums(const AccumulatedSums& sums, uint32_t spp, const RenderStats& stats) {
     constexpr size_t k = AccumulatedSums::kPerPixel;
     AMRVK_CHECK(sums.values.size() == size_t(sums.width) * size_t(sums.height) * k,

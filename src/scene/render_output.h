@@ -12,10 +12,28 @@
 
 namespace amrvk::scene {
 
+// How the work spreads over paths (one path = one sample: camera ray, bounces, shadow rays):
+// histograms of lookups and null collisions per path (shared/render_params.h: kPathBins, 4 bins
+// per octave, exact below 8) and the largest counts, summed over dispatches.
+struct PathStats {
+    std::array<uint64_t, shared::kPathBins> lookupBins{}, nullBins{};
+    uint64_t maxLookups = 0, maxNulls = 0;
+    // Adds one dispatch's GPU block (uint[kPathStatsCount]).
+    void add(const std::array<uint32_t, shared::kPathStatsCount>& gpu);
+    uint64_t paths() const;  // paths recorded (0 where the pass keeps no path statistics)
+};
+// The smallest and largest count of histogram bin b.
+uint64_t pathBinLow(uint32_t b);
+uint64_t pathBinHigh(uint32_t b);
+// The q-quantile (0 < q <= 1) of a per-path histogram as the largest count of the bin holding it
+// (exact below 8, within 25% above); 0 for an empty histogram.
+uint64_t pathQuantile(const std::array<uint64_t, shared::kPathBins>& bins, double q);
+
 struct RenderStats {
     uint64_t paths = 0;
     double gpuSeconds = 0;  // GPU time of the path-trace dispatches
     std::array<uint64_t, shared::kCounterCount> counters{};
+    PathStats path;
     uint64_t counter(uint32_t k) const { return counters[k]; }
 };
 

@@ -71,6 +71,7 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(m, MajorantsGpu, domainNodes, 2),   AMRVK_FIELD(m, MajorantsGpu, domainPrims, 2),
         AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, tfAlphaTree, 2),
         AMRVK_FIELD(0, RenderParams, accum, 2),         AMRVK_FIELD(0, RenderParams, counters, 2),
+        AMRVK_FIELD(0, RenderParams, pathStats, 2),
     });
     const size_t x = offsetof(RenderParams, cut);
     f.insert(f.end(), {AMRVK_FIELD(x, CutAwayGpu, cropLo, 3), AMRVK_FIELD(x, CutAwayGpu, flags, 1),

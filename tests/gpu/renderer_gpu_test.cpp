@@ -353,9 +353,60 @@ TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
     };
     const scene::RenderOutput one = renderOn(1, 3), eight = renderOn(8, 3), other = renderOn(8, 4);
     EXPECT_EQ(eight.spp, 13u);
-    for (uint32_t k = 0; k < shared::kCounterCount; ++k) EXPECT_EQ(one.stats.counters[k], eight.stats.counters[k]) << k;
+    // The same samples: the same counters and per-path statistics; only the lane slots (the SIMD
+    // occupancy of invocations, which now hold 8 samples each) change.
+    for (uint32_t k = 0; k < shared::kCounterCount; ++k) {
+        if (k != shared::kCounterLookupLaneSlots) {
+            EXPECT_EQ(one.stats.counters[k], eight.stats.counters[k]) << k;
+        }
+    }
+    EXPECT_EQ(one.stats.path.lookupBins, eight.stats.path.lookupBins);
+    EXPECT_EQ(one.stats.path.nullBins, eight.stats.path.nullBins);
+    EXPECT_EQ(one.stats.path.maxLookups, eight.stats.path.maxLookups);
     EXPECT_GT(one.stats.counters[shared::kCounterRealCollisions], 1000u);
     EXPECT_LT(maxRelativeDifference(one.mean, eight.mean), 1e-5);
     EXPECT_GT(maxRelativeDifference(one.mean, other.mean), 1e-2);
     EXPECT_NE(one.stats.counters[shared::kCounterDensityLookups], other.stats.counters[shared::kCounterDensityLookups]);
+}
+
+// Per-path statistics (render --json's perPath): one histogram entry per path, the histogram's bins
+// bracket the counters' totals (each path's count lies between its bin's ends), the percentiles
+// are ordered and reach the maximum, and the lane utilisation is a share of the lookup slots.
+TEST_F(RendererGpu, PathStatisticsAddUpToTheCounters) {
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
+    scene::StructureConfig cfg;
+    cfg.grid = "8";
+    render::Renderer r(ctx(), volume, cfg);
+    r.setTransferFunction(rampOver(*volume));
+    const scene::RenderSettings s = smallSettings(volume->model);
+    const scene::RenderOutput out = r.render(s, 9);
+    const scene::PathStats& p = out.stats.path;
+    ASSERT_EQ(p.paths(), out.stats.paths);
+    uint64_t nullPaths = 0;
+    for (uint64_t c : p.nullBins) nullPaths += c;
+    EXPECT_EQ(nullPaths, out.stats.paths);
+    auto bracket = [](const std::array<uint64_t, shared::kPathBins>& bins, uint64_t total, uint64_t max) {
+        uint64_t lo = 0, hi = 0;
+        uint32_t top = 0;
+        for (uint32_t b = 0; b < shared::kPathBins; ++b) {
+            lo += bins[b] * scene::pathBinLow(b);
+            hi += bins[b] * scene::pathBinHigh(b);
+            if (bins[b] > 0) top = b;
+        }
+        EXPECT_LE(lo, total);
+        EXPECT_GE(hi, total);
+        EXPECT_GE(max, scene::pathBinLow(top));
+        EXPECT_LE(max, scene::pathBinHigh(top));
+    };
+    const auto& c = out.stats.counters;
+    bracket(p.lookupBins, c[shared::kCounterDensityLookups], p.maxLookups);
+    bracket(p.nullBins, c[shared::kCounterNullCollisions], p.maxNulls);
+    const uint64_t p50 = scene::pathQuantile(p.lookupBins, 0.5), p99 = scene::pathQuantile(p.lookupBins, 0.99);
+    EXPECT_LE(p50, p99);
+    EXPECT_LE(p99, scene::pathBinHigh(shared::kPathBins - 1));
+    EXPECT_GE(scene::pathQuantile(p.lookupBins, 1.0), p.maxLookups);
+    EXPECT_GT(p.maxLookups, 8u);  // paths that scatter take many lookups: the bins above 8 are used
+    const uint64_t slots = c[shared::kCounterLookupLaneSlots];
+    EXPECT_GE(slots, c[shared::kCounterDensityLookups]);
+    EXPECT_GT(c[shared::kCounterDensityLookups], 0u);
 }

@@ -58,7 +58,7 @@ void main() {
     u64(P.majorants.domainMajorants); u64(P.majorants.domainNodes); u64(P.majorants.domainPrims);
     u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
     // RenderParams tail
-    u64(P.accum); u64(P.counters);
+    u64(P.accum); u64(P.counters); u64(P.pathStats);
     f3(P.cut.cropLo); u(P.cut.flags); f3(P.cut.cropHi); u(P.cut.planeCount);
     for (uint i = 0u; i < kMaxClipPlanes; ++i) f4(P.cut.planes[i]);
     // The structures read through buffer references.

@@ -1,0 +1,60 @@
+// Per-path histogram bins and percentiles (scene/render_output.h): the bins tile the counts, 4 per
+// octave above 8 (exact below), and a quantile is the largest count of the bin that holds it.
+#include "scene/render_output.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+
+namespace amrvk {
+namespace {
+
+// The shader's bin of a count (passes/path_trace.comp, pathBin), as shared/render_params.h states it.
+uint32_t specBin(uint64_t n) {
+    if (n < 8) return uint32_t(n);
+    const int e = 63 - std::countl_zero(n);
+    return std::min<uint32_t>(uint32_t(4 * (e - 1)) + uint32_t((n >> (e - 2)) & 3), shared::kPathBins - 1);
+}
+
+TEST(PathStats, BinsTileTheCountsFourPerOctave) {
+    EXPECT_EQ(scene::pathBinLow(0), 0u);
+    for (uint32_t b = 0; b + 1 < shared::kPathBins; ++b) {
+        EXPECT_LE(scene::pathBinLow(b), scene::pathBinHigh(b)) << b;
+        EXPECT_EQ(scene::pathBinHigh(b) + 1, scene::pathBinLow(b + 1)) << b;
+    }
+    for (uint64_t n : {0ull, 1ull, 7ull, 8ull, 9ull, 10ull, 11ull, 12ull, 15ull, 16ull, 100ull, 1000ull, 65535ull,
+                       65536ull, 1000000ull, 4294967295ull}) {
+        const uint32_t b = specBin(n);
+        EXPECT_LE(scene::pathBinLow(b), n) << n;
+        EXPECT_GE(scene::pathBinHigh(b), n) << n;
+    }
+    EXPECT_EQ(scene::pathBinHigh(7), 7u);  // exact below 8
+    // A bin above 8 spans at most a quarter of its lower end.
+    for (uint32_t b = 8; b + 1 < shared::kPathBins; ++b)
+        EXPECT_LE(scene::pathBinHigh(b) - scene::pathBinLow(b) + 1, scene::pathBinLow(b) / 4) << b;
+}
+
+TEST(PathStats, QuantileIsTheUpperEndOfTheBinHoldingIt) {
+    std::array<uint64_t, shared::kPathBins> bins{};
+    bins[specBin(2)] = 90;     // 90 paths with 2 lookups
+    bins[specBin(100)] = 9;    // 9 with about 100
+    bins[specBin(5000)] = 1;   // one with about 5000
+    EXPECT_EQ(scene::pathQuantile(bins, 0.5), 2u);
+    EXPECT_EQ(scene::pathQuantile(bins, 0.9), 2u);
+    EXPECT_EQ(scene::pathQuantile(bins, 0.95), scene::pathBinHigh(specBin(100)));
+    EXPECT_EQ(scene::pathQuantile(bins, 0.995), scene::pathBinHigh(specBin(5000)));
+    EXPECT_EQ(scene::pathQuantile({}, 0.5), 0u);
+    scene::PathStats p;
+    std::array<uint32_t, shared::kPathStatsCount> gpu{};
+    gpu[shared::kPathStatsLookupBins + 3] = 5;
+    gpu[shared::kPathStatsNullBins + 0] = 5;
+    gpu[shared::kPathStatsMaxLookups] = 3;
+    p.add(gpu);
+    gpu[shared::kPathStatsMaxLookups] = 2;
+    p.add(gpu);
+    EXPECT_EQ(p.paths(), 10u);
+    EXPECT_EQ(p.maxLookups, 3u);  // the largest over dispatches, not a sum
+}
+
+}  // namespace
+}  // namespace amrvk
