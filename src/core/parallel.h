@@ -12,6 +12,11 @@
 
 namespace amrvk {
 
+// Worker threads of every parallel step: the machine's cores, or AMRVK_THREADS (1..kMaxThreads,
+// read once per process; anything else is a one-line error at the first parallel step).
+inline constexpr int kMaxThreads = 4096;
+int threadCount();
+
 // Calls fn(lo, hi) on disjoint sub-ranges that together cover [begin, end), concurrently and in
 // any order (at least `grain` indices each, unless fewer remain); returns when all have returned.
 // An exception thrown by fn is rethrown here after the other calls are cancelled or done.
