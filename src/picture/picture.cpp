@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stats.h"
 #include "core/strings.h"
@@ -113,6 +114,7 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["field"] = volume.field().name;
     j["device"] = ctx.deviceReport().name;
     j["samplesPerInvocation"] = ctx.samplesPerInvocation();
+    j["threads"] = threadCount();  // host threads of the parallel steps (AMRVK_THREADS)
     j["width"] = rs.width;
     j["height"] = rs.height;
     j["spp"] = out.spp;
