@@ -15,6 +15,7 @@
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
 #include "amr/sampler.h"
+#include "amr/synthetic.h"
 #include "core/error.h"
 #include "model_fixtures.h"
 #include "test_data.h"
@@ -94,6 +95,41 @@ TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
     ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
     EXPECT_EQ(std::memcmp(shuffled.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
     EXPECT_EQ(shuffled.fields.back().values, ordered.fields.back().values);
+}
+
+// Near the root, nodes of at least 2^21 cells are partitioned on every core (chunks partitioned
+// in parallel, then the misplaced cells swapped across the split): the bricks and the model's
+// order are still those of the cells alone, from the generator's order and from a shuffled one.
+TEST(Bricks, ParallelPartitionsNearTheRootGiveTheSameBricks) {
+    amr::SyntheticParams p;
+    p.cells = 3000000;
+    p.seed = 3;
+    const amr::Model original = amr::makeSyntheticModel(p);
+    ASSERT_GT(original.cells.size(), size_t{1} << 21);
+    amr::Model m = original;
+    const BrickSet bs = buildBricks(m);
+    uint64_t total = 0;
+    for (const Brick& b : bs.bricks) {
+        ASSERT_EQ(b.begin, total);
+        total += b.cellCount();
+        const amr::Cell& first = m.cells[b.begin];
+        const amr::Cell& last = m.cells[b.begin + b.cellCount() - 1];
+        EXPECT_EQ(first.lower, b.lower);
+        EXPECT_EQ(last.lower, b.lower + (b.size - 1) * int(b.cellWidth()));
+        EXPECT_EQ(first.level, b.level);
+    }
+    EXPECT_EQ(total, m.cells.size());
+    amr::Model shuffled = original;
+    std::mt19937 rng(11);
+    for (size_t i = shuffled.cells.size(); i-- > 1;) {
+        const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
+        std::swap(shuffled.cells[i], shuffled.cells[j]);
+        for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
+    }
+    const BrickSet fromShuffled = buildBricks(shuffled);
+    ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
+    EXPECT_EQ(std::memcmp(shuffled.cells.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_EQ(shuffled.fields[0].values, m.fields[0].values);
 }
 
 // Overlaps are found by the build itself (no hash): a cell inside a coarser one, and a duplicate,
