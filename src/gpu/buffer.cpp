@@ -1,5 +1,6 @@
 #include "gpu/buffer.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "gpu/vk_check.h"
@@ -107,12 +108,25 @@ void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
         }
         return;
     }
-    Buffer staging(*mCtx, bytes, MemoryKind::HostRead, mName + ".staging");
-    staging.upload(data, bytes);
-    mCtx->submitAndWait([&](VkCommandBuffer cmd) {
-        VkBufferCopy copy{0, offset, bytes};
-        vkCmdCopyBuffer(cmd, staging.handle(), mBuffer, 1, &copy);
-    });
+    // Through one staging buffer of at most kStagingBytes, so a 4 GB upload (the values of 10^9
+    // cells) takes 64 MiB of host memory beside the data, not another 4 GB.
+    uploadStaged(data, bytes, offset, kStagingBytes);
+}
+
+void Buffer::uploadStaged(const void* data, uint64_t bytes, uint64_t offset, uint64_t chunkBytes) {
+    AMRVK_CHECK(offset + bytes <= mSize && chunkBytes > 0, "staged upload of ", bytes, " bytes at ", offset,
+                " overflows buffer '", mName, "' of ", mSize, " bytes");
+    if (bytes == 0) return;
+    const uint64_t chunk = std::min(bytes, chunkBytes);
+    Buffer staging(*mCtx, chunk, MemoryKind::HostRead, mName + ".staging");
+    for (uint64_t done = 0; done < bytes; done += chunk) {
+        const uint64_t n = std::min(chunk, bytes - done);
+        staging.upload(static_cast<const char*>(data) + done, n);
+        mCtx->submitAndWait([&](VkCommandBuffer cmd) {
+            VkBufferCopy copy{0, offset + done, n};
+            vkCmdCopyBuffer(cmd, staging.handle(), mBuffer, 1, &copy);
+        });
+    }
 }
 
 void Buffer::download(void* data, uint64_t bytes) const {
@@ -128,12 +142,23 @@ void Buffer::download(void* data, uint64_t bytes) const {
         std::memcpy(data, mMapped, bytes);
         return;
     }
-    Buffer staging(*mCtx, bytes, MemoryKind::HostRead, mName + ".readback");
-    mCtx->submitAndWait([&](VkCommandBuffer cmd) {
-        VkBufferCopy copy{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, mBuffer, staging.handle(), 1, &copy);
-    });
-    staging.download(data, bytes);
+    downloadStaged(data, bytes, kStagingBytes);
+}
+
+void Buffer::downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) const {
+    AMRVK_CHECK(bytes <= mSize && chunkBytes > 0, "staged download of ", bytes, " bytes from buffer '", mName,
+                "' of ", mSize, " bytes");
+    if (bytes == 0) return;
+    const uint64_t chunk = std::min(bytes, chunkBytes);
+    Buffer staging(*mCtx, chunk, MemoryKind::HostRead, mName + ".readback");
+    for (uint64_t done = 0; done < bytes; done += chunk) {
+        const uint64_t n = std::min(chunk, bytes - done);
+        mCtx->submitAndWait([&](VkCommandBuffer cmd) {
+            VkBufferCopy copy{done, 0, n};
+            vkCmdCopyBuffer(cmd, mBuffer, staging.handle(), 1, &copy);
+        });
+        staging.download(static_cast<char*>(data) + done, n);
+    }
 }
 
 void Buffer::fillZero() {

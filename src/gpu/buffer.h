@@ -19,6 +19,9 @@ enum class MemoryKind {
     HostRead,  // host-visible, cached where possible; for readback
 };
 
+// Device-local buffers are filled and read back through a staging buffer of at most this size.
+inline constexpr uint64_t kStagingBytes = uint64_t{64} << 20;
+
 class Buffer {
 public:
     Buffer() = default;
@@ -46,6 +49,11 @@ public:
     }
     // Copies the buffer's first `bytes` to host memory.
     void download(void* data, uint64_t bytes) const;
+    // The copies unmapped (device-local) buffers take: through a staging buffer of chunkBytes,
+    // one chunk at a time (kStagingBytes by default). Public so tests exercise them on devices
+    // whose memory is all mapped (lavapipe).
+    void uploadStaged(const void* data, uint64_t bytes, uint64_t offset, uint64_t chunkBytes);
+    void downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) const;
     template <typename T>
     std::vector<T> download() const {
         std::vector<T> out(mSize / sizeof(T));
