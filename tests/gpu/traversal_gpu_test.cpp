@@ -3,6 +3,7 @@
 // data, and each segment's majorant is the maximum over the active boxes containing its points;
 // the sw and rq back-ends give bit-identical segments and reconstructed values; a TF edit that
 // empties regions changes the traversal structure but never a reconstructed value.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -185,6 +186,29 @@ int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vect
             fault("an active box before the first segment");
         if (last < tOut - 2 * eps && bruteMajorant(boxes, o + d * (0.5 * (last + tOut)), eps) > 0.0)
             fault("an active box after the last segment");
+    }
+    // Every active box the ray crosses within the data bounds over more than 4 eps has the middle
+    // of its crossing inside a segment (the probes above see only the middle of each gap).
+    for (size_t i = 0; i < boxes.boxes.size(); ++i) {
+        if (!(boxes.maj[i] > 0.0f)) continue;
+        const accel::BoxD& b = boxes.boxes[i];
+        double e = tIn, x = tOut;
+        bool onFace = false;
+        for (int a = 0; a < 3; ++a) {
+            if (d[a] == 0.0) {
+                onFace |= std::abs(o[a] - b.lo[a]) <= eps || std::abs(o[a] - b.hi[a]) <= eps;
+                if (o[a] < b.lo[a] || o[a] >= b.hi[a]) x = -INFINITY;
+                continue;
+            }
+            const double t0 = (b.lo[a] - o[a]) / d[a], t1 = (b.hi[a] - o[a]) / d[a];
+            e = std::max(e, std::min(t0, t1));
+            x = std::min(x, std::max(t0, t1));
+        }
+        if (onFace || !(x - e > 4 * eps)) continue;
+        const double m = 0.5 * (e + x);
+        if (std::none_of(segs.begin(), segs.end(), [&](const Segment& s) { return s.t0 - eps <= m && m <= s.t1 + eps; }))
+            fault("active box " + std::to_string(i) + " crossed over [" + std::to_string(e) + ", " + std::to_string(x) +
+                  "] lies in no segment");
     }
     return faults;
 }
