@@ -18,31 +18,50 @@ struct DdaState {
     float tEnd;
 };
 
-bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
+// Starts in macrocell `cell` at ray parameter t, stepping until tEnd; no clip and no floor: for a
+// caller that knows the cell the ray is in at t (grid-bvh, from a box query). ddaInit ends here.
+void ddaStart(vec3 o, vec3 d, ivec3 cell, float t, float tEnd, out DdaState s) {
     vec3 lo = P.scene.gridOrigin;
     vec3 size = P.scene.gridCellSize;
-    ivec3 dims = P.scene.gridDims;
-    vec3 hi = lo + size * vec3(dims);
-    s.t = tMin;
-    s.tEnd = tMax;
-    if (!clipRay(lo, hi, o, d, s.t, s.tEnd)) return false;
-    vec3 start = (o + d * s.t - lo) / size;
-    s.cell = clamp(ivec3(floor(start)), ivec3(0), dims - 1);
+    s.t = t;
+    s.tEnd = tEnd;
+    s.cell = cell;
     for (int a = 0; a < 3; ++a) {
         if (d[a] > 0.0) {
             s.stepDir[a] = 1;
             s.tDelta[a] = size[a] / d[a];
-            s.tNext[a] = max(s.t, (lo[a] + float(s.cell[a] + 1) * size[a] - o[a]) / d[a]);
+            s.tNext[a] = max(t, (lo[a] + float(cell[a] + 1) * size[a] - o[a]) / d[a]);
         } else if (d[a] < 0.0) {
             s.stepDir[a] = -1;
             s.tDelta[a] = -size[a] / d[a];
-            s.tNext[a] = max(s.t, (lo[a] + float(s.cell[a]) * size[a] - o[a]) / d[a]);
+            s.tNext[a] = max(t, (lo[a] + float(cell[a]) * size[a] - o[a]) / d[a]);
         } else {
             s.stepDir[a] = 0;
             s.tDelta[a] = kInf;
             s.tNext[a] = kInf;
         }
     }
+}
+
+// The macrocell holding o + d t, clamped into the grid (a point on a face may round to either
+// side: the DDA's first segment is then empty or a sliver).
+ivec3 ddaCellAt(vec3 o, vec3 d, float t) {
+    vec3 start = (o + d * t - P.scene.gridOrigin) / P.scene.gridCellSize;
+    return clamp(ivec3(floor(start)), ivec3(0), P.scene.gridDims - 1);
+}
+
+// Macrocell coordinates of index x + dims.x * (y + dims.y * z).
+ivec3 ddaCellOfIndex(uint index) {
+    uvec3 dims = uvec3(P.scene.gridDims);
+    return ivec3(index % dims.x, (index / dims.x) % dims.y, index / (dims.x * dims.y));
+}
+
+bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
+    vec3 lo = P.scene.gridOrigin;
+    vec3 hi = lo + P.scene.gridCellSize * vec3(P.scene.gridDims);
+    float t = tMin, tEnd = tMax;
+    if (!clipRay(lo, hi, o, d, t, tEnd)) return false;
+    ddaStart(o, d, ddaCellAt(o, d, t), t, tEnd, s);
     return true;
 }
 

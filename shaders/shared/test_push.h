@@ -21,7 +21,7 @@ struct TestDdaPush {
     uint64_t rays;
     uint64_t results;
     uint rayCount;
-    uint pad;
+    uint startCells;  // 0: ddaInit; 1: ddaStart in a given macrocell (a third vec4 per ray: x, y, z)
 };
 AMRVK_STATIC_ASSERT(sizeof(TestDdaPush) == 32);
 

@@ -3,6 +3,7 @@
 // with the same operations in the same order (templated on the scalar type: float reproduces the
 // shader, double is the precise reference). Segments are contiguous and cover the ray's overlap
 // with the grid within [tMin, tMax]; the grid is clipped by the shared slab test (ray_box.h).
+// ddaStart begins the walk in a given macrocell (grid-bvh resumes there after a box query).
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -26,45 +27,87 @@ struct DdaSegment {
     T t0, t1;
 };
 
+// The walk's state: the macrocell the ray is in and the next plane crossing per axis.
+template <typename T>
+struct DdaState {
+    glm::ivec3 cell{0};
+    glm::ivec3 step{0};
+    glm::vec<3, T> tNext{std::numeric_limits<T>::infinity()};   // per axis (inf: never)
+    glm::vec<3, T> tDelta{std::numeric_limits<T>::infinity()};  // ray parameter per macrocell per axis
+    T t{}, tEnd{};                                                // start of the current segment; end
+};
+
+// The macrocell holding o + d t, clamped into the grid.
+template <typename T>
+glm::ivec3 ddaCellAt(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, T t) {
+    using V = glm::vec<3, T>;
+    const V lo(grid.origin), size(grid.cellSize);
+    V start = (o + d * t - lo) / size;
+    return glm::clamp(glm::ivec3(glm::floor(start)), glm::ivec3(0), grid.dims - 1);
+}
+
+// Starts in macrocell `cell` at ray parameter t (no clip, no floor), as the shader's ddaStart.
+template <typename T>
+DdaState<T> ddaStart(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, glm::ivec3 cell, T t, T tEnd) {
+    using V = glm::vec<3, T>;
+    const V lo(grid.origin), size(grid.cellSize);
+    DdaState<T> s;
+    s.t = t;
+    s.tEnd = tEnd;
+    s.cell = cell;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] > T(0)) {
+            s.step[a] = 1;
+            s.tDelta[a] = size[a] / d[a];
+            s.tNext[a] = std::max(t, (lo[a] + T(cell[a] + 1) * size[a] - o[a]) / d[a]);
+        } else if (d[a] < T(0)) {
+            s.step[a] = -1;
+            s.tDelta[a] = -size[a] / d[a];
+            s.tNext[a] = std::max(t, (lo[a] + T(cell[a]) * size[a] - o[a]) / d[a]);
+        }
+    }
+    return s;
+}
+
+// Next segment; false when the ray has left the grid or reached tEnd.
+template <typename T>
+bool ddaNext(const DdaGrid& grid, DdaState<T>& s, DdaSegment<T>& seg) {
+    const glm::ivec3 dims = grid.dims;
+    if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
+        !glm::all(glm::lessThan(s.cell, dims)))
+        return false;
+    T tExit = std::min(std::min(s.tNext.x, s.tNext.y), s.tNext.z);
+    seg = {uint32_t(s.cell.x + dims.x * (s.cell.y + dims.y * s.cell.z)), s.t, std::min(tExit, s.tEnd)};
+    for (int a = 0; a < 3; ++a)
+        if (s.tNext[a] == tExit) {
+            s.cell[a] += s.step[a];
+            s.tNext[a] += s.tDelta[a];
+        }
+    s.t = seg.t1;
+    return true;
+}
+
+// Every segment of a walk started with ddaStart.
+template <typename T>
+std::vector<DdaSegment<T>> ddaSegmentsFrom(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, glm::ivec3 cell,
+                                           T t, T tEnd) {
+    std::vector<DdaSegment<T>> out;
+    DdaState<T> s = ddaStart(grid, o, d, cell, t, tEnd);
+    DdaSegment<T> seg;
+    while (ddaNext(grid, s, seg)) out.push_back(seg);
+    return out;
+}
+
+// Every segment of the ray's overlap with the grid within [tMin, tMax].
 template <typename T>
 std::vector<DdaSegment<T>> ddaSegments(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, T tMin,
                                        T tMax) {
     using V = glm::vec<3, T>;
-    const T inf = std::numeric_limits<T>::infinity();
     const V lo(grid.origin), size(grid.cellSize);
-    const glm::ivec3 dims = grid.dims;
-    const V hi = lo + size * V(dims);
-    std::vector<DdaSegment<T>> out;
+    const V hi = lo + size * V(grid.dims);
     T t = tMin, tEnd = tMax;
-    if (!clipRay(lo, hi, o, d, t, tEnd)) return out;
-    V start = (o + d * t - lo) / size;
-    glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(start)), glm::ivec3(0), dims - 1);
-    glm::ivec3 step(0);
-    V tNext(inf), tDelta(inf);
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] > T(0)) {
-            step[a] = 1;
-            tDelta[a] = size[a] / d[a];
-            tNext[a] = std::max(t, (lo[a] + T(cell[a] + 1) * size[a] - o[a]) / d[a]);
-        } else if (d[a] < T(0)) {
-            step[a] = -1;
-            tDelta[a] = -size[a] / d[a];
-            tNext[a] = std::max(t, (lo[a] + T(cell[a]) * size[a] - o[a]) / d[a]);
-        }
-    }
-    while (!(t >= tEnd) && glm::all(glm::greaterThanEqual(cell, glm::ivec3(0))) &&
-           glm::all(glm::lessThan(cell, dims))) {
-        T tExit = std::min(std::min(tNext.x, tNext.y), tNext.z);
-        DdaSegment<T> seg{uint32_t(cell.x + dims.x * (cell.y + dims.y * cell.z)), t, std::min(tExit, tEnd)};
-        for (int a = 0; a < 3; ++a)
-            if (tNext[a] == tExit) {
-                cell[a] += step[a];
-                tNext[a] += tDelta[a];
-            }
-        t = seg.t1;
-        out.push_back(seg);
-    }
-    return out;
+    if (!clipRay(lo, hi, o, d, t, tEnd)) return {};
+    return ddaSegmentsFrom(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
 }
 
 }  // namespace amrvk::accel

@@ -1,6 +1,7 @@
 // The GLSL DDA (majorant_dda.glsl) against its CPU twin (accel/dda.h) run in float: identical
 // segment lists for random rays and for the hard rays (axis-parallel with +0/-0, rays in
-// macrocell planes, through corners, starting inside the grid).
+// macrocell planes, through corners, starting inside the grid), and for walks started in a given
+// macrocell (ddaStart, as grid-bvh resumes).
 #include <random>
 
 #include "accel/dda.h"
@@ -12,7 +13,54 @@
 
 using namespace amrvk;
 
-class DdaGpu : public test::GpuTest {};
+class DdaGpu : public test::GpuTest {
+protected:
+    // Runs test_dda over `rays` (2 vec4 per ray, or 3 with startCells) and compares every segment
+    // with accel::ddaSegments (or ddaSegmentsFrom) in float; returns the mismatches (at most 11).
+    size_t compareWithTwin(const accel::DdaGrid& grid, const std::vector<glm::vec4>& rays, bool startCells) {
+        const uint32_t perRay = startCells ? 3 : 2;
+        const uint32_t count = uint32_t(rays.size() / perRay), maxSegs = 64, stride = 1 + 3 * maxSegs;
+        auto& c = ctx();
+        shared::RenderParams p{};
+        p.scene.gridDims = grid.dims;
+        p.scene.gridOrigin = glm::vec3(grid.origin);
+        p.scene.gridCellSize = glm::vec3(grid.cellSize);
+        gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
+        params.upload(&p, sizeof p);
+        gpu::Buffer rayBuf = gpu::makeBuffer<glm::vec4>(c, rays, "rays");
+        gpu::Buffer out(c, uint64_t(count) * stride * 4, gpu::MemoryKind::HostRead, "segments");
+        gpu::ComputePipeline pipe(c, gpu::loadShader("test_dda"), "test_dda", sizeof(shared::TestDdaPush));
+        shared::TestDdaPush push{params.address(), rayBuf.address(), out.address(), count, startCells ? 1u : 0u};
+        c.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (count + 31) / 32); });
+        auto got = out.download<float>();
+        size_t mismatches = 0;
+        for (uint32_t i = 0; i < count && mismatches <= 10; ++i) {
+            glm::vec4 o = rays[perRay * i], d = rays[perRay * i + 1];
+            auto cpu = startCells ? accel::ddaSegmentsFrom<float>(grid, glm::vec3(o), glm::vec3(d),
+                                                                   glm::ivec3(glm::vec3(rays[perRay * i + 2])), o.w, d.w)
+                                  : accel::ddaSegments<float>(grid, glm::vec3(o), glm::vec3(d), o.w, d.w);
+            if (cpu.size() > maxSegs) cpu.resize(maxSegs);
+            uint32_t n;
+            std::memcpy(&n, &got[i * stride], 4);
+            EXPECT_EQ(n, cpu.size()) << "ray " << i;
+            if (n != cpu.size()) {
+                ++mismatches;
+                continue;
+            }
+            for (uint32_t k = 0; k < n; ++k) {
+                uint32_t cell;
+                std::memcpy(&cell, &got[i * stride + 1 + 3 * k], 4);
+                float t0 = got[i * stride + 2 + 3 * k], t1 = got[i * stride + 3 + 3 * k];
+                bool same = cell == cpu[k].cell && t0 == cpu[k].t0 && t1 == cpu[k].t1;
+                mismatches += !same;
+                EXPECT_TRUE(same) << "ray " << i << " segment " << k << ": gpu (" << cell << ", " << t0 << ", "
+                                  << t1 << ") cpu (" << cpu[k].cell << ", " << cpu[k].t0 << ", " << cpu[k].t1 << ")";
+                if (mismatches > 10) break;
+            }
+        }
+        return mismatches;
+    }
+};
 
 TEST_F(DdaGpu, SegmentsEqualTheCpuTwin) {
     accel::DdaGrid grid{{-2.0, 1.0, 0.5}, {1.5, 2.0, 0.75}, {8, 5, 6}};
@@ -36,37 +84,34 @@ TEST_F(DdaGpu, SegmentsEqualTheCpuTwin) {
         glm::vec3 d(u(rng), u(rng), u(rng));
         if (glm::length(d) > 1e-3f) add({pos(rng), pos(rng), pos(rng)}, glm::normalize(d));
     }
-    const uint32_t count = uint32_t(rays.size() / 2), maxSegs = 64, stride = 1 + 3 * maxSegs;
+    EXPECT_EQ(compareWithTwin(grid, rays, false), 0u);
+}
 
-    auto& c = ctx();
-    shared::RenderParams p{};
-    p.scene.gridDims = grid.dims;
-    p.scene.gridOrigin = glm::vec3(grid.origin);
-    p.scene.gridCellSize = glm::vec3(grid.cellSize);
-    gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
-    params.upload(&p, sizeof p);
-    gpu::Buffer rayBuf = gpu::makeBuffer<glm::vec4>(c, rays, "rays");
-    gpu::Buffer out(c, uint64_t(count) * stride * 4, gpu::MemoryKind::HostRead, "segments");
-    gpu::ComputePipeline pipe(c, gpu::loadShader("test_dda"), "test_dda", sizeof(shared::TestDdaPush));
-    shared::TestDdaPush push{params.address(), rayBuf.address(), out.address(), count, 0};
-    c.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (count + 31) / 32); });
-    auto got = out.download<float>();
-    size_t mismatches = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        glm::vec4 o = rays[2 * i], d = rays[2 * i + 1];
-        auto cpu = accel::ddaSegments<float>(grid, glm::vec3(o), glm::vec3(d), o.w, d.w);
-        uint32_t n;
-        std::memcpy(&n, &got[i * stride], 4);
-        ASSERT_EQ(n, cpu.size()) << "ray " << i;
-        for (uint32_t k = 0; k < n; ++k) {
-            uint32_t cell;
-            std::memcpy(&cell, &got[i * stride + 1 + 3 * k], 4);
-            float t0 = got[i * stride + 2 + 3 * k], t1 = got[i * stride + 3 + 3 * k];
-            bool same = cell == cpu[k].cell && t0 == cpu[k].t0 && t1 == cpu[k].t1;
-            mismatches += !same;
-            EXPECT_TRUE(same) << "ray " << i << " segment " << k << ": gpu (" << cell << ", " << t0 << ", "
-                              << t1 << ") cpu (" << cpu[k].cell << ", " << cpu[k].t0 << ", " << cpu[k].t1 << ")";
-            if (mismatches > 10) return;
-        }
+// ddaStart, grid-bvh's resumption after a box query: the walk from a given macrocell at a given t
+// equals the twin's, for the macrocell holding the point and for its neighbours (a point on a face
+// rounds to either side).
+TEST_F(DdaGpu, StartInAGivenMacrocellEqualsTheCpuTwin) {
+    accel::DdaGrid grid{{-2.0, 1.0, 0.5}, {1.5, 2.0, 0.75}, {8, 5, 6}};
+    std::vector<glm::vec4> rays;  // (origin, t), (direction, tMax), (macrocell, 0)
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), unit(0.0f, 1.0f);
+    std::uniform_int_distribution<int> shift(-1, 1);
+    const glm::vec3 lo(grid.origin), size(grid.cellSize);
+    while (rays.size() < 3 * 2000) {
+        glm::vec3 d(u(rng), u(rng), u(rng));
+        if (glm::length(d) < 1e-3f) continue;
+        d = glm::normalize(d);
+        if (rays.size() % 7 == 0) d.y = (rays.size() % 2) ? 0.0f : -0.0f;  // never steps in y
+        // A point inside the grid (every fifth on a macrocell face), reached at t = 4 from o.
+        glm::vec3 p = lo + size * glm::vec3(grid.dims) * glm::vec3(unit(rng), unit(rng), unit(rng));
+        if (rays.size() % 5 == 0) p.x = lo.x + size.x * float(1 + int(unit(rng) * 6.0f));
+        const float t = 4.0f;
+        const glm::vec3 o = p - d * t;
+        glm::ivec3 cell = accel::ddaCellAt<float>(grid, o, d, t) + glm::ivec3(shift(rng), shift(rng), shift(rng));
+        cell = glm::clamp(cell, glm::ivec3(0), grid.dims - 1);
+        rays.emplace_back(o, t);
+        rays.emplace_back(d, unit(rng) < 0.2f ? t + 3.0f * unit(rng) : INFINITY);
+        rays.emplace_back(glm::vec3(cell), 0.0f);
     }
+    EXPECT_EQ(compareWithTwin(grid, rays, true), 0u);
 }

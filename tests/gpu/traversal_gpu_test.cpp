@@ -2,7 +2,9 @@
 // force over every box: segments are contiguous, front to back, cover the ray's overlap with the
 // data, and each segment's majorant is the maximum over the active boxes containing its points;
 // the sw and rq back-ends give bit-identical segments and reconstructed values; a TF edit that
-// empties regions changes the traversal structure but never a reconstructed value.
+// empties regions changes the traversal structure but never a reconstructed value. grid-bvh steps
+// like grid-dda where every macrocell is active and skips culled runs between active ones.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -186,6 +188,29 @@ int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vect
         if (last < tOut - 2 * eps && bruteMajorant(boxes, o + d * (0.5 * (last + tOut)), eps) > 0.0)
             fault("an active box after the last segment");
     }
+    // Every active box the ray crosses within the data bounds over more than 4 eps has the middle
+    // of its crossing inside a segment (the probes above see only the middle of each gap).
+    for (size_t i = 0; i < boxes.boxes.size(); ++i) {
+        if (!(boxes.maj[i] > 0.0f)) continue;
+        const accel::BoxD& b = boxes.boxes[i];
+        double e = tIn, x = tOut;
+        bool onFace = false;
+        for (int a = 0; a < 3; ++a) {
+            if (d[a] == 0.0) {
+                onFace |= std::abs(o[a] - b.lo[a]) <= eps || std::abs(o[a] - b.hi[a]) <= eps;
+                if (o[a] < b.lo[a] || o[a] >= b.hi[a]) x = -INFINITY;
+                continue;
+            }
+            const double t0 = (b.lo[a] - o[a]) / d[a], t1 = (b.hi[a] - o[a]) / d[a];
+            e = std::max(e, std::min(t0, t1));
+            x = std::min(x, std::max(t0, t1));
+        }
+        if (onFace || !(x - e > 4 * eps)) continue;
+        const double m = 0.5 * (e + x);
+        if (std::none_of(segs.begin(), segs.end(), [&](const Segment& s) { return s.t0 - eps <= m && m <= s.t1 + eps; }))
+            fault("active box " + std::to_string(i) + " crossed over [" + std::to_string(e) + ", " + std::to_string(x) +
+                  "] lies in no segment");
+    }
     return faults;
 }
 
@@ -237,6 +262,108 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
             }
             EXPECT_EQ(diffs, 0u);
         }
+    }
+}
+
+// grid-bvh continues from the current macrocell: where every macrocell is active it is grid-dda's
+// walk, bit for bit (a walk that queried its boxes per segment would end segments on the exact
+// box faces, which the DDA's accumulated plane crossings round apart from).
+TEST_F(TraversalGpu, GridBvhStepsLikeGridDdaWhereEveryMacrocellIsActive) {
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeUniformBox(glm::ivec3(24), 0, 1.0f));
+    const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
+    const std::vector<Ray> rays = testRays(glm::vec3(hi), 5);
+    scene::StructureConfig dda;
+    dda.grid = "8";
+    render::Renderer rd(ctx(), volume, dda);
+    rd.setTransferFunction(test::constantTf(glm::vec3(1.0f), 1.0f));
+    std::vector<std::vector<Segment>> expected = segments(rd, scene::Backend::Sw, rays);
+    for (auto& segs : expected)  // grid-dda yields a start on a face as an empty segment; grid-bvh skips it
+        std::erase_if(segs, [](const Segment& s) { return !(s.t1 > s.t0); });
+    for (scene::Backend b : test::availableBackends(ctx())) {
+        scene::StructureConfig cfg = dda;
+        cfg.traversal = scene::TraversalKind::GridBvh;
+        cfg.backend = b;
+        SCOPED_TRACE(cfg.label());
+        render::Renderer r(ctx(), volume, cfg);
+        r.setTransferFunction(test::constantTf(glm::vec3(1.0f), 1.0f));
+        ASSERT_EQ(r.activeTraversalBoxes(), 512u);
+        const auto segs = segments(r, b, rays);
+        size_t diffs = 0, crossings = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            crossings += expected[i].size();
+            bool same = segs[i].size() == expected[i].size();
+            for (size_t k = 0; same && k < segs[i].size(); ++k)
+                same = std::memcmp(&segs[i][k], &expected[i][k], sizeof(Segment)) == 0;
+            if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": grid-bvh and grid-dda segments differ";
+        }
+        EXPECT_EQ(diffs, 0u);
+        EXPECT_GT(crossings, 5 * rays.size()) << "rays should cross many macrocells";
+    }
+}
+
+// Macrocells active or culled at random (half each), so rays alternate between runs of active
+// macrocells (stepped by the DDA) and runs of culled ones (skipped by one box query): segments
+// against brute force, and sw = rq bit for bit.
+TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
+    // 48^3 finest cells, macrocells of 4^3 (--grid 12). A chosen macrocell holds value 1 in its
+    // inner 2^3 cells, whose tent supports stay inside it; every other value is 0. The TF is 0 up
+    // to 0.5, so exactly the chosen macrocells are active.
+    amr::Model m = test::makeUniformBox(glm::ivec3(48), 0, 0.0f);
+    std::mt19937 rng(21);
+    std::vector<char> chosen(12 * 12 * 12);
+    for (char& c : chosen) c = char(rng() % 2);
+    size_t chosenCount = 0;
+    for (char c : chosen) chosenCount += c;
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        const glm::ivec3 p = m.cells[i].lower, mc = p / 4, in = p % 4;
+        const bool inner = glm::all(glm::greaterThanEqual(in, glm::ivec3(1))) && glm::all(glm::lessThanEqual(in, glm::ivec3(2)));
+        if (inner && chosen[size_t(mc.x + 12 * (mc.y + 12 * mc.z))]) m.fields[0].values[i] = 1.0f;
+    }
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(std::move(m));
+    const scene::TransferFunction tf({0.0f, 0.5f, 1.0f}, {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)},
+                                     "alternating");
+    const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
+    const std::vector<Ray> rays = testRays(glm::vec3(hi), 17);
+    std::vector<std::vector<Segment>> reference;
+    for (scene::Backend b : test::availableBackends(ctx())) {
+        scene::StructureConfig cfg;
+        cfg.traversal = scene::TraversalKind::GridBvh;
+        cfg.backend = b;
+        cfg.grid = "12";
+        SCOPED_TRACE(cfg.label());
+        render::Renderer r(ctx(), volume, cfg);
+        r.setTransferFunction(tf);
+        ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
+        const BoxSet boxes = traversalBoxes(r);
+        const auto segs = segments(r, b, rays);
+        // Rays that skip a culled run between two segments, and rays that step from one active
+        // macrocell straight into the next.
+        size_t skipping = 0, stepping = 0;
+        int faults = 0;
+        for (size_t i = 0; i < rays.size() && faults < 10; ++i) {
+            bool gap = false, step = false;
+            for (size_t k = 1; k < segs[i].size(); ++k) {
+                gap |= segs[i][k].t0 > segs[i][k - 1].t1;
+                step |= segs[i][k].t0 == segs[i][k - 1].t1 && segs[i][k].id != segs[i][k - 1].id;
+            }
+            skipping += gap;
+            stepping += step;
+            faults += checkRay(boxes, hi, rays[i], segs[i]);
+        }
+        EXPECT_GT(skipping, rays.size() / 2) << "rays should skip culled macrocells";
+        EXPECT_GT(stepping, rays.size() / 2) << "rays should step between active macrocells";
+        if (reference.empty()) {
+            reference = segs;
+            continue;
+        }
+        size_t diffs = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            bool same = segs[i].size() == reference[i].size();
+            for (size_t k = 0; same && k < segs[i].size(); ++k)
+                same = std::memcmp(&segs[i][k], &reference[i][k], sizeof(Segment)) == 0;
+            if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
+        }
+        EXPECT_EQ(diffs, 0u);
     }
 }
 

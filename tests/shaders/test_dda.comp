@@ -1,6 +1,7 @@
 #version 460
-// Runs ddaInit/ddaNext for one ray per invocation and writes up to kMaxSegs segments
-// (cell, t0, t1) so tests/gpu/dda_gpu_test.cpp can compare them with the CPU twin.
+// Runs ddaInit (or ddaStart in a given macrocell) and ddaNext for one ray per invocation and
+// writes up to kMaxSegs segments (cell, t0, t1) so tests/gpu/dda_gpu_test.cpp can compare them
+// with the CPU twin.
 #include "lib/common.glsl"
 #include "lib/majorant_dda.glsl"
 #include "shared/test_push.h"
@@ -13,12 +14,18 @@ void main() {
     if (i >= tp.rayCount) return;
     gParams = ParamsRef(tp.params);
     Vec4Ref rays = Vec4Ref(tp.rays);
-    vec4 o = rays.v[2u * i], d = rays.v[2u * i + 1u];
+    uint stride = tp.startCells != 0u ? 3u : 2u;
+    vec4 o = rays.v[stride * i], d = rays.v[stride * i + 1u];
     FloatRW out_ = FloatRW(tp.results);
     uint base = i * (1u + 3u * kMaxSegs);
     uint n = 0u;
     DdaState s;
-    if (ddaInit(o.xyz, d.xyz, o.w, d.w, s)) {
+    bool started = true;
+    if (tp.startCells != 0u)
+        ddaStart(o.xyz, d.xyz, ivec3(rays.v[stride * i + 2u].xyz), o.w, d.w, s);
+    else
+        started = ddaInit(o.xyz, d.xyz, o.w, d.w, s);
+    if (started) {
         uint cell;
         float t0, t1;
         while (n < kMaxSegs && ddaNext(s, cell, t0, t1)) {
