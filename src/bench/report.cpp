@@ -159,11 +159,15 @@ std::string resultsJson(const BenchResults& res) {
         Json probes = Json::array();
         for (const render::AutoProbe& p : a.choice.probes)
             probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid}, {"secondsPerSpp", p.secondsPerSpp},
-                              {"variance", p.variance}, {"efficiency", p.efficiency}, {"wallSeconds", p.wallSeconds},
-                              {"note", p.note}});
+                              {"variance", p.variance}, {"efficiency", p.efficiency}, {"predicted", p.predicted},
+                              {"lookupsPerPath", p.lookupsPerPath}, {"stepsPerPath", p.stepsPerPath},
+                              {"nullsPerPath", p.nullsPerPath}, {"wallSeconds", p.wallSeconds}, {"note", p.note}});
+        Json lookupNs = Json::object();
+        for (const auto& [sampler, ns] : a.choice.lookupNs) lookupNs[scene::samplerName(sampler)] = ns;
         autos.push_back({{"dataset", a.dataset}, {"tf", a.tf}, {"mode", a.mode}, {"pick", a.choice.config.label()},
                          {"pickGrid", a.choice.config.grid}, {"probeSeconds", a.choice.seconds},
-                         {"probes", a.choice.probes.size()}, {"pickEfficiency", a.pickEfficiency},
+                         {"probes", a.choice.probes.size()}, {"probeSize", a.choice.probeSize},
+                         {"lookupNsAboveReference", std::move(lookupNs)}, {"pickEfficiency", a.pickEfficiency},
                          {"bestEfficiency", a.bestEfficiency},
                          {"efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0},
                          {"pickFps", a.pickFps}, {"best", a.bestLabel}, {"bestFps", a.bestFps},

@@ -1,5 +1,6 @@
 #include "picture/picture.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
@@ -75,8 +76,11 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         p.session.structure = c.config;
         char seconds[32];
         std::snprintf(seconds, sizeof seconds, "%.1f", c.seconds);
-        note(strCat("--traversal auto picked ", c.config.labelWithGrid(), " from ", c.probes.size(), " probes in ",
-                    seconds, " s"));
+        const size_t predicted = size_t(std::count_if(c.probes.begin(), c.probes.end(),
+                                                      [](const render::AutoProbe& a) { return a.predicted; }));
+        note(strCat("--traversal auto picked ", c.config.labelWithGrid(), " from ", c.probes.size() - predicted,
+                    " measured and ", predicted, " predicted combinations (", c.probeSize, "^2 probes) in ", seconds,
+                    " s"));
     } else {
         scene::StructureConfig config = p.session.structure;
         const scene::BackendChoice backend = resolveStructure(ctx, config);

@@ -1,5 +1,6 @@
 #include "render/auto_select.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -22,11 +23,14 @@ double meanSampleVariance(const scene::RenderOutput& out) {
 AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                       const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
-    AMRVK_CHECK(options.probeSize >= 8 && options.probeSpp >= 2, "internal: probe too small");
+    const bool cpu = renderer.context().deviceReport().type == "CPU";
+    const int size = options.probeSize > 0 ? options.probeSize : cpu ? 48 : 1024;
+    AMRVK_CHECK(size >= 8 && options.probeSpp >= 2, "internal: probe too small");
     Timer total;
     scene::RenderSettings rs = settings;
-    rs.width = rs.height = options.probeSize;
+    rs.width = rs.height = size;
     rs.seed = settings.seed + 7919u;
+    const double pathsPerSpp = double(size) * double(size);
 
     std::vector<scene::TraversalKind> traversals =
         constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
@@ -49,11 +53,24 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         backends = {scene::Backend::Sw};
         if (renderer.context().hasRayQuery()) backends.push_back(scene::Backend::Rq);
     }
+    // The reference sampler every traversal is measured with: the grid's where allowed.
+    const scene::SamplerKind reference =
+        std::find(samplers.begin(), samplers.end(), scene::SamplerKind::Grid) != samplers.end() ? scene::SamplerKind::Grid
+                                                                                                  : samplers.front();
 
     renderer.setTransferFunction(tf);
     AutoChoice choice;
+    choice.probeSize = size;
     double bestEfficiency = -1, bestSecondsPerSpp = 0;
-    auto probe = [&](const scene::StructureConfig& config) {
+    auto consider = [&](const AutoProbe& p) {
+        if (p.efficiency > bestEfficiency) {
+            bestEfficiency = p.efficiency;
+            bestSecondsPerSpp = p.secondsPerSpp;
+            choice.config = p.config;
+        }
+        choice.probes.push_back(p);
+    };
+    auto measure = [&](const scene::StructureConfig& config, bool mayStop) {
         AutoProbe p;
         p.config = config;
         if (onProbe) onProbe(config.labelWithGrid());
@@ -61,14 +78,18 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         try {
             renderer.setStructure(config);
             scene::RenderOutput warm = renderer.render(rs, 1);
-            if (bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
+            if (mayStop && bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
                 p.secondsPerSpp = warm.stats.gpuSeconds;
                 p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
                          "x slower than the best";
             } else {
                 scene::RenderOutput out = renderer.render(rs, options.probeSpp);
+                const double paths = double(out.stats.paths);
                 p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
                 p.variance = meanSampleVariance(out);
+                p.lookupsPerPath = double(out.stats.counter(shared::kCounterDensityLookups)) / paths;
+                p.stepsPerPath = double(out.stats.counter(shared::kCounterTraversalSteps)) / paths;
+                p.nullsPerPath = double(out.stats.counter(shared::kCounterNullCollisions)) / paths;
                 // A black image (variance 0) is scored by speed alone.
                 const double v = p.variance > 0 ? p.variance : 1e-30;
                 p.efficiency = p.secondsPerSpp > 0 ? 1.0 / (v * p.secondsPerSpp) : 0.0;
@@ -77,34 +98,68 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             p.note = e.what();
         }
         p.wallSeconds = wall.seconds();
-        if (p.efficiency > bestEfficiency) {
-            bestEfficiency = p.efficiency;
-            bestSecondsPerSpp = p.secondsPerSpp;
-            choice.config = p.config;
-        }
-        choice.probes.push_back(p);
+        return p;
     };
 
     scene::StructureConfig base;
     base.grid = constraints.grid.value_or("auto");
     base.kdLeaves = constraints.kdLeaves;
+    // 1. Every traversal (x back-end) with the reference sampler: time and counts per path.
+    std::vector<AutoProbe> measured;
     for (scene::TraversalKind t : traversals)
-        for (scene::SamplerKind s : samplers)
-            for (scene::Backend b : backends) {
-                scene::StructureConfig c = base;
-                c.traversal = t;
-                c.sampler = s;
-                c.backend = b;
-                probe(c);
-            }
+        for (scene::Backend b : backends) {
+            scene::StructureConfig c = base;
+            c.traversal = t;
+            c.sampler = reference;
+            c.backend = b;
+            // Without a box hierarchy (grid-dda with the grid sampler) both back-ends do the same work.
+            const scene::StructurePlan plan = c.plan();
+            if (b == scene::Backend::Rq && !plan.boxMajorants && !plan.samplerBvh && !plan.samplerBoxes) continue;
+            measured.push_back(measure(c, true));
+            consider(measured.back());
+        }
     AMRVK_CHECK(bestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
                 choice.probes.empty() ? std::string("none tried") : choice.probes.front().note, ")");
+    // 2. The other samplers' unit costs, under the most efficient traversal measured (its paths, so
+    //    its lookups, are the same whatever the sampler).
+    const AutoProbe anchor = *std::max_element(measured.begin(), measured.end(),
+                                               [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+    std::vector<std::pair<scene::SamplerKind, double>> extraSecondsPerLookup;
+    for (scene::SamplerKind s : samplers) {
+        if (s == reference) continue;
+        scene::StructureConfig c = anchor.config;
+        c.sampler = s;
+        const AutoProbe p = measure(c, false);
+        consider(p);
+        if (p.efficiency > 0 && anchor.lookupsPerPath > 0) {
+            const double perLookup = (p.secondsPerSpp - anchor.secondsPerSpp) / (anchor.lookupsPerPath * pathsPerSpp);
+            extraSecondsPerLookup.emplace_back(s, perLookup);
+            choice.lookupNs.emplace_back(s, 1e9 * perLookup);
+        }
+    }
+    // 3. Every other combination, predicted: its traversal's time plus its lookups at the sampler's
+    //    unit cost; the variance is the traversal's (the same paths).
+    for (const AutoProbe& t : measured) {
+        if (!(t.efficiency > 0)) continue;
+        for (const auto& [s, perLookup] : extraSecondsPerLookup) {
+            if (t.config.traversal == anchor.config.traversal && t.config.backend == anchor.config.backend) continue;
+            AutoProbe p = t;
+            p.config.sampler = s;
+            p.predicted = true;
+            p.wallSeconds = 0;
+            p.secondsPerSpp = std::max(t.secondsPerSpp + t.lookupsPerPath * pathsPerSpp * perLookup, 1e-3 * t.secondsPerSpp);
+            const double v = p.variance > 0 ? p.variance : 1e-30;
+            p.efficiency = 1.0 / (v * p.secondsPerSpp);
+            consider(p);
+        }
+    }
+    // 4. A grid winner's macrocell resolution, measured.
     if (choice.config.usesGrid() && !constraints.grid) {
         const scene::StructureConfig winner = choice.config;
         for (const std::string& g : options.gridChoices) {
             scene::StructureConfig c = winner;
             c.grid = g;
-            probe(c);
+            consider(measure(c, true));
         }
     }
     choice.seconds = total.seconds();

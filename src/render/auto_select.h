@@ -1,10 +1,18 @@
 #pragma once
-// Automatic structure choice (`amrvk bench --auto`, `amrvk render --traversal auto`): short probe
-// renders of every allowed traversal x sampler x back-end on a small image, scored by Monte Carlo
-// efficiency 1 / (mean per-pixel sample variance x GPU seconds per sample), since every
-// combination estimates the same image; then, when the winner uses a macrocell grid, the grid
-// resolution is probed the same way. A probe whose first frame is far slower than the best so far
-// is stopped early. Probes take seconds on lavapipe, less on a GPU.
+// Automatic structure choice (`amrvk bench --auto`, `amrvk render --traversal auto`) by a cost model:
+// every combination estimates the same image, so the most efficient one has the least
+// (variance x GPU time) per sample. Measured, at a size that fills the device (2^20 paths per
+// sample on a GPU, 48^2 on a CPU device: a small probe on a GPU times the dispatch and the
+// longest path, not the throughput) and with the GPU timer:
+//  - each allowed traversal (and back-end) with one reference sampler: its GPU time, lookups,
+//    steps and null collisions per path and its variance (the counts do not depend on the sampler:
+//    every sampler gives the same values, so the paths are the same);
+//  - each other sampler under the first traversal: the unit cost of its lookups, ns per lookup
+//    above the reference sampler's, (time(s) - time(ref)) / lookups.
+// Every other combination is predicted from its traversal's time and counts and the sampler's
+// unit cost; the most efficient wins. A grid winner's macrocell resolution is then measured the
+// same way (32, 64, 256 besides auto = 128). A traversal probe far slower than the best so far
+// is stopped after its first sample.
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,24 +33,29 @@ struct AutoConstraints {
 };
 
 struct AutoOptions {
-    int probeSize = 48;          // probe image is probeSize^2
-    uint32_t probeSpp = 4;       // timed samples per pixel after one warm-up sample
+    int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 48 on CPUs)
+    uint32_t probeSpp = 2;       // timed samples per pixel after one warm-up sample (>= 2: a variance)
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
 };
 
 struct AutoProbe {
     scene::StructureConfig config;
-    double secondsPerSpp = 0;  // GPU seconds per frame at the probe size
+    double secondsPerSpp = 0;  // GPU seconds per sample of the probe image (measured or predicted)
     double variance = 0;       // mean per-pixel sample variance (rgb mean)
     double efficiency = 0;     // 1 / (variance x secondsPerSpp); 0 when stopped early or failed
+    double lookupsPerPath = 0, stepsPerPath = 0, nullsPerPath = 0;  // counts (measured runs)
+    bool predicted = false;    // from the cost model, not rendered
     double wallSeconds = 0;    // probe cost incl. structure build and shader compilation
     std::string note;          // why it was stopped or failed
 };
 
 struct AutoChoice {
     scene::StructureConfig config;
-    std::vector<AutoProbe> probes;
+    std::vector<AutoProbe> probes;  // measured and predicted, in the order they were made
+    // The unit costs of the model: per sampler, GPU ns per lookup above the reference sampler's.
+    std::vector<std::pair<scene::SamplerKind, double>> lookupNs;
+    int probeSize = 0;
     double seconds = 0;           // wall time of all probes
     double configureSeconds = 0;  // configuring the scene for the pick at the end
 };
