@@ -300,7 +300,7 @@ stepC() {
     1) k="**a majorant does not hold** (raw/check-majorants.err)" ;;
     *) k="no verdict: $status" ;;
   esac
-  S[c]="\`$(show "$amrvk" info "$checkData.cells" --check-majorants --json "${checkOpts[@]}")\` ($(get chk:leafCells) cells): exit status $rc, $k. The majorant violation counters of every render are summed at the top.
+  S[c]="\`$(show "$amrvk" info "$checkData.cells" --check-majorants --json "${checkOpts[@]}")\`$([ -n "$(get chk:leafCells)" ] && echo " ($(get chk:leafCells) cells)"): exit status $rc, $k. The majorant violation counters of every render are summed at the top.
 
 | boxes | traversals | count | range failures | worst | s | ok |
 |---|---|---|---|---|---|---|
