@@ -6,6 +6,9 @@
 # and the automatic choice; then samples per invocation and spirv-opt against none at 1024^2
 # (tools/bench-invocation.sh). Reports (results.md/.json/.csv, plots) and /usr/bin/time logs go to OUT.
 # Usage: tools/bench-gpu.sh [OUT]   (default out/bench-gpu; the 2 GB cloud is generated once there)
+# It builds amrvk, which the lent H100/H200 machines cannot do: there, use tools/gpu-protocol.sh
+# prepare DIR on Debian and run DIR/run.sh on the machine (issue 31's protocol within 8 minutes;
+# docs/benchmarks.md, "The GPU protocol in one command").
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
