@@ -212,7 +212,7 @@ gpu=1
 stepA() {
   step=a
   local lim i dev="" loader lib="" icdLib="" nv="" mem avail cpu os glibc disk
-  lim=$(share 1 16)
+  lim=$(share 1 16); (( lim >= 1 )) || lim=1  # timeout 0 would mean none
   run "$lim" devices "$amrvk" devices --json
   mv -f "$out/raw/devices.out" "$out/raw/devices.json"
   if ! jsonLoad dev "$out/raw/devices.json" || [ "$(get dev:0.usable)" != true ]; then gpu=0; fi
