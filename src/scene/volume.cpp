@@ -59,6 +59,9 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
     if (frame) {
         v->fieldStats.minValue = frame->valueLo;
         v->fieldStats.maxValue = frame->valueHi;
+        v->percentiles = frame->percentiles;
+    } else {
+        v->percentiles = amr::percentilesOf(field.values);
     }
     {
         ProgressStage stage("bricks");
