@@ -61,6 +61,7 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
         v->fieldStats.maxValue = frame->valueHi;
         v->percentiles = frame->percentiles;
     } else {
+        ProgressStage stage("percentiles");
         v->percentiles = amr::percentilesOf(field.values);
     }
     {
