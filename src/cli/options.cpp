@@ -211,7 +211,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         app.add_option("--tf", a.tf,
                        "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: ramp, grey, "
                        "constant, empty over the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th "
-                       "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.1 at "
+                       "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.05 at "
                        "the maximum) over the field's percentiles by cell count")
             ->capture_default_str()
             ->type_name("FILE|PRESET");

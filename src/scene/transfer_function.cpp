@@ -33,7 +33,7 @@ constexpr int kSpikyHalfWidth = 1;      // percentiles from an apex to its feet
 constexpr float kSpikyMinSide = 1e-4f;  // a side's shortest width, in units of the value range
 // foggy fitted to the data: nodes at these percentiles, alpha kFoggyMaxAlpha (k - 50) / 50 above the median.
 constexpr int kFoggyPercentiles[] = {0, 50, 60, 70, 80, 90, 95, 99, 100};
-constexpr float kFoggyMaxAlpha = 0.1f;
+constexpr float kFoggyMaxAlpha = 0.05f;  // a quarter of the range-fixed foggy's top: haze, not a wall
 constexpr int kMaxXfNodes = 1 << 20;
 constexpr uint64_t kXfHeaderBytes = 8 + 4 + 2 * 4 + 2 * 4 + 4;
 constexpr uint64_t kOldXfBytes = 128 * sizeof(float);

@@ -92,7 +92,7 @@ bool presetFollowsData(std::string_view name);
 //            the data has structure. Where 1% of the cells or more share an apex's value, that
 //            side is 1e-4 of the range wide (at least one float step); sides never reach past the
 //            range or halfway to the next apex; apexes of equal value are one peak.
-//   foggy    alpha 0 up to the median, then 0.1 (k - 50) / 50 at P_k for k = 60, 70, 80, 90, 95,
+//   foggy    alpha 0 up to the median, then 0.05 (k - 50) / 50 at P_k for k = 60, 70, 80, 90, 95,
 //            99, 100 (linear in the value in between): haze that thickens with the value's rank,
 //            none over the lower half of the cells (on AMR data, the coarse background); albedo
 //            bluish to white. Of percentiles sharing a value only the lowest is kept.

@@ -24,7 +24,7 @@ std::shared_ptr<const scene::Volume> loadVolume(const Session& s) {
 
 namespace {
 // What a fitted preset was laid over, one line.
-std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p) {
+std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p, const scene::TransferFunction& tf) {
     auto formatNumber = [](float v) {
         char text[32];
         std::snprintf(text, sizeof text, "%.6g", double(v));
@@ -34,8 +34,8 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p)
     if (name == "spiky")
         return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values (",
                       formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
-    return strCat("tf foggy: alpha 0 up to the median cell value (", formatNumber(p[50]), "), 0.1 at the maximum (",
-                  formatNumber(p.hi()), ")");
+    return strCat("tf foggy: alpha 0 up to the median cell value (", formatNumber(p[50]), "), ",
+                  formatNumber(tf.maxAlpha(p.lo(), p.hi())), " at the maximum (", formatNumber(p.hi()), ")");
 }
 }  // namespace
 
@@ -56,7 +56,7 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
                         : scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset);
         if (d.tfRange) tf = tf.rescaled(lo, hi);
         if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && notes)
-            notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles));
+            notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles, tf));
         s.tf = scene::TfChannels::split(tf);
     }
     if (d.fitCamera) s.settings.camera = scene::defaultCamera(v.worldLo(), v.worldHi(), s.settings.camera.fovYDegrees);

@@ -370,10 +370,10 @@ TEST(TransferFunction, FittedPresetsSitAtTheDataPercentiles) {
     const std::vector<float> fogAlpha = alphasOf(foggy);
     const int at[] = {0, 50, 60, 70, 80, 90, 95, 99, 100};
     for (size_t i = 0; i < fogAlpha.size(); ++i)
-        EXPECT_NEAR(fogAlpha[i], 0.1f * float(std::max(0, at[i] - 50)) / 50.0f, 1e-7f) << at[i];
+        EXPECT_NEAR(fogAlpha[i], 0.05f * float(std::max(0, at[i] - 50)) / 50.0f, 1e-7f) << at[i];
     EXPECT_EQ(foggy.maxAlpha(0.0f, 50000.0f), 0.0f);  // no fog over the lower half of the cells
-    EXPECT_NEAR(foggy.evaluate(55000.0f).a, 0.01f, 1e-7f);
-    EXPECT_NEAR(foggy.evaluate(100000.0f).a, 0.1f, 1e-7f);
+    EXPECT_NEAR(foggy.evaluate(55000.0f).a, 0.005f, 1e-7f);
+    EXPECT_NEAR(foggy.evaluate(100000.0f).a, 0.05f, 1e-7f);
     EXPECT_GT(foggy.evaluate(0.0f).b, foggy.evaluate(0.0f).r);  // bluish
 
     // The other presets span the range: the range-fixed ones over [P0, P100].
