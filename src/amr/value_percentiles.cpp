@@ -35,8 +35,8 @@ std::vector<uint64_t> PercentileSelection::count(std::span<const float> values) 
     const int pass = mPass;
     const size_t bins = size_t(1) << kBits[pass];
     const size_t size = mGroups.size() * bins;
-    // Chunks below 2^32 values, so 32-bit counts hold them.
-    const size_t chunks = std::max(kCountChunks, (values.size() >> 31) + 1);
+    // At least 2^16 values a chunk (each chunk zeroes its own counts), below 2^32 (32-bit counts).
+    const size_t chunks = std::max(std::clamp<size_t>(values.size() >> 16, 1, kCountChunks), (values.size() >> 31) + 1);
     return parallelReduce<std::vector<uint64_t>>(
         0, values.size(), chunks,
         [&](size_t from, size_t to) {

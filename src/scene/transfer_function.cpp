@@ -376,12 +376,20 @@ TransferFunction spikyOver(const amr::Percentiles& p) {
         const float apex = p[at];
         // Each side ends at the neighbouring percentile, or where it holds the apex value too (1% of
         // the cells or more share it) minSide away (at least one float step), so alpha 1 has room
-        // for rounding; never beyond the data's range or halfway to the next apex.
+        // for rounding; never beyond the data's range or halfway to the next apex, and never on a
+        // neighbouring apex (which would then be a step down to 0 there).
         float left = p[at - kSpikyHalfWidth], right = p[at + kSpikyHalfWidth];
         if (left == apex) left = std::min(apex - minSide, std::nextafter(apex, -INFINITY));
         if (right == apex) right = std::max(apex + minSide, std::nextafter(apex, INFINITY));
-        const float below = i == 0 ? lo : std::midpoint(p[peaks[i - 1]->percentile], apex);
-        const float above = i + 1 == peaks.size() ? hi : std::midpoint(apex, p[peaks[i + 1]->percentile]);
+        float below = lo, above = hi;
+        if (i > 0) {
+            const float previous = p[peaks[i - 1]->percentile];
+            below = std::max(std::midpoint(previous, apex), std::nextafter(previous, INFINITY));
+        }
+        if (i + 1 < peaks.size()) {
+            const float next = p[peaks[i + 1]->percentile];
+            above = std::min(std::midpoint(apex, next), std::nextafter(next, -INFINITY));
+        }
         left = std::max(left, below);
         right = std::min(right, above);
         if (left < apex || apex > lo) add(left, c, 0.0f);  // at the apex itself: a step up to 1

@@ -12,6 +12,7 @@
 
 #include "amr/value_percentiles.h"
 #include "core/error.h"
+#include "core/strings.h"
 #include "model_fixtures.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
@@ -454,6 +455,32 @@ TEST(TransferFunction, FittedPresetsOnPlateaus) {
     for (const std::string& name : scene::presetNames()) {
         EXPECT_EQ(scene::makePreset(name, one).positions(), scene::makePreset(name, 3.0f, 3.0f).positions()) << name;
         EXPECT_EQ(scene::makePreset(name, one).colors(), scene::makePreset(name, 3.0f, 3.0f).colors()) << name;
+    }
+}
+
+TEST(TransferFunction, FittedPresetsAreValidForAnyDistribution) {
+    // Random distributions over a few values, with plateaus, huge and tiny magnitudes and values one
+    // float step apart: the fitted TFs are valid (the constructor checks the order), spiky has alpha
+    // 1 at each of its apexes and foggy none at or below the median.
+    std::mt19937 rng(17);
+    const float pool[] = {-3e38f, -1.0f, 0.0f, 1e-40f, 1.0f, std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 3.0f),
+                          2.0f, 1e6f, std::nextafter(1e6f, 2e6f), 3e38f};
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::vector<float> v(size_t(std::uniform_int_distribution<int>(1, 400)(rng)));
+        const size_t distinct = size_t(std::uniform_int_distribution<int>(1, 11)(rng));
+        for (float& x : v) x = pool[std::uniform_int_distribution<size_t>(0, distinct - 1)(rng)];
+        const amr::Percentiles p = amr::percentilesOf(v);
+        SCOPED_TRACE("trial " + std::to_string(trial));
+        const TransferFunction spiky = scene::makePreset("spiky", p);
+        const TransferFunction foggy = scene::makePreset("foggy", p);
+        if (!(p.lo() < p.hi())) continue;
+        std::string nodes;
+        for (size_t i = 0; i < spiky.nodeCount(); ++i)
+            nodes += strCat(" (", spiky.positions()[i], ", ", spiky.colors()[i].a, ")");
+        for (int k : {75, 90, 97}) ASSERT_EQ(spiky.evaluate(p[k]).a, 1.0f) << "P" << k << " = " << p[k] << ":" << nodes;
+        ASSERT_EQ(foggy.maxAlpha(p.lo(), p[50]), 0.0f);
+        ASSERT_EQ(spiky.firstPosition(), p.lo());
+        ASSERT_EQ(spiky.lastPosition(), p.hi());
     }
 }
 

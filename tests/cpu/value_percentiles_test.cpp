@@ -77,7 +77,9 @@ TEST(ValuePercentiles, EqualsSortingOnHardValues) {
                                         -3.0e38f,  INFINITY,  -INFINITY, NAN,       1.0f,     -1.0f,   1.0000001f,
                                         0.9999999f};
     std::mt19937 rng(11);
-    for (size_t n : {size_t(1), size_t(2), size_t(3), size_t(7), size_t(100), size_t(101), size_t(1000), size_t(65537)}) {
+    // 300001 values: counted in several chunks.
+    for (size_t n : {size_t(1), size_t(2), size_t(3), size_t(7), size_t(100), size_t(101), size_t(1000), size_t(65537),
+                     size_t(300001)}) {
         for (int kind = 0; kind < 4; ++kind) {
             std::vector<float> v(n);
             for (float& x : v) {
