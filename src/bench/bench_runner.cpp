@@ -12,6 +12,7 @@
 #include "core/json_text.h"
 #include "core/stats.h"
 #include "picture/picture.h"
+#include "scene/transfer_function.h"
 #include "session/picture_description.h"
 
 namespace amrvk::bench {
@@ -125,7 +126,9 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     const std::string command = session::renderCommandLine(d, "", meanFile.string(), mOpt.amrvkPath);
     session::PictureDescription keyed = d;
     keyed.session.input = std::filesystem::absolute(ds.input).string();
-    const std::string key = session::renderCommandLine(keyed, "", "reference.pfm");
+    // The TF's nodes too: a preset fitted to the data, or one whose definition changed, renders anew.
+    const std::string key = session::renderCommandLine(keyed, "", "reference.pfm") + "\n" +
+                            scene::paraViewPresetJson(scene::TfChannels::split(*mTf));
     ReferenceInfo info{ds.tag, tfName, scene::modeName(mode), meanFile.string(), command, spp, 0, 0, false};
     ReferenceImage ref;
     ref.spp = spp;

@@ -33,7 +33,9 @@ struct BenchOptions {
     std::vector<BenchDataset> datasets;
     amr::ReadOptions read;                 // format, NaN policy, raw options (the field is per data set)
     std::vector<std::string> tfs = {"spiky", "foggy"};  // presets or files
-    std::optional<std::pair<float, float>> tfRange;       // map every TF onto [lo, hi] (default: the field's range)
+    // Map every TF onto [lo, hi], presets in their range-fixed shape (default: presets fitted to
+    // each data set, spiky and foggy over its percentiles; scene::makePreset).
+    std::optional<std::pair<float, float>> tfRange;
     std::vector<scene::Mode> modes = {scene::Mode::Ms};  // unbiased modes of the matrix
     std::vector<scene::TraversalKind> traversals = scene::allTraversals();
     std::vector<scene::SamplerKind> samplers = scene::allSamplers();

@@ -87,7 +87,9 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
         ->required()
         ->type_name("DIR");
     addReadOptions(app, read, false);
-    app.add_option("--tfs", tfs, "TF presets or files, comma-separated")->capture_default_str()->type_name("LIST");
+    app.add_option("--tfs", tfs,
+                   "TF presets or files, comma-separated; presets are fitted to each data set (spiky and foggy "
+                   "over its percentiles, as render fits them) unless --tf-range fixes them")->capture_default_str()->type_name("LIST");
     app.add_option("--modes", modes, "unbiased modes of the matrix: ae,ss,ms")
         ->capture_default_str()
         ->type_name("LIST");

@@ -11,6 +11,7 @@
 #include "accel/range_grid.h"
 #include "accel/support_range.h"
 #include "amr/readers.h"
+#include "amr/value_percentiles.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
@@ -29,7 +30,8 @@ const char* kInfoHelp =
     "ranges, and "
     "macrocell value ranges, and reports the data and the structures: format, voxel and world "
     "bounds, leaf "
-    "cells per level (level 0 = finest), fields, the field's range and volume-weighted mean, "
+    "cells per level (level 0 = finest), fields, the field's range, volume-weighted mean and percentiles by cell "
+    "count (what the spiky and foggy presets follow), "
     "brick/ABR "
     "statistics, bytes per structure and build times. With --check-majorants it instead checks "
     "every traversal's majorants against the exact reconstruction (exit status 1 on a failure).";
@@ -56,8 +58,9 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
     options.kdLeaves = kdLeaves;
     const std::vector<std::string> specs = tfList.empty() ? scene::presetNames() : splitList(tfList);
     for (const std::string& spec : specs) {
-        scene::TransferFunction tf = scene::loadTransferFunction(trim(spec), lo, hi);
-        if (tfRange.size() == 2) tf = tf.rescaled(lo, hi);
+        // As render fits them: presets follow the data unless --tf-range fixes them.
+        scene::TransferFunction tf = tfRange.size() == 2 ? scene::loadTransferFunction(trim(spec), lo, hi).rescaled(lo, hi)
+                                                         : scene::loadTransferFunction(trim(spec), volume->percentiles);
         options.tfs.push_back(std::move(tf));
     }
     ProgressBar bar("checking majorants", "boxes");
@@ -140,7 +143,9 @@ int runInfo(const std::vector<std::string>& argv) {
                  "range with room for the GPU's float error, and its alpha maximum under every TF its majorant");
     app.add_option("--tfs", tfList, "--check-majorants: TF presets or files, comma-separated (default: every preset)")
         ->type_name("LIST");
-    app.add_option("--tf-range", tfRange, "--check-majorants: map the TFs onto [LO, HI] (default: the field's range)")
+    app.add_option("--tf-range", tfRange,
+                   "--check-majorants: map the TFs onto [LO, HI], presets in their range-fixed shape (default: presets "
+                   "fitted to the data as render fits them)")
         ->expected(2)
         ->type_name("LO HI");
     app.add_option("--kd-leaves", kdLeaves, "--check-majorants: leaves of the kd-trees")
@@ -166,6 +171,7 @@ int runInfo(const std::vector<std::string>& argv) {
     const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
     const amr::ModelSummary summary = amr::summarize(model);
     const amr::FieldStats stats = amr::computeFieldStats(model, field);
+    const amr::Percentiles percentiles = amr::percentilesOf(field.values);
 
     accel::BrickSet bricks;
     {
@@ -230,6 +236,7 @@ int runInfo(const std::vector<std::string>& argv) {
             {"fields", model.availableFields}, {"field", field.name},
             {"valueRange", Json::array({double(stats.minValue), double(stats.maxValue)})},
             {"volumeWeightedMean", stats.volumeWeightedMean},
+            {"valuePercentiles", percentiles.values},
             {"voxelBounds",
              {{"lower", vec(glm::dvec3(summary.bounds.lower))}, {"upper", vec(glm::dvec3(summary.bounds.upper))}}},
             {"worldBounds", {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}}}, {"bricks", brickStats.brickCount},
@@ -263,6 +270,8 @@ int runInfo(const std::vector<std::string>& argv) {
                         (long long)amr::cellWidth(int(l)));
     std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", field.name.c_str(),
                 double(stats.minValue), double(stats.maxValue), stats.volumeWeightedMean);
+    std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(percentiles[50]),
+                double(percentiles[75]), double(percentiles[90]), double(percentiles[97]), double(percentiles[99]));
     std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
                 (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
                 (unsigned long long)brickStats.singleCellBricks, (unsigned long long)brickStats.largestBrickCells,

@@ -209,9 +209,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->check(CLI::ExistingFile)
             ->type_name("FILE");
         app.add_option("--tf", a.tf,
-                       "transfer function: ParaView preset JSON, .xf, or a preset (ramp, grey, "
-                       "spiky, foggy, "
-                       "constant, empty) over the field's range")
+                       "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: ramp, grey, "
+                       "constant, empty over the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th "
+                       "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.05 at "
+                       "the maximum) over the field's percentiles by cell count")
             ->capture_default_str()
             ->type_name("FILE|PRESET");
         app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
@@ -276,7 +277,9 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->type_name("FILE");
     }
     app.add_option("--tf-range", a.tfRange,
-                   "map the TF's node range onto [LO, HI] (presets: default the field's range)")
+                   "map the TF's node range onto [LO, HI]; presets then ignore the data and take their range-fixed "
+                   "shape over [LO, HI] (spiky: one alpha-1 peak at the middle, 1% half width; foggy: alpha 0.05 -> "
+                   "0.2 everywhere). Default: presets fitted to the data (--tf)")
         ->expected(2)
         ->check(kFinite)
         ->type_name("LO HI");
@@ -349,7 +352,8 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
 void addSeriesOptions(CLI::App& app, SeriesArgs& a) {
     app.add_option("--series-range", a.range,
                    "several inputs: the TF is laid over the first output's field range, or the union of every "
-                   "output's (a reading pass first); --tf-range overrides both")
+                   "output's (a reading pass first), presets in their range-fixed shape as with --tf-range (one "
+                   "input: fitted to its data as a single picture); --tf-range overrides both")
         ->check(CLI::IsMember({"first", "union"}))
         ->capture_default_str()
         ->type_name("first|union");

@@ -253,7 +253,6 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                 picture.reset();  // released before the next output is read
                 session::PictureDescription d = base;
                 d.session.input = input;
-                d.dataRange = manifest.tfRange;  // a given --tf-range wins over it in resolvePicture
                 if (resolved) {
                     d.session.field = manifest.field;
                     d.fitCamera = false;
@@ -262,6 +261,11 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                 }
                 bar.finish();
                 std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
+                if (!resolved && rangeOfFirst) manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
+                // Several outputs: one TF over the series' range (a given --tf-range wins over it in
+                // resolvePicture), presets in their range-fixed shape. One output (a turntable): fitted to
+                // its data like a single picture, so a resumed run gets the same TF.
+                if (inputs.size() > 1) d.dataRange = manifest.tfRange;
                 // No frame is a file an output was read from; the outputs are fixed, so only new reads.
                 const std::vector<NamedPath> filesRead = inputFilesRead();
                 checkOutputs(outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
@@ -273,7 +277,6 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
                     manifest.field = picture->session.field;
                     manifest.camera = picture->session.settings.camera;
                     manifest.centre = 0.5 * (volume->worldLo() + volume->worldHi());
-                    if (rangeOfFirst) manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
                     resolved = true;
                     base.session.field = manifest.field;
                 }

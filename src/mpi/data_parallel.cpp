@@ -39,15 +39,29 @@ DataPart loadPart(World& world, session::PictureDescription& d) {
         model = amr::readPart(s.input, ro, mine);
     }
     part.readSeconds = timer.seconds();
-    for (const amr::Cell& c : model.cells)
-        if (amr::ownsCell(mine, c)) ++part.ownedCells;
     AMRVK_CHECK(!model.cells.empty(), s.input, ": rank ", world.rank(), "'s part holds no cells (use fewer ranks)");
+    // The whole field's percentiles (the presets are fitted to them): each rank counts the values of
+    // the cells it owns, so every cell counts once, and the counts are summed over the ranks.
+    std::vector<float> owned;
+    const std::vector<float>& values = model.fields.at(0).values;
+    for (size_t i = 0; i < model.cells.size(); ++i)
+        if (amr::ownsCell(mine, model.cells[i])) owned.push_back(values[i]);
+    part.ownedCells = owned.size();
+    world.checkpoint();  // every rank read its part: the sums below are collective
+    amr::PercentileSelection selection;
+    while (!selection.done()) {
+        std::vector<uint64_t> counts = selection.count(owned);
+        world.sumEverywhere(counts);
+        selection.advance(counts);
+    }
+    owned = {};
     const amr::CellCensus& whole = part.census;
     part.volume = scene::makeVolume(std::move(model), s.field,
                                     scene::VolumeFrame{.localOrigin = whole.bounds.lower,
                                                        .minLevel = whole.minLevel,
                                                        .valueLo = whole.valueLo,
-                                                       .valueHi = whole.valueHi});
+                                                       .valueHi = whole.valueHi,
+                                                       .percentiles = selection.result()});
     // The camera frames the whole data set, not this part.
     if (d.fitCamera) {
         const amr::Transform& t = whole.head.voxelToWorld;

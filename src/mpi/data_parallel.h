@@ -27,7 +27,9 @@ struct DataPart {
 };
 
 // This rank's part of the data `d` names: a census of the whole (two streamed passes), the
-// partition, then the cells of its region. Fits `d` to the whole data set (camera, TF range).
+// partition, then the cells of its region. Fits `d` to the whole data set (camera, TF range, and
+// the field's percentiles, which the fitted presets follow: every rank's counts of the cells it
+// owns summed over the ranks, so they equal one process's exactly).
 // Refuses mode dvr before reading anything (renderDataParallel has no ray marcher).
 DataPart loadPart(World& world, session::PictureDescription& d);
 

@@ -253,6 +253,10 @@ struct PyTf {
     static PyTf preset(const std::string& name, float lo, float hi) {
         return {scene::TfChannels::split(scene::makePreset(name, lo, hi))};
     }
+    // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles).
+    static PyTf presetFor(const std::string& name, const PyVolume& v) {
+        return {scene::TfChannels::split(scene::makePreset(name, v.volume->percentiles))};
+    }
     static PyTf fromFile(const fs::path& path, const std::string& preset, float lo, float hi) {
         return {scene::TfChannels::split(scene::loadTransferFunction(path.string(), lo, hi, preset))};
     }
@@ -662,8 +666,12 @@ PYBIND11_MODULE(_amrvk, m) {
     py::class_<PyTf>(m, "TransferFunction",
                      "a piecewise-linear map from field values to albedo (rgb) and alpha (extinction per finest "
                      "cell width before the density scale); colour and opacity channels kept apart as ParaView does")
+        .def_static("preset", &PyTf::presetFor, py::arg("name"), py::arg("volume"),
+                    "a built-in preset (ramp, grey, spiky, foggy, constant, empty) fitted to the volume's data as "
+                    "amrvk render fits it: spiky and foggy over its percentiles by cell count, the others over its "
+                    "value range")
         .def_static("preset", &PyTf::preset, py::arg("name"), py::arg("lo"), py::arg("hi"),
-                    "a built-in preset (ramp, grey, spiky, foggy, constant, empty) over [lo, hi]")
+                    "a built-in preset in its range-fixed shape over [lo, hi] (as with --tf-range)")
         .def_static("from_file", &PyTf::fromFile, py::arg("path"), py::arg("preset") = "", py::arg("lo") = 0.0f,
                     py::arg("hi") = 1.0f, "a ParaView JSON preset file (preset: its name) or .xf; lo/hi for .xf alpha tables")
         .def_static("from_nodes", &PyTf::fromNodes, py::arg("positions"), py::arg("colors"), py::arg("name") = "nodes",
@@ -696,6 +704,15 @@ PYBIND11_MODULE(_amrvk, m) {
         .def_property_readonly("units", [](const PyVolume& v) { return v.units; })
         .def_property_readonly("cells", [](const PyVolume& v) { return v.volume->model.cellCount(); })
         .def_property_readonly("value_range", [](const PyVolume& v) { return py::make_tuple(v.volume->valueLo(), v.volume->valueHi()); })
+        .def_property_readonly(
+            "percentiles",
+            [](const PyVolume& v) {
+                py::array_t<float> out(py::ssize_t(101));
+                std::memcpy(out.mutable_data(), v.volume->percentiles.values.data(), 101 * sizeof(float));
+                return out;
+            },
+            "the field's percentiles 0..100 by cell count (float32 (101,), numpy's method='lower'): what the "
+            "spiky and foggy presets follow")
         .def("summary", &PyVolume::summary, "cells per level, value range, world bounds, bytes")
         .def("__repr__", [](const PyVolume& v) {
             return strCat("Volume(", v.volume->model.source, ", field '", v.volume->field().name, "', ",

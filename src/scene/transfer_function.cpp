@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -20,6 +21,19 @@ namespace amrvk::scene {
 namespace {
 
 constexpr float kGreyAlbedo = 0.8f;
+const glm::vec3 kFoggyLow(0.8f, 0.85f, 0.95f), kFoggyHigh(0.95f, 0.95f, 1.0f);  // foggy's albedo, low to high
+
+// spiky fitted to the data (makePreset over percentiles): its peaks, apex percentile and albedo.
+struct SpikyPeak {
+    int percentile;
+    glm::vec3 albedo;
+};
+const SpikyPeak kSpikyPeaks[] = {{75, {0.45f, 0.65f, 1.0f}}, {90, {1.0f, 0.6f, 0.2f}}, {97, {1.0f, 0.95f, 0.75f}}};
+constexpr int kSpikyHalfWidth = 1;      // percentiles from an apex to its feet
+constexpr float kSpikyMinSide = 1e-4f;  // a side's shortest width, in units of the value range
+// foggy fitted to the data: nodes at these percentiles, alpha kFoggyMaxAlpha (k - 50) / 50 above the median.
+constexpr int kFoggyPercentiles[] = {0, 50, 60, 70, 80, 90, 95, 99, 100};
+constexpr float kFoggyMaxAlpha = 0.05f;  // a quarter of the range-fixed foggy's top: haze, not a wall
 constexpr int kMaxXfNodes = 1 << 20;
 constexpr uint64_t kXfHeaderBytes = 8 + 4 + 2 * 4 + 2 * 4 + 4;
 constexpr uint64_t kOldXfBytes = 128 * sizeof(float);
@@ -223,8 +237,7 @@ const std::vector<PresetNodes>& presetTable() {
                      {0.0f, 0.49f, 0.5f, 0.51f, 1.0f},
                      {glm::vec4(orange, 0.0f), glm::vec4(orange, 0.0f), glm::vec4(orange, 1.0f),
                       glm::vec4(orange, 0.0f), glm::vec4(orange, 0.0f)}});
-        t.push_back({"foggy", {0.0f, 1.0f}, {glm::vec4(0.8f, 0.85f, 0.95f, 0.05f),
-                                             glm::vec4(0.95f, 0.95f, 1.0f, 0.2f)}});
+        t.push_back({"foggy", {0.0f, 1.0f}, {glm::vec4(kFoggyLow, 0.05f), glm::vec4(kFoggyHigh, 0.2f)}});
         t.push_back({"constant", {0.0f, 1.0f}, {glm::vec4(1.0f), glm::vec4(1.0f)}});
         t.push_back({"empty", {0.0f, 1.0f}, {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f),
                                              glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}});
@@ -338,6 +351,82 @@ TransferFunction makePreset(std::string_view name, float lo, float hi) {
     const PresetNodes& p = findPreset(name);
     checkRange(lo, hi, strCat("preset '", name, "'"));
     return TransferFunction(p.positions, p.colors, p.name).rescaled(lo, hi);
+}
+
+bool presetFollowsData(std::string_view name) { return name == "spiky" || name == "foggy"; }
+
+namespace {
+
+// spiky over the percentiles p (p.lo() < p.hi()): see makePreset(name, percentiles).
+TransferFunction spikyOver(const amr::Percentiles& p) {
+    const float lo = p.lo(), hi = p.hi();
+    const float minSide = kSpikyMinSide * (hi - lo);
+    std::vector<const SpikyPeak*> peaks;  // one per distinct apex value
+    for (const SpikyPeak& peak : kSpikyPeaks)
+        if (peaks.empty() || p[peak.percentile] > p[peaks.back()->percentile]) peaks.push_back(&peak);
+    std::vector<float> positions;
+    std::vector<glm::vec4> colors;
+    auto add = [&](float x, const glm::vec3& c, float a) {
+        positions.push_back(x);
+        colors.emplace_back(c, a);
+    };
+    for (size_t i = 0; i < peaks.size(); ++i) {
+        const int at = peaks[i]->percentile;
+        const glm::vec3& c = peaks[i]->albedo;
+        const float apex = p[at];
+        // Each side ends at the neighbouring percentile, or where it holds the apex value too (1% of
+        // the cells or more share it) minSide away (at least one float step), so alpha 1 has room
+        // for rounding; never beyond the data's range or halfway to the next apex, and never on a
+        // neighbouring apex (which would then be a step down to 0 there).
+        float left = p[at - kSpikyHalfWidth], right = p[at + kSpikyHalfWidth];
+        if (left == apex) left = std::min(apex - minSide, std::nextafter(apex, -INFINITY));
+        if (right == apex) right = std::max(apex + minSide, std::nextafter(apex, INFINITY));
+        float below = lo, above = hi;
+        if (i > 0) {
+            const float previous = p[peaks[i - 1]->percentile];
+            below = std::max(std::midpoint(previous, apex), std::nextafter(previous, INFINITY));
+        }
+        if (i + 1 < peaks.size()) {
+            const float next = p[peaks[i + 1]->percentile];
+            above = std::min(std::midpoint(apex, next), std::nextafter(next, -INFINITY));
+        }
+        left = std::max(left, below);
+        right = std::min(right, above);
+        if (left < apex || apex > lo) add(left, c, 0.0f);  // at the apex itself: a step up to 1
+        add(apex, c, 1.0f);
+        if (right > apex) add(right, c, 0.0f);  // else the apex is the maximum (or a float step below the next)
+    }
+    if (positions.front() > lo) {
+        positions.insert(positions.begin(), lo);
+        colors.insert(colors.begin(), glm::vec4(glm::vec3(colors.front()), 0.0f));
+    }
+    if (positions.back() < hi) add(hi, glm::vec3(colors.back()), 0.0f);
+    return TransferFunction(positions, colors, "spiky");
+}
+
+// foggy over the percentiles p: see makePreset(name, percentiles).
+TransferFunction foggyOver(const amr::Percentiles& p) {
+    std::vector<float> positions;
+    std::vector<glm::vec4> colors;
+    for (int k : kFoggyPercentiles) {
+        const float t = float(std::max(0, k - 50)) / 50.0f;
+        // Of percentiles that share a value only the lowest is kept: a value many cells hold
+        // (a uniform background) gets the alpha of its lowest percentile.
+        if (!positions.empty() && p[k] == positions.back()) continue;
+        positions.push_back(p[k]);
+        colors.emplace_back(glm::mix(kFoggyLow, kFoggyHigh, t), kFoggyMaxAlpha * t);
+    }
+    return TransferFunction(positions, colors, "foggy");
+}
+
+}  // namespace
+
+TransferFunction makePreset(std::string_view name, const amr::Percentiles& p) {
+    findPreset(name);  // an unknown name is an error whatever the data
+    AMRVK_CHECK(p.count > 0, "preset '", name, "': the field has no values to fit it to");
+    checkRange(p.lo(), p.hi(), strCat("preset '", name, "'"));
+    if (!presetFollowsData(name) || !(p.lo() < p.hi())) return makePreset(name, p.lo(), p.hi());
+    return name == "spiky" ? spikyOver(p) : foggyOver(p);
 }
 
 namespace {
@@ -499,6 +588,13 @@ TransferFunction loadXf(const fs::path& path, float dataLo, float dataHi) {
     }
     validateNodes(positions, colors, file);
     return TransferFunction(positions, colors, path.filename().string());
+}
+
+TransferFunction loadTransferFunction(std::string_view spec, const amr::Percentiles& data,
+                                      std::string_view presetName) {
+    for (const std::string& name : presetNames())
+        if (spec == name) return makePreset(spec, data);
+    return loadTransferFunction(spec, data.lo(), data.hi(), presetName);
 }
 
 TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "amr/value_percentiles.h"
+
 namespace amrvk::scene {
 
 // Magic of the owlExaStitcher / cuteeOwl / barney `.xf` format.
@@ -65,7 +67,9 @@ private:
 // Names of the built-in presets: ramp (default), grey, spiky, foggy, constant, empty.
 const std::vector<std::string>& presetNames();
 
-// A built-in preset, defined over [0, 1] and mapped onto the data range [lo, hi]:
+// A built-in preset over a range the caller fixes (--tf-range, a time series' range, the viewer's
+// editor, Python's preset(name, lo, hi)): defined over [0, 1] and mapped linearly onto [lo, hi],
+// whatever the data:
 //   ramp     viridis-like albedo, alpha 0 -> 1 linearly over the range;
 //   grey     constant albedo 0.8, alpha 0 -> 1 linearly;
 //   spiky    alpha 0 except one triangular peak of alpha 1 at the middle (half width 1% of the range);
@@ -74,6 +78,28 @@ const std::vector<std::string>& presetNames();
 //   empty    alpha 0 everywhere.
 // Throws for an unknown name or a non-finite or reversed range.
 TransferFunction makePreset(std::string_view name, float lo, float hi);
+
+// Whether a preset follows the data's distribution in makePreset(name, percentiles): spiky, foggy.
+bool presetFollowsData(std::string_view name);
+
+// A built-in preset fitted to the data (what render, view, bench, the Python module and the MPI
+// renderer use when no range is given): spiky and foggy are laid over the field's percentiles by
+// cell count (amr/value_percentiles.h; of the log values under --scale log), so they land where
+// the data's values are; every node position is one of the percentiles, P_k below:
+//   spiky    alpha 0 except three triangular peaks of alpha 1, apexes at P75, P90 and P97
+//            (albedo light blue, orange, pale yellow), feet at the percentiles one below and one
+//            above (each peak spans about 2% of the cells): opaque iso-surface-like shells where
+//            the data has structure. Where 1% of the cells or more share an apex's value, that
+//            side is 1e-4 of the range wide (at least one float step); sides never reach past the
+//            range or halfway to the next apex; apexes of equal value are one peak.
+//   foggy    alpha 0 up to the median, then 0.05 (k - 50) / 50 at P_k for k = 60, 70, 80, 90, 95,
+//            99, 100 (linear in the value in between): haze that thickens with the value's rank,
+//            none over the lower half of the cells (on AMR data, the coarse background); albedo
+//            bluish to white. Of percentiles sharing a value only the lowest is kept.
+//   ramp, grey, constant, empty: makePreset(name, P0, P100), i.e. over the field's range.
+// A field with one value (P0 == P100) gets makePreset(name, P0, P100). Throws for an unknown name
+// or no values (percentiles.count == 0).
+TransferFunction makePreset(std::string_view name, const amr::Percentiles& percentiles);
 
 // ParaView colour-map preset JSON: an array of presets or one preset object with "Name",
 // "RGBPoints" [x, r, g, b, ...] and optional "Points" [x, opacity, midpoint, sharpness, ...].
@@ -109,7 +135,7 @@ struct ParaViewPresets {
 ParaViewPresets loadParaViewPresets(const std::filesystem::path& path);
 // One preset object given as JSON text (a session's "transferFunction"); errors name `where`.
 TfChannels parseParaViewPreset(const std::string& jsonText, const std::string& where);
-// A built-in preset's channels over [0, 1].
+// A built-in preset's channels over [0, 1] (makePreset(name, 0, 1)).
 TfChannels builtInChannels(std::string_view name);
 // One preset as a ParaView JSON file's text (an array of one object; opacity midpoint 0.5 and
 // sharpness 0, which is linear). loadParaViewPreset reads it back to the same TF.
@@ -126,9 +152,13 @@ std::string paraViewPresetJson(const TfChannels& channels);
 TransferFunction loadXf(const std::filesystem::path& path, float dataLo, float dataHi);
 
 // A preset name, or a file: `.xf` (by magic or extension) or ParaView JSON (by extension or a
-// leading '[' / '{'). Presets are mapped onto [dataLo, dataHi]; files keep their own positions.
-// presetName selects a preset inside a ParaView JSON file.
+// leading '[' / '{'). Presets are mapped onto [dataLo, dataHi] (makePreset(name, lo, hi)); files
+// keep their own positions. presetName selects a preset inside a ParaView JSON file.
 TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,
+                                      std::string_view presetName = {});
+// The same fitted to the data: presets through makePreset(name, percentiles), files as above over
+// [P0, P100] (the field's range; an owlExaBrick alpha table spans it).
+TransferFunction loadTransferFunction(std::string_view spec, const amr::Percentiles& data,
                                       std::string_view presetName = {});
 
 }  // namespace amrvk::scene

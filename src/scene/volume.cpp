@@ -59,6 +59,10 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
     if (frame) {
         v->fieldStats.minValue = frame->valueLo;
         v->fieldStats.maxValue = frame->valueHi;
+        v->percentiles = frame->percentiles;
+    } else {
+        ProgressStage stage("percentiles");
+        v->percentiles = amr::percentilesOf(field.values);
     }
     {
         ProgressStage stage("bricks");

@@ -14,6 +14,7 @@
 #include "accel/bricks.h"
 #include "accel/bvh.h"
 #include "amr/model.h"
+#include "amr/value_percentiles.h"
 #include "shared/amr_gpu.h"
 
 namespace amrvk::scene {
@@ -23,6 +24,9 @@ struct Volume {
     size_t fieldIndex = 0;         // the field shown: model.fields[fieldIndex]
     amr::ModelSummary summary;     // bounds (union of leaf cells, voxel space), levels, leaf volume
     amr::FieldStats fieldStats;    // the field's range and volume-weighted mean
+    // The field's percentiles by cell count (what the spiky and foggy presets are laid over);
+    // [0] and [100] are valueLo() and valueHi().
+    amr::Percentiles percentiles;
     glm::i64vec3 localOrigin{0};   // voxel space; = lower corner of the data bounds
     accel::BrickSet bricks;
 
@@ -61,6 +65,7 @@ struct VolumeFrame {
     glm::i64vec3 localOrigin{0};  // the whole data's lower corner: one local voxel space for all
     int32_t minLevel = 0;         // the whole data's finest level: extinction per the same width
     float valueLo = 0, valueHi = 0;  // the whole field's range (TF fitting)
+    amr::Percentiles percentiles;    // the whole field's percentiles (TF fitting; each cell counted once)
 };
 // makeVolume for a part: its own bounds and bricks, `frame`'s origin, finest level and range.
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field, const VolumeFrame& frame);

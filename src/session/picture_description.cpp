@@ -1,7 +1,10 @@
 #include "session/picture_description.h"
 
+#include <cstdio>
+
 #include "core/error.h"
 #include "core/progress.h"
+#include "core/strings.h"
 #include "scene/camera.h"
 #include "scene/command_line.h"
 
@@ -19,6 +22,23 @@ std::shared_ptr<const scene::Volume> loadVolume(const Session& s) {
     return scene::makeVolume(std::move(model), s.field);
 }
 
+namespace {
+// What a fitted preset was laid over, one line.
+std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p, const scene::TransferFunction& tf) {
+    auto formatNumber = [](float v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.6g", double(v));
+        return std::string(text);
+    };
+    if (!(p.lo() < p.hi())) return strCat("tf ", name, ": the field has one value (", formatNumber(p.lo()), ")");
+    if (name == "spiky")
+        return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values (",
+                      formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
+    return strCat("tf foggy: alpha 0 up to the median cell value (", formatNumber(p[50]), "), ",
+                  formatNumber(tf.maxAlpha(p.lo(), p.hi())), " at the maximum (", formatNumber(p.hi()), ")");
+}
+}  // namespace
+
 Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std::vector<std::string>* notes) {
     Session s = d.session;
     s.field = v.field().name;
@@ -28,9 +48,15 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
                                                             : std::make_pair(v.valueLo(), v.valueHi());
         const float lo = range.first, hi = range.second;
         AMRVK_CHECK(!d.tfRange || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
+        // No range given: presets follow the data's distribution; a given range fixes them.
+        const bool fitted = !d.tfRange && !d.dataRange;
         scene::TransferFunction tf =
-            d.tfSource ? scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset) : s.tf.merged();
+            !d.tfSource ? s.tf.merged()
+            : fitted    ? scene::loadTransferFunction(d.tfSource->name, v.percentiles, d.tfSource->preset)
+                        : scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset);
         if (d.tfRange) tf = tf.rescaled(lo, hi);
+        if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && notes)
+            notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles, tf));
         s.tf = scene::TfChannels::split(tf);
     }
     if (d.fitCamera) s.settings.camera = scene::defaultCamera(v.worldLo(), v.worldHi(), s.settings.camera.fovYDegrees);

@@ -33,11 +33,14 @@ enum class StructureFit : uint8_t {
 struct PictureDescription {
     Session session;                  // data source, read options, field, settings, spp, structure, TF
     std::optional<TfSource> tfSource;  // set: the TF comes from here (session.tf is ignored)
-    // Map the TF's node range (tfSource's or the session's) onto [lo, hi]; without it presets
-    // span the field's range and other TFs keep theirs.
+    // Map the TF's node range (tfSource's or the session's) onto [lo, hi]: presets take their
+    // range-fixed shape there (scene::makePreset(name, lo, hi)). Without it and dataRange, presets
+    // are fitted to the data (scene::makePreset(name, percentiles): spiky and foggy over the
+    // field's percentiles, the others over its range) and other TFs keep their positions.
     std::optional<std::pair<float, float>> tfRange;
-    // The field range presets are laid over instead of the volume's own (tfRange still wins): one
-    // range for every output of a time series (render --series-range).
+    // The field range presets are laid over, in their range-fixed shape, instead of the volume's
+    // own distribution (tfRange still wins): one TF for every output of a time series of several
+    // outputs (render --series-range), whose percentiles differ from output to output.
     std::optional<std::pair<float, float>> dataRange;
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
@@ -49,7 +52,8 @@ struct PictureDescription {
 // when one is named) and makes the volume every picture of it shares. Progress on stderr.
 std::shared_ptr<const scene::Volume> loadVolume(const Session& s);
 
-// `d` fitted to `volume`: the field named, the TF loaded (tfSource), the camera framed
+// `d` fitted to `volume`: the field named, the TF loaded (tfSource; a fitted spiky or foggy notes
+// the percentiles it was laid over), the camera framed
 // (fitCamera), the traversal fitted (StructureFit::Data); one line per fitted choice in `notes`.
 // Probe is left to picture::makePicture (it needs a device). Throws one-line errors (a TF file
 // that does not load, --tf-range LO >= HI, an invalid structure combination).

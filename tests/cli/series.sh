@@ -4,7 +4,8 @@
 # union TF range equal to the min/max of every output's range as `amrvk info --json` reports it;
 # a re-run that skips every frame (mtimes unchanged) and a changed command that renders anew; the
 # turntable's cameras against rotations computed here and its frame 1 against a single render
-# with that camera (tile z-test, with the power shown on the wrong frame); a session over a series;
+# with that camera (tile z-test, with the power shown on the wrong frame); spiky over a series in its
+# range-fixed shape and over a turntable fitted to the output's percentiles; a session over a series;
 # the memory peak of four outputs against one; SIGINT in the middle leaving only whole frames and
 # a run that resumes; one-line errors for bad series.
 set -u
@@ -132,6 +133,37 @@ z1, z0 = worst_z(frame1), worst_z(frame0)
 assert z1 < 4.1, ("frame 1 differs from the single render with its camera", z1)
 assert z0 > 4.1, ("the test cannot tell frame 0 from frame 1", z0)
 print("ok: turntable frame 1 vs single render: worst |z| %.2f (frame 0: %.1f)" % (z1, z0))
+PY
+
+# ---- spiky over a series: one TF for every output, the range-fixed shape over the union range;
+# ---- a turntable of one output: fitted to its percentiles like a single picture ----
+sp=(--size 32x24 --spp 4 --grid 8 --mode ae --tf spiky)
+"$amrvk" render 'out_*.cells' "${sp[@]}" -o 'sp/f_%d.pfm' --json sp.json >/dev/null 2>sp.err || { echo "FAIL: spiky series: $(cat sp.err)"; fail=1; }
+range=$("$py" -c 'import json; print(*json.load(open("sp.json"))["tfRange"])')
+"$amrvk" render out_1.cells "${sp[@]}" --tf-range $range -o sp_fixed.pfm >/dev/null 2>&1 || fail=1
+# --series-range first: every frame (frame 0 too) over the first output's range.
+"$amrvk" render 'out_*.cells' "${sp[@]}" --series-range first -o 'sp_first/f_%d.pfm' >/dev/null 2>&1 || fail=1
+first=$("$py" -c 'import json; print(*json.load(open("info_1.json"))["valueRange"])')
+"$amrvk" render out_1.cells "${sp[@]}" --tf-range $first -o sp_fixed_first.pfm >/dev/null 2>&1 || fail=1
+"$amrvk" render out_1.cells "${sp[@]}" -o sp_fitted.pfm >/dev/null 2>sp_fitted.err || fail=1
+"$amrvk" render out_1.cells "${sp[@]}" --frames 2 --orbit 90 -o 'sp_tt/f_%d.pfm' >/dev/null 2>sp_tt.err || fail=1
+check grep -q "tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles" sp_fitted.err
+check grep -q "tf spiky: alpha-1 peaks" sp_tt.err
+check "$py" - <<'PY'
+import numpy as np
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"; w, h = map(int, f.readline().split()); scale = float(f.readline())
+        return np.fromfile(f, "<f4" if scale < 0 else ">f4").reshape(h, w, 3)
+series0, fixed, fitted, turn0 = pfm("sp/f_0.pfm"), pfm("sp_fixed.pfm"), pfm("sp_fitted.pfm"), pfm("sp_tt/f_0.pfm")
+first0, fixedFirst = pfm("sp_first/f_0.pfm"), pfm("sp_fixed_first.pfm")
+# Same seed, camera and TF: the same samples.
+assert np.abs(series0 - fixed).max() <= 1e-6, ("series frame 0 is not spiky over the union range", np.abs(series0 - fixed).max())
+assert np.abs(first0 - fixedFirst).max() <= 1e-6, ("--series-range first: frame 0 is not spiky over its range",
+                                                   np.abs(first0 - fixedFirst).max())
+assert np.abs(turn0 - fitted).max() <= 1e-6, ("turntable frame 0 is not the fitted spiky", np.abs(turn0 - fitted).max())
+assert np.abs(fixed - fitted).mean() > 1e-4, "the fitted and the range-fixed spiky render alike: the test cannot tell them"
+print("ok: spiky over a series is range-fixed, over a turntable fitted (they differ by %.4f per pixel)" % np.abs(fixed - fitted).mean())
 PY
 
 # ---- a session (the viewer's) over the series, and over its own input as a turntable ----

@@ -83,13 +83,14 @@ TEST(ExactRange, NoSupportMeansEmpty) {
 }
 
 // What the renderer's structures must pass: every box set of a synthetic cloud, a refined
-// fixture and Enzo, under every preset.
+// fixture and Enzo, under every preset (range-fixed, and spiky and foggy fitted to the data).
 void expectAllPass(amr::Model m) {
     const std::shared_ptr<const scene::Volume> v = scene::makeVolume(std::move(m));
     scene::MajorantCheckOptions o;
     o.grid = "16";
     o.kdLeaves = 256;
     for (const std::string& name : scene::presetNames()) o.tfs.push_back(scene::makePreset(name, v->valueLo(), v->valueHi()));
+    for (const char* name : {"spiky", "foggy"}) o.tfs.push_back(scene::makePreset(name, v->percentiles));  // fitted
     const std::vector<scene::BoxSetCheck> checks = scene::checkMajorants(v, o);
     ASSERT_EQ(checks.size(), 4 + o.tfs.size());
     for (const scene::BoxSetCheck& c : checks) {

@@ -1,5 +1,7 @@
 // Transfer function: evaluation (nodes, between, beyond, steps), exact maxAlpha against brute
-// force, presets, ParaView JSON and both `.xf` formats, and every malformed input.
+// force, presets (range-fixed, and fitted to the data's percentiles: known distributions, plateaus,
+// a synthetic cloud and Enzo against the range-fixed ones), ParaView JSON and both `.xf` formats,
+// and every malformed input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,8 +10,12 @@
 #include <limits>
 #include <random>
 
+#include "amr/value_percentiles.h"
 #include "core/error.h"
+#include "core/strings.h"
+#include "model_fixtures.h"
 #include "scene/transfer_function.h"
+#include "scene/volume.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -324,6 +330,213 @@ TEST(TransferFunction, Presets) {
     expectError([] { scene::makePreset("rainbow", 0.0f, 1.0f); },
                 {"unknown transfer function preset 'rainbow'", "ramp", "spiky"});
     expectError([] { scene::makePreset("ramp", 1.0f, 0.0f); }, {"preset 'ramp'", "[1, 0]"});
+}
+
+namespace {
+
+// The alphas of a TF's nodes.
+std::vector<float> alphasOf(const TransferFunction& tf) {
+    std::vector<float> a;
+    for (const glm::vec4& c : tf.colors()) a.push_back(c.a);
+    return a;
+}
+
+// The fraction of `values` where the TF's alpha is at least `alpha`.
+double fractionAtLeast(const TransferFunction& tf, const std::vector<float>& values, float alpha) {
+    size_t n = 0;
+    for (float v : values) n += tf.evaluate(v).a >= alpha ? 1 : 0;
+    return double(n) / double(values.size());
+}
+
+}  // namespace
+
+TEST(TransferFunction, FittedPresetsSitAtTheDataPercentiles) {
+    // A known distribution: the integers 0..100000, so P_k = 1000 k exactly.
+    std::vector<float> v(100001);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = float(i);
+    const amr::Percentiles p = amr::percentilesOf(v);
+    ASSERT_EQ(p[75], 75000.0f);
+
+    const TransferFunction spiky = scene::makePreset("spiky", p);
+    EXPECT_EQ(spiky.name(), "spiky");
+    EXPECT_EQ(spiky.positions(), (std::vector<float>{0, 74000, 75000, 76000, 89000, 90000, 91000, 96000, 97000, 98000,
+                                                     100000}));
+    EXPECT_EQ(alphasOf(spiky), (std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0}));
+    EXPECT_EQ(spiky.evaluate(74500.0f).a, 0.5f);
+    EXPECT_EQ(spiky.evaluate(80000.0f).a, 0.0f);
+    EXPECT_EQ(spiky.maxAlpha(0.0f, 73999.0f), 0.0f);
+
+    const TransferFunction foggy = scene::makePreset("foggy", p);
+    EXPECT_EQ(foggy.positions(), (std::vector<float>{0, 50000, 60000, 70000, 80000, 90000, 95000, 99000, 100000}));
+    const std::vector<float> fogAlpha = alphasOf(foggy);
+    const int at[] = {0, 50, 60, 70, 80, 90, 95, 99, 100};
+    for (size_t i = 0; i < fogAlpha.size(); ++i)
+        EXPECT_NEAR(fogAlpha[i], 0.05f * float(std::max(0, at[i] - 50)) / 50.0f, 1e-7f) << at[i];
+    EXPECT_EQ(foggy.maxAlpha(0.0f, 50000.0f), 0.0f);  // no fog over the lower half of the cells
+    EXPECT_NEAR(foggy.evaluate(55000.0f).a, 0.005f, 1e-7f);
+    EXPECT_NEAR(foggy.evaluate(100000.0f).a, 0.05f, 1e-7f);
+    EXPECT_GT(foggy.evaluate(0.0f).b, foggy.evaluate(0.0f).r);  // bluish
+
+    // The other presets span the range: the range-fixed ones over [P0, P100].
+    for (const char* name : {"ramp", "grey", "constant", "empty"}) {
+        const TransferFunction fitted = scene::makePreset(name, p), fixed = scene::makePreset(name, 0.0f, 100000.0f);
+        EXPECT_EQ(fitted.positions(), fixed.positions()) << name;
+        EXPECT_EQ(fitted.colors(), fixed.colors()) << name;
+    }
+
+    // Any distribution: the node positions are its percentiles (an exponential sample here).
+    std::vector<float> e(54321);
+    for (size_t i = 0; i < e.size(); ++i) e[i] = float(-std::log1p(-(double(i) + 0.5) / double(e.size())));
+    const amr::Percentiles q = amr::percentilesOf(e);
+    EXPECT_EQ(scene::makePreset("spiky", q).positions(),
+              (std::vector<float>{q[0], q[74], q[75], q[76], q[89], q[90], q[91], q[96], q[97], q[98], q[100]}));
+    EXPECT_EQ(scene::makePreset("foggy", q).positions(),
+              (std::vector<float>{q[0], q[50], q[60], q[70], q[80], q[90], q[95], q[99], q[100]}));
+    // Range-fixed, the same names mean other functions: one mid-range peak, fog everywhere.
+    EXPECT_NE(scene::makePreset("spiky", q).positions(), scene::makePreset("spiky", q.lo(), q.hi()).positions());
+    EXPECT_GT(scene::makePreset("foggy", q.lo(), q.hi()).evaluate(q[10]).a, 0.0f);
+    EXPECT_EQ(scene::makePreset("foggy", q).evaluate(q[10]).a, 0.0f);
+
+    expectError([&] { scene::makePreset("rainbow", p); }, {"unknown transfer function preset 'rainbow'"});
+    expectError([] { scene::makePreset("spiky", amr::Percentiles{}); }, {"preset 'spiky'", "no values"});
+    const TransferFunction loaded = scene::loadTransferFunction("spiky", p);
+    EXPECT_EQ(loaded.positions(), spiky.positions());
+}
+
+TEST(TransferFunction, FittedPresetsOnPlateaus) {
+    // Values many cells share (AMReX's flame: a cold and a hot plateau with a few values between):
+    // every apex keeps alpha 1 at its value and near it, whatever the percentiles it spans.
+    std::vector<float> v;
+    auto add = [&](float value, int cells) { v.insert(v.end(), size_t(cells), value); };
+    add(298.0f, 4000);   // P0..P39
+    add(900.0f, 500);    // P40..P44
+    add(1578.0f, 2950);  // P45..P74
+    add(1579.0f, 49);
+    add(1580.0f, 2501);  // P75..P100: the maximum, which P90 and P97 share
+    const amr::Percentiles p = amr::percentilesOf(v);
+    ASSERT_EQ(p[74], 1578.0f);
+    ASSERT_EQ(p[75], 1580.0f);
+    ASSERT_EQ(p[97], p.hi());
+    const TransferFunction spiky = scene::makePreset("spiky", p);
+    // P90 and P97 equal P75's value: one peak, at the maximum, alpha 1 there and beyond.
+    EXPECT_EQ(spiky.evaluate(1580.0f).a, 1.0f);
+    EXPECT_GT(spiky.evaluate(std::nextafter(1580.0f, 0.0f)).a, 0.99f);
+    EXPECT_EQ(spiky.evaluate(1579.0f).a, 0.5f);  // from the foot at P74 = 1578 up to the apex
+    EXPECT_EQ(spiky.maxAlpha(298.0f, 1578.0f), 0.0f);
+    EXPECT_EQ(spiky.lastPosition(), 1580.0f);
+    EXPECT_EQ(spiky.firstPosition(), 298.0f);
+
+    // A peak with both neighbours on its value, inside the range: both sides 1e-4 of the range wide.
+    std::vector<float> w;
+    auto addW = [&](float value, int cells) { w.insert(w.end(), size_t(cells), value); };
+    addW(0.0f, 7000);
+    addW(5.0f, 700);  // P71..P76: both neighbours of P75 share its value
+    addW(6.0f, 1200);
+    addW(7.0f, 500);
+    addW(10.0f, 600);
+    const amr::Percentiles q = amr::percentilesOf(w);
+    ASSERT_EQ(q[74], 5.0f);
+    ASSERT_EQ(q[76], 5.0f);
+    const TransferFunction peaked = scene::makePreset("spiky", q);
+    EXPECT_EQ(peaked.evaluate(5.0f).a, 1.0f);
+    EXPECT_NEAR(peaked.evaluate(5.0f - 0.0005f).a, 0.5f, 1e-3f);  // side 1e-4 x range 10
+    EXPECT_NEAR(peaked.evaluate(5.0f + 0.0005f).a, 0.5f, 1e-3f);
+    EXPECT_EQ(peaked.evaluate(4.99f).a, 0.0f);
+    EXPECT_EQ(peaked.maxAlpha(0.0f, 4.99f), 0.0f);
+
+    // foggy: a background value most cells hold keeps alpha 0 (its lowest percentile's).
+    const TransferFunction foggy = scene::makePreset("foggy", q);
+    EXPECT_EQ(foggy.evaluate(0.0f).a, 0.0f);
+    EXPECT_EQ(q[60], 0.0f);  // P60 shares the background's value
+    EXPECT_GT(foggy.evaluate(6.0f).a, 0.0f);
+
+    // One value: the range-fixed presets at that value.
+    const amr::Percentiles one = amr::percentilesOf(std::vector<float>(10, 3.0f));
+    for (const std::string& name : scene::presetNames()) {
+        EXPECT_EQ(scene::makePreset(name, one).positions(), scene::makePreset(name, 3.0f, 3.0f).positions()) << name;
+        EXPECT_EQ(scene::makePreset(name, one).colors(), scene::makePreset(name, 3.0f, 3.0f).colors()) << name;
+    }
+}
+
+TEST(TransferFunction, FittedPresetsAreValidForAnyDistribution) {
+    // Random distributions over a few values, with plateaus, huge and tiny magnitudes and values one
+    // float step apart: the fitted TFs are valid (the constructor checks the order), spiky has alpha
+    // 1 at each of its apexes and foggy none at or below the median.
+    std::mt19937 rng(17);
+    const float pool[] = {-3e38f, -1.0f, 0.0f, 1e-40f, 1.0f, std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 3.0f),
+                          2.0f, 1e6f, std::nextafter(1e6f, 2e6f), 3e38f};
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::vector<float> v(size_t(std::uniform_int_distribution<int>(1, 400)(rng)));
+        const size_t distinct = size_t(std::uniform_int_distribution<int>(1, 11)(rng));
+        for (float& x : v) x = pool[std::uniform_int_distribution<size_t>(0, distinct - 1)(rng)];
+        const amr::Percentiles p = amr::percentilesOf(v);
+        SCOPED_TRACE("trial " + std::to_string(trial));
+        const TransferFunction spiky = scene::makePreset("spiky", p);
+        const TransferFunction foggy = scene::makePreset("foggy", p);
+        if (!(p.lo() < p.hi())) continue;
+        std::string nodes;
+        for (size_t i = 0; i < spiky.nodeCount(); ++i)
+            nodes += strCat(" (", spiky.positions()[i], ", ", spiky.colors()[i].a, ")");
+        for (int k : {75, 90, 97}) ASSERT_EQ(spiky.evaluate(p[k]).a, 1.0f) << "P" << k << " = " << p[k] << ":" << nodes;
+        ASSERT_EQ(foggy.maxAlpha(p.lo(), p[50]), 0.0f);
+        ASSERT_EQ(spiky.firstPosition(), p.lo());
+        ASSERT_EQ(spiky.lastPosition(), p.hi());
+    }
+}
+
+TEST(TransferFunction, FittedFoggyClearsTheCloudsBackground) {
+    // A synthetic cloud: most of the volume is coarse background of low values. The background value
+    // (the volume-weighted median) gets no fog from the fitted foggy and fog from the range-fixed one;
+    // the upper percentiles get fog from both.
+    amr::SyntheticParams params;
+    params.cells = 50000;
+    params.seed = 1;
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(amr::makeSyntheticModel(params));
+    std::vector<std::pair<float, double>> byValue;  // value, cell volume
+    for (size_t i = 0; i < v->model.cells.size(); ++i)
+        byValue.emplace_back(v->field().values[i], amr::cellVolume(v->model.cells[i].level));
+    std::sort(byValue.begin(), byValue.end());
+    double total = 0, below = 0;
+    for (const auto& c : byValue) total += c.second;
+    float background = byValue.back().first;
+    for (const auto& c : byValue)
+        if ((below += c.second) >= 0.5 * total) {
+            background = c.first;
+            break;
+        }
+    const amr::Percentiles& p = v->percentiles;
+    ASSERT_LT(background, p[50]);  // the background lies below the cell median
+
+    const TransferFunction fitted = scene::makePreset("foggy", p);
+    const TransferFunction fixed = scene::makePreset("foggy", v->valueLo(), v->valueHi());
+    EXPECT_EQ(fitted.evaluate(background).a, 0.0f);
+    EXPECT_GE(fixed.evaluate(background).a, 0.05f);  // the old foggy fogs the background: the box
+    for (int k : {60, 80, 90, 99}) {
+        EXPECT_GT(fitted.evaluate(p[k]).a, 0.0f) << k;
+        EXPECT_GT(fitted.evaluate(p[k]).a, fitted.evaluate(p[k - 10]).a) << k;
+    }
+    // Over the whole volume, fog only where the cells of the upper half are (0.32 of it here; the
+    // 10^6-cell cloud: 0.02); the range-fixed foggy fogs all of it.
+    double fogged = 0;
+    for (const auto& c : byValue) fogged += fitted.evaluate(c.first).a > 0 ? c.second : 0.0;
+    EXPECT_LT(fogged / total, 0.4);
+    const std::vector<float> values(v->field().values.begin(), v->field().values.end());
+    EXPECT_EQ(fractionAtLeast(fixed, values, 0.0499f), 1.0);
+}
+
+TEST(TransferFunction, FittedSpikyHitsTheDataWhereTheRangeFixedOneMisses) {
+    // Enzo's Density spans 0.012..1030 with most cells below 1: the range-fixed spiky's peak at
+    // mid-range (515 +- 10) reaches alpha 0.5 in one cell of 137,502; the fitted one's three peaks
+    // in about 3% of the cells.
+    AMRVK_REQUIRE_DATA(test::kEnzoDataSet);
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(test::readEnzoDensity());
+    const std::vector<float> values(v->field().values.begin(), v->field().values.end());
+    const TransferFunction fitted = scene::makePreset("spiky", v->percentiles);
+    const TransferFunction fixed = scene::makePreset("spiky", v->valueLo(), v->valueHi());
+    EXPECT_LT(fractionAtLeast(fixed, values, 0.5f), 1e-4);
+    EXPECT_GT(fractionAtLeast(fitted, values, 0.5f), 0.02);
+    EXPECT_LT(fractionAtLeast(fitted, values, 0.5f), 0.05);
+    for (int k : {75, 90, 97}) EXPECT_EQ(fitted.evaluate(v->percentiles[k]).a, 1.0f) << k;
 }
 
 TEST(TransferFunction, ParaViewSeparateColourAndOpacityNodes) {

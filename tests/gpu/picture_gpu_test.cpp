@@ -64,8 +64,8 @@ TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
 
 TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     // Four cells at the corners of a 4096-wide box: sparse (they fill 6e-11 of it), so the
-    // data-fitted traversal is abr, with the abr sampler unless one was given; the TF spans the
-    // field, the camera frames the data.
+    // data-fitted traversal is abr, with the abr sampler unless one was given; the TF (foggy) is
+    // fitted to the field's percentiles and spans the field, the camera frames the data.
     amr::Model sparse;
     sparse.source = "sparse";
     sparse.cells = {{{0, 0, 0}, 0}, {{4095, 0, 0}, 0}, {{0, 4095, 0}, 0}, {{0, 0, 4095}, 0}};
@@ -83,9 +83,10 @@ TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     EXPECT_EQ(pic.renderer->config().backend, scene::Backend::Sw) << "auto is sw until rq is measured faster";
     EXPECT_EQ(pic.session.structure.backend, scene::Backend::Auto) << "the session keeps what was asked";
     ASSERT_EQ(noted, pic.report.notes);
-    ASSERT_EQ(noted.size(), 2u);
-    EXPECT_EQ(noted[0].rfind("traversal abr and sampler abr:", 0), 0u) << noted[0];
-    EXPECT_EQ(noted[1].rfind("--backend auto: sw", 0), 0u) << noted[1];
+    ASSERT_EQ(noted.size(), 3u);
+    EXPECT_EQ(noted[0].rfind("tf foggy: alpha 0 up to the median cell value (2)", 0), 0u) << noted[0];
+    EXPECT_EQ(noted[1].rfind("traversal abr and sampler abr:", 0), 0u) << noted[1];
+    EXPECT_EQ(noted[2].rfind("--backend auto: sw", 0), 0u) << noted[2];
     EXPECT_FALSE(pic.report.backendReason.empty());
     const scene::Camera framed = scene::defaultCamera(v->worldLo(), v->worldHi(), 40.0);
     EXPECT_TRUE(pic.session.settings.camera == framed);
@@ -97,6 +98,7 @@ TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     EXPECT_EQ(picture::makePicture(ctx(), v, d).session.structure.sampler, scene::SamplerKind::ExtBrick);
     d.fit = session::StructureFit::None;
     d.session.structure.backend = scene::Backend::Sw;
+    d.tfRange = std::make_pair(1.0f, 4.0f);
     EXPECT_TRUE(picture::makePicture(ctx(), v, d).report.notes.empty());
 }
 

@@ -313,7 +313,8 @@ TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
 // The macrocell ranges (exact lattice or per-brick bounds, accel/range_grid.*) hold on every data
 // set and TF preset: no sample's extinction exceeds its majorant. Every preset with the grid
 // sampler on the auto grid; the spiky one with the paper's samplers on a coarse grid (16: larger
-// macrocells, where the per-brick bound stands in for the lattice).
+// macrocells, where the per-brick bound stands in for the lattice); spiky and foggy fitted to the
+// data's percentiles, which must also meet the medium.
 TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
     struct Set {
         std::filesystem::path path;
@@ -359,6 +360,17 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
         check(scene::SamplerKind::Grid, "auto", presets);
         check(scene::SamplerKind::ExtBrick, "16", {"spiky"});
         check(scene::SamplerKind::Abr, "16", {"spiky"});
+        // spiky and foggy fitted to the data's percentiles (what render uses without --tf-range):
+        // no violations, and paths collide with the medium (the range-fixed spiky misses Enzo).
+        render::Renderer r(ctx(), volume, test::gridDda(scene::SamplerKind::Grid, "auto"));
+        for (const char* preset : {"spiky", "foggy"}) {
+            SCOPED_TRACE(std::string(preset) + " fitted");
+            r.setTransferFunction(scene::makePreset(preset, volume->percentiles));
+            scene::RenderOutput o = r.render(s, 2);
+            EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
+            EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
+            EXPECT_GT(o.stats.counter(shared::kCounterRealCollisions), 0u);
+        }
     }
     EXPECT_GE(sets, 1u);
 }

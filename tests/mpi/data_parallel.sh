@@ -3,8 +3,8 @@
 # (--distribute data, docs/mpi.md): each rank reads and tracks only its box of space, and the
 # image equals the single-process one statistically (tests/mpi/zcompare.py: per-pixel and pooled
 # z of the means against both variances) with 2 and 3 ranks, in ae, ss and ms, on the bundled
-# cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level, and
-# with a cut-away.
+# cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level,
+# with a cut-away, and with spiky and foggy fitted to the whole field's percentiles.
 # Power: the same test rejects the data-parallel image when the single-process reference is made
 # from data with one rank's part 5% denser. --json: boxes that tile the data, every cell owned by
 # one rank, halos, bytes moved.
@@ -39,6 +39,18 @@ same cloud-ae-3 3 "$cloud" "${absorb[@]}"
 same cloud-ms-3 3 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2
 same cloud-ss-2 2 "$cloud" --size 32x32 --spp 128 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3
 same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf-range 0 4 --density-scale 2
+# Presets fitted to the data (no --tf-range): every rank fits spiky and foggy to the whole field's
+# percentiles (the summed counts of the cells each owns), the TF one process fits; the note each
+# prints names the percentiles it used.
+same enzo-spiky-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf spiky --density-scale 2
+same cloud-foggy-3 3 "$cloud" --size 32x32 --spp 128 --mode ms --tf foggy --density-scale 4
+for fit in "enzo-spiky-2 2 $enzo spiky" "cloud-foggy-3 3 $cloud foggy"; do
+  set -- $fit
+  "$amrvk" render "$3" --size 8x8 --spp 1 --tf "$4" -o "$dir/$1.fit.pfm" >/dev/null 2>"$dir/$1.fit.err" || fail=1
+  one=$(grep "tf $4:" "$dir/$1.fit.err"); many=$(grep "tf $4:" "$dir/$1.err")
+  if [ -n "$one" ] && [ "$one" = "$many" ]; then echo "ok: $1 fits $4 as one process does: ${one#amrvk: }"
+  else echo "FAIL: $1: one process fits '$one', $2 ranks '$many'"; fail=1; fi
+done
 # A cut-away (docs/cut-aways.md): a crop box across the partition faces and an oblique clip plane.
 same cloud-ms-cut-2 2 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2 \
   --crop 0 0 0 512 512 300 --clip 256 256 256 1 1 0

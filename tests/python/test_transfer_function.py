@@ -1,9 +1,10 @@
-"""Transfer functions from presets, ParaView files and numpy nodes; evaluation against the nodes;
-ParaView JSON out and back; bad nodes raise."""
+"""Transfer functions from presets (range-fixed, and fitted to a volume's percentiles, which equal
+numpy's), ParaView files and numpy nodes; evaluation against the nodes; ParaView JSON out and back;
+bad nodes raise."""
 import numpy as np
 import pytest
 
-from conftest import SOURCE
+from conftest import SAMPLE, SOURCE
 
 
 def test_presets_nodes_and_files(amrvk, tmp_path):
@@ -43,3 +44,30 @@ def test_bad_nodes(amrvk):
         amrvk.TransferFunction.preset("rainbow", 0, 1)
     with pytest.raises(ValueError):
         amrvk.TransferFunction.from_nodes(np.array([np.nan]), np.array([[1, 1, 1, 1]], float))
+
+
+def test_presets_fitted_to_a_volume(amrvk):
+    v = amrvk.Volume(str(SAMPLE))
+    values = np.fromfile(str(SAMPLE.with_suffix(".scalars")), dtype=np.float32)
+    p = np.percentile(values, np.arange(101), method="lower").astype(np.float32)
+    assert v.percentiles.dtype == np.float32 and v.percentiles.shape == (101,)
+    np.testing.assert_array_equal(v.percentiles, p)
+    assert v.value_range == (p[0], p[100])
+
+    spiky = amrvk.TransferFunction.preset("spiky", v)
+    positions, colors = spiky.nodes
+    np.testing.assert_array_equal(positions, p[[0, 74, 75, 76, 89, 90, 91, 96, 97, 98, 100]])
+    np.testing.assert_array_equal(colors[:, 3], [0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0])
+    foggy = amrvk.TransferFunction.preset("foggy", v)
+    positions, colors = foggy.nodes
+    np.testing.assert_array_equal(positions, p[[0, 50, 60, 70, 80, 90, 95, 99, 100]])
+    assert (foggy.evaluate(values[values <= p[50]])[:, 3] == 0).all()
+    np.testing.assert_allclose(foggy.evaluate(p[[100]])[0, 3], 0.05, rtol=1e-6)
+    # Over a range given by hand: the range-fixed shape, whatever the data.
+    fixed = amrvk.TransferFunction.preset("spiky", float(p[0]), float(p[100]))
+    assert len(fixed.nodes[0]) == 5 and fixed.evaluate(p[[75]])[0, 3] != 1.0
+    # The others span the range either way.
+    np.testing.assert_array_equal(amrvk.TransferFunction.preset("ramp", v).nodes[0],
+                                  amrvk.TransferFunction.preset("ramp", float(p[0]), float(p[100])).nodes[0])
+    with pytest.raises(ValueError, match="rainbow"):
+        amrvk.TransferFunction.preset("rainbow", v)
