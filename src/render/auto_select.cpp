@@ -24,7 +24,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                       const scene::RenderSettings& settings, const AutoConstraints& constraints,
                       const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
     const bool cpu = renderer.context().deviceReport().type == "CPU";
-    const int size = options.probeSize > 0 ? options.probeSize : cpu ? 48 : 1024;
+    const int size = options.probeSize > 0 ? options.probeSize : cpu ? 96 : 1024;
     AMRVK_CHECK(size >= 8 && options.probeSpp >= 2, "internal: probe too small");
     Timer total;
     scene::RenderSettings rs = settings;
@@ -153,14 +153,28 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             consider(p);
         }
     }
-    // 4. A grid winner's macrocell resolution, measured.
-    if (choice.config.usesGrid() && !constraints.grid) {
-        const scene::StructureConfig winner = choice.config;
-        for (const std::string& g : options.gridChoices) {
-            scene::StructureConfig c = winner;
-            c.grid = g;
-            consider(measure(c, true));
-        }
+    // 4. Macrocell resolutions, measured: the winner's when it uses the grid, and those of the grid
+    //    traversals of step 1 that came within slowFactor of the best (the resolution can reorder
+    //    them: on a thin medium a coarse grid halves grid-dda's steps, not grid-bvh's). Ordered by
+    //    resolution, so each grid is built once.
+    if (!constraints.grid) {
+        std::vector<scene::StructureConfig> candidates;
+        auto add = [&](const scene::StructureConfig& c) {
+            if (!c.usesGrid()) return;
+            for (const scene::StructureConfig& o : candidates)
+                if (o.traversal == c.traversal && o.sampler == c.sampler && o.backend == c.backend) return;
+            candidates.push_back(c);
+        };
+        add(choice.config);
+        for (const AutoProbe& t : measured)
+            if (t.efficiency > 0 && t.efficiency * options.slowFactor >= bestEfficiency &&
+                (t.config.traversal == scene::TraversalKind::GridDda || t.config.traversal == scene::TraversalKind::GridBvh))
+                add(t.config);
+        for (const std::string& g : options.gridChoices)
+            for (scene::StructureConfig c : candidates) {
+                c.grid = g;
+                consider(measure(c, true));
+            }
     }
     choice.seconds = total.seconds();
     Timer configure;

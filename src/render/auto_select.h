@@ -2,17 +2,18 @@
 // Automatic structure choice (`amrvk bench --auto`, `amrvk render --traversal auto`) by a cost model:
 // every combination estimates the same image, so the most efficient one has the least
 // (variance x GPU time) per sample. Measured, at a size that fills the device (2^20 paths per
-// sample on a GPU, 48^2 on a CPU device: a small probe on a GPU times the dispatch and the
-// longest path, not the throughput) and with the GPU timer:
+// sample on a GPU, 96^2 on a CPU device: a small probe times the dispatch and the longest path,
+// not the throughput; at 48^2 on lavapipe the spiky tail turned the order of two combinations)
+// and with the GPU timer:
 //  - each allowed traversal (and back-end) with one reference sampler: its GPU time, lookups,
 //    steps and null collisions per path and its variance (the counts do not depend on the sampler:
 //    every sampler gives the same values, so the paths are the same);
-//  - each other sampler under the first traversal: the unit cost of its lookups, ns per lookup
+//  - each other sampler under the most efficient traversal: the unit cost of its lookups, ns per lookup
 //    above the reference sampler's, (time(s) - time(ref)) / lookups.
 // Every other combination is predicted from its traversal's time and counts and the sampler's
-// unit cost; the most efficient wins. A grid winner's macrocell resolution is then measured the
-// same way (32, 64, 256 besides auto = 128). A traversal probe far slower than the best so far
-// is stopped after its first sample.
+// unit cost; the most efficient wins. Macrocell resolutions (32, 64, 256 besides auto = 128) are
+// then measured for a grid winner and for the grid traversals within slowFactor of the best. A
+// probe far slower than the best so far is stopped after its first sample.
 #include <functional>
 #include <optional>
 #include <string>
@@ -33,7 +34,7 @@ struct AutoConstraints {
 };
 
 struct AutoOptions {
-    int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 48 on CPUs)
+    int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 96 on CPUs)
     uint32_t probeSpp = 2;       // timed samples per pixel after one warm-up sample (>= 2: a variance)
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
