@@ -9,6 +9,7 @@
 
 #include "bench/plot_script.h"
 #include "core/file_io.h"
+#include "picture/picture.h"
 
 namespace amrvk::bench {
 
@@ -156,22 +157,18 @@ std::string resultsJson(const BenchResults& res) {
     for (const RunResult& r : res.runs) runs.push_back(runJson(r));
     Json& autos = j["auto"] = Json::array();
     for (const AutoResult& a : res.autos) {
-        Json probes = Json::array();
-        for (const render::AutoProbe& p : a.choice.probes)
-            probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid}, {"secondsPerSpp", p.secondsPerSpp},
-                              {"variance", p.variance}, {"efficiency", p.efficiency}, {"predicted", p.predicted},
-                              {"lookupsPerPath", p.lookupsPerPath}, {"stepsPerPath", p.stepsPerPath},
-                              {"nullsPerPath", p.nullsPerPath}, {"wallSeconds", p.wallSeconds}, {"note", p.note}});
-        Json lookupNs = Json::object();
-        for (const auto& [sampler, ns] : a.choice.lookupNs) lookupNs[scene::samplerName(sampler)] = ns;
-        autos.push_back({{"dataset", a.dataset}, {"tf", a.tf}, {"mode", a.mode}, {"pick", a.choice.config.label()},
-                         {"pickGrid", a.choice.config.grid}, {"probeSeconds", a.choice.seconds},
-                         {"probes", a.choice.probes.size()}, {"probeSize", a.choice.probeSize},
-                         {"lookupNsAboveReference", std::move(lookupNs)}, {"pickEfficiency", a.pickEfficiency},
-                         {"bestEfficiency", a.bestEfficiency},
-                         {"efficiencyRatio", a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0},
-                         {"pickFps", a.pickFps}, {"best", a.bestLabel}, {"bestFps", a.bestFps},
-                         {"probeDetails", std::move(probes)}});
+        Json choice = picture::autoChoiceJson(a.choice);
+        Json entry = {{"dataset", a.dataset}, {"tf", a.tf}, {"mode", a.mode}};
+        for (const char* k : {"pick", "pickGrid", "probeSeconds", "probes", "probeSize", "lookupNsAboveReference"})
+            entry[k] = choice[k];
+        entry["pickEfficiency"] = a.pickEfficiency;
+        entry["bestEfficiency"] = a.bestEfficiency;
+        entry["efficiencyRatio"] = a.bestEfficiency > 0 ? a.pickEfficiency / a.bestEfficiency : 0.0;
+        entry["pickFps"] = a.pickFps;
+        entry["best"] = a.bestLabel;
+        entry["bestFps"] = a.bestFps;
+        entry["probeDetails"] = std::move(choice["probeDetails"]);
+        autos.push_back(std::move(entry));
     }
     // Non-finite numbers are written as null; bytes that are not UTF-8 (paths) become U+FFFD.
     return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";

@@ -100,6 +100,22 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     return p;
 }
 
+nlohmann::ordered_json autoChoiceJson(const render::AutoChoice& c) {
+    using Json = nlohmann::ordered_json;
+    Json probes = Json::array();
+    for (const render::AutoProbe& p : c.probes)
+        probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid}, {"secondsPerSpp", p.secondsPerSpp},
+                          {"variance", p.variance}, {"efficiency", p.efficiency}, {"predicted", p.predicted},
+                          {"lookupsPerPath", p.lookupsPerPath}, {"stepsPerPath", p.stepsPerPath},
+                          {"nullsPerPath", p.nullsPerPath}, {"wallSeconds", p.wallSeconds}, {"note", p.note}});
+    Json lookupNs = Json::object();
+    for (const auto& [sampler, ns] : c.lookupNs) lookupNs[scene::samplerName(sampler)] = ns;
+    return {{"pick", c.config.label()},         {"pickGrid", c.config.grid},
+            {"probeSeconds", c.seconds},        {"probes", c.probes.size()},
+            {"probeSize", c.probeSize},         {"lookupNsAboveReference", std::move(lookupNs)},
+            {"probeDetails", std::move(probes)}};
+}
+
 nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& out, const RenderTimes& times) {
     using Json = nlohmann::ordered_json;
     const render::Renderer& renderer = *p.renderer;
@@ -182,6 +198,7 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["deviceMemoryPerResource"] = device;
     if (scene.grid) j["macrocellDims"] = Json::array({scene.grid->dims.x, scene.grid->dims.y, scene.grid->dims.z});
     j["meanRGB"] = Json::array({meanRgb.x, meanRgb.y, meanRgb.z});
+    if (p.report.autoChoice) j["auto"] = autoChoiceJson(*p.report.autoChoice);
     return j;
 }
 

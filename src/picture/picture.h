@@ -60,6 +60,12 @@ struct RenderTimes {
 // timings, host bytes per structure, device bytes per buffer, the mean RGB).
 nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& out, const RenderTimes& times = {});
 
+// `--traversal auto`'s probes and pick (render --json "auto", bench's results.json "auto"):
+// pick, probeSize, probeSeconds, lookupNsAboveReference per sampler, and per probe its
+// combination, grid, GPU seconds per spp, variance, efficiency, counts per path, whether it was
+// predicted, its wall seconds and why it stopped.
+nlohmann::ordered_json autoChoiceJson(const render::AutoChoice& c);
+
 // What the back-end choice reads from a device.
 scene::DeviceTraits deviceTraits(const gpu::Context& ctx);
 // `requested` with its back-end resolved for ctx's device (scene::resolveBackend) and validated:

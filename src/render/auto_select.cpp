@@ -25,7 +25,9 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                       const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
     const bool cpu = renderer.context().deviceReport().type == "CPU";
     const int size = options.probeSize > 0 ? options.probeSize : cpu ? 96 : 1024;
-    AMRVK_CHECK(size >= 8 && options.probeSpp >= 2, "internal: probe too small");
+    // A CPU device's probe is small, so it takes more samples: its time is less noisy.
+    const uint32_t probeSpp = options.probeSpp > 0 ? options.probeSpp : cpu ? 4 : 2;
+    AMRVK_CHECK(size >= 8 && probeSpp >= 2, "internal: probe too small");
     Timer total;
     scene::RenderSettings rs = settings;
     rs.width = rs.height = size;
@@ -83,7 +85,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
                          "x slower than the best";
             } else {
-                scene::RenderOutput out = renderer.render(rs, options.probeSpp);
+                scene::RenderOutput out = renderer.render(rs, probeSpp);
                 const double paths = double(out.stats.paths);
                 p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
                 p.variance = meanSampleVariance(out);
@@ -147,11 +149,31 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             p.config.sampler = s;
             p.predicted = true;
             p.wallSeconds = 0;
-            p.secondsPerSpp = std::max(t.secondsPerSpp + t.lookupsPerPath * pathsPerSpp * perLookup, 1e-3 * t.secondsPerSpp);
+            // A sampler cheaper than the reference (perLookup < 0, or noise on few lookups) saves at
+            // most half the traversal's time; a prediction is measured before it can win (below).
+            p.secondsPerSpp = std::max(t.secondsPerSpp + t.lookupsPerPath * pathsPerSpp * perLookup, 0.5 * t.secondsPerSpp);
             const double v = p.variance > 0 ? p.variance : 1e-30;
             p.efficiency = 1.0 / (v * p.secondsPerSpp);
             consider(p);
         }
+    }
+    // 3b. A predicted winner is measured: the unit costs come from few lookups where the anchor
+    //     makes few, and their noise must not pick. Repeated while the best is a prediction.
+    for (int round = 0; round < 4; ++round) {
+        const auto best = std::max_element(choice.probes.begin(), choice.probes.end(),
+                                           [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+        if (!best->predicted) break;
+        const scene::StructureConfig config = best->config;
+        best->efficiency = 0;  // superseded by its measurement
+        best->note = "predicted best, measured";
+        bestEfficiency = -1;
+        for (const AutoProbe& p : choice.probes)
+            if (p.efficiency > bestEfficiency) {
+                bestEfficiency = p.efficiency;
+                bestSecondsPerSpp = p.secondsPerSpp;
+                choice.config = p.config;
+            }
+        consider(measure(config, true));
     }
     // 4. Macrocell resolutions, measured: the winner's when it uses the grid, and those of the grid
     //    traversals of step 1 that came within slowFactor of the best (the resolution can reorder

@@ -11,9 +11,10 @@
 //  - each other sampler under the most efficient traversal: the unit cost of its lookups, ns per lookup
 //    above the reference sampler's, (time(s) - time(ref)) / lookups.
 // Every other combination is predicted from its traversal's time and counts and the sampler's
-// unit cost; the most efficient wins. Macrocell resolutions (32, 64, 256 besides auto = 128) are
-// then measured for a grid winner and for the grid traversals within slowFactor of the best. A
-// probe far slower than the best so far is stopped after its first sample.
+// unit cost; a predicted best is measured before it can win. Macrocell resolutions (32, 64, 256
+// besides auto = 128) are then measured for a grid winner and for the grid traversals within
+// slowFactor of the best. A probe far slower than the best so far is stopped after its first
+// sample.
 #include <functional>
 #include <optional>
 #include <string>
@@ -35,7 +36,7 @@ struct AutoConstraints {
 
 struct AutoOptions {
     int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 96 on CPUs)
-    uint32_t probeSpp = 2;       // timed samples per pixel after one warm-up sample (>= 2: a variance)
+    uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 4 on CPUs
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
 };

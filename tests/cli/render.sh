@@ -47,7 +47,18 @@ check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sam
 "$amrvk" render "$sample" "${common[@]}" --traversal auto --sampler abr --backend sw -o "$dir/auto.png" \
   --json "$dir/auto.json" >/dev/null 2>"$dir/auto.err" || fail=1
 check grep -q "traversal auto picked .*/abr/sw" "$dir/auto.err"
-check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["sampler"] == "abr" and j["backend"] == "sw" and j["traversal"] in ("grid-dda","grid-bvh","abr","brick","ext-brick","kdtree"), j' "$dir/auto.json"
+check python3 - "$dir/auto.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["sampler"] == "abr" and j["backend"] == "sw" and j["traversal"] in ("grid-dda","grid-bvh","abr","brick","ext-brick","kdtree"), j
+# The probes behind the pick: the pick is the most efficient measured one, with the sampler fixed.
+a = j["auto"]
+assert a["pick"] == j["traversal"] + "/abr/sw" and a["probes"] == len(a["probeDetails"]) > 0, a
+measured = [p for p in a["probeDetails"] if not p["predicted"] and p["efficiency"] > 0]
+assert all(p["config"].endswith("/abr/sw") for p in a["probeDetails"]), a
+best = max(measured, key=lambda p: p["efficiency"])
+assert best["config"] == a["pick"] and best["grid"] == a["pickGrid"], (best, a)
+PY
 
 expect "--mode: xyz not in {ae,ss,ms,dvr}" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
 expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
