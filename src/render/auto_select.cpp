@@ -198,6 +198,23 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 consider(measure(c, true));
             }
     }
+    // 5. Ties within the probes' noise go to the combination that builds less (fewer structures,
+    //    none rebuilt per TF edit): among measured probes within tieTolerance of the best.
+    {
+        auto structures = [](const scene::StructureConfig& c) {
+            const scene::StructurePlan p = c.plan();
+            return int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) + int(p.boxMajorants) +
+                   int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
+        };
+        const AutoProbe* pick = nullptr;
+        for (const AutoProbe& p : choice.probes) {
+            if (p.predicted || !(p.efficiency >= (1.0 - options.tieTolerance) * bestEfficiency)) continue;
+            if (!pick || structures(p.config) < structures(pick->config) ||
+                (structures(p.config) == structures(pick->config) && p.efficiency > pick->efficiency))
+                pick = &p;
+        }
+        if (pick) choice.config = pick->config;
+    }
     choice.seconds = total.seconds();
     Timer configure;
     renderer.setStructure(choice.config);

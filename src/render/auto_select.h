@@ -14,7 +14,8 @@
 // unit cost; a predicted best is measured before it can win. Macrocell resolutions (32, 64, 256
 // besides auto = 128) are then measured for a grid winner and for the grid traversals within
 // slowFactor of the best. A probe far slower than the best so far is stopped after its first
-// sample.
+// sample. Measured probes within tieTolerance of the best tie (two runs of one combination on
+// lavapipe differ by 10-20%), and the one with the fewest structures wins.
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +40,7 @@ struct AutoOptions {
     uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 4 on CPUs
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
+    double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
 };
 
 struct AutoProbe {

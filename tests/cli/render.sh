@@ -51,13 +51,14 @@ check python3 - "$dir/auto.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["sampler"] == "abr" and j["backend"] == "sw" and j["traversal"] in ("grid-dda","grid-bvh","abr","brick","ext-brick","kdtree"), j
-# The probes behind the pick: the pick is the most efficient measured one, with the sampler fixed.
+# The probes behind the pick: a measured one within 10% of the most efficient (ties go to the
+# combination that builds less), with the sampler fixed.
 a = j["auto"]
 assert a["pick"] == j["traversal"] + "/abr/sw" and a["probes"] == len(a["probeDetails"]) > 0, a
 measured = [p for p in a["probeDetails"] if not p["predicted"] and p["efficiency"] > 0]
 assert all(p["config"].endswith("/abr/sw") for p in a["probeDetails"]), a
-best = max(measured, key=lambda p: p["efficiency"])
-assert best["config"] == a["pick"] and best["grid"] == a["pickGrid"], (best, a)
+best = max(p["efficiency"] for p in measured)
+assert any(p["config"] == a["pick"] and p["grid"] == a["pickGrid"] and p["efficiency"] >= 0.9 * best for p in measured), a
 PY
 
 expect "--mode: xyz not in {ae,ss,ms,dvr}" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
