@@ -233,9 +233,9 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         app.add_option("--traversal", a.traversal,
                        "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
                        "brick bounds, brick "
-                       "domains, the TF-specific kd-tree; auto = probe every combination briefly "
-                       "and take the most "
-                       "efficient (options given explicitly stay fixed)")
+                       "domains, the TF-specific kd-tree; auto = probe each traversal and sampler "
+                       "briefly, predict the other combinations from their counts, and take the "
+                       "most efficient (options given explicitly stay fixed; --json lists the probes)")
             ->check(CLI::IsMember(traversalChoices()))
             ->capture_default_str()
             ->type_name("NAME");

@@ -26,7 +26,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
     const bool cpu = renderer.context().deviceReport().type == "CPU";
     const int size = options.probeSize > 0 ? options.probeSize : cpu ? 96 : 1024;
     // A CPU device's probe is small, so it takes more samples: its time is less noisy.
-    const uint32_t probeSpp = options.probeSpp > 0 ? options.probeSpp : cpu ? 4 : 2;
+    const uint32_t probeSpp = options.probeSpp > 0 ? options.probeSpp : cpu ? 16 : 2;
     AMRVK_CHECK(size >= 8 && probeSpp >= 2, "internal: probe too small");
     Timer total;
     scene::RenderSettings rs = settings;
@@ -199,12 +199,14 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             }
     }
     // 5. Ties within the probes' noise go to the combination that builds less (fewer structures,
-    //    none rebuilt per TF edit): among measured probes within tieTolerance of the best.
+    //    none rebuilt per TF edit), then to the default grid: among measured probes within
+    //    tieTolerance of the best.
     {
-        auto structures = [](const scene::StructureConfig& c) {
+        auto structures = [&](const scene::StructureConfig& c) {
             const scene::StructurePlan p = c.plan();
-            return int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) + int(p.boxMajorants) +
-                   int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
+            const int n = int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) +
+                          int(p.boxMajorants) + int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
+            return 2 * n + int(c.usesGrid() && c.grid != base.grid);
         };
         const AutoProbe* pick = nullptr;
         for (const AutoProbe& p : choice.probes) {

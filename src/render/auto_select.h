@@ -15,7 +15,7 @@
 // besides auto = 128) are then measured for a grid winner and for the grid traversals within
 // slowFactor of the best. A probe far slower than the best so far is stopped after its first
 // sample. Measured probes within tieTolerance of the best tie (two runs of one combination on
-// lavapipe differ by 10-20%), and the one with the fewest structures wins.
+// lavapipe differ by 10-20%): the one with the fewest structures wins, then the default grid.
 #include <functional>
 #include <optional>
 #include <string>
@@ -37,7 +37,7 @@ struct AutoConstraints {
 
 struct AutoOptions {
     int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 96 on CPUs)
-    uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 4 on CPUs
+    uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 16 on CPUs
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
