@@ -100,6 +100,18 @@ struct Batch {
     }
 };
 
+// The replicated paths must be the same on every rank before a reduction combines them: ranks that
+// diverged (different drivers, devices or --shader-dir) would otherwise hang on different counts or
+// reduce other paths' values. One collective of two words: the live count and an FNV-1a hash of
+// the live indices.
+void requireSameLive(World& world, const std::vector<uint32_t>& live, uint32_t sample, uint64_t bounce,
+                     const char* stage) {
+    uint64_t h = 1469598103934665603ull ^ live.size();
+    for (uint32_t i : live) h = (h ^ i) * 1099511628211ull;
+    world.requireSame(h, strCat("the paths alive before the ", stage, " reduction of sample ", sample, ", bounce ", bounce),
+                      "the ranks' paths diverged: run every rank with the same driver, device kind and shaders");
+}
+
 }  // namespace
 
 DataParallelResult renderDataParallel(World& world, picture::Picture& p, const DataPart& part,
@@ -168,6 +180,7 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
             live.clear();
             for (uint32_t i = 0; i < count; ++i)
                 if (hits[i].t >= 0) live.push_back(i);
+            requireSameLive(world, live, sample, bounces, "collision");
             if (live.empty()) break;
             nearest.resize(live.size());
             colors.assign(live.size() * 3, 0.0f);
@@ -193,6 +206,7 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
             live.clear();
             for (uint32_t i = 0; i < count; ++i)
                 if (shadow[i] >= 0) live.push_back(i);
+            requireSameLive(world, live, sample, bounces, "shadow");
             if (!live.empty()) {
                 transmittance.resize(live.size());
                 for (size_t k = 0; k < live.size(); ++k) transmittance[k] = shadow[live[k]];

@@ -158,11 +158,10 @@ double World::maxOverRanks(double value) {
     return most;
 }
 
-void World::requireSame(uint64_t fingerprint, const std::string& what) {
+void World::requireSame(uint64_t fingerprint, const std::string& what, const std::string& hint) {
     uint64_t range[2] = {fingerprint, ~fingerprint};  // min of the value, min of its complement (max)
     check(MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
-    AMRVK_CHECK(range[0] == fingerprint && ~range[1] == fingerprint, "ranks disagree on ", what,
-                " (every rank must run the same command on the same data)");
+    AMRVK_CHECK(range[0] == fingerprint && ~range[1] == fingerprint, "ranks disagree on ", what, " (", hint, ")");
 }
 
 uint64_t World::minLocEverywhere(std::vector<FloatRank>& values) {

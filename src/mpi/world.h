@@ -58,10 +58,11 @@ public:
     std::vector<std::string> gatherToRoot(const std::string& text);
     // Largest value over ranks, on every rank.
     double maxOverRanks(double value);
-    // Throws, on every rank, "ranks disagree on WHAT ..." unless every rank passes the same
+    // Throws, on every rank, "ranks disagree on WHAT (HINT)" unless every rank passes the same
     // fingerprint (collective): ranks started with different data or options would otherwise
     // combine pictures that do not belong together.
-    void requireSame(uint64_t fingerprint, const std::string& what);
+    void requireSame(uint64_t fingerprint, const std::string& what,
+                     const std::string& hint = "every rank must run the same command on the same data");
     // Element-wise over every rank, the result on every rank (same count on all). Each returns the
     // bytes this rank contributed.
     struct FloatRank {
