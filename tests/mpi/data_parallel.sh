@@ -78,6 +78,29 @@ print("ok: %s: owned %s, held %s, %.1f bytes per path" % (sys.argv[1].split("/")
 PY
 done
 
+# Power of the exact comparison of constant pixels: the data-parallel image with its pixels of
+# variance 0 in both images (the background seen past the cloud) 0.1% brighter, a wrong constant
+# background that the z-test alone passes (those pixels have no z), must fail on them alone.
+wrong=$(/usr/bin/python3 - "$dir" cloud-ae-2 "$(dirname "${BASH_SOURCE[0]}")" <<'PY'
+import sys
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from zcompare import pfm
+d, name = sys.argv[1], sys.argv[2]
+image = pfm(f"{d}/{name}.pfm")
+constant = (pfm(f"{d}/{name}.var.pfm")[..., 1] == 0) & (pfm(f"{d}/{name}.one.var.pfm")[..., 1] == 0)
+image[constant] *= 1.001
+h, w, _ = image.shape
+with open(f"{d}/{name}.wrong-background.pfm", "wb") as f:
+    f.write(b"PF\n%d %d\n-1.0\n" % (w, h) + image.astype("<f4").tobytes())
+print(int(np.sum(constant & (image[..., 1] != 0))))  # 0 stays 0
+PY
+) || { echo "FAIL: wrong background"; fail=1; }
+r=$(zcompare "$dir/cloud-ae-2.one.pfm" "$dir/cloud-ae-2.one.var.pfm" "$dir/cloud-ae-2.wrong-background.pfm" "$dir/cloud-ae-2.var.pfm")
+if [ $? = 1 ] && /usr/bin/python3 -c 'import json,sys; j = json.loads(sys.argv[1]); sys.exit(not (j["zeroVarianceDiffer"] == int(sys.argv[2]) > 0 and j["maxAbsZ"] < 6 and abs(j["pooledZ"]) < 4 and j["chi2Excess"] < 4))' "$r" "$wrong"
+then echo "ok: a background 0.1% too bright on $wrong constant pixels fails (the z-test alone passes it): $r"
+else echo "FAIL: a background 0.1% too bright on $wrong constant pixels: $r"; fail=1; fi
+
 # Power: reference data with rank 1's part 5% denser (values x 1.05 under a linear alpha ramp).
 for n in 2; do
   name=cloud-ae-$n
