@@ -253,7 +253,8 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
 def test_devices(amrvk):
     devices = amrvk.devices()
     assert any(d["usable"] for d in devices)
-    assert all({"name", "type", "ray_query", "reject_reason"} <= set(d) for d in devices)
+    assert all({"name", "type", "ray_query", "rounding_mode_rte_float32", "reject_reason"} <= set(d) for d in devices)
+    assert all(d["rounding_mode_rte_float32"] for d in devices if d["usable"])
 
 
 def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
