@@ -1,7 +1,9 @@
 // Double-float ("float-float") sums: a value is hi + lo with |lo| <= ulp(hi) / 2, about 48
 // significant bits from float32 arithmetic alone (no shaderFloat64). Knuth's TwoSum and Dekker's
-// FastTwoSum are error-free where float addition rounds to nearest (every current GPU; Vulkan
-// allows round-toward-zero unless a shader declares RoundingModeRTE); the sums are Joldes,
+// FastTwoSum are error-free only where float addition rounds to nearest; Vulkan's default is
+// round-to-nearest-even or round-toward-zero, implementation-defined, so this file declares
+// RoundingModeRTE for 32-bit floats in every shader that includes it (below), and device
+// selection refuses a device without shaderRoundingModeRTEFloat32 (gpu/context.h); the sums are Joldes,
 // Muller and Popescu 2017, "Tight and rigorous error bounds for basic building blocks of
 // double-word arithmetic" (Alg. 4 and 6: relative error <= 2u^2 and 3u^2, u = 2^-24).
 // `precise` keeps the driver from contracting or reassociating them ((a + b) - a is not b):
@@ -9,6 +11,12 @@
 // All functions work per component. CPU readers combine hi + lo in double.
 #ifndef AMRVK_DOUBLE_FLOAT_GLSL
 #define AMRVK_DOUBLE_FLOAT_GLSL
+
+// OpExecutionMode RoundingModeRTE (4462) 32, capability RoundingModeRTE (4467), from
+// SPV_KHR_float_controls (core in SPIR-V 1.4): every float32 addition of the entry point rounds to
+// nearest even.
+#extension GL_EXT_spirv_intrinsics : require
+spirv_execution_mode(extensions = ["SPV_KHR_float_controls"], capabilities = [4467], 4462, 32);
 
 // s = fl(a + b) and e = (a + b) - s exactly, for any a, b (TwoSum, 6 additions).
 void twoSum(vec4 a, vec4 b, out vec4 s, out vec4 e) {

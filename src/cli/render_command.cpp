@@ -69,6 +69,7 @@ int runDevices(const std::vector<std::string>& argv) {
                          {"apiVersion", d.apiVersion},
                          {"deviceLocalBytes", d.deviceLocalBytes},
                          {"rayQuery", d.rayQuery},
+                         {"shaderRoundingModeRTEFloat32", d.roundingModeRTEFloat32},
                          {"usable", d.usable},
                          {"rejectReason", d.rejectReason}});
         std::printf("%s\n", j.dump(2).c_str());

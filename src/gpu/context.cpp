@@ -82,7 +82,8 @@ struct Probe {
 
 Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK_NULL_HANDLE) {
     Probe p;
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceFloatControlsProperties floats{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &floats};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
     vkGetPhysicalDeviceProperties2(pd, &props);
     VkPhysicalDeviceMemoryProperties mem{};
@@ -93,6 +94,7 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK
     r.type = typeName(props.properties.deviceType);
     p.type = props.properties.deviceType;
     r.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    r.roundingModeRTEFloat32 = floats.shaderRoundingModeRTEFloat32;
     uint32_t v = props.properties.apiVersion;
     r.apiVersion = std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
                    "." + std::to_string(VK_API_VERSION_PATCH(v));
@@ -126,16 +128,19 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK
             compute = true;
         }
     }
-    const bool swapchain = !surface || hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    const bool swapchain = hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
-    if (v < VK_API_VERSION_1_3) r.rejectReason = "Vulkan " + r.apiVersion + " < 1.3";
-    else if (!f12.bufferDeviceAddress) r.rejectReason = "no bufferDeviceAddress";
-    else if (!f12.scalarBlockLayout) r.rejectReason = "no scalarBlockLayout";
-    else if (!f13.synchronization2) r.rejectReason = "no synchronization2";
-    else if (!f.features.shaderInt64) r.rejectReason = "no shaderInt64";
-    else if (!swapchain) r.rejectReason = "no VK_KHR_swapchain (cannot show a window)";
-    else if (!compute) r.rejectReason = surface ? "no compute queue with timestamps that presents to the window"
-                                                : "no compute queue with timestamps";
+    DeviceCapabilities c;
+    c.apiVersion = v;
+    c.bufferDeviceAddress = f12.bufferDeviceAddress;
+    c.scalarBlockLayout = f12.scalarBlockLayout;
+    c.synchronization2 = f13.synchronization2;
+    c.shaderInt64 = f.features.shaderInt64;
+    c.shaderRoundingModeRTEFloat32 = r.roundingModeRTEFloat32;
+    c.window = surface != VK_NULL_HANDLE;
+    c.swapchain = swapchain;
+    c.computeQueue = compute;
+    r.rejectReason = rejectReason(c);
     r.usable = r.rejectReason.empty();
     return p;
 }
@@ -149,6 +154,23 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
 }
 
 }  // namespace
+
+std::string rejectReason(const DeviceCapabilities& c) {
+    const uint32_t v = c.apiVersion;
+    if (v < VK_API_VERSION_1_3)
+        return "Vulkan " + std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+               std::to_string(VK_API_VERSION_PATCH(v)) + " < 1.3";
+    if (!c.bufferDeviceAddress) return "no bufferDeviceAddress";
+    if (!c.scalarBlockLayout) return "no scalarBlockLayout";
+    if (!c.synchronization2) return "no synchronization2";
+    if (!c.shaderInt64) return "no shaderInt64";
+    if (!c.shaderRoundingModeRTEFloat32)
+        return "no shaderRoundingModeRTEFloat32 (the double-float accumulation needs float sums rounded to nearest)";
+    if (c.window && !c.swapchain) return "no VK_KHR_swapchain (cannot show a window)";
+    if (!c.computeQueue)
+        return c.window ? "no compute queue with timestamps that presents to the window" : "no compute queue with timestamps";
+    return "";
+}
 
 std::vector<DeviceReport> listDevices() {
     VkInstance instance = createInstance(false, false);

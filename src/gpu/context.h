@@ -4,7 +4,9 @@
 //    any (lavapipe). Every device is reported with type, driver, memory, ray-query support and, if
 //    unusable, why (listDevices()).
 //  - Required: Vulkan 1.3 features bufferDeviceAddress, synchronization2, scalarBlockLayout,
-//    shaderInt64. Optional: rayQuery + accelerationStructure (hasRayQuery()).
+//    shaderInt64, and the float control shaderRoundingModeRTEFloat32 (the path tracer declares
+//    RoundingModeRTE for its double-float sums, lib/double_float.glsl). Optional: rayQuery +
+//    accelerationStructure (hasRayQuery()).
 //  - Validation: the Khronos layer with a messenger that counts errors (tests fail on any).
 #include <vulkan/vulkan.h>
 
@@ -44,9 +46,26 @@ struct DeviceReport {
     std::string name, type, driver, apiVersion;
     uint64_t deviceLocalBytes = 0;
     bool rayQuery = false;
+    bool roundingModeRTEFloat32 = false;  // VkPhysicalDeviceFloatControlsProperties
     bool usable = false;
     std::string rejectReason;  // empty when usable
 };
+
+// What device selection asks of a device: probed from Vulkan, or made up by a test.
+struct DeviceCapabilities {
+    uint32_t apiVersion = 0;  // VK_MAKE_API_VERSION
+    bool bufferDeviceAddress = false, scalarBlockLayout = false, synchronization2 = false, shaderInt64 = false;
+    // The double-float sums of the accumulation (lib/double_float.glsl) are error-free only where
+    // float additions round to nearest; Vulkan's default is RTE or RTZ, implementation-defined, so
+    // the path tracer declares RoundingModeRTE, which needs this.
+    bool shaderRoundingModeRTEFloat32 = false;
+    bool window = false;     // a window asked for: the device must present to it
+    bool swapchain = false;  // VK_KHR_swapchain (only asked for with a window)
+    bool computeQueue = false;  // a compute queue with timestamps (that presents, with a window)
+};
+
+// Why a device with these capabilities cannot be used, "" when it can (the first reason found).
+std::string rejectReason(const DeviceCapabilities& c);
 
 // Enumerates every physical device with the reason it cannot be used, if any.
 std::vector<DeviceReport> listDevices();

@@ -808,6 +808,7 @@ PYBIND11_MODULE(_amrvk, m) {
                 e["type"] = d.type;
                 e["driver"] = d.driver;
                 e["ray_query"] = d.rayQuery;
+                e["rounding_mode_rte_float32"] = d.roundingModeRTEFloat32;
                 e["usable"] = d.usable;
                 e["reject_reason"] = d.rejectReason;
                 out.push_back(e);

@@ -6,8 +6,9 @@
 # cloud (ExaBrick, streamed) and real Enzo data, with partition faces through the finest level,
 # with a cut-away, and with spiky and foggy fitted to the whole field's percentiles.
 # Power: the same test rejects the data-parallel image when the single-process reference is made
-# from data with one rank's part 5% denser. --json: boxes that tile the data, every cell owned by
-# one rank, halos, bytes moved.
+# from data with rank 1's part 5% denser, in ae with 2 ranks and in ss and ms with 2 and 3 ranks
+# (pooled |z| well above 4), and when the pixels of variance 0 (the background past the cloud) are
+# 0.1% off. --json: boxes that tile the data, every cell owned by one rank, halos, bytes moved.
 set -u
 amrvk="$1"; mpirun="$2"; data="${AMRVK_DATA_DIR:-$3}"; src="$4"; dir="$5"
 rm -rf "$dir"; mkdir -p "$dir"
@@ -23,11 +24,19 @@ cat >"$dir/absorber.json" <<'JSON'
 [{"Name": "absorber", "ColorSpace": "RGB", "RGBPoints": [0, 0, 0, 0, 3, 0, 0, 0], "Points": [0, 0, 0.5, 0, 3, 1, 0.5, 0]}]
 JSON
 
-# same NAME N INPUT ARGS...: single process (seed 5) and N ranks (seed 7) must agree.
+# same NAME N INPUT ARGS...: single process (seed 5) and N ranks (seed 7) must agree. The
+# single-process render of the same input and arguments is made once (ss and ms with 2 and 3 ranks).
+declare -A single
 same() {
   local name="$1" n="$2" input="$3"; shift 3
-  "$amrvk" render "$input" "$@" --seed 5 -o "$dir/$name.one.pfm" --variance "$dir/$name.one.var.pfm" >/dev/null 2>&1 \
-    || { echo "FAIL: $name: single-process render"; fail=1; return; }
+  local key="$input $*"
+  if [ -n "${single[$key]:-}" ]; then
+    cp "$dir/${single[$key]}.one.pfm" "$dir/$name.one.pfm" && cp "$dir/${single[$key]}.one.var.pfm" "$dir/$name.one.var.pfm"
+  else
+    "$amrvk" render "$input" "$@" --seed 5 -o "$dir/$name.one.pfm" --variance "$dir/$name.one.var.pfm" >/dev/null 2>&1 \
+      || { echo "FAIL: $name: single-process render"; fail=1; return; }
+    single[$key]=$name
+  fi
   "${mpi[@]}" -n "$n" "$amrvk" render "$input" "$@" --distribute data -o "$dir/$name.pfm" --variance "$dir/$name.var.pfm" \
     --json "$dir/$name.json" >/dev/null 2>"$dir/$name.err" || { echo "FAIL: $name: $(cat "$dir/$name.err")"; fail=1; return; }
   local r; r=$(zcompare "$dir/$name.one.pfm" "$dir/$name.one.var.pfm" "$dir/$name.pfm" "$dir/$name.var.pfm")
@@ -36,8 +45,14 @@ same() {
 absorb=(--size 40x40 --spp 1024 --tf "$dir/absorber.json" --mode ae --background 1 1 1 --density-scale 0.5)
 same cloud-ae-2 2 "$cloud" "${absorb[@]}"
 same cloud-ae-3 3 "$cloud" "${absorb[@]}"
-same cloud-ms-3 3 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2
-same cloud-ss-2 2 "$cloud" --size 32x32 --spp 128 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3
+# ss and ms (shadow rays through other ranks' parts, roulette) at 2048 spp: enough for the power
+# check below to reject a 5% denser part with pooled |z| well above 4.
+ss=(--size 32x32 --spp 2048 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3)
+ms=(--size 32x32 --spp 2048 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2)
+same cloud-ss-2 2 "$cloud" "${ss[@]}"
+same cloud-ss-3 3 "$cloud" "${ss[@]}"
+same cloud-ms-2 2 "$cloud" "${ms[@]}"
+same cloud-ms-3 3 "$cloud" "${ms[@]}"
 same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf-range 0 4 --density-scale 2
 # Presets fitted to the data (no --tf-range): every rank fits spiky and foggy to the whole field's
 # percentiles (the summed counts of the cells each owns), the TF one process fits; the note each
@@ -78,18 +93,49 @@ print("ok: %s: owned %s, held %s, %.1f bytes per path" % (sys.argv[1].split("/")
 PY
 done
 
-# Power: reference data with rank 1's part 5% denser (values x 1.05 under a linear alpha ramp).
-for n in 2; do
-  name=cloud-ae-$n
-  fine=$(/usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/perturb_part.py" "$cloud" "$dir/$name.json" 1 1.05 "$dir/denser") \
-    || { echo "FAIL: perturb"; fail=1; continue; }
-  echo "perturbed rank 1's part: $fine"
+# Power of the exact comparison of constant pixels: the data-parallel image with its pixels of
+# variance 0 in both images (the background seen past the cloud) 0.1% brighter, a wrong constant
+# background that the z-test alone passes (those pixels have no z), must fail on them alone.
+wrong=$(/usr/bin/python3 - "$dir" cloud-ae-2 "$(dirname "${BASH_SOURCE[0]}")" <<'PY'
+import sys
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from zcompare import pfm
+d, name = sys.argv[1], sys.argv[2]
+image = pfm(f"{d}/{name}.pfm")
+constant = (pfm(f"{d}/{name}.var.pfm")[..., 1] == 0) & (pfm(f"{d}/{name}.one.var.pfm")[..., 1] == 0)
+image[constant] *= 1.001
+h, w, _ = image.shape
+with open(f"{d}/{name}.wrong-background.pfm", "wb") as f:
+    f.write(b"PF\n%d %d\n-1.0\n" % (w, h) + image.astype("<f4").tobytes())
+print(int(np.sum(constant & (image[..., 1] != 0))))  # 0 stays 0
+PY
+) || { echo "FAIL: wrong background"; fail=1; }
+r=$(zcompare "$dir/cloud-ae-2.one.pfm" "$dir/cloud-ae-2.one.var.pfm" "$dir/cloud-ae-2.wrong-background.pfm" "$dir/cloud-ae-2.var.pfm")
+if [ $? = 1 ] && /usr/bin/python3 -c 'import json,sys; j = json.loads(sys.argv[1]); sys.exit(not (j["zeroVarianceDiffer"] == int(sys.argv[2]) > 0 and j["maxAbsZ"] < 6 and abs(j["pooledZ"]) < 4 and j["chi2Excess"] < 4))' "$r" "$wrong"
+then echo "ok: a background 0.1% too bright on $wrong constant pixels fails (the z-test alone passes it): $r"
+else echo "FAIL: a background 0.1% too bright on $wrong constant pixels: $r"; fail=1; fi
+
+# Power: reference data with rank 1's part 5% denser (values x 1.05; under the absorber's linear
+# alpha ramp in ae, under the default TF's colour and opacity with a light in ss and ms) must be
+# rejected by the comparison that accepts the unperturbed one, for each mode and 2 and 3 ranks.
+denser() {
+  local name="$1"; shift
+  local fine
+  fine=$(/usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/perturb_part.py" "$cloud" "$dir/$name.json" 1 1.05 "$dir/$name.denser") \
+    || { echo "FAIL: $name: perturb"; fail=1; return; }
+  echo "$name: perturbed rank 1's part: $fine"
   check /usr/bin/python3 -c 'import json,sys; assert json.loads(sys.argv[1])["fineCellsAtInteriorFaces"] > 0' "$fine"
-  "$amrvk" render "$dir/denser.cells" "${absorb[@]}" --seed 5 -o "$dir/denser.pfm" --variance "$dir/denser.var.pfm" \
-    >/dev/null 2>&1 || { echo "FAIL: denser render"; fail=1; continue; }
-  r=$(zcompare "$dir/denser.pfm" "$dir/denser.var.pfm" "$dir/$name.pfm" "$dir/$name.var.pfm")
-  if [ $? = 1 ]; then echo "ok: the test rejects a 5% denser part: $r"; else echo "FAIL: a 5% denser part passed: $r"; fail=1; fi
-done
+  "$amrvk" render "$dir/$name.denser.cells" "$@" --seed 5 -o "$dir/$name.denser.pfm" --variance "$dir/$name.denser.var.pfm" \
+    >/dev/null 2>&1 || { echo "FAIL: $name: denser render"; fail=1; return; }
+  local r; r=$(zcompare "$dir/$name.denser.pfm" "$dir/$name.denser.var.pfm" "$dir/$name.pfm" "$dir/$name.var.pfm")
+  if [ $? = 1 ]; then echo "ok: $name: the test rejects a 5% denser part: $r"; else echo "FAIL: $name: a 5% denser part passed: $r"; fail=1; fi
+}
+denser cloud-ae-2 "${absorb[@]}"
+denser cloud-ss-2 "${ss[@]}"
+denser cloud-ss-3 "${ss[@]}"
+denser cloud-ms-2 "${ms[@]}"
+denser cloud-ms-3 "${ms[@]}"
 
 # Modes it does not do, and --distribute outside mpirun: one line each.
 "${mpi[@]}" -n 2 "$amrvk" render "$cloud" --size 8x8 --spp 2 --mode dvr --distribute data -o "$dir/x.png" 2>"$dir/dvr.err"

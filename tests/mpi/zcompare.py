@@ -6,7 +6,11 @@ gives z = (a - b) / sqrt(var_a + var_b) on the green channel (one channel: the c
 are correlated). Prints JSON: the number of z values, the chi-square excess
 (sum z^2 - n) / sqrt(2 n) (about N(0, 1) when the images agree), the largest |z|, the pooled
 z = sum(a - b) / sqrt(sum(var_a + var_b)) (a bias of one sign), and whether they agree (excess < 4,
-max |z| < 6, |pooled z| < 4). Exit status 0 when they agree, 1 when not."""
+max |z| < 6, |pooled z| < 4, and every block whose variance is 0 in both images equal in both).
+Blocks of variance 0 in both (every sample the same: the background, an empty TF) have no z; they
+are compared exactly instead ("zeroVariance": how many, "zeroVarianceDiffer": how many differ,
+"zeroVarianceMaxDiff": the largest |a - b|), so a wrong constant background fails.
+Exit status 0 when they agree, 1 when not."""
 import json
 import sys
 
@@ -32,15 +36,25 @@ def main():
     sa, sva, sb, svb = (blocks(x, size)[..., 1] for x in (a, va, b, vb))
     var = sva + svb
     keep = var > 0
+    # Variance 0 in both: the same value in every sample, so the means must be equal. Equal up to
+    # float rounding: one deterministic value summed over the samples (double-float sums, then a
+    # float mean; data-parallel adds the ranks' sums) comes back within a few float ulps (1.2e-7
+    # each), far inside 1e-6 of its magnitude, while any real error in a constant (a background of
+    # 0.999 for 1) is far outside it; the 1e-9 absolute allows for values of 0.
+    same = ~keep
+    diff = np.abs(sa - sb)[same]
+    differ = diff > 1e-6 * np.maximum(np.abs(sa), np.abs(sb))[same] + 1e-9
+    zeros, zeros_differ = int(same.sum()), int(differ.sum())
     z = (sa - sb)[keep] / np.sqrt(var[keep])
     n = int(z.size)
     excess = float((np.sum(z * z) - n) / np.sqrt(2 * n)) if n else 0.0
     maxz = float(np.max(np.abs(z))) if n else 0.0
     # Pooled: a bias of one sign over many pixels, which the per-pixel test hardly sees.
     pooled = float(np.sum((sa - sb)[keep]) / np.sqrt(np.sum(var[keep]))) if n else 0.0
-    agree = n > 0 and excess < 4 and maxz < 6 and abs(pooled) < 4
+    agree = n + zeros > 0 and excess < 4 and maxz < 6 and abs(pooled) < 4 and zeros_differ == 0
     print(json.dumps({"n": n, "chi2Excess": round(excess, 3), "maxAbsZ": round(maxz, 3), "pooledZ": round(pooled, 3),
-                      "agree": agree,
+                      "zeroVariance": zeros, "zeroVarianceDiffer": zeros_differ,
+                      "zeroVarianceMaxDiff": float(diff.max()) if zeros else 0.0, "agree": agree,
                       "meanA": float(a.mean()), "meanB": float(b.mean())}))
     return 0 if agree else 1
 

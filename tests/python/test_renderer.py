@@ -178,23 +178,34 @@ def test_a_closed_renderer_refuses_every_call(amrvk):
 
 
 def test_the_gil_is_released_while_the_device_works(amrvk):
+    # A thread that sleeps 1 ms per tick needs the GIL once a tick: while C code holds the GIL it
+    # counts about one tick per chunk (a quarter second), and about 1,800 a second when the device
+    # work runs with the GIL released (a busy counter would not tell: it counts thousands in the
+    # gaps between chunks even when the GIL is held).
     r = picture(amrvk, width=96, height=96)
+    r.render(spp=1)  # the pipelines are built and the first chunk's cost is known
+    start = time.time()
+    r.render(spp=8)
+    spp = int(min(max(8 * 2.0 / (time.time() - start), 16), 1 << 16))  # about 2 s on this device
     counter = [0]
     stop = threading.Event()
 
     def count():
         while not stop.is_set():
+            time.sleep(0.001)
             counter[0] += 1
 
     t = threading.Thread(target=count)
     t.start()
     start = time.time()
-    r.render(spp=16)
+    r.render(spp=spp)
     elapsed = time.time() - start
     stop.set()
     t.join()
-    # A thread that holds no GIL-free time would count only in the gaps between chunks.
-    assert counter[0] > 10000, (counter[0], elapsed)
+    assert elapsed > 0.5, f"{spp} spp took {elapsed:.2f} s: too short to tell a held GIL from a released one"
+    assert counter[0] > max(100, 0.2 * elapsed * 1000), (
+        f"a thread sleeping 1 ms per tick counted {counter[0]} ticks in {elapsed:.2f} s ({spp} spp): "
+        "the render holds the GIL while the device works")
 
 
 def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
@@ -242,7 +253,8 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
 def test_devices(amrvk):
     devices = amrvk.devices()
     assert any(d["usable"] for d in devices)
-    assert all({"name", "type", "ray_query", "reject_reason"} <= set(d) for d in devices)
+    assert all({"name", "type", "ray_query", "rounding_mode_rte_float32", "reject_reason"} <= set(d) for d in devices)
+    assert all(d["rounding_mode_rte_float32"] for d in devices if d["usable"])
 
 
 def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
