@@ -85,7 +85,13 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
                          "x slower than the best";
             } else {
-                scene::RenderOutput out = renderer.render(rs, probeSpp);
+                // At least probeSpp samples, and enough to time minProbeSeconds: a fast combination's
+                // few milliseconds are mostly noise (on lavapipe one combination measured 2.3-3.8 M
+                // paths/s in runs of 0.1 s).
+                const double minSeconds = options.minProbeSeconds >= 0 ? options.minProbeSeconds : cpu ? 0.25 : 0.05;
+                const double perSpp = std::max(warm.stats.gpuSeconds, 1e-6);
+                const uint32_t spp = uint32_t(std::clamp(std::ceil(minSeconds / perSpp), double(probeSpp), 256.0));
+                scene::RenderOutput out = renderer.render(rs, spp);
                 const double paths = double(out.stats.paths);
                 p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
                 p.variance = meanSampleVariance(out);
@@ -120,6 +126,18 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             measured.push_back(measure(c, true));
             consider(measured.back());
         }
+    // 1b. abr traversal with the abr sampler samples in the ABR the traversal is in, with no point
+    //     query (tracking.glsl): not the abr sampler's cost under another traversal, so measured.
+    std::vector<scene::StructureConfig> paired;
+    const bool abrSampler = std::find(samplers.begin(), samplers.end(), scene::SamplerKind::Abr) != samplers.end();
+    if (abrSampler && reference != scene::SamplerKind::Abr)
+        for (const AutoProbe& t : std::vector<AutoProbe>(measured))
+            if (t.config.traversal == scene::TraversalKind::Abr && t.efficiency > 0) {
+                scene::StructureConfig c = t.config;
+                c.sampler = scene::SamplerKind::Abr;
+                paired.push_back(c);
+                consider(measure(c, true));
+            }
     AMRVK_CHECK(bestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
                 choice.probes.empty() ? std::string("none tried") : choice.probes.front().note, ")");
     // 2. The other samplers' unit costs, under the most efficient traversal measured (its paths, so
@@ -145,6 +163,10 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         if (!(t.efficiency > 0)) continue;
         for (const auto& [s, perLookup] : extraSecondsPerLookup) {
             if (t.config.traversal == anchor.config.traversal && t.config.backend == anchor.config.backend) continue;
+            if (std::any_of(paired.begin(), paired.end(), [&](const scene::StructureConfig& c) {
+                    return c.traversal == t.config.traversal && c.backend == t.config.backend && c.sampler == s;
+                }))
+                continue;  // measured in 1b
             AutoProbe p = t;
             p.config.sampler = s;
             p.predicted = true;

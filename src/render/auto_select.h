@@ -11,7 +11,8 @@
 //  - each other sampler under the most efficient traversal: the unit cost of its lookups, ns per lookup
 //    above the reference sampler's, (time(s) - time(ref)) / lookups.
 // Every other combination is predicted from its traversal's time and counts and the sampler's
-// unit cost; a predicted best is measured before it can win. Macrocell resolutions (32, 64, 256
+// unit cost (but abr/abr, which samples without a point query, is measured); a predicted best is
+// measured before it can win. Macrocell resolutions (32, 64, 256
 // besides auto = 128) are then measured for a grid winner and for the grid traversals within
 // slowFactor of the best. A probe far slower than the best so far is stopped after its first
 // sample. Measured probes within tieTolerance of the best tie (two runs of one combination on
@@ -40,6 +41,7 @@ struct AutoOptions {
     uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 16 on CPUs
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
     std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
+    double minProbeSeconds = -1;  // timed GPU seconds a probe aims at (more samples, up to 256); < 0 = 0.25 on CPUs, 0.05 on GPUs
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
 };
 
