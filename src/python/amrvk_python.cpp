@@ -42,6 +42,19 @@ using namespace amrvk;
 
 namespace {
 
+// A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range; anything else
+// is one line naming the keyword and the value (not pybind11's list of signatures).
+uint32_t countArg(const py::handle& o, const char* name) {
+    constexpr long long kMax = 1 << 24;
+    const std::string shown = py::repr(o).cast<std::string>();
+    if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
+        throw py::type_error(strCat(name, ": expected a whole number in [1, ", kMax, "], got ", shown));
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(o.ptr(), &overflow);
+    if (overflow != 0 || v < 1 || v > kMax) throw py::value_error(strCat(name, ": ", shown, " is outside [1, ", kMax, "]"));
+    return uint32_t(v);
+}
+
 // ---- Contexts: one per device choice, shared by the renderers that name it ---------------------
 
 std::shared_ptr<gpu::Context> contextFor(const gpu::ContextOptions& o) {
@@ -367,7 +380,8 @@ public:
     uint32_t spp() const { return open().renderer->accumulatedSpp(); }
     // Adds n samples per pixel to the current estimate in chunks of about a quarter second, serving
     // signals (Ctrl-C) and `progress(done, n)` between chunks with the GIL held.
-    void accumulate(uint32_t n, const py::object& progress) {
+    void accumulate(const py::object& count, const py::object& progress) {
+        const uint32_t n = countArg(count, "n");
         open();
         uint32_t done = 0;
         while (done < n) {
@@ -406,9 +420,10 @@ public:
             if (!progress.is_none() && completed > 0) progress(done, n);
         }
     }
-    py::array_t<float> render(std::optional<uint32_t> spp, const py::object& progress) {
+    py::array_t<float> render(const py::object& spp, const py::object& progress) {
+        const uint32_t n = spp.is_none() ? (session().spp > 0 ? session().spp : 64) : countArg(spp, "spp");
         reset();
-        accumulate(spp.value_or(session().spp > 0 ? session().spp : 64), progress);
+        accumulate(py::int_(n), progress);
         return image();
     }
     scene::RenderOutput output() const {
@@ -510,7 +525,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (auto o = take("width")) rs.width = o->cast<int>();
     if (auto o = take("height")) rs.height = o->cast<int>();
     if (auto o = take("mode")) rs.mode = scene::parseMode(o->cast<std::string>());
-    if (auto o = take("spp")) s.spp = o->cast<uint32_t>();
+    if (auto o = take("spp")) s.spp = countArg(*o, "spp");
     if (auto o = take("seed")) rs.seed = o->cast<uint32_t>();
     if (auto o = take("density_scale")) rs.densityScale = o->cast<double>();
     if (auto o = take("g")) rs.g = o->cast<double>();

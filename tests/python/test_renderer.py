@@ -281,3 +281,34 @@ def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
     assert r.crop is None
     with pytest.raises(ValueError, match="--clip: at most 4 planes"):
         r.clip = [([0, 0, 0], [1, 0, 0])] * 5
+
+
+def test_a_bad_sample_count_is_one_line_naming_the_keyword(amrvk):
+    """spp and n take the CLI's --spp range, [1, 2^24]; 0 rendered a black image and 10**9 was
+    accepted, and -1 or 2.5 gave pybind11's list of signatures."""
+    import re
+    r = picture(amrvk)
+    bad = [(0, ValueError, "spp: 0 is outside [1, 16777216]"),
+           (1 << 24 | 1, ValueError, "spp: 16777217 is outside [1, 16777216]"),
+           (10**9, ValueError, "spp: 1000000000 is outside"),
+           (10**30, ValueError, "spp: 1000000000000000000000000000000 is outside"),
+           (-1, ValueError, "spp: -1 is outside"),
+           (2.5, TypeError, "spp: expected a whole number in [1, 16777216], got 2.5"),
+           (True, TypeError, "spp: expected a whole number in [1, 16777216], got True"),
+           ("8", TypeError, "spp: expected a whole number in [1, 16777216], got '8'")]
+    for spp, kind, message in bad:
+        with pytest.raises(kind, match=re.escape(message)) as e:
+            r.render(spp=spp)
+        assert "\n" not in str(e.value), str(e.value)
+    with pytest.raises(ValueError, match=re.escape("n: -5 is outside [1, 16777216]")):
+        r.accumulate(-5)
+    with pytest.raises(ValueError, match=re.escape("n: 0 is outside [1, 16777216]")):
+        r.accumulate(0)
+    assert r.spp == 0  # nothing was rendered by the refused calls
+    with pytest.raises(ValueError, match=re.escape("spp: 0 is outside [1, 16777216]")):
+        picture(amrvk, spp=0)
+    # The edges of the range are accepted.
+    r.render(spp=1)
+    assert r.spp == 1
+    r.accumulate(1)
+    assert r.spp == 2
