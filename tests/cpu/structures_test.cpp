@@ -35,6 +35,17 @@ bool rangeHolds(const ValueRange& r, double v) {
     double tol = 1e-6 * std::max({1.0, std::abs(double(r.lo)), std::abs(double(r.hi))});
     return v >= double(r.lo) - tol && v <= double(r.hi) + tol;
 }
+// `m` with its cells (and every field's values with them) in a random order of `seed`.
+amr::Model shuffledCopy(const amr::Model& m, uint32_t seed) {
+    amr::Model shuffled = m;
+    std::mt19937 rng(seed);
+    for (size_t i = shuffled.cells.size(); i-- > 1;) {
+        const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
+        std::swap(shuffled.cells[i], shuffled.cells[j]);
+        for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
+    }
+    return shuffled;
+}
 }  // namespace
 
 TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
@@ -84,13 +95,7 @@ TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
     EXPECT_NO_THROW(fresh.sample(glm::dvec3(m.cells[0].lower) + 0.5)) << "nothing moved";
     EXPECT_EQ(std::memcmp(m.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
     EXPECT_EQ(m.fields[0].values, ordered.fields[0].values);
-    amr::Model shuffled = original;
-    std::mt19937 rng(7);
-    for (size_t i = shuffled.cells.size(); i-- > 1;) {
-        const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
-        std::swap(shuffled.cells[i], shuffled.cells[j]);
-        for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
-    }
+    amr::Model shuffled = shuffledCopy(original, 7);
     const BrickSet fromShuffled = buildBricks(shuffled);
     ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
     EXPECT_EQ(std::memcmp(shuffled.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
@@ -119,13 +124,7 @@ TEST(Bricks, ParallelPartitionsNearTheRootGiveTheSameBricks) {
         EXPECT_EQ(first.level, b.level);
     }
     EXPECT_EQ(total, m.cells.size());
-    amr::Model shuffled = original;
-    std::mt19937 rng(11);
-    for (size_t i = shuffled.cells.size(); i-- > 1;) {
-        const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
-        std::swap(shuffled.cells[i], shuffled.cells[j]);
-        for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
-    }
+    amr::Model shuffled = shuffledCopy(original, 11);
     const BrickSet fromShuffled = buildBricks(shuffled);
     ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
     EXPECT_EQ(std::memcmp(shuffled.cells.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);

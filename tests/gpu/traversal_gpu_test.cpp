@@ -141,6 +141,18 @@ double bruteMajorant(const BoxSet& s, glm::dvec3 p, double eps) {
     return best;
 }
 
+// Rays whose segment lists differ from the reference's in any bit (the first three are reported).
+size_t differingRays(const std::vector<std::vector<Segment>>& segs, const std::vector<std::vector<Segment>>& reference) {
+    size_t diffs = 0;
+    for (size_t i = 0; i < segs.size(); ++i) {
+        bool same = segs[i].size() == reference[i].size();
+        for (size_t k = 0; same && k < segs[i].size(); ++k)
+            same = std::memcmp(&segs[i][k], &reference[i][k], sizeof(Segment)) == 0;
+        if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
+    }
+    return diffs;
+}
+
 // Checks one ray's segments against brute force; returns the number of faults reported.
 int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vector<Segment>& segs) {
     const glm::dvec3 o(ray.o), d(ray.d);
@@ -253,14 +265,7 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
                 continue;
             }
             // rq against sw: identical lists, bit for bit.
-            size_t diffs = 0;
-            for (size_t i = 0; i < rays.size(); ++i) {
-                bool same = segs[i].size() == reference[i].size();
-                for (size_t k = 0; same && k < segs[i].size(); ++k)
-                    same = std::memcmp(&segs[i][k], &reference[i][k], sizeof(Segment)) == 0;
-                if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
-            }
-            EXPECT_EQ(diffs, 0u);
+            EXPECT_EQ(differingRays(segs, reference), 0u);
         }
     }
 }
@@ -356,14 +361,7 @@ TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
             reference = segs;
             continue;
         }
-        size_t diffs = 0;
-        for (size_t i = 0; i < rays.size(); ++i) {
-            bool same = segs[i].size() == reference[i].size();
-            for (size_t k = 0; same && k < segs[i].size(); ++k)
-                same = std::memcmp(&segs[i][k], &reference[i][k], sizeof(Segment)) == 0;
-            if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
-        }
-        EXPECT_EQ(diffs, 0u);
+        EXPECT_EQ(differingRays(segs, reference), 0u);
     }
 }
 
