@@ -1,7 +1,8 @@
 #version 460
 // pc.samples samples per pixel per dispatch (numbered pc.frameIndex.., each seeded by its number,
-// so the image does not depend on how samples are grouped): camera ray -> estimator of the chosen
-// mode -> radiance and its square summed in registers, added to the accumulation once. Both
+// so the image does not depend on how samples are grouped): camera ray -> the estimator of the
+// chosen mode (lib/estimator.glsl, shared with path_trace_dp.comp; dvr: lib/ray_march.glsl) ->
+// radiance and its square summed in registers, added to the accumulation once. Both
 // sums are double-floats (lib/double_float.glsl; layout: AccumPixelGpu), so they do not drift.
 // Specialization: kMode (ae | ss | ms | dvr), kSampler (ext-brick | abr | dense | grid),
 // kTraversal (grid-dda | grid-bvh | abr | brick | ext-brick | kdtree), kBackend (sw | rq).
@@ -24,84 +25,32 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/phase.glsl"
 #include "lib/ray_march.glsl"
 #include "lib/double_float.glsl"
+#include "shared/path_state_gpu.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint kMode = kModeMs;            // Mode
 layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;  // SamplerKind
 layout(constant_id = 2) const uint kTraversal = kTraversalGridDda;  // TraversalKind
 layout(constant_id = 3) const uint kBackend = kBackendSw;      // Backend
+#include "lib/estimator.glsl"
 
 StructureConfig cfg() { return StructureConfig(kSampler, kTraversal, kBackend); }
 
-// Radiance arriving at p from light k (k == lightCount means the ambient environment, sampled
-// through the phase function) times the phase function, with a ratio-tracked shadow ray.
-vec3 lightContribution(vec3 p, vec3 d, uint k, uint lightCount, inout uint rng, inout Counters c) {
-    float g = P.shading.g;
-    if (k == lightCount) {
-        vec3 wi = sampleHenyeyGreenstein(d, g, rand(rng), rand(rng));  // phase / pdf = 1
-        return P.shading.ambient * ratioTrack(p, wi, kInf, cfg(), rng, c);
+// One sample of the chosen mode along the path's camera ray: the estimator's events
+// (lib/estimator.glsl) in one loop, tracking and shadow rays drawing from the path's own random
+// state.
+vec3 radiance(inout PathStateGpu p, inout Counters c) {
+    if (kMode == kModeDvr) return rayMarch(p.o, p.d, cfg(), p.rng, c);
+    while ((p.flags & kPathLive) != 0u) {
+        float tHit;
+        vec4 tf;
+        bool hit = deltaTrack(p.o, p.d, kInf, cfg(), p.rng, c, tHit, tf);
+        if (shadeCollision(p, hit, tHit, tf.rgb)) atomicAdd(UintRW(P.counters).v[kCounterBounceLimitHits], 1u);
+        if ((p.flags & kPathShadow) != 0u)
+            resolveShadow(p, ratioTrack(p.o, p.shadowDir, p.shadowDist, cfg(), p.rng, c));
+        scatterPath(p);
     }
-    LightGpu L = P.shading.lights[k];
-    vec3 wi;
-    float dist;
-    vec3 Le = L.radiance;
-    if (L.type == kLightPoint) {
-        vec3 to = L.posOrDir - p;
-        dist = length(to);
-        if (!(dist > 0.0)) return vec3(0.0);
-        wi = to / dist;
-        Le /= dist * dist;
-    } else {
-        wi = normalize(L.posOrDir);
-        dist = kInf;
-    }
-    return Le * henyeyGreenstein(dot(d, wi), g) * ratioTrack(p, wi, dist, cfg(), rng, c);
-}
-
-vec3 radiance(vec3 o, vec3 d, inout uint rng, inout Counters c) {
-    float tHit;
-    vec4 tf;
-    if (kMode == kModeDvr) return rayMarch(o, d, cfg(), rng, c);
-    if (kMode == kModeAe) {
-        return deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf) ? tf.rgb : P.shading.background;
-    }
-    uint deltaLights = P.shading.lightCount;
-    if (kMode == kModeSs) {
-        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) return P.shading.background;
-        bool ambientOn = any(greaterThan(P.shading.ambient, vec3(0.0)));
-        uint n = deltaLights + (ambientOn ? 1u : 0u);
-        if (n == 0u) return vec3(0.0);
-        uint k = min(uint(rand(rng) * float(n)), n - 1u);
-        return tf.rgb * float(n) * lightContribution(o + d * tHit, d, k, deltaLights, rng, c);
-    }
-    // Multiple scattering: the environment is reached only by escaping rays; point and
-    // directional lights (never hit by rays) by next-event estimation at every collision.
-    vec3 throughput = vec3(1.0), L = vec3(0.0);
-    for (uint bounce = 0u;; ++bounce) {
-        if (!deltaTrack(o, d, kInf, cfg(), rng, c, tHit, tf)) {
-            L += throughput * (bounce == 0u ? P.shading.background : P.shading.ambient);
-            break;
-        }
-        if (bounce + 1u >= kMaxBounces) {
-            atomicAdd(UintRW(P.counters).v[kCounterBounceLimitHits], 1u);
-            break;
-        }
-        throughput *= tf.rgb;
-        o += d * tHit;
-        if (deltaLights > 0u) {
-            uint k = min(uint(rand(rng) * float(deltaLights)), deltaLights - 1u);
-            L += throughput * float(deltaLights) * lightContribution(o, d, k, deltaLights, rng, c);
-        }
-        float q = max(throughput.r, max(throughput.g, throughput.b));
-        if (!(q > 0.0)) break;
-        if (q < 0.25) {
-            float survive = q / 0.25;
-            if (rand(rng) >= survive) break;
-            throughput /= survive;
-        }
-        d = sampleHenyeyGreenstein(d, P.shading.g, rand(rng), rand(rng));
-    }
-    return L;
+    return p.radiance;
 }
 
 // Histogram bin of a per-path count (shared/render_params.h, kPathBins).
@@ -123,11 +72,9 @@ void main() {
         uint pixel = pix.y * P.view.width + pix.x;
         vec4 sumHi = vec4(0.0), sumLo = vec4(0.0), sumSqHi = vec4(0.0), sumSqLo = vec4(0.0);
         for (uint k = 0u; k < pc.samples; ++k) {
-            uint rng = seedRng(pixel, pc.frameIndex + k, P.view.seed);
-            vec2 jitter = vec2(rand(rng), rand(rng));
-            vec3 d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
+            PathStateGpu path = startPath(pix, pixel, pc.frameIndex + k);
             uint lookups0 = c.lookups, nulls0 = c.nulls;
-            vec3 L = radiance(P.view.eye, d, rng, c);
+            vec3 L = radiance(path, c);
             uint pathLookups = c.lookups - lookups0, pathNulls = c.nulls - nulls0;
             atomicAdd(pathStats.v[kPathStatsLookupBins + pathBin(pathLookups)], 1u);
             atomicAdd(pathStats.v[kPathStatsNullBins + pathBin(pathNulls)], 1u);

@@ -1,13 +1,14 @@
 #version 460
 // Data-parallel path tracing (one stage per dispatch, pc.stage; mpi/data_parallel.cpp runs them
-// and reduces between them over MPI): the estimators of path_trace.comp (ae, ss, ms) with each
-// tracking call cut to this rank's box of space. Unbiased across ranks because the boxes are
-// disjoint and cover the domain: the first real collision along a ray is the nearest of the
-// ranks' independent first collisions in their boxes (the free-flight survival probability is the
-// product of the boxes' transmittances), and a shadow ray's transmittance is the product of the
-// ranks' independent ratio-tracking estimates. The rank that owns a collision supplies its TF
-// colour; everything else (light choice, phase sampling, roulette) is drawn from the path's
-// shared random state, so every rank holds the same paths. Specialization as path_trace.comp.
+// and reduces between them over MPI): the estimators of lib/estimator.glsl (ae, ss, ms), which
+// path_trace.comp runs too, with each tracking call cut to this rank's box of space. Unbiased
+// across ranks because the boxes are disjoint and cover the domain: the first real collision
+// along a ray is the nearest of the ranks' independent first collisions in their boxes (the
+// free-flight survival probability is the product of the boxes' transmittances), and a shadow
+// ray's transmittance is the product of the ranks' independent ratio-tracking estimates. The rank
+// that owns a collision supplies its TF colour; everything else (light choice, phase sampling,
+// roulette) is drawn from the path's own random state, the same on every rank, so every rank
+// holds the same paths. Specialization as path_trace.comp.
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #ifdef AMRVK_RAY_QUERY
 #extension GL_EXT_ray_query : require
@@ -31,15 +32,16 @@ layout(constant_id = 0) const uint kMode = kModeMs;
 layout(constant_id = 1) const uint kSampler = kSamplerExtBrick;
 layout(constant_id = 2) const uint kTraversal = kTraversalGridDda;
 layout(constant_id = 3) const uint kBackend = kBackendSw;
+#include "lib/estimator.glsl"
 
 StructureConfig cfg() { return StructureConfig(kSampler, kTraversal, kBackend); }
 
-layout(buffer_reference, scalar) buffer PathRW { DataParallelPathGpu v[]; };
+layout(buffer_reference, scalar) buffer PathRW { PathStateGpu v[]; };
 layout(buffer_reference, scalar) buffer HitRW { DataParallelHitGpu v[]; };
 
 // Random numbers of this rank's tracking for path i: independent of the other ranks' and of the
 // path's shared state.
-uint localRng(uint i, DataParallelPathGpu p, uint kind) {
+uint localRng(uint i, PathStateGpu p, uint kind) {
     return seedRng(i, pcgHash(pc.sampleIndex) ^ (p.bounce * 2u + kind), P.view.seed ^ pc.rankSeed);
 }
 
@@ -50,38 +52,6 @@ bool ownedInterval(vec3 o, vec3 d, float tMax, out float t0, out float t1) {
     return clipRay(pc.ownedLo, pc.ownedHi, o, d, t0, t1) && t0 < t1;
 }
 
-// Sets up next-event estimation from p.o (ss and ms): one light (or the ambient environment)
-// chosen uniformly among n, its contribution `weight` x phase x radiance waiting for the shadow
-// transmittance.
-void setUpShadow(inout DataParallelPathGpu p, vec3 weight, uint n, bool ambientCounts) {
-    uint k = min(uint(rand(p.rng) * float(n)), n - 1u);
-    float g = P.shading.g;
-    uint lights = P.shading.lightCount;
-    vec3 contribution;
-    if (ambientCounts && k == lights) {
-        p.shadowDir = sampleHenyeyGreenstein(p.d, g, rand(p.rng), rand(p.rng));  // phase / pdf = 1
-        p.shadowDist = kInf;
-        contribution = P.shading.ambient;
-    } else {
-        LightGpu L = P.shading.lights[k];
-        vec3 Le = L.radiance;
-        if (L.type == kLightPoint) {
-            vec3 to = L.posOrDir - p.o;
-            float dist = length(to);
-            if (!(dist > 0.0)) return;
-            p.shadowDir = to / dist;
-            p.shadowDist = dist;
-            Le /= dist * dist;
-        } else {
-            p.shadowDir = normalize(L.posOrDir);
-            p.shadowDist = kInf;
-        }
-        contribution = Le * henyeyGreenstein(dot(p.d, p.shadowDir), g);
-    }
-    p.pending = weight * float(n) * contribution;
-    p.flags |= kDpPathShadow;
-}
-
 void main() {
     gParams = ParamsRef(pc.params);
     uint i = gl_GlobalInvocationID.x;
@@ -89,24 +59,12 @@ void main() {
     uint live = 0u, bounceLimit = 0u, nanSamples = 0u;
     if (i < pc.count) {
         PathRW paths = PathRW(pc.paths);
-        DataParallelPathGpu p = paths.v[i];
+        PathStateGpu p = paths.v[i];
         if (pc.stage == kDpStageGenerate) {
-            uint pixel = i;
-            uvec2 pix = uvec2(pixel % P.view.width, pixel / P.view.width);
-            p.rng = seedRng(pixel, pc.sampleIndex, P.view.seed);
-            vec2 jitter = vec2(rand(p.rng), rand(p.rng));
-            p.d = normalize(P.view.dir00 + (float(pix.x) + jitter.x) * P.view.du + (float(pix.y) + jitter.y) * P.view.dv);
-            p.o = P.view.eye;
-            p.bounce = 0u;
-            p.throughput = vec3(1.0);
-            p.flags = kDpPathLive;
-            p.radiance = vec3(0.0);
-            p.pixel = pixel;
-            p.pending = vec3(0.0);
-            paths.v[i] = p;
+            paths.v[i] = startPath(uvec2(i % P.view.width, i / P.view.width), i, pc.sampleIndex);
         } else if (pc.stage == kDpStageTrack) {
             DataParallelHitGpu h = DataParallelHitGpu(-1.0, vec3(0.0));
-            if ((p.flags & kDpPathLive) != 0u) {
+            if ((p.flags & kPathLive) != 0u) {
                 h.t = kInf;
                 float t0, t1;
                 if (ownedInterval(p.o, p.d, kInf, t0, t1)) {
@@ -121,45 +79,16 @@ void main() {
             }
             HitRW(pc.hits).v[i] = h;
         } else if (pc.stage == kDpStageShade) {
-            if ((p.flags & kDpPathLive) != 0u) {
+            if ((p.flags & kPathLive) != 0u) {
                 DataParallelHitGpu h = HitRW(pc.hits).v[i];
-                bool hit = h.t < kInf;
-                p.flags &= ~kDpPathLive;
-                if (kMode == kModeAe) {
-                    p.radiance = hit ? h.color : P.shading.background;
-                } else if (!hit) {
-                    p.radiance += p.throughput * (p.bounce == 0u ? P.shading.background : P.shading.ambient);
-                } else if (kMode == kModeSs) {
-                    p.o += p.d * h.t;
-                    bool ambientOn = any(greaterThan(P.shading.ambient, vec3(0.0)));
-                    uint n = P.shading.lightCount + (ambientOn ? 1u : 0u);
-                    if (n > 0u) setUpShadow(p, h.color, n, ambientOn);
-                } else if (p.bounce + 1u >= kMaxBounces) {
-                    bounceLimit = 1u;
-                } else {  // ms: as path_trace.comp's loop body
-                    p.throughput *= h.color;
-                    p.o += p.d * h.t;
-                    uint lights = P.shading.lightCount;
-                    if (lights > 0u) setUpShadow(p, p.throughput, lights, false);
-                    float q = max(p.throughput.r, max(p.throughput.g, p.throughput.b));
-                    bool survives = q > 0.0;
-                    if (survives && q < 0.25) {
-                        float survive = q / 0.25;
-                        survives = rand(p.rng) < survive;
-                        if (survives) p.throughput /= survive;
-                    }
-                    if (survives) {
-                        p.d = sampleHenyeyGreenstein(p.d, P.shading.g, rand(p.rng), rand(p.rng));
-                        p.flags |= kDpPathLive;
-                    }
-                    ++p.bounce;
-                }
+                if (shadeCollision(p, h.t < kInf, h.t, h.color)) bounceLimit = 1u;
+                scatterPath(p);
                 paths.v[i] = p;
             }
-            live = (p.flags & (kDpPathLive | kDpPathShadow)) != 0u ? 1u : 0u;
+            live = (p.flags & (kPathLive | kPathShadow)) != 0u ? 1u : 0u;
         } else if (pc.stage == kDpStageShadow) {
             float transmittance = -1.0;
-            if ((p.flags & kDpPathShadow) != 0u) {
+            if ((p.flags & kPathShadow) != 0u) {
                 transmittance = 1.0;
                 float t0, t1;
                 if (ownedInterval(p.o, p.shadowDir, p.shadowDist, t0, t1)) {
@@ -169,10 +98,8 @@ void main() {
             }
             FloatRW(pc.shadow).v[i] = transmittance;
         } else if (pc.stage == kDpStageResolve) {
-            if ((p.flags & kDpPathShadow) != 0u) {
-                p.radiance += p.pending * FloatRW(pc.shadow).v[i];
-                p.pending = vec3(0.0);
-                p.flags &= ~kDpPathShadow;
+            if ((p.flags & kPathShadow) != 0u) {
+                resolveShadow(p, FloatRW(pc.shadow).v[i]);
                 paths.v[i] = p;
             }
         } else if (pc.stage == kDpStageAccumulate) {

@@ -7,6 +7,7 @@
 #ifndef AMRVK_DATA_PARALLEL_GPU_H
 #define AMRVK_DATA_PARALLEL_GPU_H
 #include "interop.h"
+#include "path_state_gpu.h"
 
 AMRVK_NAMESPACE_BEGIN
 
@@ -16,25 +17,6 @@ AMRVK_CONST uint kDpStageShade = 2u;       // with the agreed hits: emission, NE
 AMRVK_CONST uint kDpStageShadow = 3u;      // local transmittance of each shadow ray (shadow)
 AMRVK_CONST uint kDpStageResolve = 4u;     // with the agreed transmittance: add the light
 AMRVK_CONST uint kDpStageAccumulate = 5u;  // add each path's radiance to its pixel
-
-AMRVK_CONST uint kDpPathLive = 1u;     // the path goes on (needs a track stage)
-AMRVK_CONST uint kDpPathShadow = 2u;   // a shadow ray waits for its transmittance
-
-struct DataParallelPathGpu {
-    vec3 o;            // ray origin (local voxel)
-    uint rng;          // the path's shared random state (identical on every rank)
-    vec3 d;            // ray direction (unit)
-    uint bounce;       // collisions so far
-    vec3 throughput;
-    uint flags;        // kDpPath*
-    vec3 radiance;     // gathered so far
-    uint pixel;
-    vec3 pending;      // light contribution waiting for its shadow transmittance
-    float shadowDist;  // shadow ray length (voxel units; inf: directional light or ambient)
-    vec3 shadowDir;
-    uint pad;
-};
-AMRVK_STATIC_ASSERT(sizeof(DataParallelPathGpu) == 96);
 
 // A local first collision (t = inf: none in this rank's box; t < 0: the path is not live) and
 // the TF colour there; after the agreement, the nearest over ranks and its owner's colour.
@@ -46,7 +28,7 @@ AMRVK_STATIC_ASSERT(sizeof(DataParallelHitGpu) == 16);
 
 struct DataParallelPush {
     uint64_t params;    // RenderParams (this rank's structures, the shared view and shading)
-    uint64_t paths;     // DataParallelPathGpu[count]
+    uint64_t paths;     // PathStateGpu[count]
     uint64_t hits;      // DataParallelHitGpu[count]
     uint64_t shadow;    // float[count]: local transmittance (< 0: no shadow ray), then the product
     uint64_t counters;  // uint[kCounterCount], then uint live paths (after a shade stage)
@@ -61,12 +43,6 @@ struct DataParallelPush {
 AMRVK_STATIC_ASSERT(sizeof(DataParallelPush) == 88);
 
 #ifdef __cplusplus
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, d) == 16);
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, throughput) == 32);
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, radiance) == 48);
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, pending) == 64);
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, shadowDist) == 76);
-AMRVK_STATIC_ASSERT(offsetof(DataParallelPathGpu, shadowDir) == 80);
 AMRVK_STATIC_ASSERT(offsetof(DataParallelHitGpu, color) == 4);
 AMRVK_STATIC_ASSERT(offsetof(DataParallelPush, counters) == 32);
 AMRVK_STATIC_ASSERT(offsetof(DataParallelPush, ownedLo) == 40);

@@ -135,7 +135,7 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     Batch b{ctx,
             render::compilePathTracer(ctx, "path_trace_dp", sizeof(shared::DataParallelPush), rs.mode, config,
                                       renderer.shaders()),
-            gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelPathGpu), gpu::MemoryKind::Device,
+            gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::PathStateGpu), gpu::MemoryKind::Device,
                         "dataParallelPaths"),
             gpu::Buffer(ctx, uint64_t(count) * sizeof(shared::DataParallelHitGpu), gpu::MemoryKind::HostRead,
                         "dataParallelHits"),

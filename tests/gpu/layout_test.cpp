@@ -89,7 +89,7 @@ struct Structs {
     AabbGpu aabb;
     ValueRangeGpu range;
     AccumPixelGpu accum;
-    DataParallelPathGpu dpPath;
+    PathStateGpu dpPath;
     DataParallelHitGpu dpHit;
     DataParallelPush dpPush;
 };
@@ -110,12 +110,12 @@ std::vector<Field> structFields() {
         AMRVK_FIELD(r, ValueRangeGpu, lo, 1), AMRVK_FIELD(r, ValueRangeGpu, hi, 1),
         AMRVK_FIELD(p, AccumPixelGpu, sumHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumLo, 4),
         AMRVK_FIELD(p, AccumPixelGpu, sumSqHi, 4), AMRVK_FIELD(p, AccumPixelGpu, sumSqLo, 4),
-        AMRVK_FIELD(dp, DataParallelPathGpu, o, 3), AMRVK_FIELD(dp, DataParallelPathGpu, rng, 1),
-        AMRVK_FIELD(dp, DataParallelPathGpu, d, 3), AMRVK_FIELD(dp, DataParallelPathGpu, bounce, 1),
-        AMRVK_FIELD(dp, DataParallelPathGpu, throughput, 3), AMRVK_FIELD(dp, DataParallelPathGpu, flags, 1),
-        AMRVK_FIELD(dp, DataParallelPathGpu, radiance, 3), AMRVK_FIELD(dp, DataParallelPathGpu, pixel, 1),
-        AMRVK_FIELD(dp, DataParallelPathGpu, pending, 3), AMRVK_FIELD(dp, DataParallelPathGpu, shadowDist, 1),
-        AMRVK_FIELD(dp, DataParallelPathGpu, shadowDir, 3), AMRVK_FIELD(dp, DataParallelPathGpu, pad, 1),
+        AMRVK_FIELD(dp, PathStateGpu, o, 3), AMRVK_FIELD(dp, PathStateGpu, rng, 1),
+        AMRVK_FIELD(dp, PathStateGpu, d, 3), AMRVK_FIELD(dp, PathStateGpu, bounce, 1),
+        AMRVK_FIELD(dp, PathStateGpu, throughput, 3), AMRVK_FIELD(dp, PathStateGpu, flags, 1),
+        AMRVK_FIELD(dp, PathStateGpu, radiance, 3), AMRVK_FIELD(dp, PathStateGpu, pixel, 1),
+        AMRVK_FIELD(dp, PathStateGpu, pending, 3), AMRVK_FIELD(dp, PathStateGpu, shadowDist, 1),
+        AMRVK_FIELD(dp, PathStateGpu, shadowDir, 3), AMRVK_FIELD(dp, PathStateGpu, pad, 1),
         AMRVK_FIELD(dh, DataParallelHitGpu, t, 1), AMRVK_FIELD(dh, DataParallelHitGpu, color, 3),
         AMRVK_FIELD(du, DataParallelPush, params, 2), AMRVK_FIELD(du, DataParallelPush, paths, 2),
         AMRVK_FIELD(du, DataParallelPush, hits, 2), AMRVK_FIELD(du, DataParallelPush, shadow, 2),

@@ -106,7 +106,8 @@ TEST_F(ShaderLibraryGpu, AFailedReloadKeepsThePreviousPipeline) {
 
     // A working edit is picked up: background radiance doubled in the shader.
     copyShaders(test::scratchDir() / "reload");
-    replaceInFile(passes / "path_trace.comp", "? tf.rgb : P.shading.background;", "? tf.rgb : 2.0 * P.shading.background;");
+    replaceInFile(passes / ".." / "lib" / "estimator.glsl", "? color : P.shading.background;",
+                  "? color : 2.0 * P.shading.background;");
     s.camera.eye = s.camera.target + glm::dvec3(0.0, 0.0, 1e4);  // looks past the data: background only
     s.camera.target += glm::dvec3(1e4, 0.0, 0.0);
     const scene::RenderOutput plain = r.render(s, 1);

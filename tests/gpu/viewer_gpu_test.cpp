@@ -188,7 +188,7 @@ TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
     // ae with a camera looking past the data: every pixel is the background radiance (ambient 1).
     test::writeAll(dir / "script.txt",
                    "3 screenshot " + (dir / "before.pfm").string() + "\n"
-                   "4 edit-shader path_trace.comp \"? tf.rgb : P.shading.background;\" \"? tf.rgb : 2.0 * P.shading.background;\"\n"
+                   "4 edit-shader ../lib/estimator.glsl \"? color : P.shading.background;\" \"? color : 2.0 * P.shading.background;\"\n"
                    "5 reload\n"
                    "30 screenshot " + (dir / "after.pfm").string() + "\n"
                    "31 edit-shader ../lib/tf.glsl \"if (lo > hi) return 0.0;\" \"if (lo > hi) return 0.0 +;\"\n"

@@ -59,8 +59,8 @@ expect_fault disagree-data "ranks disagree on the picture" "(every rank of 2)" -
 # landed code this was MPI_ERR_TRUNCATE in MPI_Allreduce (or, with equal counts, a silent mix-up).
 # Rank 1 compiles the edited data-parallel shader first (tens of seconds on a busy lavapipe).
 "$amrvk" shaders --export "$dir/diverged" >/dev/null || fail=1
-sed -i 's/p.flags = kDpPathLive;/p.flags = (i % 2u == 0u) ? kDpPathLive : 0u;/' "$dir/diverged/passes/path_trace_dp.comp"
-check grep -q "(i % 2u == 0u) ? kDpPathLive" "$dir/diverged/passes/path_trace_dp.comp"
+sed -i 's/i, pc.sampleIndex);$/i, pc.sampleIndex); if (i % 2u == 1u) paths.v[i].flags = 0u;/' "$dir/diverged/passes/path_trace_dp.comp"
+check grep -q "if (i % 2u == 1u) paths.v\[i\].flags = 0u;" "$dir/diverged/passes/path_trace_dp.comp"
 limitMs=150000 expect_fault diverged "ranks disagree on the paths alive before the collision reduction of sample 0, bounce 0" \
   "same driver, device kind and shaders" "(every rank of 2)" -- \
   "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --mode ms --distribute data -o "$dir/out.png" \

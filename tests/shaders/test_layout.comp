@@ -16,7 +16,7 @@ layout(buffer_reference, scalar) readonly buffer StructsRef {
     AabbGpu aabb;
     ValueRangeGpu range;
     AccumPixelGpu accum;
-    DataParallelPathGpu dpPath;
+    PathStateGpu dpPath;
     DataParallelHitGpu dpHit;
     DataParallelPush dpPush;
 };
