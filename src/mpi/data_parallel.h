@@ -27,11 +27,11 @@ struct DataPart {
 };
 
 // This rank's part of the data `d` names: a census of the whole (two streamed passes), the
-// partition, then the cells of its region. Fits `d` to the whole data set (camera, TF range, and
-// the field's percentiles, which the fitted presets follow: every rank's counts of the cells it
-// owns summed over the ranks, so they equal one process's exactly).
-// Refuses mode dvr before reading anything (renderDataParallel has no ray marcher).
-DataPart loadPart(World& world, session::PictureDescription& d);
+// partition, then the cells of its region, as a volume in the whole's frame (scene::VolumeFrame:
+// bounds, which session::resolvePicture's camera frames, TF range, and the field's percentiles,
+// which the fitted presets follow: every rank's counts of the cells it owns summed over the ranks,
+// so they equal one process's exactly). Refuses mode dvr before reading anything.
+DataPart loadPart(World& world, const session::PictureDescription& d);
 
 struct DataParallelResult {
     scene::RenderOutput out;     // the image of every sample (the same on every rank)

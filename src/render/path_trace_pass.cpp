@@ -75,6 +75,13 @@ void PathTracePass::reset() {
     mStats = {};
 }
 
+void PathTracePass::addSamples(uint32_t n, const scene::RenderStats& stats) {
+    mSpp += n;
+    mStats.paths += stats.paths;
+    mStats.gpuSeconds += stats.gpuSeconds;
+    for (size_t k = 0; k < mStats.counters.size(); ++k) mStats.counters[k] += stats.counters[k];
+}
+
 double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows) {
     AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
     const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);

@@ -70,6 +70,9 @@ public:
     // Traces the next `rows` rows of the current sample (a time-budgeted tile; the sample is
     // complete when the last row is done). Returns the GPU seconds it took.
     double rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows);
+    // Counts n samples per pixel that another pass added to the accumulation (render/staged_pass.h)
+    // with their statistics.
+    void addSamples(uint32_t n, const scene::RenderStats& stats);
     // The mean so far (downloads the accumulation buffer).
     scene::RenderOutput read() const;
     // The sums behind it, in double (downloads the accumulation buffer).

@@ -199,10 +199,14 @@ void Renderer::setFirstSample(uint32_t first) {
     mPathTrace.setFirstSample(first);
 }
 
-const gpu::ComputePipeline& Renderer::currentPipeline() {
+void Renderer::requireRenderable() const {
     AMRVK_CHECK(mBroken.empty(), "no structures to render with (the last structure change failed: ", mBroken, ")");
     AMRVK_CHECK(mTf.has_value(), "internal: accumulate() before setTransferFunction()");
     AMRVK_CHECK(mHasSettings, "internal: accumulate() before setSettings()");
+}
+
+const gpu::ComputePipeline& Renderer::currentPipeline() {
+    requireRenderable();
     const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config(), mShaders);
     uploadParams();
     return pipeline;
@@ -219,6 +223,22 @@ void Renderer::accumulate(uint32_t spp, const std::function<void(uint32_t, uint3
     mPathTrace.accumulate(pipeline, mParamsBuffer.address(), spp, [&](uint32_t total) {
         if (progress) progress(total - start, spp);
     }, maxBatch);
+}
+
+StagedReport Renderer::accumulateStaged(const StagedRender& staged, uint32_t spp,
+                                        const std::function<void(uint32_t, uint32_t)>& progress) {
+    requireRenderable();
+    AMRVK_CHECK(mSettings.mode != scene::Mode::Dvr, "staged rendering: mode dvr is not supported (use ae, ss or ms)");
+    AMRVK_CHECK(mPathTrace.rowsDone() == 0, "internal: a staged render while a sample is half traced");
+    uploadParams();
+    StagedPass pass(mCtx,
+                    compilePathTracer(mCtx, "path_trace_dp", sizeof(shared::DataParallelPush), mSettings.mode,
+                                      mScene.config(), mShaders),
+                    uint32_t(mSettings.width) * uint32_t(mSettings.height));
+    StagedReport report =
+        pass.run(mParamsBuffer.address(), mPathTrace.firstSample() + mPathTrace.spp(), spp, staged, progress);
+    mPathTrace.addSamples(spp, report.stats);
+    return report;
 }
 
 scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint32_t spp,

@@ -23,6 +23,7 @@
 #include "render/device_scene.h"
 #include "render/majorant_pass.h"
 #include "render/path_trace_pass.h"
+#include "render/staged_pass.h"
 #include "scene/invalidation.h"
 #include "scene/render_output.h"
 #include "scene/render_settings.h"
@@ -82,6 +83,11 @@ public:
     // Adds `spp` samples per pixel to the current image; progress(done, spp) after each batch.
     void accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress = {},
                     uint32_t maxBatch = 64);
+    // Adds `spp` samples per pixel in stages (render/staged_pass.h): the same estimators with
+    // tracking cut to staged's box of space, each result agreed with the other owners of space
+    // through staged.exchange. What data-parallel MPI ranks render with; modes ae, ss and ms.
+    StagedReport accumulateStaged(const StagedRender& staged, uint32_t spp,
+                                  const std::function<void(uint32_t, uint32_t)>& progress = {});
     uint32_t accumulatedSpp() const { return mPathTrace.spp(); }
     // A time-budgeted tile: traces the next `rows` rows of the current sample (the viewer, so one
     // frame never waits for a whole sample). Returns the GPU seconds; rowsDone() tells how far.
@@ -138,6 +144,7 @@ private:
     // Redoes what `inv` lists (the only place an edit takes effect).
     void redo(const scene::Invalidation& inv, const scene::RenderSettings* settings = nullptr);
     void buildDeviceScene();
+    void requireRenderable() const;  // structures, a TF and settings exist
     const gpu::ComputePipeline& currentPipeline();  // compiled on first use; params uploaded
     void writeView(const scene::RenderSettings& s);
     void writeShading(const scene::RenderSettings& s);

@@ -44,9 +44,12 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
     const amr::Field& field = fieldName.empty() ? model.defaultField() : model.field(fieldName);
     v->fieldIndex = size_t(&field - model.fields.data());
     v->summary = amr::summarize(model);
-    v->localOrigin = frame ? frame->localOrigin : v->summary.bounds.lower;
+    v->frameBounds = frame ? frame->bounds : v->summary.bounds;
+    v->localOrigin = v->frameBounds.lower;
     if (frame) {
-        AMRVK_CHECK(frame->minLevel <= v->summary.minLevel && glm::all(glm::lessThanEqual(frame->localOrigin, v->summary.bounds.lower)),
+        AMRVK_CHECK(frame->minLevel <= v->summary.minLevel &&
+                        glm::all(glm::lessThanEqual(frame->bounds.lower, v->summary.bounds.lower)) &&
+                        glm::all(glm::lessThanEqual(v->summary.bounds.upper, frame->bounds.upper)),
                     "internal: a part reaches outside its frame");
         v->summary.minLevel = frame->minLevel;
     }

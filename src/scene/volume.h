@@ -27,7 +27,10 @@ struct Volume {
     // The field's percentiles by cell count (what the spiky and foggy presets are laid over);
     // [0] and [100] are valueLo() and valueHi().
     amr::Percentiles percentiles;
-    glm::i64vec3 localOrigin{0};   // voxel space; = lower corner of the data bounds
+    glm::i64vec3 localOrigin{0};   // voxel space; = lower corner of frameBounds
+    // The box a picture of it frames (voxel space): its bounds, or for a part of a larger data set
+    // (VolumeFrame) the whole data's.
+    amr::Box3l frameBounds;
     accel::BrickSet bricks;
 
     const amr::Field& field() const { return model.fields[fieldIndex]; }
@@ -39,6 +42,8 @@ struct Volume {
     // World-space corners of the bounds.
     glm::dvec3 worldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)); }
     glm::dvec3 worldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)); }
+    glm::dvec3 frameWorldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(frameBounds.lower)); }
+    glm::dvec3 frameWorldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(frameBounds.upper)); }
     // The same box with its lower corner below the upper on every axis (a negative voxel spacing
     // swaps worldLo and worldHi on that axis): what cut-aways are checked and clamped against.
     glm::dvec3 worldMin() const { return glm::min(worldLo(), worldHi()); }
@@ -62,7 +67,8 @@ std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fiel
 // What a part of a larger data set (an MPI rank's cells, data-parallel rendering) takes from the
 // whole instead of from its own cells, so every part renders in one frame.
 struct VolumeFrame {
-    glm::i64vec3 localOrigin{0};  // the whole data's lower corner: one local voxel space for all
+    amr::Box3l bounds;            // the whole data's (voxel space): its lower corner is the one local
+                                  // origin of every part, and the default camera frames it
     int32_t minLevel = 0;         // the whole data's finest level: extinction per the same width
     float valueLo = 0, valueHi = 0;  // the whole field's range (TF fitting)
     amr::Percentiles percentiles;    // the whole field's percentiles (TF fitting; each cell counted once)

@@ -59,7 +59,8 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
             notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles, tf));
         s.tf = scene::TfChannels::split(tf);
     }
-    if (d.fitCamera) s.settings.camera = scene::defaultCamera(v.worldLo(), v.worldHi(), s.settings.camera.fovYDegrees);
+    if (d.fitCamera)  // the whole data set, also where v is one MPI rank's part of it
+        s.settings.camera = scene::defaultCamera(v.frameWorldLo(), v.frameWorldHi(), s.settings.camera.fovYDegrees);
     if (d.fit == StructureFit::Data && s.structure.sampler != scene::SamplerKind::Dense) {
         std::string why;
         s.structure.traversal = scene::fittingTraversal(v.summary.leafVolume, v.bounds().volume(), &why);

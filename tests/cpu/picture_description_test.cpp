@@ -79,7 +79,7 @@ TEST(PictureDescription, TfFilesKeepTheirPositions) {
     expectSameTf(resolvedTf(d, *v), scene::makePreset("spiky", 10.0f, 20.0f));
 }
 
-TEST(PictureDescription, APartWithTheWholesPercentilesGetsTheWholesTf) {
+TEST(PictureDescription, APartInTheWholesFrameGetsTheWholesTfAndCamera) {
     // Data-parallel MPI: each part holds its cells and a halo; counting only the cells it owns and
     // summing the counts over the parts gives the whole's percentiles, so every part fits the same TF.
     amr::Model whole = test::makeThreeLevelCloud();
@@ -116,13 +116,21 @@ TEST(PictureDescription, APartWithTheWholesPercentilesGetsTheWholesTf) {
         d.tfSource = TfSource{.name = name};
         const scene::TransferFunction expected = resolvedTf(d, *one);
         for (amr::Model& part : parts) {
-            const scene::VolumeFrame frame{.localOrigin = census.bounds.lower,
+            const scene::VolumeFrame frame{.bounds = census.bounds,
                                            .minLevel = census.minLevel,
                                            .valueLo = census.valueLo,
                                            .valueHi = census.valueHi,
                                            .percentiles = s.result()};
             const std::shared_ptr<const scene::Volume> pv = scene::makeVolume(part, "", frame);
             expectSameTf(resolvedTf(d, *pv), expected);
+            // The default camera frames the whole, not the part (a part's own box is smaller).
+            PictureDescription fit = d;
+            fit.fitCamera = true;
+            const scene::Camera full = resolvePicture(fit, *one, nullptr).settings.camera;
+            const scene::Camera mine = resolvePicture(fit, *pv, nullptr).settings.camera;
+            EXPECT_EQ(mine.eye, full.eye);
+            EXPECT_EQ(mine.target, full.target);
+            EXPECT_NE(pv->bounds().upper - pv->bounds().lower, one->bounds().upper - one->bounds().lower);
             // Its own cells' percentiles (halo included) would give another TF.
             EXPECT_NE(scene::makePreset(name, amr::percentilesOf(part.fields[0].values)).positions(), expected.positions());
         }
