@@ -69,16 +69,26 @@ std::vector<uint32_t> ShaderLibrary::load(const std::string& name) const {
 
 std::vector<fs::path> exportShaderSources(std::span<const ShaderSourceFile> sources, const fs::path& dir,
                                           bool overwrite) {
+    // Never through a link: a linked folder under DIR would put the sources outside it (refused); a
+    // link at a source's own name is replaced itself (DIR itself, named by the user, may be a link).
     std::vector<fs::path> out;
+    std::error_code ec;
     for (const ShaderSourceFile& f : sources) {
         const fs::path p = dir / f.path;
-        AMRVK_CHECK(overwrite || !fs::exists(p), p.string(), " exists (give --force to overwrite)");
+        for (fs::path sub = fs::path(f.path).parent_path(); !sub.empty(); sub = sub.parent_path())
+            AMRVK_CHECK(!fs::is_symlink(fs::symlink_status(dir / sub, ec)), (dir / sub).string(),
+                        ": a symbolic link (refused: the sources would be written outside ", dir.string(), ")");
+        const fs::file_status s = fs::symlink_status(p, ec);
+        AMRVK_CHECK(overwrite || !fs::exists(s), p.string(), " exists (give --force to overwrite)");
+        AMRVK_CHECK(!fs::is_directory(s), p.string(), ": is a directory");
         out.push_back(p);
     }
     for (size_t i = 0; i < sources.size(); ++i) {
-        std::error_code ec;
         fs::create_directories(out[i].parent_path(), ec);
         AMRVK_CHECK(!ec, out[i].parent_path().string(), ": cannot create (", ec.message(), ")");
+        if (fs::is_symlink(fs::symlink_status(out[i], ec)))
+            AMRVK_CHECK(fs::remove(out[i], ec), out[i].string(), ": cannot replace the symbolic link (", ec.message(),
+                        ")");
         writeFileAtomic(out[i], std::string(sources[i].text, sources[i].size));
     }
     return out;

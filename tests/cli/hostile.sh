@@ -2,9 +2,9 @@
 # Usage: hostile.sh AMRVK SOURCE_DIR SCRATCH. The second hostile-input campaign (issue 23;
 # docs/fuzzing.md "Hostile input, round 2"): files written outside the place the user named,
 # outputs that would destroy other files, crashes and hangs from sessions, scripts, shaders and
-# big TFs, documented promises. Every case must end in one clean error line (exit 1) or in
-# bounded, correct work, and leave nothing behind it should not. Tiny inputs: the whole script
-# runs in about two minutes on lavapipe.
+# big TFs, documented promises; and round 3 (issue 34, section 9). Every case must end in one
+# clean error line (exit 1) or in bounded, correct work, and leave nothing behind it should not.
+# Tiny inputs: the whole script runs in about two minutes on lavapipe.
 set -u
 ulimit -c 0  # SIGQUIT below dumps no core
 amrvk="$1"; src="$2"; dir="$3"
@@ -392,6 +392,22 @@ expect1 "unknown field" -- convert good.cells --field "../../etc" -o conv3
 check1 test ! -e conv3.cells
 ok convert good.cells --field rho -o "conv 4"
 check1 test -s "conv 4.rho.scalars"
+
+# ---- 9. Round 3 (issue 34): what round 2 missed --------------------------------------------
+section "round 3"
+# shaders --export never writes through a link: a link at a file's name is replaced itself, a
+# linked folder under DIR is refused (its files would land outside DIR).
+"$amrvk" shaders --export exp1 >/dev/null
+echo precious > outside.glsl
+rm exp1/lib/tf.glsl; ln -s "$dir/outside.glsl" exp1/lib/tf.glsl
+ok shaders --export exp1 --force
+check1 grep -qx precious outside.glsl
+check1 test ! -L exp1/lib/tf.glsl
+check1 grep -q "vec4" exp1/lib/tf.glsl
+mkdir outside-lib; cp exp1/lib/*.glsl outside-lib/; echo precious > outside-lib/tf.glsl
+rm -r exp1/lib; ln -s "$dir/outside-lib" exp1/lib
+expect1 "exp1/lib: a symbolic link" -- shaders --export exp1 --force
+check1 grep -qx precious outside-lib/tf.glsl
 
 section ""
 echo "hostile.sh: $cases cases"
