@@ -329,6 +329,13 @@ void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers) {
     for (const auto& w : writers) w->commit();
 }
 
+fs::path makeTemporaryDirectory(const fs::path& path) {
+    std::string name = path.string() + ".tmp-XXXXXX";
+    AMRVK_CHECK(::mkdtemp(name.data()), path.string(), ": cannot write (", std::strerror(errno), ")");
+    ::chmod(name.c_str(), 0777 & ~processUmask());
+    return name;
+}
+
 void writeFileAtomic(const fs::path& path, const std::string& contents) {
     AtomicFileWriter w(path);
     w.write(contents.data(), contents.size());

@@ -132,6 +132,11 @@ private:
     std::vector<std::filesystem::path> mFiles;
 };
 
+// Makes a new directory named `path` + ".tmp-XXXXXX" (mkdtemp: an unpredictable name, created
+// exclusively) with the mode mkdir gives (0777 less the umask), for output that is renamed into
+// place only when complete; returns its name. Throws one line naming `path`.
+std::filesystem::path makeTemporaryDirectory(const std::filesystem::path& path);
+
 // Writes a whole text/binary buffer atomically.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& contents);
 

@@ -408,6 +408,26 @@ mkdir outside-lib; cp exp1/lib/*.glsl outside-lib/; echo precious > outside-lib/
 rm -r exp1/lib; ln -s "$dir/outside-lib" exp1/lib
 expect1 "exp1/lib: a symbolic link" -- shaders --export exp1 --force
 check1 grep -qx precious outside-lib/tf.glsl
+# An export is all or nothing: a write that fails (here a file-size limit of 12 KiB, which the
+# largest source exceeds; a full disk fails the same way) leaves no DIR, and over an existing DIR
+# with --force leaves it as it was; no temporary either way.
+export_limited() {  # export_limited ARGS...: amrvk shaders ARGS with files limited to 12 KiB
+  cases=$((cases + 1))
+  ( trap '' XFSZ; ulimit -f 12; exec "$amrvk" shaders "$@" ) >"$dir/lim.out" 2>"$dir/lim.err"; local rc=$?
+  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/lim.err")" != 1 ]; then
+    echo "FAIL: limited shaders $* -> rc=$rc: $(cat "$dir/lim.err")"; fail=1
+  else
+    echo "ok: limited shaders $* -> $(cat "$dir/lim.err")"
+  fi
+}
+export_limited --export exp3
+check1 test ! -e exp3
+"$amrvk" shaders --export exp4 >/dev/null
+echo old > exp4/lib/tf.glsl; echo old > exp4/lib/common.glsl
+export_limited --export exp4 --force
+check1 grep -qx old exp4/lib/tf.glsl
+check1 grep -qx old exp4/lib/common.glsl
+no_temporaries
 
 section ""
 echo "hostile.sh: $cases cases"
