@@ -428,6 +428,29 @@ export_limited --export exp4 --force
 check1 grep -qx old exp4/lib/tf.glsl
 check1 grep -qx old exp4/lib/common.glsl
 no_temporaries
+# A movie never deletes or replaces a file it did not write: frames no manifest lists are refused
+# (a stand-in ffmpeg on PATH: the check comes before any encoding).
+mkdir -p fakebin; printf '#!/bin/sh\nexit 0\n' > fakebin/ffmpeg; chmod +x fakebin/ffmpeg
+mkdir M.mp4.frames; echo mine > M.mp4.frames/frame_0000.png
+PATH="$dir/fakebin:$PATH" expect1 "-o M.mp4: 1 of its frames in M.mp4.frames/ exist and no manifest of amrvk's lists them" -- \
+  render good.cells "${pic[@]}" --frames 2 --orbit 90 -o M.mp4
+check1 grep -qx mine M.mp4.frames/frame_0000.png
+check1 test ! -e M.mp4
+mkdir kept.d; echo mine > kept.d/frame_0001.png
+PATH="$dir/fakebin:$PATH" expect1 "--frames-dir kept.d/: 1 of the frames exist and no manifest" -- \
+  render good.cells "${pic[@]}" --frames 2 --orbit 90 -o K.mp4 --frames-dir kept.d
+check1 grep -qx mine kept.d/frame_0001.png
+mkdir N.mp4.frames  # the user's (empty) directory: used, and left in place
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o N.mp4
+check1 test -d N.mp4.frames
+check1 test -z "$(ls -A N.mp4.frames)"
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o O.mp4
+check1 test ! -e O.mp4.frames
+# Frames that amrvk's manifest lists are its own: another command over them replaces them.
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o P.mp4 --frames-dir kept.p
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --seed 3 --frames 2 --orbit 90 -o P.mp4 --frames-dir kept.p
+check1 grep -q "records another command" ok.err
+check1 test -s kept.p/frame_0001.png
 
 section ""
 echo "hostile.sh: $cases cases"
