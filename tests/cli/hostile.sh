@@ -451,6 +451,14 @@ PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90
 PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --seed 3 --frames 2 --orbit 90 -o P.mp4 --frames-dir kept.p
 check1 grep -q "records another command" ok.err
 check1 test -s kept.p/frame_0001.png
+# A signal between creating a temporary and setting it up (a pause injected there) removes it too.
+rm -f sigd*
+AMRVK_TEST_TEMPORARY_DELAY_MS=3000 "$amrvk" gen cloud --cells 1000 --seed 1 -o sigd >/dev/null 2>&1 & pid=$!
+for _ in $(seq 300); do ls sigd.cells.tmp-* >/dev/null 2>&1 && break; sleep 0.02; done
+check1 ls sigd.cells.tmp-*
+kill -INT $pid; wait $pid; rc=$?
+check1 test "$rc" -gt 128
+check1 test -z "$(ls | grep '^sigd' || true)"
 
 section ""
 echo "hostile.sh: $cases cases"
