@@ -459,6 +459,18 @@ check1 ls sigd.cells.tmp-*
 kill -INT $pid; wait $pid; rc=$?
 check1 test "$rc" -gt 128
 check1 test -z "$(ls | grep '^sigd' || true)"
+# A clip plane's normal is normalised without overflow or underflow: 1e308 (and 1e154) and 1e-200
+# per component cut as 1 1 1 does; only an exact zero is refused.
+clip=(--clip 2 1 1)
+ok render good.cells "${pic[@]}" -o clip-none.png
+ok render good.cells "${pic[@]}" "${clip[@]}" 1 1 1 -o clip-one.png
+check1 eval '! cmp -s clip-none.png clip-one.png'
+for n in 1e308 1e154 1e-200; do
+  ok render good.cells "${pic[@]}" "${clip[@]}" $n $n $n -o clip-$n.png
+  check1 cmp clip-one.png clip-$n.png
+done
+expect1 "--clip: the normal 0 0 0 points nowhere" -- render good.cells "${pic[@]}" "${clip[@]}" 0 0 0 -o x.png
+no_temporaries
 
 section ""
 echo "hostile.sh: $cases cases"
