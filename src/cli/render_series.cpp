@@ -68,6 +68,7 @@ public:
     FramesDirectory(const FramesDirectory&) = delete;
     FramesDirectory& operator=(const FramesDirectory&) = delete;
     void dismiss() { mDismissed = true; }
+    bool made() const { return mMade; }
 
 private:
     fs::path mDir;
@@ -196,6 +197,29 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     session::FrameManifest manifest;
     const std::optional<session::FrameManifest> previous = session::loadFrameManifest(frames.manifest);
     const bool resume = previous && previous->recipe == recipe;
+    // A movie replaces its frames, and deletes them once encoded (without --frames-dir): a file at a
+    // frame's name that no manifest of amrvk's lists is not amrvk's, so nothing is touched.
+    if (movie) {
+        std::vector<uint32_t> foreign;
+        std::error_code ec;
+        for (uint32_t k = 0; k < n; ++k)
+            if ((!previous || !previous->done.count(k)) && fs::exists(fs::symlink_status(frames.frame(k), ec)))
+                foreign.push_back(k);
+        const std::string names =
+            foreign.empty() ? std::string()
+                            : frames.frame(foreign[0]).filename().string() + (foreign.size() > 1 ? ", ..." : "");
+        AMRVK_CHECK(foreign.empty(), keepFrames ? "--frames-dir " + framesText : "-o " + request.output, ": ",
+                    foreign.size(), keepFrames ? " of the frames" : " of its frames in " + framesText,
+                    " exist and no manifest of amrvk's lists them (", names, "): refused, the movie would ",
+                    keepFrames ? "replace them; move them away, or name another --frames-dir"
+                               : "replace and then delete them; move them away, or keep the frames elsewhere with "
+                                 "--frames-dir DIR");
+        // Another command's frames are amrvk's (its manifest lists them) and are replaced anyway:
+        // removed now, so that no frame of the old record outlives it unlisted.
+        if (previous && !resume)
+            for (const uint32_t k : previous->done)
+                if (k < n) fs::remove(frames.frame(k), ec);
+    }
     if (resume) {
         manifest = *previous;
         std::error_code ec;
@@ -329,9 +353,11 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     const size_t rendered = todo.size();
     if (movie && !keepFrames) {  // the frames were only the movie's: removed with their manifest
         std::error_code ec;
-        for (uint32_t k = 0; k < n; ++k) fs::remove(frames.frame(k), ec);
+        for (uint32_t k = 0; k < n; ++k) fs::remove(frames.frame(k), ec);  // every one listed by now
         fs::remove(frames.manifest, ec);
-        fs::remove(frames.directory, ec);  // only when nothing else is in it
+        // The directory only when amrvk made it (now, or the run whose manifest was there), and only
+        // when nothing else is in it.
+        if (directory.made() || previous) fs::remove(frames.directory, ec);
     }
     if (!request.jsonFile.empty()) {
         Json j;

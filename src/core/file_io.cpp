@@ -1,11 +1,13 @@
 #include "core/file_io.h"
 
 #include <fcntl.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +15,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <thread>
 
 #include "core/checked_size.h"
 #include "core/error.h"
@@ -104,6 +107,27 @@ extern "C" void removeTemporariesAndExit(int sig) {
     removeTemporariesNow();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
+}
+
+// Six random characters of [A-Za-z0-9], as mkostemp's.
+std::string randomSuffix() {
+    static constexpr char kChars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    unsigned char bytes[6];
+    AMRVK_CHECK(::getrandom(bytes, sizeof bytes, 0) == ssize_t(sizeof bytes), "cannot make a temporary file name (",
+                std::strerror(errno), ")");
+    std::string s;
+    for (const unsigned char b : bytes) s += kChars[b % 62];
+    return s;
+}
+
+// Test hook (tests/cli/hostile.sh): AMRVK_TEST_TEMPORARY_DELAY_MS=N pauses N ms right after each
+// temporary output file is created, so that a test can send a signal there.
+void pauseAfterCreatingTemporary() {
+    static const long ms = [] {
+        const char* env = std::getenv("AMRVK_TEST_TEMPORARY_DELAY_MS");
+        return env ? std::strtol(env, nullptr, 10) : 0L;
+    }();
+    if (ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(ms));
 }
 
 // The process's umask, read once (umask() can only be read by setting it).
@@ -214,23 +238,31 @@ AtomicFileWriter::AtomicFileWriter(fs::path path) : mPath(std::move(path)) {
     } else {
         mTarget = mPath;
     }
-    // An unpredictable name, created exclusively: never a planted file or link.
-    std::string name = mTarget.string() + ".tmp-XXXXXX";
-    const int fd = ::mkostemp(name.data(), O_CLOEXEC);
-    AMRVK_CHECK(fd >= 0, mPath.string(), ": cannot write (", std::strerror(errno), ")");
-    mTmpPath = name;
-    ::fchmod(fd, mode);
-    try {
+    // An unpredictable name, created exclusively (O_EXCL: never a planted file or link), registered
+    // for the signal handler before it exists, so that no signal can leave it behind (unlinking a
+    // name not made yet does nothing; a name that exists is never registered).
+    int fd = -1;
+    for (int attempt = 0; fd < 0; ++attempt) {
+        AMRVK_CHECK(attempt < 100, mPath.string(), ": cannot write (no free temporary file name)");
+        const std::string name = mTarget.string() + ".tmp-" + randomSuffix();
+        struct stat taken {};
+        if (::lstat(name.c_str(), &taken) == 0) continue;
         mSlot = registerTemporary(name);
-    } catch (...) {
-        ::close(fd);
-        ::unlink(name.c_str());
-        throw;
+        fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOCTTY | O_CLOEXEC, 0600);
+        if (fd >= 0) {
+            mTmpPath = name;
+            break;
+        }
+        const int error = errno;
+        unregisterTemporary(mSlot);
+        AMRVK_CHECK(error == EEXIST, mPath.string(), ": cannot write (", std::strerror(error), ")");
     }
+    pauseAfterCreatingTemporary();
+    ::fchmod(fd, mode);
     mFile = ::fdopen(fd, "wb");
     if (!mFile) {
         ::close(fd);
-        ::unlink(name.c_str());
+        ::unlink(mTmpPath.c_str());
         unregisterTemporary(mSlot);
     }
     AMRVK_CHECK(mFile, mPath.string(), ": cannot write (", std::strerror(errno), ")");
@@ -327,6 +359,13 @@ void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<Named
 void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers) {
     for (const auto& w : writers) w->finish();
     for (const auto& w : writers) w->commit();
+}
+
+fs::path makeTemporaryDirectory(const fs::path& path) {
+    std::string name = path.string() + ".tmp-XXXXXX";
+    AMRVK_CHECK(::mkdtemp(name.data()), path.string(), ": cannot write (", std::strerror(errno), ")");
+    ::chmod(name.c_str(), 0777 & ~processUmask());
+    return name;
 }
 
 void writeFileAtomic(const fs::path& path, const std::string& contents) {

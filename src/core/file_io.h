@@ -52,12 +52,13 @@ private:
 // How an output path is written, so that no output ever destroys what it is not meant to replace:
 //  - nothing there, or a regular file (also behind symbolic links: the link stays a link and its
 //    target is replaced): the data goes to a temporary created exclusively beside the target
-//    (mkostemp: O_CREAT|O_EXCL with a random suffix, so a link planted at a predictable name is
-//    never followed), which commit() renames over the target;
+//    (O_CREAT|O_EXCL with a random suffix, as mkostemp, so a link planted at a predictable name
+//    is never followed), which commit() renames over the target;
 //  - a character device or FIFO (/dev/null, /dev/stdout, a pipe): written through, nothing renamed;
 //  - a directory, a socket, a block device or a link to nothing: refused.
 // (That no output is an input of the command is checkOutputs' job, before any work.) A writer destroyed without commit() removes its temporary;
-// SIGHUP, SIGINT, SIGQUIT and SIGTERM remove every open temporary (removeTemporariesOnSignal).
+// SIGHUP, SIGINT, SIGQUIT and SIGTERM remove every open temporary (removeTemporariesOnSignal); a
+// temporary is registered for that before it is created, so no signal can leave one behind.
 class AtomicFileWriter {
 public:
     explicit AtomicFileWriter(std::filesystem::path path);
@@ -131,6 +132,11 @@ public:
 private:
     std::vector<std::filesystem::path> mFiles;
 };
+
+// Makes a new directory named `path` + ".tmp-XXXXXX" (mkdtemp: an unpredictable name, created
+// exclusively) with the mode mkdir gives (0777 less the umask), for output that is renamed into
+// place only when complete; returns its name. Throws one line naming `path`.
+std::filesystem::path makeTemporaryDirectory(const std::filesystem::path& path);
 
 // Writes a whole text/binary buffer atomically.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& contents);

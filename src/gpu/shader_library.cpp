@@ -69,17 +69,61 @@ std::vector<uint32_t> ShaderLibrary::load(const std::string& name) const {
 
 std::vector<fs::path> exportShaderSources(std::span<const ShaderSourceFile> sources, const fs::path& dir,
                                           bool overwrite) {
+    std::error_code ec;
+    fs::path root = dir;  // without a trailing '/'
+    while (!root.has_filename() && root.has_relative_path()) root = root.parent_path();
+    const bool exists = fs::is_directory(dir, ec);
+    AMRVK_CHECK(exists || !fs::exists(fs::symlink_status(root, ec)), dir.string(), ": exists and is not a directory");
+    // Never through a link: a linked folder under DIR would put the sources outside it (refused); a
+    // link at a source's own name is replaced itself (DIR itself, named by the user, may be a link).
     std::vector<fs::path> out;
     for (const ShaderSourceFile& f : sources) {
         const fs::path p = dir / f.path;
-        AMRVK_CHECK(overwrite || !fs::exists(p), p.string(), " exists (give --force to overwrite)");
+        for (fs::path sub = fs::path(f.path).parent_path(); !sub.empty(); sub = sub.parent_path())
+            AMRVK_CHECK(!fs::is_symlink(fs::symlink_status(dir / sub, ec)), (dir / sub).string(),
+                        ": a symbolic link (refused: the sources would be written outside ", dir.string(), ")");
+        const fs::file_status s = fs::symlink_status(p, ec);
+        AMRVK_CHECK(overwrite || !fs::exists(s), p.string(), " exists (give --force to overwrite)");
+        AMRVK_CHECK(!fs::is_directory(s), p.string(), ": is a directory");
         out.push_back(p);
     }
+    // All or nothing: every source is written into a fresh folder (beside a new DIR, inside an
+    // existing one: the same file system) and renamed into place only when all are complete, so a
+    // failure (a full disk) leaves no DIR, or DIR as it was. The folder is removed either way.
+    if (!exists && root.has_parent_path()) {
+        fs::create_directories(root.parent_path(), ec);
+        AMRVK_CHECK(!ec, root.parent_path().string(), ": cannot create (", ec.message(), ")");
+    }
+    const fs::path staging = makeTemporaryDirectory(exists ? root / ".export" : root);
+    struct Remove {
+        fs::path path;
+        ~Remove() {
+            std::error_code e;
+            fs::remove_all(path, e);
+        }
+    } removeStaging{staging};
     for (size_t i = 0; i < sources.size(); ++i) {
-        std::error_code ec;
+        const fs::path p = staging / sources[i].path;
+        fs::create_directories(p.parent_path(), ec);
+        AMRVK_CHECK(!ec, out[i].parent_path().string(), ": cannot create (", ec.message(), "); nothing was exported");
+        try {
+            writeFileAtomic(p, std::string(sources[i].text, sources[i].size));
+        } catch (const Error& e) {  // named by the file it was for
+            const std::string m = e.what(), staged = p.string();
+            throw Error(strCat(out[i].string(), m.rfind(staged, 0) == 0 ? m.substr(staged.size()) : ": " + m,
+                               "; nothing was exported"));
+        }
+    }
+    if (!exists) {
+        fs::rename(staging, root, ec);
+        AMRVK_CHECK(!ec, dir.string(), ": cannot rename the exported sources into place (", ec.message(), ")");
+        return out;
+    }
+    for (size_t i = 0; i < sources.size(); ++i) {  // a rename replaces a link itself, never its target
         fs::create_directories(out[i].parent_path(), ec);
         AMRVK_CHECK(!ec, out[i].parent_path().string(), ": cannot create (", ec.message(), ")");
-        writeFileAtomic(out[i], std::string(sources[i].text, sources[i].size));
+        fs::rename(staging / sources[i].path, out[i], ec);
+        AMRVK_CHECK(!ec, out[i].string(), ": cannot rename into place (", ec.message(), ")");
     }
     return out;
 }

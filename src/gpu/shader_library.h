@@ -31,7 +31,9 @@ struct ShaderSourceFile {
 };
 
 // Writes the sources into dir (dir/passes, dir/lib, dir/shared), creating it. Refuses, before
-// writing anything, when one of the files exists and overwrite is false. Returns the files written.
+// writing anything, when one of the files exists and overwrite is false, or a folder under dir is a
+// symbolic link; never writes through a link (one at a source's name is replaced itself). Returns
+// the files written.
 std::vector<std::filesystem::path> exportShaderSources(std::span<const ShaderSourceFile> sources,
                                                        const std::filesystem::path& dir, bool overwrite);
 

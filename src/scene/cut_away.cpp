@@ -12,6 +12,11 @@ namespace {
 bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 
+glm::dvec3 unitNormal(glm::dvec3 n) {
+    const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    return largest > 0 ? glm::normalize(n / largest) : glm::dvec3(0.0);
+}
+
 void validateCutAway(const CutAway& cut) {
     if (cut.crop) {
         const CropBox& b = *cut.crop;
@@ -24,7 +29,7 @@ void validateCutAway(const CutAway& cut) {
                 " planes (got ", cut.clips.size(), ")");
     for (const ClipPlane& p : cut.clips) {
         AMRVK_CHECK(finite(p.point) && finite(p.normal), "--clip: point and normal must be finite");
-        AMRVK_CHECK(glm::length(p.normal) > 0, "--clip: the normal 0 0 0 points nowhere");
+        AMRVK_CHECK(p.normal != glm::dvec3(0.0), "--clip: the normal 0 0 0 points nowhere");
     }
 }
 
@@ -32,14 +37,15 @@ bool keeps(const CutAway& cut, glm::dvec3 p) {
     if (cut.crop && (glm::any(glm::lessThan(p, cut.crop->lo)) || glm::any(glm::greaterThan(p, cut.crop->hi))))
         return false;
     for (const ClipPlane& c : cut.clips)
-        if (glm::dot(c.normal, p - c.point) > 0) return false;
+        if (glm::dot(unitNormal(c.normal), p - c.point) > 0) return false;
     return true;
 }
 
 bool keptInterval(const CutAway& cut, glm::dvec3 o, glm::dvec3 d, double& tMin, double& tMax) {
     if (cut.crop && !accel::clipRay(cut.crop->lo, cut.crop->hi, o, d, tMin, tMax)) return false;
     for (const ClipPlane& c : cut.clips) {
-        const double s = glm::dot(c.normal, c.point - o), dn = glm::dot(c.normal, d);
+        const glm::dvec3 n = unitNormal(c.normal);
+        const double s = glm::dot(n, c.point - o), dn = glm::dot(n, d);
         if (dn == 0) {
             if (s < 0) return false;
         } else if (dn > 0) {
@@ -58,7 +64,8 @@ CutAway cutAwayInVoxelSpace(const CutAway& cut, const amr::Transform& xf) {
         v.crop = CropBox{glm::min(a, b), glm::max(a, b)};  // a negative scale swaps the corners
     }
     // n . (origin + scale v - p) <= 0  <=>  (n * scale) . (v - (p - origin) / scale) <= 0
-    for (const ClipPlane& c : cut.clips) v.clips.push_back({(c.point - xf.origin) / xf.scale, c.normal * xf.scale});
+    for (const ClipPlane& c : cut.clips)
+        v.clips.push_back({(c.point - xf.origin) / xf.scale, unitNormal(c.normal) * xf.scale});
     return v;
 }
 
@@ -73,7 +80,7 @@ shared::CutAwayGpu cutAwayGpu(const CutAway& cut, const amr::Transform& xf, glm:
     }
     g.planeCount = uint32_t(v.clips.size());
     for (size_t i = 0; i < v.clips.size(); ++i) {
-        const glm::dvec3 n = glm::normalize(v.clips[i].normal);
+        const glm::dvec3 n = unitNormal(v.clips[i].normal);
         g.planes[i] = glm::vec4(glm::vec3(n), float(glm::dot(n, v.clips[i].point - localOrigin)));
     }
     return g;

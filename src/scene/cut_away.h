@@ -34,8 +34,13 @@ struct CutAway {
     bool operator==(const CutAway&) const = default;
 };
 
+// A plane normal scaled to unit length without overflow or underflow: divided by its largest
+// absolute component first, so 1e308 or 1e-300 per component gives the direction as 1 does. Zero
+// for an exactly zero normal (which validateCutAway refuses).
+glm::dvec3 unitNormal(glm::dvec3 n);
+
 // Throws a one-line error naming --crop or --clip for a box with lo >= hi on an axis, a non-finite
-// number, a zero normal or more than kMaxClipPlanes planes.
+// number, an exactly zero normal or more than kMaxClipPlanes planes.
 void validateCutAway(const CutAway& cut);
 
 // True when world point p is kept (inside the crop box and behind every plane).

@@ -2,9 +2,9 @@
 # Usage: hostile.sh AMRVK SOURCE_DIR SCRATCH. The second hostile-input campaign (issue 23;
 # docs/fuzzing.md "Hostile input, round 2"): files written outside the place the user named,
 # outputs that would destroy other files, crashes and hangs from sessions, scripts, shaders and
-# big TFs, documented promises. Every case must end in one clean error line (exit 1) or in
-# bounded, correct work, and leave nothing behind it should not. Tiny inputs: the whole script
-# runs in about two minutes on lavapipe.
+# big TFs, documented promises; and round 3 (issue 34, section 9). Every case must end in one
+# clean error line (exit 1) or in bounded, correct work, and leave nothing behind it should not.
+# Tiny inputs: the whole script runs in about two minutes on lavapipe.
 set -u
 ulimit -c 0  # SIGQUIT below dumps no core
 amrvk="$1"; src="$2"; dir="$3"
@@ -392,6 +392,85 @@ expect1 "unknown field" -- convert good.cells --field "../../etc" -o conv3
 check1 test ! -e conv3.cells
 ok convert good.cells --field rho -o "conv 4"
 check1 test -s "conv 4.rho.scalars"
+
+# ---- 9. Round 3 (issue 34): what round 2 missed --------------------------------------------
+section "round 3"
+# shaders --export never writes through a link: a link at a file's name is replaced itself, a
+# linked folder under DIR is refused (its files would land outside DIR).
+"$amrvk" shaders --export exp1 >/dev/null
+echo precious > outside.glsl
+rm exp1/lib/tf.glsl; ln -s "$dir/outside.glsl" exp1/lib/tf.glsl
+ok shaders --export exp1 --force
+check1 grep -qx precious outside.glsl
+check1 test ! -L exp1/lib/tf.glsl
+check1 grep -q "vec4" exp1/lib/tf.glsl
+mkdir outside-lib; cp exp1/lib/*.glsl outside-lib/; echo precious > outside-lib/tf.glsl
+rm -r exp1/lib; ln -s "$dir/outside-lib" exp1/lib
+expect1 "exp1/lib: a symbolic link" -- shaders --export exp1 --force
+check1 grep -qx precious outside-lib/tf.glsl
+# An export is all or nothing: a write that fails (here a file-size limit of 12 KiB, which the
+# largest source exceeds; a full disk fails the same way) leaves no DIR, and over an existing DIR
+# with --force leaves it as it was; no temporary either way.
+export_limited() {  # export_limited ARGS...: amrvk shaders ARGS with files limited to 12 KiB
+  cases=$((cases + 1))
+  ( trap '' XFSZ; ulimit -f 12; exec "$amrvk" shaders "$@" ) >"$dir/lim.out" 2>"$dir/lim.err"; local rc=$?
+  if [ "$rc" != 1 ] || [ "$(wc -l <"$dir/lim.err")" != 1 ]; then
+    echo "FAIL: limited shaders $* -> rc=$rc: $(cat "$dir/lim.err")"; fail=1
+  else
+    echo "ok: limited shaders $* -> $(cat "$dir/lim.err")"
+  fi
+}
+export_limited --export exp3
+check1 test ! -e exp3
+"$amrvk" shaders --export exp4 >/dev/null
+echo old > exp4/lib/tf.glsl; echo old > exp4/lib/common.glsl
+export_limited --export exp4 --force
+check1 grep -qx old exp4/lib/tf.glsl
+check1 grep -qx old exp4/lib/common.glsl
+no_temporaries
+# A movie never deletes or replaces a file it did not write: frames no manifest lists are refused
+# (a stand-in ffmpeg on PATH: the check comes before any encoding).
+mkdir -p fakebin; printf '#!/bin/sh\nexit 0\n' > fakebin/ffmpeg; chmod +x fakebin/ffmpeg
+mkdir M.mp4.frames; echo mine > M.mp4.frames/frame_0000.png
+PATH="$dir/fakebin:$PATH" expect1 "-o M.mp4: 1 of its frames in M.mp4.frames/ exist and no manifest of amrvk's lists them" -- \
+  render good.cells "${pic[@]}" --frames 2 --orbit 90 -o M.mp4
+check1 grep -qx mine M.mp4.frames/frame_0000.png
+check1 test ! -e M.mp4
+mkdir kept.d; echo mine > kept.d/frame_0001.png
+PATH="$dir/fakebin:$PATH" expect1 "--frames-dir kept.d/: 1 of the frames exist and no manifest" -- \
+  render good.cells "${pic[@]}" --frames 2 --orbit 90 -o K.mp4 --frames-dir kept.d
+check1 grep -qx mine kept.d/frame_0001.png
+mkdir N.mp4.frames  # the user's (empty) directory: used, and left in place
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o N.mp4
+check1 test -d N.mp4.frames
+check1 test -z "$(ls -A N.mp4.frames)"
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o O.mp4
+check1 test ! -e O.mp4.frames
+# Frames that amrvk's manifest lists are its own: another command over them replaces them.
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --frames 2 --orbit 90 -o P.mp4 --frames-dir kept.p
+PATH="$dir/fakebin:$PATH" ok render good.cells "${pic[@]}" --seed 3 --frames 2 --orbit 90 -o P.mp4 --frames-dir kept.p
+check1 grep -q "records another command" ok.err
+check1 test -s kept.p/frame_0001.png
+# A signal between creating a temporary and setting it up (a pause injected there) removes it too.
+rm -f sigd*
+AMRVK_TEST_TEMPORARY_DELAY_MS=3000 "$amrvk" gen cloud --cells 1000 --seed 1 -o sigd >/dev/null 2>&1 & pid=$!
+for _ in $(seq 300); do ls sigd.cells.tmp-* >/dev/null 2>&1 && break; sleep 0.02; done
+check1 ls sigd.cells.tmp-*
+kill -INT $pid; wait $pid; rc=$?
+check1 test "$rc" -gt 128
+check1 test -z "$(ls | grep '^sigd' || true)"
+# A clip plane's normal is normalised without overflow or underflow: 1e308 (and 1e154) and 1e-200
+# per component cut as 1 1 1 does; only an exact zero is refused.
+clip=(--clip 2 1 1)
+ok render good.cells "${pic[@]}" -o clip-none.png
+ok render good.cells "${pic[@]}" "${clip[@]}" 1 1 1 -o clip-one.png
+check1 eval '! cmp -s clip-none.png clip-one.png'
+for n in 1e308 1e154 1e-200; do
+  ok render good.cells "${pic[@]}" "${clip[@]}" $n $n $n -o clip-$n.png
+  check1 cmp clip-one.png clip-$n.png
+done
+expect1 "--clip: the normal 0 0 0 points nowhere" -- render good.cells "${pic[@]}" "${clip[@]}" 0 0 0 -o x.png
+no_temporaries
 
 section ""
 echo "hostile.sh: $cases cases"

@@ -156,3 +156,52 @@ TEST(CutAway, BadCutsGiveOneLineErrors) {
     c.clips.assign(shared::kMaxClipPlanes, ClipPlane{});
     EXPECT_NO_THROW(scene::validateCutAway(c));
 }
+
+// Issue 34, point 5: the normal's length overflowed (1e308, and 1e154 per component) or underflowed
+// (1e-200), so the plane was ignored or refused as 0 0 0. Any finite non-zero normal cuts as its
+// direction does: the same GPU plane, the same points kept, the same interval.
+TEST(CutAway, HugeAndTinyNormalsCutAsTheirDirection) {
+    const amr::Transform xf{{10.0, -4.0, 2.5}, {0.125, -0.25, 0.5}};
+    const glm::dvec3 localOrigin(64.0, -32.0, 8.0), point(10.5, -4.5, 3.0);
+    const glm::dvec3 o = point - glm::dvec3(0.3, 0.2, 0.1), d = glm::normalize(glm::dvec3(1.0, 2.0, 3.0));
+    for (const glm::dvec3 direction : {glm::dvec3(1.0, 1.0, 1.0), glm::dvec3(1.0, -1.0, 0.0)}) {
+        CutAway unit;
+        unit.clips.push_back({point, direction});
+        const shared::CutAwayGpu expected = scene::cutAwayGpu(unit, xf, localOrigin);
+        double u0 = -10, u1 = 10;
+        const bool unitAny = scene::keptInterval(unit, o, d, u0, u1);
+        for (const double s : {1e308, 1e200, 1e154, 1e-154, 1e-200, 1e-300, 4.9e-324}) {
+            CutAway c;
+            c.clips.push_back({point, s * direction});
+            EXPECT_NO_THROW(scene::validateCutAway(c)) << s;
+            const shared::CutAwayGpu g = scene::cutAwayGpu(c, xf, localOrigin);
+            EXPECT_TRUE(g.planes[0] == expected.planes[0]) << s;
+            for (const glm::dvec3 p : {point + 0.1 * direction, point - 0.1 * direction})
+                EXPECT_EQ(scene::keeps(c, p), scene::keeps(unit, p)) << s;
+            double t0 = -10, t1 = 10;
+            EXPECT_EQ(scene::keptInterval(c, o, d, t0, t1), unitAny) << s;
+            EXPECT_DOUBLE_EQ(t0, u0) << s;
+            EXPECT_DOUBLE_EQ(t1, u1) << s;
+        }
+    }
+    // Only an exact zero (either sign) is refused.
+    CutAway c;
+    c.clips.push_back({{0, 0, 0}, {0.0, -0.0, 0.0}});
+    EXPECT_NE(test::errorOf([&] { scene::validateCutAway(c); }).find("--clip: the normal 0 0 0 points nowhere"),
+              std::string::npos);
+}
+
+TEST(CutAway, UnitNormalNeitherOverflowsNorUnderflows) {
+    const double r = 1.0 / std::sqrt(3.0);
+    for (const double s : {1.0, 1e308, 1.7e308, 1e154, 1e-200, 1e-300, 4.9e-324}) {
+        const glm::dvec3 n = scene::unitNormal(glm::dvec3(s, -s, s));
+        EXPECT_NEAR(n.x, r, 1e-15) << s;
+        EXPECT_NEAR(n.y, -r, 1e-15) << s;
+        EXPECT_NEAR(n.z, r, 1e-15) << s;
+        EXPECT_NEAR(glm::length(n), 1.0, 1e-15) << s;
+    }
+    // Components of very different size: the largest sets the direction.
+    EXPECT_EQ(scene::unitNormal({1e308, 1e-308, 0.0}), glm::dvec3(1.0, 0.0, 0.0));
+    EXPECT_EQ(scene::unitNormal({0.0, 0.0, -1e-320}), glm::dvec3(0.0, 0.0, -1.0));
+    EXPECT_EQ(scene::unitNormal({0.0, -0.0, 0.0}), glm::dvec3(0.0));
+}
