@@ -229,7 +229,7 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
         o.render = [world](render::Renderer& r, const scene::RenderSettings& rs, uint32_t spp,
                            const std::function<void(uint32_t, uint32_t)>& progress, const std::vector<uint32_t>& marks,
                            const std::function<void(const scene::RenderOutput&)>& snapshot) {
-            return mpi::renderSamplesShared(*world, r, rs, spp, progress, marks, snapshot);
+            return mpi::renderSamples(*world, r, rs, spp, progress, marks, snapshot).out;
         };
         o.agree = [world](const std::string& error) {
             mpi::Failure f = world->agree(error, {}, 20, false);

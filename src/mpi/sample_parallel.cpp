@@ -50,67 +50,24 @@ nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json ra
     return ranks;
 }
 
-SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
-                                          const std::function<void(uint32_t, uint32_t)>& progress) {
-    render::Renderer& renderer = *p.renderer;
-    const SampleRange range = sampleRange(p.session.spp, world.rank(), world.size());
-    const Timer wall;
-    renderer.setSettings(renderer.settings());
-    renderer.setFirstSample(range.first);
-    renderer.accumulate(range.count, [&](uint32_t done, uint32_t) {
-        if (progress) progress(done, range.count);
-    });
-    const double renderSeconds = wall.seconds();
-    scene::AccumulatedSums sums = renderer.sums();
-    const scene::RenderStats mine = renderer.stats();
-
-    world.checkpoint();  // every rank rendered (or one failed: all stop here, nothing written)
-    world.requireSame(pictureFingerprint(p.session), "the picture (data, options or fitted choices)");
-    world.requireSame(p.volume->model.cellCount(), "the data set (cell count)");
-    const Timer reduceTimer;
-    uint64_t sent = world.sumToRoot(sums.values);
-    const scene::RenderStats all = statsOverRanks(world, mine, sent);
-
-    rankInfo["firstSample"] = range.first;
-    rankInfo["samples"] = range.count;
-    rankInfo["paths"] = mine.paths;
-    rankInfo["gpuSeconds"] = mine.gpuSeconds;
-    rankInfo["renderSeconds"] = renderSeconds;
-    rankInfo["reduceSeconds"] = reduceTimer.seconds();
-    rankInfo["bytesSent"] = sent;
-    uint64_t moved = 0;
-    nlohmann::ordered_json ranks = gatherRankReports(world, std::move(rankInfo), renderer.context(), moved);
-
-    SampleParallelResult result;
-    if (world.rank() != 0) {
-        result.out = scene::outputFromSums(sums, range.count, mine);
-        return result;
-    }
-    result.out = scene::outputFromSums(sums, p.session.spp, all);
-    result.mpi = {{"ranks", world.size()},
-                  {"distribute", "samples"},
-                  {"bytesMoved", moved},
-                  {"bytesMovedPerPath", all.paths > 0 ? double(moved) / double(all.paths) : 0.0},
-                  {"perRank", std::move(ranks)}};
-    return result;
-}
-
-scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer, const scene::RenderSettings& settings,
-                                        uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
-                                        const std::vector<uint32_t>& snapshotSpp,
-                                        const std::function<void(const scene::RenderOutput&)>& snapshot) {
+SampleShare renderSamples(World& world, render::Renderer& renderer, const scene::RenderSettings& settings,
+                          uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+                          const std::vector<uint32_t>& snapshotSpp,
+                          const std::function<void(const scene::RenderOutput&)>& snapshot) {
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
     std::vector<uint32_t> marks;
     for (uint32_t s : snapshotSpp)
         if (s > 0 && s < spp && (marks.empty() || s > marks.back())) marks.push_back(s);
     marks.push_back(spp);
     scene::AccumulatedSums total;
-    scene::RenderStats mine;
+    SampleShare result;
     uint32_t done = 0;
-    scene::RenderOutput out;
     for (uint32_t mark : marks) {
         const SampleRange share = sampleRange(mark - done, world.rank(), world.size());
+        if (done == 0) result.firstSample = share.first;
+        result.samples += share.count;
         std::string error;
+        const Timer render;
         try {
             renderer.setSettings(settings);
             renderer.setFirstSample(done + share.first);
@@ -123,25 +80,55 @@ scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer
             else
                 for (size_t i = 0; i < part.values.size(); ++i) total.values[i] += part.values[i];
             const scene::RenderStats& s = renderer.stats();
-            mine.paths += s.paths;
-            mine.gpuSeconds += s.gpuSeconds;
-            for (size_t k = 0; k < s.counters.size(); ++k) mine.counters[k] += s.counters[k];
+            result.mine.paths += s.paths;
+            result.mine.gpuSeconds += s.gpuSeconds;
+            for (size_t k = 0; k < s.counters.size(); ++k) result.mine.counters[k] += s.counters[k];
         } catch (const std::exception& e) {
             error = e.what();
         }
+        result.renderSeconds += render.seconds();
         Failure f = world.agree(error, {}, 20, false);
         if (f.fatal) throw PeerFailed(std::move(f));
         AMRVK_CHECK(f.rank < 0, "rank ", f.rank, " of ", world.size(), ": ",
                     f.message.empty() ? std::string("failed") : f.message);
+        const Timer reduce;
         std::vector<double> sums = total.values;
-        uint64_t sent = world.sumEverywhere(sums);
-        const scene::RenderStats all = statsOverRanks(world, mine, sent);
-        out =
+        result.bytesSent += world.sumEverywhere(sums);
+        const scene::RenderStats all = statsOverRanks(world, result.mine, result.bytesSent);
+        result.out =
             scene::outputFromSums({.width = total.width, .height = total.height, .values = std::move(sums)}, mark, all);
+        result.reduceSeconds += reduce.seconds();
         done = mark;
-        if (snapshot && std::find(snapshotSpp.begin(), snapshotSpp.end(), mark) != snapshotSpp.end()) snapshot(out);
+        if (snapshot && std::find(snapshotSpp.begin(), snapshotSpp.end(), mark) != snapshotSpp.end()) snapshot(result.out);
     }
-    return out;
+    return result;
+}
+
+SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
+                                          const std::function<void(uint32_t, uint32_t)>& progress) {
+    world.checkpoint();  // every rank has its picture (or one failed: all stop here, nothing written)
+    world.requireSame(pictureFingerprint(p.session), "the picture (data, options or fitted choices)");
+    world.requireSame(p.volume->model.cellCount(), "the data set (cell count)");
+    render::Renderer& renderer = *p.renderer;
+    SampleShare share = renderSamples(world, renderer, renderer.settings(), p.session.spp, progress);
+    rankInfo["firstSample"] = share.firstSample;
+    rankInfo["samples"] = share.samples;
+    rankInfo["paths"] = share.mine.paths;
+    rankInfo["gpuSeconds"] = share.mine.gpuSeconds;
+    rankInfo["renderSeconds"] = share.renderSeconds;
+    rankInfo["reduceSeconds"] = share.reduceSeconds;
+    rankInfo["bytesSent"] = share.bytesSent;
+    uint64_t moved = 0;
+    nlohmann::ordered_json ranks = gatherRankReports(world, std::move(rankInfo), renderer.context(), moved);
+    SampleParallelResult result;
+    result.out = std::move(share.out);
+    if (world.rank() == 0)
+        result.mpi = {{"ranks", world.size()},
+                      {"distribute", "samples"},
+                      {"bytesMoved", moved},
+                      {"bytesMovedPerPath", result.out.stats.paths > 0 ? double(moved) / double(result.out.stats.paths) : 0.0},
+                      {"perRank", std::move(ranks)}};
+    return result;
 }
 
 }  // namespace amrvk::mpi

@@ -1,10 +1,11 @@
 #pragma once
 // Sample-parallel rendering (mpirun -n N amrvk render): every rank holds the whole data set and
 // traces a disjoint range of the sample indices one process would trace (each sample is seeded by
-// its index); the double sums of the ranks are added on rank 0, so N ranks give the image of one
-// process with the same seed and spp up to float rounding (docs/mpi.md).
+// its index); the double sums of the ranks are added up, so N ranks give the image of one process
+// with the same seed and spp up to float rounding (docs/mpi.md).
 #include <cstdint>
 #include <functional>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "mpi/world.h"
@@ -33,27 +34,35 @@ scene::RenderStats statsOverRanks(World& world, const scene::RenderStats& mine, 
 nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json rankInfo, gpu::Context& ctx,
                                          uint64_t& moved);
 
-struct SampleParallelResult {
-    scene::RenderOutput out;     // rank 0: every rank's samples; other ranks: their own
-    nlohmann::ordered_json mpi;  // rank 0: the "mpi" block of --json (per-rank work and bytes)
-};
-
-// Renders this rank's range of p.session.spp (progress(done, count) on rank 0), then adds every
-// rank's sums on rank 0. Calls world.checkpoint() before the first collective, so a rank that
-// failed earlier ends the job cleanly. `rankInfo` is this rank's part of the report (read and
-// build seconds, ...), gathered with the render's own numbers.
-SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
-                                          const std::function<void(uint32_t, uint32_t)>& progress = {});
-
 // Renderer::render (settings, from scratch, snapshots at snapshotSpp) with the samples split over
 // the ranks at each step between snapshots: every rank gets the image of all samples so far at each
 // snapshot and at the end (the sums added on every rank), so every rank takes the same decisions
 // after it. Collective: every rank calls it for the same picture. A rank's error fails the call on
-// every rank (amrvk::Error naming the rank); a rank that left the job throws PeerFailed. What
-// `amrvk bench` renders under mpirun.
-scene::RenderOutput renderSamplesShared(World& world, render::Renderer& renderer, const scene::RenderSettings& settings,
-                                        uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
-                                        const std::vector<uint32_t>& snapshotSpp,
-                                        const std::function<void(const scene::RenderOutput&)>& snapshot);
+// every rank (amrvk::Error naming the rank); a rank that left the job throws PeerFailed. The one
+// sample-parallel driver: `amrvk render` and `amrvk bench` under mpirun.
+struct SampleShare {
+    scene::RenderOutput out;  // every rank's samples (the statistics summed over the ranks)
+    scene::RenderStats mine;  // this rank's paths and counters
+    uint32_t firstSample = 0, samples = 0;  // this rank's first sample index and how many it traced
+    double renderSeconds = 0, reduceSeconds = 0;
+    uint64_t bytesSent = 0;  // what this rank contributed to the reductions
+};
+SampleShare renderSamples(World& world, render::Renderer& renderer, const scene::RenderSettings& settings, uint32_t spp,
+                          const std::function<void(uint32_t, uint32_t)>& progress,
+                          const std::vector<uint32_t>& snapshotSpp = {},
+                          const std::function<void(const scene::RenderOutput&)>& snapshot = {});
+
+struct SampleParallelResult {
+    scene::RenderOutput out;     // every rank's samples
+    nlohmann::ordered_json mpi;  // rank 0: the "mpi" block of --json (per-rank work and bytes)
+};
+
+// `amrvk render` under mpirun: checks that every rank fitted the same picture, renders
+// p.session.spp samples per pixel with renderSamples (progress(done, spp) on rank 0) and gathers
+// the per-rank report. Calls world.checkpoint() before the first collective, so a rank that failed
+// earlier ends the job cleanly. `rankInfo` is this rank's part of the report (read and build
+// seconds, ...), gathered with the render's own numbers.
+SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
+                                          const std::function<void(uint32_t, uint32_t)>& progress = {});
 
 }  // namespace amrvk::mpi

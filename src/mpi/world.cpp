@@ -47,18 +47,6 @@ void inPieces(size_t count, Call call) {
     for (size_t at = 0; at < count; at += kPiece) call(at, int(std::min(kPiece, count - at)));
 }
 
-// Sums over the ranks into rank 0's copy; returns the bytes this rank sent.
-template <typename T>
-uint64_t sumPieces(std::vector<T>& values, MPI_Datatype type, int rank) {
-    inPieces(values.size(), [&](size_t at, int n) {
-        void* data = values.data() + at;
-        check(MPI_Reduce(rank == 0 ? MPI_IN_PLACE : data, rank == 0 ? data : nullptr, n, type, MPI_SUM, 0,
-                         MPI_COMM_WORLD),
-              "MPI_Reduce");
-    });
-    return rank == 0 ? 0 : uint64_t(values.size() * sizeof(T));
-}
-
 // `op` over the ranks, the result on every rank; returns the bytes this rank contributed.
 template <typename T>
 uint64_t allPieces(T* data, size_t count, MPI_Datatype type, MPI_Op op) {
@@ -125,7 +113,6 @@ void World::checkpoint() {
     if (f.rank >= 0) throw PeerFailed(std::move(f));
 }
 
-uint64_t World::sumToRoot(std::vector<double>& values) { return sumPieces(values, MPI_DOUBLE, mRank); }
 
 std::vector<std::string> World::gatherToRoot(const std::string& text) {
     AMRVK_CHECK(text.size() < size_t(INT_MAX / 2), "internal: gathered text too long");

@@ -51,9 +51,6 @@ public:
     // agree("") that throws PeerFailed when another rank failed.
     void checkpoint();
 
-    // Adds `values` over every rank into rank 0's copy (the others' stay as they were). Every rank
-    // passes the same count. Returns the bytes this rank sent.
-    uint64_t sumToRoot(std::vector<double>& values);
     // Rank 0: every rank's text, in rank order (others: empty).
     std::vector<std::string> gatherToRoot(const std::string& text);
     // Largest value over ranks, on every rank.
