@@ -19,6 +19,7 @@
 
 #if AMRVK_MPI
 #include "mpi/sample_parallel.h"
+#include "scene/limits.h"
 #endif
 
 namespace amrvk::cli {
@@ -108,7 +109,7 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
         ->type_name("N");
     app.add_option("--reference-spp", refSpp,
                    "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)")
-        ->check(interval(2, 1 << 24))
+        ->check(interval(2, scene::kMaxSpp))
         ->type_name("N");
     app.add_option("--target-rmse", targetRmse,
                    "RMSE whose time is reported (default: half the first combination's 1-spp RMSE)")

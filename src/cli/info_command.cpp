@@ -20,6 +20,7 @@
 #include "core/strings.h"
 #include "scene/majorant_check.h"
 #include "scene/volume.h"
+#include "scene/limits.h"
 
 namespace amrvk::cli {
 
@@ -149,7 +150,7 @@ int runInfo(const std::vector<std::string>& argv) {
         ->expected(2)
         ->type_name("LO HI");
     app.add_option("--kd-leaves", kdLeaves, "--check-majorants: leaves of the kd-trees")
-        ->check(interval(1, (1 << 24) - 1))
+        ->check(interval(1, scene::kMaxKdLeaves))
         ->capture_default_str()
         ->type_name("N");
     if (!parseCommandLine(app, argv)) return 0;

@@ -9,6 +9,7 @@
 
 #include "core/checked_size.h"
 #include "core/error.h"
+#include "scene/limits.h"
 
 namespace amrvk::cli {
 
@@ -253,7 +254,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->capture_default_str()
             ->type_name("sw|rq|auto");
         app.add_option("--spp", a.spp, "samples per pixel")
-            ->check(interval(1, 1 << 24))
+            ->check(interval(1, scene::kMaxSpp))
             ->capture_default_str()
             ->type_name("N");
         app.add_flag("--legend", a.legend,
@@ -287,20 +288,20 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")
-        ->check(interval(1, (1 << 24) - 1))
+        ->check(interval(1, scene::kMaxKdLeaves))
         ->capture_default_str()
         ->type_name("N");
     app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")
         ->check(interval(1, 1 << 20))
         ->capture_default_str()
         ->type_name("MIB");
-    app.add_option("--size", a.size, "image size, 1..16384 per side")->capture_default_str()->type_name("WxH");
+    app.add_option("--size", a.size, strCat("image size, 1..", scene::kMaxImageSide, " per side"))->capture_default_str()->type_name("WxH");
     app.add_option("--camera", a.camera, "eye, target and up in world space (default: a three-quarter view)")
         ->expected(9)
         ->check(kFinite)
         ->type_name("EX EY EZ TX TY TZ UX UY UZ");
     app.add_option("--fov", a.fov, "vertical field of view in degrees")
-        ->check(interval(0, 180, true, true))
+        ->check(interval(0, scene::kMaxFovDegrees, true, true))
         ->capture_default_str()
         ->type_name("DEG");
     app.add_option("--seed", a.seed, "random seed")
@@ -379,8 +380,9 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
     int a = 0, b = 0;
     char x = 0, tail = 0;
     const int n = std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &tail);
-    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= 16384 && b <= 16384, option, " '", text,
-                "': expected WxH with 1 <= W, H <= 16384");
+    AMRVK_CHECK(n == 3 && (x == 'x' || x == 'X') && a > 0 && b > 0 && a <= scene::kMaxImageSide &&
+                    b <= scene::kMaxImageSide,
+                option, " '", text, "': expected WxH with 1 <= W, H <= ", scene::kMaxImageSide);
     // Host side: the float RGBA image, its readback copy and the 8-bit output (36 bytes a pixel).
     checkAllocation(uint64_t(a) * uint64_t(b) * 36, strCat(option, " ", text, ": the image"));
     width = a;

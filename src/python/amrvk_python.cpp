@@ -35,6 +35,7 @@
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
 #include "session/session.h"
+#include "scene/limits.h"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -45,7 +46,7 @@ namespace {
 // A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range; anything else
 // is one line naming the keyword and the value (not pybind11's list of signatures).
 uint32_t countArg(const py::handle& o, const char* name) {
-    constexpr long long kMax = 1 << 24;
+    constexpr long long kMax = scene::kMaxSpp;
     const std::string shown = py::repr(o).cast<std::string>();
     if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
         throw py::type_error(strCat(name, ": expected a whole number in [1, ", kMax, "], got ", shown));

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/strings.h"
 #include "shared/render_params.h"
+#include "scene/limits.h"
 
 namespace amrvk::scene {
 
@@ -20,8 +21,8 @@ bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && s
 }  // namespace
 
 void validateSettings(const RenderSettings& s) {
-    AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= 16384 && s.height <= 16384, "--size ", s.width, "x",
-                s.height, " is outside 1..16384");
+    AMRVK_CHECK(s.width > 0 && s.height > 0 && s.width <= kMaxImageSide && s.height <= kMaxImageSide, "--size ",
+                s.width, "x", s.height, " is outside 1..", kMaxImageSide);
     AMRVK_CHECK(s.densityScale >= 0 && std::isfinite(s.densityScale), "--density-scale ", s.densityScale,
                 " must be finite and >= 0");
     AMRVK_CHECK(s.dvrStep > 0 && std::isfinite(s.dvrStep), "--dt ", s.dvrStep, " must be finite and > 0");
@@ -41,8 +42,8 @@ void validateSettings(const RenderSettings& s) {
                     "radiance >= 0");
         AMRVK_CHECK(L.point || glm::length(L.posOrDir) > 0, "--light-dir: the direction 0 0 0 points nowhere");
     }
-    AMRVK_CHECK(s.camera.fovYDegrees > 0 && s.camera.fovYDegrees < 180, "--fov ", s.camera.fovYDegrees,
-                " is outside (0, 180)");
+    AMRVK_CHECK(validFov(s.camera.fovYDegrees), "--fov ", s.camera.fovYDegrees, " is outside (0, ", kMaxFovDegrees,
+                ")");
     AMRVK_CHECK(finite(s.camera.eye) && finite(s.camera.target) && finite(s.camera.up),
                 "--camera: eye, target and up must be finite");
     validateCutAway(s.cut);

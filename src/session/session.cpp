@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json_text.h"
+#include "scene/limits.h"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -195,17 +196,17 @@ Session parseSession(const std::string& text, const fs::path& path) {
     rs.camera.target = cam.vector("target");
     rs.camera.up = cam.vector("up");
     rs.camera.fovYDegrees = cam.number("fovY", 40.0);
-    AMRVK_CHECK(rs.camera.fovYDegrees > 0 && rs.camera.fovYDegrees < 180, cam.where(), ".fovY: ",
-                rs.camera.fovYDegrees, " is outside (0, 180)");
+    AMRVK_CHECK(scene::validFov(rs.camera.fovYDegrees), cam.where(), ".fovY: ", rs.camera.fovYDegrees,
+                " is outside (0, ", scene::kMaxFovDegrees, ")");
     const Reader image = top.child("image");
-    rs.width = int(image.integer("width", 1, 16384));
-    rs.height = int(image.integer("height", 1, 16384));
+    rs.width = int(image.integer("width", 1, scene::kMaxImageSide));
+    rs.height = int(image.integer("height", 1, scene::kMaxImageSide));
 
     // Every render.* key is optional, so the object is too.
     const Json noRender = Json::object();
     const Reader r = top.has("render") ? top.child("render") : Reader(noRender, file + ".render");
     rs.mode = r.named("mode", "ms", scene::parseMode);
-    s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, 1 << 24) : 64);
+    s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, scene::kMaxSpp) : 64);
     rs.seed = uint32_t(r.has("seed") ? r.integer("seed", 0, UINT32_MAX) : 1);
     rs.densityScale = r.number("densityScale", 1.0);
     AMRVK_CHECK(rs.densityScale >= 0, r.where(), ".densityScale: ", rs.densityScale, " must be >= 0");
@@ -272,7 +273,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
         s.structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
         s.structure.backend = st.named("backend", "auto", scene::parseBackend);
         s.structure.grid = st.text("grid", "auto");
-        if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, (int64_t(1) << 24) - 1));
+        if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, scene::kMaxKdLeaves));
         if (st.has("denseMaxMiB")) s.structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
         try {
             s.structure.validate();

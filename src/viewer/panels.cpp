@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/limits.h"
 
 namespace amrvk::viewer {
 
@@ -321,7 +322,7 @@ void structurePanel(PanelState& p, PanelRequests& r) {
     if (ImGui::InputText("macrocell grid", &p.gridText, ImGuiInputTextFlags_EnterReturnsTrue)) r.gridEntered = true;
     int leaves = int(c.kdLeaves);
     if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue))
-        c.kdLeaves = uint32_t(std::clamp(leaves, 1, (1 << 24) - 1));
+        c.kdLeaves = uint32_t(std::clamp(leaves, 1, int(scene::kMaxKdLeaves)));
     if (!p.structureError.empty()) wrapped(&kRed, "not applied: " + p.structureError);
 }
 
