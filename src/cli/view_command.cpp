@@ -40,7 +40,7 @@ int runView(const std::vector<std::string>& argv) {
     PictureArgs pic;
     DeviceArgs dev;
     viewer::ViewerOptions vo;
-    std::string screenshot, script, stats, saveSession;
+    std::string screenshot, script, stats, state, saveSession;
     int64_t frames = 0;
     double budgetMs = 50;
     std::string window;
@@ -62,6 +62,11 @@ int runView(const std::vector<std::string>& argv) {
         ->type_name("FILE");
     app.add_option("--stats", stats, "at exit, write frame times and times to the first full sample as JSON")
         ->type_name("FILE");
+    app.add_option("--state-file", state,
+                   "after every frame, rewrite FILE with the live state as JSON, one member a line: frame, "
+                   "samples, camera, layout, the panel's widgets, input taken (for programs and tests that "
+                   "drive the window; docs/viewer.md)")
+        ->type_name("FILE");
     app.add_option("--frame-budget-ms", budgetMs,
                    "target frame time; the path tracer gets what the UI and display leave of it")
         ->check(interval(1, 10000))
@@ -79,7 +84,7 @@ int runView(const std::vector<std::string>& argv) {
     }
     // Every output checked before any work: writable, distinct, none of them an input.
     const std::vector<NamedPath> outputs = {
-        {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}};
+        {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}, {"--state-file", state}};
     checkOutputs(outputs, pictureInputs(app, input, pic, {{"--script", script}}));
     vo.start = describePicture(app, input, read, pic);
     // A PNG screenshot with the legend needs its font: checked before anything is read.
@@ -98,6 +103,7 @@ int runView(const std::vector<std::string>& argv) {
     vo.screenshot = screenshot;
     vo.script = script;
     vo.statsJson = stats;
+    vo.stateJson = state;
     vo.saveSession = saveSession;
     vo.shaderDir = dev.shaderDir;
     vo.context = dev.context;

@@ -22,6 +22,21 @@ ImVec2 framebufferScale() {
             io.DisplayFramebufferScale.y > 0 ? io.DisplayFramebufferScale.y : 1.0f};
 }
 
+// The last widget's rectangle under `name` in PanelState::widgets, when it is on screen.
+void noteWidget(PanelState& p, const std::string& name) {
+    if (!ImGui::IsItemVisible()) return;
+    const ImVec2 s = framebufferScale(), lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const int x0 = int(std::lround(lo.x * s.x)), y0 = int(std::lround(lo.y * s.y));
+    p.widgets.push_back({name, {x0, y0, int(std::lround(hi.x * s.x)) - x0, int(std::lround(hi.y * s.y)) - y0}});
+}
+
+// A collapsing section header, noted as "NAME header"; true when the section is open.
+bool section(PanelState& p, const char* name, ImGuiTreeNodeFlags flags = 0) {
+    const bool open = ImGui::CollapsingHeader(name, flags);
+    noteWidget(p, std::string(name) + " header");
+    return open;
+}
+
 // Combo over a fixed list of names; true when the choice changed.
 bool namedCombo(const char* label, std::string& value, const std::vector<std::string>& names) {
     bool changed = false;
@@ -342,6 +357,7 @@ void cameraPanel(PanelState& p, PanelRequests& r) {
     if (ImGui::Checkbox("image size = picture area", &p.imageFollowsWindow) && !p.imageFollowsWindow)
         p.message = "image size kept at " + std::to_string(p.edit.settings.width) + "x" +
                     std::to_string(p.edit.settings.height);
+    noteWidget(p, "image size = picture area");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("the rendered image (and so the camera's aspect) follows the picture area, pixel for pixel");
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
@@ -370,6 +386,7 @@ void drawPanels(PanelState& p, PanelRequests& r) {
     const ImVec2 scale = framebufferScale();
     const float sx = scale.x, sy = scale.y;
     const session::PixelRect& pr = p.panelRect;
+    p.widgets.clear();
     if (pr.empty()) return;
     const float height = float(pr.height) / sy;
     // Placed when the layout moves it; in between ImGui keeps what the user dragged it to, and the
@@ -390,13 +407,13 @@ void drawPanels(PanelState& p, PanelRequests& r) {
         const ImGuiStyle& style = ImGui::GetStyle();
         const float labels = ImGui::CalcTextSize("stop at spp (0: never)").x + style.ItemInnerSpacing.x * 2;
         ImGui::PushItemWidth(-labels);
-        if (ImGui::CollapsingHeader("statistics", ImGuiTreeNodeFlags_DefaultOpen)) statisticsPanel(*p.stats);
-        if (ImGui::CollapsingHeader("transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
-        if (ImGui::CollapsingHeader("render")) renderPanel(p);
-        if (ImGui::CollapsingHeader("cut-away")) cutAwayPanel(p);
-        if (ImGui::CollapsingHeader("structures")) structurePanel(p, r);
-        if (ImGui::CollapsingHeader("camera")) cameraPanel(p, r);
-        if (ImGui::CollapsingHeader("files")) filesPanel(p, r);
+        if (section(p, "statistics", ImGuiTreeNodeFlags_DefaultOpen)) statisticsPanel(*p.stats);
+        if (section(p, "transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
+        if (section(p, "render")) renderPanel(p);
+        if (section(p, "cut-away")) cutAwayPanel(p);
+        if (section(p, "structures")) structurePanel(p, r);
+        if (section(p, "camera")) cameraPanel(p, r);
+        if (section(p, "files")) filesPanel(p, r);
         if (!p.shaderError.empty()) wrapped(&kRed, "shader: " + p.shaderError);
         if (!p.message.empty()) wrapped(nullptr, p.message);
         ImGui::PopItemWidth();

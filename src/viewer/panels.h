@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "session/histogram.h"
@@ -65,6 +66,9 @@ struct PanelState {
     glm::dvec3 worldLo{0.0}, worldHi{1.0};         // the data's world bounds (cut-away ranges and handles)
     std::optional<scene::CropBox> cropMemory;      // the crop box while it is switched off (not lost)
     bool imageFollowsWindow = false;               // the image size follows the picture area (camera aspect included)
+    // out: where the section headers ("camera header", ...) and the "image size = picture area"
+    // checkbox were drawn this frame, those on screen only (framebuffer pixels; --state-file).
+    std::vector<std::pair<std::string, session::PixelRect>> widgets;
 };
 
 // Draws every panel for this frame and fills `requests`.

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <future>
+#include <iterator>
 #include <memory>
 #include <numeric>
 #include <nlohmann/json.hpp>
@@ -55,6 +57,24 @@ using Clock = std::chrono::steady_clock;
 constexpr uint32_t kLetterboxColor = 0xff262626u;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+nlohmann::ordered_json rectJson(const session::PixelRect& r) {
+    return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
+}
+
+// JSON with one member a line, objects of objects opened the same way, every other value on its
+// member's line: still JSON, and a shell script can read a member with grep (--state-file).
+std::string memberPerLine(const nlohmann::ordered_json& j, const std::string& indent = "") {
+    std::string text = "{\n";
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        bool nested = it->is_object() && !it->empty();
+        if (nested)
+            for (const auto& m : *it) nested = nested && m.is_object();
+        text += indent + "  " + nlohmann::ordered_json(it.key()).dump() + ": " +
+                (nested ? memberPerLine(*it, indent + "  ") : it->dump()) + (std::next(it) == j.end() ? "\n" : ",\n");
+    }
+    return text + indent + "}";
+}
 
 // Frame times and the time from each change to the first complete full-resolution sample.
 struct Timings {
@@ -128,6 +148,9 @@ private:
     void copyCommand();
     void finishSample();
     void writeStats() const;
+    // The live state for programs that drive the window (--state-file, docs/viewer.md): after
+    // every frame and when a rebuild starts beside the event loop.
+    void writeState() const;
 
     ViewerOptions mOpt;
     std::unique_ptr<Window> mWindow;
@@ -181,6 +204,13 @@ private:
     std::vector<Reset> mResets;
     gpu::Buffer mCaptureBuffer;
     double mLastX = 0, mLastY = 0;
+    // Input events handleInput has taken so far, by kind, and the mouse buttons they leave held
+    // (bit i: GLFW button i): what a driving program waits on (--state-file).
+    struct InputSeen {
+        uint64_t keys = 0, buttons = 0, cursor = 0, scroll = 0;
+        unsigned held = 0;
+    } mInputSeen;
+    bool mBuilding = false;             // whileResponsive is running a rebuild beside the event loop
     std::unique_ptr<Font> mLegendFont;  // the PNG legend's font, opened at the first screenshot with the legend
     std::string mLegendFontFile;        // the legend.font it was opened for
 };
@@ -308,6 +338,8 @@ void ViewerApp::noteReset(const std::string& what) {
 
 void ViewerApp::whileResponsive(const std::function<void()>& work) {
     if (!mWindow) return work();
+    mBuilding = true;
+    if (!mOpt.stateJson.empty()) writeState();  // before the job: it reads the renderer
     // The main thread touches neither the scene, the renderer nor the Vulkan queue until the job ends.
     std::future<void> job = std::async(std::launch::async, work);
     while (job.wait_for(std::chrono::milliseconds(0)) != std::future_status::ready) {
@@ -322,6 +354,7 @@ void ViewerApp::whileResponsive(const std::function<void()>& work) {
             std::fprintf(stderr, "amrvk view: closing when the build in progress returns\n");
         }
     }
+    mBuilding = false;
     job.get();  // rethrows the build's error
 }
 
@@ -371,6 +404,7 @@ int ViewerApp::run() {
         (mInteracting ? mTimings.interactiveFrames : mTimings.idleFrames).push_back(seconds);
         updateStatistics(seconds);
         ++mFrame;
+        if (!mOpt.stateJson.empty()) writeState();
     }
     if (!mOpt.screenshot.empty()) screenshot(mOpt.screenshot);
     if (!mOpt.saveSession.empty()) saveSessionFile(mOpt.saveSession);
@@ -532,6 +566,11 @@ void ViewerApp::handleInput() {
     for (const InputEvent& e : mWindow->takeEvents()) {
         switch (e.kind) {
             case InputEvent::Kind::Button:
+                ++mInputSeen.buttons;
+                if (e.code >= 0 && e.code < 32) {
+                    if (e.action == GLFW_PRESS) mInputSeen.held |= 1u << e.code;
+                    if (e.action == GLFW_RELEASE) mInputSeen.held &= ~(1u << e.code);
+                }
                 // A left press on a crop-box handle drags that face (docs/cut-aways.md), not the camera.
                 if (e.action == GLFW_PRESS && e.code == GLFW_MOUSE_BUTTON_LEFT && mDragButton < 0 && !uiMouse &&
                     overPicture(e.x, e.y) && rs.cut.crop) {
@@ -553,6 +592,7 @@ void ViewerApp::handleInput() {
                 }
                 break;
             case InputEvent::Kind::Cursor:
+                ++mInputSeen.cursor;
                 if (mDragButton >= 0 && mCutFace >= 0 && mState.settings.cut.crop) {
                     // The face follows the pointer along its normal, inside the data, never past the
                     // opposite face (a thousandth of the box's diagonal apart at least).
@@ -577,9 +617,11 @@ void ViewerApp::handleInput() {
                 mLastY = e.y;
                 break;
             case InputEvent::Kind::Scroll:
+                ++mInputSeen.scroll;
                 if (!uiMouse && e.y != 0 && overPicture(mLastX, mLastY)) mOrbit.zoom(mState.settings.camera, e.y);
                 break;
             case InputEvent::Kind::Key:
+                ++mInputSeen.keys;
                 if (uiKeys || e.action == GLFW_RELEASE) break;
                 switch (e.code) {
                     case GLFW_KEY_LEFT:
@@ -983,16 +1025,42 @@ void ViewerApp::writeStats() const {
                           {"inRange", inRange}, {"cells", cells}};
     }
     // The last frame's layout (framebuffer pixels, session/viewer_layout.h); with a window only.
-    if (mWindow) {
-        auto rect = [](const session::PixelRect& r) {
-            return nlohmann::ordered_json{{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
-        };
-        j["layout"] = {{"window", rect(mLayout.window)},
-                       {"panel", rect(mLayout.panel)},
-                       {"area", rect(mLayout.area)},
-                       {"picture", rect(mLayout.picture)}};
-    }
+    if (mWindow)
+        j["layout"] = {{"window", rectJson(mLayout.window)},
+                       {"panel", rectJson(mLayout.panel)},
+                       {"area", rectJson(mLayout.area)},
+                       {"picture", rectJson(mLayout.picture)}};
     writeFileAtomic(mOpt.statsJson, j.dump(2) + "\n");
+}
+
+void ViewerApp::writeState() const {
+    nlohmann::ordered_json j;
+    j["frame"] = mFrame;  // frames completed (input, trace, present)
+    j["building"] = mBuilding;
+    j["spp"] = mRenderer ? mRenderer->accumulatedSpp() : 0u;  // complete full-resolution samples
+    j["previewScale"] = mPreviewScale;                         // > 1: the last frame showed a preview
+    j["image"] = {{"width", mState.settings.width}, {"height", mState.settings.height}};  // pixels
+    j["imageFollowsPicture"] = mPanel.imageFollowsWindow;
+    const scene::Camera& c = mState.settings.camera;  // world space
+    auto vec = [](const glm::dvec3& v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
+    j["camera"] = {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fovY", c.fovYDegrees}};
+    if (mWindow) {
+        // The last cursor position taken (window coordinates, rounded) and the buttons held.
+        j["pointer"] = {{"x", std::lround(mLastX)}, {"y", std::lround(mLastY)}, {"held", mInputSeen.held}};
+        j["events"] = {{"keys", mInputSeen.keys},
+                       {"buttons", mInputSeen.buttons},
+                       {"cursor", mInputSeen.cursor},
+                       {"scroll", mInputSeen.scroll}};
+        // This frame's layout and the panel's named widgets on screen (framebuffer pixels).
+        j["layout"] = {{"window", rectJson(mLayout.window)},
+                       {"panel", rectJson(mLayout.panel)},
+                       {"area", rectJson(mLayout.area)},
+                       {"picture", rectJson(mLayout.picture)}};
+        nlohmann::ordered_json widgets = nlohmann::ordered_json::object();
+        for (const auto& [name, r] : mPanel.widgets) widgets[name] = rectJson(r);
+        j["widgets"] = widgets;
+    }
+    writeFileAtomic(mOpt.stateJson, memberPerLine(j) + "\n");
 }
 
 }  // namespace

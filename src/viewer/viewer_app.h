@@ -24,6 +24,7 @@ struct ViewerOptions {
     std::filesystem::path script;           // frame-numbered actions (session/script.h)
     std::filesystem::path shaderDir;        // watched: a saved edit recompiles and swaps the pipeline
     std::filesystem::path statsJson;        // at exit: frame times, times to the first full sample, resets
+    std::filesystem::path stateJson;        // after every frame: the live state (frame, camera, layout, input seen)
     std::filesystem::path saveSession;      // at exit: the state as a session file
     gpu::ContextOptions context;            // with validation, any validation error makes the exit status 1
     double frameBudgetSeconds = 0.05;       // target frame time; path tracing gets what the UI leaves of it

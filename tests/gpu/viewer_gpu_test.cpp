@@ -12,6 +12,8 @@
 // histogram to log10 of the field's range (computed here from the file), the floor floors it,
 // sessions record it, loading a session on another scale reads again, one with another NaN policy
 // is refused with the reason, and a field with no positive value is refused with its reason.
+// The window tests drive the viewer with xdotool and wait only on the state it reports
+// (--state-file, tests/viewer_drive.sh), never a fixed pause: they pass on a loaded machine.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,6 +53,19 @@ fs::path scratchWithShaders(const std::string& name) {
     fs::create_directories(dir);
     fs::copy(fs::path(AMRVK_SOURCE_DIR) / "shaders", dir / "shaders", fs::copy_options::recursive);
     return dir;
+}
+
+// A driver script for a window test, run as `bash drive.sh AMRVK INPUT DIR` on a display of its
+// own: `amrvk view INPUT viewArgs --state-file DIR/state.json` in the background under a
+// `limitSeconds` timeout (a lost key fails the test, it does not hang it), then `body`, which
+// drives it with tests/viewer_drive.sh: every wait on the state the viewer reports, never a sleep.
+std::string driveScript(const std::string& viewArgs, const std::string& body, int limitSeconds = 300) {
+    return "set -u\n"
+           ". '" + std::string(AMRVK_SOURCE_DIR) + "/tests/viewer_drive.sh'\n"
+           "STATE=\"$3/state.json\"\n"
+           "rm -f \"$STATE\"\n"  // not a previous run's
+           "timeout " + std::to_string(limitSeconds) + " \"$1\" view \"$2\" " + viewArgs +
+           " --state-file \"$STATE\" --validation & VIEWER=$!\n" + body;
 }
 
 bool onPath(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
@@ -93,6 +108,15 @@ scene::RenderOutput withVarianceOf(const Image& image, const scene::RenderOutput
 }
 
 nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(test::readAll(p)); }
+
+// A rectangle of the viewer's layout (--stats, --state-file: framebuffer pixels, half-open).
+struct Rect {
+    int x, y, width, height;
+    bool contains(int px, int py) const { return px >= x && py >= y && px < x + width && py < y + height; }
+};
+Rect rectOf(const nlohmann::json& j) {
+    return {j["x"].get<int>(), j["y"].get<int>(), j["width"].get<int>(), j["height"].get<int>()};
+}
 
 class ViewerGpu : public test::GpuTest {
 protected:
@@ -272,21 +296,19 @@ TEST_F(ViewerGpu, RealMouseDragTurnsTheCameraAndAKeyQuits) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-mouse";
     fs::create_directories(dir);
+    // From 30 pixels left of the picture's centre, 60 then 110 pixels right and 20 then 30 down,
+    // each step taken by the viewer before the next.
     test::writeAll(dir / "drive.sh",
-                   "set -u\n"
-                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\" "
-                   "--validation & pid=$!\n"
-                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"  // a lost key fails, not hangs
-                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
-                   "done\n"
-                   "sleep 3\n"  // the first frames (pipeline compiles) are slow on a CPU device
-                   // Inside the picture (x < 360, 165 <= y < 435 beside the default panel).
-                   "xdotool mousemove 150 300 mousedown 1 mousemove 210 320 mousemove 260 330 mouseup 1\n"
-                   "sleep 1\n"
-                   "xdotool key q\n"
-                   "wait $pid; rc=$?\n"
-                   "kill $watchdog 2>/dev/null\n"
-                   "exit $rc\n");
+                   driveScript("--size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\"",
+                               "wait_first_frame\n"
+                               "read -r x y <<<\"$(centre picture)\"\n"
+                               "move $((x - 30)) $y\n"
+                               "press\n"
+                               "move $((x + 30)) $((y + 20))\n"
+                               "move $((x + 80)) $((y + 30))\n"
+                               "release\n"
+                               "settle\n"
+                               "quit\n"));
     const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) +
                            " " + sample() + " " + dir.string(),
                        dir, "view");
@@ -307,40 +329,38 @@ TEST_F(ViewerGpu, DraggingACropHandleMovesItsFaceNotTheCamera) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-crop-handle";
     fs::create_directories(dir);
-    // The 64x48 image fills 360x270 pixels at (0, 165) beside the default 440-pixel panel of an
-    // 800x600 window (session/viewer_layout.h); the upper x face's handle is found as the viewer
-    // finds it, and the pointer drags it 40 pixels along the face normal's screen direction.
+    // The upper x face's handle is found as the viewer finds it (in the 64x48 image), the driver
+    // puts it in the window through the picture rectangle the viewer reports, and the pointer
+    // drags it 40 pixels along the face normal's screen direction.
     const amr::Model m = amr::readModel(sample(), {});
     const amr::ModelSummary sum = amr::summarize(m);
     const scene::Camera cam = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                                    m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
     const scene::CropBox box{{100, 100, 100}, {400, 400, 400}};
-    const double scale = 360.0 / 64.0;
     const auto handle = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1));
     const auto further = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1) + glm::dvec3(1, 0, 0));
     ASSERT_TRUE(handle && further);
     const glm::dvec2 along = glm::normalize(*further - *handle);
-    const int x0 = int(std::lround(handle->x * scale)), y0 = int(std::lround(165 + handle->y * scale));
-    const int x1 = int(std::lround(x0 + 40 * along.x)), y1 = int(std::lround(y0 + 40 * along.y));
+    const long dx = std::lround(40 * along.x), dy = std::lround(40 * along.y);
     test::writeAll(dir / "drive.sh",
-                   "set -u\n"
-                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --crop 100 100 100 400 400 400 "
-                   "--save-session \"$3/final.json\" --validation & pid=$!\n"
-                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"
-                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; done\n"
-                   "sleep 3\n"
-                   "xdotool mousemove " + std::to_string(x0) + " " + std::to_string(y0) + " sleep 0.3 mousedown 1 sleep 0.3 mousemove " +
-                       std::to_string((x0 + x1) / 2) + " " + std::to_string((y0 + y1) / 2) + " sleep 0.3 mousemove " +
-                       std::to_string(x1) + " " + std::to_string(y1) + " sleep 0.3 mouseup 1\n"
-                   "sleep 1\n"
-                   "xdotool key q\n"
-                   "wait $pid; rc=$?\n"
-                   "kill $watchdog 2>/dev/null\n"
-                   "exit $rc\n");
+                   driveScript("--size 64x48 --window 800x600 --backend sw --grid 32 --crop 100 100 100 400 400 400 "
+                               "--save-session \"$3/final.json\" --stats \"$3/stats.json\"",
+                               "wait_first_frame\n"
+                               "read -r x y <<<\"$(to_window " + std::to_string(handle->x) + " " +
+                                   std::to_string(handle->y) + ")\"\n"
+                               "move $x $y\n"
+                               "press\n"
+                               "move $((x + " + std::to_string(dx) + " / 2)) $((y + " + std::to_string(dy) + " / 2))\n"
+                               "move $((x + " + std::to_string(dx) + ")) $((y + " + std::to_string(dy) + "))\n"
+                               "release\n"
+                               "settle\n"
+                               "quit\n"));
     const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) + " " + sample() + " " +
                            dir.string(),
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const Rect picture = rectOf(readJson(dir / "stats.json")["layout"]["picture"]);
+    const double scale = picture.width / 64.0;  // window pixels per image pixel
     const session::Session s = session::loadSession(dir / "final.json");
     EXPECT_EQ(s.settings.camera, cam) << "a press on a handle does not orbit";
     ASSERT_TRUE(s.settings.cut.crop.has_value());
@@ -361,25 +381,23 @@ TEST_F(ViewerGpu, ClosingDuringALongRebuildHidesTheWindowAtOnce) {
     // A kd-tree of 10^6 leaves over 2 * 10^6 cells: about 15 s of building on a 2-core CPU.
     ASSERT_EQ(run(amrvkBinary() + " gen cloud --cells 2000000 --seed 3 -o " + (dir / "big").string(), dir, "gen"), 0)
         << test::readAll(dir / "gen.err");
+    // The key goes in once the window shows and the viewer reports the build running beside its
+    // event loop (the state it writes as a rebuild starts).
     test::writeAll(dir / "drive.sh",
-                   "set -u\n"
-                   "\"$1\" view \"$2\" --traversal kdtree --kd-leaves 1000000 --size 64x48 --backend sw --validation "
-                   "& pid=$!\n"
-                   "( sleep 300; kill $pid 2>/dev/null ) & watchdog=$!\n"
-                   "for i in $(seq 240); do xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 && break; "
-                   "sleep 0.25; done\n"
-                   "sleep 1\n"
-                   "xdotool key q\n"
-                   // Hidden within 5 s, while the build (about 15 s) still runs.
-                   "for i in $(seq 20); do xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 || break; "
-                   "sleep 0.25; done\n"
-                   "xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1 && echo visible || echo hidden\n"
-                   "kill -0 $pid 2>/dev/null && echo running || echo ended\n"
-                   "wait $pid; rc=$?\n"
-                   "kill $watchdog 2>/dev/null\n"
-                   "exit $rc\n");
+                   driveScript("--traversal kdtree --kd-leaves 1000000 --size 64x48 --backend sw",
+                               "visible() { xdotool search --onlyvisible --name 'amrvk view' >/dev/null 2>&1; }\n"
+                               "building() { [ \"$(state building)\" = true ]; }\n"
+                               "wait_until 'the window' visible\n"
+                               "wait_until 'the build running' building\n"
+                               "xdotool key q\n"
+                               // Hidden within 5 s, while the build (about 15 s) still runs.
+                               "for i in $(seq 20); do visible || break; sleep 0.25; done\n"
+                               "visible && echo visible || echo hidden\n"
+                               "kill -0 $VIEWER 2>/dev/null && echo running || echo ended\n"
+                               "wait $VIEWER\n",
+                               600));
     const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) +
-                           " " + (dir / "big.cells").string(),
+                           " " + (dir / "big.cells").string() + " " + dir.string(),
                        dir, "view");
     const std::string out = test::readAll(dir / "view.out"), err = test::readAll(dir / "view.err");
     ASSERT_EQ(rc, 0) << err;
@@ -398,18 +416,6 @@ TEST_F(ViewerGpu, WithoutADisplayTheErrorSuggestsHeadless) {
     EXPECT_NE(err.find("--headless"), std::string::npos) << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line: " << err;
 }
-
-namespace {
-
-struct Rect {
-    int x, y, width, height;
-    bool contains(int px, int py) const { return px >= x && py >= y && px < x + width && py < y + height; }
-};
-Rect rectOf(const nlohmann::json& j) {
-    return {j["x"].get<int>(), j["y"].get<int>(), j["width"].get<int>(), j["height"].get<int>()};
-}
-
-}  // namespace
 
 // The picture looks past the data at a magenta background (ae: every pixel exactly sRGB 255, 0,
 // 255 from the first sample), so the window capture shows where it is: every pixel of the
@@ -469,36 +475,46 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-drag-beside";
     fs::create_directories(dir);
-    // 800x600 with a 64x48 image: the picture is x < 360, 165 <= y < 435; (150, 500) is below it.
+    // The drag and the wheel start beside the picture: below it, halfway to the window's bottom
+    // edge (the driver records the point and the layout it saw, start.json).
     test::writeAll(dir / "drive.sh",
-                   "set -u\n"
-                   "\"$1\" view \"$2\" --size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\" "
-                   "--stats \"$3/stats.json\" --validation & pid=$!\n"
-                   "( sleep 150; kill $pid 2>/dev/null ) & watchdog=$!\n"
-                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
-                   "done\n"
-                   "sleep 3\n"
-                   "xdotool mousemove 150 500 mousedown 1 mousemove 210 520 mousemove 260 530 mouseup 1\n"
-                   "xdotool mousemove 150 500 click 4 click 4\n"  // the wheel beside the picture
-                   // The panel's left edge (x = 360) dragged 100 pixels left, slowly: ImGui reads
-                   // the pointer once a frame.
-                   "xdotool mousemove 361 300; sleep 0.5; xdotool mousedown 1; sleep 0.5\n"
-                   "for x in 330 300 261; do xdotool mousemove $x 300; sleep 0.5; done\n"
-                   "xdotool mouseup 1\n"
-                   "sleep 1\n"
-                   "xdotool key q\n"
-                   "wait $pid; rc=$?\n"
-                   "kill $watchdog 2>/dev/null\n"
-                   "exit $rc\n");
+                   driveScript("--size 64x48 --window 800x600 --backend sw --grid 32 --save-session \"$3/final.json\" "
+                               "--stats \"$3/stats.json\"",
+                               "wait_first_frame\n"
+                               "cp \"$STATE\" \"$3/start.json\"\n"
+                               "read -r x y <<<\"$(centre picture)\"\n"
+                               "x=$((x - 30)) y=$((($(state picture y) + $(state picture height) + $(state window height)) / 2))\n"
+                               "echo \"$x $y\" >\"$3/beside.txt\"\n"
+                               "move $x $y\n"
+                               "press\n"
+                               "move $((x + 60)) $((y + 20))\n"
+                               "move $((x + 110)) $((y + 30))\n"
+                               "release\n"
+                               "move $x $y\n"
+                               "wheel_up 2\n"
+                               // The panel's left edge dragged 100 pixels left, a step at a time:
+                               // ImGui reads the pointer once a frame.
+                               "x=$(($(state panel x) + 1)) y=$(($(state panel y) + $(state panel height) / 2))\n"
+                               "move $x $y\n"
+                               "settle\n"
+                               "press\n"
+                               "for dx in 31 61 100; do move $((x - dx)) $y; done\n"
+                               "release\n"
+                               "settle\n"
+                               "quit\n"));
     const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary()) + " " + sample() +
                            " " + dir.string(),
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
-    const nlohmann::json layout = readJson(dir / "stats.json")["layout"];
+    const nlohmann::json seen = readJson(dir / "start.json")["layout"], layout = readJson(dir / "stats.json")["layout"];
+    int bx = -1, by = -1;
+    std::ifstream(dir / "beside.txt") >> bx >> by;
+    ASSERT_TRUE(rectOf(seen["window"]).contains(bx, by)) << bx << " " << by << " " << seen.dump();
+    ASSERT_FALSE(rectOf(seen["picture"]).contains(bx, by)) << "the drag must start beside the picture";
+    ASSERT_FALSE(rectOf(seen["panel"]).contains(bx, by)) << "the drag must start beside the picture";
     const Rect picture = rectOf(layout["picture"]), panel = rectOf(layout["panel"]);
-    ASSERT_FALSE(picture.contains(150, 500)) << "the drag must start beside the picture";
-    // The panel took the drag of its edge (440 -> about 540 pixels) and the picture moved aside.
-    EXPECT_NEAR(panel.width, 540, 8) << layout.dump();
+    // The panel took the drag of its edge (about 100 pixels wider) and the picture moved aside.
+    EXPECT_NEAR(panel.width, rectOf(seen["panel"]).width + 100, 8) << layout.dump();
     EXPECT_EQ(panel.x + panel.width, 800);
     EXPECT_LE(picture.x + picture.width, panel.x);
     const session::Session s = session::loadSession(dir / "final.json");
@@ -510,29 +526,20 @@ TEST_F(ViewerGpu, ADragBesideThePictureLeavesTheCamera) {
         << "a drag or the wheel beside the picture moved the camera";
 }
 
-// "image size = picture area" (camera panel, clicked with xdotool at 1920x1080: the camera header,
-// then the checkbox; positions of ImGui 1.86's default font with the statistics and TF sections
-// open and the cut-away header above the camera's; a new section above it moves them) makes the
-// rendered image the area beside the panel, so the camera's aspect follows it.
+// "image size = picture area" (camera panel, clicked with xdotool at 1920x1080 where the viewer
+// reports them: the camera header, then the checkbox it shows) makes the rendered image the area
+// beside the panel, so the camera's aspect follows it.
 TEST_F(ViewerGpu, TheImageCanFollowThePictureArea) {
     if (!onPath("Xvfb") || !onPath("xdotool")) GTEST_SKIP() << "Xvfb or xdotool is not installed";
     const fs::path dir = test::scratchDir() / "viewer-image-follows";
     fs::create_directories(dir);
     test::writeAll(dir / "drive.sh",
-                   "set -u\n"
-                   "\"$1\" view \"$2\" --size 64x48 --window 1920x1080 --backend sw --grid 32 --spp 1 --save-session "
-                   "\"$3/final.json\" --stats \"$3/stats.json\" --validation & pid=$!\n"
-                   "( sleep 200; kill $pid 2>/dev/null ) & watchdog=$!\n"
-                   "for i in $(seq 120); do xdotool search --name 'amrvk view' >/dev/null 2>&1 && break; sleep 0.5; "
-                   "done\n"
-                   "sleep 3\n"
-                   "xdotool mousemove 1540 706; sleep 0.4; xdotool click 1; sleep 0.6\n"
-                   "xdotool mousemove 1497 798; sleep 0.4; xdotool click 1; sleep 0.6\n"
-                   "xdotool mousemove 100 1070; sleep 1\n"
-                   "xdotool key q\n"
-                   "wait $pid; rc=$?\n"
-                   "kill $watchdog 2>/dev/null\n"
-                   "exit $rc\n");
+                   driveScript("--size 64x48 --window 1920x1080 --backend sw --grid 32 --spp 1 --save-session "
+                               "\"$3/final.json\" --stats \"$3/stats.json\"",
+                               "wait_first_frame\n"
+                               "click 'camera header'\n"
+                               "click 'image size = picture area'\n"
+                               "quit\n"));
     const int rc = run(onOwnDisplay("bash " + (dir / "drive.sh").string() + " " + amrvkBinary(), "3840x2160") + " " +
                            sample() + " " + dir.string(),
                        dir, "view");
