@@ -147,50 +147,44 @@ std::string sessionJson(const Session& s) {
     return j.dump(2) + "\n";
 }
 
-Session parseSession(const std::string& text, const fs::path& path) {
-    const std::string file = path.string();
-    Json doc;
+namespace {
+
+// The session file's JSON document: depth checked before parsing, a parse error on one line.
+Json parseDocument(const std::string& text, const std::string& file) {
     checkJsonDepth(text, file);
     try {
-        doc = Json::parse(text);
+        return Json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         std::string msg = e.what();
         for (char& c : msg)
             if (c == '\n') c = ' ';
         AMRVK_CHECK(false, file, ": not a session (malformed JSON: ", msg, ")");
     }
-    const Reader top(doc, file);
-    AMRVK_CHECK(doc.is_object() && top.text("amrvk", "") == "session", file,
-                ": not an amrvk session (expected \"amrvk\": \"session\")");
-    const int64_t version = top.integer("version", 1, 1 << 20);
-    AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
+    return {};
+}
 
-    Session s;
-    s.input = top.text("input");
-    AMRVK_CHECK(!s.input.empty(), file, ".input: empty");
-    if (fs::path(s.input).is_relative()) s.input = (path.parent_path() / s.input).lexically_normal().string();
-    if (top.has("read")) {
-        const Reader r = top.child("read");
-        s.read.format = r.text("format", "auto");
-        s.read.nanPolicy = r.named("nan", "reject", [](const std::string& v) { return amr::parseNanPolicy(v); });
-        if (r.has("dims")) {
-            const glm::dvec3 d = r.vector("dims");
-            for (int a = 0; a < 3; ++a) {
-                AMRVK_CHECK(d[a] >= 1 && d[a] <= (1 << 20) && d[a] == std::floor(d[a]), r.where(), ".dims[", a,
-                            "]: ", d[a], " is not an integer in [1, 2^20]");
-                s.read.rawDims[a] = int(d[a]);
-            }
+// "read": how the input is read (format, NaN policy, raw layout, scale).
+void readReadOptions(const Reader& r, amr::ReadOptions& read) {
+    read.format = r.text("format", "auto");
+    read.nanPolicy = r.named("nan", "reject", [](const std::string& v) { return amr::parseNanPolicy(v); });
+    if (r.has("dims")) {
+        const glm::dvec3 d = r.vector("dims");
+        for (int a = 0; a < 3; ++a) {
+            AMRVK_CHECK(d[a] >= 1 && d[a] <= (1 << 20) && d[a] == std::floor(d[a]), r.where(), ".dims[", a,
+                        "]: ", d[a], " is not an integer in [1, 2^20]");
+            read.rawDims[a] = int(d[a]);
         }
-        s.read.rawType = r.text("type", "");
-        s.read.rawThreshold = r.number("threshold", 0.0);
-        AMRVK_CHECK(s.read.rawThreshold >= 0, r.where(), ".threshold: must be >= 0");
-        s.read.scale = r.named("scale", "linear", [](const std::string& v) { return amr::parseFieldScale(v); });
-        s.read.logFloor = r.number("logFloor", 0.0);
-        AMRVK_CHECK(s.read.logFloor >= 0 && std::isfinite(s.read.logFloor), r.where(), ".logFloor: must be >= 0");
     }
-    s.field = top.text("field", "");
+    read.rawType = r.text("type", "");
+    read.rawThreshold = r.number("threshold", 0.0);
+    AMRVK_CHECK(read.rawThreshold >= 0, r.where(), ".threshold: must be >= 0");
+    read.scale = r.named("scale", "linear", [](const std::string& v) { return amr::parseFieldScale(v); });
+    read.logFloor = r.number("logFloor", 0.0);
+    AMRVK_CHECK(read.logFloor >= 0 && std::isfinite(read.logFloor), r.where(), ".logFloor: must be >= 0");
+}
 
-    scene::RenderSettings& rs = s.settings;
+// "camera" and "image" (both required).
+void readView(const Reader& top, scene::RenderSettings& rs) {
     const Reader cam = top.child("camera");
     rs.camera.eye = cam.vector("eye");
     rs.camera.target = cam.vector("target");
@@ -201,10 +195,11 @@ Session parseSession(const std::string& text, const fs::path& path) {
     const Reader image = top.child("image");
     rs.width = int(image.integer("width", 1, scene::kMaxImageSide));
     rs.height = int(image.integer("height", 1, scene::kMaxImageSide));
+}
 
-    // Every render.* key is optional, so the object is too.
-    const Json noRender = Json::object();
-    const Reader r = top.has("render") ? top.child("render") : Reader(noRender, file + ".render");
+// "render": mode, samples, seed, medium and dvr options (every key optional).
+void readRender(const Reader& r, Session& s) {
+    scene::RenderSettings& rs = s.settings;
     rs.mode = r.named("mode", "ms", scene::parseMode);
     s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, scene::kMaxSpp) : 64);
     rs.seed = uint32_t(r.has("seed") ? r.integer("seed", 0, UINT32_MAX) : 1);
@@ -220,80 +215,112 @@ Session parseSession(const std::string& text, const fs::path& path) {
     rs.dvrStep = r.number("dvrStep", 0.5);
     AMRVK_CHECK(rs.dvrStep > 0 && rs.dvrStep <= 64, r.where(), ".dvrStep: ", rs.dvrStep, " is outside (0, 64]");
     rs.dvrShading = r.flag("dvrShading", false);
+}
 
-    if (top.has("lights")) {
-        const Json& lights = doc.at("lights");
-        AMRVK_CHECK(lights.is_array(), file, ".lights: expected an array");
-        for (size_t i = 0; i < lights.size(); ++i) {
-            const Reader L(lights[i], file + ".lights[" + std::to_string(i) + "]");
-            const std::string type = L.text("type");
-            scene::Light light;
-            if (type == "directional") {
-                light.posOrDir = L.vector("direction");
-                light.radiance = L.vector("radiance");
-                AMRVK_CHECK(glm::length(light.posOrDir) > 0, L.where(), ".direction: must not be zero");
-            } else {
-                AMRVK_CHECK(type == "point", L.where(), ".type: '", type, "' (expected directional or point)");
-                light.point = true;
-                light.posOrDir = L.vector("position");
-                light.radiance = L.vector("intensity");
-            }
-            AMRVK_CHECK(glm::all(glm::greaterThanEqual(light.radiance, glm::dvec3(0.0))), L.where(),
-                        ": radiance must be >= 0");
-            rs.lights.push_back(light);
+// "lights": an array of directional and point lights.
+std::vector<scene::Light> readLights(const Json& lights, const std::string& where) {
+    AMRVK_CHECK(lights.is_array(), where, ": expected an array");
+    std::vector<scene::Light> out;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Reader L(lights[i], where + "[" + std::to_string(i) + "]");
+        const std::string type = L.text("type");
+        scene::Light light;
+        if (type == "directional") {
+            light.posOrDir = L.vector("direction");
+            light.radiance = L.vector("radiance");
+            AMRVK_CHECK(glm::length(light.posOrDir) > 0, L.where(), ".direction: must not be zero");
+        } else {
+            AMRVK_CHECK(type == "point", L.where(), ".type: '", type, "' (expected directional or point)");
+            light.point = true;
+            light.posOrDir = L.vector("position");
+            light.radiance = L.vector("intensity");
+        }
+        AMRVK_CHECK(glm::all(glm::greaterThanEqual(light.radiance, glm::dvec3(0.0))), L.where(),
+                    ": radiance must be >= 0");
+        out.push_back(light);
+    }
+    return out;
+}
+
+// "cut": the crop box and clip planes, validated as the CLI validates them.
+scene::CutAway readCut(const Reader& cut) {
+    scene::CutAway c;
+    if (cut.has("crop")) {
+        const Reader crop = cut.child("crop");
+        c.crop = scene::CropBox{crop.vector("lo"), crop.vector("hi")};
+    }
+    if (cut.has("clip")) {
+        const Json& clips = cut.json().at("clip");
+        AMRVK_CHECK(clips.is_array(), cut.where(), ".clip: expected an array");
+        AMRVK_CHECK(clips.size() <= shared::kMaxClipPlanes, cut.where(), ".clip: at most ", shared::kMaxClipPlanes,
+                    " planes (got ", clips.size(), ")");
+        for (size_t i = 0; i < clips.size(); ++i) {
+            const Reader p(clips[i], cut.where() + ".clip[" + std::to_string(i) + "]");
+            c.clips.push_back({p.vector("point"), p.vector("normal")});
         }
     }
-
-    if (top.has("cut")) {
-        const Reader cut = top.child("cut");
-        if (cut.has("crop")) {
-            const Reader crop = cut.child("crop");
-            rs.cut.crop = scene::CropBox{crop.vector("lo"), crop.vector("hi")};
-        }
-        if (cut.has("clip")) {
-            const Json& clips = cut.json().at("clip");
-            AMRVK_CHECK(clips.is_array(), cut.where(), ".clip: expected an array");
-            AMRVK_CHECK(clips.size() <= shared::kMaxClipPlanes, cut.where(), ".clip: at most ", shared::kMaxClipPlanes,
-                        " planes (got ", clips.size(), ")");
-            for (size_t i = 0; i < clips.size(); ++i) {
-                const Reader c(clips[i], cut.where() + ".clip[" + std::to_string(i) + "]");
-                rs.cut.clips.push_back({c.vector("point"), c.vector("normal")});
-            }
-        }
-        try {
-            scene::validateCutAway(rs.cut);
-        } catch (const Error& e) {
-            throw Error(cut.where() + ": " + e.what());
-        }
+    try {
+        scene::validateCutAway(c);
+    } catch (const Error& e) {
+        throw Error(cut.where() + ": " + e.what());
     }
+    return c;
+}
 
-    if (top.has("structure")) {
-        const Reader st = top.child("structure");
-        s.structure.traversal = st.named("traversal", "grid-dda", scene::parseTraversal);
-        s.structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
-        s.structure.backend = st.named("backend", "auto", scene::parseBackend);
-        s.structure.grid = st.text("grid", "auto");
-        if (st.has("kdLeaves")) s.structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, scene::kMaxKdLeaves));
-        if (st.has("denseMaxMiB")) s.structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
-        try {
-            s.structure.validate();
-        } catch (const Error& e) {
-            throw Error(st.where() + ": " + e.what());
-        }
+// "structure": the traversal, sampler and back-end with their parameters, validated.
+void readStructure(const Reader& st, scene::StructureConfig& structure) {
+    structure.traversal = st.named("traversal", "grid-dda", scene::parseTraversal);
+    structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
+    structure.backend = st.named("backend", "auto", scene::parseBackend);
+    structure.grid = st.text("grid", "auto");
+    if (st.has("kdLeaves")) structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, scene::kMaxKdLeaves));
+    if (st.has("denseMaxMiB")) structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
+    try {
+        structure.validate();
+    } catch (const Error& e) {
+        throw Error(st.where() + ": " + e.what());
     }
+}
 
+// "legend": whether and how the colour legend is drawn.
+Legend readLegend(const Reader& L) {
+    AMRVK_CHECK(L.json().is_object(), L.where(), ": expected an object");
+    Legend legend;
+    legend.show = L.flag("show", false);
+    legend.place = L.named("place", "side", parseLegendPlace);
+    legend.title = L.text("title", "");
+    legend.units = L.text("units", "");
+    legend.font = L.text("font", "");
+    return legend;
+}
+
+}  // namespace
+
+Session parseSession(const std::string& text, const fs::path& path) {
+    const std::string file = path.string();
+    const Json doc = parseDocument(text, file);
+    const Reader top(doc, file);
+    AMRVK_CHECK(doc.is_object() && top.text("amrvk", "") == "session", file,
+                ": not an amrvk session (expected \"amrvk\": \"session\")");
+    const int64_t version = top.integer("version", 1, 1 << 20);
+    AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
+
+    Session s;
+    s.input = top.text("input");
+    AMRVK_CHECK(!s.input.empty(), file, ".input: empty");
+    if (fs::path(s.input).is_relative()) s.input = (path.parent_path() / s.input).lexically_normal().string();
+    if (top.has("read")) readReadOptions(top.child("read"), s.read);
+    s.field = top.text("field", "");
+    readView(top, s.settings);
+    // Every render.* key is optional, so the object is too.
+    const Json noRender = Json::object();
+    readRender(top.has("render") ? top.child("render") : Reader(noRender, file + ".render"), s);
+    if (top.has("lights")) s.settings.lights = readLights(doc.at("lights"), file + ".lights");
+    if (top.has("cut")) s.settings.cut = readCut(top.child("cut"));
+    if (top.has("structure")) readStructure(top.child("structure"), s.structure);
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
-
-    if (top.has("legend")) {
-        const Reader L = top.child("legend");
-        AMRVK_CHECK(L.json().is_object(), L.where(), ": expected an object");
-        s.legend.show = L.flag("show", false);
-        s.legend.place = L.named("place", "side", parseLegendPlace);
-        s.legend.title = L.text("title", "");
-        s.legend.units = L.text("units", "");
-        s.legend.font = L.text("font", "");
-    }
+    if (top.has("legend")) s.legend = readLegend(top.child("legend"));
     return s;
 }
 
