@@ -620,10 +620,11 @@ std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::
 
 }  // namespace
 
-PYBIND11_MODULE(_amrvk, m) {
-    m.doc() = "amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device (compiled part)";
-    // One-line errors: amrvk's own errors are bad input (ValueError) unless they come from the
-    // device or the runtime, which raise RuntimeError through their own types.
+namespace {
+
+// One-line errors: amrvk's own errors are bad input (ValueError) unless they come from the device
+// or the runtime, which raise RuntimeError through their own types.
+void bindErrors() {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
@@ -636,6 +637,9 @@ PYBIND11_MODULE(_amrvk, m) {
         }
     });
 
+}
+
+void bindCamera(py::module_& m) {
     py::class_<scene::Camera>(m, "Camera", "eye, target and up in world space; vertical field of view in degrees")
         .def(py::init([](const std::vector<double>& eye, const std::vector<double>& target, const std::vector<double>& up,
                          double fov) {
@@ -662,6 +666,9 @@ PYBIND11_MODULE(_amrvk, m) {
                           ",", c.target.z, " fov=", c.fovYDegrees, ")");
         });
 
+}
+
+void bindLight(py::module_& m) {
     py::class_<scene::Light>(m, "Light", "a directional light (towards direction) or a point light, world space")
         .def_static(
             "directional",
@@ -679,6 +686,9 @@ PYBIND11_MODULE(_amrvk, m) {
         .def_property_readonly("position_or_direction", [](const scene::Light& l) { return list3(l.posOrDir); })
         .def_property_readonly("radiance", [](const scene::Light& l) { return list3(l.radiance); });
 
+}
+
+void bindTransferFunction(py::module_& m) {
     py::class_<PyTf>(m, "TransferFunction",
                      "a piecewise-linear map from field values to albedo (rgb) and alpha (extinction per finest "
                      "cell width before the density scale); colour and opacity channels kept apart as ParaView does")
@@ -700,6 +710,9 @@ PYBIND11_MODULE(_amrvk, m) {
         .def("to_paraview_json", &PyTf::json)
         .def("save", &PyTf::save, py::arg("path"), "as a ParaView JSON preset file");
 
+}
+
+void bindVolume(py::module_& m) {
     py::class_<PyVolume, std::shared_ptr<PyVolume>>(m, "Volume",
                                                     "one field of an AMR data set, in brick order with its bricks")
         .def(py::init(&volumeFromFile), py::arg("path"), py::arg("field") = "", py::arg("format") = "auto",
@@ -735,7 +748,11 @@ PYBIND11_MODULE(_amrvk, m) {
                           v.volume->model.cellCount(), " cells)");
         });
 
-    py::class_<PyRenderer, std::shared_ptr<PyRenderer>>(m, "Renderer",
+}
+
+// Renderer: construction, accumulation, the image and the structure.
+py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m) {
+    return py::class_<PyRenderer, std::shared_ptr<PyRenderer>>(m, "Renderer",
                                                         "a path-traced picture of a volume on a Vulkan device")
         .def(py::init(&makeRenderer), py::arg("volume"), py::arg("tf") = py::none(), py::arg("camera") = py::none())
         .def_static("from_session", &rendererFromSession, py::arg("path"),
@@ -757,6 +774,12 @@ PYBIND11_MODULE(_amrvk, m) {
              py::arg("kd_leaves") = py::none())
         .def_property("camera", &PyRenderer::camera, &PyRenderer::setCamera)
         .def_property("tf", &PyRenderer::tf, &PyRenderer::setTf)
+;
+}
+
+// Renderer: the picture's settings as properties (each edit through editSettings), then output.
+void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) {
+    c
         .def_property(
             "mode", [](const PyRenderer& r) { return std::string(scene::modeName(r.session().settings.mode)); },
             [](PyRenderer& r, const std::string& name) { r.editSettings([&](auto& s) { s.mode = scene::parseMode(name); }); })
@@ -813,6 +836,9 @@ PYBIND11_MODULE(_amrvk, m) {
         .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
         .def_property_readonly("closed", &PyRenderer::closed);
 
+}
+
+void bindDevices(py::module_& m) {
     m.def(
         "devices",
         [] {
@@ -832,4 +858,18 @@ PYBIND11_MODULE(_amrvk, m) {
             return out;
         },
         "every Vulkan device, and why an unusable one is rejected");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_amrvk, m) {
+    m.doc() = "amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device (compiled part)";
+    bindErrors();
+    bindCamera(m);
+    bindLight(m);
+    bindTransferFunction(m);
+    bindVolume(m);
+    auto renderer = bindRenderer(m);
+    bindRendererSettings(renderer);
+    bindDevices(m);
 }
