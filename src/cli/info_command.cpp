@@ -118,6 +118,170 @@ std::string mib(uint64_t bytes) {
     return buf;
 }
 
+
+// What `amrvk info` reports: the data read, its bricks, ABRs with their ranges and the macrocell
+// ranges, with the time each took.
+struct InfoData {
+    amr::Model model;
+    std::string field;
+    amr::ModelSummary summary;
+    amr::FieldStats stats;
+    amr::Percentiles percentiles;
+    accel::BrickSet bricks;
+    accel::BrickStats brickStats;
+    std::vector<float> brickValues;
+    accel::AbrSet abrs;
+    std::vector<accel::ValueRange> abrRanges;
+    glm::ivec3 gridDims{0};
+    accel::RangeGrid grid;
+    double readSeconds = 0, abrSeconds = 0;
+
+    const amr::Field& fieldRef() const { return model.field(field); }
+    double bricksPerAbr() const {
+        return abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
+    }
+    uint32_t maxBricksPerAbr() const {
+        uint32_t m = 0;
+        for (const auto& a : abrs.abrs) m = std::max(m, a.brickCount);
+        return m;
+    }
+    glm::dvec3 worldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)); }
+    glm::dvec3 worldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)); }
+};
+
+InfoData gatherInfo(const std::string& input, const amr::ReadOptions& ro, const std::string& bricksFile,
+                    const std::string& gridSpec) {
+    InfoData d;
+    Timer readTimer;
+    {
+        ProgressStage stage("reading " + input);
+        d.model = amr::readModel(input, ro);
+    }
+    d.readSeconds = readTimer.seconds();
+    const amr::Field& field = ro.fields.empty() ? d.model.defaultField() : d.model.field(ro.fields[0]);
+    d.field = field.name;
+    d.summary = amr::summarize(d.model);
+    d.stats = amr::computeFieldStats(d.model, field);
+    d.percentiles = amr::percentilesOf(field.values);
+    {
+        ProgressStage stage("bricks");
+        d.bricks = bricksFile.empty() ? accel::buildBricks(d.model) : accel::readBricksFile(bricksFile, d.model);
+    }
+    d.brickStats = accel::computeBrickStats(d.bricks);
+    d.brickValues = accel::brickOrderValues(d.bricks, d.fieldRef());
+    Timer abrTimer;
+    {
+        ProgressStage stage("active brick regions");
+        d.abrs = accel::buildAbrs(d.bricks);
+        d.abrRanges = accel::computeAbrValueRanges(d.abrs, accel::SupportRangeQuery(d.bricks, d.brickValues),
+                                                   accel::positionMargin(d.summary.bounds));
+    }
+    d.abrSeconds = abrTimer.seconds();
+    d.gridDims = accel::parseGridDims(gridSpec, d.summary.bounds);
+    {
+        ProgressStage stage("macrocell value ranges");
+        d.grid = accel::buildRangeGrid(accel::buildBrickGrid(d.bricks, d.summary.bounds, d.gridDims), d.bricks,
+                                       d.brickValues);
+    }
+    return d;
+}
+
+struct Mem {
+    const char* name;
+    uint64_t bytes;
+};
+std::vector<Mem> infoMemory(const InfoData& d) {
+    uint64_t fieldBytes = 0;
+    for (const auto& f : d.model.fields) fieldBytes += f.values.size() * sizeof(float);
+    return {
+        {"cells", d.model.cells.size() * sizeof(amr::Cell)},
+        {"fields", fieldBytes},
+        {"bricks", d.bricks.bricks.size() * sizeof(accel::Brick)},
+        {"brickCellIds", d.bricks.cellIds.size() * sizeof(uint32_t)},
+        {"brickValues", d.brickValues.size() * sizeof(float)},
+        {"abrs", d.abrs.abrs.size() * sizeof(accel::Abr)},
+        {"abrBrickLists", d.abrs.brickList.size() * sizeof(uint32_t)},
+        {"abrValueRanges", d.abrRanges.size() * sizeof(accel::ValueRange)},
+        {"macrocellValueRanges", d.grid.memoryBytes()},
+    };
+}
+
+uint64_t totalOf(const std::vector<Mem>& memory) {
+    uint64_t total = 0;
+    for (const auto& m : memory) total += m.bytes;
+    return total;
+}
+
+void printInfoJson(const InfoData& d) {
+    using Json = nlohmann::ordered_json;
+    const amr::Model& model = d.model;
+    auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
+    const std::vector<Mem> memory = infoMemory(d);
+    Json mem = Json::object(), attributes = Json::object();
+    for (const auto& m : memory) mem[m.name] = m.bytes;
+    mem["total"] = totalOf(memory);
+    for (const auto& [k, v] : model.attributes) attributes[k] = v;
+    const Json j = {
+        {"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
+        {"cellsPerLevel", d.summary.cellsPerLevel}, {"minLevel", d.summary.minLevel}, {"maxLevel", d.summary.maxLevel},
+        {"fields", model.availableFields}, {"field", d.field},
+        {"valueRange", Json::array({double(d.stats.minValue), double(d.stats.maxValue)})},
+        {"volumeWeightedMean", d.stats.volumeWeightedMean},
+        {"valuePercentiles", d.percentiles.values},
+        {"voxelBounds",
+         {{"lower", vec(glm::dvec3(d.summary.bounds.lower))}, {"upper", vec(glm::dvec3(d.summary.bounds.upper))}}},
+        {"worldBounds", {{"lower", vec(d.worldLo())}, {"upper", vec(d.worldHi())}}},
+        {"bricks", d.brickStats.brickCount},
+        {"singleCellBricks", d.brickStats.singleCellBricks},
+        {"averageCellsPerBrick", d.brickStats.averageCellsPerBrick}, {"abrs", uint64_t(d.abrs.abrs.size())},
+        {"averageBricksPerAbr", d.bricksPerAbr()}, {"maxBricksPerAbr", d.maxBricksPerAbr()},
+        {"macrocellDims", Json::array({d.gridDims.x, d.gridDims.y, d.gridDims.z})}, {"memoryBytes", mem},
+        {"buildSeconds",
+         {{"read", d.readSeconds}, {"bricks", d.bricks.buildSeconds}, {"abrs", d.abrSeconds},
+          {"macrocells", d.grid.buildSeconds}}},
+        {"peakResidentBytes", peakResidentBytes()}, {"attributes", attributes}};
+    std::printf("%s\n", j.dump(2).c_str());
+}
+
+void printInfoText(const InfoData& d) {
+    const amr::Model& model = d.model;
+    const amr::ModelSummary& summary = d.summary;
+    const glm::dvec3 worldLo = d.worldLo(), worldHi = d.worldHi();
+    std::printf("source        %s\n", model.source.c_str());
+    std::printf("format        %s\n", model.format.c_str());
+    for (const auto& [k, v] : model.attributes) std::printf("  %-11s %s\n", k.c_str(), v.c_str());
+    std::printf("fields        %s\n", join(model.availableFields, ", ").c_str());
+    std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
+                (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
+                (long long)summary.bounds.upper.x, (long long)summary.bounds.upper.y,
+                (long long)summary.bounds.upper.z);
+    std::printf("world bounds  [%g %g %g] - [%g %g %g]\n", worldLo.x, worldLo.y, worldLo.z, worldHi.x, worldHi.y,
+                worldHi.z);
+    std::printf("leaf cells    %llu on levels %d..%d (0 = finest)\n", (unsigned long long)model.cellCount(),
+                summary.minLevel, summary.maxLevel);
+    for (size_t l = 0; l < summary.cellsPerLevel.size(); ++l)
+        if (summary.cellsPerLevel[l])
+            std::printf("  level %-4zu  %llu cells of width %lld\n", l, (unsigned long long)summary.cellsPerLevel[l],
+                        (long long)amr::cellWidth(int(l)));
+    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", d.field.c_str(),
+                double(d.stats.minValue), double(d.stats.maxValue), d.stats.volumeWeightedMean);
+    const amr::Percentiles& p = d.percentiles;
+    std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(p[50]),
+                double(p[75]), double(p[90]), double(p[97]), double(p[99]));
+    std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
+                (unsigned long long)d.brickStats.brickCount, d.brickStats.averageCellsPerBrick,
+                (unsigned long long)d.brickStats.singleCellBricks, (unsigned long long)d.brickStats.largestBrickCells,
+                d.bricks.buildSeconds);
+    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", d.abrs.abrs.size(), d.bricksPerAbr(),
+                d.maxBricksPerAbr(), d.abrSeconds);
+    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", d.gridDims.x, d.gridDims.y, d.gridDims.z,
+                d.grid.buildSeconds);
+    const std::vector<Mem> memory = infoMemory(d);
+    std::printf("memory        %s in all\n", mib(totalOf(memory)).c_str());
+    for (const auto& m : memory) std::printf("  %-20s %s\n", m.name, mib(m.bytes).c_str());
+    std::printf("read time     %.3f s; peak resident memory %s\n", d.readSeconds, mib(peakResidentBytes()).c_str());
+}
+
 }  // namespace
 
 int runInfo(const std::vector<std::string>& argv) {
@@ -162,128 +326,11 @@ int runInfo(const std::vector<std::string>& argv) {
     for (const char* name : {"--tfs", "--tf-range", "--kd-leaves"})
         AMRVK_CHECK(app.count(name) == 0, name, " applies only with --check-majorants");
 
-    Timer readTimer;
-    amr::Model model;
-    {
-        ProgressStage stage("reading " + input);
-        model = amr::readModel(input, ro);
-    }
-    const double readSeconds = readTimer.seconds();
-    const amr::Field& field = ro.fields.empty() ? model.defaultField() : model.field(ro.fields[0]);
-    const amr::ModelSummary summary = amr::summarize(model);
-    const amr::FieldStats stats = amr::computeFieldStats(model, field);
-    const amr::Percentiles percentiles = amr::percentilesOf(field.values);
-
-    accel::BrickSet bricks;
-    {
-        ProgressStage stage("bricks");
-        bricks = bricksFile.empty() ? accel::buildBricks(model) : accel::readBricksFile(bricksFile, model);
-    }
-    const accel::BrickStats brickStats = accel::computeBrickStats(bricks);
-    std::vector<float> brickValues = accel::brickOrderValues(bricks, field);
-    accel::AbrSet abrs;
-    std::vector<accel::ValueRange> abrRanges;
-    Timer abrTimer;
-    {
-        ProgressStage stage("active brick regions");
-        abrs = accel::buildAbrs(bricks);
-        abrRanges = accel::computeAbrValueRanges(abrs, accel::SupportRangeQuery(bricks, brickValues),
-                                                 accel::positionMargin(summary.bounds));
-    }
-    const double abrSeconds = abrTimer.seconds();
-    const glm::ivec3 gridDims = accel::parseGridDims(gridSpec, summary.bounds);
-    accel::RangeGrid grid;
-    {
-        ProgressStage stage("macrocell value ranges");
-        grid = accel::buildRangeGrid(accel::buildBrickGrid(bricks, summary.bounds, gridDims), bricks, brickValues);
-    }
-
-    double bricksPerAbr = abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
-    uint32_t maxBricksPerAbr = 0;
-    for (const auto& a : abrs.abrs) maxBricksPerAbr = std::max(maxBricksPerAbr, a.brickCount);
-
-    struct Mem {
-        const char* name;
-        uint64_t bytes;
-    };
-    uint64_t fieldBytes = 0;
-    for (const auto& f : model.fields) fieldBytes += f.values.size() * sizeof(float);
-    const std::vector<Mem> memory = {
-        {"cells", model.cells.size() * sizeof(amr::Cell)},
-        {"fields", fieldBytes},
-        {"bricks", bricks.bricks.size() * sizeof(accel::Brick)},
-        {"brickCellIds", bricks.cellIds.size() * sizeof(uint32_t)},
-        {"brickValues", brickValues.size() * sizeof(float)},
-        {"abrs", abrs.abrs.size() * sizeof(accel::Abr)},
-        {"abrBrickLists", abrs.brickList.size() * sizeof(uint32_t)},
-        {"abrValueRanges", abrRanges.size() * sizeof(accel::ValueRange)},
-        {"macrocellValueRanges", grid.memoryBytes()},
-    };
-    uint64_t totalBytes = 0;
-    for (const auto& m : memory) totalBytes += m.bytes;
-    const glm::dvec3 worldLo = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower));
-    const glm::dvec3 worldHi = model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper));
-
-    if (json) {
-        using Json = nlohmann::ordered_json;
-        auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
-        Json mem = Json::object(), attributes = Json::object();
-        for (const auto& m : memory) mem[m.name] = m.bytes;
-        mem["total"] = totalBytes;
-        for (const auto& [k, v] : model.attributes) attributes[k] = v;
-        const Json j = {
-            {"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
-            {"cellsPerLevel", summary.cellsPerLevel}, {"minLevel", summary.minLevel}, {"maxLevel", summary.maxLevel},
-            {"fields", model.availableFields}, {"field", field.name},
-            {"valueRange", Json::array({double(stats.minValue), double(stats.maxValue)})},
-            {"volumeWeightedMean", stats.volumeWeightedMean},
-            {"valuePercentiles", percentiles.values},
-            {"voxelBounds",
-             {{"lower", vec(glm::dvec3(summary.bounds.lower))}, {"upper", vec(glm::dvec3(summary.bounds.upper))}}},
-            {"worldBounds", {{"lower", vec(worldLo)}, {"upper", vec(worldHi)}}}, {"bricks", brickStats.brickCount},
-            {"singleCellBricks", brickStats.singleCellBricks},
-            {"averageCellsPerBrick", brickStats.averageCellsPerBrick}, {"abrs", uint64_t(abrs.abrs.size())},
-            {"averageBricksPerAbr", bricksPerAbr}, {"maxBricksPerAbr", maxBricksPerAbr},
-            {"macrocellDims", Json::array({gridDims.x, gridDims.y, gridDims.z})}, {"memoryBytes", mem},
-            {"buildSeconds",
-             {{"read", readSeconds}, {"bricks", bricks.buildSeconds}, {"abrs", abrSeconds},
-              {"macrocells", grid.buildSeconds}}},
-            {"peakResidentBytes", peakResidentBytes()}, {"attributes", attributes}};
-        std::printf("%s\n", j.dump(2).c_str());
-        return 0;
-    }
-
-    std::printf("source        %s\n", model.source.c_str());
-    std::printf("format        %s\n", model.format.c_str());
-    for (const auto& [k, v] : model.attributes) std::printf("  %-11s %s\n", k.c_str(), v.c_str());
-    std::printf("fields        %s\n", join(model.availableFields, ", ").c_str());
-    std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
-                (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
-                (long long)summary.bounds.upper.x, (long long)summary.bounds.upper.y,
-                (long long)summary.bounds.upper.z);
-    std::printf("world bounds  [%g %g %g] - [%g %g %g]\n", worldLo.x, worldLo.y, worldLo.z, worldHi.x, worldHi.y,
-                worldHi.z);
-    std::printf("leaf cells    %llu on levels %d..%d (0 = finest)\n", (unsigned long long)model.cellCount(),
-                summary.minLevel, summary.maxLevel);
-    for (size_t l = 0; l < summary.cellsPerLevel.size(); ++l)
-        if (summary.cellsPerLevel[l])
-            std::printf("  level %-4zu  %llu cells of width %lld\n", l, (unsigned long long)summary.cellsPerLevel[l],
-                        (long long)amr::cellWidth(int(l)));
-    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", field.name.c_str(),
-                double(stats.minValue), double(stats.maxValue), stats.volumeWeightedMean);
-    std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(percentiles[50]),
-                double(percentiles[75]), double(percentiles[90]), double(percentiles[97]), double(percentiles[99]));
-    std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
-                (unsigned long long)brickStats.brickCount, brickStats.averageCellsPerBrick,
-                (unsigned long long)brickStats.singleCellBricks, (unsigned long long)brickStats.largestBrickCells,
-                bricks.buildSeconds);
-    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", abrs.abrs.size(), bricksPerAbr,
-                maxBricksPerAbr, abrSeconds);
-    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", gridDims.x, gridDims.y, gridDims.z,
-                grid.buildSeconds);
-    std::printf("memory        %s in all\n", mib(totalBytes).c_str());
-    for (const auto& m : memory) std::printf("  %-20s %s\n", m.name, mib(m.bytes).c_str());
-    std::printf("read time     %.3f s; peak resident memory %s\n", readSeconds, mib(peakResidentBytes()).c_str());
+    const InfoData d = gatherInfo(input, ro, bricksFile, gridSpec);
+    if (json)
+        printInfoJson(d);
+    else
+        printInfoText(d);
     return 0;
 }
 
