@@ -73,47 +73,59 @@ void VolumeScene::configure(const StructureConfig& next) {
         brickGrid = accel::buildBrickGrid(v.bricks, v.bounds(), accel::parseGridDims(next.grid, v.bounds()));
         buildSeconds.brickGrid = brickGrid->buildSeconds;
     }
-    if (p.macrocellRanges && !grid) {
-        ProgressStage stage("macrocell value ranges");
-        const glm::ivec3 dims = accel::parseGridDims(next.grid, v.bounds());
-        if (p.rangesFromDense) {  // ranges from the dense samples, not from the cells
-            Timer t;
-            grid = accel::rangeGridLayout(v.bounds(), dims);
-            accel::assignDenseRanges(*dense, *grid);
-            grid->buildSeconds = t.seconds();
-        } else if (brickGrid && brickGrid->dims == dims) {
-            grid = accel::buildRangeGrid(*brickGrid, v.bricks, v.brickValues());
-        } else {  // the brick lists only while the ranges are made
-            const accel::BrickGrid lists = accel::buildBrickGrid(v.bricks, v.bounds(), dims);
-            grid = accel::buildRangeGrid(lists, v.bricks, v.brickValues());
-            grid->buildSeconds += lists.buildSeconds;
-        }
-        buildSeconds.grid = grid->buildSeconds;
-    }
-    if (p.staticBoxes && domains.boxes.empty()) {
-        ProgressStage stage("traversal value ranges");
-        Timer t;
-        const accel::SupportRangeQuery query(v.bricks, v.brickValues());
-        const double margin = accel::positionMargin(v.bounds());
-        if (p.traversalBoxes == BoxSet::Abrs) {
-            for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(v.toLocal({a.box.lower(), a.box.upper()}));
-            domains.ranges = accel::computeAbrValueRanges(*abrs, query, margin);
-        } else {
-            for (const accel::Brick& b : v.bricks.bricks) {
-                if (p.traversalBoxes == BoxSet::BrickBounds) {
-                    const amr::Box3l bb = b.bounds();
-                    domains.boxes.push_back(v.toLocal({glm::dvec3(bb.lower), glm::dvec3(bb.upper)}));
-                } else {
-                    const accel::HalfBox d = accel::brickDomain(b);
-                    domains.boxes.push_back(v.toLocal({d.lower(), d.upper()}));
-                }
-            }
-            domains.ranges = p.traversalBoxes == BoxSet::BrickBounds ? accel::brickBoundsRanges(query, v.bricks, margin)
-                                                                    : accel::brickDomainRanges(query, v.bricks, margin);
-        }
-        buildSeconds.domains = t.seconds();
-    }
+    if (p.macrocellRanges && !grid) buildMacrocellRanges();
+    if (p.staticBoxes && domains.boxes.empty()) buildStaticBoxes();
     mConfigured = true;
+}
+
+// The macrocell value ranges of mConfig's grid: from the dense samples, from the brick grid
+// when it has the same layout, else from brick lists made for the purpose and dropped.
+void VolumeScene::buildMacrocellRanges() {
+    const Volume& v = *mVolume;
+    const StructurePlan& p = mPlan;
+    ProgressStage stage("macrocell value ranges");
+    const glm::ivec3 dims = accel::parseGridDims(mConfig.grid, v.bounds());
+    if (p.rangesFromDense) {  // ranges from the dense samples, not from the cells
+        Timer t;
+        grid = accel::rangeGridLayout(v.bounds(), dims);
+        accel::assignDenseRanges(*dense, *grid);
+        grid->buildSeconds = t.seconds();
+    } else if (brickGrid && brickGrid->dims == dims) {
+        grid = accel::buildRangeGrid(*brickGrid, v.bricks, v.brickValues());
+    } else {  // the brick lists only while the ranges are made
+        const accel::BrickGrid lists = accel::buildBrickGrid(v.bricks, v.bounds(), dims);
+        grid = accel::buildRangeGrid(lists, v.bricks, v.brickValues());
+        grid->buildSeconds += lists.buildSeconds;
+    }
+    buildSeconds.grid = grid->buildSeconds;
+}
+
+// The static traversal boxes (ABRs, brick bounds or brick domains, local voxel space) with the
+// support range of each, grown by the position margin.
+void VolumeScene::buildStaticBoxes() {
+    const Volume& v = *mVolume;
+    const StructurePlan& p = mPlan;
+    ProgressStage stage("traversal value ranges");
+    Timer t;
+    const accel::SupportRangeQuery query(v.bricks, v.brickValues());
+    const double margin = accel::positionMargin(v.bounds());
+    if (p.traversalBoxes == BoxSet::Abrs) {
+        for (const accel::Abr& a : abrs->abrs) domains.boxes.push_back(v.toLocal({a.box.lower(), a.box.upper()}));
+        domains.ranges = accel::computeAbrValueRanges(*abrs, query, margin);
+    } else {
+        for (const accel::Brick& b : v.bricks.bricks) {
+            if (p.traversalBoxes == BoxSet::BrickBounds) {
+                const amr::Box3l bb = b.bounds();
+                domains.boxes.push_back(v.toLocal({glm::dvec3(bb.lower), glm::dvec3(bb.upper)}));
+            } else {
+                const accel::HalfBox d = accel::brickDomain(b);
+                domains.boxes.push_back(v.toLocal({d.lower(), d.upper()}));
+            }
+        }
+        domains.ranges = p.traversalBoxes == BoxSet::BrickBounds ? accel::brickBoundsRanges(query, v.bricks, margin)
+                                                                : accel::brickDomainRanges(query, v.bricks, margin);
+    }
+    buildSeconds.domains = t.seconds();
 }
 
 accel::KdTree VolumeScene::kdTreeFor(const TransferFunction& tf) const {

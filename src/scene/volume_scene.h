@@ -75,6 +75,8 @@ public:
     std::vector<std::pair<std::string, uint64_t>> hostBytes() const;
 
 private:
+    void buildMacrocellRanges();  // plan.macrocellRanges, for mConfig.grid
+    void buildStaticBoxes();      // plan.staticBoxes
     std::shared_ptr<const Volume> mVolume;
     StructureConfig mConfig;
     StructurePlan mPlan;
