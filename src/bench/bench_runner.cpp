@@ -71,6 +71,7 @@ private:
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
     void finishGroup(size_t first, double target);
     AutoResult autoGroup(size_t first, Mode mode);
+    void measureMode(Mode mode);  // the reference, every combination, the grid sweep and auto of one mode
     // The data set's renderer switched to `config` (resolved); made through picture::makePicture
     // on first use (the old device copy is freed before each new one).
     render::Renderer& rendererFor(const StructureConfig& config);
@@ -341,6 +342,33 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     return a;
 }
 
+void Runner::measureMode(Mode mode) {
+    mRef = reference(*mDs, mTfName, mode);
+    const size_t first = mRes.runs.size();
+    for (TraversalKind t : mOpt.traversals)
+        for (SamplerKind s : mOpt.samplers)
+            for (Backend b : mBackends)
+                mRes.runs.push_back(measure("matrix", mode,
+                                            {.sampler = s, .traversal = t, .backend = b,
+                                             .grid = mOpt.grid, .kdLeaves = mOpt.kdLeaves},
+                                            0));
+    if (mOpt.dense)
+        mRes.runs.push_back(measure("dense", mode,
+                                    {.sampler = SamplerKind::Dense, .backend = Backend::Sw,
+                                     .grid = mOpt.grid, .denseMaxBytes = mOpt.denseMaxBytes},
+                                    0));
+    if (mode == mOpt.modes.front()) {
+        for (TraversalKind t : {TraversalKind::GridDda, TraversalKind::GridBvh}) {
+            if (std::find(mOpt.traversals.begin(), mOpt.traversals.end(), t) == mOpt.traversals.end()) continue;
+            for (const std::string& g : mOpt.gridSweep)
+                mRes.runs.push_back(
+                    measure("grid-sweep", mode, {.traversal = t, .backend = Backend::Sw, .grid = g}, 0));
+        }
+    }
+    finishGroup(first, mOpt.targetRmse);
+    if (mOpt.autoSelect) mRes.autos.push_back(autoGroup(first, mode));
+}
+
 BenchResults Runner::run() {
     mBackends = mOpt.backends;
     if (mBackends.empty()) {
@@ -403,32 +431,7 @@ BenchResults Runner::run() {
             other.tfSource = session::TfSource{.name = tfName == "foggy" ? "spiky" : "foggy"};
             mOtherTf = session::resolvePicture(other, volume, nullptr).tf.merged();
             mTfName = tfName;
-            for (Mode mode : mOpt.modes) {
-                mRef = reference(ds, tfName, mode);
-                const size_t first = mRes.runs.size();
-                for (TraversalKind t : mOpt.traversals)
-                    for (SamplerKind s : mOpt.samplers)
-                        for (Backend b : mBackends)
-                            mRes.runs.push_back(measure("matrix", mode,
-                                                        {.sampler = s, .traversal = t, .backend = b,
-                                                         .grid = mOpt.grid, .kdLeaves = mOpt.kdLeaves},
-                                                        0));
-                if (mOpt.dense)
-                    mRes.runs.push_back(measure("dense", mode,
-                                                {.sampler = SamplerKind::Dense, .backend = Backend::Sw,
-                                                 .grid = mOpt.grid, .denseMaxBytes = mOpt.denseMaxBytes},
-                                                0));
-                if (mode == mOpt.modes.front()) {
-                    for (TraversalKind t : {TraversalKind::GridDda, TraversalKind::GridBvh}) {
-                        if (std::find(mOpt.traversals.begin(), mOpt.traversals.end(), t) == mOpt.traversals.end()) continue;
-                        for (const std::string& g : mOpt.gridSweep)
-                            mRes.runs.push_back(
-                                measure("grid-sweep", mode, {.traversal = t, .backend = Backend::Sw, .grid = g}, 0));
-                    }
-                }
-                finishGroup(first, mOpt.targetRmse);
-                if (mOpt.autoSelect) mRes.autos.push_back(autoGroup(first, mode));
-            }
+            for (Mode mode : mOpt.modes) measureMode(mode);
             if (!mOpt.dvrSteps.empty()) {
                 // The ray-marching baseline against the ae reference, next to unbiased ae tracking.
                 mRef = reference(ds, tfName, Mode::Ae);

@@ -107,6 +107,7 @@ private:
     void pollShaders();
     void reloadShaders();
     void handleInput();
+    void handleKey(int code, double h, double step);
     void applyEdits();
     void trace();  // within the frame budget
     void present();
@@ -543,6 +544,40 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     if (req.copyCommand) copyCommand();
 }
 
+// A key the panels did not take: arrows orbit by `step` of a picture `h` pixels high, +/- and
+// page up/down zoom, r resets the view, q and Esc quit.
+void ViewerApp::handleKey(int code, double h, double step) {
+    switch (code) {
+        case GLFW_KEY_LEFT:
+        case GLFW_KEY_RIGHT:
+            mOrbit.orbit(mState.settings.camera, code == GLFW_KEY_LEFT ? -step : step, 0, h);
+            break;
+        case GLFW_KEY_UP:
+        case GLFW_KEY_DOWN:
+            mOrbit.orbit(mState.settings.camera, 0, code == GLFW_KEY_UP ? step : -step, h);
+            break;
+        case GLFW_KEY_EQUAL:
+        case GLFW_KEY_KP_ADD:
+        case GLFW_KEY_PAGE_UP:
+            mOrbit.zoom(mState.settings.camera, 1);
+            break;
+        case GLFW_KEY_MINUS:
+        case GLFW_KEY_KP_SUBTRACT:
+        case GLFW_KEY_PAGE_DOWN:
+            mOrbit.zoom(mState.settings.camera, -1);
+            break;
+        case GLFW_KEY_R:
+            mOrbit.reset(mState.settings.camera);
+            break;
+        case GLFW_KEY_Q:
+        case GLFW_KEY_ESCAPE:
+            mQuit = true;
+            break;
+        default:
+            break;
+    }
+}
+
 void ViewerApp::handleInput() {
     // Drags are measured against the picture as shown (its height in pixels): a drag across the
     // whole picture turns as far whatever the window size.
@@ -623,35 +658,7 @@ void ViewerApp::handleInput() {
             case InputEvent::Kind::Key:
                 ++mInputSeen.keys;
                 if (uiKeys || e.action == GLFW_RELEASE) break;
-                switch (e.code) {
-                    case GLFW_KEY_LEFT:
-                    case GLFW_KEY_RIGHT:
-                        mOrbit.orbit(mState.settings.camera, e.code == GLFW_KEY_LEFT ? -step : step, 0, h);
-                        break;
-                    case GLFW_KEY_UP:
-                    case GLFW_KEY_DOWN:
-                        mOrbit.orbit(mState.settings.camera, 0, e.code == GLFW_KEY_UP ? step : -step, h);
-                        break;
-                    case GLFW_KEY_EQUAL:
-                    case GLFW_KEY_KP_ADD:
-                    case GLFW_KEY_PAGE_UP:
-                        mOrbit.zoom(mState.settings.camera, 1);
-                        break;
-                    case GLFW_KEY_MINUS:
-                    case GLFW_KEY_KP_SUBTRACT:
-                    case GLFW_KEY_PAGE_DOWN:
-                        mOrbit.zoom(mState.settings.camera, -1);
-                        break;
-                    case GLFW_KEY_R:
-                        mOrbit.reset(mState.settings.camera);
-                        break;
-                    case GLFW_KEY_Q:
-                    case GLFW_KEY_ESCAPE:
-                        mQuit = true;
-                        break;
-                    default:
-                        break;
-                }
+                handleKey(e.code, h, step);
                 break;
         }
     }
