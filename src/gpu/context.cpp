@@ -153,6 +153,50 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
     return pds;
 }
 
+// The device a run uses: --device (an index or part of a name; refused with the reason when it
+// cannot serve), else the usable devices of the best type, the spread-th of them. Throws one line
+// with every device's reason when none is usable.
+int chooseDevice(const std::vector<Probe>& probes, const ContextOptions& options) {
+    int chosen = -1;
+    // Why a device cannot serve this run: its own reason, or the ray queries --backend rq asked for.
+    auto describe = [&](const Probe& p) {
+        const std::string why = !p.report.usable ? p.report.rejectReason
+                                : options.requireRayQuery && !p.report.rayQuery ? "no VK_KHR_ray_query (--backend rq)"
+                                                                                : "usable";
+        return p.report.name + ": " + why;
+    };
+    if (!options.device.empty()) {
+        bool numeric = std::all_of(options.device.begin(), options.device.end(), ::isdigit);
+        for (size_t i = 0; i < probes.size() && chosen < 0; ++i) {
+            bool match = numeric ? std::to_string(i) == options.device
+                                 : toLower(probes[i].report.name).find(toLower(options.device)) != std::string::npos;
+            if (!match) continue;
+            AMRVK_CHECK(probes[i].report.usable, "--device ", options.device, ": ", describe(probes[i]));
+            AMRVK_CHECK(!options.requireRayQuery || probes[i].report.rayQuery, "--device ", options.device,
+                        ": ", probes[i].report.name, " has no VK_KHR_ray_query");
+            chosen = int(i);
+        }
+        AMRVK_CHECK(chosen >= 0, "--device ", options.device, ": no such device (see amrvk devices)");
+    } else {
+        // The usable devices of the best type; the spread-th of them (0: the first).
+        std::vector<int> best;
+        for (size_t i = 0; i < probes.size(); ++i) {
+            const Probe& p = probes[i];
+            if (!p.report.usable || (options.requireRayQuery && !p.report.rayQuery)) continue;
+            if (!best.empty() && typeRank(p.type) > typeRank(probes[size_t(best[0])].type)) continue;
+            if (!best.empty() && typeRank(p.type) < typeRank(probes[size_t(best[0])].type)) best.clear();
+            best.push_back(int(i));
+        }
+        if (best.empty()) {
+            std::string reasons;
+            for (const auto& p : probes) reasons += (reasons.empty() ? "" : "; ") + describe(p);
+            AMRVK_CHECK(false, "no usable Vulkan device (", reasons, ")");
+        }
+        chosen = best[options.spread % best.size()];
+    }
+    return chosen;
+}
+
 }  // namespace
 
 std::string rejectReason(const DeviceCapabilities& c) {
@@ -302,43 +346,7 @@ Context::Context(const ContextOptions& options) {
         AMRVK_CHECK(!pds.empty(), "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
         std::vector<Probe> probes;
         for (uint32_t i = 0; i < pds.size(); ++i) probes.push_back(probeDevice(pds[i], i, mSurface));
-        int chosen = -1;
-        // Why a device cannot serve this run: its own reason, or the ray queries --backend rq asked for.
-        auto describe = [&](const Probe& p) {
-            const std::string why = !p.report.usable ? p.report.rejectReason
-                                    : options.requireRayQuery && !p.report.rayQuery ? "no VK_KHR_ray_query (--backend rq)"
-                                                                                    : "usable";
-            return p.report.name + ": " + why;
-        };
-        if (!options.device.empty()) {
-            bool numeric = std::all_of(options.device.begin(), options.device.end(), ::isdigit);
-            for (size_t i = 0; i < probes.size() && chosen < 0; ++i) {
-                bool match = numeric ? std::to_string(i) == options.device
-                                     : toLower(probes[i].report.name).find(toLower(options.device)) != std::string::npos;
-                if (!match) continue;
-                AMRVK_CHECK(probes[i].report.usable, "--device ", options.device, ": ", describe(probes[i]));
-                AMRVK_CHECK(!options.requireRayQuery || probes[i].report.rayQuery, "--device ", options.device,
-                            ": ", probes[i].report.name, " has no VK_KHR_ray_query");
-                chosen = int(i);
-            }
-            AMRVK_CHECK(chosen >= 0, "--device ", options.device, ": no such device (see amrvk devices)");
-        } else {
-            // The usable devices of the best type; the spread-th of them (0: the first).
-            std::vector<int> best;
-            for (size_t i = 0; i < probes.size(); ++i) {
-                const Probe& p = probes[i];
-                if (!p.report.usable || (options.requireRayQuery && !p.report.rayQuery)) continue;
-                if (!best.empty() && typeRank(p.type) > typeRank(probes[size_t(best[0])].type)) continue;
-                if (!best.empty() && typeRank(p.type) < typeRank(probes[size_t(best[0])].type)) best.clear();
-                best.push_back(int(i));
-            }
-            if (best.empty()) {
-                std::string reasons;
-                for (const auto& p : probes) reasons += (reasons.empty() ? "" : "; ") + describe(p);
-                AMRVK_CHECK(false, "no usable Vulkan device (", reasons, ")");
-            }
-            chosen = best[options.spread % best.size()];
-        }
+        const int chosen = chooseDevice(probes, options);
         const Probe& pick = probes[size_t(chosen)];
         mPhysical = pds[size_t(chosen)];
         mReport = pick.report;
