@@ -45,6 +45,95 @@ struct LevelSlots {
     }
 };
 
+// The breakpoints of the reconstruction along axis a inside [lo, hi]: both ends and c - w, c,
+// c + w of every slab of slots that holds a cell, sorted and unique.
+std::vector<double> latticePlanes(const std::vector<LevelSlots>& slots, int a, double lo, double hi) {
+    std::vector<double> out = {lo, hi};
+    for (const LevelSlots& s : slots) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int64_t i = 0; i < s.n[a]; ++i) {
+            bool occupied = false;  // any cell in this slab of slots
+            for (int64_t j = 0; j < s.n[b] && !occupied; ++j)
+                for (int64_t k = 0; k < s.n[c] && !occupied; ++k) {
+                    glm::i64vec3 r3;
+                    r3[a] = i;
+                    r3[b] = j;
+                    r3[c] = k;
+                    occupied = !std::isnan(s.values[size_t((r3.z * s.n.y + r3.y) * s.n.x + r3.x)]);
+                }
+            if (!occupied) continue;
+            const double centre = (double(s.k0[a] + i) + 0.5) * s.w;
+            for (double p : {centre - s.w, centre, centre + s.w})
+                if (p > lo && p < hi) out.push_back(p);
+        }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// f = sum(phi v) / sum(phi) (and its room) at every vertex of the lattice, folded into r; a
+// lattice of more than kMaxVertices vertices is split along the axis with most planes.
+void evaluateLattice(const std::vector<LevelSlots>& slots, std::vector<double> (&planes)[3], double relativeRoom,
+                     ExactRange::Result& r) {
+    struct Piece {
+        std::vector<double> planes[3];
+    };
+    std::vector<Piece> pieces(1);
+    for (int a = 0; a < 3; ++a) pieces[0].planes[a] = std::move(planes[a]);
+    while (!pieces.empty()) {
+        Piece piece = std::move(pieces.back());
+        pieces.pop_back();
+        const uint64_t count = uint64_t(piece.planes[0].size()) * piece.planes[1].size() * piece.planes[2].size();
+        if (count > kMaxVertices) {
+            int a = 0;
+            for (int k = 1; k < 3; ++k)
+                if (piece.planes[k].size() > piece.planes[a].size()) a = k;
+            const size_t m = piece.planes[a].size() / 2;  // shared by both halves
+            Piece left = piece, right = piece;
+            left.planes[a].assign(piece.planes[a].begin(), piece.planes[a].begin() + ptrdiff_t(m) + 1);
+            right.planes[a].assign(piece.planes[a].begin() + ptrdiff_t(m), piece.planes[a].end());
+            pieces.push_back(std::move(left));
+            pieces.push_back(std::move(right));
+            continue;
+        }
+        for (double z : piece.planes[2])
+            for (double y : piece.planes[1])
+                for (double x : piece.planes[0]) {
+                    const glm::dvec3 p(x, y, z);
+                    double sumW = 0, sumWV = 0, sumWA = 0;  // sumWA: the same sum over |v|
+                    for (const LevelSlots& s : slots) {
+                        const glm::i64vec3 k0(glm::floor(p / s.w - 0.5));
+                        for (int corner = 0; corner < 8; ++corner) {
+                            const glm::i64vec3 k = k0 + glm::i64vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+                            const double v = s.at(k);
+                            if (std::isnan(v)) continue;
+                            const glm::dvec3 c = (glm::dvec3(k) + 0.5) * s.w;
+                            double phi = 1.0;
+                            for (int a = 0; a < 3; ++a) phi *= std::max(0.0, 1.0 - std::abs(p[a] - c[a]) / s.w);
+                            if (phi <= 0) continue;
+                            sumW += phi;
+                            sumWV += phi * v;
+                            sumWA += phi * std::abs(v);
+                        }
+                    }
+                    ++r.vertices;
+                    if (!(sumW > 0)) continue;
+                    const double f = sumWV / sumW, magnitude = sumWA / sumW;
+                    r.roomLo = std::min(r.roomLo, f - relativeRoom * magnitude);
+                    r.roomHi = std::max(r.roomHi, f + relativeRoom * magnitude);
+                    if (f < r.lo) {
+                        r.lo = f;
+                        r.argLo = p;
+                    }
+                    if (f > r.hi) {
+                        r.hi = f;
+                        r.argHi = p;
+                    }
+                }
+    }
+}
+
 }  // namespace
 
 bool ExactRange::Blocks::contains(uint64_t key) const {
@@ -184,86 +273,8 @@ void ExactRange::part(glm::dvec3 lo, glm::dvec3 hi, double relativeRoom, Result&
 
     // The lattice: the part's faces and every breakpoint c - w, c, c + w strictly inside.
     std::vector<double> planes[3];
-    for (int a = 0; a < 3; ++a) {
-        planes[a] = {lo[a], hi[a]};
-        for (const LevelSlots& s : slots) {
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            for (int64_t i = 0; i < s.n[a]; ++i) {
-                bool occupied = false;  // any cell in this slab of slots
-                for (int64_t j = 0; j < s.n[b] && !occupied; ++j)
-                    for (int64_t k = 0; k < s.n[c] && !occupied; ++k) {
-                        glm::i64vec3 r3;
-                        r3[a] = i;
-                        r3[b] = j;
-                        r3[c] = k;
-                        occupied = !std::isnan(s.values[size_t((r3.z * s.n.y + r3.y) * s.n.x + r3.x)]);
-                    }
-                if (!occupied) continue;
-                const double centre = (double(s.k0[a] + i) + 0.5) * s.w;
-                for (double p : {centre - s.w, centre, centre + s.w})
-                    if (p > lo[a] && p < hi[a]) planes[a].push_back(p);
-            }
-        }
-        std::sort(planes[a].begin(), planes[a].end());
-        planes[a].erase(std::unique(planes[a].begin(), planes[a].end()), planes[a].end());
-    }
-    // Evaluate f at every vertex (split along the axis with most planes when there are too many).
-    struct Piece {
-        std::vector<double> planes[3];
-    };
-    std::vector<Piece> pieces(1);
-    for (int a = 0; a < 3; ++a) pieces[0].planes[a] = std::move(planes[a]);
-    while (!pieces.empty()) {
-        Piece piece = std::move(pieces.back());
-        pieces.pop_back();
-        const uint64_t count = uint64_t(piece.planes[0].size()) * piece.planes[1].size() * piece.planes[2].size();
-        if (count > kMaxVertices) {
-            int a = 0;
-            for (int k = 1; k < 3; ++k)
-                if (piece.planes[k].size() > piece.planes[a].size()) a = k;
-            const size_t m = piece.planes[a].size() / 2;  // shared by both halves
-            Piece left = piece, right = piece;
-            left.planes[a].assign(piece.planes[a].begin(), piece.planes[a].begin() + ptrdiff_t(m) + 1);
-            right.planes[a].assign(piece.planes[a].begin() + ptrdiff_t(m), piece.planes[a].end());
-            pieces.push_back(std::move(left));
-            pieces.push_back(std::move(right));
-            continue;
-        }
-        for (double z : piece.planes[2])
-            for (double y : piece.planes[1])
-                for (double x : piece.planes[0]) {
-                    const glm::dvec3 p(x, y, z);
-                    double sumW = 0, sumWV = 0, sumWA = 0;  // sumWA: the same sum over |v|
-                    for (const LevelSlots& s : slots) {
-                        const glm::i64vec3 k0(glm::floor(p / s.w - 0.5));
-                        for (int corner = 0; corner < 8; ++corner) {
-                            const glm::i64vec3 k = k0 + glm::i64vec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-                            const double v = s.at(k);
-                            if (std::isnan(v)) continue;
-                            const glm::dvec3 c = (glm::dvec3(k) + 0.5) * s.w;
-                            double phi = 1.0;
-                            for (int a = 0; a < 3; ++a) phi *= std::max(0.0, 1.0 - std::abs(p[a] - c[a]) / s.w);
-                            if (phi <= 0) continue;
-                            sumW += phi;
-                            sumWV += phi * v;
-                            sumWA += phi * std::abs(v);
-                        }
-                    }
-                    ++r.vertices;
-                    if (!(sumW > 0)) continue;
-                    const double f = sumWV / sumW, magnitude = sumWA / sumW;
-                    r.roomLo = std::min(r.roomLo, f - relativeRoom * magnitude);
-                    r.roomHi = std::max(r.roomHi, f + relativeRoom * magnitude);
-                    if (f < r.lo) {
-                        r.lo = f;
-                        r.argLo = p;
-                    }
-                    if (f > r.hi) {
-                        r.hi = f;
-                        r.argHi = p;
-                    }
-                }
-    }
+    for (int a = 0; a < 3; ++a) planes[a] = latticePlanes(slots, a, lo[a], hi[a]);
+    evaluateLattice(slots, planes, relativeRoom, r);
 }
 
 }  // namespace amrvk::amr
