@@ -301,28 +301,31 @@ struct DomainAmr {
 
 const char* kAxisNames[] = {"xg(x)", "xg(y)", "xg(z)"};
 
-// Reads one domain's AMR file: checks it against `mesh` (set from the first file), appends its
-// own leaves to `leaves`.
-DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const std::string& infoName, Mesh& mesh,
-                      std::vector<Leaf>& leaves, std::vector<uint64_t>& octsPerLevel) {
-    RecordReader in(path);
+// The header of one domain's AMR file up to its octs: checked against `info` and `mesh` (set
+// from the first file), with the oct counts per level and domain (numbl) and boundary (numbb).
+struct AmrHeader {
+    int32_t ncpu = 0, ndim = 0, nlevelmax = 0;
+    int realBytes = 8;
+    std::vector<int32_t> numbl, numbb;
+};
+AmrHeader readAmrHeader(RecordReader& in, int domain, const Info& info, const std::string& infoName, Mesh& mesh) {
     const std::string& name = in.name();
     const bool first = domain == 1;
+    AmrHeader hd;
     auto same = [&](const char* what, int64_t value, int64_t expected, const std::string& from) {
         AMRVK_CHECK(value == expected, name, ": ", what, " ", value, " differs from ", expected, " in ", from);
     };
-    const int32_t ncpu = in.scalar<int32_t>("ncpu");
+    const int32_t ncpu = hd.ncpu = in.scalar<int32_t>("ncpu");
     same("ncpu", ncpu, info.ncpu, infoName);
-    const int32_t ndim = in.scalar<int32_t>("ndim");
+    const int32_t ndim = hd.ndim = in.scalar<int32_t>("ndim");
     same("ndim", ndim, info.ndim, infoName);
     const std::vector<int32_t> n = in.values<int32_t>("nx ny nz", 3);
-    const int32_t nlevelmax = in.scalar<int32_t>("nlevelmax");
+    const int32_t nlevelmax = hd.nlevelmax = in.scalar<int32_t>("nlevelmax");
     same("nlevelmax", nlevelmax, info.levelmax, infoName);
     in.skip("ngridmax");
     const int32_t nboundary = in.scalar<int32_t>("nboundary");
     in.skip("ngrid_current");
-    int realBytes = 8;
-    const double boxlen = in.realScalar("boxlen", realBytes);
+    const double boxlen = in.realScalar("boxlen", hd.realBytes);
     if (first) {
         mesh.ncpu = ncpu;
         mesh.ndim = ndim;
@@ -358,15 +361,14 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
     const uint64_t perLevel = checkedProduct({uint64_t(ncpu), levels}, name + ": ncpu x nlevelmax");
     in.skipValues("headl", perLevel, 4);
     in.skipValues("taill", perLevel, 4);
-    const std::vector<int32_t> numbl = in.values<int32_t>("numbl", perLevel);  // cpu fastest
+    hd.numbl = in.values<int32_t>("numbl", perLevel);  // cpu fastest
     in.skipValues("numbtot", checkedProduct({10, levels}, name + ": numbtot"), 4);
-    std::vector<int32_t> numbb;
     const uint64_t boundaries = uint64_t(mesh.nboundary);
     if (boundaries > 0) {
         const uint64_t perBoundary = checkedProduct({boundaries, levels}, name + ": nboundary x nlevelmax");
         in.skipValues("headb", perBoundary, 4);
         in.skipValues("tailb", perBoundary, 4);
-        numbb = in.values<int32_t>("numbb", perBoundary);
+        hd.numbb = in.values<int32_t>("numbb", perBoundary);
     }
     in.skip("headf tailf numbf used_mem used_mem_tot");
     const std::string ordering = in.text("ordering");
@@ -382,6 +384,54 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
     in.skipValues("flag1 (coarse)", ncoarse, 4);
     in.skipValues("cpu_map (coarse)", ncoarse, 4);
 
+    return hd;
+}
+
+// The leaf cells of `count` own octs of level l (centres xg per axis, son per child; 0: a leaf),
+// appended to `leaves` and, by oct and child, to `mine`. Every centre is checked to be a level-l
+// oct's inside the domain.
+void addOwnLeaves(const std::string& name, int l, uint64_t count, int ndim, const std::vector<std::vector<double>>& xg,
+                  const std::vector<std::vector<int32_t>>& son, const Mesh& mesh, std::vector<Leaf>& leaves,
+                  OwnLevel& mine) {
+    const int twotondim = 1 << ndim;
+    const double scale = std::ldexp(1.0, l);  // level-l cells per coarse cell
+    for (uint64_t i = 0; i < count; ++i) {
+        // The oct's lower corner on level l: (xg - skip) * 2^l - 1, an even integer inside the domain.
+        glm::i64vec3 corner(0);
+        bool hasLeaf = false;
+        for (int ind = 0; ind < twotondim; ++ind) hasLeaf = hasLeaf || son[size_t(ind)][i] == 0;
+        if (!hasLeaf) continue;
+        AMRVK_CHECK(l <= kMaxLevel, name, ": leaf cells on RAMSES level ", l, " (amrvk holds at most ",
+                    kMaxLevel, " levels of refinement below the coarse grid)");
+        for (int a = 0; a < ndim; ++a) {
+            const double g = (xg[size_t(a)][i] - mesh.skip[a]) * scale - 1.0;
+            const double hi = mesh.extent[a] * scale - 2.0;
+            AMRVK_CHECK(std::isfinite(g) && g >= 0 && g <= hi && g == std::floor(g) && std::fmod(g, 2.0) == 0,
+                        name, ": oct ", i, " of level ", l, " has centre ", xg[size_t(a)][i], " on axis ", a,
+                        ", not the centre of a level-", l, " oct inside the domain");
+            corner[a] = int64_t(g);
+        }
+        for (int ind = 0; ind < twotondim; ++ind) {
+            if (son[size_t(ind)][i] != 0) continue;
+            const glm::i64vec3 offset(ind & 1, (ind >> 1) & 1, ndim == 3 ? (ind >> 2) & 1 : 0);
+            leaves.push_back({l, corner + offset});
+            mine.leaves.emplace_back(uint32_t(i), uint8_t(ind));
+        }
+    }
+}
+
+// Reads one domain's AMR file: checks it against `mesh` (set from the first file), appends its
+// own leaves to `leaves`.
+DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const std::string& infoName, Mesh& mesh,
+                      std::vector<Leaf>& leaves, std::vector<uint64_t>& octsPerLevel) {
+    RecordReader in(path);
+    const std::string& name = in.name();
+    const AmrHeader hd = readAmrHeader(in, domain, info, infoName, mesh);
+    const int32_t ncpu = hd.ncpu, ndim = hd.ndim, nlevelmax = hd.nlevelmax;
+    const int realBytes = hd.realBytes;
+    const std::vector<int32_t>& numbl = hd.numbl;
+    const std::vector<int32_t>& numbb = hd.numbb;
+    const uint64_t levels = uint64_t(nlevelmax), boundaries = uint64_t(mesh.nboundary);
     octsPerLevel.resize(levels, 0);  // every file has nlevelmax == info's levelmax
     DomainAmr amr;
     const uint64_t bounds = uint64_t(ncpu) + boundaries;
@@ -420,32 +470,8 @@ DomainAmr readAmrFile(const fs::path& path, int domain, const Info& info, const 
             for (int k = 0; k < 2 * twotondim; ++k) in.skipValues(k < twotondim ? "cpu_map" : "flag1", count, 4);
             if (!own) continue;
 
-            OwnLevel& mine = amr.own[li];
             octsPerLevel[li] += count;
-            const double scale = std::ldexp(1.0, l);  // level-l cells per coarse cell
-            for (uint64_t i = 0; i < count; ++i) {
-                // The oct's lower corner on level l: (xg - skip) * 2^l - 1, an even integer inside the domain.
-                glm::i64vec3 corner(0);
-                bool hasLeaf = false;
-                for (int ind = 0; ind < twotondim; ++ind) hasLeaf = hasLeaf || son[size_t(ind)][i] == 0;
-                if (!hasLeaf) continue;
-                AMRVK_CHECK(l <= kMaxLevel, name, ": leaf cells on RAMSES level ", l, " (amrvk holds at most ",
-                            kMaxLevel, " levels of refinement below the coarse grid)");
-                for (int a = 0; a < ndim; ++a) {
-                    const double g = (xg[size_t(a)][i] - mesh.skip[a]) * scale - 1.0;
-                    const double hi = mesh.extent[a] * scale - 2.0;
-                    AMRVK_CHECK(std::isfinite(g) && g >= 0 && g <= hi && g == std::floor(g) && std::fmod(g, 2.0) == 0,
-                                name, ": oct ", i, " of level ", l, " has centre ", xg[size_t(a)][i], " on axis ", a,
-                                ", not the centre of a level-", l, " oct inside the domain");
-                    corner[a] = int64_t(g);
-                }
-                for (int ind = 0; ind < twotondim; ++ind) {
-                    if (son[size_t(ind)][i] != 0) continue;
-                    const glm::i64vec3 offset(ind & 1, (ind >> 1) & 1, ndim == 3 ? (ind >> 2) & 1 : 0);
-                    leaves.push_back({l, corner + offset});
-                    mine.leaves.emplace_back(uint32_t(i), uint8_t(ind));
-                }
-            }
+            addOwnLeaves(name, l, count, ndim, xg, son, mesh, leaves, amr.own[li]);
         }
     }
     return amr;
