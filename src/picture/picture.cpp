@@ -202,13 +202,4 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     return j;
 }
 
-Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options) {
-    Timer read;
-    std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
-    const double readSeconds = read.seconds() - volume->bricks.buildSeconds;
-    Picture p = makePicture(ctx, std::move(volume), d, std::move(options));
-    p.report.readSeconds = readSeconds;
-    return p;
-}
-
 }  // namespace amrvk::picture

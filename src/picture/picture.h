@@ -31,7 +31,7 @@ struct Report {
     std::vector<std::string> notes;       // fitted traversal, back-end, auto's pick: one line each
     std::string backendReason;            // why --backend auto chose what it chose (empty when given)
     std::optional<render::AutoChoice> autoChoice;  // StructureFit::Probe
-    double readSeconds = 0;               // reading and per-cell validation (openPicture)
+    double readSeconds = 0;               // reading and per-cell validation (set by the front end that read)
     double buildSeconds = 0;              // bricks and the structures of the combination (host)
 };
 
@@ -44,11 +44,12 @@ struct Picture {
     scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});
 };
 
-// The picture `d` describes over `volume` (its data: loadVolume's, or cells a caller made).
+// The picture `d` describes over `volume`: the one door every front end opens a picture through.
+// The volume is the front end's to make, as only it knows when and from what: session::loadVolume
+// (render, view, bench, Python files), mpi::loadPart (a data-parallel rank's part) or
+// scene::makeVolume over cells a caller made (Python arrays, yt).
 Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume,
                     const session::PictureDescription& d, Options options = {});
-// Reads d.session's data (session::loadVolume), then makePicture.
-Picture openPicture(gpu::Context& ctx, const session::PictureDescription& d, Options options = {});
 
 // Wall-clock times only the caller knows (0 when not measured).
 struct RenderTimes {

@@ -44,7 +44,7 @@ TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
     const amr::Model cloud = test::makeThreeLevelCloud();
     amr::writeExaBrick(cloud, dir / "cloud", true);
     const session::PictureDescription d = cloudDescription(dir / "cloud.cells");
-    picture::Picture fromFile = picture::openPicture(ctx(), d);
+    picture::Picture fromFile = picture::makePicture(ctx(), session::loadVolume(d.session), d);
     // The caller's cells, validated as a reader's are (NaN policy, alignment, overlaps).
     amr::Model memory = cloud;
     memory.source = "memory";
@@ -116,10 +116,11 @@ TEST_F(PictureGpu, TheCommandLineOfADescriptionRendersItsPicture) {
         session::renderCommandLine(d, "", (dir / "command.pfm").string(), binary) + " 2>" + (dir / "command.err").string();
     ASSERT_EQ(std::system(command.c_str()), 0) << command << "\n" << test::readAll(dir / "command.err");
     const Image viaCommand = readPfm(dir / "command.pfm");
-    const scene::RenderOutput inProcess = picture::openPicture(ctx(), d).render();
+    const scene::RenderOutput inProcess = picture::makePicture(ctx(), session::loadVolume(d.session), d).render();
     ASSERT_EQ(viaCommand.pixels.size(), inProcess.mean.pixels.size());
     EXPECT_LT(maxRelativeDifference(viaCommand, inProcess.mean), 1e-5) << command;
     // Power: the comparison tells another seed's samples apart.
     d.session.settings.seed += 1;
-    EXPECT_GT(maxRelativeDifference(viaCommand, picture::openPicture(ctx(), d).render().mean), 1e-3);
+    EXPECT_GT(maxRelativeDifference(viaCommand, picture::makePicture(ctx(), session::loadVolume(d.session), d).render().mean),
+              1e-3);
 }

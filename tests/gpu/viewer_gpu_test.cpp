@@ -88,7 +88,7 @@ scene::RenderOutput renderSession(gpu::Context& ctx, const session::Session& s, 
     d.session = s;
     d.session.settings.seed += seedOffset;
     d.session.settings.densityScale *= densityFactor;
-    return picture::openPicture(ctx, d).render();
+    return picture::makePicture(ctx, session::loadVolume(d.session), d).render();
 }
 
 // The viewer's screenshot as a RenderOutput with the reference's per-pixel sample variance (same
