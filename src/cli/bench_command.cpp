@@ -63,16 +63,8 @@ std::vector<T> parseList(const char* option, const std::string& text, T (*parse)
 
 namespace {
 
-// The bench; with `world` (mpirun) sample-parallel: every rank runs the protocol, each render's
-// samples split over the ranks; rank 0 alone speaks and writes.
-int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
-#if AMRVK_MPI
-    const bool speaks = !world || world->rank() == 0;
-#else
-    const bool speaks = true;
-#endif
-    CLI::App app(kBenchHelp, "amrvk bench");
-    setUpCommand(app);
+// The bench command's options, bound by addBenchOptions.
+struct BenchArgs {
     std::vector<std::string> inputs;
     std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
     int64_t frames = 100, warmup = 10, refSpp = 0;
@@ -81,58 +73,71 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
-    app.add_option("inputs", inputs, "data sets; INPUT:FIELD picks a field per data set (--field for all)")
-        ->required()
-        ->type_name("INPUT[:FIELD]...");
-    app.add_option("-o,--output", outDir, "output directory (created; references are cached in DIR/references)")
-        ->required()
-        ->type_name("DIR");
-    addReadOptions(app, read, false);
-    app.add_option("--tfs", tfs,
+};
+
+// Registers the protocol's own options on `app`, bound to `a`, in --help's order.
+void addProtocolOptions(CLI::App& app, BenchArgs& a) {
+    app.add_option("--tfs", a.tfs,
                    "TF presets or files, comma-separated; presets are fitted to each data set (spiky and foggy "
-                   "over its percentiles, as render fits them) unless --tf-range fixes them")->capture_default_str()->type_name("LIST");
-    app.add_option("--modes", modes, "unbiased modes of the matrix: ae,ss,ms")
+                   "over its percentiles, as render fits them) unless --tf-range fixes them")
         ->capture_default_str()
         ->type_name("LIST");
-    app.add_option("--traversals", traversals, "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
+    app.add_option("--modes", a.modes, "unbiased modes of the matrix: ae,ss,ms")
+        ->capture_default_str()
         ->type_name("LIST");
-    app.add_option("--samplers", samplers, "subset of ext-brick,abr,grid (default all three)")->type_name("LIST");
-    app.add_option("--backends", backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
+    app.add_option("--traversals", a.traversals, "subset of grid-dda,grid-bvh,abr,brick,ext-brick,kdtree (default all)")
         ->type_name("LIST");
-    app.add_option("--frames", frames, "timed frames of 1 spp each")
+    app.add_option("--samplers", a.samplers, "subset of ext-brick,abr,grid (default all three)")->type_name("LIST");
+    app.add_option("--backends", a.backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
+        ->type_name("LIST");
+    app.add_option("--frames", a.frames, "timed frames of 1 spp each")
         ->check(interval(2, 1 << 20))
         ->capture_default_str()
         ->type_name("N");
-    app.add_option("--warmup", warmup, "untimed frames first")
+    app.add_option("--warmup", a.warmup, "untimed frames first")
         ->check(interval(0, 1 << 20))
         ->capture_default_str()
         ->type_name("N");
-    app.add_option("--reference-spp", refSpp,
+    app.add_option("--reference-spp", a.refSpp,
                    "samples per pixel of the references (default 4096 on a GPU, 512 on a CPU device)")
         ->check(interval(2, scene::kMaxSpp))
         ->type_name("N");
-    app.add_option("--target-rmse", targetRmse,
+    app.add_option("--target-rmse", a.targetRmse,
                    "RMSE whose time is reported (default: half the first combination's 1-spp RMSE)")
         ->check(interval(0, INFINITY, false, true))
         ->type_name("E");
-    app.add_option("--dvr-steps", dvrSteps,
+    app.add_option("--dvr-steps", a.dvrSteps,
                    "dvr step sizes (fractions of the finest cell width; default 2,1,0.5,0.25,0.125)")
         ->type_name("LIST|none");
-    app.add_option("--grid-sweep", gridSweep,
+    app.add_option("--grid-sweep", a.gridSweep,
                    "macrocells on the longest axis for the grid sweep (default 16,32,64,128,256)")
         ->type_name("LIST|none");
-    app.add_flag("--no-dense", noDense, "skip the dense-sampler cost floor");
-    app.add_flag("--auto", autoSelect,
+    app.add_flag("--no-dense", a.noDense, "skip the dense-sampler cost floor");
+    app.add_flag("--auto", a.autoSelect,
                  "also run the automatic choice and compare it with the best measured combination");
-    addPictureOptions(app, pic, true);
+}
+
+// Registers every bench option on `app`, bound to `a`, in --help's order.
+void addBenchOptions(CLI::App& app, BenchArgs& a) {
+    app.add_option("inputs", a.inputs, "data sets; INPUT:FIELD picks a field per data set (--field for all)")
+        ->required()
+        ->type_name("INPUT[:FIELD]...");
+    app.add_option("-o,--output", a.outDir, "output directory (created; references are cached in DIR/references)")
+        ->required()
+        ->type_name("DIR");
+    addReadOptions(app, a.read, false);
+    addProtocolOptions(app, a);
+    addPictureOptions(app, a.pic, true);
     app.get_option("--size")
         ->description("image size (default 1024x1024 on a GPU, 256x256 on a CPU device)")
         ->default_str("");
-    addDeviceOptions(app, dev);
-    if (!parseCommandLine(app, argv)) return 0;
+    addDeviceOptions(app, a.dev);
+}
 
-    bench::BenchOptions o;
-    o.outDir = outDir;
+// The data sets, each existing: INPUT or INPUT:FIELD (a colon read as a field only when INPUT
+// itself does not exist), the field --field's otherwise, tagged with its file name and field.
+std::vector<bench::BenchDataset> benchDatasets(const std::vector<std::string>& inputs, const ReadArgs& read) {
+    std::vector<bench::BenchDataset> out;
     for (const std::string& p : inputs) {
         bench::BenchDataset ds;
         ds.input = p;
@@ -146,38 +151,43 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
         std::filesystem::path path(ds.input);
         ds.tag = path.filename().empty() ? path.parent_path().filename().string() : path.filename().string();
         if (!ds.field.empty()) ds.tag += ":" + ds.field;
-        o.datasets.push_back(ds);
+        out.push_back(ds);
     }
-    o.read = readOptions(read);
-    o.tfs = splitList(tfs);
+    return out;
+}
+
+// The matrix into `o`: TFs (and a fixed --tf-range), modes, traversals, samplers and back-ends,
+// each list checked in that order.
+void parseMatrix(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o) {
+    o.tfs = splitList(a.tfs);
     AMRVK_CHECK(!o.tfs.empty(), "--tfs: empty list");
     if (app.count("--tf-range")) {
-        const float lo = float(pic.tfRange[0]), hi = float(pic.tfRange[1]);
+        const float lo = float(a.pic.tfRange[0]), hi = float(a.pic.tfRange[1]);
         AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         o.tfRange = std::make_pair(lo, hi);
     }
-    o.modes = parseList("--modes", modes, scene::parseMode);
+    o.modes = parseList("--modes", a.modes, scene::parseMode);
     AMRVK_CHECK(std::ranges::count(o.modes, scene::Mode::Dvr) == 0,
                 "--modes: dvr is the baseline of --dvr-steps, not a matrix mode");
-    if (app.count("--traversals")) o.traversals = parseList("--traversals", traversals, scene::parseTraversal);
+    if (app.count("--traversals")) o.traversals = parseList("--traversals", a.traversals, scene::parseTraversal);
     if (app.count("--samplers")) {
-        o.samplers = parseList("--samplers", samplers, scene::parseSampler);
+        o.samplers = parseList("--samplers", a.samplers, scene::parseSampler);
         AMRVK_CHECK(std::ranges::count(o.samplers, scene::SamplerKind::Dense) == 0,
                     "--samplers: dense runs by itself (see --no-dense)");
     }
     if (app.count("--backends")) {
-        o.backends = parseList("--backends", backends, scene::parseBackend);
+        o.backends = parseList("--backends", a.backends, scene::parseBackend);
         AMRVK_CHECK(std::ranges::count(o.backends, scene::Backend::Auto) == 0, "--backends: name sw and/or rq");
     }
-    if (app.count("--size")) parseSize("--size", pic.size, o.width, o.height);
-    o.frames = uint32_t(frames);
-    o.warmup = uint32_t(warmup);
-    o.referenceSpp = uint32_t(refSpp);
-    o.targetRmse = targetRmse;
+}
+
+// The sweeps into `o` when given: --dvr-steps (each in (0, 64]) and --grid-sweep (each in
+// [1, 4096]); "none" empties one.
+void parseSweeps(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o) {
     if (app.count("--dvr-steps")) {
         o.dvrSteps.clear();
-        if (dvrSteps != "none")
-            for (const auto& t : splitList(dvrSteps)) {
+        if (a.dvrSteps != "none")
+            for (const auto& t : splitList(a.dvrSteps)) {
                 char* end = nullptr;
                 const double dt = std::strtod(t.c_str(), &end);
                 AMRVK_CHECK(end && *end == '\0' && dt > 0 && dt <= 64, "--dvr-steps: '", t, "' is not in (0, 64]");
@@ -186,31 +196,52 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
     }
     if (app.count("--grid-sweep")) {
         o.gridSweep.clear();
-        if (gridSweep != "none")
-            for (const auto& g : splitList(gridSweep)) {
+        if (a.gridSweep != "none")
+            for (const auto& g : splitList(a.gridSweep)) {
                 char* end = nullptr;
                 const long n = std::strtol(g.c_str(), &end, 10);
                 AMRVK_CHECK(end && *end == '\0' && n >= 1 && n <= 4096, "--grid-sweep: '", g, "' is not in [1, 4096]");
                 o.gridSweep.push_back(g);
             }
     }
-    o.grid = pic.grid;
-    o.kdLeaves = uint32_t(pic.kdLeaves);
-    o.dense = !noDense;
-    o.denseMaxBytes = uint64_t(pic.denseMaxMib) << 20;
-    o.autoSelect = autoSelect;
-    AMRVK_CHECK(!world || !autoSelect, "--auto: not under mpirun (its timed pick can differ between ranks)");
-    o.base = pictureSettings(app, pic, scene::RenderSettings{});
-    o.fovDegrees = pic.fov;
+}
+
+// The protocol's options from the parsed command line, every one checked; nothing is written yet.
+bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::vector<std::string>& argv,
+                                 mpi::World* world) {
+    bench::BenchOptions o;
+    o.outDir = a.outDir;
+    o.datasets = benchDatasets(a.inputs, a.read);
+    o.read = readOptions(a.read);
+    parseMatrix(app, a, o);
+    if (app.count("--size")) parseSize("--size", a.pic.size, o.width, o.height);
+    o.frames = uint32_t(a.frames);
+    o.warmup = uint32_t(a.warmup);
+    o.referenceSpp = uint32_t(a.refSpp);
+    o.targetRmse = a.targetRmse;
+    parseSweeps(app, a, o);
+    o.grid = a.pic.grid;
+    o.kdLeaves = uint32_t(a.pic.kdLeaves);
+    o.dense = !a.noDense;
+    o.denseMaxBytes = uint64_t(a.pic.denseMaxMib) << 20;
+    o.autoSelect = a.autoSelect;
+    AMRVK_CHECK(!world || !a.autoSelect, "--auto: not under mpirun (its timed pick can differ between ranks)");
+    o.base = pictureSettings(app, a.pic, scene::RenderSettings{});
+    o.fovDegrees = a.pic.fov;
     if (app.count("--camera")) o.camera = o.base.camera;
     o.commandLine = "amrvk bench";
-    for (const auto& a : argv) o.commandLine += " " + a;
+    for (const auto& arg : argv) o.commandLine += " " + arg;
     {
         std::error_code ec;
         std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
         if (!ec) o.amrvkPath = self.string();
     }
-    // Every option is valid: only now the output directory is made, never inside a data set.
+    return o;
+}
+
+// The output directory, made (every option is valid by now) and writable; its reports are none of
+// the data sets.
+void makeOutputDirectory(const bench::BenchOptions& o) {
     std::vector<NamedPath> dataInputs;
     for (const bench::BenchDataset& ds : o.datasets) dataInputs.push_back({"input", ds.input});
     std::error_code ec;
@@ -221,38 +252,36 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
     AMRVK_CHECK(::access(o.outDir.c_str(), W_OK) == 0, "-o ", o.outDir.string(), ": directory is not writable");
     checkOutputs({{"-o", o.outDir / "results.json"}, {"-o", o.outDir / "results.csv"}, {"-o", o.outDir / "results.md"}},
                  dataInputs);
-    o.shaders = gpu::ShaderLibrary(dev.shaderDir);
-    gpu::ContextOptions co = dev.context;
-#if AMRVK_MPI
-    if (world) {
-        co.spread = uint32_t(world->localRank());
-        o.writesFiles = speaks;
-        o.render = [world](render::Renderer& r, const scene::RenderSettings& rs, uint32_t spp,
-                           const std::function<void(uint32_t, uint32_t)>& progress, const std::vector<uint32_t>& marks,
-                           const std::function<void(const scene::RenderOutput&)>& snapshot) {
-            return mpi::renderSamples(*world, r, rs, spp, progress, marks, snapshot).out;
-        };
-        o.agree = [world](const std::string& error) {
-            mpi::Failure f = world->agree(error, {}, 20, false);
-            if (f.fatal) throw mpi::PeerFailed(std::move(f));
-            if (f.rank < 0) return std::string();
-            return "rank " + std::to_string(f.rank) + " of " + std::to_string(world->size()) + ": " +
-                   (f.message.empty() ? std::string("failed") : f.message);
-        };
-        o.all = [world](bool mine) {
-            mpi::Failure f = world->agree(mine ? "" : "no", {}, 20, false);
-            if (f.fatal) throw mpi::PeerFailed(std::move(f));
-            return f.rank < 0;
-        };
-    }
-#endif
-    gpu::Context ctx(co);
+}
 
-    ProgressBar bar("bench", "runs");
-    bench::BenchResults results =
-        bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
-    bar.finish();
-    if (!speaks) return 0;  // rank 0 writes the reports of the job
+#if AMRVK_MPI
+// Under mpirun: this rank's device, and the hooks that split each render's samples over the ranks
+// and agree on failures; only rank 0 (`speaks`) writes files.
+void shareOverRanks(mpi::World* world, bool speaks, bench::BenchOptions& o, gpu::ContextOptions& co) {
+    co.spread = uint32_t(world->localRank());
+    o.writesFiles = speaks;
+    o.render = [world](render::Renderer& r, const scene::RenderSettings& rs, uint32_t spp,
+                       const std::function<void(uint32_t, uint32_t)>& progress, const std::vector<uint32_t>& marks,
+                       const std::function<void(const scene::RenderOutput&)>& snapshot) {
+        return mpi::renderSamples(*world, r, rs, spp, progress, marks, snapshot).out;
+    };
+    o.agree = [world](const std::string& error) {
+        mpi::Failure f = world->agree(error, {}, 20, false);
+        if (f.fatal) throw mpi::PeerFailed(std::move(f));
+        if (f.rank < 0) return std::string();
+        return "rank " + std::to_string(f.rank) + " of " + std::to_string(world->size()) + ": " +
+               (f.message.empty() ? std::string("failed") : f.message);
+    };
+    o.all = [world](bool mine) {
+        mpi::Failure f = world->agree(mine ? "" : "no", {}, 20, false);
+        if (f.fatal) throw mpi::PeerFailed(std::move(f));
+        return f.rank < 0;
+    };
+}
+#endif
+
+// The reports (results, plots) and the summary line; a note on stderr when plots were not drawn.
+void writeBenchReports(const bench::BenchResults& results, const bench::BenchOptions& o) {
     const bench::PlotOutcome plots = bench::writeReports(results, o.outDir);
     size_t failed = 0;
     for (const auto& r : results.runs) failed += !r.error.empty();
@@ -261,6 +290,38 @@ int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
         "%s\n",
         o.outDir.string().c_str(), plots.files.size(), results.runs.size(), failed, results.device.c_str());
     if (!plots.note.empty()) std::fprintf(stderr, "amrvk bench: %s\n", plots.note.c_str());
+}
+
+// The bench; with `world` (mpirun) sample-parallel: every rank runs the protocol, each render's
+// samples split over the ranks; rank 0 alone speaks and writes.
+int benchOn(const std::vector<std::string>& argv, mpi::World* world) {
+#if AMRVK_MPI
+    const bool speaks = !world || world->rank() == 0;
+#else
+    const bool speaks = true;
+#endif
+    CLI::App app(kBenchHelp, "amrvk bench");
+    setUpCommand(app);
+    BenchArgs a;
+    addBenchOptions(app, a);
+    if (!parseCommandLine(app, argv)) return 0;
+
+    bench::BenchOptions o = benchOptions(app, a, argv, world);
+    // Every option is valid: only now the output directory is made, never inside a data set.
+    makeOutputDirectory(o);
+    o.shaders = gpu::ShaderLibrary(a.dev.shaderDir);
+    gpu::ContextOptions co = a.dev.context;
+#if AMRVK_MPI
+    if (world) shareOverRanks(world, speaks, o, co);
+#endif
+    gpu::Context ctx(co);
+
+    ProgressBar bar("bench", "runs");
+    bench::BenchResults results =
+        bench::runBench(ctx, o, [&](size_t d, size_t t, const std::string& what) { bar.update(d, t, what); });
+    bar.finish();
+    if (!speaks) return 0;  // rank 0 writes the reports of the job
+    writeBenchReports(results, o);
     return 0;
 }
 

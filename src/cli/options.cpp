@@ -202,81 +202,97 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
         ->type_name("N");
 }
 
-void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
-    if (!subset) {
-        app.add_option("--session", a.session,
-                       "start from a session file (the viewer's 'save session'); options given too "
-                       "override it")
-            ->check(CLI::ExistingFile)
-            ->type_name("FILE");
-        app.add_option("--tf", a.tf,
-                       "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: ramp, grey, "
-                       "constant, empty over the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th "
-                       "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.05 at "
-                       "the maximum) over the field's percentiles by cell count")
-            ->capture_default_str()
-            ->type_name("FILE|PRESET");
-        app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
-            ->type_name("NAME");
-        app.add_option("--mode", a.mode,
-                       "absorption+emission, single or multiple scattering, or the ray-marching "
-                       "baseline (biased "
-                       "by --dt)")
-            ->check(CLI::IsMember({"ae", "ss", "ms", "dvr"}))
-            ->capture_default_str()
-            ->type_name("ae|ss|ms|dvr");
-        app.add_option("--dt", a.dt, "dvr: step as a fraction of the finest cell width at the sample")
-            ->check(interval(0, 64, true))
-            ->capture_default_str()
-            ->type_name("F");
-        app.add_flag("--dvr-shading", a.dvrShading,
-                     "dvr: gradient shading by the first --light-dir (else a headlight)");
-        app.add_option("--traversal", a.traversal,
-                       "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
-                       "brick bounds, brick "
-                       "domains, the TF-specific kd-tree; auto = probe each traversal and sampler "
-                       "briefly, predict the other combinations from their counts, and take the "
-                       "most efficient (options given explicitly stay fixed; --json lists the probes)")
-            ->check(CLI::IsMember(traversalChoices()))
-            ->capture_default_str()
-            ->type_name("NAME");
-        app.add_option("--sampler", a.sampler,
-                       "sample reconstruction: BVH over brick domains, BVH over ABRs, grid = per-macrocell "
-                       "brick lists (--grid; no tree descent, ext-brick's values), or dense = the field "
-                       "resampled to the finest uniform grid (trilinear, a grid traversal only; the cost floor)")
-            ->check(CLI::IsMember({"ext-brick", "abr", "grid", "dense"}))
-            ->capture_default_str()
-            ->type_name("ext-brick|abr|grid|dense");
-        app.add_option("--backend", a.backend,
-                       "box hierarchies: software BVH or VK_KHR_ray_query; auto = sw, which was measured faster on CPU "
-                       "devices (rq is not measured faster on a GPU yet); the choice and its reason go to stderr and --json")
-            ->check(CLI::IsMember({"sw", "rq", "auto"}))
-            ->capture_default_str()
-            ->type_name("sw|rq|auto");
-        app.add_option("--spp", a.spp, "samples per pixel")
-            ->check(interval(1, scene::kMaxSpp))
-            ->capture_default_str()
-            ->type_name("N");
-        app.add_flag("--legend", a.legend,
-                     "draw a colour legend into the PNG (render -o, the viewer's screenshots): the TF's colour bar with "
-                     "its opacity, ticks (decades for --scale log), the field's name and --legend-units; the viewer "
-                     "shows it over the picture");
-        app.add_option("--legend-place", a.legendPlace,
-                       "side: in a strip right of the picture (the PNG gets wider, no data hidden); overlay: over the "
-                       "picture's lower right corner on a backdrop")
-            ->check(CLI::IsMember({"side", "overlay"}))
-            ->capture_default_str()
-            ->type_name("side|overlay");
-        app.add_option("--legend-title", a.legendTitle, "the legend's title (default: the field's name)")
-            ->type_name("TEXT");
-        app.add_option("--legend-units", a.legendUnits,
-                       "units shown under the title, e.g. 'g/cm^3' (no reader stores units; default: none)")
-            ->type_name("TEXT");
-        app.add_option("--legend-font", a.legendFont,
-                       "TrueType/OpenType font of the legend's text (default: Debian's "
-                       "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf)")
-            ->type_name("FILE");
-    }
+namespace {
+
+// addPictureOptions' groups, each registering its options in --help's order.
+
+// Where the picture starts: a saved session and the transfer function.
+void addStartOptions(CLI::App& app, PictureArgs& a) {
+    app.add_option("--session", a.session,
+                   "start from a session file (the viewer's 'save session'); options given too "
+                   "override it")
+        ->check(CLI::ExistingFile)
+        ->type_name("FILE");
+    app.add_option("--tf", a.tf,
+                   "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: ramp, grey, "
+                   "constant, empty over the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th "
+                   "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.05 at "
+                   "the maximum) over the field's percentiles by cell count")
+        ->capture_default_str()
+        ->type_name("FILE|PRESET");
+    app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
+        ->type_name("NAME");
+}
+
+// How the picture is made: the estimator, its majorant traversal, sampler and back-end, and the
+// samples per pixel.
+void addMethodOptions(CLI::App& app, PictureArgs& a) {
+    app.add_option("--mode", a.mode,
+                   "absorption+emission, single or multiple scattering, or the ray-marching "
+                   "baseline (biased "
+                   "by --dt)")
+        ->check(CLI::IsMember({"ae", "ss", "ms", "dvr"}))
+        ->capture_default_str()
+        ->type_name("ae|ss|ms|dvr");
+    app.add_option("--dt", a.dt, "dvr: step as a fraction of the finest cell width at the sample")
+        ->check(interval(0, 64, true))
+        ->capture_default_str()
+        ->type_name("F");
+    app.add_flag("--dvr-shading", a.dvrShading,
+                 "dvr: gradient shading by the first --light-dir (else a headlight)");
+    app.add_option("--traversal", a.traversal,
+                   "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
+                   "brick bounds, brick "
+                   "domains, the TF-specific kd-tree; auto = probe each traversal and sampler "
+                   "briefly, predict the other combinations from their counts, and take the "
+                   "most efficient (options given explicitly stay fixed; --json lists the probes)")
+        ->check(CLI::IsMember(traversalChoices()))
+        ->capture_default_str()
+        ->type_name("NAME");
+    app.add_option("--sampler", a.sampler,
+                   "sample reconstruction: BVH over brick domains, BVH over ABRs, grid = per-macrocell "
+                   "brick lists (--grid; no tree descent, ext-brick's values), or dense = the field "
+                   "resampled to the finest uniform grid (trilinear, a grid traversal only; the cost floor)")
+        ->check(CLI::IsMember({"ext-brick", "abr", "grid", "dense"}))
+        ->capture_default_str()
+        ->type_name("ext-brick|abr|grid|dense");
+    app.add_option("--backend", a.backend,
+                   "box hierarchies: software BVH or VK_KHR_ray_query; auto = sw, which was measured faster on CPU "
+                   "devices (rq is not measured faster on a GPU yet); the choice and its reason go to stderr and --json")
+        ->check(CLI::IsMember({"sw", "rq", "auto"}))
+        ->capture_default_str()
+        ->type_name("sw|rq|auto");
+    app.add_option("--spp", a.spp, "samples per pixel")
+        ->check(interval(1, scene::kMaxSpp))
+        ->capture_default_str()
+        ->type_name("N");
+}
+
+// The colour legend drawn into PNG images.
+void addLegendOptions(CLI::App& app, PictureArgs& a) {
+    app.add_flag("--legend", a.legend,
+                 "draw a colour legend into the PNG (render -o, the viewer's screenshots): the TF's colour bar with "
+                 "its opacity, ticks (decades for --scale log), the field's name and --legend-units; the viewer "
+                 "shows it over the picture");
+    app.add_option("--legend-place", a.legendPlace,
+                   "side: in a strip right of the picture (the PNG gets wider, no data hidden); overlay: over the "
+                   "picture's lower right corner on a backdrop")
+        ->check(CLI::IsMember({"side", "overlay"}))
+        ->capture_default_str()
+        ->type_name("side|overlay");
+    app.add_option("--legend-title", a.legendTitle, "the legend's title (default: the field's name)")
+        ->type_name("TEXT");
+    app.add_option("--legend-units", a.legendUnits,
+                   "units shown under the title, e.g. 'g/cm^3' (no reader stores units; default: none)")
+        ->type_name("TEXT");
+    app.add_option("--legend-font", a.legendFont,
+                   "TrueType/OpenType font of the legend's text (default: Debian's "
+                   "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf)")
+        ->type_name("FILE");
+}
+
+// The TF's value range.
+void addTfRangeOption(CLI::App& app, PictureArgs& a) {
     app.add_option("--tf-range", a.tfRange,
                    "map the TF's node range onto [LO, HI]; presets then ignore the data and take their range-fixed "
                    "shape over [LO, HI] (spiky: one alpha-1 peak at the middle, 1% half width; foggy: alpha 0.05 -> "
@@ -284,6 +300,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->expected(2)
         ->check(kFinite)
         ->type_name("LO HI");
+}
+
+// The structures' sizes: macrocell grid, kd-tree leaves, dense grid.
+void addStructureOptions(CLI::App& app, PictureArgs& a) {
     app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
@@ -295,6 +315,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->check(interval(1, 1 << 20))
         ->capture_default_str()
         ->type_name("MIB");
+}
+
+// The image and its camera, and the random seed.
+void addViewOptions(CLI::App& app, PictureArgs& a) {
     app.add_option("--size", a.size, strCat("image size, 1..", scene::kMaxImageSide, " per side"))->capture_default_str()->type_name("WxH");
     app.add_option("--camera", a.camera, "eye, target and up in world space (default: a three-quarter view)")
         ->expected(9)
@@ -308,6 +332,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->check(interval(0, UINT32_MAX))
         ->capture_default_str()
         ->type_name("S");
+}
+
+// The medium's scale and phase function, and its lighting.
+void addMediumOptions(CLI::App& app, PictureArgs& a) {
     app.add_option("--density-scale", a.densityScale, "multiplies extinction")
         ->check(interval(0, INFINITY, false, true))
         ->capture_default_str()
@@ -335,6 +363,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->take_all()
         ->check(kFinite)
         ->type_name("X Y Z R G B");
+}
+
+// Cut-aways: a crop box and clip planes.
+void addCutAwayOptions(CLI::App& app, PictureArgs& a) {
     app.add_option("--crop", a.crop,
                    "cut-away: keep only the medium inside the box X0 Y0 Z0 .. X1 Y1 Z1 (world space); the rest is "
                    "empty, the field inside is reconstructed as before (docs/cut-aways.md)")
@@ -348,6 +380,21 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         ->take_all()
         ->check(kFinite)
         ->type_name("PX PY PZ NX NY NZ");
+}
+
+}  // namespace
+
+void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
+    if (!subset) {
+        addStartOptions(app, a);
+        addMethodOptions(app, a);
+        addLegendOptions(app, a);
+    }
+    addTfRangeOption(app, a);
+    addStructureOptions(app, a);
+    addViewOptions(app, a);
+    addMediumOptions(app, a);
+    addCutAwayOptions(app, a);
 }
 
 void addSeriesOptions(CLI::App& app, SeriesArgs& a) {

@@ -86,147 +86,145 @@ int runDevices(const std::vector<std::string>& argv) {
 
 namespace {
 
-// One render; with `world` (mpirun) this rank's part of a sample- or data-parallel one: rank 0
-// alone speaks and writes.
-int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
-    const Timer sinceStart;  // time to the first sample: reading, validating, structures, device set-up
-#if AMRVK_MPI
-    const bool speaks = !world || world->rank() == 0;
-#else
-    const bool speaks = true;
-#endif
-    CLI::App app(kRenderHelp, "amrvk render");
-    setUpCommand(app);
+// The render command's options, bound by addRenderOptions.
+struct RenderArgs {
     std::vector<std::string> inputs;
-    std::string output = "amrvk.png", jsonFile;
+    std::string output = "amrvk.png", jsonFile, varianceFile, distribute = "samples";
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
     SeriesArgs series;
-    app.add_option("input", inputs,
+};
+
+// Registers render's options on `app`, bound to `a`, in --help's order.
+void addRenderOptions(CLI::App& app, RenderArgs& a) {
+    app.add_option("input", a.inputs,
                    "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
                    "RAMSES output directory, raw .raw (optional with --session); several, or a quoted glob pattern, "
                    "make a series")
         ->type_name("INPUT...");
-    addReadOptions(app, read, false);
-    addPictureOptions(app, pic);
-    addSeriesOptions(app, series);
-    app.add_option("-o,--output", output,
+    addReadOptions(app, a.read, false);
+    addPictureOptions(app, a.pic);
+    addSeriesOptions(app, a.series);
+    app.add_option("-o,--output", a.output,
                    "out.png (tone-mapped sRGB), out.exr or out.pfm (linear float); a series: frames/f_%04d.png, "
                    "frames/ or movie.mp4")
         ->capture_default_str()
         ->type_name("FILE");
-    app.add_option("--json", jsonFile, "write render statistics as JSON")->type_name("FILE");
-    std::string varianceFile;
-    app.add_option("--variance", varianceFile,
+    app.add_option("--json", a.jsonFile, "write render statistics as JSON")->type_name("FILE");
+    app.add_option("--variance", a.varianceFile,
                    "also write the per-pixel variance of the mean (rgb, from the samples' squares; needs --spp >= 2) "
                    "as .exr or .pfm: error bars for the image")
         ->type_name("FILE");
-    std::string distribute = "samples";
-    app.add_option("--distribute", distribute,
+    app.add_option("--distribute", a.distribute,
                    "under mpirun: samples (every rank holds the data and renders a share of the samples) or "
                    "data (every rank reads and tracks only its box of space; ae, ss, ms; docs/mpi.md)")
         ->check(CLI::IsMember({"samples", "data"}))
         ->capture_default_str();
-    addDeviceOptions(app, dev);
-    if (!parseCommandLine(app, argv)) return 0;
-    AMRVK_CHECK(world || app.count("--distribute") == 0,
-                "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
-    [[maybe_unused]] const bool byData = distribute == "data";
-    if (isSeries(app, inputs, output))
-        return renderSeries(app, {.inputs = inputs, .output = output, .jsonFile = jsonFile, .varianceFile = varianceFile},
-                            read, pic, series, dev, world);
-    const std::string input = inputs.empty() ? std::string() : inputs.front();
+    addDeviceOptions(app, a.dev);
+}
 
-    const std::string ext = fs::path(output).extension().string();
-    AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "-o ", output,
+// One picture, checked before any work: its outputs (known image types, writable, distinct, none
+// of them an input), its description and the legend's font (a missing font is one line, not a
+// lost render).
+struct PicturePlan {
+    std::string input;  // empty with --session alone
+    std::string ext;    // -o's extension
+    std::vector<NamedPath> outputs;
+    session::PictureDescription description;
+    std::unique_ptr<Font> legendFont;  // null: no legend drawn
+};
+
+PicturePlan planPicture(const CLI::App& app, const RenderArgs& a, bool speaks) {
+    PicturePlan p;
+    p.input = a.inputs.empty() ? std::string() : a.inputs.front();
+    p.ext = fs::path(a.output).extension().string();
+    AMRVK_CHECK(p.ext == ".png" || p.ext == ".exr" || p.ext == ".pfm", "-o ", a.output,
                 ": unknown image type (use .png, .exr or .pfm)");
     // Every output checked before any work: writable, distinct, none of them an input.
-    const std::string varianceExt = fs::path(varianceFile).extension().string();
-    AMRVK_CHECK(varianceFile.empty() || varianceExt == ".exr" || varianceExt == ".pfm", "--variance ", varianceFile,
+    const std::string varianceExt = fs::path(a.varianceFile).extension().string();
+    AMRVK_CHECK(a.varianceFile.empty() || varianceExt == ".exr" || varianceExt == ".pfm", "--variance ", a.varianceFile,
                 ": use .exr or .pfm (linear float)");
-    const std::vector<NamedPath> outputs = {{"-o", output}, {"--json", jsonFile}, {"--variance", varianceFile}};
-    checkOutputs(outputs, pictureInputs(app, input, pic));
-    session::PictureDescription description = describePicture(app, input, read, pic);
-    AMRVK_CHECK(varianceFile.empty() || description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
-                description.session.spp, ")");
+    p.outputs = {{"-o", a.output}, {"--json", a.jsonFile}, {"--variance", a.varianceFile}};
+    checkOutputs(p.outputs, pictureInputs(app, p.input, a.pic));
+    p.description = describePicture(app, p.input, a.read, a.pic);
+    AMRVK_CHECK(a.varianceFile.empty() || p.description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
+                p.description.session.spp, ")");
     // The legend's font is read before any work (a missing font is one line, not a lost render).
-    std::unique_ptr<Font> legendFont;
-    if (description.session.legend.show) {
-        AMRVK_CHECK(ext == ".png" || app.count("--legend") == 0, "--legend: only PNG images get a legend (-o ", output,
-                    " keeps the linear radiance)");
-        if (ext == ".png") legendFont = session::openLegendFont(description.session.legend);
+    if (p.description.session.legend.show) {
+        AMRVK_CHECK(p.ext == ".png" || app.count("--legend") == 0, "--legend: only PNG images get a legend (-o ",
+                    a.output, " keeps the linear radiance)");
+        if (p.ext == ".png")
+            p.legendFont = session::openLegendFont(p.description.session.legend);
         else if (speaks) std::fprintf(stderr, "amrvk: the session's legend is drawn into PNG images only\n");
     }
-    Timer readTimer;
-    std::shared_ptr<const scene::Volume> loaded;
+    return p;
+}
+
+// The data set as read: all of it, or (--distribute data under mpirun) this rank's part.
+struct LoadedData {
+    std::shared_ptr<const scene::Volume> volume;
 #if AMRVK_MPI
-    std::optional<mpi::DataPart> part;
+    std::optional<mpi::DataPart> part;  // set with --distribute data
+#endif
+    double readSeconds = 0;  // reading alone, without the bricks' build
+};
+
+LoadedData loadData(const session::PictureDescription& description, [[maybe_unused]] mpi::World* world,
+                    [[maybe_unused]] bool byData) {
+    LoadedData data;
+    Timer readTimer;
+#if AMRVK_MPI
     if (byData) {
-        part = mpi::loadPart(*world, description);
-        loaded = part->volume;
+        data.part = mpi::loadPart(*world, description);
+        data.volume = data.part->volume;
     } else
 #endif
-        loaded = session::loadVolume(description.session);
-    const double readSeconds = readTimer.seconds() - loaded->bricks.buildSeconds;
-    checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
-    gpu::ContextOptions co = dev.context;
-#if AMRVK_MPI
-    if (world) co.spread = uint32_t(world->localRank());  // one device per rank where a node has several
-#endif
-    co.requireRayQuery = description.session.structure.backend == scene::Backend::Rq;
-    gpu::Context ctx(co);
-    picture::Picture picture =
-        picture::makePicture(ctx, std::move(loaded), description,
-                             {.shaders = gpu::ShaderLibrary(dev.shaderDir),
-                              .note = [speaks](const std::string& line) {
-                                  if (speaks) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
-                              }});
-    picture.report.readSeconds = readSeconds;
-    const session::Session& s = picture.session;
-    if (legendFont) session::checkLegendFits(s, *legendFont);  // before the render
-    render::Renderer& renderer = *picture.renderer;
-    const scene::StructureConfig& config = renderer.config();
-    const scene::RenderSettings& rs = renderer.settings();
-    ProgressBar bar("render", "spp");
-    Timer wall;
-    double firstSampleSeconds = 0;
-    auto progress = [&](uint32_t d, uint32_t t) {
-        if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
-        bar.update(d, t);
-    };
+        data.volume = session::loadVolume(description.session);
+    data.readSeconds = readTimer.seconds() - data.volume->bricks.buildSeconds;
+    return data;
+}
+
+// The rendered image and, under mpirun, the ranks' report (null otherwise).
+struct Rendered {
     scene::RenderOutput out;
     Json mpiReport;
+};
+
+// Renders the picture alone, or this rank's share of a data- or sample-parallel render.
+Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedData& data,
+                     [[maybe_unused]] mpi::World* world, const std::function<void(uint32_t, uint32_t)>& progress) {
+    Rendered r;
 #if AMRVK_MPI
-    if (part) {
+    if (data.part) {
         world->checkpoint();  // every rank has its part and structures
-        mpi::DataParallelResult r = mpi::renderDataParallel(
-            *world, picture, *part, {{"readSeconds", readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
-            progress);
-        out = std::move(r.out);
-        mpiReport = std::move(r.mpi);
+        mpi::DataParallelResult d = mpi::renderDataParallel(
+            *world, picture, *data.part,
+            {{"readSeconds", data.readSeconds}, {"buildSeconds", picture.report.buildSeconds}}, progress);
+        r.out = std::move(d.out);
+        r.mpiReport = std::move(d.mpi);
     } else if (world) {
         mpi::SampleParallelResult share = mpi::renderSampleParallel(
-            *world, picture,
-            {{"readSeconds", readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
+            *world, picture, {{"readSeconds", data.readSeconds}, {"buildSeconds", picture.report.buildSeconds}},
             progress);
-        out = std::move(share.out);
-        mpiReport = std::move(share.mpi);
+        r.out = std::move(share.out);
+        r.mpiReport = std::move(share.mpi);
     } else
 #endif
-        out = picture.render(progress);
-    bar.finish();
-    const double wallSeconds = wall.seconds();
-    AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
-                " error(s); last: ", ctx.lastValidationMessage());
-    if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    session::writePicture(output, out.mean, s, legendFont.get());
-    if (!varianceFile.empty())
-        writeImage(varianceFile, scene::varianceImage(scene::varianceOfMean(out), out.mean.width, out.mean.height));
+        r.out = picture.render(progress);
+    return r;
+}
 
+// The summary on stdout, a warning on stderr when the image may be biased, and --json's statistics.
+void reportRender(const RenderArgs& a, const picture::Picture& picture, const gpu::Context& ctx, const Rendered& r,
+                  const picture::RenderTimes& times) {
+    const scene::RenderOutput& out = r.out;
+    const session::Session& s = picture.session;
+    const scene::StructureConfig& config = picture.renderer->config();
+    const scene::RenderSettings& rs = picture.renderer->settings();
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
-    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", output.c_str(), rs.width,
+    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", a.output.c_str(), rs.width,
                 rs.height, s.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
                 out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
     if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
@@ -240,12 +238,73 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
                      (unsigned long long)c[shared::kCounterNanSamples],
                      (unsigned long long)c[shared::kCounterBounceLimitHits],
                      (unsigned long long)c[shared::kCounterTrackingCapHits]);
-    if (!jsonFile.empty()) {
-        Json j = picture::renderStats(picture, out, {.wallSeconds = wallSeconds, .firstSampleSeconds = firstSampleSeconds});
-        if (!mpiReport.is_null()) j["mpi"] = mpiReport;
-        writeFileAtomic(jsonFile, j.dump(2) + "\n");
+    if (!a.jsonFile.empty()) {
+        Json j = picture::renderStats(picture, out, times);
+        if (!r.mpiReport.is_null()) j["mpi"] = r.mpiReport;
+        writeFileAtomic(a.jsonFile, j.dump(2) + "\n");
     }
+}
+
+// One picture (not a series): planned, read, built on the device, rendered, written and reported.
+int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, bool speaks, const Timer& sinceStart) {
+    PicturePlan plan = planPicture(app, a, speaks);
+    LoadedData data = loadData(plan.description, world, a.distribute == "data");
+    checkOutputs(plan.outputs, inputFilesRead());  // and none is a file the data set was read from
+    gpu::ContextOptions co = a.dev.context;
+#if AMRVK_MPI
+    if (world) co.spread = uint32_t(world->localRank());  // one device per rank where a node has several
+#endif
+    co.requireRayQuery = plan.description.session.structure.backend == scene::Backend::Rq;
+    gpu::Context ctx(co);
+    picture::Picture picture = picture::makePicture(
+        ctx, std::move(data.volume), plan.description,
+        {.shaders = gpu::ShaderLibrary(a.dev.shaderDir), .note = [speaks](const std::string& line) {
+             if (speaks) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+         }});
+    picture.report.readSeconds = data.readSeconds;
+    if (plan.legendFont) session::checkLegendFits(picture.session, *plan.legendFont);  // before the render
+    ProgressBar bar("render", "spp");
+    Timer wall;
+    double firstSampleSeconds = 0;
+    auto progress = [&](uint32_t d, uint32_t t) {
+        if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
+        bar.update(d, t);
+    };
+    const Rendered r = renderImage(picture, data, world, progress);
+    bar.finish();
+    const double wallSeconds = wall.seconds();
+    AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
+                " error(s); last: ", ctx.lastValidationMessage());
+    if (!speaks) return 0;  // rank 0 writes the outputs of the job
+    session::writePicture(a.output, r.out.mean, picture.session, plan.legendFont.get());
+    if (!a.varianceFile.empty())
+        writeImage(a.varianceFile,
+                   scene::varianceImage(scene::varianceOfMean(r.out), r.out.mean.width, r.out.mean.height));
+    reportRender(a, picture, ctx, r, {.wallSeconds = wallSeconds, .firstSampleSeconds = firstSampleSeconds});
     return 0;
+}
+
+// One render; with `world` (mpirun) this rank's part of a sample- or data-parallel one: rank 0
+// alone speaks and writes.
+int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
+    const Timer sinceStart;  // time to the first sample: reading, validating, structures, device set-up
+#if AMRVK_MPI
+    const bool speaks = !world || world->rank() == 0;
+#else
+    const bool speaks = true;
+#endif
+    CLI::App app(kRenderHelp, "amrvk render");
+    setUpCommand(app);
+    RenderArgs a;
+    addRenderOptions(app, a);
+    if (!parseCommandLine(app, argv)) return 0;
+    AMRVK_CHECK(world || app.count("--distribute") == 0,
+                "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
+    if (isSeries(app, a.inputs, a.output))
+        return renderSeries(
+            app, {.inputs = a.inputs, .output = a.output, .jsonFile = a.jsonFile, .varianceFile = a.varianceFile},
+            a.read, a.pic, a.series, a.dev, world);
+    return renderPicture(app, a, world, speaks, sinceStart);
 }
 
 }  // namespace

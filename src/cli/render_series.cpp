@@ -120,6 +120,305 @@ std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const
     return {lo, hi};
 }
 
+// One series, carried from phase to phase of renderSeries.
+struct Series {
+    // The frames (planSeriesFrames).
+    std::vector<std::string> inputs;       // the outputs (data sets), in natural order
+    session::PictureDescription base;      // every frame's picture; its field once resolved
+    std::vector<std::string> frameInputs;  // frame k's input
+    uint32_t n = 0;                        // the frame count
+    double orbit = 0;                      // degrees turned over the frames
+    RangeFrom rangeFrom = RangeFrom::Given;
+    // Where they go (planOutputs, addFrameOutputs, openLegend).
+    bool movie = false;                    // -o MOVIE.mp4
+    bool keepFrames = false;               // the frames stay once the movie is encoded (or there is no movie)
+    std::string framesOption, framesText;  // the option naming the frames, and its text
+    session::FrameOutput frames;
+    std::vector<NamedPath> reads, outputs;  // the files read, and every file written
+    std::unique_ptr<Font> legendFont;       // null: no legend
+    // What is done already (loadManifest, resolveRange).
+    std::optional<session::FrameManifest> previous;  // the manifest found beside the frames
+    session::FrameManifest manifest;
+    bool resume = false;        // `previous` records this command: its frames are kept
+    bool resolved = false;      // `manifest` holds the series' camera, centre and field
+    bool rangeOfFirst = false;  // the range is the first output's, taken as it is read
+    // What is rendered now (renderFrames).
+    std::vector<uint32_t> todo;      // the frames not yet written, in order
+    std::map<uint32_t, Json> stats;  // of the frames rendered now
+    std::string deviceName;          // empty: nothing rendered
+};
+
+// The frames: inputs in natural order (none given: the session's), one frame each or --frames of
+// one, the orbit, and where the TF's range comes from.
+void planSeriesFrames(const CLI::App& app, const SeriesRequest& request, const ReadArgs& read, const PictureArgs& pic,
+                      const SeriesArgs& series, Series& s) {
+    s.inputs = request.inputs.empty() ? std::vector<std::string>{} : session::expandInputs(request.inputs);
+    s.base = describePicture(app, s.inputs.empty() ? std::string() : s.inputs.front(), read, pic);
+    if (s.inputs.empty()) s.inputs = session::expandInputs({s.base.session.input});
+    s.base.session.input = s.inputs.front();
+    const bool orbitGiven = given(app, "--orbit");
+    const std::optional<uint32_t> frameCount =
+        given(app, "--frames") ? std::optional(uint32_t(series.frames)) : std::nullopt;
+    s.frameInputs = session::planFrames(s.inputs, frameCount, orbitGiven);
+    s.n = uint32_t(s.frameInputs.size());
+    s.orbit = orbitGiven ? series.orbit : 0.0;
+    s.rangeFrom = s.base.tfRange                                                           ? RangeFrom::Given
+                  : !s.base.tfSource                                                       ? RangeFrom::Session
+                  : session::parseSeriesRange(series.range) == session::SeriesRange::First ? RangeFrom::First
+                                                                                           : RangeFrom::Union;
+}
+
+// Where they go: numbered frames, or a movie with its frames in a directory beside it. The
+// options' combination, ffmpeg, and -o (a movie) and --json against the inputs are checked; the
+// frames' directory is not made yet.
+void planOutputs(const CLI::App& app, const SeriesRequest& request, const PictureArgs& pic, const SeriesArgs& series,
+                 Series& s) {
+    s.movie = fs::path(request.output).extension() == ".mp4";
+    AMRVK_CHECK(s.movie || !given(app, "--frames-dir"), "--frames-dir ", series.framesDir,
+                ": only with -o MOVIE.mp4 (without a movie, -o names the frames)");
+    AMRVK_CHECK(s.movie || !given(app, "--fps"), "--fps: only with -o MOVIE.mp4");
+    if (s.movie) requireFfmpeg("-o", request.output);
+    s.keepFrames = !s.movie || given(app, "--frames-dir");
+    s.framesOption = s.movie ? "--frames-dir" : "-o";
+    s.framesText = s.movie ? (s.keepFrames ? series.framesDir : request.output + ".frames") + "/" : request.output;
+    s.frames = session::frameOutput(s.framesOption, s.framesText, s.n);
+    for (const std::string& i : s.inputs) s.reads.push_back({"input", i});
+    for (NamedPath& p : pictureInputs(app, std::string(), pic)) s.reads.push_back(std::move(p));
+    s.outputs = {{"-o", s.movie ? request.output : std::string()}, {"--json", request.jsonFile}};
+    checkOutputs(s.outputs, s.reads);
+}
+
+// The manifest and every frame added to the outputs, and all checked again (in their directory,
+// which exists now).
+void addFrameOutputs(Series& s) {
+    s.outputs.push_back({s.framesOption, s.frames.manifest});
+    for (uint32_t k = 0; k < s.n; ++k) s.outputs.push_back({s.framesOption, s.frames.frame(k)});
+    checkOutputs(s.outputs, s.reads);
+}
+
+// A legend goes into every frame (PNG only), with one range for the whole series; its font is
+// read before any work.
+void openLegend(const CLI::App& app, Series& s) {
+    if (!s.base.session.legend.show) return;
+    const bool png = s.frames.extension == ".png";
+    AMRVK_CHECK(png || !given(app, "--legend"), "--legend: only PNG frames get a legend (", s.framesOption, " ",
+                s.framesText, ")");
+    if (png) s.legendFont = session::openLegendFont(s.base.session.legend);
+}
+
+// A movie replaces its frames, and deletes them once encoded (without --frames-dir): a file at a
+// frame's name that no manifest of amrvk's lists is not amrvk's, so nothing is touched (refused).
+// Another command's frames are amrvk's (its manifest lists them) and are replaced anyway: removed
+// now, so that no frame of the old record outlives it unlisted.
+void clearMovieFrames(const Series& s, const std::string& output) {
+    std::vector<uint32_t> foreign;
+    std::error_code ec;
+    for (uint32_t k = 0; k < s.n; ++k)
+        if ((!s.previous || !s.previous->done.count(k)) && fs::exists(fs::symlink_status(s.frames.frame(k), ec)))
+            foreign.push_back(k);
+    const std::string names =
+        foreign.empty() ? std::string()
+                        : s.frames.frame(foreign[0]).filename().string() + (foreign.size() > 1 ? ", ..." : "");
+    AMRVK_CHECK(foreign.empty(), s.keepFrames ? "--frames-dir " + s.framesText : "-o " + output, ": ", foreign.size(),
+                s.keepFrames ? " of the frames" : " of its frames in " + s.framesText,
+                " exist and no manifest of amrvk's lists them (", names, "): refused, the movie would ",
+                s.keepFrames ? "replace them; move them away, or name another --frames-dir"
+                             : "replace and then delete them; move them away, or keep the frames elsewhere with "
+                               "--frames-dir DIR");
+    if (s.previous && !s.resume)
+        for (const uint32_t k : s.previous->done)
+            if (k < s.n) fs::remove(s.frames.frame(k), ec);
+}
+
+// What a re-run of the same command skips: frames its manifest records as done and that exist.
+// Otherwise every frame is rendered anew (a note says so when frames are replaced) under a
+// manifest of this recipe.
+void loadManifest(Series& s, const std::string& recipe, const std::string& output,
+                  const std::function<void(const std::string&)>& note) {
+    s.previous = session::loadFrameManifest(s.frames.manifest);
+    s.resume = s.previous && s.previous->recipe == recipe;
+    if (s.movie) clearMovieFrames(s, output);
+    if (s.resume) {
+        s.manifest = *s.previous;
+        std::error_code ec;
+        for (auto it = s.manifest.done.begin(); it != s.manifest.done.end();)
+            it =
+                (*it < s.n && fs::is_regular_file(s.frames.frame(*it), ec)) ? std::next(it) : s.manifest.done.erase(it);
+    } else {
+        if (s.previous) {
+            note(s.frames.manifest.string() + " records another command: rendering all " + std::to_string(s.n) +
+                 " frames anew");
+        } else {
+            uint32_t existing = 0;
+            std::error_code ec;
+            for (uint32_t k = 0; k < s.n; ++k) existing += fs::exists(s.frames.frame(k), ec) ? 1 : 0;
+            if (existing > 0)
+                note(std::to_string(existing) + " of the frames exist without a manifest (" +
+                     s.frames.manifest.string() + "): rendering all " + std::to_string(s.n) + " anew, replacing them");
+        }
+        s.manifest.recipe = recipe;
+    }
+    // The manifest holds the series' camera, centre, field and range once frame 0 was written
+    // (they are resolved while it is made; a run stopped before that resolves them again).
+    s.resolved = s.resume && !s.previous->done.empty();
+}
+
+// The series' TF range, unless the manifest holds it: given, or the union of every output's (a
+// reading pass, which also settles the field); the first output's is taken as frame 0 is read.
+void resolveRange(Series& s) {
+    // One input (a turntable): its own range is the union; no pass needed.
+    s.rangeOfFirst = s.rangeFrom == RangeFrom::First || (s.rangeFrom == RangeFrom::Union && s.inputs.size() == 1);
+    if (!s.resolved && s.rangeFrom == RangeFrom::Union && !s.rangeOfFirst) {
+        std::string field = s.base.session.field;
+        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field);
+        s.base.session.field = field;
+    }
+    if (!s.resolved && s.rangeFrom == RangeFrom::Given) s.manifest.tfRange = s.base.tfRange;
+}
+
+// Frame k's picture on `ctx`, read from its input (the caller released the last one): the series'
+// camera turned to `azimuth` once resolved; the first frame made (frame 0) resolves the field,
+// camera and centre, and the range when it is the first output's. No file read is an output
+// (`readsChecked`: the inputFilesRead() entries checked already).
+picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLibrary& shaders, uint32_t k,
+                              double azimuth, size_t& readsChecked,
+                              const std::function<void(const std::string&)>& note) {
+    session::PictureDescription d = s.base;
+    d.session.input = s.frameInputs[k];
+    if (s.resolved) {
+        d.session.field = s.manifest.field;
+        d.fitCamera = false;
+        d.session.settings.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+    }
+    std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
+    if (!s.resolved && s.rangeOfFirst) s.manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
+    // Several outputs: one TF over the series' range (a given --tf-range wins over it in
+    // resolvePicture), presets in their range-fixed shape. One output (a turntable): fitted to
+    // its data like a single picture, so a resumed run gets the same TF.
+    if (s.inputs.size() > 1) d.dataRange = s.manifest.tfRange;
+    // No frame is a file an output was read from; the outputs are fixed, so only new reads.
+    const std::vector<NamedPath> filesRead = inputFilesRead();
+    checkOutputs(s.outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
+    readsChecked = filesRead.size();
+    picture::Picture picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
+    if (s.legendFont) session::checkLegendFits(picture.session, *s.legendFont);  // before the render
+    if (!s.resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
+        s.manifest.field = picture.session.field;
+        s.manifest.camera = picture.session.settings.camera;
+        s.manifest.centre = 0.5 * (volume->worldLo() + volume->worldHi());
+        s.resolved = true;
+        s.base.session.field = s.manifest.field;
+    }
+    return picture;
+}
+
+// The frames not written yet (s.todo, not empty), rendered in order on one device, one output in
+// memory at a time; each frame is written, then recorded in the manifest.
+void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(const std::string&)>& note) {
+    if (!s.resume) saveFrameManifest(s.frames.manifest, s.manifest);  // before any frame: the old record is void
+    gpu::ContextOptions co = dev.context;
+    co.requireRayQuery = s.base.session.structure.backend == scene::Backend::Rq;
+    gpu::Context ctx(co);
+    s.deviceName = ctx.deviceReport().name;
+    const gpu::ShaderLibrary shaders(dev.shaderDir);
+    const uint32_t spp = std::max(s.base.session.spp, 1u);
+    ProgressBar bar("frames", "spp");
+    const uint64_t totalSpp = uint64_t(s.todo.size()) * spp;
+    uint64_t doneSpp = 0;
+    std::optional<picture::Picture> picture;  // one output in memory at a time
+    size_t readsChecked = 0;                  // inputFilesRead() entries already checked against the outputs
+    std::string pictureInput;
+    for (const uint32_t k : s.todo) {
+        const std::string& input = s.frameInputs[k];
+        const double azimuth = session::frameAzimuth(k, s.n, s.orbit);
+        if (!picture || pictureInput != input) {
+            picture.reset();  // released before the next output is read
+            bar.finish();
+            picture = framePicture(s, ctx, shaders, k, azimuth, readsChecked, note);
+            pictureInput = input;
+        } else {
+            scene::RenderSettings rs = picture->renderer->settings();
+            rs.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+            picture->renderer->setSettings(rs);
+            picture->session.settings = rs;
+        }
+        const std::string detail = "frame " + std::to_string(k) + ": " + fs::path(input).filename().string();
+        const Timer frameTimer;
+        const scene::RenderOutput out =
+            picture->render([&](uint32_t done, uint32_t) { bar.update(doneSpp + done, totalSpp, detail); });
+        doneSpp += spp;
+        AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
+                    " error(s); last: ", ctx.lastValidationMessage());
+        session::writePicture(s.frames.frame(k), out.mean, picture->session, s.legendFont.get());
+        s.manifest.done.insert(k);
+        saveFrameManifest(s.frames.manifest, s.manifest);
+        s.stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});
+    }
+    bar.finish();
+}
+
+// --json's report of every frame: its file (null for a movie's temporary frames), input, azimuth,
+// whether it was rendered now, its camera once resolved, and its statistics when rendered now.
+Json frameReports(const Series& s) {
+    Json reports = Json::array();
+    for (uint32_t k = 0; k < s.n; ++k) {
+        const double azimuth = session::frameAzimuth(k, s.n, s.orbit);
+        // The movie's temporary frames are gone by the time the report is read.
+        const Json file = s.keepFrames ? Json(s.frames.frame(k).string()) : Json(nullptr);
+        Json report = {{"index", k},
+                       {"file", file},
+                       {"input", s.frameInputs[k]},
+                       {"azimuthDegrees", azimuth},
+                       {"rendered", s.stats.count(k) > 0}};
+        if (s.resolved) {
+            const scene::Camera c = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+            report["camera"] = {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                                {"target", {c.target.x, c.target.y, c.target.z}},
+                                {"up", {c.up.x, c.up.y, c.up.z}},
+                                {"fovYDegrees", c.fovYDegrees}};
+        }
+        if (s.stats.count(k)) report["stats"] = s.stats.at(k);
+        reports.push_back(std::move(report));
+    }
+    return reports;
+}
+
+// -o MOVIE.mp4: encoded from the frames. Frames that were only the movie's are then removed with
+// their manifest, and so is their directory when amrvk made it (`madeDirectory`: now, or the run
+// whose manifest was there) and nothing else is in it.
+void finishMovie(const Series& s, const std::string& output, const SeriesArgs& series, bool madeDirectory) {
+    {
+        ProgressStage stage("encoding " + output + " with ffmpeg");
+        encodeMp4(s.frames.pattern, s.n, series.fps, output);
+    }
+    if (s.keepFrames) return;
+    std::error_code ec;
+    for (uint32_t k = 0; k < s.n; ++k) fs::remove(s.frames.frame(k), ec);  // every one listed by now
+    fs::remove(s.frames.manifest, ec);
+    if (madeDirectory || s.previous) fs::remove(s.frames.directory, ec);
+}
+
+// --json: the frames' reports and the series' count, field, range, orbit, movie and frames.
+void writeSeriesJson(const std::string& file, const Series& s, const std::string& output, Json frames,
+                     const Timer& wall) {
+    Json j;
+    j["frames"] = std::move(frames);
+    j["frameCount"] = s.n;
+    j["rendered"] = s.todo.size();
+    j["field"] = s.manifest.field;
+    j["tfRange"] =
+        s.manifest.tfRange ? Json::array({s.manifest.tfRange->first, s.manifest.tfRange->second}) : Json(nullptr);
+    j["rangeSource"] = rangeFromName(s.rangeFrom);
+    j["orbitDegrees"] = s.orbit;
+    j["orbitCentre"] =
+        s.resolved ? Json::array({s.manifest.centre.x, s.manifest.centre.y, s.manifest.centre.z}) : Json(nullptr);
+    j["movie"] = s.movie ? Json(output) : Json(nullptr);
+    j["framesPattern"] = s.keepFrames ? Json(s.frames.pattern) : Json(nullptr);
+    j["wallSeconds"] = wall.seconds();
+    j["peakResidentBytes"] = peakResidentBytes();
+    writeFileAtomic(file, j.dump(2) + "\n");
+}
+
 }  // namespace
 
 bool isSeries(const CLI::App& app, const std::vector<std::string>& inputs, const std::string& output) {
@@ -139,248 +438,31 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     AMRVK_CHECK(request.varianceFile.empty(), "--variance ", request.varianceFile,
                 ": one image only, not with a series of frames (render a single frame for error bars)");
     const Timer wall;
+    Series s;
+    planSeriesFrames(app, request, read, pic, series, s);
+    planOutputs(app, request, pic, series, s);
+    FramesDirectory directory(s.frames.directory, s.framesOption);
+    addFrameOutputs(s);
+    openLegend(app, s);
 
-    // The frames: inputs in natural order, one frame each or --frames of one.
-    std::vector<std::string> inputs =
-        request.inputs.empty() ? std::vector<std::string>{} : session::expandInputs(request.inputs);
-    session::PictureDescription base = describePicture(app, inputs.empty() ? std::string() : inputs.front(), read, pic);
-    if (inputs.empty()) inputs = session::expandInputs({base.session.input});
-    base.session.input = inputs.front();
-    const bool orbitGiven = given(app, "--orbit");
-    const std::optional<uint32_t> frameCount =
-        given(app, "--frames") ? std::optional(uint32_t(series.frames)) : std::nullopt;
-    const std::vector<std::string> frameInputs = session::planFrames(inputs, frameCount, orbitGiven);
-    const uint32_t n = uint32_t(frameInputs.size());
-    const double orbit = orbitGiven ? series.orbit : 0.0;
-    const RangeFrom rangeFrom = base.tfRange     ? RangeFrom::Given
-                                : !base.tfSource ? RangeFrom::Session
-                                : session::parseSeriesRange(series.range) == session::SeriesRange::First
-                                    ? RangeFrom::First
-                                    : RangeFrom::Union;
-
-    // Where they go: numbered frames, or a movie with its frames in a directory beside it.
-    const bool movie = fs::path(request.output).extension() == ".mp4";
-    AMRVK_CHECK(movie || !given(app, "--frames-dir"), "--frames-dir ", series.framesDir,
-                ": only with -o MOVIE.mp4 (without a movie, -o names the frames)");
-    AMRVK_CHECK(movie || !given(app, "--fps"), "--fps: only with -o MOVIE.mp4");
-    if (movie) requireFfmpeg("-o", request.output);
-    const bool keepFrames = !movie || given(app, "--frames-dir");
-    const std::string framesOption = movie ? "--frames-dir" : "-o";
-    const std::string framesText =
-        movie ? (keepFrames ? series.framesDir : request.output + ".frames") + "/" : request.output;
-    const session::FrameOutput frames = session::frameOutput(framesOption, framesText, n);
-    std::vector<NamedPath> reads;
-    for (const std::string& i : inputs) reads.push_back({"input", i});
-    for (NamedPath& p : pictureInputs(app, std::string(), pic)) reads.push_back(std::move(p));
-    std::vector<NamedPath> outputs = {{"-o", movie ? request.output : std::string()}, {"--json", request.jsonFile}};
-    checkOutputs(outputs, reads);
-    FramesDirectory directory(frames.directory, framesOption);
-    outputs.push_back({framesOption, frames.manifest});
-    for (uint32_t k = 0; k < n; ++k) outputs.push_back({framesOption, frames.frame(k)});
-    checkOutputs(outputs, reads);
-    // A legend goes into every frame (PNG only), with one range for the whole series; its font is
-    // read before any work.
-    std::unique_ptr<Font> legendFont;
-    if (base.session.legend.show) {
-        const bool png = frames.extension == ".png";
-        AMRVK_CHECK(png || !given(app, "--legend"), "--legend: only PNG frames get a legend (", framesOption, " ",
-                    framesText, ")");
-        if (png) legendFont = session::openLegendFont(base.session.legend);
-    }
-
-    // What a re-run of the same command skips: frames its manifest records as done and that exist.
     std::set<std::string> printed;  // each note once, not once per output
     const std::function<void(const std::string&)> note = [&printed](const std::string& line) {
         if (printed.insert(line).second) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
     };
-    const std::string recipe = recipeOf(base, frameInputs, n, orbit, rangeFrom);
-    session::FrameManifest manifest;
-    const std::optional<session::FrameManifest> previous = session::loadFrameManifest(frames.manifest);
-    const bool resume = previous && previous->recipe == recipe;
-    // A movie replaces its frames, and deletes them once encoded (without --frames-dir): a file at a
-    // frame's name that no manifest of amrvk's lists is not amrvk's, so nothing is touched.
-    if (movie) {
-        std::vector<uint32_t> foreign;
-        std::error_code ec;
-        for (uint32_t k = 0; k < n; ++k)
-            if ((!previous || !previous->done.count(k)) && fs::exists(fs::symlink_status(frames.frame(k), ec)))
-                foreign.push_back(k);
-        const std::string names =
-            foreign.empty() ? std::string()
-                            : frames.frame(foreign[0]).filename().string() + (foreign.size() > 1 ? ", ..." : "");
-        AMRVK_CHECK(foreign.empty(), keepFrames ? "--frames-dir " + framesText : "-o " + request.output, ": ",
-                    foreign.size(), keepFrames ? " of the frames" : " of its frames in " + framesText,
-                    " exist and no manifest of amrvk's lists them (", names, "): refused, the movie would ",
-                    keepFrames ? "replace them; move them away, or name another --frames-dir"
-                               : "replace and then delete them; move them away, or keep the frames elsewhere with "
-                                 "--frames-dir DIR");
-        // Another command's frames are amrvk's (its manifest lists them) and are replaced anyway:
-        // removed now, so that no frame of the old record outlives it unlisted.
-        if (previous && !resume)
-            for (const uint32_t k : previous->done)
-                if (k < n) fs::remove(frames.frame(k), ec);
-    }
-    if (resume) {
-        manifest = *previous;
-        std::error_code ec;
-        for (auto it = manifest.done.begin(); it != manifest.done.end();)
-            it = (*it < n && fs::is_regular_file(frames.frame(*it), ec)) ? std::next(it) : manifest.done.erase(it);
-    } else {
-        if (previous) {
-            note(frames.manifest.string() + " records another command: rendering all " + std::to_string(n) +
-                 " frames anew");
-        } else {
-            uint32_t existing = 0;
-            std::error_code ec;
-            for (uint32_t k = 0; k < n; ++k) existing += fs::exists(frames.frame(k), ec) ? 1 : 0;
-            if (existing > 0)
-                note(std::to_string(existing) + " of the frames exist without a manifest (" + frames.manifest.string() +
-                     "): rendering all " + std::to_string(n) + " anew, replacing them");
-        }
-        manifest.recipe = recipe;
-    }
-    // The manifest holds the series' camera, centre, field and range once frame 0 was written
-    // (they are resolved while it is made; a run stopped before that resolves them again).
-    bool resolved = resume && !previous->done.empty();
-    // One input (a turntable): its own range is the union; no pass needed.
-    const bool rangeOfFirst = rangeFrom == RangeFrom::First || (rangeFrom == RangeFrom::Union && inputs.size() == 1);
-    if (!resolved && rangeFrom == RangeFrom::Union && !rangeOfFirst) {
-        std::string field = base.session.field;
-        manifest.tfRange = unionRange(inputs, base.session.read, field);
-        base.session.field = field;
-    }
-    if (!resolved && rangeFrom == RangeFrom::Given) manifest.tfRange = base.tfRange;
-
-    std::vector<uint32_t> todo;
-    for (uint32_t k = 0; k < n; ++k)
-        if (!manifest.done.count(k)) todo.push_back(k);
-    std::map<uint32_t, Json> stats;  // of the frames rendered now
-    std::string deviceName;
-    if (!todo.empty()) {
-        if (!resume) saveFrameManifest(frames.manifest, manifest);  // before any frame: the old record is void
-        gpu::ContextOptions co = dev.context;
-        co.requireRayQuery = base.session.structure.backend == scene::Backend::Rq;
-        gpu::Context ctx(co);
-        deviceName = ctx.deviceReport().name;
-        const gpu::ShaderLibrary shaders(dev.shaderDir);
-        const uint32_t spp = std::max(base.session.spp, 1u);
-        ProgressBar bar("frames", "spp");
-        const uint64_t totalSpp = uint64_t(todo.size()) * spp;
-        uint64_t doneSpp = 0;
-        std::optional<picture::Picture> picture;  // one output in memory at a time
-        size_t readsChecked = 0;  // inputFilesRead() entries already checked against the outputs
-        std::string pictureInput;
-        for (const uint32_t k : todo) {
-            const std::string& input = frameInputs[k];
-            const double azimuth = session::frameAzimuth(k, n, orbit);
-            if (!picture || pictureInput != input) {
-                picture.reset();  // released before the next output is read
-                session::PictureDescription d = base;
-                d.session.input = input;
-                if (resolved) {
-                    d.session.field = manifest.field;
-                    d.fitCamera = false;
-                    d.session.settings.camera =
-                        session::OrbitCamera::orbitedAbout(manifest.camera, manifest.centre, azimuth);
-                }
-                bar.finish();
-                std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
-                if (!resolved && rangeOfFirst) manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
-                // Several outputs: one TF over the series' range (a given --tf-range wins over it in
-                // resolvePicture), presets in their range-fixed shape. One output (a turntable): fitted to
-                // its data like a single picture, so a resumed run gets the same TF.
-                if (inputs.size() > 1) d.dataRange = manifest.tfRange;
-                // No frame is a file an output was read from; the outputs are fixed, so only new reads.
-                const std::vector<NamedPath> filesRead = inputFilesRead();
-                checkOutputs(outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
-                readsChecked = filesRead.size();
-                picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
-                if (legendFont) session::checkLegendFits(picture->session, *legendFont);  // before the render
-                pictureInput = input;
-                if (!resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
-                    manifest.field = picture->session.field;
-                    manifest.camera = picture->session.settings.camera;
-                    manifest.centre = 0.5 * (volume->worldLo() + volume->worldHi());
-                    resolved = true;
-                    base.session.field = manifest.field;
-                }
-            } else {
-                scene::RenderSettings rs = picture->renderer->settings();
-                rs.camera = session::OrbitCamera::orbitedAbout(manifest.camera, manifest.centre, azimuth);
-                picture->renderer->setSettings(rs);
-                picture->session.settings = rs;
-            }
-            const std::string detail = "frame " + std::to_string(k) + ": " + fs::path(input).filename().string();
-            const Timer frameTimer;
-            const scene::RenderOutput out =
-                picture->render([&](uint32_t done, uint32_t) { bar.update(doneSpp + done, totalSpp, detail); });
-            doneSpp += spp;
-            AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
-                        " error(s); last: ", ctx.lastValidationMessage());
-            session::writePicture(frames.frame(k), out.mean, picture->session, legendFont.get());
-            manifest.done.insert(k);
-            saveFrameManifest(frames.manifest, manifest);
-            stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});
-        }
-        bar.finish();
-    }
+    loadManifest(s, recipeOf(s.base, s.frameInputs, s.n, s.orbit, s.rangeFrom), request.output, note);
+    resolveRange(s);
+    for (uint32_t k = 0; k < s.n; ++k)
+        if (!s.manifest.done.count(k)) s.todo.push_back(k);
+    if (!s.todo.empty()) renderFrames(s, dev, note);
     directory.dismiss();
-    Json frameReports = Json::array();
-    for (uint32_t k = 0; k < n; ++k) {
-        const double azimuth = session::frameAzimuth(k, n, orbit);
-        // The movie's temporary frames are gone by the time the report is read.
-        const Json file = keepFrames ? Json(frames.frame(k).string()) : Json(nullptr);
-        Json report = {{"index", k},
-                       {"file", file},
-                       {"input", frameInputs[k]},
-                       {"azimuthDegrees", azimuth},
-                       {"rendered", stats.count(k) > 0}};
-        if (resolved) {
-            const scene::Camera c = session::OrbitCamera::orbitedAbout(manifest.camera, manifest.centre, azimuth);
-            report["camera"] = {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
-                                {"target", {c.target.x, c.target.y, c.target.z}},
-                                {"up", {c.up.x, c.up.y, c.up.z}},
-                                {"fovYDegrees", c.fovYDegrees}};
-        }
-        if (stats.count(k)) report["stats"] = stats[k];
-        frameReports.push_back(std::move(report));
-    }
-
-    if (movie) {
-        ProgressStage stage("encoding " + request.output + " with ffmpeg");
-        encodeMp4(frames.pattern, n, series.fps, request.output);
-    }
-    const size_t rendered = todo.size();
-    if (movie && !keepFrames) {  // the frames were only the movie's: removed with their manifest
-        std::error_code ec;
-        for (uint32_t k = 0; k < n; ++k) fs::remove(frames.frame(k), ec);  // every one listed by now
-        fs::remove(frames.manifest, ec);
-        // The directory only when amrvk made it (now, or the run whose manifest was there), and only
-        // when nothing else is in it.
-        if (directory.made() || previous) fs::remove(frames.directory, ec);
-    }
-    if (!request.jsonFile.empty()) {
-        Json j;
-        j["frames"] = frameReports;
-        j["frameCount"] = n;
-        j["rendered"] = rendered;
-        j["field"] = manifest.field;
-        j["tfRange"] =
-            manifest.tfRange ? Json::array({manifest.tfRange->first, manifest.tfRange->second}) : Json(nullptr);
-        j["rangeSource"] = rangeFromName(rangeFrom);
-        j["orbitDegrees"] = orbit;
-        j["orbitCentre"] =
-            resolved ? Json::array({manifest.centre.x, manifest.centre.y, manifest.centre.z}) : Json(nullptr);
-        j["movie"] = movie ? Json(request.output) : Json(nullptr);
-        j["framesPattern"] = keepFrames ? Json(frames.pattern) : Json(nullptr);
-        j["wallSeconds"] = wall.seconds();
-        j["peakResidentBytes"] = peakResidentBytes();
-        writeFileAtomic(request.jsonFile, j.dump(2) + "\n");
-    }
-    const std::string where = movie ? request.output : frames.pattern;
+    Json reports = frameReports(s);
+    if (s.movie) finishMovie(s, request.output, series, directory.made());
+    if (!request.jsonFile.empty()) writeSeriesJson(request.jsonFile, s, request.output, std::move(reports), wall);
+    const std::string where = s.movie ? request.output : s.frames.pattern;
+    const size_t rendered = s.todo.size();
     std::printf("wrote %s (%u frames: %zu rendered, %zu already written by this command%s%s) in %.2f s\n",
-                where.c_str(), n, rendered, size_t(n) - rendered, deviceName.empty() ? "" : ", on ", deviceName.c_str(),
-                wall.seconds());
+                where.c_str(), s.n, rendered, size_t(s.n) - rendered, s.deviceName.empty() ? "" : ", on ",
+                s.deviceName.c_str(), wall.seconds());
     return 0;
 }
 
