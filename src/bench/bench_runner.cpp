@@ -158,7 +158,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         tick("reference " + name + " (" + std::to_string(spp) + " spp)");
         mRenderer.reset();  // one renderer's device memory at a time
         picture::Picture p = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
-        scene::RenderOutput out = renderAll(*p.renderer, p.renderer->settings(), p.session.spp,
+        scene::RenderOutput out = renderAll(*p.renderer, p.renderer->settings(), p.described.spp,
                                             [&](uint32_t done, uint32_t total) {
             tick("reference " + name + " " + std::to_string(done) + "/" + std::to_string(total) + " spp");
         }, {}, {});

@@ -16,10 +16,10 @@
 #include "core/strings.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
+#include "scene/limits.h"
 
 #if AMRVK_MPI
 #include "mpi/sample_parallel.h"
-#include "scene/limits.h"
 #endif
 
 namespace amrvk::cli {

@@ -18,9 +18,9 @@
 #include "core/progress.h"
 #include "core/stats.h"
 #include "core/strings.h"
+#include "scene/limits.h"
 #include "scene/majorant_check.h"
 #include "scene/volume.h"
-#include "scene/limits.h"
 
 namespace amrvk::cli {
 

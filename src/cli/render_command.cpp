@@ -219,7 +219,7 @@ Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedDat
 void reportRender(const RenderArgs& a, const picture::Picture& picture, const gpu::Context& ctx, const Rendered& r,
                   const picture::RenderTimes& times) {
     const scene::RenderOutput& out = r.out;
-    const session::Session& s = picture.session;
+    const session::Session s = picture.session();
     const scene::StructureConfig& config = picture.renderer->config();
     const scene::RenderSettings& rs = picture.renderer->settings();
     const auto& c = out.stats.counters;
@@ -262,7 +262,7 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
              if (speaks) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
          }});
     picture.report.readSeconds = data.readSeconds;
-    if (plan.legendFont) session::checkLegendFits(picture.session, *plan.legendFont);  // before the render
+    if (plan.legendFont) session::checkLegendFits(picture.session(), *plan.legendFont);  // before the render
     ProgressBar bar("render", "spp");
     Timer wall;
     double firstSampleSeconds = 0;
@@ -276,7 +276,7 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    session::writePicture(a.output, r.out.mean, picture.session, plan.legendFont.get());
+    session::writePicture(a.output, r.out.mean, picture.session(), plan.legendFont.get());
     if (!a.varianceFile.empty())
         writeImage(a.varianceFile,
                    scene::varianceImage(scene::varianceOfMean(r.out), r.out.mean.width, r.out.mean.height));

@@ -301,10 +301,10 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
     checkOutputs(s.outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
     readsChecked = filesRead.size();
     picture::Picture picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
-    if (s.legendFont) session::checkLegendFits(picture.session, *s.legendFont);  // before the render
+    if (s.legendFont) session::checkLegendFits(picture.session(), *s.legendFont);  // before the render
     if (!s.resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
-        s.manifest.field = picture.session.field;
-        s.manifest.camera = picture.session.settings.camera;
+        s.manifest.field = picture.described.field;
+        s.manifest.camera = picture.renderer->settings().camera;
         s.manifest.centre = 0.5 * (volume->worldLo() + volume->worldHi());
         s.resolved = true;
         s.base.session.field = s.manifest.field;
@@ -339,8 +339,7 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
         } else {
             scene::RenderSettings rs = picture->renderer->settings();
             rs.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
-            picture->renderer->setSettings(rs);
-            picture->session.settings = rs;
+            picture->renderer->setSettings(rs);  // Picture::session() reads it from the renderer
         }
         const std::string detail = "frame " + std::to_string(k) + ": " + fs::path(input).filename().string();
         const Timer frameTimer;
@@ -349,7 +348,7 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
         doneSpp += spp;
         AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                     " error(s); last: ", ctx.lastValidationMessage());
-        session::writePicture(s.frames.frame(k), out.mean, picture->session, s.legendFont.get());
+        session::writePicture(s.frames.frame(k), out.mean, picture->session(), s.legendFont.get());
         s.manifest.done.insert(k);
         saveFrameManifest(s.frames.manifest, s.manifest);
         s.stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});

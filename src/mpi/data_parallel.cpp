@@ -91,7 +91,7 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
     for (const amr::Box3l& b : part.owned)
         for (int a = 0; a < 3; ++a) census += strCat("|", b.lower[a], ",", b.upper[a]);  // GCC 12: no false -Wrestrict
     world.requireSame(std::hash<std::string>{}(census), "the data set (census and partition)");
-    world.requireSame(pictureFingerprint(p.session), "the picture (options or fitted choices)");
+    world.requireSame(pictureFingerprint(p.session()), "the picture (options or fitted choices)");
     renderer.setSettings(rs);
     renderer.resetAccumulation();
 
@@ -132,9 +132,9 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
         std::copy(product.begin(), product.end(), transmittance.begin());
     };
     const Timer wall;
-    const render::StagedReport report = renderer.accumulateStaged(staged, p.session.spp, progress);
+    const render::StagedReport report = renderer.accumulateStaged(staged, p.described.spp, progress);
     const scene::RenderStats& stats = report.stats;
-    const uint32_t spp = p.session.spp;
+    const uint32_t spp = p.described.spp;
 
     // Tracking counters are sums over the ranks' boxes; the shading ones (bounce limit, NaN) were
     // counted alike on every rank, as were the paths.

@@ -38,7 +38,7 @@ struct DataParallelResult {
     nlohmann::ordered_json mpi;  // rank 0: the "mpi" block of --json
 };
 
-// Renders p.session.spp samples per pixel with every rank's part of the data (collective: every
+// Renders p.session().spp samples per pixel with every rank's part of the data (collective: every
 // rank calls it). progress(done, spp) on rank 0.
 DataParallelResult renderDataParallel(World& world, picture::Picture& p, const DataPart& part,
                                       nlohmann::ordered_json rankInfo,

@@ -107,10 +107,10 @@ SampleShare renderSamples(World& world, render::Renderer& renderer, const scene:
 SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlohmann::ordered_json rankInfo,
                                           const std::function<void(uint32_t, uint32_t)>& progress) {
     world.checkpoint();  // every rank has its picture (or one failed: all stop here, nothing written)
-    world.requireSame(pictureFingerprint(p.session), "the picture (data, options or fitted choices)");
+    world.requireSame(pictureFingerprint(p.session()), "the picture (data, options or fitted choices)");
     world.requireSame(p.volume->model.cellCount(), "the data set (cell count)");
     render::Renderer& renderer = *p.renderer;
-    SampleShare share = renderSamples(world, renderer, renderer.settings(), p.session.spp, progress);
+    SampleShare share = renderSamples(world, renderer, renderer.settings(), p.described.spp, progress);
     rankInfo["firstSample"] = share.firstSample;
     rankInfo["samples"] = share.samples;
     rankInfo["paths"] = share.mine.paths;

@@ -58,7 +58,7 @@ struct SampleParallelResult {
 };
 
 // `amrvk render` under mpirun: checks that every rank fitted the same picture, renders
-// p.session.spp samples per pixel with renderSamples (progress(done, spp) on rank 0) and gathers
+// p.session().spp samples per pixel with renderSamples (progress(done, spp) on rank 0) and gathers
 // the per-rank report. Calls world.checkpoint() before the first collective, so a rank that failed
 // earlier ends the job cleanly. `rankInfo` is this rank's part of the report (read and build
 // seconds, ...), gathered with the render's own numbers.

@@ -32,7 +32,7 @@ scene::BackendChoice resolveStructure(const gpu::Context& ctx, scene::StructureC
 }
 
 scene::RenderOutput Picture::render(const std::function<void(uint32_t, uint32_t)>& progress) {
-    return renderer->render(renderer->settings(), session.spp, progress);
+    return renderer->render(renderer->settings(), described.spp, progress);
 }
 
 Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume,
@@ -44,36 +44,36 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         if (options.note) options.note(line);
     };
     std::vector<std::string> fitted;
-    p.session = session::resolvePicture(d, *volume, &fitted);
+    session::Session fittedSession = session::resolvePicture(d, *volume, &fitted);
     for (const std::string& line : fitted) note(line);
     for (const auto& [key, value] : volume->model.attributes)
         if (key == "logFloored") note("log scale: " + value + " (values <= 0, or below --log-floor, have no logarithm)");
-    if (const auto& crop = p.session.settings.cut.crop) {
+    if (const auto& crop = fittedSession.settings.cut.crop) {
         const glm::dvec3 lo = volume->worldMin(), hi = volume->worldMax();
         if (glm::any(glm::lessThan(crop->hi, lo)) || glm::any(glm::greaterThan(crop->lo, hi)))
             note(strCat("--crop keeps nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ",
                         hi.y, " ", hi.z, "): the picture shows only the background"));
     }
-    const scene::TransferFunction tf = p.session.tf.merged();
+    const scene::TransferFunction tf = fittedSession.tf.merged();
     if (d.fit == session::StructureFit::Probe) {
         // Probes start from the default combination; everything the user gave stays fixed.
         scene::StructureConfig start;
-        start.grid = p.session.structure.grid;
-        start.kdLeaves = p.session.structure.kdLeaves;
+        start.grid = fittedSession.structure.grid;
+        start.kdLeaves = fittedSession.structure.kdLeaves;
         resolveStructure(ctx, start);
         p.renderer = std::make_unique<render::Renderer>(ctx, volume, start, options.shaders);
         render::AutoConstraints constraints;
-        const scene::StructureConfig& given = p.session.structure;
+        const scene::StructureConfig& given = fittedSession.structure;
         if (d.samplerGiven) constraints.sampler = given.sampler;
         if (d.backendGiven && given.backend != scene::Backend::Auto) constraints.backend = given.backend;
         if (d.gridGiven) constraints.grid = given.grid;
         constraints.kdLeaves = given.kdLeaves;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");
-            p.report.autoChoice = render::autoSelect(*p.renderer, tf, p.session.settings, constraints, {}, options.probe);
+            p.report.autoChoice = render::autoSelect(*p.renderer, tf, fittedSession.settings, constraints, {}, options.probe);
         }
         const render::AutoChoice& c = *p.report.autoChoice;
-        p.session.structure = c.config;
+        fittedSession.structure = c.config;
         char seconds[32];
         std::snprintf(seconds, sizeof seconds, "%.1f", c.seconds);
         const size_t predicted = size_t(std::count_if(c.probes.begin(), c.probes.end(),
@@ -82,7 +82,7 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
                     " measured and ", predicted, " predicted combinations (", c.probeSize, "^2 probes) in ", seconds,
                     " s"));
     } else {
-        scene::StructureConfig config = p.session.structure;
+        scene::StructureConfig config = fittedSession.structure;
         const scene::BackendChoice backend = resolveStructure(ctx, config);
         p.report.backendReason = backend.why;
         // Said only where it matters: a combination with a box hierarchy.
@@ -95,9 +95,27 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         p.renderer->setTransferFunction(tf);
     }
     p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();
-    p.renderer->setSettings(p.session.settings);
+    p.renderer->setSettings(fittedSession.settings);
+    fittedSession.settings = {};  // held by the renderer from now on
+    p.described = std::move(fittedSession);
     p.volume = std::move(volume);
     return p;
+}
+
+session::Session Picture::session() const {
+    session::Session s = described;
+    s.settings = renderer->settings();
+    return s;
+}
+
+void Picture::setTransferFunction(const scene::TfChannels& tf) {
+    renderer->setTransferFunction(tf.merged());
+    described.tf = tf;
+}
+
+void Picture::setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved) {
+    renderer->setStructure(resolved);
+    described.structure = requested;
 }
 
 nlohmann::ordered_json autoChoiceJson(const render::AutoChoice& c) {
@@ -142,9 +160,9 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["traversal"] = scene::traversalName(config.traversal);
     j["sampler"] = scene::samplerName(config.sampler);
     j["backend"] = scene::backendName(config.backend);
-    j["backendRequested"] = scene::backendName(p.session.structure.backend);
+    j["backendRequested"] = scene::backendName(p.described.structure.backend);
     j["backendReason"] = p.report.backendReason;
-    j["tf"] = p.session.tf.name;
+    j["tf"] = p.described.tf.name;
     j["seconds"] = out.stats.gpuSeconds;
     j["wallSeconds"] = times.wallSeconds;
     j["pathsPerSecond"] = out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds : 0.0;

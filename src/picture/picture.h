@@ -36,12 +36,25 @@ struct Report {
 };
 
 struct Picture {
-    session::Session session;                   // as rendered (fitted; the back-end as requested)
     std::shared_ptr<const scene::Volume> volume;
     std::unique_ptr<render::Renderer> renderer;  // structures built, TF and settings applied
     Report report;
-    // Renders session.spp samples per pixel from scratch (progress(done, spp) after each batch).
+
+    // The session as rendered: the description fitted to the data, with the renderer's settings
+    // (held once, by the renderer), the TF as its colour and opacity channels (the renderer holds
+    // their merged function) and the structure as requested (the back-end unresolved; the renderer
+    // holds the resolved combination).
+    session::Session session() const;
+    // Edits of what the renderer does not hold as given: applied to the renderer first, so a
+    // refused one changes nothing. Settings are edited on the renderer itself.
+    void setTransferFunction(const scene::TfChannels& tf);
+    void setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved);
+    // Renders session().spp samples per pixel from scratch (progress(done, spp) after each batch).
     scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});
+
+    // The fitted description less its settings (Picture::session adds the renderer's); set by
+    // makePicture, changed only by the edits above.
+    session::Session described;
 };
 
 // The picture `d` describes over `volume`: the one door every front end opens a picture through.

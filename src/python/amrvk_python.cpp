@@ -32,10 +32,10 @@
 #include "gpu/shader_compiler.h"
 #include "picture/picture.h"
 #include "scene/camera.h"
+#include "scene/limits.h"
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
 #include "session/session.h"
-#include "scene/limits.h"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -331,29 +331,27 @@ public:
     }
 
     // ---- the picture ----
-    const session::Session& session() const { return open().session; }
-    scene::Camera camera() const { return session().settings.camera; }
+    session::Session session() const { return open().session(); }
+    const scene::RenderSettings& settings() const { return open().renderer->settings(); }
+    scene::Camera camera() const { return settings().camera; }
     void setCamera(const scene::Camera& c) { editSettings([&](scene::RenderSettings& s) { s.camera = c; }); }
     PyTf tf() const { return {session().tf}; }
     void setTf(const PyTf& tf) {
-        const scene::TransferFunction merged = tf.merged();
-        locked([&] { mPicture.renderer->setTransferFunction(merged); });
-        mPicture.session.tf = tf.channels;
+        locked([&] { mPicture.setTransferFunction(tf.channels); });
     }
     // Settings edited by `edit` on a copy, validated, then applied (the renderer redoes what the
     // invalidation rule says); an invalid value changes nothing.
     template <typename Edit>
     void editSettings(Edit edit) {
-        scene::RenderSettings s = session().settings;
+        scene::RenderSettings s = open().renderer->settings();
         edit(s);
         scene::validateSettings(s);
         locked([&] { mPicture.renderer->setSettings(s); });
-        mPicture.session.settings = s;
     }
     void setStructure(const std::optional<std::string>& traversal, const std::optional<std::string>& sampler,
                       const std::optional<std::string>& backend, const std::optional<std::string>& grid,
                       std::optional<uint32_t> kdLeaves) {
-        scene::StructureConfig c = session().structure;
+        scene::StructureConfig c = open().described.structure;
         if (traversal) c.traversal = scene::parseTraversal(*traversal);
         if (sampler) c.sampler = scene::parseSampler(*sampler);
         if (backend) c.backend = scene::parseBackend(*backend);
@@ -361,8 +359,7 @@ public:
         if (kdLeaves) c.kdLeaves = *kdLeaves;
         scene::StructureConfig resolved = c;
         picture::resolveStructure(*mCtx, resolved);  // validated before anything is built
-        locked([&] { mPicture.renderer->setStructure(resolved); });
-        mPicture.session.structure = c;
+        locked([&] { mPicture.setStructure(c, resolved); });
     }
     py::dict structure() const {
         const scene::StructureConfig& c = open().renderer->config();
@@ -781,13 +778,13 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
 void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) {
     c
         .def_property(
-            "mode", [](const PyRenderer& r) { return std::string(scene::modeName(r.session().settings.mode)); },
+            "mode", [](const PyRenderer& r) { return std::string(scene::modeName(r.settings().mode)); },
             [](PyRenderer& r, const std::string& name) { r.editSettings([&](auto& s) { s.mode = scene::parseMode(name); }); })
         .def_property(
-            "density_scale", [](const PyRenderer& r) { return r.session().settings.densityScale; },
+            "density_scale", [](const PyRenderer& r) { return r.settings().densityScale; },
             [](PyRenderer& r, double d) { r.editSettings([&](auto& s) { s.densityScale = d; }); })
         .def_property(
-            "size", [](const PyRenderer& r) { return py::make_tuple(r.session().settings.width, r.session().settings.height); },
+            "size", [](const PyRenderer& r) { return py::make_tuple(r.settings().width, r.settings().height); },
             [](PyRenderer& r, std::pair<int, int> wh) {
                 r.editSettings([&](auto& s) {
                     s.width = wh.first;
@@ -795,28 +792,28 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
                 });
             })
         .def_property(
-            "crop", [](const PyRenderer& r) { return cropObject(r.session().settings.cut.crop); },
+            "crop", [](const PyRenderer& r) { return cropObject(r.settings().cut.crop); },
             [](PyRenderer& r, const py::object& o) { r.editSettings([&](auto& s) { s.cut.crop = cropOf(o); }); },
             "cut-away box (lo, hi) in world space, or None; the medium outside is empty (docs/cut-aways.md)")
         .def_property(
-            "clip", [](const PyRenderer& r) { return clipObject(r.session().settings.cut.clips); },
+            "clip", [](const PyRenderer& r) { return clipObject(r.settings().cut.clips); },
             [](PyRenderer& r, const py::object& o) { r.editSettings([&](auto& s) { s.cut.clips = clipsOf(o); }); },
             "clip planes [(point, normal), ...] in world space; the side each normal points to is removed (at most 4)")
         .def_property(
-            "seed", [](const PyRenderer& r) { return r.session().settings.seed; },
+            "seed", [](const PyRenderer& r) { return r.settings().seed; },
             [](PyRenderer& r, uint32_t seed) { r.editSettings([&](auto& s) { s.seed = seed; }); })
         .def_property(
-            "lights", [](const PyRenderer& r) { return r.session().settings.lights; },
+            "lights", [](const PyRenderer& r) { return r.settings().lights; },
             [](PyRenderer& r, const std::vector<scene::Light>& l) { r.editSettings([&](auto& s) { s.lights = l; }); })
         .def_property(
-            "ambient", [](const PyRenderer& r) { return list3(r.session().settings.ambient); },
+            "ambient", [](const PyRenderer& r) { return list3(r.settings().ambient); },
             [](PyRenderer& r, const std::vector<double>& a) {
                 r.editSettings([&](auto& s) { s.ambient = vec3(a, "ambient"); });
             })
         .def_property(
             "background",
             [](const PyRenderer& r) -> py::object {
-                const auto& b = r.session().settings.background;
+                const auto& b = r.settings().background;
                 return b ? py::cast(list3(*b)) : py::none();
             },
             [](PyRenderer& r, const std::optional<std::vector<double>>& b) {
@@ -826,7 +823,7 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
             },
             "radiance seen by rays that escape without scattering; None = the ambient light")
         .def_property(
-            "g", [](const PyRenderer& r) { return r.session().settings.g; },
+            "g", [](const PyRenderer& r) { return r.settings().g; },
             [](PyRenderer& r, double g) { r.editSettings([&](auto& s) { s.g = g; }); },
             "Henyey-Greenstein asymmetry in (-1, 1)")
         .def("save", &PyRenderer::save, py::arg("path"), "the image so far: .png (sRGB), .exr or .pfm (linear)")

@@ -4,8 +4,8 @@
 
 #include "core/error.h"
 #include "core/strings.h"
-#include "shared/render_params.h"
 #include "scene/limits.h"
+#include "shared/render_params.h"
 
 namespace amrvk::scene {
 

@@ -241,11 +241,11 @@ picture::Options ViewerApp::pictureOptions() const {
 }
 
 void ViewerApp::adoptPicture(picture::Picture&& p) {
-    mState = p.session;
+    mState = p.session();
     mRenderer = std::move(p.renderer);
     // The editor's form of the TF: the same function, with both channels spanning its range.
     mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.session.tf)) mRenderer->setTransferFunction(mState.tf.merged());
+    if (!(mState.tf == p.described.tf)) mRenderer->setTransferFunction(mState.tf.merged());
     mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;

@@ -54,7 +54,7 @@ TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
     EXPECT_EQ(a.stats.counter(shared::kCounterDensityLookups), b.stats.counter(shared::kCounterDensityLookups));
     EXPECT_GT(a.stats.counter(shared::kCounterRealCollisions), 0u);
     EXPECT_LT(maxRelativeDifference(a.mean, b.mean), 1e-6);
-    EXPECT_TRUE(fromFile.session.settings == fromMemory.session.settings);
+    EXPECT_TRUE(fromFile.session().settings == fromMemory.session().settings);
     // Bad cells from memory get the readers' one-line errors.
     amr::Model bad = cloud;
     bad.cells[3].lower.x += 1;  // misaligned
@@ -77,11 +77,11 @@ TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     d.session.structure.backend = scene::Backend::Auto;
     std::vector<std::string> noted;
     picture::Picture pic = picture::makePicture(ctx(), v, d, {.note = [&](const std::string& l) { noted.push_back(l); }});
-    EXPECT_EQ(pic.session.structure.traversal, scene::TraversalKind::Abr);
-    EXPECT_EQ(pic.session.structure.sampler, scene::SamplerKind::Abr);
+    EXPECT_EQ(pic.session().structure.traversal, scene::TraversalKind::Abr);
+    EXPECT_EQ(pic.session().structure.sampler, scene::SamplerKind::Abr);
     EXPECT_EQ(pic.renderer->config().traversal, scene::TraversalKind::Abr);
     EXPECT_EQ(pic.renderer->config().backend, scene::Backend::Sw) << "auto is sw until rq is measured faster";
-    EXPECT_EQ(pic.session.structure.backend, scene::Backend::Auto) << "the session keeps what was asked";
+    EXPECT_EQ(pic.session().structure.backend, scene::Backend::Auto) << "the session keeps what was asked";
     ASSERT_EQ(noted, pic.report.notes);
     ASSERT_EQ(noted.size(), 3u);
     EXPECT_EQ(noted[0].rfind("tf foggy: alpha 0 up to the median cell value (2)", 0), 0u) << noted[0];
@@ -89,13 +89,13 @@ TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     EXPECT_EQ(noted[2].rfind("--backend auto: sw", 0), 0u) << noted[2];
     EXPECT_FALSE(pic.report.backendReason.empty());
     const scene::Camera framed = scene::defaultCamera(v->worldLo(), v->worldHi(), 40.0);
-    EXPECT_TRUE(pic.session.settings.camera == framed);
-    const scene::TransferFunction tf = pic.session.tf.merged();
+    EXPECT_TRUE(pic.session().settings.camera == framed);
+    const scene::TransferFunction tf = pic.session().tf.merged();
     EXPECT_EQ(tf.firstPosition(), v->valueLo());
     EXPECT_EQ(tf.lastPosition(), v->valueHi());
     // A sampler given stays; nothing is fitted for a description that fixes everything.
     d.samplerGiven = true;
-    EXPECT_EQ(picture::makePicture(ctx(), v, d).session.structure.sampler, scene::SamplerKind::ExtBrick);
+    EXPECT_EQ(picture::makePicture(ctx(), v, d).session().structure.sampler, scene::SamplerKind::ExtBrick);
     d.fit = session::StructureFit::None;
     d.session.structure.backend = scene::Backend::Sw;
     d.tfRange = std::make_pair(1.0f, 4.0f);
