@@ -312,7 +312,7 @@ void addStructureOptions(CLI::App& app, PictureArgs& a) {
         ->capture_default_str()
         ->type_name("N");
     app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")
-        ->check(interval(1, 1 << 20))
+        ->check(interval(1, scene::kMaxDenseMiB))
         ->capture_default_str()
         ->type_name("MIB");
 }

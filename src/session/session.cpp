@@ -274,7 +274,7 @@ void readStructure(const Reader& st, scene::StructureConfig& structure) {
     structure.backend = st.named("backend", "auto", scene::parseBackend);
     structure.grid = st.text("grid", "auto");
     if (st.has("kdLeaves")) structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, scene::kMaxKdLeaves));
-    if (st.has("denseMaxMiB")) structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, 1 << 20)) << 20;
+    if (st.has("denseMaxMiB")) structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, scene::kMaxDenseMiB)) << 20;
     try {
         structure.validate();
     } catch (const Error& e) {
