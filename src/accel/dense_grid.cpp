@@ -85,8 +85,10 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
 
     DenseGrid g{.origin = bounds.lower, .level = level, .dims = glm::ivec3(d64)};
     const size_t total = size_t(bytes / sizeof(float));
+    // A long build says what it is about to take, then shows its progress over z slices.
     std::optional<ProgressStage> progress;
-    if (total > (size_t(1) << 22)) progress.emplace("dense grid");
+    if (total > (size_t(1) << 22))
+        progress.emplace(strCat("dense grid of ", formatDims(d64), " samples: ", formatBytes(bytes), " of memory"));
 
     // Inside mask: rasterise the closed leaf-cell boxes; a sample is inside when its centre
     // origin + (i + 0.5) W lies in [lo, hi], i.e. 2(lo - o) - W <= 2 i W <= 2(hi - o) - W.
@@ -114,18 +116,26 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
             }
     }
 
-    // Values: the brick reconstruction at each inside centre, z slices in parallel.
+    // Values: the brick reconstruction at each inside centre, z slices in parallel, in about a
+    // hundred batches so that the bar moves.
     ExtBrickSampler sampler(bricks, brickValues);
-    parallelFor(0, size_t(g.dims.z), [&](size_t zi) {
-        const int z = int(zi);
-        for (int y = 0; y < g.dims.y; ++y)
-            for (int x = 0; x < g.dims.x; ++x) {
-                float& v = g.values[g.index({x, y, z})];
-                if (std::isnan(v)) continue;
-                const amr::Sample s = sampler.sample(g.centre({x, y, z}));
-                v = s.valid() ? static_cast<float>(s.value) : kNaN;
-            }
-    });
+    ProgressBar bar("dense grid", "slices");
+    const size_t slices = size_t(g.dims.z), batch = std::max<size_t>(1, slices / 100);
+    for (size_t z0 = 0; z0 < slices; z0 += batch) {
+        const size_t z1 = std::min(slices, z0 + batch);
+        parallelFor(z0, z1, [&](size_t zi) {
+            const int z = int(zi);
+            for (int y = 0; y < g.dims.y; ++y)
+                for (int x = 0; x < g.dims.x; ++x) {
+                    float& v = g.values[g.index({x, y, z})];
+                    if (std::isnan(v)) continue;
+                    const amr::Sample s = sampler.sample(g.centre({x, y, z}));
+                    v = s.valid() ? static_cast<float>(s.value) : kNaN;
+                }
+        });
+        if (progress) bar.update(z1, slices);
+    }
+    bar.finish();
     g.buildSeconds = timer.seconds();
     return g;
 }

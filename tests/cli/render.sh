@@ -132,4 +132,12 @@ PY
 check test -s "$dir/log.png"
 expect "--scale: ln not in {linear,log}" -- render "$sample" --scale ln -o "$dir/x.png"
 expect "--log-floor: '-1' is outside" -- render "$sample" --scale log --log-floor -1 -o "$dir/x.png"
+# A long structure build states the memory it is about to take and shows progress (issue 34,
+# point 8): a 170^3 raw volume's dense grid (4.9M samples, 19 MiB) with progress forced on.
+/usr/bin/python3 -c 'import numpy as np, sys; (np.arange(170**3) % 251).astype(np.uint8).tofile(sys.argv[1])' \
+  "$dir/v_170x170x170_uint8.raw"
+AMRVK_PROGRESS=1 "$amrvk" render "$dir/v_170x170x170_uint8.raw" --sampler dense --size 8x8 --spp 1 \
+  -o "$dir/dense.png" 2>"$dir/dense.err" >/dev/null || fail=1
+check grep -q "dense grid of 170^3 samples: 18.7 MiB of memory" "$dir/dense.err"
+check grep -q "dense grid \[#* *\] 170/170 slices" "$dir/dense.err"
 exit $fail
