@@ -573,15 +573,17 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
 }
 }  // namespace
 
+// Always one line: messages of other exceptions than amrvk::Error (HDF5, the standard library, the
+// command-line parser) may quote file contents or arguments too.
 std::string errorText(std::exception_ptr error, const std::string& command) {
     try {
         std::rethrow_exception(error);
     } catch (const CLI::ParseError& e) {
-        return parseErrorLine(e, command);
+        return oneLineMessage(parseErrorLine(e, command));
     } catch (const std::bad_alloc&) {
         return "out of memory";
     } catch (const std::exception& e) {
-        return e.what();
+        return oneLineMessage(e.what());
     } catch (...) {
         return "unknown error";
     }

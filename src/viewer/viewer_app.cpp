@@ -237,7 +237,9 @@ void ViewerApp::load() {
 
 picture::Options ViewerApp::pictureOptions() const {
     return {.shaders = gpu::ShaderLibrary(mOpt.shaderDir),
-            .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }};
+            .note = [](const std::string& line) {
+                std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
+            }};
 }
 
 void ViewerApp::adoptPicture(picture::Picture&& p) {
@@ -674,7 +676,8 @@ void ViewerApp::runScript() {
         } catch (const Error& e) {
             throw Error(a.where + ": " + a.name + ": " + e.what());
         }
-        std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame, a.name.c_str());
+        std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame,
+                     oneLineMessage(a.name).c_str());
     }
 }
 
@@ -954,7 +957,7 @@ void ViewerApp::screenshot(const fs::path& file) {
         writeImage(file, mRenderer->output().mean);
     }
     mPanel.message = "saved " + file.string() + " (" + std::to_string(mRenderer->accumulatedSpp()) + " spp)";
-    std::fprintf(stderr, "amrvk view: %s\n", mPanel.message.c_str());
+    std::fprintf(stderr, "amrvk view: %s\n", oneLineMessage(mPanel.message).c_str());
 }
 
 session::Session ViewerApp::currentSession() const {

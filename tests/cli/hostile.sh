@@ -471,6 +471,23 @@ for n in 1e308 1e154 1e-200; do
 done
 expect1 "--clip: the normal 0 0 0 points nowhere" -- render good.cells "${pic[@]}" "${clip[@]}" 0 0 0 -o x.png
 no_temporaries
+# Names from a file are shown escaped, on one line, in every message: a Chombo component name
+# holding an escape sequence and a line break (a real plotfile's, rewritten with h5py).
+chombo="${AMRVK_DATA_DIR:-$src/../shared/data/amr}/chombo_mushy_layer_2d/plt000100.2d.hdf5"
+if [ -f "$chombo" ] && /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  cp "$chombo" esc.hdf5; chmod u+w esc.hdf5
+  /usr/bin/python3 -c "import h5py; f = h5py.File('esc.hdf5', 'r+'); f.attrs['component_0'] = b'a\x1b[2J\nb'"
+  ok convert esc.hdf5 -o conv-esc
+  check1 test "$(wc -l <ok.err)" = 1
+  check1 grep -qF "field 'a\x1b[2J\nb' is written as conv-esc.a_[2J_b.scalars" ok.err
+  check1 eval "! LC_ALL=C grep -q '[[:cntrl:]]' ok.err"
+  ok info esc.hdf5
+  check1 grep -qF 'fields        a\x1b[2J\nb, ' ok.out
+  check1 eval "! LC_ALL=C grep -q '[[:cntrl:]]' ok.out"
+  expect1 "unknown field 'nope' (available: a\x1b[2J\nb, " -- convert esc.hdf5 --field nope -o conv-esc2
+else
+  echo "hostile.sh: skipped the Chombo name cases (no h5py for /usr/bin/python3 or no $chombo)"
+fi
 
 section ""
 echo "hostile.sh: $cases cases"
