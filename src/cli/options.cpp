@@ -526,7 +526,12 @@ std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& inp
     if (given(app, "--session")) in.push_back({"--session", a.session});
     std::error_code ec;
     if (given(app, "--tf") && std::filesystem::exists(a.tf, ec)) in.push_back({"--tf", a.tf});
-    if (given(app, "--legend-font")) in.push_back({"--legend-font", a.legendFont});
+    if (given(app, "--legend-font")) {
+        // Said before the outputs are checked against it ("-o lies inside the input --legend-font").
+        AMRVK_CHECK(!std::filesystem::is_directory(a.legendFont, ec), "--legend-font ", a.legendFont,
+                    ": not a font file (a directory)");
+        in.push_back({"--legend-font", a.legendFont});
+    }
     return in;
 }
 
