@@ -165,14 +165,19 @@ std::optional<Output> findOutput(const fs::path& path) {
             if (fs::is_regular_file(info, ec) && !infoNumber(info.filename().string()).empty())
                 return Output{path, name.substr(7), info};
         }
-        std::optional<Output> found;
-        for (const auto& entry : fs::directory_iterator(path, ec)) {
-            const std::string number = infoNumber(entry.path().filename().string());
-            if (number.empty()) continue;
-            if (found) return std::nullopt;  // several outputs: ambiguous
-            found = Output{path, number, entry.path()};
-        }
-        return found;
+        std::vector<fs::path> infos;
+        for (const auto& entry : fs::directory_iterator(path, ec))
+            if (!infoNumber(entry.path().filename().string()).empty()) infos.push_back(entry.path());
+        if (infos.empty()) return std::nullopt;
+        // Several outputs: ambiguous, said as such (naming them), not as "no info file".
+        std::sort(infos.begin(), infos.end());
+        std::vector<std::string> names;
+        for (const fs::path& p : infos) names.push_back(p.filename().string());
+        const std::string first = names.front();
+        if (names.size() > 4) names = {names[0], names[1], names[2], "...", names.back()};
+        AMRVK_CHECK(infos.size() == 1, path.string(), ": ", infos.size(), " RAMSES info files (", join(names, ", "),
+                    "): name the one to read, e.g. ", infos.front().string());
+        return Output{path, infoNumber(first), infos.front()};
     }
     const std::string number = infoNumber(path.filename().string());
     if (number.empty()) return std::nullopt;

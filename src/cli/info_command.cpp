@@ -91,12 +91,12 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
         std::printf("%s\n", j.dump(2).c_str());
     } else {
         std::printf("majorant check of %s, field '%s' (%llu cells), TFs over [%.9g, %.9g], position margin %.3g voxel\n",
-                    volume->model.source.c_str(), volume->field().name.c_str(),
+                    oneLineMessage(volume->model.source).c_str(), oneLineMessage(volume->field().name).c_str(),
                     (unsigned long long)volume->model.cellCount(), double(lo), double(hi),
                     accel::positionMargin(volume->bounds()));
         for (const scene::BoxSetCheck& c : checks) {
             std::printf("  %-22s %-18s %9llu boxes (%llu with data), %llu values, %.2f s: %s\n",
-                        (c.boxes + (c.tf.empty() ? "" : " (" + c.tf + ")")).c_str(), c.traversals.c_str(),
+                        oneLineMessage(c.boxes + (c.tf.empty() ? "" : " (" + c.tf + ")")).c_str(), c.traversals.c_str(),
                         (unsigned long long)c.count, (unsigned long long)c.withData,
                         (unsigned long long)c.vertices, c.seconds, c.ok() ? "ok" : "FAILED");
             if (c.rangeFailures > 0)
@@ -105,7 +105,7 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
             for (const auto& t : c.tfs)
                 if (t.failures > 0)
                     std::printf("    %s: %llu majorants too small (worst: exact maximum %.6g x the majorant)\n",
-                                t.tf.c_str(), (unsigned long long)t.failures, t.worstRatio);
+                                oneLineMessage(t.tf).c_str(), (unsigned long long)t.failures, t.worstRatio);
         }
     }
     AMRVK_CHECK(failed == 0, "--check-majorants: ", failed, " of ", checks.size(), " box sets failed (see above)");
@@ -247,10 +247,12 @@ void printInfoText(const InfoData& d) {
     const amr::Model& model = d.model;
     const amr::ModelSummary& summary = d.summary;
     const glm::dvec3 worldLo = d.worldLo(), worldHi = d.worldHi();
-    std::printf("source        %s\n", model.source.c_str());
+    // Names and attributes come from the file: shown escaped, each on its line.
+    std::printf("source        %s\n", oneLineMessage(model.source).c_str());
     std::printf("format        %s\n", model.format.c_str());
-    for (const auto& [k, v] : model.attributes) std::printf("  %-11s %s\n", k.c_str(), v.c_str());
-    std::printf("fields        %s\n", join(model.availableFields, ", ").c_str());
+    for (const auto& [k, v] : model.attributes)
+        std::printf("  %-11s %s\n", oneLineMessage(k).c_str(), oneLineMessage(v).c_str());
+    std::printf("fields        %s\n", oneLineMessage(join(model.availableFields, ", ")).c_str());
     std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
                 (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
                 (long long)summary.bounds.upper.x, (long long)summary.bounds.upper.y,
@@ -263,7 +265,7 @@ void printInfoText(const InfoData& d) {
         if (summary.cellsPerLevel[l])
             std::printf("  level %-4zu  %llu cells of width %lld\n", l, (unsigned long long)summary.cellsPerLevel[l],
                         (long long)amr::cellWidth(int(l)));
-    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", d.field.c_str(),
+    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", oneLineMessage(d.field).c_str(),
                 double(d.stats.minValue), double(d.stats.maxValue), d.stats.volumeWeightedMean);
     const amr::Percentiles& p = d.percentiles;
     std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(p[50]),
@@ -358,9 +360,11 @@ int runConvert(const std::vector<std::string>& argv) {
     for (const std::filesystem::path& p : amr::exaBrickFiles(model, base)) outputs.push_back({"-o", p});
     checkOutputs(outputs, inputFilesRead());
     for (const amr::Field& f : model.fields)
-        if (amr::scalarsName(f.name) != f.name)
-            std::fprintf(stderr, "amrvk convert: field '%s' is written as %s.%s.scalars (its name is not a file name)\n",
-                         f.name.c_str(), base.c_str(), amr::scalarsName(f.name).c_str());
+        if (amr::scalarsName(f.name) != f.name)  // the name from the file shown escaped, on one line
+            std::fprintf(stderr, "amrvk convert: %s\n",
+                         oneLineMessage(strCat("field '", f.name, "' is written as ", base, ".",
+                                               amr::scalarsName(f.name), ".scalars (its name is not a file name)"))
+                             .c_str());
     amr::writeExaBrick(model, base);
     std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());

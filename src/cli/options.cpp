@@ -526,7 +526,12 @@ std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& inp
     if (given(app, "--session")) in.push_back({"--session", a.session});
     std::error_code ec;
     if (given(app, "--tf") && std::filesystem::exists(a.tf, ec)) in.push_back({"--tf", a.tf});
-    if (given(app, "--legend-font")) in.push_back({"--legend-font", a.legendFont});
+    if (given(app, "--legend-font")) {
+        // Said before the outputs are checked against it ("-o lies inside the input --legend-font").
+        AMRVK_CHECK(!std::filesystem::is_directory(a.legendFont, ec), "--legend-font ", a.legendFont,
+                    ": not a font file (a directory)");
+        in.push_back({"--legend-font", a.legendFont});
+    }
     return in;
 }
 
@@ -573,15 +578,17 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
 }
 }  // namespace
 
+// Always one line: messages of other exceptions than amrvk::Error (HDF5, the standard library, the
+// command-line parser) may quote file contents or arguments too.
 std::string errorText(std::exception_ptr error, const std::string& command) {
     try {
         std::rethrow_exception(error);
     } catch (const CLI::ParseError& e) {
-        return parseErrorLine(e, command);
+        return oneLineMessage(parseErrorLine(e, command));
     } catch (const std::bad_alloc&) {
         return "out of memory";
     } catch (const std::exception& e) {
-        return e.what();
+        return oneLineMessage(e.what());
     } catch (...) {
         return "unknown error";
     }

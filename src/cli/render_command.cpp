@@ -259,7 +259,7 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
     picture::Picture picture = picture::makePicture(
         ctx, std::move(data.volume), plan.description,
         {.shaders = gpu::ShaderLibrary(a.dev.shaderDir), .note = [speaks](const std::string& line) {
-             if (speaks) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+             if (speaks) std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
          }});
     picture.report.readSeconds = data.readSeconds;
     if (plan.legendFont) session::checkLegendFits(picture.session(), *plan.legendFont);  // before the render

@@ -446,7 +446,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
 
     std::set<std::string> printed;  // each note once, not once per output
     const std::function<void(const std::string&)> note = [&printed](const std::string& line) {
-        if (printed.insert(line).second) std::fprintf(stderr, "amrvk: %s\n", line.c_str());
+        if (printed.insert(line).second) std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
     };
     loadManifest(s, recipeOf(s.base, s.frameInputs, s.n, s.orbit, s.rangeFrom), request.output, note);
     resolveRange(s);

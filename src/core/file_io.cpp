@@ -343,13 +343,16 @@ void checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<Named
                 AMRVK_CHECK(false, what, " and ", same->second->option, " ", same->second->path.string(),
                             " are the same file");
         for (const In& in : resolved) {
-            AMRVK_CHECK(in.canonical != canonical, what, " is the input ", in.named->option, " ",
-                        in.named->path.string(), " (refused: it would be overwritten)");
+            // "the input good.cells", "the input --tf tf.json" (not "the input input good.cells")
+            const std::string input = in.named->option == "input"
+                                          ? in.named->path.string()
+                                          : in.named->option + " " + in.named->path.string();
+            AMRVK_CHECK(in.canonical != canonical, what, " is the input ", input,
+                        " (refused: it would be overwritten)");
             if (in.directory) {
                 const auto [end, _] =
                     std::mismatch(in.canonical.begin(), in.canonical.end(), canonical.begin(), canonical.end());
-                AMRVK_CHECK(end != in.canonical.end(), what, " lies inside the input ", in.named->option, " ",
-                            in.named->path.string(), " (refused)");
+                AMRVK_CHECK(end != in.canonical.end(), what, " lies inside the input ", input, " (refused)");
             }
         }
         seen.emplace(canonical, &o);

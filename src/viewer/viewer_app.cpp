@@ -237,7 +237,9 @@ void ViewerApp::load() {
 
 picture::Options ViewerApp::pictureOptions() const {
     return {.shaders = gpu::ShaderLibrary(mOpt.shaderDir),
-            .note = [](const std::string& line) { std::fprintf(stderr, "amrvk: %s\n", line.c_str()); }};
+            .note = [](const std::string& line) {
+                std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
+            }};
 }
 
 void ViewerApp::adoptPicture(picture::Picture&& p) {
@@ -674,7 +676,8 @@ void ViewerApp::runScript() {
         } catch (const Error& e) {
             throw Error(a.where + ": " + a.name + ": " + e.what());
         }
-        std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame, a.name.c_str());
+        std::fprintf(stderr, "amrvk view: frame %llu: %s\n", (unsigned long long)mFrame,
+                     oneLineMessage(a.name).c_str());
     }
 }
 
@@ -683,12 +686,19 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
     scene::Camera& camera = mState.settings.camera;
     const double height = double(mState.settings.height);
     scene::StructureConfig structure = mState.structure;
-    if (n == "orbit") {
-        mOrbit.orbit(camera, a.number(0), a.number(1), height);
-    } else if (n == "pan") {
-        mOrbit.pan(camera, a.number(0), a.number(1), height);
-    } else if (n == "zoom") {
-        mOrbit.zoom(camera, a.number(0));
+    if (n == "orbit" || n == "pan" || n == "zoom") {
+        scene::Camera moved = camera;
+        if (n == "orbit") mOrbit.orbit(moved, a.number(0), a.number(1), height);
+        else if (n == "pan") mOrbit.pan(moved, a.number(0), a.number(1), height);
+        else mOrbit.zoom(moved, a.number(0));
+        // A move the camera cannot take fails here, on its script line, not at the next frame as
+        // a --camera error (pan 1e300 1e300: the eye and target round to one point, or overflow).
+        const glm::dvec3 forward = moved.target - moved.eye;
+        const auto finite = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+        AMRVK_CHECK(finite(moved.eye) && finite(moved.target),
+                    "the camera leaves the range of finite numbers");
+        AMRVK_CHECK(glm::length(forward) > 0, "eye and target coincide");
+        camera = moved;
     } else if (n == "tf-preset" || n == "tf-range") {
         session::TfEditor editor(mState.tf);
         if (n == "tf-preset") editor.setPreset(scene::builtInChannels(a.args[0]));
@@ -954,7 +964,7 @@ void ViewerApp::screenshot(const fs::path& file) {
         writeImage(file, mRenderer->output().mean);
     }
     mPanel.message = "saved " + file.string() + " (" + std::to_string(mRenderer->accumulatedSpp()) + " spp)";
-    std::fprintf(stderr, "amrvk view: %s\n", mPanel.message.c_str());
+    std::fprintf(stderr, "amrvk view: %s\n", oneLineMessage(mPanel.message).c_str());
 }
 
 session::Session ViewerApp::currentSession() const {

@@ -75,7 +75,7 @@ expect1 "--json s.json is the input --session s.json" -- render --session s.json
 same s.json s.orig
 check1 test ! -e a2.png
 expect1 "--json tf.json is the input --tf tf.json" -- render good.cells "${pic[@]}" --tf tf.json -o a2.png --json tf.json
-expect1 "--json good.cells is the input input good.cells" -- render good.cells "${pic[@]}" -o a2.png --json good.cells
+expect1 "--json good.cells is the input good.cells" -- render good.cells "${pic[@]}" -o a2.png --json good.cells
 same good.cells victim.bin
 expect1 "good.scalars" -- render good.cells "${pic[@]}" -o a2.png --json good.scalars
 expect1 "are the same file" -- render good.cells "${pic[@]}" -o a2.pfm --json a2.pfm
@@ -86,10 +86,10 @@ same s.json s.orig
 printf '0 quit\n' > quit.txt
 expect1 "--stats quit.txt is the input --script quit.txt" -- view good.cells "${pic[@]}" --headless --script quit.txt --stats quit.txt
 expect1 "are the same file" -- view good.cells "${pic[@]}" --headless --frames 1 --screenshot v.png --stats v.png
-expect1 "--stats good.cells is the input input good.cells" -- view good.cells "${pic[@]}" --headless --frames 1 --stats good.cells
+expect1 "--stats good.cells is the input good.cells" -- view good.cells "${pic[@]}" --headless --frames 1 --stats good.cells
 expect1 "unknown image type" -- view good.cells "${pic[@]}" --headless --frames 1 --screenshot good.scalars
 check1 test ! -e v.png
-expect1 "-o good.cells is the input input good.cells" -- convert good.cells -o good
+expect1 "-o good.cells is the input good.cells" -- convert good.cells -o good
 same good.cells victim.bin
 expect1 "is the input" -- convert good.cells -o ./good
 # A temporary name is not predictable: a link planted at the old name is never followed.
@@ -106,7 +106,7 @@ ok render good.cells "${pic[@]}" -o perm.png
 check1 test "$(stat -c %a perm.png)" = 640
 # Bench's directory is never inside a data set.
 mkdir -p plot.d; cp good.cells good.scalars plot.d/
-expect1 "lies inside the input input plot.d" -- bench plot.d -o plot.d/results --frames 2 --warmup 0
+expect1 "lies inside the input plot.d" -- bench plot.d -o plot.d/results --frames 2 --warmup 0
 expect1 "exists and is not a directory" -- bench good.cells -o good.scalars --frames 2
 # gen and convert check every output before any work.
 mkdir taken.scalars
@@ -471,6 +471,32 @@ for n in 1e308 1e154 1e-200; do
 done
 expect1 "--clip: the normal 0 0 0 points nowhere" -- render good.cells "${pic[@]}" "${clip[@]}" 0 0 0 -o x.png
 no_temporaries
+# Names from a file are shown escaped, on one line, in every message: a Chombo component name
+# holding an escape sequence and a line break (a real plotfile's, rewritten with h5py).
+chombo="${AMRVK_DATA_DIR:-$src/../shared/data/amr}/chombo_mushy_layer_2d/plt000100.2d.hdf5"
+if [ -f "$chombo" ] && /usr/bin/python3 -c "import h5py" 2>/dev/null; then
+  cp "$chombo" esc.hdf5; chmod u+w esc.hdf5
+  /usr/bin/python3 -c "import h5py; f = h5py.File('esc.hdf5', 'r+'); f.attrs['component_0'] = b'a\x1b[2J\nb'"
+  ok convert esc.hdf5 -o conv-esc
+  check1 test "$(wc -l <ok.err)" = 1
+  check1 grep -qF "field 'a\x1b[2J\nb' is written as conv-esc.a_[2J_b.scalars" ok.err
+  check1 eval "! LC_ALL=C grep -q '[[:cntrl:]]' ok.err"
+  ok info esc.hdf5
+  check1 grep -qF 'fields        a\x1b[2J\nb, ' ok.out
+  check1 eval "! LC_ALL=C grep -q '[[:cntrl:]]' ok.out"
+  expect1 "unknown field 'nope' (available: a\x1b[2J\nb, " -- convert esc.hdf5 --field nope -o conv-esc2
+else
+  echo "hostile.sh: skipped the Chombo name cases (no h5py for /usr/bin/python3 or no $chombo)"
+fi
+# Messages blame the right thing: the script line of a camera move that fails; two RAMSES info
+# files in one folder (not "none"); a --legend-font folder (not an output inside an input); and
+# "is the input good.cells" (not "the input input", changed above).
+printf '0 pan 1e300 1e300\n' > pan.txt
+expect1 "pan.txt:1: pan: eye and target coincide" -- view good.cells "${pic[@]}" --headless --script pan.txt
+mkdir two-infos; touch two-infos/info_00001.txt two-infos/info_00002.txt
+expect1 "two-infos: 2 RAMSES info files (info_00001.txt, info_00002.txt): name the one to read, e.g. two-infos/info_00001.txt" -- \
+  info two-infos
+expect1 "--legend-font $dir: not a font file (a directory)" -- render good.cells "${pic[@]}" --legend --legend-font "$dir" -o lf.png
 
 section ""
 echo "hostile.sh: $cases cases"
