@@ -99,6 +99,21 @@ T element(const py::array& a, py::ssize_t i, py::ssize_t k = 0) {
     throw py::type_error("unsupported array dtype " + std::string(py::str(py::handle(dt))));
 }
 
+// An integer array's element (i, k): its value where it fits int64 (a uint64 above INT64_MAX does
+// not), and its text as read, for messages (never a uint64 shown as a negative number).
+struct WholeNumber {
+    std::optional<int64_t> value;
+    std::string text;
+};
+WholeNumber wholeElement(const py::array& a, py::ssize_t i, py::ssize_t k = 0) {
+    if (a.dtype().kind() == 'u' && a.dtype().itemsize() == 8) {
+        const uint64_t u = element<uint64_t>(a, i, k);
+        return {u <= uint64_t(INT64_MAX) ? std::optional<int64_t>(int64_t(u)) : std::nullopt, std::to_string(u)};
+    }
+    const int64_t v = element<int64_t>(a, i, k);
+    return {v, std::to_string(v)};
+}
+
 // `a` as an array, checked: `kinds` are the dtype kinds allowed ("iu", "iuf"), ndim and the
 // length of axis 1 where it has two.
 py::array checkedArray(const py::object& obj, const char* name, const char* kinds, int ndim, py::ssize_t columns = 0) {
@@ -238,16 +253,16 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
     // One copy, numpy -> model; coordinates checked to fit the 32-bit cell format.
     for (py::ssize_t i = 0; i < n; ++i) {
         for (int a = 0; a < 3; ++a) {
-            const int64_t c = element<int64_t>(lower, i, a);
-            if (c < INT32_MIN || c > INT32_MAX)
-                throw py::value_error("lower[" + std::to_string(i) + "]: " + std::to_string(c) + " does not fit in 32 bits");
-            m.cells[size_t(i)].lower[a] = int32_t(c);
+            const WholeNumber c = wholeElement(lower, i, a);
+            if (!c.value || *c.value < INT32_MIN || *c.value > INT32_MAX)
+                throw py::value_error("lower[" + std::to_string(i) + "]: " + c.text + " does not fit in 32 bits");
+            m.cells[size_t(i)].lower[a] = int32_t(*c.value);
         }
-        const int64_t l = element<int64_t>(level, i);
-        if (l < 0 || l > amr::kMaxLevel)
-            throw py::value_error("level[" + std::to_string(i) + "]: " + std::to_string(l) + " is outside [0, " +
+        const WholeNumber l = wholeElement(level, i);
+        if (!l.value || *l.value < 0 || *l.value > amr::kMaxLevel)
+            throw py::value_error("level[" + std::to_string(i) + "]: " + l.text + " is outside [0, " +
                                   std::to_string(amr::kMaxLevel) + "] (0 = finest)");
-        m.cells[size_t(i)].level = int32_t(l);
+        m.cells[size_t(i)].level = int32_t(*l.value);
         m.fields[0].values[size_t(i)] = element<float>(values, i);
     }
     auto v = std::make_shared<PyVolume>();

@@ -77,6 +77,13 @@ def test_bad_arrays_raise_python_exceptions(amrvk):
         amrvk.Volume.from_arrays(lower, np.array([1, -1, 0, 0, 0]), values)
     with pytest.raises(ValueError, match=r"lower\[0\]: 4294967296 does not fit in 32 bits"):
         amrvk.Volume.from_arrays(lower + np.array([1 << 32, 0, 0]), level, values)
+    # uint64 beyond int64 is shown as given, never wrapped to a negative number (issue 34, 9)
+    with pytest.raises(ValueError, match=r"level\[0\]: 9223372036854775808 is outside \[0, 30\]"):
+        amrvk.Volume.from_arrays(lower, np.array([1 << 63, 0, 0, 0, 0], dtype=np.uint64), values)
+    big = lower.astype(np.uint64)
+    big[0, 0] = np.uint64((1 << 64) - 1)
+    with pytest.raises(ValueError, match=r"lower\[0\]: 18446744073709551615 does not fit in 32 bits"):
+        amrvk.Volume.from_arrays(big, level, values)
     with pytest.raises(ValueError, match="the model has no cells|no cells"):
         amrvk.Volume.from_arrays(lower[:0], level[:0], values[:0])
     with pytest.raises(ValueError, match="spacing: every component must be > 0"):
