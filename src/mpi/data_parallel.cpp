@@ -1,6 +1,5 @@
 #include "mpi/data_parallel.h"
 
-#include <algorithm>
 #include <cmath>
 #include <span>
 #include <limits>
@@ -126,10 +125,8 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
                                   render::StagedStep at) {
         requireSameLive(world, live, at, "shadow");
         if (live.empty()) return;
-        std::vector<float> product(transmittance.begin(), transmittance.end());
-        bytes += world.productEverywhere(product);
+        bytes += world.productEverywhere(transmittance);
         ++reductions;
-        std::copy(product.begin(), product.end(), transmittance.begin());
     };
     const Timer wall;
     const render::StagedReport report = renderer.accumulateStaged(staged, p.described.spp, progress);

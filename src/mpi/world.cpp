@@ -158,7 +158,7 @@ uint64_t World::minLocEverywhere(std::vector<FloatRank>& values) {
 uint64_t World::sumEverywhere(std::vector<float>& values) {
     return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_SUM);
 }
-uint64_t World::productEverywhere(std::vector<float>& values) {
+uint64_t World::productEverywhere(std::span<float> values) {
     return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_PROD);
 }
 uint64_t World::sumEverywhere(std::vector<double>& values) {

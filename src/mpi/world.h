@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -68,7 +69,7 @@ public:
     };
     uint64_t minLocEverywhere(std::vector<FloatRank>& values);  // the least value and its rank (lowest on ties)
     uint64_t sumEverywhere(std::vector<float>& values);
-    uint64_t productEverywhere(std::vector<float>& values);
+    uint64_t productEverywhere(std::span<float> values);
     uint64_t sumEverywhere(std::vector<uint64_t>& values);
     uint64_t sumEverywhere(std::vector<double>& values);
 

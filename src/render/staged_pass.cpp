@@ -28,7 +28,9 @@ StagedPass::StagedPass(gpu::Context& ctx, gpu::ComputePipeline pipeline, uint32_
       mPaths(ctx, uint64_t(paths) * sizeof(shared::PathStateGpu), gpu::MemoryKind::Device, "stagedPaths"),
       mHits(ctx, uint64_t(paths) * sizeof(shared::DataParallelHitGpu), gpu::MemoryKind::HostRead, "stagedHits"),
       mShadow(ctx, uint64_t(paths) * sizeof(float), gpu::MemoryKind::HostRead, "stagedShadow"),
-      mCounters(ctx, (shared::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::HostRead, "stagedCounters") {
+      mCounters(ctx, (shared::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::HostRead, "stagedCounters"),
+      mHitsHost(paths),
+      mShadowHost(paths) {
     mPush.paths = mPaths.address();
     mPush.hits = mHits.address();
     mPush.shadow = mShadow.address();
@@ -59,33 +61,32 @@ uint32_t StagedPass::addCounters(scene::RenderStats& stats) const {
 // live (0 ends the sample).
 uint64_t StagedPass::step(const StagedRender& staged, StagedStep at, StagedReport& report) {
     scene::RenderStats& stats = report.stats;
-    const uint32_t count = mPush.count;
-    std::vector<shared::DataParallelHitGpu> hits(count), liveHits;
-    std::vector<uint32_t> live;
+    std::vector<shared::DataParallelHitGpu>& hits = mHitsHost;
+    std::vector<float>& shadow = mShadowHost;
+    std::vector<uint32_t>& live = mLive;
     stage(shared::kDpStageTrack);
     addCounters(stats);
     mHits.download(hits.data(), hits.size() * sizeof(hits[0]));
-    gather(hits, [](const shared::DataParallelHitGpu& h) { return h.t >= 0; }, live, liveHits);
+    gather(hits, [](const shared::DataParallelHitGpu& h) { return h.t >= 0; }, live, mLiveHits);
     Timer exchange;
-    staged.exchange.collisions(live, liveHits, at);
+    staged.exchange.collisions(live, mLiveHits, at);
     report.exchangeSeconds += exchange.seconds();
     if (live.empty()) return 0;
-    for (size_t k = 0; k < live.size(); ++k) hits[live[k]] = liveHits[k];
+    for (size_t k = 0; k < live.size(); ++k) hits[live[k]] = mLiveHits[k];
     mHits.upload(hits.data(), hits.size() * sizeof(hits[0]));
     stage(shared::kDpStageShade);
     const uint32_t stillLive = addCounters(stats);
     ++report.bounces;
 
-    std::vector<float> shadow(count), transmittance;
     stage(shared::kDpStageShadow);
     addCounters(stats);
     mShadow.download(shadow.data(), shadow.size() * sizeof(float));
-    gather(shadow, [](float t) { return t >= 0; }, live, transmittance);
+    gather(shadow, [](float t) { return t >= 0; }, live, mLiveShadow);
     exchange = Timer();
-    staged.exchange.shadows(live, transmittance, at);
+    staged.exchange.shadows(live, mLiveShadow, at);
     report.exchangeSeconds += exchange.seconds();
     if (!live.empty()) {
-        for (size_t k = 0; k < live.size(); ++k) shadow[live[k]] = transmittance[k];
+        for (size_t k = 0; k < live.size(); ++k) shadow[live[k]] = mLiveShadow[k];
         mShadow.upload(shadow.data(), shadow.size() * sizeof(float));
         stage(shared::kDpStageResolve);
     }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -70,6 +71,10 @@ private:
     gpu::ComputePipeline mPipeline;
     gpu::Buffer mPaths, mHits, mShadow, mCounters;
     shared::DataParallelPush mPush{};
+    // Host copies of the hits and shadow buffers, and the live paths' entries: kept across steps.
+    std::vector<shared::DataParallelHitGpu> mHitsHost, mLiveHits;
+    std::vector<float> mShadowHost, mLiveShadow;
+    std::vector<uint32_t> mLive;
 };
 
 }  // namespace amrvk::render
