@@ -1,17 +1,15 @@
 // amrvk info: describe a data set and build the structures every renderer configuration starts
 // from (bricks, ABRs with value ranges, macrocell value ranges), with sizes and build times.
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "accel/abrs.h"
-#include "accel/brick_grid.h"
 #include "accel/bricks.h"
 #include "accel/majorant_bounds.h"
-#include "accel/range_grid.h"
-#include "accel/support_range.h"
 #include "amr/readers.h"
-#include "amr/value_percentiles.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
@@ -20,22 +18,22 @@
 #include "core/strings.h"
 #include "scene/limits.h"
 #include "scene/majorant_check.h"
+#include "scene/structure_config.h"
 #include "scene/volume.h"
+#include "scene/volume_scene.h"
 
 namespace amrvk::cli {
 
 namespace {
 
 const char* kInfoHelp =
-    "Reads an AMR data set, validates it, builds bricks, active brick regions (ABRs) with value "
-    "ranges, and "
-    "macrocell value ranges, and reports the data and the structures: format, voxel and world "
-    "bounds, leaf "
-    "cells per level (level 0 = finest), fields, the field's range, volume-weighted mean and percentiles by cell "
-    "count (what the spiky and foggy presets follow), "
-    "brick/ABR "
-    "statistics, bytes per structure and build times. With --check-majorants it instead checks "
-    "every traversal's majorants against the exact reconstruction (exit status 1 on a failure).";
+    "Reads an AMR data set, validates it, builds its bricks and then, for each --traversal with --sampler, exactly "
+    "the host structures render builds for that combination (by default grid-dda and abr: the macrocell value "
+    "ranges and the active brick regions (ABRs) with theirs), and reports the data and the structures: format, "
+    "voxel and world bounds, leaf cells per level (level 0 = finest), fields, the field's range, volume-weighted "
+    "mean and percentiles by cell count (what the spiky and foggy presets follow), brick/ABR statistics, bytes per "
+    "structure and build times. With --check-majorants it instead checks every traversal's majorants against the "
+    "exact reconstruction (exit status 1 on a failure).";
 
 // --check-majorants: every traversal's boxes against the exact reconstruction, for every TF.
 int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const std::string& gridSpec,
@@ -118,140 +116,189 @@ std::string mib(uint64_t bytes) {
     return buf;
 }
 
-
-// What `amrvk info` reports: the data read, its bricks, ABRs with their ranges and the macrocell
-// ranges, with the time each took.
-struct InfoData {
-    amr::Model model;
-    std::string field;
-    amr::ModelSummary summary;
-    amr::FieldStats stats;
-    amr::Percentiles percentiles;
-    accel::BrickSet bricks;
-    accel::BrickStats brickStats;
-    std::vector<float> brickValues;
-    accel::AbrSet abrs;
-    std::vector<accel::ValueRange> abrRanges;
+// One structure combination's host structures as scene::VolumeScene built them for its plan.
+struct CombinationInfo {
+    std::string label;  // e.g. "grid-dda/grid/sw grid 128"
+    std::vector<std::pair<std::string, uint64_t>> hostBytes;  // VolumeScene::hostBytes, model and bricks first
+    scene::VolumeScene::Timing seconds;
+    double combinationSeconds = 0;  // bricks included
+    // Statistics of what it built (zero where the plan has no such structure).
     glm::ivec3 gridDims{0};
-    accel::RangeGrid grid;
-    double readSeconds = 0, abrSeconds = 0;
-
-    const amr::Field& fieldRef() const { return model.field(field); }
-    double bricksPerAbr() const {
-        return abrs.abrs.empty() ? 0 : double(abrs.brickList.size()) / double(abrs.abrs.size());
+    uint64_t abrCount = 0, abrBrickRefs = 0;
+    uint32_t maxBricksPerAbr = 0;
+    uint64_t hostTotal() const {
+        uint64_t t = 0;
+        for (const auto& [name, bytes] : hostBytes) t += bytes;
+        return t;
     }
-    uint32_t maxBricksPerAbr() const {
-        uint32_t m = 0;
-        for (const auto& a : abrs.abrs) m = std::max(m, a.brickCount);
-        return m;
-    }
-    glm::dvec3 worldLo() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.lower)); }
-    glm::dvec3 worldHi() const { return model.voxelToWorld.toWorld(glm::dvec3(summary.bounds.upper)); }
 };
 
+// What `amrvk info` reports: the data read and its bricks (scene::makeVolume), then for each asked
+// combination exactly the structures scene::planOf lists (scene::VolumeScene), with their times.
+struct InfoData {
+    std::shared_ptr<const scene::Volume> volume;
+    amr::FieldStats stats;  // of the field as read
+    accel::BrickStats brickStats;
+    std::vector<CombinationInfo> combinations;
+    double readSeconds = 0;
+
+    const amr::Model& model() const { return volume->model; }
+    const amr::ModelSummary& summary() const { return volume->summary; }
+    const CombinationInfo* withAbrs() const {
+        for (const CombinationInfo& c : combinations)
+            if (c.abrCount) return &c;
+        return nullptr;
+    }
+    const CombinationInfo* withGrid() const {
+        for (const CombinationInfo& c : combinations)
+            if (c.gridDims.x) return &c;
+        return nullptr;
+    }
+    // The union of every combination's structures by name, each at its largest.
+    std::vector<std::pair<std::string, uint64_t>> memory() const {
+        std::vector<std::pair<std::string, uint64_t>> out;
+        for (const CombinationInfo& c : combinations)
+            for (const auto& [name, bytes] : c.hostBytes) {
+                auto it = std::find_if(out.begin(), out.end(), [&](const auto& m) { return m.first == name; });
+                if (it == out.end())
+                    out.emplace_back(name, bytes);
+                else
+                    it->second = std::max(it->second, bytes);
+            }
+        return out;
+    }
+};
+
+CombinationInfo describeCombination(const scene::VolumeScene& scene) {
+    CombinationInfo c;
+    c.label = scene.config().labelWithGrid();
+    c.hostBytes = scene.hostBytes();
+    c.seconds = scene.buildSeconds;
+    c.combinationSeconds = scene.combinationBuildSeconds();
+    if (scene.grid) c.gridDims = scene.grid->dims;
+    if (scene.abrs) {
+        c.abrCount = scene.abrs->abrs.size();
+        c.abrBrickRefs = scene.abrs->brickList.size();
+        for (const accel::Abr& a : scene.abrs->abrs) c.maxBricksPerAbr = std::max(c.maxBricksPerAbr, a.brickCount);
+    }
+    return c;
+}
+
 InfoData gatherInfo(const std::string& input, const amr::ReadOptions& ro, const std::string& bricksFile,
-                    const std::string& gridSpec) {
+                    const std::vector<scene::StructureConfig>& configs) {
     InfoData d;
     Timer readTimer;
+    amr::Model model;
     {
         ProgressStage stage("reading " + input);
-        d.model = amr::readModel(input, ro);
+        model = amr::readModel(input, ro);
     }
     d.readSeconds = readTimer.seconds();
-    const amr::Field& field = ro.fields.empty() ? d.model.defaultField() : d.model.field(ro.fields[0]);
-    d.field = field.name;
-    d.summary = amr::summarize(d.model);
-    d.stats = amr::computeFieldStats(d.model, field);
-    d.percentiles = amr::percentilesOf(field.values);
-    {
-        ProgressStage stage("bricks");
-        d.bricks = bricksFile.empty() ? accel::buildBricks(d.model) : accel::readBricksFile(bricksFile, d.model);
+    const std::string field = ro.fields.empty() ? std::string() : ro.fields[0];
+    if (bricksFile.empty()) {
+        d.volume = scene::makeVolume(std::move(model), field);
+    } else {
+        accel::BrickSet given = accel::readBricksFile(bricksFile, model);
+        d.volume = scene::makeVolume(std::move(model), field, std::move(given));
     }
-    d.brickStats = accel::computeBrickStats(d.bricks);
-    d.brickValues = accel::brickOrderValues(d.bricks, d.fieldRef());
-    Timer abrTimer;
-    {
-        ProgressStage stage("active brick regions");
-        d.abrs = accel::buildAbrs(d.bricks);
-        d.abrRanges = accel::computeAbrValueRanges(d.abrs, accel::SupportRangeQuery(d.bricks, d.brickValues),
-                                                   accel::positionMargin(d.summary.bounds));
-    }
-    d.abrSeconds = abrTimer.seconds();
-    d.gridDims = accel::parseGridDims(gridSpec, d.summary.bounds);
-    {
-        ProgressStage stage("macrocell value ranges");
-        d.grid = accel::buildRangeGrid(accel::buildBrickGrid(d.bricks, d.summary.bounds, d.gridDims), d.bricks,
-                                       d.brickValues);
+    d.stats = d.volume->fieldStats;
+    d.brickStats = accel::computeBrickStats(d.volume->bricks);
+    // One scene switched from combination to combination: each builds what its plan lists and
+    // frees what the next one does not use, as a renderer's scene does.
+    std::optional<scene::VolumeScene> scene;
+    for (const scene::StructureConfig& config : configs) {
+        if (scene)
+            scene->configure(config);
+        else
+            scene.emplace(d.volume, config);
+        d.combinations.push_back(describeCombination(*scene));
     }
     return d;
 }
 
-struct Mem {
-    const char* name;
-    uint64_t bytes;
-};
-std::vector<Mem> infoMemory(const InfoData& d) {
-    uint64_t fieldBytes = 0;
-    for (const auto& f : d.model.fields) fieldBytes += f.values.size() * sizeof(float);
-    return {
-        {"cells", d.model.cells.size() * sizeof(amr::Cell)},
-        {"fields", fieldBytes},
-        {"bricks", d.bricks.bricks.size() * sizeof(accel::Brick)},
-        {"brickCellIds", d.bricks.cellIds.size() * sizeof(uint32_t)},
-        {"brickValues", d.brickValues.size() * sizeof(float)},
-        {"abrs", d.abrs.abrs.size() * sizeof(accel::Abr)},
-        {"abrBrickLists", d.abrs.brickList.size() * sizeof(uint32_t)},
-        {"abrValueRanges", d.abrRanges.size() * sizeof(accel::ValueRange)},
-        {"macrocellValueRanges", d.grid.memoryBytes()},
-    };
-}
-
-uint64_t totalOf(const std::vector<Mem>& memory) {
-    uint64_t total = 0;
-    for (const auto& m : memory) total += m.bytes;
-    return total;
+nlohmann::ordered_json combinationJson(const CombinationInfo& c) {
+    using Json = nlohmann::ordered_json;
+    Json bytes = Json::object();
+    for (const auto& [name, b] : c.hostBytes) bytes[name] = b;
+    bytes["total"] = c.hostTotal();
+    const scene::VolumeScene::Timing& t = c.seconds;
+    return {{"combination", c.label},
+            {"hostBytes", bytes},
+            {"buildSeconds",
+             {{"abrs", t.abrs}, {"samplerBvh", t.samplerBvh}, {"macrocells", t.grid}, {"traversalRanges", t.domains},
+              {"dense", t.dense}, {"brickGrid", t.brickGrid}, {"combination", c.combinationSeconds}}}};
 }
 
 void printInfoJson(const InfoData& d) {
     using Json = nlohmann::ordered_json;
-    const amr::Model& model = d.model;
-    auto vec = [](glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); };
-    const std::vector<Mem> memory = infoMemory(d);
-    Json mem = Json::object(), attributes = Json::object();
-    for (const auto& m : memory) mem[m.name] = m.bytes;
-    mem["total"] = totalOf(memory);
-    for (const auto& [k, v] : model.attributes) attributes[k] = v;
-    const Json j = {
+    const amr::Model& model = d.model();
+    const scene::Volume& v = *d.volume;
+    auto vec = [](glm::dvec3 x) { return Json::array({x.x, x.y, x.z}); };
+    Json mem = Json::object(), attributes = Json::object(), combinations = Json::array();
+    uint64_t total = 0;
+    for (const auto& [name, bytes] : d.memory()) {
+        mem[name] = bytes;
+        total += bytes;
+    }
+    mem["total"] = total;
+    for (const auto& [k, val] : model.attributes) attributes[k] = val;
+    for (const CombinationInfo& c : d.combinations) combinations.push_back(combinationJson(c));
+    Json j = {
         {"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
-        {"cellsPerLevel", d.summary.cellsPerLevel}, {"minLevel", d.summary.minLevel}, {"maxLevel", d.summary.maxLevel},
-        {"fields", model.availableFields}, {"field", d.field},
+        {"cellsPerLevel", d.summary().cellsPerLevel}, {"minLevel", d.summary().minLevel},
+        {"maxLevel", d.summary().maxLevel}, {"fields", model.availableFields}, {"field", v.field().name},
         {"valueRange", Json::array({double(d.stats.minValue), double(d.stats.maxValue)})},
         {"volumeWeightedMean", d.stats.volumeWeightedMean},
-        {"valuePercentiles", d.percentiles.values},
+        {"valuePercentiles", v.percentiles.values},
         {"voxelBounds",
-         {{"lower", vec(glm::dvec3(d.summary.bounds.lower))}, {"upper", vec(glm::dvec3(d.summary.bounds.upper))}}},
-        {"worldBounds", {{"lower", vec(d.worldLo())}, {"upper", vec(d.worldHi())}}},
+         {{"lower", vec(glm::dvec3(v.bounds().lower))}, {"upper", vec(glm::dvec3(v.bounds().upper))}}},
+        {"worldBounds", {{"lower", vec(v.worldLo())}, {"upper", vec(v.worldHi())}}},
         {"bricks", d.brickStats.brickCount},
         {"singleCellBricks", d.brickStats.singleCellBricks},
-        {"averageCellsPerBrick", d.brickStats.averageCellsPerBrick}, {"abrs", uint64_t(d.abrs.abrs.size())},
-        {"averageBricksPerAbr", d.bricksPerAbr()}, {"maxBricksPerAbr", d.maxBricksPerAbr()},
-        {"macrocellDims", Json::array({d.gridDims.x, d.gridDims.y, d.gridDims.z})}, {"memoryBytes", mem},
-        {"buildSeconds",
-         {{"read", d.readSeconds}, {"bricks", d.bricks.buildSeconds}, {"abrs", d.abrSeconds},
-          {"macrocells", d.grid.buildSeconds}}},
-        {"peakResidentBytes", peakResidentBytes()}, {"attributes", attributes}};
+        {"averageCellsPerBrick", d.brickStats.averageCellsPerBrick}};
+    Json seconds = {{"read", d.readSeconds}, {"bricks", v.bricks.buildSeconds}};
+    if (const CombinationInfo* a = d.withAbrs()) {
+        j["abrs"] = a->abrCount;
+        j["averageBricksPerAbr"] = double(a->abrBrickRefs) / double(a->abrCount);
+        j["maxBricksPerAbr"] = a->maxBricksPerAbr;
+        seconds["abrs"] = a->seconds.abrs + a->seconds.domains;  // ABRs and their value ranges
+    }
+    if (const CombinationInfo* g = d.withGrid()) {
+        j["macrocellDims"] = Json::array({g->gridDims.x, g->gridDims.y, g->gridDims.z});
+        seconds["macrocells"] = g->seconds.grid;
+    }
+    j["combinations"] = combinations;
+    j["memoryBytes"] = mem;
+    j["buildSeconds"] = seconds;
+    j["peakResidentBytes"] = peakResidentBytes();
+    j["attributes"] = attributes;
     std::printf("%s\n", j.dump(2).c_str());
 }
 
+void printCombinationText(const CombinationInfo& c) {
+    std::printf("combination   %s: host structures in %.3f s (bricks included)\n", c.label.c_str(),
+                c.combinationSeconds);
+    if (c.abrCount)
+        std::printf("  ABRs        %llu (%.2f bricks/ABR, max %u) in %.3f s, their value ranges in %.3f s\n",
+                    (unsigned long long)c.abrCount, double(c.abrBrickRefs) / double(c.abrCount), c.maxBricksPerAbr,
+                    c.seconds.abrs, c.seconds.domains);
+    if (c.gridDims.x)
+        std::printf("  macrocells  %dx%dx%d value ranges in %.3f s\n", c.gridDims.x, c.gridDims.y, c.gridDims.z,
+                    c.seconds.grid);
+    for (const auto& [name, bytes] : c.hostBytes) std::printf("  %-20s %s\n", name.c_str(), mib(bytes).c_str());
+    std::printf("  %-20s %s\n", "total", mib(c.hostTotal()).c_str());
+}
+
 void printInfoText(const InfoData& d) {
-    const amr::Model& model = d.model;
-    const amr::ModelSummary& summary = d.summary;
-    const glm::dvec3 worldLo = d.worldLo(), worldHi = d.worldHi();
+    const amr::Model& model = d.model();
+    const scene::Volume& v = *d.volume;
+    const amr::ModelSummary& summary = d.summary();
+    const glm::dvec3 worldLo = v.worldLo(), worldHi = v.worldHi();
     // Names and attributes come from the file: shown escaped, each on its line.
     std::printf("source        %s\n", oneLineMessage(model.source).c_str());
     std::printf("format        %s\n", model.format.c_str());
-    for (const auto& [k, v] : model.attributes)
-        std::printf("  %-11s %s\n", oneLineMessage(k).c_str(), oneLineMessage(v).c_str());
+    for (const auto& [k, val] : model.attributes)
+        std::printf("  %-11s %s\n", oneLineMessage(k).c_str(), oneLineMessage(val).c_str());
     std::printf("fields        %s\n", oneLineMessage(join(model.availableFields, ", ")).c_str());
     std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
                 (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
@@ -265,23 +312,34 @@ void printInfoText(const InfoData& d) {
         if (summary.cellsPerLevel[l])
             std::printf("  level %-4zu  %llu cells of width %lld\n", l, (unsigned long long)summary.cellsPerLevel[l],
                         (long long)amr::cellWidth(int(l)));
-    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", oneLineMessage(d.field).c_str(),
+    std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", oneLineMessage(v.field().name).c_str(),
                 double(d.stats.minValue), double(d.stats.maxValue), d.stats.volumeWeightedMean);
-    const amr::Percentiles& p = d.percentiles;
+    const amr::Percentiles& p = v.percentiles;
     std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(p[50]),
                 double(p[75]), double(p[90]), double(p[97]), double(p[99]));
     std::printf("bricks        %llu (%.1f cells/brick, %llu single-cell, largest %llu cells) in %.3f s\n",
                 (unsigned long long)d.brickStats.brickCount, d.brickStats.averageCellsPerBrick,
                 (unsigned long long)d.brickStats.singleCellBricks, (unsigned long long)d.brickStats.largestBrickCells,
-                d.bricks.buildSeconds);
-    std::printf("ABRs          %zu (%.2f bricks/ABR, max %u) in %.3f s\n", d.abrs.abrs.size(), d.bricksPerAbr(),
-                d.maxBricksPerAbr(), d.abrSeconds);
-    std::printf("macrocells    %dx%dx%d value ranges in %.3f s\n", d.gridDims.x, d.gridDims.y, d.gridDims.z,
-                d.grid.buildSeconds);
-    const std::vector<Mem> memory = infoMemory(d);
-    std::printf("memory        %s in all\n", mib(totalOf(memory)).c_str());
-    for (const auto& m : memory) std::printf("  %-20s %s\n", m.name, mib(m.bytes).c_str());
+                v.bricks.buildSeconds);
+    for (const CombinationInfo& c : d.combinations) printCombinationText(c);
     std::printf("read time     %.3f s; peak resident memory %s\n", d.readSeconds, mib(peakResidentBytes()).c_str());
+}
+
+// The combinations of --traversal LIST and --sampler, each validated as render validates it.
+std::vector<scene::StructureConfig> infoConfigs(const std::string& traversals, const std::string& sampler,
+                                                const std::string& gridSpec) {
+    std::vector<scene::StructureConfig> out;
+    for (const std::string& t : splitList(traversals)) {
+        scene::StructureConfig c;
+        c.traversal = scene::parseTraversal(trim(t));
+        c.sampler = scene::parseSampler(sampler);
+        c.backend = scene::Backend::Sw;  // host structures only: the sw back-end's BVH
+        c.grid = gridSpec;
+        c.validate();
+        out.push_back(c);
+    }
+    AMRVK_CHECK(!out.empty(), "--traversal: give at least one traversal");
+    return out;
 }
 
 }  // namespace
@@ -289,7 +347,7 @@ void printInfoText(const InfoData& d) {
 int runInfo(const std::vector<std::string>& argv) {
     CLI::App app(kInfoHelp, "amrvk info");
     setUpCommand(app);
-    std::string input, gridSpec = "auto", bricksFile;
+    std::string input, gridSpec = "auto", bricksFile, traversals = "grid-dda,abr", sampler = "grid";
     bool json = false;
     ReadArgs read;
     app.add_option("input", input, "the data set")->required()->type_name("INPUT");
@@ -299,6 +357,14 @@ int runInfo(const std::vector<std::string>& argv) {
         ->type_name("auto|N|NxMxK");
     app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")
         ->type_name("FILE");
+    app.add_option("--traversal", traversals,
+                   "the combinations to build and describe, one per traversal (comma-separated): each builds "
+                   "exactly what render builds for it")
+        ->capture_default_str()
+        ->type_name("LIST");
+    app.add_option("--sampler", sampler, "the sampler of those combinations")
+        ->capture_default_str()
+        ->type_name("ext-brick|abr|grid|dense");
     app.add_flag("--json", json, "print one JSON object on stdout instead of text");
     bool checkMajorants = false;
     std::string tfList;
@@ -323,12 +389,13 @@ int runInfo(const std::vector<std::string>& argv) {
     const amr::ReadOptions ro = readOptions(read);
     if (checkMajorants) {
         AMRVK_CHECK(bricksFile.empty(), "--check-majorants builds its own bricks (drop --bricks)");
+        for (const char* name : {"--traversal", "--sampler"})
+            AMRVK_CHECK(app.count(name) == 0, name, " does not apply with --check-majorants (it checks every traversal)");
         return checkMajorantsOf(input, ro, gridSpec, uint32_t(kdLeaves), tfList, tfRange, json);
     }
     for (const char* name : {"--tfs", "--tf-range", "--kd-leaves"})
         AMRVK_CHECK(app.count(name) == 0, name, " applies only with --check-majorants");
-
-    const InfoData d = gatherInfo(input, ro, bricksFile, gridSpec);
+    const InfoData d = gatherInfo(input, ro, bricksFile, infoConfigs(traversals, sampler, gridSpec));
     if (json)
         printInfoJson(d);
     else

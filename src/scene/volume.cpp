@@ -21,25 +21,29 @@ shared::AabbGpu Volume::toLocal(const accel::BoxD& b) const {
 uint64_t Volume::modelBytes() const {
     uint64_t bytes = model.cells.size() * sizeof(amr::Cell);
     for (const amr::Field& f : model.fields) bytes += f.values.size() * sizeof(float);
-    return bytes;
+    return bytes + slotValues.size() * sizeof(float);
 }
 
 namespace {
-std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName,
-                                          const VolumeFrame* frame);
+std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName, const VolumeFrame* frame,
+                                          accel::BrickSet* given);
 }
 
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName) {
-    return makeMutableVolume(std::move(model), fieldName, nullptr);
+    return makeMutableVolume(std::move(model), fieldName, nullptr, nullptr);
+}
+
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, accel::BrickSet given) {
+    return makeMutableVolume(std::move(model), fieldName, nullptr, &given);
 }
 
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, const VolumeFrame& frame) {
-    return makeMutableVolume(std::move(model), fieldName, &frame);
+    return makeMutableVolume(std::move(model), fieldName, &frame, nullptr);
 }
 
 namespace {
-std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName,
-                                          const VolumeFrame* frame) {
+std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName, const VolumeFrame* frame,
+                                          accel::BrickSet* given) {
     auto v = std::make_shared<Volume>();
     const amr::Field& field = fieldName.empty() ? model.defaultField() : model.field(fieldName);
     v->fieldIndex = size_t(&field - model.fields.data());
@@ -67,7 +71,10 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
         ProgressStage stage("percentiles");
         v->percentiles = amr::percentilesOf(field.values);
     }
-    {
+    if (given) {  // the model stays in its order; the field is copied into slot order
+        v->bricks = std::move(*given);
+        v->slotValues = accel::brickOrderValues(v->bricks, field);
+    } else {
         ProgressStage stage("bricks");
         v->bricks = accel::buildBricks(model);
     }

@@ -32,9 +32,15 @@ struct Volume {
     // (VolumeFrame) the whole data's.
     amr::Box3l frameBounds;
     accel::BrickSet bricks;
+    // One value of the field per brick slot (NaN for an empty slot) when the bricks were given
+    // (bricks.cellIds not empty: a .bricks file, the model in its file order); else empty.
+    std::vector<float> slotValues;
 
     const amr::Field& field() const { return model.fields[fieldIndex]; }
-    std::span<const float> brickValues() const { return field().values; }  // the model is in brick order
+    // The field in brick-slot order: the model's own values when it is in brick order.
+    std::span<const float> brickValues() const {
+        return bricks.cellIds.empty() ? std::span<const float>(field().values) : std::span<const float>(slotValues);
+    }
     const amr::Box3l& bounds() const { return summary.bounds; }
     int32_t minLevel() const { return summary.minLevel; }  // sigma is per (1 << minLevel) voxel units
     float valueLo() const { return fieldStats.minValue; }
@@ -48,7 +54,7 @@ struct Volume {
     // swaps worldLo and worldHi on that axis): what cut-aways are checked and clamped against.
     glm::dvec3 worldMin() const { return glm::min(worldLo(), worldHi()); }
     glm::dvec3 worldMax() const { return glm::max(worldLo(), worldHi()); }
-    // Host bytes of the model (cells and loaded fields) and the bricks.
+    // Host bytes of the model (cells and loaded fields, and the slot values of given bricks).
     uint64_t modelBytes() const;
 
     // Voxel space -> local voxel space (what the GPU sees): the one place localOrigin is
@@ -63,6 +69,10 @@ struct Volume {
 // order. Throws a one-line error for an unknown field, overlapping cells or a domain wider than
 // 2^31 finest cells (what local int32 coordinates can hold).
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field = {});
+// makeVolume with bricks made elsewhere (accel::readBricksFile: checked against `model`, may have
+// empty slots): the model keeps its order and the field is copied into slot order. What `amrvk
+// info --bricks` describes; the renderers build their own bricks.
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field, accel::BrickSet given);
 
 // What a part of a larger data set (an MPI rank's cells, data-parallel rendering) takes from the
 // whole instead of from its own cells, so every part renders in one frame.

@@ -40,6 +40,21 @@ expect "unexpected argument 'extra'" -- info good.cells extra
 expect "--threshold: expects a value (T)" -- info good.cells --threshold
 expect "--dims: '0' is outside [1, 1048576]" -- info good.cells --dims 0 4 4
 expect "--field: At Most 1" -- info good.cells --field a --field b
+# info builds what each --traversal's plan lists, and refuses what render refuses.
+expect "--traversal 'warp': expected grid-dda|grid-bvh" -- info good.cells --traversal grid-dda,warp
+expect "dense" -- info good.cells --traversal abr --sampler dense
+expect "--traversal does not apply with --check-majorants" -- info good.cells --check-majorants --traversal abr
+"$amrvk" info good.cells --traversal brick,kdtree --sampler ext-brick --json >built.json || { echo "FAIL: info --traversal"; fail=1; }
+/usr/bin/python3 - built.json <<'PY' || { echo "FAIL: info --traversal structures"; fail=1; }
+import json, sys
+j = json.load(open(sys.argv[1]))
+names = [c["combination"] for c in j["combinations"]]
+assert names[0].startswith("brick/ext-brick/sw") and names[1].startswith("kdtree/ext-brick/sw"), names
+first, second = (set(c["hostBytes"]) for c in j["combinations"])
+assert {"samplerBvh", "traversalBoxes"} <= first and "abrs" not in first and "macrocells" not in first, first
+assert "supportRangeQuery" in second and "traversalBoxes" not in second, second
+assert "abrs" not in j and "macrocellDims" not in j, "no ABRs or macrocells were built"
+PY
 expect "--cells: '0' is outside" -- gen cloud --cells 0 -o x
 expect "--output is required" -- convert good.cells
 "$amrvk" info nan.cells --nan drop >/dev/null 2>&1 || { echo "FAIL: --nan drop"; fail=1; }

@@ -9,7 +9,7 @@ fail=0
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 declare -A options=(
-  [info]="--format --field --nan --dims --type --threshold --grid --bricks --json"
+  [info]="--format --field --nan --dims --type --threshold --grid --bricks --traversal --sampler --json"
   [gen]="--cells --seed -o,--output --block --levels --field --time"
   [convert]="--format --field --nan --dims --type --threshold -o,--output"
   [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --size --seed --spp --tf

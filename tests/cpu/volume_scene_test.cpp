@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 
+#include "accel/bricks.h"
 #include "core/error.h"
 #include "model_fixtures.h"
 #include "scene/structure_plan.h"
@@ -177,4 +179,37 @@ TEST(VolumeScene, TheVolumeOwnsTheModelItReorders) {
     EXPECT_TRUE(reordered) << "the volume's cells are in brick order (a different order for this cloud)";
     EXPECT_EQ(v->brickValues().data(), v->field().values.data());
     EXPECT_THROW(scene::makeVolume(m, "no-such-field"), Error);
+}
+
+TEST(VolumeScene, GivenBricksKeepTheModelOrderAndGiveTheSameRanges) {
+    // `amrvk info --bricks FILE`: a volume over bricks read from a file (the model in its own order,
+    // the field copied into slot order, NaN for an empty slot) builds every plan's structures, and
+    // the macrocell ranges do not depend on who made the bricks.
+    const std::shared_ptr<const scene::Volume> built = scene::makeVolume(test::makeThreeLevelCloud());
+    const std::filesystem::path file = std::filesystem::path(testing::TempDir()) / "given.bricks";
+    accel::writeBricksFile(file, built->bricks);
+    amr::Model copy = built->model;  // already in brick order: the file's cell ids are slot numbers
+    std::reverse(copy.cells.begin(), copy.cells.end());  // a different file order, values with it
+    for (amr::Field& f : copy.fields) std::reverse(f.values.begin(), f.values.end());
+    const uint32_t n = uint32_t(copy.cells.size());
+    accel::BrickSet given = accel::readBricksFile(file, built->model);
+    for (uint32_t& id : given.cellIds) id = n - 1 - id;  // the same bricks over the reversed cells
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(std::move(copy), "", std::move(given));
+    EXPECT_NE(v->brickValues().data(), v->field().values.data()) << "slot order is a copy";
+    ASSERT_EQ(v->brickValues().size(), built->brickValues().size());
+    EXPECT_TRUE(std::equal(v->brickValues().begin(), v->brickValues().end(), built->brickValues().begin()));
+    EXPECT_EQ(v->model.cells.front().lower, built->model.cells.back().lower) << "the model keeps its order";
+
+    scene::StructureConfig c;  // grid-dda/grid: macrocell ranges
+    scene::VolumeScene a(built, c), b(v, c);
+    ASSERT_EQ(a.grid->ranges.size(), b.grid->ranges.size());
+    for (size_t i = 0; i < a.grid->ranges.size(); ++i) {
+        EXPECT_EQ(a.grid->ranges[i].lo, b.grid->ranges[i].lo) << i;
+        EXPECT_EQ(a.grid->ranges[i].hi, b.grid->ranges[i].hi) << i;
+    }
+    c.traversal = scene::TraversalKind::Abr;
+    b.configure(c);
+    ASSERT_TRUE(b.abrs.has_value());
+    EXPECT_EQ(b.domains.ranges.size(), b.abrs->abrs.size());
+    std::filesystem::remove(file);
 }
