@@ -120,6 +120,8 @@ NanPolicy parseNanPolicy(std::string_view text) {
     return NanPolicy::Reject;
 }
 
+const char* nanPolicyName(NanPolicy policy) { return policy == NanPolicy::Drop ? "drop" : "reject"; }
+
 void applyNanPolicy(Model& model, NanPolicy policy) {
     std::vector<uint8_t> bad;
     uint64_t badCount = 0;

@@ -112,6 +112,7 @@ FieldStats computeFieldStats(const Model& model, const Field& field);
 //  Drop:   remove those cells (the medium is empty there), consistently for every field.
 enum class NanPolicy { Reject, Drop };
 NanPolicy parseNanPolicy(std::string_view text);
+const char* nanPolicyName(NanPolicy policy);  // "reject" | "drop"
 void applyNanPolicy(Model& model, NanPolicy policy);
 
 // How field values are taken. Log: log10 of each cell's value, before reconstruction (as yt does),

@@ -11,6 +11,9 @@
 
 namespace amrvk::amr {
 
+// Voxels per axis of a raw volume (--dims, a session's read.dims, Python's dims=).
+inline constexpr int kMaxRawDim = 1 << 20;
+
 struct ReadOptions {
     std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | ramses | raw
     std::vector<std::string> fields;  // fields to load; empty = every field of the source

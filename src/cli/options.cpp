@@ -155,7 +155,7 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
         ->type_name("V");
     app.add_option("--dims", a.dims, "raw volumes: voxels per axis (else from a name like v_64x64x64_uint8.raw)")
         ->expected(3)
-        ->check(interval(1, 1 << 20))
+        ->check(interval(1, amr::kMaxRawDim))
         ->type_name("NX NY NZ");
     app.add_option("--type", a.type, "raw volumes: voxel type")
         ->check(CLI::IsMember({"uint8", "uint16", "float32", "float64"}))

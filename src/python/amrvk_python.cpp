@@ -211,6 +211,9 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
     s.read.nanPolicy = amr::parseNanPolicy(nan);
     if (dims) {
         if (dims->size() != 3) throw py::value_error("dims: expected 3 integers");
+        for (int d : *dims)
+            if (d < 1 || d > amr::kMaxRawDim)
+                throw py::value_error(strCat("dims: ", d, " is outside [1, ", amr::kMaxRawDim, "]"));
         s.read.rawDims = {(*dims)[0], (*dims)[1], (*dims)[2]};
     }
     s.read.rawType = type;

@@ -4,10 +4,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json_text.h"
+#include "core/strings.h"
 #include "scene/limits.h"
 
 namespace fs = std::filesystem;
@@ -92,58 +96,261 @@ private:
     std::string mWhere;
 };
 
+// One key of a session section, stated once: the same entry writes it and reads it back, with
+// the fallback a file without it gets and the values it may take.
+struct Key {
+    const char* name;
+    std::function<void(const Session&, Json&)> write;   // sets j[name], or leaves it out
+    std::function<void(const Reader&, Session&)> read;  // from the section's reader
+};
+
+// A section: a JSON object of keys, then a check over the whole section.
+struct Section {
+    const char* name;
+    bool required;
+    std::vector<Key> keys;
+    std::function<bool(const Session&)> written = [](const Session&) { return true; };
+    std::function<void(Session&)> check = [](Session&) {};
+};
+
+// Where a key lives in a Session, as a generic lambda so one accessor serves writing (const) and
+// reading: AT(settings.g) is [](auto& s) -> auto& { return s.settings.g; }.
+#define AT(member) [](auto& s) -> auto& { return s.member; }
+
+// Numbers: the interval from lo to hi, closed unless `openLo` / `openHi`.
+struct Domain {
+    double lo, hi;
+    bool openLo = false, openHi = false;
+    bool holds(double v) const { return (openLo ? v > lo : v >= lo) && (openHi ? v < hi : v <= hi); }
+    std::string describe(double v) const {
+        if (std::isinf(hi)) return strCat(formatDouble(v), " must be ", openLo ? "> " : ">= ", lo);
+        return strCat(formatDouble(v), " is outside ", openLo ? "(" : "[", lo, ", ", hi, openHi ? ")" : "]");
+    }
+};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Left out of the file when at the fallback (what a file without the key means anyway).
+enum class Write { Always, UnlessFallback };
+
+// A key left out of a file means what a Session starts with (the front ends' defaults), stated
+// there and nowhere else.
+const Session& defaults() {
+    static const Session kDefaults;
+    return kDefaults;
+}
+
+template <typename At>
+Key numberKey(const char* name, At at, Domain domain, Write w = Write::Always) {
+    const double fallback = at(defaults());
+    return {name,
+            [=](const Session& s, Json& j) {
+                if (w == Write::Always || at(s) != fallback) j[name] = at(s);
+            },
+            [=](const Reader& r, Session& s) {
+                const double v = r.number(name, fallback);
+                AMRVK_CHECK(domain.holds(v), r.where(), ".", name, ": ", domain.describe(v));
+                at(s) = v;
+            }};
+}
+
+// An integer in [lo, hi]; `required`: a file must state it.
+template <typename At>
+Key integerKey(const char* name, At at, int64_t lo, int64_t hi, bool required = false) {
+    const int64_t fallback = int64_t(at(defaults()));
+    return {name, [=](const Session& s, Json& j) { j[name] = at(s); },
+            [=](const Reader& r, Session& s) {
+                using T = std::remove_reference_t<decltype(at(s))>;
+                at(s) = T(required || r.has(name) ? r.integer(name, lo, hi) : fallback);
+            }};
+}
+
+template <typename At>
+Key textKey(const char* name, At at, Write w = Write::Always) {
+    const std::string fallback = at(defaults());
+    return {name,
+            [=](const Session& s, Json& j) {
+                if (w == Write::Always || at(s) != fallback) j[name] = at(s);
+            },
+            [=](const Reader& r, Session& s) { at(s) = r.text(name, fallback); }};
+}
+
+template <typename At>
+Key flagKey(const char* name, At at) {
+    const bool fallback = at(defaults());
+    return {name, [=](const Session& s, Json& j) { j[name] = at(s); },
+            [=](const Reader& r, Session& s) { at(s) = r.flag(name, fallback); }};
+}
+
+// A name of an enum: `parse` reads it (its error names the key), `nameOf` writes it; absent:
+// `fallback`, by default the Session's own.
+template <typename At, typename Parse, typename NameOf>
+Key enumKey(const char* name, At at, Parse parse, NameOf nameOf, Write w = Write::Always,
+            const char* fallback = nullptr) {
+    if (!fallback) fallback = nameOf(at(defaults()));
+    return {name,
+            [=](const Session& s, Json& j) {
+                if (w == Write::Always || nameOf(at(s)) != std::string_view(fallback)) j[name] = nameOf(at(s));
+            },
+            [=](const Reader& r, Session& s) { at(s) = r.named(name, fallback, parse); }};
+}
+
+// Three finite numbers; `nonNegative`: a radiance.
+glm::dvec3 readVector(const Reader& r, const char* name, bool nonNegative) {
+    const glm::dvec3 v = r.vector(name);
+    AMRVK_CHECK(!nonNegative || glm::all(glm::greaterThanEqual(v, glm::dvec3(0.0))), r.where(), ".", name,
+                ": radiance must be >= 0");
+    return v;
+}
+
+// `required`: a file must state it, else absent keeps the default.
+template <typename At>
+Key vectorKey(const char* name, At at, bool required, bool nonNegative = false) {
+    return {name, [=](const Session& s, Json& j) { j[name] = vec3(at(s)); },
+            [=](const Reader& r, Session& s) {
+                if (required || r.has(name)) at(s) = readVector(r, name, nonNegative);
+            }};
+}
+
+// The keys of every object section, in file order.
+const std::vector<Section>& sections() {
+    static const std::vector<Section> kSections = {
+        {"read",
+         false,
+         {textKey("format", AT(read.format)),
+          enumKey("nan", AT(read.nanPolicy), amr::parseNanPolicy, amr::nanPolicyName),
+          {"dims",
+           [](const Session& s, Json& j) {
+               if (s.read.rawDims != glm::ivec3(0))
+                   j["dims"] = Json::array({s.read.rawDims.x, s.read.rawDims.y, s.read.rawDims.z});
+           },
+           [](const Reader& r, Session& s) {
+               if (!r.has("dims")) return;
+               const glm::dvec3 d = r.vector("dims");
+               for (int a = 0; a < 3; ++a) {
+                   AMRVK_CHECK(d[a] >= 1 && d[a] <= amr::kMaxRawDim && d[a] == std::floor(d[a]), r.where(),
+                               ".dims[", a, "]: ", formatDouble(d[a]), " is not an integer in [1, ", amr::kMaxRawDim, "]");
+                   s.read.rawDims[a] = int(d[a]);
+               }
+           }},
+          textKey("type", AT(read.rawType), Write::UnlessFallback),
+          numberKey("threshold", AT(read.rawThreshold), {0, kInf}, Write::UnlessFallback),
+          enumKey("scale", AT(read.scale), amr::parseFieldScale, amr::fieldScaleName, Write::UnlessFallback),
+          numberKey("logFloor", AT(read.logFloor), {0, kInf}, Write::UnlessFallback)}},
+        {"camera",
+         true,
+         {vectorKey("eye", AT(settings.camera.eye), true), vectorKey("target", AT(settings.camera.target), true),
+          vectorKey("up", AT(settings.camera.up), true),
+          // scene::validFov's open interval
+          numberKey("fovY", AT(settings.camera.fovYDegrees), {0, scene::kMaxFovDegrees, true, true})}},
+        {"image",
+         true,
+         {integerKey("width", AT(settings.width), 1, scene::kMaxImageSide, true),
+          integerKey("height", AT(settings.height), 1, scene::kMaxImageSide, true)}},
+        {"render",
+         false,
+         {enumKey("mode", AT(settings.mode), scene::parseMode, scene::modeName),
+          integerKey("spp", AT(spp), 0, scene::kMaxSpp), integerKey("seed", AT(settings.seed), 0, UINT32_MAX),
+          numberKey("densityScale", AT(settings.densityScale), {0, kInf}),
+          numberKey("g", AT(settings.g), {-1, 1}), vectorKey("ambient", AT(settings.ambient), false, true),
+          {"background",
+           [](const Session& s, Json& j) {
+               if (s.settings.background) j["background"] = vec3(*s.settings.background);
+           },
+           [](const Reader& r, Session& s) {
+               if (r.has("background")) s.settings.background = readVector(r, "background", true);
+           }},
+          numberKey("dvrStep", AT(settings.dvrStep), {0, 64, true}),
+          flagKey("dvrShading", AT(settings.dvrShading))}},
+        {"structure",
+         false,
+         {enumKey("traversal", AT(structure.traversal), scene::parseTraversal, scene::traversalName),
+          enumKey("sampler", AT(structure.sampler), scene::parseSampler, scene::samplerName),
+          // A hand-written file without a back-end gets the one that fits the device.
+          enumKey("backend", AT(structure.backend), scene::parseBackend, scene::backendName, Write::Always, "auto"),
+          textKey("grid", AT(structure.grid)),
+          integerKey("kdLeaves", AT(structure.kdLeaves), 1, scene::kMaxKdLeaves),
+          {"denseMaxMiB", [](const Session& s, Json& j) { j["denseMaxMiB"] = s.structure.denseMaxBytes >> 20; },
+           [](const Reader& r, Session& s) {
+               if (r.has("denseMaxMiB"))
+                   s.structure.denseMaxBytes = uint64_t(r.integer("denseMaxMiB", 1, scene::kMaxDenseMiB)) << 20;
+           }}},
+         [](const Session&) { return true; },
+         [](Session& s) { s.structure.validate(); }},
+        {"legend",
+         false,
+         {flagKey("show", AT(legend.show)), enumKey("place", AT(legend.place), parseLegendPlace, legendPlaceName),
+          textKey("title", AT(legend.title)), textKey("units", AT(legend.units)), textKey("font", AT(legend.font))},
+         [](const Session& s) { return !(s.legend == Legend{}); }},
+    };
+    return kSections;
+}
+#undef AT
+
+const Section& sectionNamed(std::string_view name) {
+    for (const Section& sec : sections())
+        if (sec.name == name) return sec;
+    AMRVK_CHECK(false, "internal: no session section '", name, "'");
+    throw;  // unreachable
+}
+
+void writeSection(const Section& sec, const Session& s, Json& j) {
+    if (!sec.written(s)) return;
+    Json& out = j[sec.name] = Json::object();
+    for (const Key& k : sec.keys) k.write(s, out);
+}
+
+// A missing optional section reads as an empty one: every key at its fallback.
+void readSection(const Section& sec, const Reader& top, Session& s) {
+    static const Json kEmpty = Json::object();
+    if (!sec.required && !top.has(sec.name)) {
+        const Reader none(kEmpty, top.where() + "." + sec.name);
+        for (const Key& k : sec.keys) k.read(none, s);
+    } else {
+        const Reader r = top.child(sec.name);
+        AMRVK_CHECK(r.json().is_object(), r.where(), ": expected an object, found ", r.json().type_name());
+        for (const Key& k : sec.keys) k.read(r, s);
+    }
+    try {
+        sec.check(s);
+    } catch (const Error& e) {
+        throw Error(top.where() + "." + sec.name + ": " + e.what());
+    }
+}
+
+Json lightsJson(const std::vector<scene::Light>& lights) {
+    Json out = Json::array();
+    for (const scene::Light& L : lights)
+        out.push_back(L.point ? Json{{"type", "point"}, {"position", vec3(L.posOrDir)}, {"intensity", vec3(L.radiance)}}
+                              : Json{{"type", "directional"}, {"direction", vec3(L.posOrDir)},
+                                     {"radiance", vec3(L.radiance)}});
+    return out;
+}
+
+Json cutJson(const scene::CutAway& cut) {
+    Json out = Json::object();
+    if (cut.crop) out["crop"] = {{"lo", vec3(cut.crop->lo)}, {"hi", vec3(cut.crop->hi)}};
+    if (!cut.clips.empty()) {
+        out["clip"] = Json::array();
+        for (const scene::ClipPlane& c : cut.clips) out["clip"].push_back({{"point", vec3(c.point)}, {"normal", vec3(c.normal)}});
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string sessionJson(const Session& s) {
-    const scene::RenderSettings& r = s.settings;
     Json j;
     j["amrvk"] = "session";
     j["version"] = kVersion;
     j["input"] = s.input;
-    j["read"] = {{"format", s.read.format}, {"nan", s.read.nanPolicy == amr::NanPolicy::Drop ? "drop" : "reject"}};
-    if (s.read.rawDims != glm::ivec3(0))
-        j["read"]["dims"] = Json::array({s.read.rawDims.x, s.read.rawDims.y, s.read.rawDims.z});
-    if (!s.read.rawType.empty()) j["read"]["type"] = s.read.rawType;
-    if (s.read.rawThreshold != 0.0) j["read"]["threshold"] = s.read.rawThreshold;
-    if (s.read.scale != amr::FieldScale::Linear) j["read"]["scale"] = amr::fieldScaleName(s.read.scale);
-    if (s.read.logFloor != 0.0) j["read"]["logFloor"] = s.read.logFloor;
+    writeSection(sectionNamed("read"), s, j);
     j["field"] = s.field;
-    j["camera"] = {{"eye", vec3(r.camera.eye)},
-                   {"target", vec3(r.camera.target)},
-                   {"up", vec3(r.camera.up)},
-                   {"fovY", r.camera.fovYDegrees}};
-    j["image"] = {{"width", r.width}, {"height", r.height}};
-    j["render"] = {{"mode", scene::modeName(r.mode)}, {"spp", s.spp},          {"seed", r.seed},
-                   {"densityScale", r.densityScale},   {"g", r.g},              {"ambient", vec3(r.ambient)},
-                   {"dvrStep", r.dvrStep},             {"dvrShading", r.dvrShading}};
-    if (r.background) j["render"]["background"] = vec3(*r.background);
-    j["lights"] = Json::array();
-    for (const scene::Light& L : r.lights)
-        j["lights"].push_back(L.point ? Json{{"type", "point"}, {"position", vec3(L.posOrDir)}, {"intensity", vec3(L.radiance)}}
-                                      : Json{{"type", "directional"}, {"direction", vec3(L.posOrDir)},
-                                             {"radiance", vec3(L.radiance)}});
-    if (!r.cut.empty()) {
-        j["cut"] = Json::object();
-        if (r.cut.crop) j["cut"]["crop"] = {{"lo", vec3(r.cut.crop->lo)}, {"hi", vec3(r.cut.crop->hi)}};
-        if (!r.cut.clips.empty()) {
-            j["cut"]["clip"] = Json::array();
-            for (const scene::ClipPlane& c : r.cut.clips)
-                j["cut"]["clip"].push_back({{"point", vec3(c.point)}, {"normal", vec3(c.normal)}});
-        }
-    }
-    j["structure"] = {{"traversal", scene::traversalName(s.structure.traversal)},
-                      {"sampler", scene::samplerName(s.structure.sampler)},
-                      {"backend", scene::backendName(s.structure.backend)},
-                      {"grid", s.structure.grid},
-                      {"kdLeaves", s.structure.kdLeaves},
-                      {"denseMaxMiB", s.structure.denseMaxBytes >> 20}};
+    for (const char* name : {"camera", "image", "render"}) writeSection(sectionNamed(name), s, j);
+    j["lights"] = lightsJson(s.settings.lights);
+    if (!s.settings.cut.empty()) j["cut"] = cutJson(s.settings.cut);
+    writeSection(sectionNamed("structure"), s, j);
     j["transferFunction"] = Json::parse(scene::paraViewPresetJson(s.tf)).at(0);
-    if (!(s.legend == Legend{}))
-        j["legend"] = {{"show", s.legend.show},
-                       {"place", legendPlaceName(s.legend.place)},
-                       {"title", s.legend.title},
-                       {"units", s.legend.units},
-                       {"font", s.legend.font}};
+    writeSection(sectionNamed("legend"), s, j);
     return j.dump(2) + "\n";
 }
 
@@ -161,60 +368,6 @@ Json parseDocument(const std::string& text, const std::string& file) {
         AMRVK_CHECK(false, file, ": not a session (malformed JSON: ", msg, ")");
     }
     return {};
-}
-
-// "read": how the input is read (format, NaN policy, raw layout, scale).
-void readReadOptions(const Reader& r, amr::ReadOptions& read) {
-    read.format = r.text("format", "auto");
-    read.nanPolicy = r.named("nan", "reject", [](const std::string& v) { return amr::parseNanPolicy(v); });
-    if (r.has("dims")) {
-        const glm::dvec3 d = r.vector("dims");
-        for (int a = 0; a < 3; ++a) {
-            AMRVK_CHECK(d[a] >= 1 && d[a] <= (1 << 20) && d[a] == std::floor(d[a]), r.where(), ".dims[", a,
-                        "]: ", d[a], " is not an integer in [1, 2^20]");
-            read.rawDims[a] = int(d[a]);
-        }
-    }
-    read.rawType = r.text("type", "");
-    read.rawThreshold = r.number("threshold", 0.0);
-    AMRVK_CHECK(read.rawThreshold >= 0, r.where(), ".threshold: must be >= 0");
-    read.scale = r.named("scale", "linear", [](const std::string& v) { return amr::parseFieldScale(v); });
-    read.logFloor = r.number("logFloor", 0.0);
-    AMRVK_CHECK(read.logFloor >= 0 && std::isfinite(read.logFloor), r.where(), ".logFloor: must be >= 0");
-}
-
-// "camera" and "image" (both required).
-void readView(const Reader& top, scene::RenderSettings& rs) {
-    const Reader cam = top.child("camera");
-    rs.camera.eye = cam.vector("eye");
-    rs.camera.target = cam.vector("target");
-    rs.camera.up = cam.vector("up");
-    rs.camera.fovYDegrees = cam.number("fovY", 40.0);
-    AMRVK_CHECK(scene::validFov(rs.camera.fovYDegrees), cam.where(), ".fovY: ", rs.camera.fovYDegrees,
-                " is outside (0, ", scene::kMaxFovDegrees, ")");
-    const Reader image = top.child("image");
-    rs.width = int(image.integer("width", 1, scene::kMaxImageSide));
-    rs.height = int(image.integer("height", 1, scene::kMaxImageSide));
-}
-
-// "render": mode, samples, seed, medium and dvr options (every key optional).
-void readRender(const Reader& r, Session& s) {
-    scene::RenderSettings& rs = s.settings;
-    rs.mode = r.named("mode", "ms", scene::parseMode);
-    s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, scene::kMaxSpp) : 64);
-    rs.seed = uint32_t(r.has("seed") ? r.integer("seed", 0, UINT32_MAX) : 1);
-    rs.densityScale = r.number("densityScale", 1.0);
-    AMRVK_CHECK(rs.densityScale >= 0, r.where(), ".densityScale: ", rs.densityScale, " must be >= 0");
-    rs.g = r.number("g", 0.0);
-    AMRVK_CHECK(rs.g >= -1 && rs.g <= 1, r.where(), ".g: ", rs.g, " is outside [-1, 1]");
-    if (r.has("ambient")) rs.ambient = r.vector("ambient");
-    if (r.has("background")) rs.background = r.vector("background");
-    for (const char* key : {"ambient", "background"})
-        if (r.has(key)) AMRVK_CHECK(glm::all(glm::greaterThanEqual(r.vector(key), glm::dvec3(0.0))), r.where(), ".",
-                                    key, ": radiance must be >= 0");
-    rs.dvrStep = r.number("dvrStep", 0.5);
-    AMRVK_CHECK(rs.dvrStep > 0 && rs.dvrStep <= 64, r.where(), ".dvrStep: ", rs.dvrStep, " is outside (0, 64]");
-    rs.dvrShading = r.flag("dvrShading", false);
 }
 
 // "lights": an array of directional and point lights.
@@ -267,33 +420,6 @@ scene::CutAway readCut(const Reader& cut) {
     return c;
 }
 
-// "structure": the traversal, sampler and back-end with their parameters, validated.
-void readStructure(const Reader& st, scene::StructureConfig& structure) {
-    structure.traversal = st.named("traversal", "grid-dda", scene::parseTraversal);
-    structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
-    structure.backend = st.named("backend", "auto", scene::parseBackend);
-    structure.grid = st.text("grid", "auto");
-    if (st.has("kdLeaves")) structure.kdLeaves = uint32_t(st.integer("kdLeaves", 1, scene::kMaxKdLeaves));
-    if (st.has("denseMaxMiB")) structure.denseMaxBytes = uint64_t(st.integer("denseMaxMiB", 1, scene::kMaxDenseMiB)) << 20;
-    try {
-        structure.validate();
-    } catch (const Error& e) {
-        throw Error(st.where() + ": " + e.what());
-    }
-}
-
-// "legend": whether and how the colour legend is drawn.
-Legend readLegend(const Reader& L) {
-    AMRVK_CHECK(L.json().is_object(), L.where(), ": expected an object");
-    Legend legend;
-    legend.show = L.flag("show", false);
-    legend.place = L.named("place", "side", parseLegendPlace);
-    legend.title = L.text("title", "");
-    legend.units = L.text("units", "");
-    legend.font = L.text("font", "");
-    return legend;
-}
-
 }  // namespace
 
 Session parseSession(const std::string& text, const fs::path& path) {
@@ -309,18 +435,12 @@ Session parseSession(const std::string& text, const fs::path& path) {
     s.input = top.text("input");
     AMRVK_CHECK(!s.input.empty(), file, ".input: empty");
     if (fs::path(s.input).is_relative()) s.input = (path.parent_path() / s.input).lexically_normal().string();
-    if (top.has("read")) readReadOptions(top.child("read"), s.read);
     s.field = top.text("field", "");
-    readView(top, s.settings);
-    // Every render.* key is optional, so the object is too.
-    const Json noRender = Json::object();
-    readRender(top.has("render") ? top.child("render") : Reader(noRender, file + ".render"), s);
+    for (const Section& sec : sections()) readSection(sec, top, s);
     if (top.has("lights")) s.settings.lights = readLights(doc.at("lights"), file + ".lights");
     if (top.has("cut")) s.settings.cut = readCut(top.child("cut"));
-    if (top.has("structure")) readStructure(top.child("structure"), s.structure);
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
-    if (top.has("legend")) s.legend = readLegend(top.child("legend"));
     return s;
 }
 

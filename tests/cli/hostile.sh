@@ -276,7 +276,7 @@ expect1 "tfdesc.json.transferFunction" -- render --session tfdesc.json -o x.png
 sess array.json 's = [s]'
 expect1 "not an amrvk session" -- render --session array.json -o x.png
 sess dims.json 's["read"]["dims"] = [0, 1, 1]'
-expect1 "dims.json.read.dims[0]: 0 is not an integer in [1, 2^20]" -- render --session dims.json -o x.png
+expect1 "dims.json.read.dims[0]: 0 is not an integer in [1, 1048576]" -- render --session dims.json -o x.png
 sess nan.json 's["read"]["nan"] = "ignore"'
 expect1 "nan.json.read.nan: unknown NaN policy 'ignore'" -- render --session nan.json -o x.png
 printf '{"amrvk": "session", "version": 1,' > trunc.json

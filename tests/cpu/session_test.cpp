@@ -91,6 +91,40 @@ TEST(Session, EveryFieldRoundTrips) {
     EXPECT_EQ(session::sessionJson(t), session::sessionJson(s));
 }
 
+TEST(Session, KeysLeftOutTakeTheDefaultsTheFrontEndsStartWith) {
+    // Only what a session must name: every other key of every section reads as its default, the
+    // same default a Session (and the CLI) starts with, and writing it back states them.
+    const std::string text = R"({"amrvk": "session", "version": 1, "input": "/d/c.cells",
+        "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}, "image": {"width": 8, "height": 6},
+        "transferFunction": {"Name": "t", "RGBPoints": [0, 1, 1, 1, 1, 1, 1, 1], "Points": [0, 0, 0.5, 0, 1, 1, 0.5, 0]}})";
+    const Session s = session::parseSession(text, "/tmp/min.json");
+    const Session d;
+    EXPECT_EQ(s.read.format, d.read.format);
+    EXPECT_EQ(s.read.nanPolicy, d.read.nanPolicy);
+    EXPECT_EQ(s.read.scale, d.read.scale);
+    EXPECT_EQ(s.read.rawDims, d.read.rawDims);
+    EXPECT_EQ(s.spp, d.spp);
+    EXPECT_EQ(s.settings.mode, d.settings.mode);
+    EXPECT_EQ(s.settings.seed, d.settings.seed);
+    EXPECT_EQ(s.settings.densityScale, d.settings.densityScale);
+    EXPECT_EQ(s.settings.g, d.settings.g);
+    EXPECT_EQ(s.settings.ambient, d.settings.ambient);
+    EXPECT_FALSE(s.settings.background.has_value());
+    EXPECT_EQ(s.settings.camera.fovYDegrees, d.settings.camera.fovYDegrees);
+    EXPECT_EQ(s.settings.dvrStep, d.settings.dvrStep);
+    EXPECT_EQ(s.structure.traversal, d.structure.traversal);
+    EXPECT_EQ(s.structure.sampler, d.structure.sampler);
+    EXPECT_EQ(s.structure.grid, d.structure.grid);
+    EXPECT_EQ(s.structure.kdLeaves, d.structure.kdLeaves);
+    EXPECT_EQ(s.structure.denseMaxBytes, d.structure.denseMaxBytes);
+    EXPECT_TRUE(s.legend == d.legend);
+    const std::string written = session::sessionJson(s);
+    for (const char* key : {"\"nan\"", "\"spp\"", "\"seed\"", "\"dvrShading\"", "\"sampler\"", "\"denseMaxMiB\""})
+        EXPECT_NE(written.find(key), std::string::npos) << key;
+    for (const char* key : {"\"dims\"", "\"threshold\"", "\"background\"", "\"legend\""})
+        EXPECT_EQ(written.find(key), std::string::npos) << key << " is written only when set";
+}
+
 TEST(Session, RelativeInputIsRelativeToTheFile) {
     std::string text = session::sessionJson(fullSession());
     const std::string from = "\"/data/enzo/DD0018/DD0018\"", to = "\"../data/cloud.cells\"";
@@ -129,6 +163,17 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"clip\": [", "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
          {".cut.clip", "at most 4 planes (got 5)"}},
         {with("\"point\": [", "\"pont\": ["), {".cut.clip[0]", "missing \"point\""}},
+        {with("\"format\": \"enzo\"", "\"format\": \"enzo\", \"dims\": [4, 1048577, 4]"),
+         {"read.dims[1]", "1048577 is not an integer in [1, 1048576]"}},
+        {with("\"dvrStep\": 0.25", "\"dvrStep\": 0"), {"render.dvrStep", "0 is outside (0, 64]"}},
+        {with("\"logFloor\": 0.001", "\"logFloor\": -2"), {"read.logFloor", "-2 must be >= 0"}},
+        {with("\"spp\": 128", "\"spp\": 16777217"), {"render.spp", "[0, 16777216]"}},
+        {with("\"kdLeaves\": 512", "\"kdLeaves\": 0"), {"structure.kdLeaves", "[1, 16777215]"}},
+        {with("\"transferFunction\"", "\"legend\": {\"show\": 1}, \"transferFunction\""),
+         {"legend.show", "expected true or false"}},
+        {with("\"transferFunction\"", "\"legend\": [], \"transferFunction\""), {"legend", "expected an object"}},
+        {with("\"image\": {", "\"image\": 5, \"unused\": {"), {"/tmp/s.json.image", "expected an object"}},
+        {with("\"sampler\": \"abr\"", "\"sampler\": \"dense\""), {"/tmp/s.json.structure", "dense"}},
     };
     for (const auto& c : cases) {
         const std::string e = errorOfParse(c.text);
