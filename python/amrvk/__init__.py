@@ -91,6 +91,15 @@ def show(image):
     """An image array (height, width, 3 or 4), linear radiance, as an object Jupyter displays inline."""
     import numpy as np
 
+    try:
+        pixels = np.asarray(image)
+    except Exception:
+        raise TypeError(f"image: expected an array (height, width, 3 or 4), got {type(image).__name__}") from None
+    if pixels.dtype.kind not in "iuf":
+        raise TypeError(f"image: expected numbers, got dtype {pixels.dtype}")
+    if pixels.ndim != 3 or pixels.shape[2] not in (3, 4) or pixels.shape[0] < 1 or pixels.shape[1] < 1:
+        raise ValueError(f"image: expected shape (height, width, 3) or (height, width, 4), got {pixels.shape}")
+
     class _Image:
         def __init__(self, pixels):
             self.pixels = np.ascontiguousarray(pixels, dtype=np.float32)
@@ -98,7 +107,7 @@ def show(image):
         def _repr_png_(self):
             return _png_of(self.pixels)
 
-    return _Image(image)
+    return _Image(pixels)
 
 
 def _png_of(pixels):
