@@ -115,9 +115,9 @@ def _mesh_field(ds, field):
         info = ds._get_field_info(field)
     except Exception as e:  # yt's YTFieldNotFound and its kin: one line naming the keyword
         raise ValueError(f"field: {field!r} is not a field of {ds} (see ds.derived_field_list)") from None
-    if getattr(info, "sampling_type", "cell") != "cell":
+    if getattr(info, "sampling_type", "cell") == "particle":  # "cell" and "local" (derived per cell) are fine
         raise ValueError(
-            f"field: {info.name!r} is a {info.sampling_type} field; amrvk renders fields with a value per cell, "
+            f"field: {info.name!r} is a particle field; amrvk renders fields with a value per cell, "
             f"such as ('gas', 'density') (deposit particles onto the mesh first, e.g. ('deposit', 'all_density'))"
         )
     return info.name
