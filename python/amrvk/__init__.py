@@ -13,11 +13,36 @@ the same session files (``save_session``; ``amrvk view --session FILE`` opens th
 """
 
 from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
+from . import cameras as _cameras
+from . import colormaps as _colormaps
 from . import yt_bridge as _yt_bridge
+from .widget import Widget
 
-__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "devices", "show"]
+__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "Widget", "devices", "show"]
 
 Volume.from_yt = staticmethod(_yt_bridge.from_yt)
+TransferFunction.preset = staticmethod(_colormaps.preset)
+TransferFunction.from_colormap = staticmethod(_colormaps.from_colormap)
+Camera.orbit = _cameras.orbit
+Camera.zoom = _cameras.zoom
+Camera.from_yt = staticmethod(_cameras.from_yt)
+Camera.to_yt = _cameras.to_yt
+
+
+def _renderer_orbit(self, degrees, axis=None):
+    """Turns the renderer's camera by `degrees` about its target (Camera.orbit); the estimate restarts."""
+    self.camera = self.camera.orbit(degrees, axis)
+    return self
+
+
+def _renderer_zoom(self, factor):
+    """Moves the renderer's camera `factor` times closer to its target (Camera.zoom)."""
+    self.camera = self.camera.zoom(factor)
+    return self
+
+
+Renderer.orbit = _renderer_orbit
+Renderer.zoom = _renderer_zoom
 
 
 def _progress_arg(progress):

@@ -27,6 +27,7 @@
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/font.h"
 #include "core/image_io.h"
 #include "core/stats.h"
 #include "gpu/context.h"
@@ -37,6 +38,7 @@
 #include "scene/limits.h"
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
+#include "session/legend_image.h"
 #include "session/session.h"
 
 namespace py = pybind11;
@@ -513,11 +515,12 @@ public:
             if (!progress.is_none() && completed > 0) progress(done, n);
         }
     }
-    py::array_t<float> render(const py::object& spp, const py::object& progress) {
+    py::array_t<float> render(const py::object& spp, const py::object& progress, const py::object& legend) {
+        const bool withLegend = !legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None");
         const uint32_t n = spp.is_none() ? (session().spp > 0 ? session().spp : 64) : countArg(spp, "spp");
         reset();
         accumulate(py::int_(n), progress);
-        return image();
+        return imageArray(picture(withLegend));
     }
     scene::RenderOutput output() const {
         const PyRenderer& self = *this;
@@ -526,7 +529,35 @@ public:
         std::lock_guard lock(mMutex);
         return mPicture.renderer->output();
     }
-    py::array_t<float> image() const { return imageArray(output().mean); }
+    // ---- the colour legend (session/legend_image.h: the CLI's --legend drawing) ----
+    // `legend` True/False, or None for the session's setting (Renderer(legend=True), .legend).
+    bool legendWanted(const py::object& legend) const {
+        return legend.is_none() ? session().legend.show : keywordArg<bool>(legend, "legend", "True, False or None");
+    }
+    // The picture so far, with the legend drawn at its side or over it when `withLegend`.
+    Image picture(bool withLegend) const {
+        Image mean = output().mean;
+        if (!withLegend) return mean;
+        const session::Session s = session();
+        if (!mFont || !(mFontFor == s.legend.font)) {
+            mFont = session::openLegendFont(s.legend);
+            mFontFor = s.legend.font;
+        }
+        session::checkLegendFits(s, *mFont);
+        return session::drawLegend(mean, session::legendContent(s), s.legend.place, *mFont);
+    }
+    session::Legend legend() const { return session().legend; }
+    template <typename Edit>
+    void editLegend(Edit edit) {
+        session::Legend l = legend();
+        edit(l);
+        locked([&] { mPicture.described.legend = l; });
+    }
+
+    // Arrays (image, render) are the picture alone unless legend=True: they match variance()'s shape.
+    py::array_t<float> image(const py::object& legend) const {
+        return imageArray(picture(!legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None")));
+    }
     py::array_t<float> variance() const {
         const scene::RenderOutput out = output();
         if (out.spp < 2) throw py::value_error("variance needs at least 2 samples per pixel (have " + std::to_string(out.spp) + ")");
@@ -543,12 +574,18 @@ public:
     std::vector<std::string> notes() const { return open().report.notes; }
     // Outputs never replace a file the renderer's data set was read from (as the CLI refuses
     // -o onto an input); everything else is checkOutputs' and AtomicFileWriter's policy.
-    void save(const fs::path& path) const {
+    // legend None: drawn into PNGs where the session has it on (other formats as they are, as the
+    // CLI does with a session's legend); True: a PNG is required.
+    void save(const fs::path& path, const py::object& legend) const {
         checkOutputs({{"save", path}}, mDataFiles);
-        writeImage(path, output().mean);
+        std::string ext = path.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        if (!legend.is_none() && legendWanted(legend) && ext != ".png")
+            throw py::value_error("legend: only PNG images get a legend (save to a .png, or legend=False)");
+        writeImage(path, picture(legendWanted(legend) && ext == ".png"));
     }
-    py::bytes png() const {
-        const std::vector<uint8_t> bytes = pngBytes(output().mean);
+    py::bytes png(const py::object& legend) const {
+        const std::vector<uint8_t> bytes = pngBytes(picture(legendWanted(legend)));
         return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     }
     void saveSession(const fs::path& path) const {
@@ -608,6 +645,8 @@ private:
     std::vector<NamedPath> mDataFiles;   // outputs refuse these
     picture::Picture mPicture;
     mutable std::mutex mMutex;  // one device call at a time (the GIL is released around them)
+    mutable std::unique_ptr<Font> mFont;  // the legend's, opened when first drawn
+    mutable std::string mFontFor;         // the legend.font it was opened for
     double mSecondsPerRow = 0;  // measured, for chunk sizes
     bool mClosed = false;
 };
@@ -630,7 +669,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
                                    "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
-                                   "quiet",    "fov",     "tf_range", "crop",    "clip"};
+                                   "quiet",    "fov",     "tf_range", "crop",    "clip",   "legend",
+                                   "legend_place", "legend_title", "legend_units"};
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
@@ -651,6 +691,13 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (auto o = take("fov")) rs.camera.fovYDegrees = keywordArg<double>(*o, "fov", kNumber);
     if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
     if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
+    if (auto o = take("legend")) s.legend.show = keywordArg<bool>(*o, "legend", "True or False");
+    if (auto o = take("legend_place"))
+        s.legend.place = forKeyword("legend_place", [&] {
+            return session::parseLegendPlace(keywordArg<std::string>(*o, "legend_place", "'side' or 'overlay'"));
+        });
+    if (auto o = take("legend_title")) s.legend.title = keywordArg<std::string>(*o, "legend_title", kText);
+    if (auto o = take("legend_units")) s.legend.units = keywordArg<std::string>(*o, "legend_units", kText);
     if (camera) rs.camera = *camera;
     d.fitCamera = !camera;
     if (tf) s.tf = tf->channels;
@@ -885,12 +932,14 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
         .def_static("from_session", &rendererFromSession, py::arg("path"),
                     "the picture a session file describes (amrvk view's, amrvk render --session's)")
         .def("render", &PyRenderer::render, py::arg("spp") = py::none(), py::arg("progress") = py::none(),
-             "from scratch: spp samples per pixel (default the session's), returns image()")
+             py::arg("legend") = py::none(),
+             "from scratch: spp samples per pixel (default the session's), returns image(legend)")
         .def("accumulate", &PyRenderer::accumulate, py::arg("n"), py::arg("progress") = py::none(),
              "n more samples per pixel, continuing the same estimate")
         .def("reset", &PyRenderer::reset)
-        .def("image", &PyRenderer::image,
-             "the mean so far: float32 (height, width, 4), row 0 = top, linear radiance, alpha 1")
+        .def("image", &PyRenderer::image, py::arg("legend") = py::none(),
+             "the mean so far: float32 (height, width, 4), row 0 = top, linear radiance, alpha 1; legend=True: "
+             "with the colour legend drawn (wider with legend_place 'side')")
         .def("variance", &PyRenderer::variance, "variance of the mean per pixel: float32 (height, width, 3)")
         .def_property_readonly("spp", &PyRenderer::spp)
         .def_property_readonly("stats", &PyRenderer::stats, "amrvk render --json's content for the image so far")
@@ -980,10 +1029,42 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
                 r.editSettings([&](auto& s) { s.g = g; });
             },
             "Henyey-Greenstein asymmetry in (-1, 1)")
-        .def("save", &PyRenderer::save, py::arg("path"), "the image so far: .png (sRGB), .exr or .pfm (linear)")
+        .def("save", &PyRenderer::save, py::arg("path"), py::arg("legend") = py::none(),
+             "the image so far: .png (sRGB), .exr or .pfm (linear); the legend in PNGs (legend None: the renderer's)")
         .def("save_session", &PyRenderer::saveSession, py::arg("path"),
              "the picture as a session file (amrvk view --session, amrvk render --session)")
-        .def("png", &PyRenderer::png, "the image so far as PNG bytes (what save writes to a .png)")
+        .def("png", &PyRenderer::png, py::arg("legend") = py::none(),
+             "the image so far as PNG bytes (what save writes to a .png)")
+        .def_property(
+            "legend", [](const PyRenderer& r) { return r.legend().show; },
+            [](PyRenderer& r, const py::object& o) {
+                const bool show = keywordArg<bool>(o, "legend", "True or False");
+                r.editLegend([&](session::Legend& l) { l.show = show; });
+            },
+            "the colour legend in PNGs and inline pictures (as --legend)")
+        .def_property(
+            "legend_place", [](const PyRenderer& r) { return std::string(session::legendPlaceName(r.legend().place)); },
+            [](PyRenderer& r, const py::object& o) {
+                const auto place = forKeyword("legend_place", [&] {
+                    return session::parseLegendPlace(keywordArg<std::string>(o, "legend_place", "'side' or 'overlay'"));
+                });
+                r.editLegend([&](session::Legend& l) { l.place = place; });
+            },
+            "'side' (a strip right of the picture) or 'overlay' (over its lower right corner)")
+        .def_property(
+            "legend_title", [](const PyRenderer& r) { return r.legend().title; },
+            [](PyRenderer& r, const py::object& o) {
+                const std::string t = keywordArg<std::string>(o, "legend_title", kText);
+                r.editLegend([&](session::Legend& l) { l.title = t; });
+            },
+            "the legend's title; '' = the field's name")
+        .def_property(
+            "legend_units", [](const PyRenderer& r) { return r.legend().units; },
+            [](PyRenderer& r, const py::object& o) {
+                const std::string u = keywordArg<std::string>(o, "legend_units", kText);
+                r.editLegend([&](session::Legend& l) { l.units = u; });
+            },
+            "the units line under the legend's title; '' = none")
         .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
         .def_property_readonly("closed", &PyRenderer::closed)
         .def("__repr__", &PyRenderer::repr);

@@ -16,6 +16,10 @@ struct Rename {
 // Longest first where one option is a prefix of another (--nan drop before --nan).
 constexpr Rename kRenames[] = {
     {"--nan drop", "nan='drop'"},
+    {"--legend-place", "legend_place"},
+    {"--legend-title", "legend_title"},
+    {"--legend-units", "legend_units"},
+    {"--legend", "legend"},
     {"--density-scale", "density_scale"},
     {"--size", "size (width, height)"},
     {"--mode", "mode"},
