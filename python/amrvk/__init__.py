@@ -16,9 +16,10 @@ from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
 from . import cameras as _cameras
 from . import colormaps as _colormaps
 from . import yt_bridge as _yt_bridge
+from .series import render_series
 from .widget import Widget
 
-__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "Widget", "devices", "show"]
+__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "Widget", "devices", "render_series", "show"]
 
 Volume.from_yt = staticmethod(_yt_bridge.from_yt)
 TransferFunction.preset = staticmethod(_colormaps.preset)

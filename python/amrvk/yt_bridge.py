@@ -144,6 +144,9 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
         import yt  # noqa: F401  (the error below says what is missing)
     except ImportError as e:
         raise ImportError("amrvk.Volume.from_yt needs yt (Debian: python3-yt)") from e
+    if hasattr(data, "piter"):
+        raise TypeError("data: a yt DatasetSeries is a series: amrvk.render_series(ts, out, field=...) renders one "
+                        "frame per data set; from_yt takes one of them (ts[0])")
     is_dataset = hasattr(data, "index") and hasattr(data, "domain_dimensions")
     ds = data if is_dataset else getattr(data, "ds", None)
     if ds is None:

@@ -29,6 +29,7 @@
 #include "core/file_io.h"
 #include "core/font.h"
 #include "core/image_io.h"
+#include "core/movie_io.h"
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
@@ -39,6 +40,7 @@
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
 #include "session/legend_image.h"
+#include "session/series.h"
 #include "session/session.h"
 
 namespace py = pybind11;
@@ -1093,6 +1095,37 @@ void bindDevices(py::module_& m) {
         "every Vulkan device, and why an unusable one is rejected");
 }
 
+// The series planning of `amrvk render` (session/series.h), for python/amrvk/series.py: which
+// inputs in which order, the frames of a turntable, each frame's azimuth and file, and MP4s.
+void bindSeries(py::module_& m) {
+    m.def("_expand_inputs", &session::expandInputs, py::arg("inputs"),
+          "paths as they are, glob patterns expanded; all in natural order (output_2 before output_10)");
+    m.def(
+        "_plan_frames",
+        [](const std::vector<std::string>& inputs, std::optional<uint32_t> frames, bool orbitGiven) {
+            return session::planFrames(inputs, frames, orbitGiven);
+        },
+        py::arg("inputs"), py::arg("frames"), py::arg("orbit_given"));
+    m.def("_frame_azimuth", &session::frameAzimuth, py::arg("k"), py::arg("n"), py::arg("degrees"));
+    m.def(
+        "_frame_files",
+        [](const std::string& text, uint32_t count) {
+            const session::FrameOutput out = session::frameOutput("out", text, count);
+            std::vector<std::string> files;
+            for (uint32_t k = 0; k < count; ++k) files.push_back(out.frame(k).string());
+            return py::make_tuple(out.pattern, files);
+        },
+        py::arg("out"), py::arg("count"), "(printf pattern, the file of each frame) of an -o of numbered frames");
+    m.def(
+        "_encode_mp4",
+        [](const std::string& pattern, uint32_t count, double fps, const fs::path& output) {
+            requireFfmpeg("out", output);
+            py::gil_scoped_release release;
+            encodeMp4(pattern, count, fps, output);
+        },
+        py::arg("pattern"), py::arg("count"), py::arg("fps"), py::arg("output"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_amrvk, m) {
@@ -1105,4 +1138,5 @@ PYBIND11_MODULE(_amrvk, m) {
     auto renderer = bindRenderer(m);
     bindRendererSettings(renderer);
     bindDevices(m);
+    bindSeries(m);
 }

@@ -16,6 +16,9 @@ struct Rename {
 // Longest first where one option is a prefix of another (--nan drop before --nan).
 constexpr Rename kRenames[] = {
     {"--nan drop", "nan='drop'"},
+    {"--frames", "frames"},
+    {"--orbit", "orbit"},
+    {"--series-range", "tf_range"},
     {"--legend-place", "legend_place"},
     {"--legend-title", "legend_title"},
     {"--legend-units", "legend_units"},
