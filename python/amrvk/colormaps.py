@@ -37,6 +37,7 @@ def from_colormap(name, lo, hi=None, *, nodes=16):
     cmap = _colormap(name)
     if isinstance(nodes, bool) or not isinstance(nodes, int) or not 2 <= nodes <= 4096:
         raise ValueError(f"nodes: expected a whole number in [2, 4096], got {nodes!r}")
+    _check_over(lo, hi)
     if isinstance(lo, _amrvk.Volume):
         if hi is not None:
             raise TypeError("hi: not given with a volume (its value range is used)")
@@ -56,9 +57,25 @@ def from_colormap(name, lo, hi=None, *, nodes=16):
 BUILT_IN = ("ramp", "grey", "spiky", "foggy", "constant", "empty")
 
 
-def preset(name, *args, **kwargs):
+def _check_over(lo, hi):
+    """(volume) or (lo, hi): one line naming the argument of a wrong type."""
+    import numbers
+
+    if hi is None:
+        if not isinstance(lo, _amrvk.Volume):
+            raise TypeError(f"volume: expected an amrvk.Volume (or lo, hi), got {lo!r}")
+        return
+    for name, value in (("lo", lo), ("hi", hi)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"{name}: expected a number, got {value!r}")
+
+
+def preset(name, volume_or_lo=None, hi=None, **kwargs):
     """A built-in preset (``preset(name, volume)`` or ``preset(name, lo, hi)``), else the matplotlib
     colormap of that name (from_colormap)."""
-    if name in BUILT_IN or not isinstance(name, str):
-        return _builtin_preset(name, *args, **kwargs)
-    return from_colormap(name, *args, **kwargs)
+    if not isinstance(name, str):
+        raise TypeError(f"name: expected a preset or colormap name, got {name!r}")
+    _check_over(volume_or_lo, hi)
+    if name in BUILT_IN:
+        return _builtin_preset(name, volume_or_lo, **kwargs) if hi is None else _builtin_preset(name, volume_or_lo, hi)
+    return from_colormap(name, volume_or_lo, hi, **kwargs)

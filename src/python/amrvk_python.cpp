@@ -185,6 +185,11 @@ glm::dvec3 vec3(const std::vector<double>& v, const char* name) {
 
 std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
+// A keyword's 3 finite numbers (a list, tuple or array); one line naming it otherwise.
+glm::dvec3 vec3Arg(const py::handle& o, const char* name) {
+    return vec3(keywordArg<std::vector<double>>(o, name, kThree), name);
+}
+
 // Numbers in __repr__s: 4 significant digits ("1.235e-27", "0.5"); vectors as "(x, y, z)".
 std::string g4(double v) {
     char buf[32];
@@ -813,18 +818,22 @@ void bindErrors() {
 
 void bindCamera(py::module_& m) {
     py::class_<scene::Camera>(m, "Camera", "eye, target and up in world space; vertical field of view in degrees")
-        .def(py::init([](const std::vector<double>& eye, const std::vector<double>& target, const std::vector<double>& up,
-                         double fov) {
-                 scene::Camera c{vec3(eye, "eye"), vec3(target, "target"), vec3(up, "up"), fov};
+        .def(py::init([](const py::object& eye, const py::object& target, const py::object& up, const py::object& fov) {
+                 scene::Camera c{vec3Arg(eye, "eye"), vec3Arg(target, "target"), vec3Arg(up, "up"),
+                                 keywordArg<double>(fov, "fov", kNumber)};
                  scene::RenderSettings s;
                  s.camera = c;
                  scene::validateSettings(s);
                  return c;
              }),
-             py::arg("eye"), py::arg("target"), py::arg("up") = std::vector<double>{0, 0, 1}, py::arg("fov") = 40.0)
+             py::arg("eye"), py::arg("target"), py::arg("up") = std::vector<double>{0, 0, 1}, py::arg("fov") = 40.0,
+             "eye, target and up: 3 numbers each (world space); fov: vertical field of view in degrees")
         .def_static(
             "frame",
-            [](const PyVolume& v, double fov) {
+            [](const py::object& volume, const py::object& fovObj) {
+                const PyVolume& v = keywordArg<const PyVolume&>(volume, "volume", "an amrvk.Volume");
+                const double fov = keywordArg<double>(fovObj, "fov", kNumber);
+                AMRVK_CHECK(scene::validFov(fov), "--fov ", fov, " is outside (0, ", scene::kMaxFovDegrees, ")");
                 return scene::defaultCamera(v.volume->worldLo(), v.volume->worldHi(), fov);
             },
             py::arg("volume"), py::arg("fov") = 40.0, "the default three-quarter view that frames the volume (z up)")
@@ -844,14 +853,14 @@ void bindLight(py::module_& m) {
     py::class_<scene::Light>(m, "Light", "a directional light (towards direction) or a point light, world space")
         .def_static(
             "directional",
-            [](const std::vector<double>& direction, const std::vector<double>& radiance) {
-                return scene::Light{false, vec3(direction, "direction"), vec3(radiance, "radiance")};
+            [](const py::object& direction, const py::object& radiance) {
+                return scene::Light{false, vec3Arg(direction, "direction"), vec3Arg(radiance, "radiance")};
             },
             py::arg("direction"), py::arg("radiance") = std::vector<double>{1, 1, 1})
         .def_static(
             "point",
-            [](const std::vector<double>& position, const std::vector<double>& intensity) {
-                return scene::Light{true, vec3(position, "position"), vec3(intensity, "intensity")};
+            [](const py::object& position, const py::object& intensity) {
+                return scene::Light{true, vec3Arg(position, "position"), vec3Arg(intensity, "intensity")};
             },
             py::arg("position"), py::arg("intensity") = std::vector<double>{1, 1, 1})
         .def_property_readonly("is_point", [](const scene::Light& l) { return l.point; })
@@ -878,7 +887,12 @@ void bindTransferFunction(py::module_& m) {
                     py::arg("hi") = 1.0f, "a ParaView JSON preset file (preset: its name) or .xf; lo/hi for .xf alpha tables")
         .def_static("from_nodes", &PyTf::fromNodes, py::arg("positions"), py::arg("colors"), py::arg("name") = "nodes",
                     "nodes: positions (N,) ascending, colors (N, 4) rgb in [0, 1] and alpha >= 0")
-        .def("rescaled", &PyTf::rescaled, py::arg("lo"), py::arg("hi"), "the nodes mapped onto [lo, hi]")
+        .def(
+            "rescaled",
+            [](const PyTf& t, const py::object& lo, const py::object& hi) {
+                return t.rescaled(keywordArg<float>(lo, "lo", kNumber), keywordArg<float>(hi, "hi", kNumber));
+            },
+            py::arg("lo"), py::arg("hi"), "the nodes mapped onto [lo, hi]")
         .def_property_readonly("range", &PyTf::range)
         .def_property_readonly("nodes", &PyTf::nodes, "(positions (N,), colors (N, 4)) of the merged function")
         .def_property_readonly("name", [](const PyTf& t) { return t.channels.name; })
@@ -947,7 +961,19 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
         .def_property_readonly("stats", &PyRenderer::stats, "amrvk render --json's content for the image so far")
         .def_property_readonly("notes", &PyRenderer::notes, "what was fitted to the data, one line each")
         .def_property_readonly("structure", &PyRenderer::structure)
-        .def("set_structure", &PyRenderer::setStructure, py::arg("traversal") = py::none(),
+        .def(
+            "set_structure",
+            [](PyRenderer& r, const py::object& traversal, const py::object& sampler, const py::object& backend,
+               const py::object& grid, const py::object& kdLeaves) {
+                auto text = [](const py::object& o, const char* name) {
+                    return o.is_none() ? std::nullopt : std::optional<std::string>(keywordArg<std::string>(o, name, kText));
+                };
+                r.setStructure(text(traversal, "traversal"), text(sampler, "sampler"), text(backend, "backend"),
+                               text(grid, "grid"),
+                               kdLeaves.is_none() ? std::nullopt
+                                                  : std::optional<uint32_t>(uint32_t(wholeArg(kdLeaves, "kd_leaves", 1, scene::kMaxKdLeaves))));
+            },
+            py::arg("traversal") = py::none(),
              py::arg("sampler") = py::none(), py::arg("backend") = py::none(), py::arg("grid") = py::none(),
              py::arg("kd_leaves") = py::none())
         .def_property("camera", &PyRenderer::camera,

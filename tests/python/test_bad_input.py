@@ -133,3 +133,22 @@ def test_yt_input_names_the_keyword(amrvk, yt, tmp_path):
     message = one_line(ValueError, r"^save_session: this volume came from yt \(DD0018\), not from a file amrvk reads",
                        lambda: r.save_session(str(tmp_path / "s.json")))
     assert "arrays" not in message
+
+
+def test_cameras_lights_tfs_and_structures_name_the_keyword(amrvk, volume):
+    one_line(TypeError, r"^eye: expected 3 numbers, got 'a'$", lambda: amrvk.Camera("a", [0, 0, 0]))
+    one_line(ValueError, r"^target: expected 3 numbers, got 2$", lambda: amrvk.Camera([1, 0, 0], [0, 0]))
+    one_line(TypeError, r"^fov: expected a number, got None$", lambda: amrvk.Camera([1, 0, 0], [0, 0, 0], fov=None))
+    one_line(ValueError, r"^fov 200 is outside \(0, 180\)$", lambda: amrvk.Camera([1, 0, 0], [0, 0, 0], fov=200))
+    one_line(TypeError, r"^volume: expected an amrvk.Volume, got 'x'$", lambda: amrvk.Camera.frame("x"))
+    one_line(ValueError, r"^fov 0 is outside \(0, 180\)$", lambda: amrvk.Camera.frame(volume, fov=0))
+    one_line(TypeError, r"^direction: expected 3 numbers, got None$", lambda: amrvk.Light.directional(None))
+    one_line(ValueError, r"^intensity: expected 3 numbers, got 1$", lambda: amrvk.Light.point([0, 0, 0], [1]))
+    one_line(TypeError, r"^lo: expected a number, got 'a'$", lambda: amrvk.TransferFunction.preset("ramp", "a", 1))
+    one_line(TypeError, r"^volume: expected an amrvk.Volume \(or lo, hi\), got None$",
+             lambda: amrvk.TransferFunction.preset("ramp", None))
+    one_line(TypeError, r"^hi: expected a number, got \[1\]$",
+             lambda: amrvk.TransferFunction.preset("ramp", 0, 1).rescaled(0, [1]))
+    r = amrvk.Renderer(volume, **SMALL)
+    one_line(ValueError, re.escape("kd_leaves: 0 is outside [1, 16777215]"), lambda: r.set_structure(kd_leaves=0))
+    one_line(TypeError, r"^traversal: expected a string, got 3$", lambda: r.set_structure(traversal=3))
