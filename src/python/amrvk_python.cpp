@@ -1063,6 +1063,15 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
              "the picture as a session file (amrvk view --session, amrvk render --session)")
         .def("png", &PyRenderer::png, py::arg("legend") = py::none(),
              "the image so far as PNG bytes (what save writes to a .png)")
+        .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
+        .def_property_readonly("closed", &PyRenderer::closed)
+        .def("__repr__", &PyRenderer::repr);
+
+}
+
+// Renderer: the colour legend's settings (the session's, as --legend, --legend-place, ...).
+void bindRendererLegend(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) {
+    c
         .def_property(
             "legend", [](const PyRenderer& r) { return r.legend().show; },
             [](PyRenderer& r, const py::object& o) {
@@ -1092,11 +1101,7 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
                 const std::string u = keywordArg<std::string>(o, "legend_units", kText);
                 r.editLegend([&](session::Legend& l) { l.units = u; });
             },
-            "the units line under the legend's title; '' = none")
-        .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
-        .def_property_readonly("closed", &PyRenderer::closed)
-        .def("__repr__", &PyRenderer::repr);
-
+            "the units line under the legend's title; '' = none");
 }
 
 void bindDevices(py::module_& m) {
@@ -1163,6 +1168,7 @@ PYBIND11_MODULE(_amrvk, m) {
     bindVolume(m);
     auto renderer = bindRenderer(m);
     bindRendererSettings(renderer);
+    bindRendererLegend(renderer);
     bindDevices(m);
     bindSeries(m);
 }
