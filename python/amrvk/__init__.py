@@ -13,6 +13,9 @@ the same session files (``save_session``; ``amrvk view --session FILE`` opens th
 """
 
 from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
+from . import one_line_errors as _one_line_errors
+
+_one_line_errors.install([Camera, Light, Renderer, TransferFunction, Volume])
 from . import cameras as _cameras
 from . import colormaps as _colormaps
 from . import yt_bridge as _yt_bridge

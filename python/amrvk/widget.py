@@ -12,6 +12,7 @@ sliders: orbiting by mouse drag needs a browser-side event widget (ipyevents) th
 using it from the notebook while the widget refines is safe (calls queue).
 """
 import threading
+import time
 
 import numpy as np
 
@@ -84,19 +85,39 @@ class Widget:
             self._idle.set()
 
     def _show(self):
+        # The renderer serves one call at a time, not a snapshot of several: a slider moved between
+        # these calls restarts the estimate (spp drops), and what was read is then not shown.
         r = self.renderer
-        if r.closed or r.spp == 0:
+        spp = r.spp
+        if r.closed or spp == 0:
             return
-        self.image.value = r.png()
-        noise = f", mean standard error {float(np.sqrt(r.variance()).mean()):.4g}" if r.spp >= 2 else ""
-        self.status.value = f"{r.spp}/{self.spp} spp{noise}"
+        try:
+            png = r.png()
+            noise = f", mean standard error {float(np.sqrt(r.variance()).mean()):.4g}" if spp >= 2 else ""
+        except ValueError:
+            if r.closed or r.spp < spp:
+                return
+            raise
+        if r.spp < spp:
+            return
+        self.image.value = png
+        self.status.value = f"{spp}/{self.spp} spp{noise}"
 
     def wait(self, timeout=None):
         """Blocks until the image has `spp` samples per pixel (True), or `timeout` seconds passed (False)."""
-        done = self._idle.wait(timeout) and (self.renderer.closed or self.renderer.spp >= self.spp or self._error)
-        if self._error is not None:
-            raise self._error
-        return bool(done)
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            left = 0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))
+            idle = self._idle.wait(left)
+            if self._error is not None:
+                raise self._error
+            # Idle with fewer samples: a slider has just restarted the estimate; the thread goes on.
+            if idle and (self.renderer.closed or self.renderer.spp >= self.spp):
+                return True
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            if idle:
+                time.sleep(0.01)
 
     def close(self):
         """Stops refining (the renderer stays open)."""

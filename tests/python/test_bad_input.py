@@ -152,3 +152,28 @@ def test_cameras_lights_tfs_and_structures_name_the_keyword(amrvk, volume):
     r = amrvk.Renderer(volume, **SMALL)
     one_line(ValueError, re.escape("kd_leaves: 0 is outside [1, 16777215]"), lambda: r.set_structure(kd_leaves=0))
     one_line(TypeError, r"^traversal: expected a string, got 3$", lambda: r.set_structure(traversal=3))
+
+
+def test_no_call_answers_with_pybind11s_list_of_signatures(amrvk, volume, tmp_path):
+    """Every other call of the compiled module: a wrong type is one line naming the argument
+    (python/amrvk/one_line_errors.py), not pybind11's multi-line 'incompatible function arguments'."""
+    r = amrvk.Renderer(volume, **SMALL)
+    cases = [
+        (lambda: amrvk.Volume(3), "^path: expected a path \\(str or os.PathLike\\), got 3$"),
+        (lambda: amrvk.Volume(str(SAMPLE), field=3), "^field: expected a string, got 3$"),
+        (lambda: amrvk.Volume(str(SAMPLE), dims=5), "^dims: expected a list of whole numbers or None, got 5$"),
+        (lambda: amrvk.Volume.from_arrays(np.zeros((1, 3), np.int32), np.zeros(1, np.int32), np.ones(1), origin="a"),
+         "^origin: expected a list of numbers, got 'a'$"),
+        (lambda: amrvk.TransferFunction.from_file(None), "^path: expected a path"),
+        (lambda: amrvk.TransferFunction.from_nodes(np.zeros(2), np.zeros((2, 4)), name=5), "^name: expected a string"),
+        (lambda: amrvk.Renderer.from_session(3), "^path: expected a path"),
+        (lambda: r.save(3), "^path: expected a path \\(str or os.PathLike\\), got 3$"),
+        (lambda: r.save_session(None), "^path: expected a path"),
+        (lambda: r.variance(3), "^Renderer.variance: takes 0 argument\\(s\\) \\(\\), got 1$"),
+    ]
+    for call, pattern in cases:
+        one_line(TypeError, pattern, call)
+    # The wrapped calls work as before.
+    assert r.render(spp=1).shape == (12, 16, 4)
+    r.save(str(tmp_path / "a.png"))
+    assert "render(self" in amrvk.Renderer.render.__doc__

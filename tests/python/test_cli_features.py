@@ -2,6 +2,7 @@
 (_repr_png_) and render, drawn by the CLI's own code; matplotlib colormaps by name; camera orbit,
 zoom and conversion from and to yt's camera; and the Jupyter widget that refines and orbits."""
 import math
+import time
 
 import numpy as np
 import pytest
@@ -137,6 +138,11 @@ def test_the_widget_refines_and_orbits(amrvk):
         angle = math.degrees(math.acos(np.dot(view, before) / np.linalg.norm(view) / np.linalg.norm(before)))
         assert angle == pytest.approx(20, abs=1e-6)
         assert repr(w) == "Widget(8/8 spp, azimuth 90, elevation 20, zoom 2)"
+        # Sliders moved while the thread refines (each restarts the estimate between its calls).
+        for step in range(40):
+            w.azimuth.value = 90 + step
+            time.sleep(0.005)
+        assert w.wait(120) and r.spp == 8 and w.image.value == r.png()
     finally:
         w.close()
     assert not r.closed
