@@ -13,11 +13,40 @@ the same session files (``save_session``; ``amrvk view --session FILE`` opens th
 """
 
 from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
-from . import yt_bridge as _yt_bridge
+from . import one_line_errors as _one_line_errors
 
-__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "devices", "show"]
+_one_line_errors.install([Camera, Light, Renderer, TransferFunction, Volume])
+from . import cameras as _cameras
+from . import colormaps as _colormaps
+from . import yt_bridge as _yt_bridge
+from .series import render_series
+from .widget import Widget
+
+__all__ = ["Camera", "Light", "Renderer", "TransferFunction", "Volume", "Widget", "devices", "render_series", "show"]
 
 Volume.from_yt = staticmethod(_yt_bridge.from_yt)
+TransferFunction.preset = staticmethod(_colormaps.preset)
+TransferFunction.from_colormap = staticmethod(_colormaps.from_colormap)
+Camera.orbit = _cameras.orbit
+Camera.zoom = _cameras.zoom
+Camera.from_yt = staticmethod(_cameras.from_yt)
+Camera.to_yt = _cameras.to_yt
+
+
+def _renderer_orbit(self, degrees, axis=None):
+    """Turns the renderer's camera by `degrees` about its target (Camera.orbit); the estimate restarts."""
+    self.camera = self.camera.orbit(degrees, axis)
+    return self
+
+
+def _renderer_zoom(self, factor):
+    """Moves the renderer's camera `factor` times closer to its target (Camera.zoom)."""
+    self.camera = self.camera.zoom(factor)
+    return self
+
+
+Renderer.orbit = _renderer_orbit
+Renderer.zoom = _renderer_zoom
 
 
 def _progress_arg(progress):
@@ -91,6 +120,15 @@ def show(image):
     """An image array (height, width, 3 or 4), linear radiance, as an object Jupyter displays inline."""
     import numpy as np
 
+    try:
+        pixels = np.asarray(image)
+    except Exception:
+        raise TypeError(f"image: expected an array (height, width, 3 or 4), got {type(image).__name__}") from None
+    if pixels.dtype.kind not in "iuf":
+        raise TypeError(f"image: expected numbers, got dtype {pixels.dtype}")
+    if pixels.ndim != 3 or pixels.shape[2] not in (3, 4) or pixels.shape[0] < 1 or pixels.shape[1] < 1:
+        raise ValueError(f"image: expected shape (height, width, 3) or (height, width, 4), got {pixels.shape}")
+
     class _Image:
         def __init__(self, pixels):
             self.pixels = np.ascontiguousarray(pixels, dtype=np.float32)
@@ -98,7 +136,7 @@ def show(image):
         def _repr_png_(self):
             return _png_of(self.pixels)
 
-    return _Image(image)
+    return _Image(pixels)
 
 
 def _png_of(pixels):

@@ -106,6 +106,23 @@ def _selected_cells(obj, field, log, log_floor):
     return icoords * width[:, None], width, values, units, dx[np.argmin(dx[:, 0])]
 
 
+def _mesh_field(ds, field):
+    """The field as yt names it, checked to be one yt knows with values on cells (not particles)."""
+    if not isinstance(field, (str, tuple)) or (isinstance(field, tuple) and (
+            len(field) != 2 or not all(isinstance(p, str) for p in field))):
+        raise TypeError(f"field: expected a yt field name such as ('gas', 'density') or 'density', got {field!r}")
+    try:
+        info = ds._get_field_info(field)
+    except Exception as e:  # yt's YTFieldNotFound and its kin: one line naming the keyword
+        raise ValueError(f"field: {field!r} is not a field of {ds} (see ds.derived_field_list)") from None
+    if getattr(info, "sampling_type", "cell") == "particle":  # "cell" and "local" (derived per cell) are fine
+        raise ValueError(
+            f"field: {info.name!r} is a particle field; amrvk renders fields with a value per cell, "
+            f"such as ('gas', 'density') (deposit particles onto the mesh first, e.g. ('deposit', 'all_density'))"
+        )
+    return info.name
+
+
 def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
     """An amrvk Volume of `field` from a yt data set or data object.
 
@@ -127,10 +144,16 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
         import yt  # noqa: F401  (the error below says what is missing)
     except ImportError as e:
         raise ImportError("amrvk.Volume.from_yt needs yt (Debian: python3-yt)") from e
+    if hasattr(data, "piter"):
+        raise TypeError("data: a yt DatasetSeries is a series: amrvk.render_series(ts, out, field=...) renders one "
+                        "frame per data set; from_yt takes one of them (ts[0])")
     is_dataset = hasattr(data, "index") and hasattr(data, "domain_dimensions")
     ds = data if is_dataset else getattr(data, "ds", None)
     if ds is None:
         raise TypeError(f"from_yt: expected a yt data set or data object, got {type(data).__name__}")
+    _mesh_field(ds, field)
+    if not isinstance(log, bool):
+        raise TypeError(f"log: expected True or False, got {log!r}")
     if is_dataset and hasattr(ds.index, "grids"):
         lower, width, values, units, spacing = _grid_cells(ds, field, log, log_floor)
     else:
@@ -141,7 +164,7 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
     # 2-D (and 1-D) data: the missing axes get the finest cell size, as amrvk's readers make slabs.
     spacing[int(ds.dimensionality):] = spacing[0]
     name = field if isinstance(field, str) else "_".join(str(p) for p in field)
-    return _amrvk.Volume.from_arrays(
+    volume = _amrvk.Volume.from_arrays(
         lower,
         level,
         values,
@@ -152,3 +175,5 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
         units=units,
         source=str(ds),
     )
+    volume._made_by = "yt"  # save_session names yt, not arrays, in its refusal
+    return volume

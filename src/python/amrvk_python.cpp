@@ -20,21 +20,27 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "amr/readers.h"
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/font.h"
 #include "core/image_io.h"
+#include "core/movie_io.h"
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "picture/picture.h"
+#include "python/keyword_messages.h"
 #include "scene/camera.h"
 #include "scene/limits.h"
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
+#include "session/legend_image.h"
+#include "session/series.h"
 #include "session/session.h"
 
 namespace py = pybind11;
@@ -43,17 +49,55 @@ using namespace amrvk;
 
 namespace {
 
-// A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range; anything else
-// is one line naming the keyword and the value (not pybind11's list of signatures).
-uint32_t countArg(const py::handle& o, const char* name) {
-    constexpr long long kMax = scene::kMaxSpp;
+// A whole number from Python in [lo, hi], the CLI's range for that option; anything else is one
+// line naming the keyword and the value (not pybind11's list of signatures).
+long long wholeArg(const py::handle& o, const char* name, long long lo, long long hi) {
     const std::string shown = py::repr(o).cast<std::string>();
     if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
-        throw py::type_error(strCat(name, ": expected a whole number in [1, ", kMax, "], got ", shown));
+        throw py::type_error(strCat(name, ": expected a whole number in [", lo, ", ", hi, "], got ", shown));
     int overflow = 0;
     const long long v = PyLong_AsLongLongAndOverflow(o.ptr(), &overflow);
-    if (overflow != 0 || v < 1 || v > kMax) throw py::value_error(strCat(name, ": ", shown, " is outside [1, ", kMax, "]"));
-    return uint32_t(v);
+    if (overflow != 0 || v < lo || v > hi) throw py::value_error(strCat(name, ": ", shown, " is outside [", lo, ", ", hi, "]"));
+    return v;
+}
+
+// A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range.
+uint32_t countArg(const py::handle& o, const char* name) { return uint32_t(wholeArg(o, name, 1, scene::kMaxSpp)); }
+
+constexpr const char* kNumber = "a number";
+constexpr const char* kText = "a string";
+constexpr const char* kThree = "3 numbers";
+constexpr const char* kLights = "a list of amrvk.Light";
+constexpr const char* kModes = "one of 'ae', 'ss', 'ms', 'dvr'";
+
+// A keyword's value as T; a value of another type is one TypeError naming the keyword, what it
+// takes and what it got.
+template <typename T>
+T keywordArg(const py::handle& o, const char* name, const char* expected) {
+    if constexpr (std::is_arithmetic_v<T>) {
+        // pybind11 would take True as 1 and a numpy array of one element as a number.
+        if (py::isinstance<py::bool_>(o) && !std::is_same_v<T, bool>)
+            throw py::type_error(strCat(name, ": expected ", expected, ", got ", py::repr(o).cast<std::string>()));
+    }
+    try {
+        return o.cast<T>();
+    } catch (const std::exception&) {  // cast_error, or reference_cast_error for None as a class
+        std::string shown = py::repr(o).cast<std::string>();
+        if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
+        throw py::type_error(strCat(name, ": expected ", expected, ", got ", shown));
+    }
+}
+
+// An amrvk error raised while handling `keyword`, with the keyword in front where the message does
+// not name it already.
+template <typename F>
+auto forKeyword(const char* keyword, F f) {
+    try {
+        return f();
+    } catch (const Error& e) {
+        const std::string m = python::keywordMessage(e.what());
+        throw py::value_error(m.rfind(keyword, 0) == 0 ? m : strCat(keyword, ": ", m));
+    }
 }
 
 // ---- Contexts: one per device choice, shared by the renderers that name it ---------------------
@@ -141,16 +185,30 @@ glm::dvec3 vec3(const std::vector<double>& v, const char* name) {
 
 std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 
+// A keyword's 3 finite numbers (a list, tuple or array); one line naming it otherwise.
+glm::dvec3 vec3Arg(const py::handle& o, const char* name) {
+    return vec3(keywordArg<std::vector<double>>(o, name, kThree), name);
+}
+
+// Numbers in __repr__s: 4 significant digits ("1.235e-27", "0.5"); vectors as "(x, y, z)".
+std::string g4(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+std::string g4(glm::dvec3 v) { return "(" + g4(v.x) + ", " + g4(v.y) + ", " + g4(v.z) + ")"; }
+
 // crop=(lo, hi) (world; None: no crop) and clip=[(point, normal), ...] (world), as --crop and --clip.
 std::optional<scene::CropBox> cropOf(const py::object& o) {
     if (o.is_none()) return std::nullopt;
-    const auto corners = o.cast<std::pair<std::vector<double>, std::vector<double>>>();
+    const auto corners = keywordArg<std::pair<std::vector<double>, std::vector<double>>>(o, "crop", "(lo, hi): two lists of 3 numbers, or None");
     return scene::CropBox{vec3(corners.first, "crop lo"), vec3(corners.second, "crop hi")};
 }
 std::vector<scene::ClipPlane> clipsOf(const py::object& o) {
     std::vector<scene::ClipPlane> out;
     if (o.is_none()) return out;
-    for (const auto& [point, normal] : o.cast<std::vector<std::pair<std::vector<double>, std::vector<double>>>>())
+    for (const auto& [point, normal] : keywordArg<std::vector<std::pair<std::vector<double>, std::vector<double>>>>(
+             o, "clip", "a list of (point, normal) pairs of 3 numbers each"))
         out.push_back({vec3(point, "clip point"), vec3(normal, "clip normal")});
     return out;
 }
@@ -177,6 +235,28 @@ struct PyVolume {
     session::Session source;  // input, read options and field (sessions name them); input "" for arrays
     std::string units;        // the field's units where known (yt), else ""
     std::vector<NamedPath> files;  // the files the data set was read from (none for arrays and yt)
+    std::string madeBy = "file";   // "file", "arrays" or "yt" (set by from_yt)
+
+    // Why a session cannot name this volume's file ("" where it has one).
+    std::string noFileReason() const {
+        if (madeBy == "yt")
+            return strCat("save_session: this volume came from yt (", volume->model.source, "), not from a file amrvk "
+                          "reads: a session needs one (amrvk.Volume(path, field=...) reads Enzo, AMReX, Chombo, RAMSES "
+                          "and ExaBrick files), or save the image instead");
+        return "save_session: this volume was made from arrays, not read from a file: a session needs a file "
+               "(write the cells with amrvk convert, or save the image instead)";
+    }
+
+    // "Volume(DD0018, field 'Density' [g/cm**3], 137502 cells on 4 levels, values 1.2e-31..4.5e-27,
+    // world (0, 0, 0)..(1, 1, 1))": what a scientist checks first.
+    std::string repr() const {
+        const scene::Volume& v = *volume;
+        const size_t levels = std::count_if(v.summary.cellsPerLevel.begin(), v.summary.cellsPerLevel.end(),
+                                            [](uint64_t n) { return n > 0; });
+        return strCat("Volume(", v.model.source, ", field '", v.field().name, "'", units.empty() ? "" : " [" + units + "]",
+                      ", ", v.model.cellCount(), " cells on ", levels, levels == 1 ? " level" : " levels", ", values ",
+                      g4(v.valueLo()), "..", g4(v.valueHi()), ", world ", g4(v.worldLo()), "..", g4(v.worldHi()), ")");
+    }
 
     py::dict summary() const {
         const scene::Volume& v = *volume;
@@ -208,7 +288,7 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
     s.input = path.string();
     s.field = field;
     s.read.format = format;
-    s.read.nanPolicy = amr::parseNanPolicy(nan);
+    s.read.nanPolicy = forKeyword("nan", [&] { return amr::parseNanPolicy(nan); });
     if (dims) {
         if (dims->size() != 3) throw py::value_error("dims: expected 3 integers");
         for (int d : *dims)
@@ -269,9 +349,10 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
         m.fields[0].values[size_t(i)] = element<float>(values, i);
     }
     auto v = std::make_shared<PyVolume>();
+    v->madeBy = "arrays";
     v->units = units;
     v->source.field = field;
-    v->source.read.nanPolicy = amr::parseNanPolicy(nan);
+    v->source.read.nanPolicy = forKeyword("nan", [&] { return amr::parseNanPolicy(nan); });
     const amr::NanPolicy policy = v->source.read.nanPolicy;
     py::gil_scoped_release release;
     v->volume = scene::makeVolume(amr::checkedModel(std::move(m), policy), field);  // the readers' checks
@@ -330,6 +411,14 @@ struct PyTf {
         return out;
     }
     std::string json() const { return scene::paraViewPresetJson(channels); }
+    // "TransferFunction('ramp', 5 nodes over [-31, -26.5], alpha up to 1)".
+    std::string repr() const {
+        const scene::TransferFunction tf = merged();
+        float alpha = 0;
+        for (const glm::vec4& c : tf.colors()) alpha = std::max(alpha, c.a);
+        return strCat("TransferFunction('", channels.name, "', ", tf.nodeCount(), " nodes over [", g4(tf.firstPosition()),
+                      ", ", g4(tf.lastPosition()), "], alpha up to ", g4(alpha), ")");
+    }
     void save(const fs::path& path) const { writeFileAtomic(path, json()); }
 };
 
@@ -436,11 +525,12 @@ public:
             if (!progress.is_none() && completed > 0) progress(done, n);
         }
     }
-    py::array_t<float> render(const py::object& spp, const py::object& progress) {
+    py::array_t<float> render(const py::object& spp, const py::object& progress, const py::object& legend) {
+        const bool withLegend = !legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None");
         const uint32_t n = spp.is_none() ? (session().spp > 0 ? session().spp : 64) : countArg(spp, "spp");
         reset();
         accumulate(py::int_(n), progress);
-        return image();
+        return imageArray(picture(withLegend));
     }
     scene::RenderOutput output() const {
         const PyRenderer& self = *this;
@@ -449,7 +539,35 @@ public:
         std::lock_guard lock(mMutex);
         return mPicture.renderer->output();
     }
-    py::array_t<float> image() const { return imageArray(output().mean); }
+    // ---- the colour legend (session/legend_image.h: the CLI's --legend drawing) ----
+    // `legend` True/False, or None for the session's setting (Renderer(legend=True), .legend).
+    bool legendWanted(const py::object& legend) const {
+        return legend.is_none() ? session().legend.show : keywordArg<bool>(legend, "legend", "True, False or None");
+    }
+    // The picture so far, with the legend drawn at its side or over it when `withLegend`.
+    Image picture(bool withLegend) const {
+        Image mean = output().mean;
+        if (!withLegend) return mean;
+        const session::Session s = session();
+        if (!mFont || !(mFontFor == s.legend.font)) {
+            mFont = session::openLegendFont(s.legend);
+            mFontFor = s.legend.font;
+        }
+        session::checkLegendFits(s, *mFont);
+        return session::drawLegend(mean, session::legendContent(s), s.legend.place, *mFont);
+    }
+    session::Legend legend() const { return session().legend; }
+    template <typename Edit>
+    void editLegend(Edit edit) {
+        session::Legend l = legend();
+        edit(l);
+        locked([&] { mPicture.described.legend = l; });
+    }
+
+    // Arrays (image, render) are the picture alone unless legend=True: they match variance()'s shape.
+    py::array_t<float> image(const py::object& legend) const {
+        return imageArray(picture(!legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None")));
+    }
     py::array_t<float> variance() const {
         const scene::RenderOutput out = output();
         if (out.spp < 2) throw py::value_error("variance needs at least 2 samples per pixel (have " + std::to_string(out.spp) + ")");
@@ -466,20 +584,24 @@ public:
     std::vector<std::string> notes() const { return open().report.notes; }
     // Outputs never replace a file the renderer's data set was read from (as the CLI refuses
     // -o onto an input); everything else is checkOutputs' and AtomicFileWriter's policy.
-    void save(const fs::path& path) const {
+    // legend None: drawn into PNGs where the session has it on (other formats as they are, as the
+    // CLI does with a session's legend); True: a PNG is required.
+    void save(const fs::path& path, const py::object& legend) const {
         checkOutputs({{"save", path}}, mDataFiles);
-        writeImage(path, output().mean);
+        std::string ext = path.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        if (!legend.is_none() && legendWanted(legend) && ext != ".png")
+            throw py::value_error("legend: only PNG images get a legend (save to a .png, or legend=False)");
+        writeImage(path, picture(legendWanted(legend) && ext == ".png"));
     }
-    py::bytes png() const {
-        const std::vector<uint8_t> bytes = pngBytes(output().mean);
+    py::bytes png(const py::object& legend) const {
+        const std::vector<uint8_t> bytes = pngBytes(picture(legendWanted(legend)));
         return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     }
     void saveSession(const fs::path& path) const {
         session::Session s = session();
         s.input = s.input.empty() ? s.input : fs::absolute(s.input).lexically_normal().string();
-        if (s.input.empty())
-            throw py::value_error("this volume was made from arrays, not read from a file: a session needs a file "
-                                  "(write the cells with amrvk convert, or save the image instead)");
+        if (s.input.empty()) throw py::value_error(noSessionReason);
         checkOutputs({{"save_session", path}}, mDataFiles);
         session::saveSession(path, s);
     }
@@ -490,6 +612,29 @@ public:
         mClosed = true;
     }
     bool closed() const { return mClosed; }
+    // "Renderer(DD0018 'Density', 256x256 ms, tf 'ramp' over [-31, -26.5], density_scale 1, 16 spp so
+    // far, mean standard error 0.0021, grid-dda/grid/sw)".
+    std::string repr() const {
+        if (mClosed || !mPicture.renderer) return "Renderer(closed)";
+        const session::Session s = session();
+        const scene::RenderSettings& rs = settings();
+        const scene::TransferFunction tf = s.tf.merged();
+        const scene::StructureConfig& c = mPicture.renderer->config();
+        std::string noise;
+        const scene::RenderOutput out = output();
+        if (out.spp >= 2) {
+            const std::vector<float> var = scene::varianceOfMean(out);
+            double sum = 0;
+            for (float x : var) sum += std::sqrt(std::max(x, 0.0f));
+            noise = ", mean standard error " + g4(sum / double(std::max<size_t>(var.size(), 1)));
+        }
+        return strCat("Renderer(", mPicture.volume->model.source, " '", mPicture.volume->field().name, "', ", rs.width,
+                      "x", rs.height, " ", scene::modeName(rs.mode), ", tf '", s.tf.name, "' over [", g4(tf.firstPosition()),
+                      ", ", g4(tf.lastPosition()), "], density_scale ", g4(rs.densityScale), ", ", out.spp,
+                      " spp so far", noise, ", ", scene::traversalName(c.traversal), "/", scene::samplerName(c.sampler),
+                      "/", scene::backendName(c.backend), ")");
+    }
+    std::string noSessionReason;  // why save_session cannot name a file (a volume from arrays or yt)
 
 private:
     static constexpr double kChunkSeconds = 0.25;
@@ -510,6 +655,8 @@ private:
     std::vector<NamedPath> mDataFiles;   // outputs refuse these
     picture::Picture mPicture;
     mutable std::mutex mMutex;  // one device call at a time (the GIL is released around them)
+    mutable std::unique_ptr<Font> mFont;  // the legend's, opened when first drawn
+    mutable std::string mFontFor;         // the legend.font it was opened for
     double mSecondsPerRow = 0;  // measured, for chunk sizes
     bool mClosed = false;
 };
@@ -532,54 +679,62 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
                                    "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
-                                   "quiet",    "fov",     "tf_range", "crop",    "clip"};
+                                   "quiet",    "fov",     "tf_range", "crop",    "clip",   "legend",
+                                   "legend_place", "legend_title", "legend_units"};
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
             throw py::type_error("Renderer() got an unexpected keyword argument '" + key + "'");
     }
-    if (auto o = take("width")) rs.width = o->cast<int>();
-    if (auto o = take("height")) rs.height = o->cast<int>();
-    if (auto o = take("mode")) rs.mode = scene::parseMode(o->cast<std::string>());
+    if (auto o = take("width")) rs.width = int(wholeArg(*o, "width", 1, scene::kMaxImageSide));
+    if (auto o = take("height")) rs.height = int(wholeArg(*o, "height", 1, scene::kMaxImageSide));
+    if (auto o = take("mode")) rs.mode = scene::parseMode(keywordArg<std::string>(*o, "mode", kModes));
     if (auto o = take("spp")) s.spp = countArg(*o, "spp");
-    if (auto o = take("seed")) rs.seed = o->cast<uint32_t>();
-    if (auto o = take("density_scale")) rs.densityScale = o->cast<double>();
-    if (auto o = take("g")) rs.g = o->cast<double>();
-    if (auto o = take("ambient")) rs.ambient = vec3(o->cast<std::vector<double>>(), "ambient");
-    if (auto o = take("background")) rs.background = vec3(o->cast<std::vector<double>>(), "background");
-    if (auto o = take("lights")) rs.lights = o->cast<std::vector<scene::Light>>();
-    if (auto o = take("dt")) rs.dvrStep = o->cast<double>();
-    if (auto o = take("dvr_shading")) rs.dvrShading = o->cast<bool>();
-    if (auto o = take("fov")) rs.camera.fovYDegrees = o->cast<double>();
+    if (auto o = take("seed")) rs.seed = uint32_t(wholeArg(*o, "seed", 0, UINT32_MAX));
+    if (auto o = take("density_scale")) rs.densityScale = keywordArg<double>(*o, "density_scale", kNumber);
+    if (auto o = take("g")) rs.g = keywordArg<double>(*o, "g", kNumber);
+    if (auto o = take("ambient")) rs.ambient = vec3(keywordArg<std::vector<double>>(*o, "ambient", kThree), "ambient");
+    if (auto o = take("background")) rs.background = vec3(keywordArg<std::vector<double>>(*o, "background", kThree), "background");
+    if (auto o = take("lights")) rs.lights = keywordArg<std::vector<scene::Light>>(*o, "lights", kLights);
+    if (auto o = take("dt")) rs.dvrStep = keywordArg<double>(*o, "dt", kNumber);
+    if (auto o = take("dvr_shading")) rs.dvrShading = keywordArg<bool>(*o, "dvr_shading", "True or False");
+    if (auto o = take("fov")) rs.camera.fovYDegrees = keywordArg<double>(*o, "fov", kNumber);
     if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
     if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
+    if (auto o = take("legend")) s.legend.show = keywordArg<bool>(*o, "legend", "True or False");
+    if (auto o = take("legend_place"))
+        s.legend.place = forKeyword("legend_place", [&] {
+            return session::parseLegendPlace(keywordArg<std::string>(*o, "legend_place", "'side' or 'overlay'"));
+        });
+    if (auto o = take("legend_title")) s.legend.title = keywordArg<std::string>(*o, "legend_title", kText);
+    if (auto o = take("legend_units")) s.legend.units = keywordArg<std::string>(*o, "legend_units", kText);
     if (camera) rs.camera = *camera;
     d.fitCamera = !camera;
     if (tf) s.tf = tf->channels;
     else d.tfSource = session::TfSource{};  // ramp over the field's range, as amrvk render
     if (auto o = take("tf_range")) {
-        const auto r = o->cast<std::pair<float, float>>();
+        const auto r = keywordArg<std::pair<float, float>>(*o, "tf_range", "(lo, hi): two numbers");
         d.tfRange = r;
     }
     const std::optional<py::object> traversal = take("traversal");
-    const std::string t = traversal ? traversal->cast<std::string>() : "";
+    const std::string t = traversal ? keywordArg<std::string>(*traversal, "traversal", kText) : "";
     d.fit = t == "auto" ? session::StructureFit::Probe : t.empty() ? session::StructureFit::Data : session::StructureFit::None;
     if (!t.empty() && t != "auto") s.structure.traversal = scene::parseTraversal(t);
     if (auto o = take("sampler")) {
-        s.structure.sampler = scene::parseSampler(o->cast<std::string>());
+        s.structure.sampler = scene::parseSampler(keywordArg<std::string>(*o, "sampler", kText));
         d.samplerGiven = true;
     }
     s.structure.backend = scene::Backend::Auto;
     if (auto o = take("backend")) {
-        s.structure.backend = scene::parseBackend(o->cast<std::string>());
+        s.structure.backend = scene::parseBackend(keywordArg<std::string>(*o, "backend", kText));
         d.backendGiven = true;
     }
     if (auto o = take("grid")) {
-        s.structure.grid = o->cast<std::string>();
+        s.structure.grid = keywordArg<std::string>(*o, "grid", kText);
         d.gridGiven = true;
     }
-    if (auto o = take("kd_leaves")) s.structure.kdLeaves = o->cast<uint32_t>();
-    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(o->cast<uint32_t>()) << 20;
+    if (auto o = take("kd_leaves")) s.structure.kdLeaves = uint32_t(wholeArg(*o, "kd_leaves", 1, scene::kMaxKdLeaves));
+    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(wholeArg(*o, "dense_max_mib", 1, scene::kMaxDenseMiB)) << 20;
     scene::validateSettings(rs);
     return d;
 }
@@ -588,14 +743,22 @@ gpu::ContextOptions contextOptions(const py::kwargs& kw) {
     gpu::ContextOptions o;
     auto has = [&](const char* k) { return kw.contains(k) && !kw[k].is_none(); };
     if (has("device")) o.device = py::str(kw["device"]);
-    if (has("validation")) o.validation = kw["validation"].cast<bool>();
-    if (has("gpu_timeout")) o.gpuTimeoutSeconds = kw["gpu_timeout"].cast<double>();
-    if (has("samples_per_invocation")) o.samplesPerInvocation = kw["samples_per_invocation"].cast<uint32_t>();
+    if (has("validation")) o.validation = keywordArg<bool>(kw["validation"], "validation", "True or False");
+    if (has("gpu_timeout")) o.gpuTimeoutSeconds = keywordArg<double>(kw["gpu_timeout"], "gpu_timeout", kNumber);
+    if (has("samples_per_invocation")) o.samplesPerInvocation = uint32_t(wholeArg(kw["samples_per_invocation"], "samples_per_invocation", 1, UINT32_MAX));
     return o;
 }
 
-std::shared_ptr<PyRenderer> makeRenderer(const PyVolume& volume, const std::optional<PyTf>& tf,
-                                         const std::optional<scene::Camera>& camera, const py::kwargs& kw) {
+// Renderer(volume, tf=None, camera=None, **options): each argument checked for its type first.
+std::shared_ptr<PyRenderer> makeRenderer(const py::object& volumeObj, const py::object& tfObj,
+                                         const py::object& cameraObj, const py::kwargs& kw) {
+    if (!py::isinstance<PyVolume>(volumeObj))
+        throw py::type_error("volume: expected an amrvk.Volume, got " + py::repr(volumeObj).cast<std::string>().substr(0, 60));
+    const PyVolume& volume = volumeObj.cast<const PyVolume&>();
+    const std::optional<PyTf> tf = tfObj.is_none() ? std::nullopt
+                                                   : std::optional<PyTf>(keywordArg<PyTf>(tfObj, "tf", "an amrvk.TransferFunction or None"));
+    const std::optional<scene::Camera> camera =
+        cameraObj.is_none() ? std::nullopt : std::optional<scene::Camera>(keywordArg<scene::Camera>(cameraObj, "camera", "an amrvk.Camera or None"));
     const session::PictureDescription d = describe(volume, tf, camera, kw);
     gpu::ContextOptions co = contextOptions(kw);
     co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
@@ -608,7 +771,9 @@ std::shared_ptr<PyRenderer> makeRenderer(const PyVolume& volume, const std::opti
         py::gil_scoped_release release;
         ctx = contextFor(co);
     }
-    return std::make_shared<PyRenderer>(std::move(ctx), volume.volume, d, shaderDir, quiet, volume.files);
+    auto r = std::make_shared<PyRenderer>(std::move(ctx), volume.volume, d, shaderDir, quiet, volume.files);
+    r->noSessionReason = volume.noFileReason();
+    return r;
 }
 
 std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::kwargs& kw) {
@@ -646,7 +811,7 @@ void bindErrors() {
         } catch (const gpu::ShaderCompileError& e) {
             PyErr_SetString(PyExc_RuntimeError, e.what());
         } catch (const Error& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, python::keywordMessage(e.what()).c_str());
         } catch (const std::bad_alloc&) {
             PyErr_SetString(PyExc_MemoryError, "out of memory");
         }
@@ -656,18 +821,22 @@ void bindErrors() {
 
 void bindCamera(py::module_& m) {
     py::class_<scene::Camera>(m, "Camera", "eye, target and up in world space; vertical field of view in degrees")
-        .def(py::init([](const std::vector<double>& eye, const std::vector<double>& target, const std::vector<double>& up,
-                         double fov) {
-                 scene::Camera c{vec3(eye, "eye"), vec3(target, "target"), vec3(up, "up"), fov};
+        .def(py::init([](const py::object& eye, const py::object& target, const py::object& up, const py::object& fov) {
+                 scene::Camera c{vec3Arg(eye, "eye"), vec3Arg(target, "target"), vec3Arg(up, "up"),
+                                 keywordArg<double>(fov, "fov", kNumber)};
                  scene::RenderSettings s;
                  s.camera = c;
                  scene::validateSettings(s);
                  return c;
              }),
-             py::arg("eye"), py::arg("target"), py::arg("up") = std::vector<double>{0, 0, 1}, py::arg("fov") = 40.0)
+             py::arg("eye"), py::arg("target"), py::arg("up") = std::vector<double>{0, 0, 1}, py::arg("fov") = 40.0,
+             "eye, target and up: 3 numbers each (world space); fov: vertical field of view in degrees")
         .def_static(
             "frame",
-            [](const PyVolume& v, double fov) {
+            [](const py::object& volume, const py::object& fovObj) {
+                const PyVolume& v = keywordArg<const PyVolume&>(volume, "volume", "an amrvk.Volume");
+                const double fov = keywordArg<double>(fovObj, "fov", kNumber);
+                AMRVK_CHECK(scene::validFov(fov), "--fov ", fov, " is outside (0, ", scene::kMaxFovDegrees, ")");
                 return scene::defaultCamera(v.volume->worldLo(), v.volume->worldHi(), fov);
             },
             py::arg("volume"), py::arg("fov") = 40.0, "the default three-quarter view that frames the volume (z up)")
@@ -687,19 +856,23 @@ void bindLight(py::module_& m) {
     py::class_<scene::Light>(m, "Light", "a directional light (towards direction) or a point light, world space")
         .def_static(
             "directional",
-            [](const std::vector<double>& direction, const std::vector<double>& radiance) {
-                return scene::Light{false, vec3(direction, "direction"), vec3(radiance, "radiance")};
+            [](const py::object& direction, const py::object& radiance) {
+                return scene::Light{false, vec3Arg(direction, "direction"), vec3Arg(radiance, "radiance")};
             },
             py::arg("direction"), py::arg("radiance") = std::vector<double>{1, 1, 1})
         .def_static(
             "point",
-            [](const std::vector<double>& position, const std::vector<double>& intensity) {
-                return scene::Light{true, vec3(position, "position"), vec3(intensity, "intensity")};
+            [](const py::object& position, const py::object& intensity) {
+                return scene::Light{true, vec3Arg(position, "position"), vec3Arg(intensity, "intensity")};
             },
             py::arg("position"), py::arg("intensity") = std::vector<double>{1, 1, 1})
         .def_property_readonly("is_point", [](const scene::Light& l) { return l.point; })
         .def_property_readonly("position_or_direction", [](const scene::Light& l) { return list3(l.posOrDir); })
-        .def_property_readonly("radiance", [](const scene::Light& l) { return list3(l.radiance); });
+        .def_property_readonly("radiance", [](const scene::Light& l) { return list3(l.radiance); })
+        .def("__repr__", [](const scene::Light& l) {
+            return l.point ? strCat("Light.point(", g4(l.posOrDir), ", intensity ", g4(l.radiance), ")")
+                           : strCat("Light.directional(", g4(l.posOrDir), ", radiance ", g4(l.radiance), ")");
+        });
 
 }
 
@@ -717,13 +890,19 @@ void bindTransferFunction(py::module_& m) {
                     py::arg("hi") = 1.0f, "a ParaView JSON preset file (preset: its name) or .xf; lo/hi for .xf alpha tables")
         .def_static("from_nodes", &PyTf::fromNodes, py::arg("positions"), py::arg("colors"), py::arg("name") = "nodes",
                     "nodes: positions (N,) ascending, colors (N, 4) rgb in [0, 1] and alpha >= 0")
-        .def("rescaled", &PyTf::rescaled, py::arg("lo"), py::arg("hi"), "the nodes mapped onto [lo, hi]")
+        .def(
+            "rescaled",
+            [](const PyTf& t, const py::object& lo, const py::object& hi) {
+                return t.rescaled(keywordArg<float>(lo, "lo", kNumber), keywordArg<float>(hi, "hi", kNumber));
+            },
+            py::arg("lo"), py::arg("hi"), "the nodes mapped onto [lo, hi]")
         .def_property_readonly("range", &PyTf::range)
         .def_property_readonly("nodes", &PyTf::nodes, "(positions (N,), colors (N, 4)) of the merged function")
         .def_property_readonly("name", [](const PyTf& t) { return t.channels.name; })
         .def("evaluate", &PyTf::evaluate, py::arg("values"), "rgba (N, 4) at each value")
         .def("to_paraview_json", &PyTf::json)
-        .def("save", &PyTf::save, py::arg("path"), "as a ParaView JSON preset file");
+        .def("save", &PyTf::save, py::arg("path"), "as a ParaView JSON preset file")
+        .def("__repr__", &PyTf::repr);
 
 }
 
@@ -757,11 +936,9 @@ void bindVolume(py::module_& m) {
             },
             "the field's percentiles 0..100 by cell count (float32 (101,), numpy's method='lower'): what the "
             "spiky and foggy presets follow")
+        .def_readwrite("_made_by", &PyVolume::madeBy, "file, arrays or yt (what save_session's refusal names)")
         .def("summary", &PyVolume::summary, "cells per level, value range, world bounds, bytes")
-        .def("__repr__", [](const PyVolume& v) {
-            return strCat("Volume(", v.volume->model.source, ", field '", v.volume->field().name, "', ",
-                          v.volume->model.cellCount(), " cells)");
-        });
+        .def("__repr__", &PyVolume::repr);
 
 }
 
@@ -769,26 +946,44 @@ void bindVolume(py::module_& m) {
 py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m) {
     return py::class_<PyRenderer, std::shared_ptr<PyRenderer>>(m, "Renderer",
                                                         "a path-traced picture of a volume on a Vulkan device")
-        .def(py::init(&makeRenderer), py::arg("volume"), py::arg("tf") = py::none(), py::arg("camera") = py::none())
+        .def(py::init(&makeRenderer), py::arg("volume"), py::arg("tf") = py::none(), py::arg("camera") = py::none(),
+             "options: amrvk render's, with underscores (docs/python.md)")
         .def_static("from_session", &rendererFromSession, py::arg("path"),
                     "the picture a session file describes (amrvk view's, amrvk render --session's)")
         .def("render", &PyRenderer::render, py::arg("spp") = py::none(), py::arg("progress") = py::none(),
-             "from scratch: spp samples per pixel (default the session's), returns image()")
+             py::arg("legend") = py::none(),
+             "from scratch: spp samples per pixel (default the session's), returns image(legend)")
         .def("accumulate", &PyRenderer::accumulate, py::arg("n"), py::arg("progress") = py::none(),
              "n more samples per pixel, continuing the same estimate")
         .def("reset", &PyRenderer::reset)
-        .def("image", &PyRenderer::image,
-             "the mean so far: float32 (height, width, 4), row 0 = top, linear radiance, alpha 1")
+        .def("image", &PyRenderer::image, py::arg("legend") = py::none(),
+             "the mean so far: float32 (height, width, 4), row 0 = top, linear radiance, alpha 1; legend=True: "
+             "with the colour legend drawn (wider with legend_place 'side')")
         .def("variance", &PyRenderer::variance, "variance of the mean per pixel: float32 (height, width, 3)")
         .def_property_readonly("spp", &PyRenderer::spp)
         .def_property_readonly("stats", &PyRenderer::stats, "amrvk render --json's content for the image so far")
         .def_property_readonly("notes", &PyRenderer::notes, "what was fitted to the data, one line each")
         .def_property_readonly("structure", &PyRenderer::structure)
-        .def("set_structure", &PyRenderer::setStructure, py::arg("traversal") = py::none(),
+        .def(
+            "set_structure",
+            [](PyRenderer& r, const py::object& traversal, const py::object& sampler, const py::object& backend,
+               const py::object& grid, const py::object& kdLeaves) {
+                auto text = [](const py::object& o, const char* name) {
+                    return o.is_none() ? std::nullopt : std::optional<std::string>(keywordArg<std::string>(o, name, kText));
+                };
+                r.setStructure(text(traversal, "traversal"), text(sampler, "sampler"), text(backend, "backend"),
+                               text(grid, "grid"),
+                               kdLeaves.is_none() ? std::nullopt
+                                                  : std::optional<uint32_t>(uint32_t(wholeArg(kdLeaves, "kd_leaves", 1, scene::kMaxKdLeaves))));
+            },
+            py::arg("traversal") = py::none(),
              py::arg("sampler") = py::none(), py::arg("backend") = py::none(), py::arg("grid") = py::none(),
              py::arg("kd_leaves") = py::none())
-        .def_property("camera", &PyRenderer::camera, &PyRenderer::setCamera)
-        .def_property("tf", &PyRenderer::tf, &PyRenderer::setTf)
+        .def_property("camera", &PyRenderer::camera,
+                      [](PyRenderer& r, const py::object& c) { r.setCamera(keywordArg<scene::Camera>(c, "camera", "an amrvk.Camera")); })
+        .def_property("tf", &PyRenderer::tf, [](PyRenderer& r, const py::object& t) {
+            r.setTf(keywordArg<PyTf>(t, "tf", "an amrvk.TransferFunction"));
+        })
 ;
 }
 
@@ -797,18 +992,28 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
     c
         .def_property(
             "mode", [](const PyRenderer& r) { return std::string(scene::modeName(r.settings().mode)); },
-            [](PyRenderer& r, const std::string& name) { r.editSettings([&](auto& s) { s.mode = scene::parseMode(name); }); })
+            [](PyRenderer& r, const py::object& o) {
+                const std::string name = keywordArg<std::string>(o, "mode", kModes);
+                r.editSettings([&](auto& s) { s.mode = scene::parseMode(name); });
+            })
         .def_property(
             "density_scale", [](const PyRenderer& r) { return r.settings().densityScale; },
-            [](PyRenderer& r, double d) { r.editSettings([&](auto& s) { s.densityScale = d; }); })
+            [](PyRenderer& r, const py::object& o) {
+                const double d = keywordArg<double>(o, "density_scale", kNumber);
+                r.editSettings([&](auto& s) { s.densityScale = d; });
+            })
         .def_property(
             "size", [](const PyRenderer& r) { return py::make_tuple(r.settings().width, r.settings().height); },
-            [](PyRenderer& r, std::pair<int, int> wh) {
+            [](PyRenderer& r, const py::object& o) {
+                const auto wh = keywordArg<std::pair<py::object, py::object>>(o, "size", "(width, height)");
+                const int w = int(wholeArg(wh.first, "size: width", 1, scene::kMaxImageSide));
+                const int h = int(wholeArg(wh.second, "size: height", 1, scene::kMaxImageSide));
                 r.editSettings([&](auto& s) {
-                    s.width = wh.first;
-                    s.height = wh.second;
+                    s.width = w;
+                    s.height = h;
                 });
-            })
+            },
+            "(width, height) in pixels, each in [1, 16384] as --size")
         .def_property(
             "crop", [](const PyRenderer& r) { return cropObject(r.settings().cut.crop); },
             [](PyRenderer& r, const py::object& o) { r.editSettings([&](auto& s) { s.cut.crop = cropOf(o); }); },
@@ -819,14 +1024,21 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
             "clip planes [(point, normal), ...] in world space; the side each normal points to is removed (at most 4)")
         .def_property(
             "seed", [](const PyRenderer& r) { return r.settings().seed; },
-            [](PyRenderer& r, uint32_t seed) { r.editSettings([&](auto& s) { s.seed = seed; }); })
+            [](PyRenderer& r, const py::object& o) {
+                const auto seed = uint32_t(wholeArg(o, "seed", 0, UINT32_MAX));
+                r.editSettings([&](auto& s) { s.seed = seed; });
+            })
         .def_property(
             "lights", [](const PyRenderer& r) { return r.settings().lights; },
-            [](PyRenderer& r, const std::vector<scene::Light>& l) { r.editSettings([&](auto& s) { s.lights = l; }); })
+            [](PyRenderer& r, const py::object& o) {
+                const auto l = keywordArg<std::vector<scene::Light>>(o, "lights", kLights);
+                r.editSettings([&](auto& s) { s.lights = l; });
+            })
         .def_property(
             "ambient", [](const PyRenderer& r) { return list3(r.settings().ambient); },
-            [](PyRenderer& r, const std::vector<double>& a) {
-                r.editSettings([&](auto& s) { s.ambient = vec3(a, "ambient"); });
+            [](PyRenderer& r, const py::object& o) {
+                const glm::dvec3 a = vec3(keywordArg<std::vector<double>>(o, "ambient", kThree), "ambient");
+                r.editSettings([&](auto& s) { s.ambient = a; });
             })
         .def_property(
             "background",
@@ -834,23 +1046,65 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
                 const auto& b = r.settings().background;
                 return b ? py::cast(list3(*b)) : py::none();
             },
-            [](PyRenderer& r, const std::optional<std::vector<double>>& b) {
-                r.editSettings([&](auto& s) {
-                    s.background = b ? std::optional<glm::dvec3>(vec3(*b, "background")) : std::nullopt;
-                });
+            [](PyRenderer& r, const py::object& o) {
+                const std::optional<glm::dvec3> b =
+                    o.is_none() ? std::nullopt
+                                : std::optional<glm::dvec3>(vec3(keywordArg<std::vector<double>>(o, "background", kThree), "background"));
+                r.editSettings([&](auto& s) { s.background = b; });
             },
             "radiance seen by rays that escape without scattering; None = the ambient light")
         .def_property(
             "g", [](const PyRenderer& r) { return r.settings().g; },
-            [](PyRenderer& r, double g) { r.editSettings([&](auto& s) { s.g = g; }); },
+            [](PyRenderer& r, const py::object& o) {
+                const double g = keywordArg<double>(o, "g", kNumber);
+                r.editSettings([&](auto& s) { s.g = g; });
+            },
             "Henyey-Greenstein asymmetry in (-1, 1)")
-        .def("save", &PyRenderer::save, py::arg("path"), "the image so far: .png (sRGB), .exr or .pfm (linear)")
+        .def("save", &PyRenderer::save, py::arg("path"), py::arg("legend") = py::none(),
+             "the image so far: .png (sRGB), .exr or .pfm (linear); the legend in PNGs (legend None: the renderer's)")
         .def("save_session", &PyRenderer::saveSession, py::arg("path"),
              "the picture as a session file (amrvk view --session, amrvk render --session)")
-        .def("png", &PyRenderer::png, "the image so far as PNG bytes (what save writes to a .png)")
+        .def("png", &PyRenderer::png, py::arg("legend") = py::none(),
+             "the image so far as PNG bytes (what save writes to a .png)")
         .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")
-        .def_property_readonly("closed", &PyRenderer::closed);
+        .def_property_readonly("closed", &PyRenderer::closed)
+        .def("__repr__", &PyRenderer::repr);
 
+}
+
+// Renderer: the colour legend's settings (the session's, as --legend, --legend-place, ...).
+void bindRendererLegend(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) {
+    c
+        .def_property(
+            "legend", [](const PyRenderer& r) { return r.legend().show; },
+            [](PyRenderer& r, const py::object& o) {
+                const bool show = keywordArg<bool>(o, "legend", "True or False");
+                r.editLegend([&](session::Legend& l) { l.show = show; });
+            },
+            "the colour legend in PNGs and inline pictures (as --legend)")
+        .def_property(
+            "legend_place", [](const PyRenderer& r) { return std::string(session::legendPlaceName(r.legend().place)); },
+            [](PyRenderer& r, const py::object& o) {
+                const auto place = forKeyword("legend_place", [&] {
+                    return session::parseLegendPlace(keywordArg<std::string>(o, "legend_place", "'side' or 'overlay'"));
+                });
+                r.editLegend([&](session::Legend& l) { l.place = place; });
+            },
+            "'side' (a strip right of the picture) or 'overlay' (over its lower right corner)")
+        .def_property(
+            "legend_title", [](const PyRenderer& r) { return r.legend().title; },
+            [](PyRenderer& r, const py::object& o) {
+                const std::string t = keywordArg<std::string>(o, "legend_title", kText);
+                r.editLegend([&](session::Legend& l) { l.title = t; });
+            },
+            "the legend's title; '' = the field's name")
+        .def_property(
+            "legend_units", [](const PyRenderer& r) { return r.legend().units; },
+            [](PyRenderer& r, const py::object& o) {
+                const std::string u = keywordArg<std::string>(o, "legend_units", kText);
+                r.editLegend([&](session::Legend& l) { l.units = u; });
+            },
+            "the units line under the legend's title; '' = none");
 }
 
 void bindDevices(py::module_& m) {
@@ -875,6 +1129,37 @@ void bindDevices(py::module_& m) {
         "every Vulkan device, and why an unusable one is rejected");
 }
 
+// The series planning of `amrvk render` (session/series.h), for python/amrvk/series.py: which
+// inputs in which order, the frames of a turntable, each frame's azimuth and file, and MP4s.
+void bindSeries(py::module_& m) {
+    m.def("_expand_inputs", &session::expandInputs, py::arg("inputs"),
+          "paths as they are, glob patterns expanded; all in natural order (output_2 before output_10)");
+    m.def(
+        "_plan_frames",
+        [](const std::vector<std::string>& inputs, std::optional<uint32_t> frames, bool orbitGiven) {
+            return session::planFrames(inputs, frames, orbitGiven);
+        },
+        py::arg("inputs"), py::arg("frames"), py::arg("orbit_given"));
+    m.def("_frame_azimuth", &session::frameAzimuth, py::arg("k"), py::arg("n"), py::arg("degrees"));
+    m.def(
+        "_frame_files",
+        [](const std::string& text, uint32_t count) {
+            const session::FrameOutput out = session::frameOutput("out", text, count);
+            std::vector<std::string> files;
+            for (uint32_t k = 0; k < count; ++k) files.push_back(out.frame(k).string());
+            return py::make_tuple(out.pattern, files);
+        },
+        py::arg("out"), py::arg("count"), "(printf pattern, the file of each frame) of an -o of numbered frames");
+    m.def(
+        "_encode_mp4",
+        [](const std::string& pattern, uint32_t count, double fps, const fs::path& output) {
+            requireFfmpeg("out", output);
+            py::gil_scoped_release release;
+            encodeMp4(pattern, count, fps, output);
+        },
+        py::arg("pattern"), py::arg("count"), py::arg("fps"), py::arg("output"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_amrvk, m) {
@@ -886,5 +1171,7 @@ PYBIND11_MODULE(_amrvk, m) {
     bindVolume(m);
     auto renderer = bindRenderer(m);
     bindRendererSettings(renderer);
+    bindRendererLegend(renderer);
     bindDevices(m);
+    bindSeries(m);
 }

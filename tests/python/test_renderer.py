@@ -95,16 +95,16 @@ def test_every_edit_follows_the_session(amrvk, tmp_path):
     again = amrvk.Renderer.from_session(str(tmp_path / "s.json"), quiet=True)
     assert np.max(np.abs(again.render(spp=4) - edited)) < 1e-5
     # A rejected edit changes nothing.
-    with pytest.raises(ValueError, match="--sampler dense needs --traversal grid-dda or grid-bvh"):
+    with pytest.raises(ValueError, match="^sampler dense needs traversal grid-dda or grid-bvh"):
         r.set_structure(sampler="dense")
     assert r.structure["sampler"] == "abr"
-    with pytest.raises(ValueError, match="--density-scale -1 must be finite and >= 0"):
+    with pytest.raises(ValueError, match="^density_scale -1 must be finite and >= 0"):
         r.density_scale = -1
     assert r.density_scale == 6.0
-    with pytest.raises(ValueError, match="--background"):
+    with pytest.raises(ValueError, match="^background"):
         r.background = [0, -1, 0]
     assert r.background == [0.1, 0.2, 0.3]
-    with pytest.raises(ValueError, match="--mode 'pt'"):
+    with pytest.raises(ValueError, match="^mode 'pt'"):
         r.mode = "pt"
 
 
@@ -276,10 +276,10 @@ def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
     r.clip = []
     assert r.crop is None and r.clip == []
     assert np.abs(r.render(spp=4) - cut).max() > 1e-2
-    with pytest.raises(ValueError, match="--crop: lower corner 5 is not below upper corner 1 on axis x"):
+    with pytest.raises(ValueError, match="^crop: lower corner 5 is not below upper corner 1 on axis x"):
         r.crop = ([5, 0, 0], [1, 1, 1])
     assert r.crop is None
-    with pytest.raises(ValueError, match="--clip: at most 4 planes"):
+    with pytest.raises(ValueError, match="^clip: at most 4 planes"):
         r.clip = [([0, 0, 0], [1, 0, 0])] * 5
 
 
@@ -312,3 +312,27 @@ def test_a_bad_sample_count_is_one_line_naming_the_keyword(amrvk):
     assert r.spp == 1
     r.accumulate(1)
     assert r.spp == 2
+
+
+def test_reprs_say_what_a_scientist_checks(amrvk):
+    """Volume, TransferFunction, Renderer and Light print their content, not `<... object at 0x...>`
+    (issue 33, point 3): field, cells, levels, value range, world bounds; the TF's name, nodes and
+    range; the renderer's size, mode, TF, samples so far and their mean standard error."""
+    v = amrvk.Volume(str(SAMPLE))
+    levels = sum(1 for n in v.summary()["cells_per_level"] if n > 0)
+    lo, hi = v.value_range
+    assert repr(v) == (f"Volume({SAMPLE}, field 'scalars', {v.cells} cells on {levels} levels, "
+                       f"values {lo:.4g}..{hi:.4g}, world (0, 0, 0)..(512, 512, 512))")
+    tf = amrvk.TransferFunction.preset("ramp", 0.3, 2.0)
+    assert repr(tf) == f"TransferFunction('ramp', {len(tf.nodes[0])} nodes over [0.3, 2], alpha up to 1)"
+    r = picture(amrvk)
+    assert repr(r) == (f"Renderer({SAMPLE} 'scalars', 32x24 ms, tf 'ramp' over [0.3, 2], density_scale 3, "
+                       "0 spp so far, grid-dda/grid/sw)")
+    r.render(spp=4)
+    error = float(np.sqrt(r.variance()).mean())
+    text = repr(r)
+    assert ", 4 spp so far, mean standard error " in text, text
+    assert abs(float(text.split("mean standard error ")[1].split(",")[0]) - error) <= 1e-3 * error + 1e-6, text
+    assert repr(amrvk.Light.directional([1, -1, 2], [5, 4.5, 3.8])) == "Light.directional((1, -1, 2), radiance (5, 4.5, 3.8))"
+    r.close()
+    assert repr(r) == "Renderer(closed)"

@@ -1,0 +1,129 @@
+"""Series and movies from Python, as ``amrvk render`` makes them (docs/movies.md): one frame per
+data set of a time series (a glob, a list of paths, or a yt ``DatasetSeries``), or a turntable of
+one data set; every frame with the same camera, settings and TF range; frames as arrays, numbered
+image files, or an MP4 (Debian's ffmpeg). The planning is the command line's (session/series.cpp:
+natural order of a glob's matches, a turntable's azimuths, the frame files); each frame is one
+Renderer, all on one device.
+
+TF range (`tf_range`): ``"first"`` (the first data set's value range, the CLI's default),
+``"union"`` (every data set's: a pass over them first, one in memory at a time) or ``(lo, hi)``.
+`tf`: None (the ramp preset), a preset or colormap name, fitted over that range; or a
+TransferFunction, used as it is (its own range is the one range).
+"""
+import numbers
+import os
+import tempfile
+
+from . import _amrvk
+from .colormaps import preset
+
+
+def _is_yt(item):
+    return hasattr(item, "index") and hasattr(item, "domain_dimensions")
+
+
+def _sources(inputs):
+    """The series' data sets in order: paths (globs expanded, natural order) or yt data sets."""
+    if isinstance(inputs, (str, os.PathLike)):
+        inputs = [inputs]
+    if hasattr(inputs, "piter") or (isinstance(inputs, (list, tuple)) and inputs and all(_is_yt(d) for d in inputs)):
+        return inputs, True  # a yt DatasetSeries (loads each data set as it is iterated) or data sets
+    if not isinstance(inputs, (list, tuple)) or not all(isinstance(p, (str, os.PathLike)) for p in inputs):
+        raise TypeError("inputs: expected a path or glob, a list of them, a yt DatasetSeries or a list of yt data "
+                        f"sets, got {type(inputs).__name__}")
+    return _amrvk._expand_inputs([os.fspath(p) for p in inputs]), False
+
+
+def _volume(source, from_yt, field, log):
+    if from_yt:
+        from .yt_bridge import from_yt as make
+
+        if field is None:
+            raise TypeError("field: a yt series needs a field, e.g. ('gas', 'density')")
+        return make(source, field, log=log)
+    return _amrvk.Volume(source, field=field or "", scale="log" if log else "linear")
+
+
+def _range(tf_range, volume_of, order):
+    """The one TF range of the series: over the data sets `order` names (indices into the inputs)."""
+    if isinstance(tf_range, str):
+        if tf_range not in ("first", "union"):
+            raise ValueError(f"tf_range: '{tf_range}' is not 'first', 'union' or (lo, hi)")
+        ranges = [volume_of(i).value_range for i in (order[:1] if tf_range == "first" else sorted(set(order)))]
+        return min(r[0] for r in ranges), max(r[1] for r in ranges)
+    if (not isinstance(tf_range, (tuple, list)) or len(tf_range) != 2
+            or not all(isinstance(x, numbers.Real) and not isinstance(x, bool) for x in tf_range)):
+        raise TypeError(f"tf_range: expected 'first', 'union' or (lo, hi), got {tf_range!r}")
+    lo, hi = map(float, tf_range)
+    if not lo < hi:
+        raise ValueError(f"tf_range: {lo:g} is not below {hi:g}")
+    return lo, hi
+
+
+def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range="first", spp=None, camera=None,
+                  frames=None, orbit=None, fps=24.0, progress=None, **options):
+    """Renders a series and returns its frames: a list of float32 (H, W, 4) arrays when `out` is
+    None, else the files written (numbered frames: ``"frames/f_%04d.png"`` or a directory), or
+    ``[out]`` for an MP4 (``"movie.mp4"``, at `fps` frames per second).
+
+    inputs: a path or glob ("output_*"), a list of them, a yt DatasetSeries or a list of yt data
+      sets (`field` then names a yt field: ``("gas", "density")``); field/log: as Volume(path,
+      field=, scale="log") or from_yt(..., log=True).
+    frames, orbit: a turntable of one data set, `frames` frames over `orbit` degrees; with a series,
+      `orbit` degrees spread over its frames.
+    camera: every frame's (before its orbit); default: the view that frames the first data set.
+    options: Renderer's (width, height, mode, density_scale, legend, ...); `legend` draws into PNGs.
+    progress: callable(frame, frames) after each frame.
+    """
+    if orbit is not None and (isinstance(orbit, bool) or not isinstance(orbit, numbers.Real)):
+        raise TypeError(f"orbit: expected degrees (a number), got {orbit!r}")
+    if frames is not None and (isinstance(frames, bool) or not isinstance(frames, int)):
+        raise TypeError(f"frames: expected a whole number, got {frames!r}")
+    sources, from_yt = _sources(inputs)
+    # A DatasetSeries is indexed (ts[i] loads data set i when asked), never loaded whole.
+    names = [str(i) for i in range(len(sources))] if from_yt else sources
+    plan = _amrvk._plan_frames(names, frames, orbit is not None)  # the CLI's checks and turntables
+    order = [names.index(p) for p in plan]  # the input of each frame
+    count = len(order)
+    movie = out is not None and os.fspath(out).lower().endswith(".mp4")
+    scratch = tempfile.TemporaryDirectory(prefix="amrvk-movie-") if movie else None
+    try:
+        pattern, files = (None, None)
+        if out is not None:
+            target = os.path.join(scratch.name, "f_%06d.png") if movie else os.fspath(out)
+            pattern, files = _amrvk._frame_files(target, count)
+            os.makedirs(os.path.dirname(files[0]) or ".", exist_ok=True)
+        cache = {}
+
+        def volume_of(i):
+            if i not in cache:
+                cache.clear()  # one data set in memory at a time (a turntable keeps its one)
+                cache[i] = _volume(sources[i], from_yt, field, log)
+            return cache[i]
+
+        lo, hi = _range(tf_range, volume_of, order)
+        if tf is None or isinstance(tf, str):
+            tf = preset(tf or "ramp", lo, hi)
+        elif not isinstance(tf, _amrvk.TransferFunction):
+            raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {tf!r}")
+        first = camera if camera is not None else _amrvk.Camera.frame(volume_of(order[0]))
+        images = []
+        for k in range(count):
+            view = first.orbit(_amrvk._frame_azimuth(k, count, float(orbit))) if orbit else first
+            with _amrvk.Renderer(volume_of(order[k]), tf, view, **{"quiet": True, **options}) as r:
+                image = r.render(spp=spp) if spp is not None else r.render()
+                if files is None:
+                    images.append(image)
+                else:
+                    r.save(files[k])
+            if progress is not None:
+                progress(k + 1, count)
+        if files is None:
+            return images
+        if movie:
+            _amrvk._encode_mp4(pattern, count, float(fps), os.fspath(out))
+            return [os.fspath(out)]
+        return files
+    finally:
+        if scratch is not None:
+            scratch.cleanup()

@@ -1,0 +1,140 @@
+"""A Jupyter widget (ipywidgets; Debian: python3-ipywidgets) that shows a Renderer's progressive
+image and orbits it with sliders: ``amrvk.Widget(renderer, spp=256)`` as a cell's last expression.
+
+A background thread adds `batch` samples per pixel at a time until the image has `spp`, showing
+the image (the PNG that ``renderer.png()`` makes, legend included where the renderer has one) and
+the samples and mean standard error so far after each batch. Moving a slider sets the renderer's
+camera from the camera it had when the widget was made: turned by `azimuth` degrees about the
+target around the up vector, then by `elevation` degrees over the view's right vector, then
+`zoom` times closer (Camera.orbit, Camera.zoom); the estimate restarts and refines again. Only
+sliders: orbiting by mouse drag needs a browser-side event widget (ipyevents) that Debian lacks.
+``close()`` stops the thread (the renderer stays open); the renderer serves one call at a time, so
+using it from the notebook while the widget refines is safe (calls queue).
+"""
+import threading
+import time
+
+import numpy as np
+
+from . import _amrvk
+from .cameras import orbit, zoom
+
+
+class Widget:
+    def __init__(self, renderer, spp=256, batch=4):
+        try:
+            import ipywidgets
+        except ImportError:
+            raise ImportError("amrvk.Widget needs ipywidgets (Debian: python3-ipywidgets)") from None
+        if not isinstance(renderer, _amrvk.Renderer):
+            raise TypeError(f"renderer: expected an amrvk.Renderer, got {type(renderer).__name__}")
+        for name, value, hi in (("spp", spp, 1 << 24), ("batch", batch, 1 << 24)):
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise TypeError(f"{name}: expected a whole number in [1, {hi}], got {value!r}")
+            if not 1 <= value <= hi:
+                raise ValueError(f"{name}: {value} is outside [1, {hi}]")
+        self.renderer = renderer
+        self.spp = spp
+        self.batch = batch
+        self.base = renderer.camera
+        w = ipywidgets
+        self.image = w.Image(format="png")
+        self.azimuth = w.FloatSlider(value=0.0, min=-180.0, max=180.0, step=1.0, description="azimuth")
+        self.elevation = w.FloatSlider(value=0.0, min=-80.0, max=80.0, step=1.0, description="elevation")
+        self.zoom = w.FloatSlider(value=1.0, min=0.25, max=4.0, step=0.05, description="zoom")
+        self.status = w.Label()
+        for slider in (self.azimuth, self.elevation, self.zoom):
+            slider.observe(self._moved, names="value")
+        self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
+        self._wake = threading.Event()
+        self._idle = threading.Event()
+        self._stop = False
+        self._error = None
+        self._thread = threading.Thread(target=self._refine, name="amrvk.Widget", daemon=True)
+        self._thread.start()
+
+    def camera(self):
+        """The camera the sliders give: the first camera orbited, raised and zoomed."""
+        turned = orbit(self.base, self.azimuth.value)
+        forward = np.subtract(turned.target, turned.eye)
+        right = np.cross(forward, turned.up)
+        raised = orbit(turned, self.elevation.value, axis=right.tolist()) if self.elevation.value else turned
+        return zoom(raised, self.zoom.value)
+
+    def _moved(self, change):
+        self._idle.clear()
+        self.renderer.camera = self.camera()  # restarts the estimate
+        self._wake.set()
+
+    def _refine(self):
+        r = self.renderer
+        try:
+            while not self._stop and not r.closed:
+                if r.spp < self.spp:
+                    self._idle.clear()
+                    r.accumulate(min(self.batch, self.spp - r.spp))
+                    self._show()
+                else:
+                    self._idle.set()
+                    self._wake.wait(0.25)
+                    self._wake.clear()
+        except Exception as e:  # shown in the status line; wait() raises it
+            self._error = e
+            self.status.value = f"stopped: {type(e).__name__}: {e}"
+        finally:
+            self._idle.set()
+
+    def _show(self):
+        # The renderer serves one call at a time, not a snapshot of several: a slider moved between
+        # these calls restarts the estimate (spp drops), and what was read is then not shown.
+        r = self.renderer
+        spp = r.spp
+        if r.closed or spp == 0:
+            return
+        try:
+            png = r.png()
+            noise = f", mean standard error {float(np.sqrt(r.variance()).mean()):.4g}" if spp >= 2 else ""
+        except ValueError:
+            if r.closed or r.spp < spp:
+                return
+            raise
+        if r.spp < spp:
+            return
+        self.image.value = png
+        self.status.value = f"{spp}/{self.spp} spp{noise}"
+
+    def wait(self, timeout=None):
+        """Blocks until the image has `spp` samples per pixel (True), or `timeout` seconds passed (False)."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            left = 0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))
+            idle = self._idle.wait(left)
+            if self._error is not None:
+                raise self._error
+            # Idle with fewer samples: a slider has just restarted the estimate; the thread goes on.
+            if idle and (self.renderer.closed or self.renderer.spp >= self.spp):
+                return True
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            if idle:
+                time.sleep(0.01)
+
+    def close(self):
+        """Stops refining (the renderer stays open)."""
+        self._stop = True
+        self._wake.set()
+        self._thread.join()
+        self.box.close()
+
+    def _ipython_display_(self):
+        from IPython.display import display
+
+        display(self.box)
+
+    def _repr_png_(self):
+        """Where no widget can be shown (nbconvert, a static notebook): the image so far."""
+        return self.image.value or None
+
+    def __repr__(self):
+        return (f"Widget({self.renderer.spp}/{self.spp} spp, azimuth {self.azimuth.value:g}, "
+                f"elevation {self.elevation.value:g}, zoom {self.zoom.value:g})")

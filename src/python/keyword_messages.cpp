@@ -1,0 +1,91 @@
+#include "python/keyword_messages.h"
+
+#include <algorithm>
+#include <cctype>
+#include <iterator>
+
+namespace amrvk::python {
+
+namespace {
+
+struct Rename {
+    std::string_view option;   // as the CLI spells it
+    std::string_view keyword;  // as Python spells it (Renderer, Volume, TransferFunction keywords)
+};
+
+// Longest first where one option is a prefix of another (--nan drop before --nan).
+constexpr Rename kRenames[] = {
+    {"--nan drop", "nan='drop'"},
+    {"--frames", "frames"},
+    {"--orbit", "orbit"},
+    {"--series-range", "tf_range"},
+    {"--legend-place", "legend_place"},
+    {"--legend-title", "legend_title"},
+    {"--legend-units", "legend_units"},
+    {"--legend", "legend"},
+    {"--density-scale", "density_scale"},
+    {"--size", "size (width, height)"},
+    {"--mode", "mode"},
+    {"--spp", "spp"},
+    {"--seed", "seed"},
+    {"--dt", "dt"},
+    {"--g", "g"},
+    {"--ambient", "ambient"},
+    {"--background", "background"},
+    {"--light-dir", "lights (a directional light)"},
+    {"--light-point", "lights (a point light)"},
+    {"--fov", "fov"},
+    {"--camera", "camera"},
+    {"--crop", "crop"},
+    {"--clip", "clip"},
+    {"--tf-range", "tf_range"},
+    {"--traversal", "traversal"},
+    {"--sampler", "sampler"},
+    {"--backend", "backend"},
+    {"--kd-leaves", "kd_leaves"},
+    {"--dense-max-mib", "dense_max_mib"},
+    {"--device", "device"},
+    {"--shader-dir", "shader_dir"},
+    {"--gpu-timeout", "gpu_timeout"},
+    {"--samples-per-invocation", "samples_per_invocation"},
+    {"--scale", "scale"},
+    {"--log-floor", "log_floor"},
+    {"--nan", "nan"},
+    {"--format", "format"},
+    {"--field", "field"},
+    {"--dims", "dims"},
+    {"--type", "type"},
+    {"--threshold", "threshold"},
+};
+
+bool optionChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+
+}  // namespace
+
+std::string keywordMessage(std::string_view message) {
+    std::string out;
+    out.reserve(message.size());
+    size_t i = 0;
+    while (i < message.size()) {
+        const bool tokenStart = message.compare(i, 2, "--") == 0 && (i == 0 || !optionChar(message[i - 1]));
+        const Rename* hit = nullptr;
+        if (tokenStart)
+            for (const Rename& r : kRenames) {
+                const size_t end = i + r.option.size();
+                if (message.compare(i, r.option.size(), r.option) == 0 &&
+                    (end == message.size() || !optionChar(message[end]))) {
+                    hit = &r;
+                    break;
+                }
+            }
+        if (hit) {
+            out += hit->keyword;
+            i += hit->option.size();
+        } else {
+            out += message[i++];
+        }
+    }
+    return out;
+}
+
+}  // namespace amrvk::python

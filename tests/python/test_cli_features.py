@@ -1,0 +1,152 @@
+"""What the command line has, from Python (issue 33, point 3): the colour legend on save, png
+(_repr_png_) and render, drawn by the CLI's own code; matplotlib colormaps by name; camera orbit,
+zoom and conversion from and to yt's camera; and the Jupyter widget that refines and orbits."""
+import math
+import time
+
+import numpy as np
+import pytest
+
+from conftest import ENZO, SAMPLE, need, run_cli
+
+SMALL = dict(width=96, height=64, density_scale=3.0, tf_range=(0.3, 2.0), grid="16", quiet=True, seed=7)
+
+
+def png_pixels(data):
+    import io
+
+    import matplotlib.image
+
+    return matplotlib.image.imread(io.BytesIO(data), format="png")
+
+
+def test_the_legend_is_the_command_lines(amrvk, tmp_path):
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), legend=True, **SMALL)
+    image = r.render(spp=2)
+    assert image.shape == (64, 96, 4), "an array is the picture alone unless legend=True"
+    with_legend = r.image(legend=True)
+    assert with_legend.shape[0] == 64 and with_legend.shape[1] > 96
+    np.testing.assert_array_equal(with_legend[:, :96], image)  # side: every picture pixel kept
+    assert r.render(spp=2, legend=True).shape == with_legend.shape
+    # PNGs (save, png, _repr_png_) follow the renderer's legend setting.
+    assert png_pixels(r._repr_png_()).shape[:2] == with_legend.shape[:2]
+    assert png_pixels(r.png(legend=False)).shape[:2] == (64, 96)
+    # The same picture as `amrvk render --legend` of the same session, byte for byte.
+    r.save(str(tmp_path / "py.png"))
+    r.save_session(str(tmp_path / "s.json"))
+    run_cli("render", "--session", tmp_path / "s.json", "--spp", "2", "-o", tmp_path / "cli.png")
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+    r.legend_place = "overlay"
+    assert r.image(legend=True).shape == (64, 96, 4)
+    r.legend_title, r.legend_units = "cloud", "g/cm^3"
+    assert (r.legend, r.legend_place, r.legend_title, r.legend_units) == (True, "overlay", "cloud", "g/cm^3")
+    r.legend = False
+    assert png_pixels(r.png()).shape[:2] == (64, 96)
+    with pytest.raises(ValueError, match="^legend: only PNG images get a legend"):
+        r.save(str(tmp_path / "a.exr"), legend=True)
+    with pytest.raises(ValueError, match="^legend_place 'left': expected side|overlay"):
+        r.legend_place = "left"
+    tiny = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **{**SMALL, "width": 8, "height": 8})
+    tiny.render(spp=1)
+    with pytest.raises(ValueError, match="^legend: the picture 8x8 is too small for a legend"):
+        tiny.image(legend=True)
+
+
+def test_colormaps_by_name(amrvk):
+    matplotlib = pytest.importorskip("matplotlib", reason="Debian: python3-matplotlib")
+    v = amrvk.Volume(str(SAMPLE))
+    tf = amrvk.TransferFunction.preset("viridis", 0.5, 2.5)
+    positions, colors = tf.nodes
+    assert tf.name == "viridis" and tf.range == (0.5, 2.5) and len(positions) == 16
+    # The map's colours as given; the ramp preset's opacity.
+    expected = matplotlib.colormaps["viridis"](np.linspace(0, 1, 16))
+    np.testing.assert_allclose(colors[:, :3], expected[:, :3], atol=1e-6)
+    ramp = amrvk.TransferFunction.preset("ramp", 0.5, 2.5)
+    np.testing.assert_allclose(colors[:, 3], ramp.evaluate(positions)[:, 3], atol=1e-6)
+    fitted = amrvk.TransferFunction.from_colormap("magma", v)
+    assert fitted.range == pytest.approx(v.value_range)
+    # Built-in names stay the presets (matplotlib also has a 'grey').
+    assert amrvk.TransferFunction.preset("grey", 0, 1).name == "grey"
+    with pytest.raises(ValueError, match="^name: 'viridiss' is neither a built-in preset"):
+        amrvk.TransferFunction.preset("viridiss", 0, 1)
+    with pytest.raises(ValueError, match=r"^nodes: expected a whole number in \[2, 4096\], got 1"):
+        amrvk.TransferFunction.from_colormap("viridis", 0, 1, nodes=1)
+
+
+def test_camera_orbit_and_zoom(amrvk):
+    c = amrvk.Camera([10, 0, 3], [0, 0, 3], [0, 0, 1], 30)
+    quarter = c.orbit(90)
+    np.testing.assert_allclose(quarter.eye, [0, 10, 3], atol=1e-12)
+    assert quarter.target == c.target and quarter.up == c.up and quarter.fov == 30
+    np.testing.assert_allclose(c.orbit(360).eye, c.eye, atol=1e-12)
+    np.testing.assert_allclose(c.orbit(90, axis=[0, 0, -1]).eye, [0, -10, 3], atol=1e-12)
+    np.testing.assert_allclose(c.zoom(2).eye, [5, 0, 3])
+    np.testing.assert_allclose(c.zoom(0.5).eye, [20, 0, 3])
+    with pytest.raises(ValueError, match="^factor: 0 must be > 0$"):
+        c.zoom(0)
+    with pytest.raises(TypeError, match="^degrees: expected a finite number, got 'a'$"):
+        c.orbit("a")
+    with pytest.raises(ValueError, match="^axis: expected 3 finite numbers"):
+        c.orbit(10, axis=[0, 0, 0])
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **SMALL)
+    first = r.camera
+    r.render(spp=1)
+    r.orbit(45).zoom(1.5)
+    assert r.spp == 0, "a camera edit restarts the estimate"
+    np.testing.assert_allclose(r.camera.eye, first.orbit(45).zoom(1.5).eye, rtol=1e-12)
+
+
+def test_cameras_to_and_from_yt(amrvk, yt):
+    ds = yt.load(str(need(ENZO)))
+    sc = yt.create_scene(ds, ("gas", "density"))
+    cam = amrvk.Camera.from_yt(sc.camera)
+    position = sc.camera.position.to("code_length").d
+    focus = sc.camera.focus.to("code_length").d
+    np.testing.assert_allclose(cam.eye, position)
+    np.testing.assert_allclose(cam.target, focus)
+    height = float(sc.camera.width[1].to("code_length").d)
+    assert math.tan(math.radians(cam.fov) / 2) * np.linalg.norm(position - focus) == pytest.approx(height / 2)
+    # And back: an amrvk camera set on yt's, read back as the same camera.
+    turned = cam.orbit(30).zoom(1.2)
+    again = amrvk.Camera.from_yt(turned.to_yt(sc.camera))
+    np.testing.assert_allclose(again.eye, turned.eye, rtol=1e-9)
+    np.testing.assert_allclose(again.target, turned.target, rtol=1e-9)
+    np.testing.assert_allclose(again.up, turned.up, atol=1e-9)
+    assert again.fov == pytest.approx(turned.fov)
+    with pytest.raises(TypeError, match="^yt_camera: expected a yt Camera"):
+        amrvk.Camera.from_yt(ds)
+
+
+def test_the_widget_refines_and_orbits(amrvk):
+    pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **SMALL)
+    first = r.camera
+    w = amrvk.Widget(r, spp=8, batch=2)
+    try:
+        assert w.wait(120), "the widget reaches its sample count"
+        assert r.spp == 8 and w.image.value == r.png() and w.status.value.startswith("8/8 spp, mean standard error")
+        w.azimuth.value = 90
+        w.zoom.value = 2
+        assert w.wait(120)
+        assert r.spp == 8
+        np.testing.assert_allclose(r.camera.eye, first.orbit(90).zoom(2).eye, rtol=1e-12)
+        assert w.image.value == r.png()
+        w.elevation.value = 20
+        assert w.wait(120)
+        view = np.subtract(r.camera.eye, r.camera.target)
+        before = np.subtract(first.orbit(90).eye, first.target)
+        angle = math.degrees(math.acos(np.dot(view, before) / np.linalg.norm(view) / np.linalg.norm(before)))
+        assert angle == pytest.approx(20, abs=1e-6)
+        assert repr(w) == "Widget(8/8 spp, azimuth 90, elevation 20, zoom 2)"
+        # Sliders moved while the thread refines (each restarts the estimate between its calls).
+        for step in range(40):
+            w.azimuth.value = 90 + step
+            time.sleep(0.005)
+        assert w.wait(120) and r.spp == 8 and w.image.value == r.png()
+    finally:
+        w.close()
+    assert not r.closed
+    with pytest.raises(TypeError, match="^renderer: expected an amrvk.Renderer, got NoneType$"):
+        amrvk.Widget(None)
+    with pytest.raises(ValueError, match=r"^spp: 0 is outside \[1, 16777216\]$"):
+        amrvk.Widget(r, spp=0)
