@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # amrvk set-up and entry points. Usage: tools/run.sh demo|test|build|deps|sanitize|fuzz [SECONDS]
-#   demo  installs what is missing, builds Release into build/, renders the Enzo cosmology data
-#         beside the checkout (or the bundled sample where it is absent) to out/demo.png
+#   demo  installs what is missing, builds the amrvk binary (Release, build/), renders the Enzo
+#         cosmology data beside the checkout (or the bundled sample where it is absent) to out/demo.png
 #   test  installs what is missing, builds, runs every test (ctest)
-#   build installs what is missing and builds
+#   build installs what is missing and builds everything (tests and the Python module too)
 #   deps  only installs what is missing (Debian 12; root or sudo)
 #   sanitize  ASan + UBSan build (gcc) into build-asan/, runs the CPU tests (ctest -L cpu)
 #   fuzz [SECONDS]  libFuzzer targets (clang) into build-fuzz/, runs each for SECONDS (default 60);
@@ -89,11 +89,14 @@ deps() {
   fi
 }
 
+# build [TARGET...]: configures build/ and builds the targets named (default: everything, tests
+# and the Python module included).
 build() {
   local jobs; jobs=$(nproc 2>/dev/null || echo 2)
   local werror=OFF; [ "${CI:-}" = true ] && werror=ON
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DAMRVK_WERROR="$werror" >/dev/null
-  cmake --build build -j "$jobs"
+  local targets=(); [ "$#" -gt 0 ] && targets=(--target "$@")
+  cmake --build build -j "$jobs" "${targets[@]}"
   install_python_path
 }
 
@@ -277,7 +280,8 @@ case "$cmd" in
   deps)  deps ;;
   build) deps; build ;;
   demo)
-    deps; build
+    # Only the binary it runs (the tests and the Python module are built by `build` and `test`).
+    deps; build amrvk
     mkdir -p out
     # Lit from one side (a warm sun and a dim blue sky) on a black background, multiple scattering.
     look=(--mode ms --background 0.004 0.004 0.008 --ambient 0.1 0.1 0.14 --light-dir 1 -1 2 5 4.5 3.8)
