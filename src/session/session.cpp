@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -65,7 +66,10 @@ public:
     int64_t integer(const char* key, int64_t lo, int64_t hi) const {
         const double d = number(key);
         char text[32];
-        std::snprintf(text, sizeof text, "%.17g", d);
+        for (int digits = 15; digits <= 17; ++digits) {  // the shortest text that reads back as d
+            std::snprintf(text, sizeof text, "%.*g", digits, d);
+            if (std::strtod(text, nullptr) == d) break;
+        }
         AMRVK_CHECK(d == std::floor(d) && d >= double(lo) && d <= double(hi), mWhere, ".", key, ": ", text,
                     " is not an integer in [", lo, ", ", hi, "]");
         return int64_t(d);
@@ -78,6 +82,19 @@ public:
             return parse(value);
         } catch (const Error& e) {
             throw Error(mWhere + "." + key + ": " + e.what());
+        }
+    }
+    // Refuses a member not in `keys`: a typo, or a setting of a newer amrvk, is never silently
+    // dropped (the picture would differ from the one the file describes).
+    void onlyKeys(std::initializer_list<const char*> keys) const {
+        if (!mJ.is_object()) return;
+        for (const auto& item : mJ.items()) {
+            bool known = false;
+            for (const char* k : keys) known = known || item.key() == k;
+            std::string list;
+            for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+            AMRVK_CHECK(known, mWhere, ".", item.key(), ": unknown key (this amrvk reads session version ", kVersion,
+                        "; keys here: ", list, ")");
         }
     }
     const Json& json() const { return mJ; }
@@ -165,6 +182,7 @@ Json parseDocument(const std::string& text, const std::string& file) {
 
 // "read": how the input is read (format, NaN policy, raw layout, scale).
 void readReadOptions(const Reader& r, amr::ReadOptions& read) {
+    r.onlyKeys({"format", "nan", "dims", "type", "threshold", "scale", "logFloor"});
     read.format = r.text("format", "auto");
     read.nanPolicy = r.named("nan", "reject", [](const std::string& v) { return amr::parseNanPolicy(v); });
     if (r.has("dims")) {
@@ -186,6 +204,7 @@ void readReadOptions(const Reader& r, amr::ReadOptions& read) {
 // "camera" and "image" (both required).
 void readView(const Reader& top, scene::RenderSettings& rs) {
     const Reader cam = top.child("camera");
+    cam.onlyKeys({"eye", "target", "up", "fovY"});
     rs.camera.eye = cam.vector("eye");
     rs.camera.target = cam.vector("target");
     rs.camera.up = cam.vector("up");
@@ -193,12 +212,14 @@ void readView(const Reader& top, scene::RenderSettings& rs) {
     AMRVK_CHECK(scene::validFov(rs.camera.fovYDegrees), cam.where(), ".fovY: ", rs.camera.fovYDegrees,
                 " is outside (0, ", scene::kMaxFovDegrees, ")");
     const Reader image = top.child("image");
+    image.onlyKeys({"width", "height"});
     rs.width = int(image.integer("width", 1, scene::kMaxImageSide));
     rs.height = int(image.integer("height", 1, scene::kMaxImageSide));
 }
 
 // "render": mode, samples, seed, medium and dvr options (every key optional).
 void readRender(const Reader& r, Session& s) {
+    r.onlyKeys({"mode", "spp", "seed", "densityScale", "g", "ambient", "background", "dvrStep", "dvrShading"});
     scene::RenderSettings& rs = s.settings;
     rs.mode = r.named("mode", "ms", scene::parseMode);
     s.spp = uint32_t(r.has("spp") ? r.integer("spp", 0, scene::kMaxSpp) : 64);
@@ -226,12 +247,14 @@ std::vector<scene::Light> readLights(const Json& lights, const std::string& wher
         const std::string type = L.text("type");
         scene::Light light;
         if (type == "directional") {
+            L.onlyKeys({"type", "direction", "radiance"});
             light.posOrDir = L.vector("direction");
             light.radiance = L.vector("radiance");
             AMRVK_CHECK(glm::length(light.posOrDir) > 0, L.where(), ".direction: must not be zero");
         } else {
             AMRVK_CHECK(type == "point", L.where(), ".type: '", type, "' (expected directional or point)");
             light.point = true;
+            L.onlyKeys({"type", "position", "intensity"});
             light.posOrDir = L.vector("position");
             light.radiance = L.vector("intensity");
         }
@@ -244,9 +267,11 @@ std::vector<scene::Light> readLights(const Json& lights, const std::string& wher
 
 // "cut": the crop box and clip planes, validated as the CLI validates them.
 scene::CutAway readCut(const Reader& cut) {
+    cut.onlyKeys({"crop", "clip"});
     scene::CutAway c;
     if (cut.has("crop")) {
         const Reader crop = cut.child("crop");
+        crop.onlyKeys({"lo", "hi"});
         c.crop = scene::CropBox{crop.vector("lo"), crop.vector("hi")};
     }
     if (cut.has("clip")) {
@@ -256,6 +281,7 @@ scene::CutAway readCut(const Reader& cut) {
                     " planes (got ", clips.size(), ")");
         for (size_t i = 0; i < clips.size(); ++i) {
             const Reader p(clips[i], cut.where() + ".clip[" + std::to_string(i) + "]");
+            p.onlyKeys({"point", "normal"});
             c.clips.push_back({p.vector("point"), p.vector("normal")});
         }
     }
@@ -269,6 +295,7 @@ scene::CutAway readCut(const Reader& cut) {
 
 // "structure": the traversal, sampler and back-end with their parameters, validated.
 void readStructure(const Reader& st, scene::StructureConfig& structure) {
+    st.onlyKeys({"traversal", "sampler", "backend", "grid", "kdLeaves", "denseMaxMiB"});
     structure.traversal = st.named("traversal", "grid-dda", scene::parseTraversal);
     structure.sampler = st.named("sampler", "ext-brick", scene::parseSampler);
     structure.backend = st.named("backend", "auto", scene::parseBackend);
@@ -285,6 +312,7 @@ void readStructure(const Reader& st, scene::StructureConfig& structure) {
 // "legend": whether and how the colour legend is drawn.
 Legend readLegend(const Reader& L) {
     AMRVK_CHECK(L.json().is_object(), L.where(), ": expected an object");
+    L.onlyKeys({"show", "place", "title", "units", "font"});
     Legend legend;
     legend.show = L.flag("show", false);
     legend.place = L.named("place", "side", parseLegendPlace);
@@ -304,6 +332,8 @@ Session parseSession(const std::string& text, const fs::path& path) {
                 ": not an amrvk session (expected \"amrvk\": \"session\")");
     const int64_t version = top.integer("version", 1, 1 << 20);
     AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
+    top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut", "structure",
+                  "transferFunction", "legend"});
 
     Session s;
     s.input = top.text("input");
