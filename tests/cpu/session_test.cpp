@@ -108,6 +108,16 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         if (at != std::string::npos) t.replace(at, from.size(), to);
         return t;
     };
+    // Cut-aways the CLI would refuse, and a clip plane without its point, written as the viewer writes.
+    auto withCut = [](const std::function<void(scene::CutAway&)>& edit) {
+        Session s = fullSession();
+        edit(s.settings.cut);
+        return session::sessionJson(s);
+    };
+    const std::string badCrop = withCut([](scene::CutAway& c) { c.crop->lo.x = 2.0; });
+    const std::string badClip = withCut([](scene::CutAway& c) { c.clips[0].normal = glm::dvec3(0.0); });
+    std::string noPoint = withCut([](scene::CutAway&) {});
+    noPoint.replace(noPoint.find("\"point\": ["), 7, "\"normal\"");  // {"normal": P, "normal": N}: nlohmann keeps the last
     const struct {
         std::string text;
         std::vector<std::string> fragments;
@@ -124,11 +134,16 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"traversal\": \"kdtree\"", "\"traversal\": \"octree\""), {"--traversal", "octree"}},
         {with("\"RGBPoints\"", "\"RGBPointz\""), {"transferFunction", "no RGBPoints"}},
         {with("\"eye\": [", "\"eye\": [\"x\", "), {"camera.eye"}},
-        {with("\"lo\": [", "\"lo\": [2.0, 0.0, 0.0], \"unused\": ["), {"/tmp/s.json", ".cut", "--crop", "axis x"}},
-        {with("\"normal\": [", "\"normal\": [0, 0, 0], \"unused\": ["), {".cut", "--clip", "normal 0 0 0"}},
+        {badCrop, {"/tmp/s.json", ".cut", "--crop", "axis x"}},
+        {badClip, {".cut", "--clip", "normal 0 0 0"}},
         {with("\"clip\": [", "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
          {".cut.clip", "at most 4 planes (got 5)"}},
-        {with("\"point\": [", "\"pont\": ["), {".cut.clip[0]", "missing \"point\""}},
+        {noPoint, {".cut.clip[0]", "missing \"point\""}},
+        // A key this amrvk does not know (a typo, a newer amrvk's setting) is named, not dropped.
+        {with("\"point\": [", "\"pont\": ["), {".cut.clip[0].pont: unknown key", "keys here: point, normal"}},
+        {with("\"densityScale\"", "\"densityscale\""), {"/tmp/s.json.render.densityscale: unknown key"}},
+        {with("\"structure\": {", "\"structure\": {\"bvhLeaf\": 4, "), {".structure.bvhLeaf: unknown key"}},
+        {with("\"amrvk\": \"session\",", "\"amrvk\": \"session\", \"denoise\": true,"), {"/tmp/s.json.denoise: unknown key"}},
     };
     for (const auto& c : cases) {
         const std::string e = errorOfParse(c.text);
