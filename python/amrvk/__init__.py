@@ -82,6 +82,52 @@ def _exit(self, *exc):
     return False
 
 
+def _one_line_type_errors(function, name):
+    """pybind11 refuses arguments of the wrong type with a TypeError of many lines (every overload's
+    signature, then the reprs of the arguments: whole arrays). Every error of amrvk is one line:
+    "NAME: incompatible arguments (GOT); expected SIGNATURE", the arguments by type only."""
+
+    def wrapped(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except TypeError as e:
+            text = str(e)
+            if "incompatible function arguments" not in text and "incompatible constructor arguments" not in text:
+                args = kwargs = None  # a failed __init__'s self is half made: no traceback may show it
+                raise
+            expected = " or ".join(line.strip().split(". ", 1)[-1].split(" -> ")[0]
+                                   for line in text.splitlines()[1:] if line[:5].strip()[:1].isdigit())
+            got = ", ".join([type(a).__name__ for a in args] + [f"{k}={type(v).__name__}" for k, v in kwargs.items()])
+            args = kwargs = None
+            raise TypeError(f"{name}: incompatible arguments ({got}); expected {expected}") from None
+        except BaseException:
+            args = kwargs = None
+            raise
+
+    wrapped.__doc__ = getattr(function, "__doc__", None)
+    wrapped.__name__ = getattr(function, "__name__", name)
+    return wrapped
+
+
+def _wrap_class(cls):
+    for key, member in list(vars(cls).items()):
+        if key.startswith("__") and key != "__init__":
+            continue
+        name = f"{cls.__name__}.{key}"
+        if isinstance(member, property):
+            if member.fset is not None:
+                setattr(cls, key, property(member.fget, _one_line_type_errors(member.fset, name), member.fdel,
+                                           member.__doc__))
+        elif isinstance(member, staticmethod):
+            setattr(cls, key, staticmethod(_one_line_type_errors(member.__func__, name)))
+        elif callable(member):
+            setattr(cls, key, _one_line_type_errors(member, name))
+
+
+for _cls in (Camera, Light, Renderer, TransferFunction, Volume):
+    _wrap_class(_cls)
+devices = _one_line_type_errors(devices, "devices")
+
 Renderer._repr_png_ = _repr_png_
 Renderer.__enter__ = _enter
 Renderer.__exit__ = _exit

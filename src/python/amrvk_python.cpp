@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -43,17 +45,46 @@ using namespace amrvk;
 
 namespace {
 
+// A value as a message shows it: its repr where that is one short line, else its type.
+std::string shortRepr(const py::handle& o) {
+    std::string shown = py::repr(o).cast<std::string>();
+    if (shown.size() > 64 || shown.find('\n') != std::string::npos) shown = strCat("a ", Py_TYPE(o.ptr())->tp_name);
+    return shown;
+}
+
 // A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range; anything else
 // is one line naming the keyword and the value (not pybind11's list of signatures).
 uint32_t countArg(const py::handle& o, const char* name) {
     constexpr long long kMax = scene::kMaxSpp;
-    const std::string shown = py::repr(o).cast<std::string>();
+    const std::string shown = shortRepr(o);
     if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
         throw py::type_error(strCat(name, ": expected a whole number in [1, ", kMax, "], got ", shown));
     int overflow = 0;
     const long long v = PyLong_AsLongLongAndOverflow(o.ptr(), &overflow);
     if (overflow != 0 || v < 1 || v > kMax) throw py::value_error(strCat(name, ": ", shown, " is outside [1, ", kMax, "]"));
     return uint32_t(v);
+}
+
+// A keyword's or property's value as T. The wrong type is a TypeError naming the keyword (one line,
+// not pybind11's "Unable to cast Python instance to C++ type"); an integer outside T a ValueError.
+template <typename T>
+T argAs(const py::handle& o, const char* name, const char* expected) {
+    if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+        if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
+            throw py::type_error(strCat(name, ": expected ", expected, ", got ", shortRepr(o)));
+        int overflow = 0;
+        const long long v = PyLong_AsLongLongAndOverflow(o.ptr(), &overflow);
+        constexpr long long lo = std::numeric_limits<T>::min(), hi = (long long)std::numeric_limits<T>::max();
+        if (overflow != 0 || v < lo || v > hi)
+            throw py::value_error(strCat(name, ": ", shortRepr(o), " is outside [", lo, ", ", hi, "]"));
+        return T(v);
+    } else {
+        try {
+            return o.cast<T>();
+        } catch (const py::cast_error&) {
+            throw py::type_error(strCat(name, ": expected ", expected, ", got ", shortRepr(o)));
+        }
+    }
 }
 
 // ---- Contexts: one per device choice, shared by the renderers that name it ---------------------
@@ -144,13 +175,13 @@ std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 // crop=(lo, hi) (world; None: no crop) and clip=[(point, normal), ...] (world), as --crop and --clip.
 std::optional<scene::CropBox> cropOf(const py::object& o) {
     if (o.is_none()) return std::nullopt;
-    const auto corners = o.cast<std::pair<std::vector<double>, std::vector<double>>>();
+    const auto corners = argAs<std::pair<std::vector<double>, std::vector<double>>>(o, "crop", "(lo, hi) with 3 numbers each, or None");
     return scene::CropBox{vec3(corners.first, "crop lo"), vec3(corners.second, "crop hi")};
 }
 std::vector<scene::ClipPlane> clipsOf(const py::object& o) {
     std::vector<scene::ClipPlane> out;
     if (o.is_none()) return out;
-    for (const auto& [point, normal] : o.cast<std::vector<std::pair<std::vector<double>, std::vector<double>>>>())
+    for (const auto& [point, normal] : argAs<std::vector<std::pair<std::vector<double>, std::vector<double>>>>(o, "clip", "a list of (point, normal) with 3 numbers each"))
         out.push_back({vec3(point, "clip point"), vec3(normal, "clip normal")});
     return out;
 }
@@ -238,7 +269,8 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
     if (level.shape(0) != n || values.shape(0) != n)
         throw py::value_error("lower, level and values must have the same length (got " + std::to_string(n) + ", " +
                               std::to_string(level.shape(0)) + ", " + std::to_string(values.shape(0)) + ")");
-    if (field.empty() || field.find('/') != std::string::npos) throw py::value_error("field: '" + field + "' is not a field name");
+    // amrvk::Error, not py::value_error: the name is the caller's and is shown escaped, on one line.
+    AMRVK_CHECK(!field.empty() && field.find('/') == std::string::npos, "field: '", field, "' is not a field name");
     amr::Model m;
     m.format = "arrays";
     m.source = source;
@@ -277,9 +309,17 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
 
 // ---- Transfer function -----------------------------------------------------------------------
 
+// A range a user gives (preset, rescaled), as --tf-range takes it: finite in float32, lo below hi.
+void checkTfRange(float lo, float hi, const char* what) {
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+        throw py::value_error(strCat(what, ": ", lo, " ", hi, " is not a finite float32 range"));
+    if (!(lo < hi)) throw py::value_error(strCat(what, ": ", lo, " ", hi, ": LO must be below HI"));
+}
+
 struct PyTf {
     scene::TfChannels channels;
     static PyTf preset(const std::string& name, float lo, float hi) {
+        checkTfRange(lo, hi, "preset");
         return {scene::TfChannels::split(scene::makePreset(name, lo, hi))};
     }
     // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles).
@@ -302,7 +342,10 @@ struct PyTf {
         return {scene::TfChannels::split(scene::TransferFunction(pos, col, name))};  // validated
     }
     scene::TransferFunction merged() const { return channels.merged(); }
-    PyTf rescaled(float lo, float hi) const { return {scene::TfChannels::split(merged().rescaled(lo, hi))}; }
+    PyTf rescaled(float lo, float hi) const {
+        checkTfRange(lo, hi, "rescaled");
+        return {scene::TfChannels::split(merged().rescaled(lo, hi))};
+    }
     py::tuple range() const {
         const scene::TransferFunction tf = merged();
         return py::make_tuple(tf.firstPosition(), tf.lastPosition());
@@ -535,19 +578,19 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
             throw py::type_error("Renderer() got an unexpected keyword argument '" + key + "'");
     }
-    if (auto o = take("width")) rs.width = o->cast<int>();
-    if (auto o = take("height")) rs.height = o->cast<int>();
-    if (auto o = take("mode")) rs.mode = scene::parseMode(o->cast<std::string>());
+    if (auto o = take("width")) rs.width = argAs<int>(*o, "width", "an integer");
+    if (auto o = take("height")) rs.height = argAs<int>(*o, "height", "an integer");
+    if (auto o = take("mode")) rs.mode = scene::parseMode(argAs<std::string>(*o, "mode", "a string"));
     if (auto o = take("spp")) s.spp = countArg(*o, "spp");
-    if (auto o = take("seed")) rs.seed = o->cast<uint32_t>();
-    if (auto o = take("density_scale")) rs.densityScale = o->cast<double>();
-    if (auto o = take("g")) rs.g = o->cast<double>();
-    if (auto o = take("ambient")) rs.ambient = vec3(o->cast<std::vector<double>>(), "ambient");
-    if (auto o = take("background")) rs.background = vec3(o->cast<std::vector<double>>(), "background");
-    if (auto o = take("lights")) rs.lights = o->cast<std::vector<scene::Light>>();
-    if (auto o = take("dt")) rs.dvrStep = o->cast<double>();
-    if (auto o = take("dvr_shading")) rs.dvrShading = o->cast<bool>();
-    if (auto o = take("fov")) rs.camera.fovYDegrees = o->cast<double>();
+    if (auto o = take("seed")) rs.seed = argAs<uint32_t>(*o, "seed", "an integer");
+    if (auto o = take("density_scale")) rs.densityScale = argAs<double>(*o, "density_scale", "a number");
+    if (auto o = take("g")) rs.g = argAs<double>(*o, "g", "a number");
+    if (auto o = take("ambient")) rs.ambient = vec3(argAs<std::vector<double>>(*o, "ambient", "3 numbers"), "ambient");
+    if (auto o = take("background")) rs.background = vec3(argAs<std::vector<double>>(*o, "background", "3 numbers"), "background");
+    if (auto o = take("lights")) rs.lights = argAs<std::vector<scene::Light>>(*o, "lights", "a list of Light");
+    if (auto o = take("dt")) rs.dvrStep = argAs<double>(*o, "dt", "a number");
+    if (auto o = take("dvr_shading")) rs.dvrShading = argAs<bool>(*o, "dvr_shading", "True or False");
+    if (auto o = take("fov")) rs.camera.fovYDegrees = argAs<double>(*o, "fov", "a number");
     if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
     if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
     if (camera) rs.camera = *camera;
@@ -555,28 +598,28 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (tf) s.tf = tf->channels;
     else d.tfSource = session::TfSource{};  // ramp over the field's range, as amrvk render
     if (auto o = take("tf_range")) {
-        const auto r = o->cast<std::pair<float, float>>();
+        const auto r = argAs<std::pair<float, float>>(*o, "tf_range", "(lo, hi)");
         d.tfRange = r;
     }
     const std::optional<py::object> traversal = take("traversal");
-    const std::string t = traversal ? traversal->cast<std::string>() : "";
+    const std::string t = traversal ? argAs<std::string>(*traversal, "traversal", "a string") : "";
     d.fit = t == "auto" ? session::StructureFit::Probe : t.empty() ? session::StructureFit::Data : session::StructureFit::None;
     if (!t.empty() && t != "auto") s.structure.traversal = scene::parseTraversal(t);
     if (auto o = take("sampler")) {
-        s.structure.sampler = scene::parseSampler(o->cast<std::string>());
+        s.structure.sampler = scene::parseSampler(argAs<std::string>(*o, "sampler", "a string"));
         d.samplerGiven = true;
     }
     s.structure.backend = scene::Backend::Auto;
     if (auto o = take("backend")) {
-        s.structure.backend = scene::parseBackend(o->cast<std::string>());
+        s.structure.backend = scene::parseBackend(argAs<std::string>(*o, "backend", "a string"));
         d.backendGiven = true;
     }
     if (auto o = take("grid")) {
-        s.structure.grid = o->cast<std::string>();
+        s.structure.grid = argAs<std::string>(*o, "grid", "a string");
         d.gridGiven = true;
     }
-    if (auto o = take("kd_leaves")) s.structure.kdLeaves = o->cast<uint32_t>();
-    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(o->cast<uint32_t>()) << 20;
+    if (auto o = take("kd_leaves")) s.structure.kdLeaves = argAs<uint32_t>(*o, "kd_leaves", "an integer");
+    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(argAs<uint32_t>(*o, "dense_max_mib", "an integer")) << 20;
     scene::validateSettings(rs);
     return d;
 }
@@ -585,9 +628,9 @@ gpu::ContextOptions contextOptions(const py::kwargs& kw) {
     gpu::ContextOptions o;
     auto has = [&](const char* k) { return kw.contains(k) && !kw[k].is_none(); };
     if (has("device")) o.device = py::str(kw["device"]);
-    if (has("validation")) o.validation = kw["validation"].cast<bool>();
-    if (has("gpu_timeout")) o.gpuTimeoutSeconds = kw["gpu_timeout"].cast<double>();
-    if (has("samples_per_invocation")) o.samplesPerInvocation = kw["samples_per_invocation"].cast<uint32_t>();
+    if (has("validation")) o.validation = argAs<bool>(kw["validation"], "validation", "True or False");
+    if (has("gpu_timeout")) o.gpuTimeoutSeconds = argAs<double>(kw["gpu_timeout"], "gpu_timeout", "a number of seconds");
+    if (has("samples_per_invocation")) o.samplesPerInvocation = argAs<uint32_t>(kw["samples_per_invocation"], "samples_per_invocation", "an integer");
     return o;
 }
 
@@ -599,7 +642,7 @@ std::shared_ptr<PyRenderer> makeRenderer(const PyVolume& volume, const std::opti
     const fs::path shaderDir = kw.contains("shader_dir") && !kw["shader_dir"].is_none()
                                    ? fs::path(py::str(kw["shader_dir"]).cast<std::string>())
                                    : fs::path();
-    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    const bool quiet = kw.contains("quiet") && argAs<bool>(kw["quiet"], "quiet", "True or False");
     std::shared_ptr<gpu::Context> ctx;
     {
         py::gil_scoped_release release;
@@ -621,7 +664,7 @@ std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::
     }
     gpu::ContextOptions co = contextOptions(kw);
     co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
-    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    const bool quiet = kw.contains("quiet") && argAs<bool>(kw["quiet"], "quiet", "True or False");
     std::shared_ptr<gpu::Context> ctx;
     {
         py::gil_scoped_release release;
@@ -636,16 +679,26 @@ namespace {
 
 // One-line errors: amrvk's own errors are bad input (ValueError) unless they come from the device
 // or the runtime, which raise RuntimeError through their own types.
+// The message as Python text: bytes that are not UTF-8 (a name from a file, bytes passed for a
+// str) are shown as \xNN instead of emptying the message (PyErr_SetString's decode fails).
+void raise(PyObject* type, const std::string& message) {
+    PyObject* text = PyUnicode_DecodeUTF8(message.data(), Py_ssize_t(message.size()), "backslashreplace");
+    PyErr_SetObject(type, text);
+    Py_XDECREF(text);
+}
+
 void bindErrors() {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const gpu::ShaderCompileError& e) {
-            PyErr_SetString(PyExc_RuntimeError, e.what());
+            raise(PyExc_RuntimeError, e.what());
         } catch (const Error& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            raise(PyExc_ValueError, e.what());
         } catch (const std::bad_alloc&) {
             PyErr_SetString(PyExc_MemoryError, "out of memory");
+        } catch (const py::cast_error& e) {  // a value that argAs did not name: still one line, a TypeError
+            raise(PyExc_TypeError, strCat("a value of the wrong type (", e.what(), ")"));
         }
     });
 
