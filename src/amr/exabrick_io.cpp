@@ -83,8 +83,9 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
     // Every size checked before anything is read or allocated: a 4 GiB .cells beside a short
     // .scalars used to be read whole first, and the cells were never held to the memory budget.
     for (const size_t c : components) checkScalars(scalarFiles[c].second, count, cellsPath);
-    checkAllocation(checkedProduct({count, sizeof(Cell) + components.size() * sizeof(float)}, cellsPath.string()),
-                    cellsPath.string() + ": the cells and their values");
+    const uint64_t bytes =
+        checkedProduct({count, sizeof(Cell) + components.size() * sizeof(float)}, cellsPath.string());
+    checkAllocation(bytes, cellsPath.string() + ": the cells and their values");
     BinaryReader cells(cellsPath);
     cells.readArray(model.cells, count);
     for (size_t i = 0; i < components.size(); ++i)

@@ -16,12 +16,12 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <type_traits>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "amr/readers.h"
@@ -175,13 +175,15 @@ std::vector<double> list3(glm::dvec3 v) { return {v.x, v.y, v.z}; }
 // crop=(lo, hi) (world; None: no crop) and clip=[(point, normal), ...] (world), as --crop and --clip.
 std::optional<scene::CropBox> cropOf(const py::object& o) {
     if (o.is_none()) return std::nullopt;
-    const auto corners = argAs<std::pair<std::vector<double>, std::vector<double>>>(o, "crop", "(lo, hi) with 3 numbers each, or None");
+    const auto corners =
+        argAs<std::pair<std::vector<double>, std::vector<double>>>(o, "crop", "(lo, hi) with 3 numbers each, or None");
     return scene::CropBox{vec3(corners.first, "crop lo"), vec3(corners.second, "crop hi")};
 }
 std::vector<scene::ClipPlane> clipsOf(const py::object& o) {
     std::vector<scene::ClipPlane> out;
     if (o.is_none()) return out;
-    for (const auto& [point, normal] : argAs<std::vector<std::pair<std::vector<double>, std::vector<double>>>>(o, "clip", "a list of (point, normal) with 3 numbers each"))
+    for (const auto& [point, normal] : argAs<std::vector<std::pair<std::vector<double>, std::vector<double>>>>(
+             o, "clip", "a list of (point, normal) with 3 numbers each"))
         out.push_back({vec3(point, "clip point"), vec3(normal, "clip normal")});
     return out;
 }
@@ -586,7 +588,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (auto o = take("density_scale")) rs.densityScale = argAs<double>(*o, "density_scale", "a number");
     if (auto o = take("g")) rs.g = argAs<double>(*o, "g", "a number");
     if (auto o = take("ambient")) rs.ambient = vec3(argAs<std::vector<double>>(*o, "ambient", "3 numbers"), "ambient");
-    if (auto o = take("background")) rs.background = vec3(argAs<std::vector<double>>(*o, "background", "3 numbers"), "background");
+    if (auto o = take("background"))
+        rs.background = vec3(argAs<std::vector<double>>(*o, "background", "3 numbers"), "background");
     if (auto o = take("lights")) rs.lights = argAs<std::vector<scene::Light>>(*o, "lights", "a list of Light");
     if (auto o = take("dt")) rs.dvrStep = argAs<double>(*o, "dt", "a number");
     if (auto o = take("dvr_shading")) rs.dvrShading = argAs<bool>(*o, "dvr_shading", "True or False");
@@ -619,7 +622,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         d.gridGiven = true;
     }
     if (auto o = take("kd_leaves")) s.structure.kdLeaves = argAs<uint32_t>(*o, "kd_leaves", "an integer");
-    if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(argAs<uint32_t>(*o, "dense_max_mib", "an integer")) << 20;
+    if (auto o = take("dense_max_mib"))
+        s.structure.denseMaxBytes = uint64_t(argAs<uint32_t>(*o, "dense_max_mib", "an integer")) << 20;
     scene::validateSettings(rs);
     return d;
 }
@@ -629,8 +633,10 @@ gpu::ContextOptions contextOptions(const py::kwargs& kw) {
     auto has = [&](const char* k) { return kw.contains(k) && !kw[k].is_none(); };
     if (has("device")) o.device = py::str(kw["device"]);
     if (has("validation")) o.validation = argAs<bool>(kw["validation"], "validation", "True or False");
-    if (has("gpu_timeout")) o.gpuTimeoutSeconds = argAs<double>(kw["gpu_timeout"], "gpu_timeout", "a number of seconds");
-    if (has("samples_per_invocation")) o.samplesPerInvocation = argAs<uint32_t>(kw["samples_per_invocation"], "samples_per_invocation", "an integer");
+    if (has("gpu_timeout"))
+        o.gpuTimeoutSeconds = argAs<double>(kw["gpu_timeout"], "gpu_timeout", "a number of seconds");
+    if (has("samples_per_invocation"))
+        o.samplesPerInvocation = argAs<uint32_t>(kw["samples_per_invocation"], "samples_per_invocation", "an integer");
     return o;
 }
 

@@ -332,8 +332,8 @@ Session parseSession(const std::string& text, const fs::path& path) {
                 ": not an amrvk session (expected \"amrvk\": \"session\")");
     const int64_t version = top.integer("version", 1, 1 << 20);
     AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
-    top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut", "structure",
-                  "transferFunction", "legend"});
+    top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut",
+                  "structure", "transferFunction", "legend"});
 
     Session s;
     s.input = top.text("input");

@@ -12,8 +12,8 @@
 
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -45,7 +45,7 @@ struct Input {
 struct SizeCase {
     std::string name;
     std::function<Input(const fs::path& dir)> make;
-    std::string expect;        // a fragment of the error; "" = the read must succeed
+    std::string expect;           // a fragment of the error; "" = the read must succeed
     const char* needs = nullptr;  // real data set the case copies (skipped where absent)
 };
 void PrintTo(const SizeCase& c, std::ostream* os) { *os << c.name; }
@@ -75,7 +75,8 @@ SizeCase exaLevel(std::string name, int32_t level) {
 
 // ---- raw ----
 
-SizeCase raw(std::string name, std::string file, uintmax_t bytes, glm::ivec3 dims, std::string type, std::string expect) {
+SizeCase raw(std::string name, std::string file, uintmax_t bytes, glm::ivec3 dims, std::string type,
+             std::string expect) {
     return {std::move(name),
             [=](const fs::path& d) {
                 writeAll(d / file, "");
@@ -148,16 +149,18 @@ SizeCase ramses(std::string name, std::function<void(std::map<std::string, std::
             std::move(expect)};
 }
 SizeCase ramsesAmr(std::string name, int record, size_t index, int32_t value, std::string expect) {
-    return ramses(std::move(name), [=](auto& f) { patchRecord(f["amr_00001.out00001"], record, index, value); },
-                  std::move(expect));
+    return ramses(
+        std::move(name), [=](auto& f) { patchRecord(f["amr_00001.out00001"], record, index, value); },
+        std::move(expect));
 }
 SizeCase ramsesInfo(std::string name, std::string from, std::string to, std::string expect) {
-    return ramses(std::move(name),
-                  [=](auto& f) {
-                      std::string& t = f["info_00001.txt"];
-                      t.replace(t.find(from), from.size(), to);
-                  },
-                  std::move(expect));
+    return ramses(
+        std::move(name),
+        [=](auto& f) {
+            std::string& t = f["info_00001.txt"];
+            t.replace(t.find(from), from.size(), to);
+        },
+        std::move(expect));
 }
 
 // ---- Enzo: a copy of DD0018's text files (the grid files linked), one value replaced ----
@@ -167,7 +170,8 @@ SizeCase enzo(std::string name, std::string file, std::string from, std::string 
             [=](const fs::path& d) {
                 const fs::path real = dataDir() / kEnzo;
                 fs::create_directories(d / "DD0018");
-                for (const char* n : {"DD0018.cpu0000", "DD0018.cpu0001"}) fs::create_symlink(real / n, d / "DD0018" / n);
+                for (const char* n : {"DD0018.cpu0000", "DD0018.cpu0001"})
+                    fs::create_symlink(real / n, d / "DD0018" / n);
                 for (const char* n : {"DD0018", "DD0018.hierarchy"}) {
                     std::string text = readAll(real / n);
                     if (n == file) {
@@ -215,7 +219,8 @@ SizeCase chombo(std::string name, std::function<void(hid_t)> edit, std::string e
             std::move(expect), kChombo};
 }
 SizeCase chomboInt(std::string name, const char* group, const char* attribute, int value, std::string expect) {
-    return chombo(std::move(name), [=](hid_t f) { writeIntAttribute(f, group, attribute, value); }, std::move(expect));
+    return chombo(
+        std::move(name), [=](hid_t f) { writeIntAttribute(f, group, attribute, value); }, std::move(expect));
 }
 
 constexpr int32_t kIntMax = INT32_MAX;
@@ -256,7 +261,8 @@ std::vector<SizeCase> cases() {
     c.push_back(exaLevel("ExaBrickLevel32", 32));
     c.push_back(exaLevel("ExaBrickLevelIntMax", kIntMax));
     c.push_back(exaCells("ExaBrickCoordIntMax", {{kIntMax, 0, 0, 0}}, 1, "c.cells"));
-    c.push_back(exaCells("ExaBrickCoordIntMin", {{0, INT32_MIN, 0, 0}}, 1, ""));  // the span is checked later (makeVolume)
+    c.push_back(
+        exaCells("ExaBrickCoordIntMin", {{0, INT32_MIN, 0, 0}}, 1, ""));  // the span is checked later (makeVolume)
     c.push_back(exaCells("ExaBrickCoordMinus1", {{0, 0, -1, 0}}, 1, ""));
     c.push_back(exaCells("ExaBrickCoordOffLevelGrid", {{1, 0, 0, 1}}, 1, "c.cells"));
     // Raw: dims of 0, 1, 2^31 - 1 and products past 2^63 bytes, file sizes of 0, 1 too many, 4 GiB.
@@ -265,7 +271,8 @@ std::vector<SizeCase> cases() {
     c.push_back(raw("RawOneByteTooMany", "v.raw", 2, {1, 1, 1}, "uint8", "v.raw"));
     c.push_back(raw("RawDimsZero", "v.raw", 1, {0, 1, 1}, "uint8", "raw dimensions 0x1x1 must all be positive"));
     c.push_back(raw("RawDimsNegative", "v.raw", 1, {-1, 1, 1}, "uint8", "raw dimensions -1x1x1 must all be positive"));
-    c.push_back(raw("RawDimsIntMax", "v.raw", 1, {kIntMax, 1, 1}, "uint8", "raw dimensions 2147483647x1x1 exceed 2^30"));
+    c.push_back(
+        raw("RawDimsIntMax", "v.raw", 1, {kIntMax, 1, 1}, "uint8", "raw dimensions 2147483647x1x1 exceed 2^30"));
     c.push_back(raw("RawDimsAtLimitProductPast2To63", "v.raw", 8, {1 << 20, 1 << 20, 1 << 20}, "float64", "v.raw"));
     c.push_back(raw("RawSparse4GiBMatchingDims", "v.raw", k4G, {1024, 1024, 4096}, "uint8", "memory budget"));
     c.push_back(raw("RawNameDimsIntMax", "v_2147483647x1x1_uint8.raw", 1, {0, 0, 0}, "", "v_2147483647x1x1_uint8.raw"));
@@ -285,8 +292,10 @@ std::vector<SizeCase> cases() {
     c.push_back(amrex("AmrexFinestLevelIntMax", H, 6, "2147483647", "Header"));
     c.push_back(amrex("AmrexRatioZero", H, 9, "0 ", "Header"));
     c.push_back(amrex("AmrexRatioIntMax", H, 9, "2147483647 ", "Header"));
-    c.push_back(amrex("AmrexDomainIntMax", H, 10, "((0,0,0) (2147483647,3,3) (0,0,0)) ((0,0,0) (7,7,7) (0,0,0)) ", "Header"));
-    c.push_back(amrex("AmrexDomainIntMin", H, 10, "((-2147483648,0,0) (3,3,3) (0,0,0)) ((0,0,0) (7,7,7) (0,0,0)) ", "Header"));
+    c.push_back(
+        amrex("AmrexDomainIntMax", H, 10, "((0,0,0) (2147483647,3,3) (0,0,0)) ((0,0,0) (7,7,7) (0,0,0)) ", "Header"));
+    c.push_back(
+        amrex("AmrexDomainIntMin", H, 10, "((-2147483648,0,0) (3,3,3) (0,0,0)) ((0,0,0) (7,7,7) (0,0,0)) ", "Header"));
     c.push_back(amrex("AmrexGridsZero", H, 16, "0 0 0.5", "Header: line 17: level 0 has no boxes"));
     c.push_back(amrex("AmrexGridsIntMax", H, 16, "0 2147483647 0.5", "Header"));
     c.push_back(amrex("AmrexGrids2To32", H, 16, "0 4294967296 0.5", "Header"));
@@ -315,34 +324,41 @@ std::vector<SizeCase> cases() {
     c.push_back(ramsesAmr("RamsesNlevelmaxIntMax", 3, 0, kIntMax, "amr_00001.out00001"));
     c.push_back(ramsesAmr("RamsesNlevelmaxMinus1", 3, 0, -1, "amr_00001.out00001"));
     c.push_back(ramsesAmr("RamsesNgridmaxIntMax", 4, 0, kIntMax, ""));  // a capacity: nothing is sized by it
-    c.push_back(ramses("RamsesMarkerIntMax", [](auto& f) { patchMarker(f["amr_00001.out00001"], 0, false, kIntMax); },
-                       "amr_00001.out00001"));
-    c.push_back(ramses("RamsesMarkerMinus1", [](auto& f) { patchMarker(f["amr_00001.out00001"], 1, false, -1); },
-                       "amr_00001.out00001"));
-    c.push_back(ramses("RamsesMarkersDisagree", [](auto& f) { patchMarker(f["amr_00001.out00001"], 2, true, 8); },
-                       "amr_00001.out00001"));
-    c.push_back(ramses("RamsesHydroNvarIntMax", [](auto& f) { patchRecord(f["hydro_00001.out00001"], 1, 0, kIntMax); },
-                       "hydro_00001.out00001"));
-    c.push_back(ramses("RamsesAmrFileEmpty", [](auto& f) { f["amr_00001.out00001"].clear(); }, "amr_00001.out00001"));
+    c.push_back(ramses(
+        "RamsesMarkerIntMax", [](auto& f) { patchMarker(f["amr_00001.out00001"], 0, false, kIntMax); },
+        "amr_00001.out00001"));
+    c.push_back(ramses(
+        "RamsesMarkerMinus1", [](auto& f) { patchMarker(f["amr_00001.out00001"], 1, false, -1); },
+        "amr_00001.out00001"));
+    c.push_back(ramses(
+        "RamsesMarkersDisagree", [](auto& f) { patchMarker(f["amr_00001.out00001"], 2, true, 8); },
+        "amr_00001.out00001"));
+    c.push_back(ramses(
+        "RamsesHydroNvarIntMax", [](auto& f) { patchRecord(f["hydro_00001.out00001"], 1, 0, kIntMax); },
+        "hydro_00001.out00001"));
+    c.push_back(ramses(
+        "RamsesAmrFileEmpty", [](auto& f) { f["amr_00001.out00001"].clear(); }, "amr_00001.out00001"));
     c.push_back(ramsesInfo("RamsesInfoNcpuIntMax", "ncpu        =          1", "ncpu        =          2147483647",
                            "info_00001.txt"));
     c.push_back(ramsesInfo("RamsesInfoNcpu2To63", "ncpu        =          1", "ncpu        = 9223372036854775808",
                            "info_00001.txt"));
-    c.push_back(ramsesInfo("RamsesInfoNcpuZero", "ncpu        =          1", "ncpu        =          0", "info_00001.txt"));
-    c.push_back(ramsesInfo("RamsesInfoLevelmaxIntMax", "levelmax    =          2", "levelmax    = 2147483647",
-                           "output_00001"));
+    c.push_back(
+        ramsesInfo("RamsesInfoNcpuZero", "ncpu        =          1", "ncpu        =          0", "info_00001.txt"));
+    c.push_back(
+        ramsesInfo("RamsesInfoLevelmaxIntMax", "levelmax    =          2", "levelmax    = 2147483647", "output_00001"));
     // Enzo: grid dimensions and indices, field counts, the top grid and refinement.
     const std::string hier = "DD0018.hierarchy", par = "DD0018";
     const std::string dim1 = "GridDimension     = 38 38 22 ";
     c.push_back(enzo("EnzoGridDimensionZero", hier, dim1, "GridDimension     = 0 0 0 ", "DD0018.hierarchy"));
     // The files hold the active zone: GridDimension (with ghost zones) is only the other shape allowed.
     c.push_back(enzo("EnzoGridDimensionIntMax", hier, dim1, "GridDimension     = 2147483647 38 22 ", ""));
-    c.push_back(enzo("EnzoGridDimension2To32", hier, dim1, "GridDimension     = 4294967296 38 22 ", "DD0018.hierarchy"));
+    c.push_back(
+        enzo("EnzoGridDimension2To32", hier, dim1, "GridDimension     = 4294967296 38 22 ", "DD0018.hierarchy"));
     c.push_back(enzo("EnzoGridDimensionMinus1", hier, dim1, "GridDimension     = -1 38 22 ", "DD0018.hierarchy"));
     c.push_back(enzo("EnzoStartPastEnd", hier, "GridStartIndex    = 3 3 3 ", "GridStartIndex    = 35 3 3 ",
                      "DD0018.hierarchy"));
-    c.push_back(enzo("EnzoEndIndexIntMax", hier, "GridEndIndex      = 34 34 18 ", "GridEndIndex      = 2147483647 34 18 ",
-                     "DD0018.hierarchy"));
+    c.push_back(enzo("EnzoEndIndexIntMax", hier, "GridEndIndex      = 34 34 18 ",
+                     "GridEndIndex      = 2147483647 34 18 ", "DD0018.hierarchy"));
     // The fields are the grid file's datasets: the count is not used to size anything.
     c.push_back(enzo("EnzoFieldsZero", hier, "NumberOfBaryonFields = 6", "NumberOfBaryonFields = 0", ""));
     c.push_back(enzo("EnzoFieldsIntMax", hier, "NumberOfBaryonFields = 6", "NumberOfBaryonFields = 2147483647", ""));
@@ -350,11 +366,12 @@ std::vector<SizeCase> cases() {
     c.push_back(enzo("EnzoGridRankZero", hier, "GridRank          = 3", "GridRank          = 0", "DD0018.hierarchy"));
     c.push_back(enzo("EnzoGridRank2To63", hier, "GridRank          = 3", "GridRank          = 9223372036854775808",
                      "DD0018.hierarchy"));
-    c.push_back(enzo("EnzoTopGridZero", par, "TopGridDimensions   = 32 32 32", "TopGridDimensions   = 0 0 0", "DD0018"));
+    c.push_back(
+        enzo("EnzoTopGridZero", par, "TopGridDimensions   = 32 32 32", "TopGridDimensions   = 0 0 0", "DD0018"));
     c.push_back(enzo("EnzoTopGridIntMax", par, "TopGridDimensions   = 32 32 32",
                      "TopGridDimensions   = 2147483647 2147483647 2147483647", "DD0018"));
-    c.push_back(enzo("EnzoRefineByZero", par, "RefineBy                       = 2", "RefineBy                       = 0",
-                     "DD0018"));
+    c.push_back(enzo("EnzoRefineByZero", par, "RefineBy                       = 2",
+                     "RefineBy                       = 0", "DD0018"));
     c.push_back(enzo("EnzoRefineBy2To31", par, "RefineBy                       = 2",
                      "RefineBy                       = 2147483648", "DD0018"));
     // Chombo: counts and ratios as attributes, data offsets as a dataset.
@@ -370,12 +387,14 @@ std::vector<SizeCase> cases() {
     c.push_back(chomboInt("ChomboSpaceDimZero", "Chombo_global", "SpaceDim", 0, ""));  // as absent: the boxes say 2-D
     c.push_back(chomboInt("ChomboSpaceDim3With2DBoxes", "Chombo_global", "SpaceDim", 3, "plt000100.2d.hdf5"));
     c.push_back(chomboInt("ChomboSpaceDimIntMax", "Chombo_global", "SpaceDim", kIntMax, "plt000100.2d.hdf5"));
-    c.push_back(chombo("ChomboOffset2To63", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", INT64_MAX); },
-                       "plt000100.2d.hdf5"));
-    c.push_back(chombo("ChomboOffsetMinus1", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", -1); },
-                       "plt000100.2d.hdf5"));
-    c.push_back(chombo("ChomboOffset2To32", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", int64_t(k4G)); },
-                       "plt000100.2d.hdf5"));
+    c.push_back(chombo(
+        "ChomboOffset2To63", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", INT64_MAX); },
+        "plt000100.2d.hdf5"));
+    c.push_back(chombo(
+        "ChomboOffsetMinus1", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", -1); }, "plt000100.2d.hdf5"));
+    c.push_back(chombo(
+        "ChomboOffset2To32", [](hid_t f) { writeFirstInt64(f, "level_0/data:offsets=0", int64_t(k4G)); },
+        "plt000100.2d.hdf5"));
     return c;
 }
 

@@ -117,7 +117,8 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
     const std::string badCrop = withCut([](scene::CutAway& c) { c.crop->lo.x = 2.0; });
     const std::string badClip = withCut([](scene::CutAway& c) { c.clips[0].normal = glm::dvec3(0.0); });
     std::string noPoint = withCut([](scene::CutAway&) {});
-    noPoint.replace(noPoint.find("\"point\": ["), 7, "\"normal\"");  // {"normal": P, "normal": N}: nlohmann keeps the last
+    // {"normal": P, "normal": N}: nlohmann keeps one of them, and "point" is missing.
+    noPoint.replace(noPoint.find("\"point\": ["), 7, "\"normal\"");
     const struct {
         std::string text;
         std::vector<std::string> fragments;
@@ -143,7 +144,8 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"point\": [", "\"pont\": ["), {".cut.clip[0].pont: unknown key", "keys here: point, normal"}},
         {with("\"densityScale\"", "\"densityscale\""), {"/tmp/s.json.render.densityscale: unknown key"}},
         {with("\"structure\": {", "\"structure\": {\"bvhLeaf\": 4, "), {".structure.bvhLeaf: unknown key"}},
-        {with("\"amrvk\": \"session\",", "\"amrvk\": \"session\", \"denoise\": true,"), {"/tmp/s.json.denoise: unknown key"}},
+        {with("\"amrvk\": \"session\",", "\"amrvk\": \"session\", \"denoise\": true,"),
+         {"/tmp/s.json.denoise: unknown key"}},
     };
     for (const auto& c : cases) {
         const std::string e = errorOfParse(c.text);
