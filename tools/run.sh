@@ -21,7 +21,7 @@ base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validatio
            libhdf5-dev libpng-dev zlib1g-dev nlohmann-json3-dev python3 python3-matplotlib
            libcli11-dev libtinyexr-dev libtbb-dev libshaderc-dev
            libimgui-dev xvfb xauth xdotool libfreetype-dev fonts-dejavu-core
-           python3-dev pybind11-dev python3-numpy python3-pytest python3-yt python3-tqdm
+           python3-dev pybind11-dev python3-numpy python3-pytest python3-hypothesis python3-yt python3-tqdm
            python3-nbformat python3-nbconvert python3-ipykernel python3-ipywidgets  # docs/python.md as a notebook
            openmpi-bin libopenmpi-dev
            ffmpeg)  # render -o movie.mp4 runs it; its tests skip without it

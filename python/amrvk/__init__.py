@@ -16,6 +16,7 @@ from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
 from . import one_line_errors as _one_line_errors
 
 _one_line_errors.install([Camera, Light, Renderer, TransferFunction, Volume])
+devices = _one_line_errors.wrap_function(devices, "devices")
 from . import cameras as _cameras
 from . import colormaps as _colormaps
 from . import yt_bridge as _yt_bridge
@@ -109,6 +110,7 @@ def _enter(self):
 def _exit(self, *exc):
     self.close()
     return False
+
 
 
 Renderer._repr_png_ = _repr_png_

@@ -64,6 +64,13 @@ def _expected(kind):
             "int": "a whole number", "float": "a number"}.get(kind, kind.replace("amrvk._amrvk.", "an amrvk."))
 
 
+def _shown(value):
+    """A value as one short line: its repr, or its type where the repr is long or spans lines
+    (a numpy array's)."""
+    shown = repr(value)
+    return shown if len(shown) <= 60 and "\n" not in shown else f"a {type(value).__name__}"
+
+
 def _one_line(qualname, message, args, kwargs):
     found = _SIGNATURE.search(message)
     if found is None:
@@ -76,9 +83,7 @@ def _one_line(qualname, message, args, kwargs):
     kinds = dict(parameters)
     for name, value in given:
         if name in kinds and not _fits(value, kinds[name]):
-            shown = repr(value)
-            shown = shown if len(shown) <= 60 else shown[:57] + "..."
-            return f"{name}: expected {_expected(kinds[name])}, got {shown}"
+            return f"{name}: expected {_expected(kinds[name])}, got {_shown(value)}"
     names = ", ".join(n for n, _ in parameters)
     return f"{qualname}: the arguments do not fit its parameters ({names})"
 
@@ -90,14 +95,24 @@ def _wrap(function, qualname, skip_self):
             return function(*args, **kwargs)
         except TypeError as e:
             text = str(e)
-            if "incompatible" not in text or "\n" not in text:
-                raise
-            line = _one_line(qualname, text, args[1:] if skip_self else args, kwargs)
+            line = None
+            if "incompatible" in text and "\n" in text:
+                line = _one_line(qualname, text, args[1:] if skip_self else args, kwargs)
+            # A failed __init__'s self is half made: no traceback frame may keep it reachable.
+            args = kwargs = None
             if line is None:
                 raise
             raise TypeError(line) from None
+        except BaseException:
+            args = kwargs = None
+            raise
 
     return call
+
+
+def wrap_function(function, qualname):
+    """A module-level function of the compiled module, wrapped as the methods are."""
+    return _wrap(function, qualname, False)
 
 
 def install(classes):

@@ -254,6 +254,9 @@ Header readHeader(const fs::path& headerPath) {
         AMRVK_CHECK(lev == l, in.where(), ": expected level ", l, ", found ", lev);
         const int nboxes = in.readInt("box count");
         AMRVK_CHECK(nboxes >= 0, in.where(), ": negative box count");
+        // A level without boxes is not written by AMReX; reading on would take the box extents
+        // for the MultiFab prefix and blame a file that was never named.
+        AMRVK_CHECK(nboxes > 0, in.where(), ": level ", l, " has no boxes");
         in.readDouble("level time");
         in.readInt("level step");
         for (int64_t i = 0; i < int64_t{nboxes} * 2 * h.dim; ++i) in.readDouble("physical box extent");

@@ -4,6 +4,7 @@
 
 #include "amr/block_structured.h"
 #include "amr/readers.h"
+#include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 
@@ -79,13 +80,16 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
     const auto& scalarFiles = o.scalarFiles;
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
 
+    // Every size checked before anything is read or allocated: a 4 GiB .cells beside a short
+    // .scalars used to be read whole first, and the cells were never held to the memory budget.
+    for (const size_t c : components) checkScalars(scalarFiles[c].second, count, cellsPath);
+    const uint64_t bytes =
+        checkedProduct({count, sizeof(Cell) + components.size() * sizeof(float)}, cellsPath.string());
+    checkAllocation(bytes, cellsPath.string() + ": the cells and their values");
     BinaryReader cells(cellsPath);
     cells.readArray(model.cells, count);
-    for (size_t i = 0; i < components.size(); ++i) {
-        const fs::path& p = scalarFiles[components[i]].second;
-        checkScalars(p, count, cellsPath);
-        BinaryReader(p).readArray(model.fields[i].values, count);
-    }
+    for (size_t i = 0; i < components.size(); ++i)
+        BinaryReader(scalarFiles[components[i]].second).readArray(model.fields[i].values, count);
     return model;
 }
 

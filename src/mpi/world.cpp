@@ -7,6 +7,8 @@
 #include <chrono>
 #include <climits>
 #include <cstdio>
+#include <cstdlib>
+#include <map>
 #include <thread>
 
 #include "core/error.h"
@@ -26,6 +28,35 @@ void check(int rc, const char* what) {
     int length = 0;
     MPI_Error_string(rc, text, &length);
     AMRVK_CHECK(false, "MPI: ", what, ": ", std::string(text, size_t(length)));
+}
+
+// Test hook (tests/mpi/collective_faults.sh): AMRVK_TEST_MPI_FAIL=CALL:RANK[:NTH] makes World's
+// collective CALL (agree, gatherToRoot, maxOverRanks, requireSame, minLocEverywhere, sumEverywhere,
+// productEverywhere) fail on rank RANK at its NTH call (default 1), as if MPI had returned an
+// error there: that rank throws instead of joining the collective.
+void injectedFault(const char* call, int rank) {
+    static const std::string spec = [] {
+        const char* env = std::getenv("AMRVK_TEST_MPI_FAIL");
+        return std::string(env ? env : "");
+    }();
+    if (spec.empty()) return;
+    static std::map<std::string, long> calls;
+    const long nth = ++calls[call];
+    const size_t a = spec.find(':'), b = spec.find(':', a == std::string::npos ? a : a + 1);
+    if (a == std::string::npos || spec.substr(0, a) != call) return;
+    if (std::strtol(spec.c_str() + a + 1, nullptr, 10) != rank) return;
+    if (nth != (b == std::string::npos ? 1L : std::strtol(spec.c_str() + b + 1, nullptr, 10))) return;
+    AMRVK_CHECK(false, "MPI: ", call, ": injected fault (AMRVK_TEST_MPI_FAIL=", spec, ")");
+}
+
+// Test hook: AMRVK_TEST_MPI_FAILED_WAIT_S=S replaces how long a failed rank waits for the others
+// at an agreement (World::agree's failedWaitSeconds), so that the fault tests end in seconds.
+double failedWait(double seconds) {
+    static const double test = [] {
+        const char* env = std::getenv("AMRVK_TEST_MPI_FAILED_WAIT_S");
+        return env ? std::strtod(env, nullptr) : -1.0;
+    }();
+    return test > 0 ? test : seconds;
 }
 
 // Waits for a non-blocking collective; past `deadline` seconds (< 0: none) returns false.
@@ -78,12 +109,14 @@ World::World() {
 World::~World() { MPI_Finalize(); }
 
 Failure World::agree(const std::string& error, const std::string& lineIfAlone, double failedWaitSeconds, bool fatal) {
+    injectedFault("agree", mRank);
     const int mine = error.empty() ? 0 : fatal ? 2 : 1;
     std::vector<int> all(size_t(mSize), 0);
     MPI_Request request;
     check(MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &request), "MPI_Iallgather");
     // A healthy rank waits as long as the others work; a rank that is leaving only so long.
-    if (!waitFor(request, mine == 2 ? failedWaitSeconds : -1.0)) abort(lineIfAlone.empty() ? error : lineIfAlone);
+    if (!waitFor(request, mine == 2 ? failedWait(failedWaitSeconds) : -1.0))
+        abort(lineIfAlone.empty() ? error : lineIfAlone);
     Failure f;
     for (int r = 0; r < mSize; ++r)
         if (all[size_t(r)]) {
@@ -115,6 +148,7 @@ void World::checkpoint() {
 
 
 std::vector<std::string> World::gatherToRoot(const std::string& text) {
+    injectedFault("gatherToRoot", mRank);
     AMRVK_CHECK(text.size() < size_t(INT_MAX / 2), "internal: gathered text too long");
     const int length = int(text.size());
     std::vector<int> lengths(size_t(mSize), 0), offsets(size_t(mSize), 0);
@@ -140,31 +174,38 @@ std::vector<std::string> World::gatherToRoot(const std::string& text) {
 }
 
 double World::maxOverRanks(double value) {
+    injectedFault("maxOverRanks", mRank);
     double most = value;
     check(MPI_Allreduce(&value, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
     return most;
 }
 
 void World::requireSame(uint64_t fingerprint, const std::string& what, const std::string& hint) {
+    injectedFault("requireSame", mRank);
     uint64_t range[2] = {fingerprint, ~fingerprint};  // min of the value, min of its complement (max)
     check(MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
     AMRVK_CHECK(range[0] == fingerprint && ~range[1] == fingerprint, "ranks disagree on ", what, " (", hint, ")");
 }
 
 uint64_t World::minLocEverywhere(std::vector<FloatRank>& values) {
+    injectedFault("minLocEverywhere", mRank);
     static_assert(sizeof(FloatRank) == 8);
     return allPieces(values.data(), values.size(), MPI_FLOAT_INT, MPI_MINLOC);
 }
 uint64_t World::sumEverywhere(std::vector<float>& values) {
+    injectedFault("sumEverywhere", mRank);
     return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_SUM);
 }
 uint64_t World::productEverywhere(std::span<float> values) {
+    injectedFault("productEverywhere", mRank);
     return allPieces(values.data(), values.size(), MPI_FLOAT, MPI_PROD);
 }
 uint64_t World::sumEverywhere(std::vector<double>& values) {
+    injectedFault("sumEverywhere", mRank);
     return allPieces(values.data(), values.size(), MPI_DOUBLE, MPI_SUM);
 }
 uint64_t World::sumEverywhere(std::vector<uint64_t>& values) {
+    injectedFault("sumEverywhere", mRank);
     return allPieces(values.data(), values.size(), MPI_UINT64_T, MPI_SUM);
 }
 
@@ -194,8 +235,17 @@ int runOnEveryRank(const std::string& command, const std::function<int(World&)>&
         error = describe(std::current_exception());
         if (error.empty()) error = "unknown error";
     }
-    if (failure.rank < 0)
-        failure = world.agree(error, prefix + "rank " + std::to_string(world.rank()) + ofN + ": " + error);
+    const std::string mine = prefix + "rank " + std::to_string(world.rank()) + ofN + ": ";
+    if (failure.rank < 0) {
+        // The agreement itself can fail (MPI returns an error): this rank cannot tell the others, who
+        // wait for it without a deadline, so it ends the job with its own line (it used to leave
+        // the collective and hang every rank in MPI_Finalize).
+        try {
+            failure = world.agree(error, mine + error);
+        } catch (const std::exception& e) {
+            world.abort(mine + (error.empty() ? std::string() : error + "; then ") + oneLineMessage(e.what()));
+        }
+    }
     if (failure.rank < 0) return rc;
     if (world.rank() == 0) {
         if (failure.count == world.size())

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -49,10 +50,17 @@ using namespace amrvk;
 
 namespace {
 
+// A value as a message shows it: its repr where that is one short line, else its type.
+std::string shortRepr(const py::handle& o) {
+    std::string shown = py::repr(o).cast<std::string>();
+    if (shown.size() > 64 || shown.find('\n') != std::string::npos) shown = strCat("a ", Py_TYPE(o.ptr())->tp_name);
+    return shown;
+}
+
 // A whole number from Python in [lo, hi], the CLI's range for that option; anything else is one
 // line naming the keyword and the value (not pybind11's list of signatures).
 long long wholeArg(const py::handle& o, const char* name, long long lo, long long hi) {
-    const std::string shown = py::repr(o).cast<std::string>();
+    const std::string shown = shortRepr(o);
     if (!py::isinstance<py::int_>(o) || py::isinstance<py::bool_>(o))
         throw py::type_error(strCat(name, ": expected a whole number in [", lo, ", ", hi, "], got ", shown));
     int overflow = 0;
@@ -77,14 +85,12 @@ T keywordArg(const py::handle& o, const char* name, const char* expected) {
     if constexpr (std::is_arithmetic_v<T>) {
         // pybind11 would take True as 1 and a numpy array of one element as a number.
         if (py::isinstance<py::bool_>(o) && !std::is_same_v<T, bool>)
-            throw py::type_error(strCat(name, ": expected ", expected, ", got ", py::repr(o).cast<std::string>()));
+            throw py::type_error(strCat(name, ": expected ", expected, ", got ", shortRepr(o)));
     }
     try {
         return o.cast<T>();
     } catch (const std::exception&) {  // cast_error, or reference_cast_error for None as a class
-        std::string shown = py::repr(o).cast<std::string>();
-        if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
-        throw py::type_error(strCat(name, ": expected ", expected, ", got ", shown));
+        throw py::type_error(strCat(name, ": expected ", expected, ", got ", shortRepr(o)));
     }
 }
 
@@ -321,7 +327,8 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
     if (level.shape(0) != n || values.shape(0) != n)
         throw py::value_error("lower, level and values must have the same length (got " + std::to_string(n) + ", " +
                               std::to_string(level.shape(0)) + ", " + std::to_string(values.shape(0)) + ")");
-    if (field.empty() || field.find('/') != std::string::npos) throw py::value_error("field: '" + field + "' is not a field name");
+    // amrvk::Error, not py::value_error: the name is the caller's and is shown escaped, on one line.
+    AMRVK_CHECK(!field.empty() && field.find('/') == std::string::npos, "field: '", field, "' is not a field name");
     amr::Model m;
     m.format = "arrays";
     m.source = source;
@@ -361,9 +368,17 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
 
 // ---- Transfer function -----------------------------------------------------------------------
 
+// A range a user gives (preset, rescaled), as --tf-range takes it: finite in float32, lo below hi.
+void checkTfRange(float lo, float hi, const char* what) {
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+        throw py::value_error(strCat(what, ": ", lo, " ", hi, " is not a finite float32 range"));
+    if (!(lo < hi)) throw py::value_error(strCat(what, ": ", lo, " ", hi, ": LO must be below HI"));
+}
+
 struct PyTf {
     scene::TfChannels channels;
     static PyTf preset(const std::string& name, float lo, float hi) {
+        checkTfRange(lo, hi, "preset");
         return {scene::TfChannels::split(scene::makePreset(name, lo, hi))};
     }
     // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles).
@@ -386,7 +401,10 @@ struct PyTf {
         return {scene::TfChannels::split(scene::TransferFunction(pos, col, name))};  // validated
     }
     scene::TransferFunction merged() const { return channels.merged(); }
-    PyTf rescaled(float lo, float hi) const { return {scene::TfChannels::split(merged().rescaled(lo, hi))}; }
+    PyTf rescaled(float lo, float hi) const {
+        checkTfRange(lo, hi, "rescaled");
+        return {scene::TfChannels::split(merged().rescaled(lo, hi))};
+    }
     py::tuple range() const {
         const scene::TransferFunction tf = merged();
         return py::make_tuple(tf.firstPosition(), tf.lastPosition());
@@ -765,7 +783,7 @@ std::shared_ptr<PyRenderer> makeRenderer(const py::object& volumeObj, const py::
     const fs::path shaderDir = kw.contains("shader_dir") && !kw["shader_dir"].is_none()
                                    ? fs::path(py::str(kw["shader_dir"]).cast<std::string>())
                                    : fs::path();
-    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    const bool quiet = kw.contains("quiet") && keywordArg<bool>(kw["quiet"], "quiet", "True or False");
     std::shared_ptr<gpu::Context> ctx;
     {
         py::gil_scoped_release release;
@@ -789,7 +807,7 @@ std::shared_ptr<PyRenderer> rendererFromSession(const fs::path& path, const py::
     }
     gpu::ContextOptions co = contextOptions(kw);
     co.requireRayQuery = d.session.structure.backend == scene::Backend::Rq;
-    const bool quiet = kw.contains("quiet") && kw["quiet"].cast<bool>();
+    const bool quiet = kw.contains("quiet") && keywordArg<bool>(kw["quiet"], "quiet", "True or False");
     std::shared_ptr<gpu::Context> ctx;
     {
         py::gil_scoped_release release;
@@ -804,16 +822,26 @@ namespace {
 
 // One-line errors: amrvk's own errors are bad input (ValueError) unless they come from the device
 // or the runtime, which raise RuntimeError through their own types.
+// The message as Python text: bytes that are not UTF-8 (a name from a file, bytes passed for a
+// str) are shown as \xNN instead of emptying the message (PyErr_SetString's decode fails).
+void raise(PyObject* type, const std::string& message) {
+    PyObject* text = PyUnicode_DecodeUTF8(message.data(), Py_ssize_t(message.size()), "backslashreplace");
+    PyErr_SetObject(type, text);
+    Py_XDECREF(text);
+}
+
 void bindErrors() {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const gpu::ShaderCompileError& e) {
-            PyErr_SetString(PyExc_RuntimeError, e.what());
+            raise(PyExc_RuntimeError, e.what());
         } catch (const Error& e) {
             PyErr_SetString(PyExc_ValueError, python::keywordMessage(e.what()).c_str());
         } catch (const std::bad_alloc&) {
             PyErr_SetString(PyExc_MemoryError, "out of memory");
+        } catch (const py::cast_error& e) {  // a value that keywordArg did not name: still one line, a TypeError
+            raise(PyExc_TypeError, strCat("a value of the wrong type (", e.what(), ")"));
         }
     });
 

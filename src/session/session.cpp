@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -69,7 +71,10 @@ public:
     int64_t integer(const char* key, int64_t lo, int64_t hi) const {
         const double d = number(key);
         char text[32];
-        std::snprintf(text, sizeof text, "%.17g", d);
+        for (int digits = 15; digits <= 17; ++digits) {  // the shortest text that reads back as d
+            std::snprintf(text, sizeof text, "%.*g", digits, d);
+            if (std::strtod(text, nullptr) == d) break;
+        }
         AMRVK_CHECK(d == std::floor(d) && d >= double(lo) && d <= double(hi), mWhere, ".", key, ": ", text,
                     " is not an integer in [", lo, ", ", hi, "]");
         return int64_t(d);
@@ -82,6 +87,20 @@ public:
             return parse(value);
         } catch (const Error& e) {
             throw Error(mWhere + "." + key + ": " + e.what());
+        }
+    }
+    // Refuses a member not in `keys`: a typo, or a setting of a newer amrvk, is never silently
+    // dropped (the picture would differ from the one the file describes).
+    void onlyKeys(std::initializer_list<const char*> keys) const { onlyKeys(std::vector<const char*>(keys)); }
+    void onlyKeys(const std::vector<const char*>& keys) const {
+        if (!mJ.is_object()) return;
+        for (const auto& item : mJ.items()) {
+            bool known = false;
+            for (const char* k : keys) known = known || item.key() == k;
+            std::string list;
+            for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+            AMRVK_CHECK(known, mWhere, ".", item.key(), ": unknown key (this amrvk reads session version ", kVersion,
+                        "; keys here: ", list, ")");
         }
     }
     const Json& json() const { return mJ; }
@@ -308,6 +327,9 @@ void readSection(const Section& sec, const Reader& top, Session& s) {
     } else {
         const Reader r = top.child(sec.name);
         AMRVK_CHECK(r.json().is_object(), r.where(), ": expected an object, found ", r.json().type_name());
+        std::vector<const char*> names;
+        for (const Key& k : sec.keys) names.push_back(k.name);
+        r.onlyKeys(names);  // a key of no entry (a typo, a newer amrvk's) is refused, never dropped
         for (const Key& k : sec.keys) k.read(r, s);
     }
     try {
@@ -379,12 +401,14 @@ std::vector<scene::Light> readLights(const Json& lights, const std::string& wher
         const std::string type = L.text("type");
         scene::Light light;
         if (type == "directional") {
+            L.onlyKeys({"type", "direction", "radiance"});
             light.posOrDir = L.vector("direction");
             light.radiance = L.vector("radiance");
             AMRVK_CHECK(glm::length(light.posOrDir) > 0, L.where(), ".direction: must not be zero");
         } else {
             AMRVK_CHECK(type == "point", L.where(), ".type: '", type, "' (expected directional or point)");
             light.point = true;
+            L.onlyKeys({"type", "position", "intensity"});
             light.posOrDir = L.vector("position");
             light.radiance = L.vector("intensity");
         }
@@ -397,9 +421,11 @@ std::vector<scene::Light> readLights(const Json& lights, const std::string& wher
 
 // "cut": the crop box and clip planes, validated as the CLI validates them.
 scene::CutAway readCut(const Reader& cut) {
+    cut.onlyKeys({"crop", "clip"});
     scene::CutAway c;
     if (cut.has("crop")) {
         const Reader crop = cut.child("crop");
+        crop.onlyKeys({"lo", "hi"});
         c.crop = scene::CropBox{crop.vector("lo"), crop.vector("hi")};
     }
     if (cut.has("clip")) {
@@ -409,6 +435,7 @@ scene::CutAway readCut(const Reader& cut) {
                     " planes (got ", clips.size(), ")");
         for (size_t i = 0; i < clips.size(); ++i) {
             const Reader p(clips[i], cut.where() + ".clip[" + std::to_string(i) + "]");
+            p.onlyKeys({"point", "normal"});
             c.clips.push_back({p.vector("point"), p.vector("normal")});
         }
     }
@@ -430,6 +457,8 @@ Session parseSession(const std::string& text, const fs::path& path) {
                 ": not an amrvk session (expected \"amrvk\": \"session\")");
     const int64_t version = top.integer("version", 1, 1 << 20);
     AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
+    top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut",
+                  "structure", "transferFunction", "legend"});
 
     Session s;
     s.input = top.text("input");

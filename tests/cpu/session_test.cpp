@@ -142,6 +142,17 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         if (at != std::string::npos) t.replace(at, from.size(), to);
         return t;
     };
+    // Cut-aways the CLI would refuse, and a clip plane without its point, written as the viewer writes.
+    auto withCut = [](const std::function<void(scene::CutAway&)>& edit) {
+        Session s = fullSession();
+        edit(s.settings.cut);
+        return session::sessionJson(s);
+    };
+    const std::string badCrop = withCut([](scene::CutAway& c) { c.crop->lo.x = 2.0; });
+    const std::string badClip = withCut([](scene::CutAway& c) { c.clips[0].normal = glm::dvec3(0.0); });
+    std::string noPoint = withCut([](scene::CutAway&) {});
+    // {"normal": P, "normal": N}: nlohmann keeps one of them, and "point" is missing.
+    noPoint.replace(noPoint.find("\"point\": ["), 7, "\"normal\"");
     const struct {
         std::string text;
         std::vector<std::string> fragments;
@@ -158,11 +169,10 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"traversal\": \"kdtree\"", "\"traversal\": \"octree\""), {"--traversal", "octree"}},
         {with("\"RGBPoints\"", "\"RGBPointz\""), {"transferFunction", "no RGBPoints"}},
         {with("\"eye\": [", "\"eye\": [\"x\", "), {"camera.eye"}},
-        {with("\"lo\": [", "\"lo\": [2.0, 0.0, 0.0], \"unused\": ["), {"/tmp/s.json", ".cut", "--crop", "axis x"}},
-        {with("\"normal\": [", "\"normal\": [0, 0, 0], \"unused\": ["), {".cut", "--clip", "normal 0 0 0"}},
+        {badCrop, {"/tmp/s.json", ".cut", "--crop", "axis x"}},
+        {badClip, {".cut", "--clip", "normal 0 0 0"}},
         {with("\"clip\": [", "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
          {".cut.clip", "at most 4 planes (got 5)"}},
-        {with("\"point\": [", "\"pont\": ["), {".cut.clip[0]", "missing \"point\""}},
         {with("\"format\": \"enzo\"", "\"format\": \"enzo\", \"dims\": [4, 1048577, 4]"),
          {"read.dims[1]", "1048577 is not an integer in [1, 1048576]"}},
         {with("\"dvrStep\": 0.25", "\"dvrStep\": 0"), {"render.dvrStep", "0 is outside (0, 64]"}},
@@ -174,6 +184,13 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"transferFunction\"", "\"legend\": [], \"transferFunction\""), {"legend", "expected an object"}},
         {with("\"image\": {", "\"image\": 5, \"unused\": {"), {"/tmp/s.json.image", "expected an object"}},
         {with("\"sampler\": \"abr\"", "\"sampler\": \"dense\""), {"/tmp/s.json.structure", "dense"}},
+        {noPoint, {".cut.clip[0]", "missing \"point\""}},
+        // A key this amrvk does not know (a typo, a newer amrvk's setting) is named, not dropped.
+        {with("\"point\": [", "\"pont\": ["), {".cut.clip[0].pont: unknown key", "keys here: point, normal"}},
+        {with("\"densityScale\"", "\"densityscale\""), {"/tmp/s.json.render.densityscale: unknown key"}},
+        {with("\"structure\": {", "\"structure\": {\"bvhLeaf\": 4, "), {".structure.bvhLeaf: unknown key"}},
+        {with("\"amrvk\": \"session\",", "\"amrvk\": \"session\", \"denoise\": true,"),
+         {"/tmp/s.json.denoise: unknown key"}},
     };
     for (const auto& c : cases) {
         const std::string e = errorOfParse(c.text);
