@@ -90,6 +90,7 @@ namespace {
 struct RenderArgs {
     std::vector<std::string> inputs;
     std::string output = "amrvk.png", jsonFile, varianceFile, distribute = "samples";
+    double untilError = 0;  // > 0: stop at this noise (--spp is the cap)
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
@@ -116,6 +117,12 @@ void addRenderOptions(CLI::App& app, RenderArgs& a) {
                    "also write the per-pixel variance of the mean (rgb, from the samples' squares; needs --spp >= 2) "
                    "as .exr or .pfm: error bars for the image")
         ->type_name("FILE");
+    app.add_option("--until-error", a.untilError,
+                   "stop once the image's noise is at most E: the mean, over the visible pixels, of each pixel's "
+                   "standard error over its value (0.02 = 2%); checked at 4 spp and at each doubling, --spp is the cap; "
+                   "the spp reached and the noise are printed and in --json (spp, meanRelativeError)")
+        ->check(interval(0, 1, true, false))
+        ->type_name("E");
     app.add_option("--distribute", a.distribute,
                    "under mpirun: samples (every rank holds the data and renders a share of the samples) or "
                    "data (every rank reads and tracks only its box of space; ae, ss, ms; docs/mpi.md)")
@@ -193,7 +200,8 @@ struct Rendered {
 
 // Renders the picture alone, or this rank's share of a data- or sample-parallel render.
 Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedData& data,
-                     [[maybe_unused]] mpi::World* world, const std::function<void(uint32_t, uint32_t)>& progress) {
+                     [[maybe_unused]] mpi::World* world, double untilError,
+                     const std::function<void(uint32_t, uint32_t)>& progress) {
     Rendered r;
 #if AMRVK_MPI
     if (data.part) {
@@ -211,7 +219,7 @@ Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedDat
         r.mpiReport = std::move(share.mpi);
     } else
 #endif
-        r.out = picture.render(progress);
+        r.out = untilError > 0 ? picture.renderUntil(untilError, progress) : picture.render(progress);
     return r;
 }
 
@@ -219,14 +227,18 @@ Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedDat
 void reportRender(const RenderArgs& a, const picture::Picture& picture, const gpu::Context& ctx, const Rendered& r,
                   const picture::RenderTimes& times) {
     const scene::RenderOutput& out = r.out;
-    const session::Session s = picture.session();
     const scene::StructureConfig& config = picture.renderer->config();
     const scene::RenderSettings& rs = picture.renderer->settings();
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
     std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", a.output.c_str(), rs.width,
-                rs.height, s.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
+                rs.height, out.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
                 out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
+    if (a.untilError > 0)
+        std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n",
+                    scene::meanRelativeError(out), out.spp,
+                    scene::meanRelativeError(out) <= a.untilError ? "at or below --until-error"
+                                                                  : "above --until-error; --spp capped it");
     if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
         c[shared::kCounterTrackingCapHits])
         std::fprintf(stderr,
@@ -270,7 +282,7 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
         if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
         bar.update(d, t);
     };
-    const Rendered r = renderImage(picture, data, world, progress);
+    const Rendered r = renderImage(picture, data, world, a.untilError, progress);
     bar.finish();
     const double wallSeconds = wall.seconds();
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
@@ -300,10 +312,14 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     if (!parseCommandLine(app, argv)) return 0;
     AMRVK_CHECK(world || app.count("--distribute") == 0,
                 "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
-    if (isSeries(app, a.inputs, a.output))
+    AMRVK_CHECK(!world || a.untilError == 0,
+                "--until-error: not under mpirun (the ranks would each stop at their own share's noise); give --spp");
+    if (isSeries(app, a.inputs, a.output)) {
+        AMRVK_CHECK(a.untilError == 0, "--until-error renders one picture, not a series or a turntable; give --spp");
         return renderSeries(
             app, {.inputs = a.inputs, .output = a.output, .jsonFile = a.jsonFile, .varianceFile = a.varianceFile},
             a.read, a.pic, a.series, a.dev, world);
+    }
     return renderPicture(app, a, world, speaks, sinceStart);
 }
 

@@ -1,6 +1,7 @@
 #include "picture/picture.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -33,6 +34,22 @@ scene::BackendChoice resolveStructure(const gpu::Context& ctx, scene::StructureC
 
 scene::RenderOutput Picture::render(const std::function<void(uint32_t, uint32_t)>& progress) {
     return renderer->render(renderer->settings(), described.spp, progress);
+}
+
+scene::RenderOutput Picture::renderUntil(double targetError, const std::function<void(uint32_t, uint32_t)>& progress) {
+    AMRVK_CHECK(targetError > 0 && std::isfinite(targetError), "--until-error ", targetError, ": must be > 0");
+    const uint32_t cap = described.spp;
+    AMRVK_CHECK(cap >= 2, "--until-error needs --spp of at least 2 as its cap (got ", cap, ")");
+    uint32_t first = std::min<uint32_t>(4, cap);
+    auto reported = [&](uint32_t, uint32_t) {
+        if (progress) progress(renderer->accumulatedSpp(), cap);
+    };
+    scene::RenderOutput out = renderer->render(renderer->settings(), first, reported);
+    while (out.spp < cap && scene::meanRelativeError(out) > targetError) {
+        renderer->accumulate(std::min(out.spp, cap - out.spp), reported);  // double the samples
+        out = renderer->output();
+    }
+    return out;
 }
 
 Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volume,
@@ -156,6 +173,7 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["width"] = rs.width;
     j["height"] = rs.height;
     j["spp"] = out.spp;
+    if (out.spp >= 2) j["meanRelativeError"] = scene::meanRelativeError(out);  // the image's noise
     j["mode"] = scene::modeName(rs.mode);
     j["traversal"] = scene::traversalName(config.traversal);
     j["sampler"] = scene::samplerName(config.sampler);

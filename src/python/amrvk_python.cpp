@@ -32,6 +32,7 @@
 #include "core/image_io.h"
 #include "core/movie_io.h"
 #include "core/stats.h"
+#include "core/strings.h"
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "picture/picture.h"
@@ -543,12 +544,28 @@ public:
             if (!progress.is_none() && completed > 0) progress(done, n);
         }
     }
-    py::array_t<float> render(const py::object& spp, const py::object& progress, const py::object& legend) {
+    py::array_t<float> render(const py::object& spp, const py::object& progress, const py::object& legend,
+                              const py::object& until) {
         const bool withLegend = !legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None");
         const uint32_t n = spp.is_none() ? (session().spp > 0 ? session().spp : 64) : countArg(spp, "spp");
         reset();
-        accumulate(py::int_(n), progress);
+        if (until.is_none()) {
+            accumulate(py::int_(n), progress);
+            return imageArray(picture(withLegend));
+        }
+        // As render --until-error: checks at 4 spp and at each doubling, spp the cap.
+        const double target = keywordArg<double>(until, "until", "a number in (0, 1]");
+        if (!(target > 0 && target <= 1)) throw py::value_error(strCat("until: ", formatDouble(target), " is outside (0, 1]"));
+        if (n < 2) throw py::value_error(strCat("until: needs spp of at least 2 as its cap (got ", n, ")"));
+        accumulate(py::int_(std::min<uint32_t>(4, n)), progress);
+        for (scene::RenderOutput out = output(); out.spp < n && scene::meanRelativeError(out) > target; out = output())
+            accumulate(py::int_(std::min(out.spp, n - out.spp)), progress);
         return imageArray(picture(withLegend));
+    }
+    // The image's noise so far (scene::meanRelativeError); None below 2 spp.
+    py::object noise() const {
+        const scene::RenderOutput out = output();
+        return out.spp < 2 ? py::object(py::none()) : py::object(py::float_(scene::meanRelativeError(out)));
     }
     scene::RenderOutput output() const {
         const PyRenderer& self = *this;
@@ -979,8 +996,11 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
         .def_static("from_session", &rendererFromSession, py::arg("path"),
                     "the picture a session file describes (amrvk view's, amrvk render --session's)")
         .def("render", &PyRenderer::render, py::arg("spp") = py::none(), py::arg("progress") = py::none(),
-             py::arg("legend") = py::none(),
-             "from scratch: spp samples per pixel (default the session's), returns image(legend)")
+             py::arg("legend") = py::none(), py::arg("until") = py::none(),
+             "from scratch: spp samples per pixel (default the session's), returns image(legend); until=E stops "
+             "once the noise (mean relative standard error of the visible pixels) is at most E, spp the cap")
+        .def_property_readonly("noise", &PyRenderer::noise,
+                               "the image's noise: mean relative standard error of its visible pixels (None below 2 spp)")
         .def("accumulate", &PyRenderer::accumulate, py::arg("n"), py::arg("progress") = py::none(),
              "n more samples per pixel, continuing the same estimate")
         .def("reset", &PyRenderer::reset)

@@ -75,6 +75,27 @@ std::vector<float> varianceOfMean(const RenderOutput& o) {
     return out;
 }
 
+double meanRelativeError(const RenderOutput& o) {
+    const std::vector<float> var = varianceOfMean(o);
+    const size_t n = o.mean.pixels.size();
+    std::vector<double> value(n);
+    for (size_t i = 0; i < n; ++i) value[i] = (double(o.mean.pixels[i].r) + o.mean.pixels[i].g + o.mean.pixels[i].b) / 3.0;
+    if (n == 0) return 0;
+    std::vector<double> sorted = value;
+    const size_t k = std::min(n - 1, size_t(0.99 * double(n)));
+    std::nth_element(sorted.begin(), sorted.begin() + ptrdiff_t(k), sorted.end());
+    const double floor = sorted[k] / 256.0;
+    double sum = 0;
+    size_t visible = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!(value[i] > 0 && value[i] >= floor)) continue;
+        const double meanVar = (double(var[3 * i]) + var[3 * i + 1] + var[3 * i + 2]) / 3.0;
+        sum += std::sqrt(meanVar) / value[i];
+        ++visible;
+    }
+    return visible ? sum / double(visible) : 0.0;
+}
+
 Image varianceImage(const std::vector<float>& rgb, int width, int height) {
     Image image(width, height);
     AMRVK_CHECK(rgb.size() == 3 * image.pixels.size(), "internal: ", rgb.size(), " variances for ", width, "x", height);

@@ -56,6 +56,11 @@ RenderOutput outputFromSums(const AccumulatedSums& sums, uint32_t spp, const Ren
 
 // Per-pixel variance of the mean (3 per pixel, rgb) from the sums of squares; needs spp >= 2.
 std::vector<float> varianceOfMean(const RenderOutput& out);
+// The noise of an image as one number: the mean, over its visible pixels, of each pixel's standard
+// error over its value, rgb averaged (sqrt(mean_c var_c) / mean_c m_c). Visible: a value of at
+// least 1/256 of the 99th percentile of the pixels' values (above black in a PNG of the image
+// scaled to that percentile). Needs spp >= 2; 0 where no pixel is visible.
+double meanRelativeError(const RenderOutput& out);
 // Those variances (3 per pixel) as a width x height image, alpha 1: what --variance and the
 // bench's reference cache write.
 Image varianceImage(const std::vector<float>& rgb, int width, int height);

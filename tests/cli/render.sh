@@ -140,4 +140,34 @@ AMRVK_PROGRESS=1 "$amrvk" render "$dir/v_170x170x170_uint8.raw" --sampler dense 
   -o "$dir/dense.png" 2>"$dir/dense.err" >/dev/null || fail=1
 check grep -q "dense grid of 170^3 samples: 18.7 MiB of memory" "$dir/dense.err"
 check grep -q "dense grid \[#* *\] 170/170 slices" "$dir/dense.err"
+# --until-error E: the render stops at the first check (4 spp, then each doubling) whose noise is
+# at most E, and --spp caps it; the noise printed and in --json is the image's, recomputed here
+# from --variance and the PFM independently.
+"$amrvk" render "$sample" --size 24x24 --grid 16 --tf-range 0.3 2 --spp 4096 --until-error 0.03 \
+  -o "$dir/until.pfm" --variance "$dir/until_var.pfm" --json "$dir/until.json" >"$dir/until.out" || fail=1
+check grep -q "at or below --until-error" "$dir/until.out"
+check /usr/bin/python3 - "$dir/until.json" "$dir/until.pfm" "$dir/until_var.pfm" <<'PY'
+import json, sys
+import numpy as np
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = map(int, f.readline().split()); scale = float(f.readline())
+        return np.fromfile(f, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3)
+j = json.load(open(sys.argv[1]))
+spp, err = j["spp"], j["meanRelativeError"]
+assert 4 < spp < 4096 and (spp & (spp - 1)) == 0, spp  # 8, 16, ...: doubled, then stopped early
+assert err <= 0.03, err
+m, v = pfm(sys.argv[2]).mean(axis=2), pfm(sys.argv[3]).mean(axis=2)
+n = m.size
+vis = (m > 0) & (m >= np.sort(m.ravel())[min(n - 1, int(0.99 * n))] / 256)
+mine = float(np.mean(np.sqrt(v[vis]) / m[vis]))
+assert abs(mine - err) < 1e-3 * max(err, 1e-3) + 1e-4, (mine, err)
+PY
+"$amrvk" render "$sample" --size 16x12 --grid 16 --spp 8 --until-error 1e-6 -o "$dir/capped.png" \
+  --json "$dir/capped.json" >"$dir/capped.out" || fail=1
+check grep -q "above --until-error; --spp capped it" "$dir/capped.out"
+check /usr/bin/python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["spp"] == 8' "$dir/capped.json"
+expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
+expect "--until-error needs --spp of at least 2" -- render "$sample" --spp 1 --until-error 0.1 -o "$dir/x.png"
 exit $fail

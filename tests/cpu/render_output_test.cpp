@@ -1,5 +1,6 @@
 // Per-path histogram bins and percentiles (scene/render_output.h): the bins tile the counts, 4 per
-// octave above 8 (exact below), and a quantile is the largest count of the bin that holds it.
+// octave above 8 (exact below), and a quantile is the largest count of the bin that holds it. The
+// image's noise (meanRelativeError) against values worked out by hand.
 #include "scene/render_output.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +55,37 @@ TEST(PathStats, QuantileIsTheUpperEndOfTheBinHoldingIt) {
     p.add(gpu);
     EXPECT_EQ(p.paths(), 10u);
     EXPECT_EQ(p.maxLookups, 3u);  // the largest over dispatches, not a sum
+}
+
+
+
+// An image of n spp whose pixels have the given means and per-channel sample variances.
+scene::RenderOutput imageOf(const std::vector<glm::vec3>& means, const std::vector<float>& sampleVar, uint32_t n) {
+    scene::RenderOutput o;
+    o.spp = n;
+    o.mean = Image(int(means.size()), 1);
+    for (size_t i = 0; i < means.size(); ++i) {
+        o.mean.pixels[i] = glm::vec4(means[i], 1.0f);
+        // sumSq = (n - 1) s^2 + n m^2, so that varianceOfMean gives s^2 / n.
+        const glm::vec3 sq = glm::vec3(float(n - 1) * sampleVar[i]) + float(n) * means[i] * means[i];
+        o.sumSq.push_back(glm::vec4(sq, 0.0f));
+    }
+    return o;
+}
+
+TEST(ImageNoise, MeanOfEachVisiblePixelsStandardErrorOverItsValue) {
+    // Two bright pixels (values 1 and 2, relative errors 0.1 and 0.05 at n = 16), one black pixel
+    // and one below 1/256 of the 99th percentile: the dark ones do not count.
+    const uint32_t n = 16;
+    const scene::RenderOutput o = imageOf({glm::vec3(1.0f), glm::vec3(2.0f), glm::vec3(0.0f), glm::vec3(0.005f)},
+                                          {0.01f * 16, 0.01f * 16, 0.0f, 1.0f}, n);
+    EXPECT_NEAR(scene::meanRelativeError(o), (0.1 + 0.05) / 2, 1e-6);
+    // rgb averaged: the variances' mean under the root, the values' mean below it.
+    const scene::RenderOutput c = imageOf({glm::vec3(1.0f, 2.0f, 3.0f)}, {0.64f}, 4);  // var of mean 0.16
+    EXPECT_NEAR(scene::meanRelativeError(c), std::sqrt(0.16) / 2.0, 1e-6);
+    // A planted error: counting the black pixels would give a different (smaller) mean.
+    EXPECT_GT(scene::meanRelativeError(o), 0.15 / 4 + 1e-3);
+    EXPECT_EQ(scene::meanRelativeError(imageOf({glm::vec3(0.0f)}, {0.0f}, 4)), 0.0) << "nothing visible";
 }
 
 }  // namespace

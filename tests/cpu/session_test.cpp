@@ -182,7 +182,6 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"transferFunction\"", "\"legend\": {\"show\": 1}, \"transferFunction\""),
          {"legend.show", "expected true or false"}},
         {with("\"transferFunction\"", "\"legend\": [], \"transferFunction\""), {"legend", "expected an object"}},
-        {with("\"image\": {", "\"image\": 5, \"unused\": {"), {"/tmp/s.json.image", "expected an object"}},
         {with("\"sampler\": \"abr\"", "\"sampler\": \"dense\""), {"/tmp/s.json.structure", "dense"}},
         {noPoint, {".cut.clip[0]", "missing \"point\""}},
         // A key this amrvk does not know (a typo, a newer amrvk's setting) is named, not dropped.

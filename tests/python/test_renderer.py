@@ -63,6 +63,26 @@ def test_accumulate_continues_the_same_estimate(amrvk):
     assert var.shape == (24, 32, 3) and np.all(var >= 0) and var.max() > 0
 
 
+def test_render_until_a_target_noise(amrvk):
+    # render(until=E): checks at 4 spp and each doubling, stops at the first whose noise is at most
+    # E (spp the cap); noise is the mean relative standard error of the visible pixels, recomputed
+    # here from the image and its variance.
+    r = picture(amrvk)
+    assert r.noise is None
+    r.render(spp=4096, until=0.03)
+    assert 4 < r.spp < 4096 and (r.spp & (r.spp - 1)) == 0, r.spp  # doubled, then stopped early
+    m, v = r.image()[..., :3].mean(axis=2), r.variance().mean(axis=2)
+    n = m.size
+    visible = (m > 0) & (m >= np.sort(m.ravel())[min(n - 1, int(0.99 * n))] / 256)
+    mine = float(np.mean(np.sqrt(v[visible]) / m[visible]))
+    assert r.noise <= 0.03 and abs(mine - r.noise) < 1e-3 * r.noise + 1e-5, (mine, r.noise)
+    r.render(spp=8, until=1e-6)
+    assert r.spp == 8 and r.noise > 1e-6  # capped
+    for bad, kind, text in ((0, ValueError, "until: 0 is outside (0, 1]"), ("a", TypeError, "until: expected")):
+        with pytest.raises(kind, match=text.replace("(", r"\(").replace(")", r"\)").replace("[", r"\[")):
+            r.render(spp=8, until=bad)
+
+
 def test_every_edit_follows_the_session(amrvk, tmp_path):
     r = picture(amrvk)
     base = r.render(spp=4).copy()
