@@ -354,6 +354,11 @@ public:
     void setTf(const PyTf& tf) {
         locked([&] { mPicture.setTransferFunction(tf.channels); });
     }
+    std::string tfColors() const { return scene::tfColorsName(session().tfColors); }
+    void setTfColors(const std::string& name) {
+        const scene::TfColors c = scene::parseTfColors(name, "tf_colors");
+        locked([&] { mPicture.setTfColors(c); });
+    }
     // Settings edited by `edit` on a copy, validated, then applied (the renderer redoes what the
     // invalidation rule says); an invalid value changes nothing.
     template <typename Edit>
@@ -529,7 +534,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
                                    "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
-                                   "quiet",    "fov",     "tf_range", "crop",    "clip"};
+                                   "quiet",    "fov",     "tf_range", "crop",    "clip", "tf_colors"};
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
@@ -558,6 +563,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         const auto r = o->cast<std::pair<float, float>>();
         d.tfRange = r;
     }
+    if (auto o = take("tf_colors")) s.tfColors = scene::parseTfColors(o->cast<std::string>(), "tf_colors");
     const std::optional<py::object> traversal = take("traversal");
     const std::string t = traversal ? traversal->cast<std::string>() : "";
     d.fit = t == "auto" ? session::StructureFit::Probe : t.empty() ? session::StructureFit::Data : session::StructureFit::None;
@@ -786,6 +792,9 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
              py::arg("kd_leaves") = py::none())
         .def_property("camera", &PyRenderer::camera, &PyRenderer::setCamera)
         .def_property("tf", &PyRenderer::tf, &PyRenderer::setTf)
+        .def_property("tf_colors", &PyRenderer::tfColors, &PyRenderer::setTfColors,
+                      "what the TF's colours mean: 'srgb' (display colours, as matplotlib, yt and ParaView; the "
+                      "default) or 'linear' (albedo as given)")
 ;
 }
 

@@ -3,8 +3,8 @@
 // alpha (>= 0, extinction per finest cell width before densityScale). Nodes sit at ascending
 // positions in field units; two nodes may share a position (a step: the right node wins there);
 // beyond the first/last node the colour is constant. GLSL twin: shaders/lib/tf.glsl.
-// Colours from files and presets are used as albedo as given (no sRGB decoding), as ParaView's
-// path tracers and the ExaBrick tools do.
+// Colours are kept as given (display colours by default: what they mean, and the albedo the
+// renderer gets from them, is scene/tf_colors.h's TfColors and albedoOf).
 #include <glm/glm.hpp>
 
 #include <cstdint>

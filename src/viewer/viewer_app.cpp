@@ -247,7 +247,7 @@ void ViewerApp::adoptPicture(picture::Picture&& p) {
     mRenderer = std::move(p.renderer);
     // The editor's form of the TF: the same function, with both channels spanning its range.
     mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.described.tf)) mRenderer->setTransferFunction(mState.tf.merged());
+    if (!(mState.tf == p.described.tf)) mRenderer->setTransferFunction(scene::albedoOf(mState.tf.merged(), mState.tfColors));
     mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
@@ -363,7 +363,7 @@ void ViewerApp::whileResponsive(const std::function<void()>& work) {
 
 void ViewerApp::setTransferFunction() {
     Timer t;
-    const scene::TransferFunction tf = mState.tf.merged();
+    const scene::TransferFunction tf = scene::albedoOf(mState.tf.merged(), mState.tfColors);  // linear, as rendered
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
     updateHistogram();
@@ -528,8 +528,9 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         }
         mInteracting = true;
     }
-    if (!(e.tf == mState.tf)) {
+    if (!(e.tf == mState.tf) || e.tfColors != mState.tfColors) {
         mState.tf = e.tf;
+        mState.tfColors = e.tfColors;
         setTransferFunction();
         mInteracting = true;
     }
@@ -995,6 +996,7 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
         mState.settings = s.settings;
         mState.spp = s.spp;
         mState.tf = session::TfEditor::editable(s.tf);
+        mState.tfColors = s.tfColors;  // the meaning it was saved with
         mTfHistory.push(mState.tf);
         setTransferFunction();
     }
