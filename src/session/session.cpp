@@ -323,7 +323,8 @@ Session parseSession(const std::string& text, const fs::path& path) {
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
     // Version 1 knew only linear colours; a later file without the key means the default.
-    s.tfColors = top.named("tfColors", version == 1 ? "linear" : "srgb", [](std::string_view t) { return scene::parseTfColors(t); });
+    s.tfColors = top.named("tfColors", version == 1 ? "linear" : "srgb",
+                           [](std::string_view t) { return scene::parseTfColors(t); });
     if (top.has("legend")) s.legend = readLegend(top.child("legend"));
     return s;
 }

@@ -247,7 +247,8 @@ void ViewerApp::adoptPicture(picture::Picture&& p) {
     mRenderer = std::move(p.renderer);
     // The editor's form of the TF: the same function, with both channels spanning its range.
     mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.described.tf)) mRenderer->setTransferFunction(scene::albedoOf(mState.tf.merged(), mState.tfColors));
+    if (!(mState.tf == p.described.tf))
+        mRenderer->setTransferFunction(scene::albedoOf(mState.tf.merged(), mState.tfColors));
     mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
