@@ -753,6 +753,9 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         loadSessionFile(a.args[0]);
     } else if (n == "legend") {
         mState.legend.show = a.args[0] == "on";
+    } else if (n == "tf-colors") {
+        mState.tfColors = scene::parseTfColors(a.args[0], "tf-colors");
+        setTransferFunction();
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {

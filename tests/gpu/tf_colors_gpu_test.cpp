@@ -176,6 +176,16 @@ TEST_F(TfColorsGpu, RenderAndViewScreenshotPngsShowTheTfColour) {
             " --screenshot " + (dir / "view.png").string(),
         "view");
     run("render " + slab + picture + " --tf-colors linear --spp 2 -o " + (dir / "linear.png").string(), "linear");
+    // The viewer's switch (the "sRGB colours" checkbox's script twin), and its session says so.
+    {
+        std::ofstream script(dir / "switch.txt");
+        script << "1 tf-colors linear\n";
+    }
+    run("view " + slab + picture + " --spp 2 --headless --frames 20 --script " + (dir / "switch.txt").string() +
+            " --screenshot " + (dir / "view-linear.png").string() + " --save-session " + (dir / "s.json").string(),
+        "view-linear");
+    expectEveryPixel(pngPixels(dir / "view-linear.png"), {124, 170, 203}, "view after tf-colors linear");
+    EXPECT_EQ(session::loadSession(dir / "s.json").tfColors, TfColors::Linear);
     EXPECT_EQ(expectEveryPixel(pngPixels(dir / "render.png"), {51, 102, 153}, "render"), 24 * 24);
     EXPECT_EQ(expectEveryPixel(pngPixels(dir / "view.png"), {51, 102, 153}, "view screenshot"), 24 * 24);
     expectEveryPixel(pngPixels(dir / "linear.png"), {124, 170, 203}, "render --tf-colors linear");
