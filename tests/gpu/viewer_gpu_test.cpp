@@ -569,7 +569,7 @@ TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
                    "14 load-session " + at("log.json") + "\n"  // another scale: read again, not refused
                    "16 save-session " + at("loaded.json") + "\n"
                    "18 log-floor 0.01\n"
-                   "19 density 0.03\n");  // the log TF makes the cloud opaque: thinner, so the image test has power
+                   "19 density 0.02\n");  // the log TF makes the cloud opaque: thinner, so the image test has power
     const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 400 --script " +
                            at("script.txt") + " --stats " + at("stats.json") + " --screenshot " + at("final.pfm") +
                            " --save-session " + at("final.json") + " --validation",
