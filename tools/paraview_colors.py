@@ -10,7 +10,9 @@ Needs yt (python3), Debian's paraview and python3-paraview (pvbatch) and Xvfb (P
 build renders through X; tests/with_xvfb.sh runs it). Writes into OUT_DIR: the raw grid, ParaView's
 picture (paraview.png), the preset as ParaView holds it after rescaling (viridis.json, opacity
 turned into amrvk's extinction), amrvk's pictures with --tf-colors srgb and linear, and prints the
-measured colours. ParaView's opacity a per unit distance (one cell) is extinction -ln(1 - a) per
+measured colours. Then ParaView's colours of two constant slabs four cells thick seen from above
+(the answers of tests/gpu/tf_colors_gpu_test.cpp): opaque with colour (0.2, 0.4, 0.6), and of
+optical depth 0.7 with colour (0.9, 0.5, 0.2). ParaView's opacity a per unit distance (one cell) is extinction -ln(1 - a) per
 cell in amrvk, so the two media agree at the opacity nodes.
 """
 import argparse
@@ -62,6 +64,58 @@ space = str(lut.ColorSpace).strip("'")
 json.dump([{"Name": preset, "ColorSpace": space, "RGBPoints": list(lut.RGBPoints),
             "Points": [v for x, a in opacity for v in (x, -math.log(1.0 - a), 0.5, 0.0)]}], open(out, "w"))
 '''
+
+
+SLAB = r'''
+import json, sys
+import paraview
+from paraview.simple import *
+paraview.simple._DisableFirstRenderCameraReset()
+raw, png, rgb, opacity, unit = sys.argv[1], sys.argv[2], *json.loads(sys.argv[3])
+r = ImageReader(FileNames=[raw])
+r.DataScalarType = "float"
+r.DataByteOrder = "LittleEndian"
+r.DataExtent = [0, 63, 0, 63, 0, 4]  # points 0..4: four cells thick
+r.ScalarArrayName = "value"
+view = CreateView("RenderView")
+view.ViewSize = [32, 32]
+if hasattr(view, "UseColorPaletteForBackground"):
+    view.UseColorPaletteForBackground = 0
+view.Background = [0.0, 0.0, 0.0]
+view.OrientationAxesVisibility = 0
+d = Show(r, view)
+d.Representation = "Volume"
+ColorBy(d, ("POINTS", "value"))
+GetColorTransferFunction("value").RGBPoints = [0, *rgb, 2, *rgb]
+GetOpacityTransferFunction("value").Points = [0, opacity, 0.5, 0, 2, opacity, 0.5, 0]
+d.ScalarOpacityUnitDistance = unit
+d.Shade = 0
+view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [31.5, 31.5, 100], [31.5, 31.5, 0], [0, 1, 0]
+view.CameraViewAngle = 2
+Render(view)
+SaveScreenshot(png, view, ImageResolution=[32, 32])
+'''
+
+
+def slabs(out, xvfb):
+    import numpy as np
+    from PIL import Image
+
+    raw = os.path.join(out, "slab.raw")
+    np.ones((5, 64, 64), np.float32).tofile(raw)
+    script = os.path.join(out, "pvbatch_slab.py")
+    with open(script, "w") as f:
+        f.write(SLAB)
+    tau = 0.7
+    for name, rgb, opacity, unit, answer in [
+            ("opaque", [0.2, 0.4, 0.6], 1.0, 0.01, "amrvk: 51 102 153"),
+            ("tau 0.7", [0.9, 0.5, 0.2], 1 - math.exp(-tau / 4), 1.0,
+             "display-space c(1-exp(-tau)) = 115.5 64.2 25.7; amrvk: encode(decode(c)(1-exp(-tau))) = 169 92 35")]:
+        png = os.path.join(out, f"slab-{name.replace(' ', '')}.png")
+        subprocess.run(["bash", xvfb, "1024x768x24", "pvbatch", script, raw, png, json.dumps([rgb, opacity, unit])],
+                       check=True)
+        px = np.asarray(Image.open(png).convert("RGB")).reshape(-1, 3)
+        print(f"ParaView slab {name}: colour {rgb}, pixels {px.min(0)} .. {px.max(0)}; {answer}")
 
 
 def resample(data_set, raw):
@@ -126,6 +180,7 @@ def main():
                         "--size", f"{SIZE}x{SIZE}", "--spp", str(a.spp), "-o",
                         os.path.join(a.out, f"amrvk-{colors}.png")], check=True)
     measure(a.out)
+    slabs(a.out, xvfb)
 
 
 if __name__ == "__main__":
