@@ -92,7 +92,7 @@ private:
     std::shared_ptr<const scene::Volume> mVolume;
     session::PictureDescription mDesc;  // the data set's picture under the current TF (mode, structure per run)
     std::unique_ptr<render::Renderer> mRenderer;  // one per data set, switched from run to run
-    std::optional<scene::TransferFunction> mTf, mOtherTf;
+    std::optional<scene::TransferFunction> mTf, mOtherTf;  // the albedo the renderer gets (scene::albedoOf)
     std::string mTfName;
     scene::RenderSettings mSettings;  // resolved: the camera framed
     ReferenceImage mRef;
@@ -425,11 +425,12 @@ BenchResults Runner::run() {
             const session::Session resolved = session::resolvePicture(mDesc, volume, nullptr);
             mSettings = resolved.settings;
             mDesc.session.settings.camera = mSettings.camera;  // framed once: runs and references agree
-            mTf = resolved.tf.merged();
+            mTf = scene::albedoOf(resolved.tf.merged(), resolved.tfColors);  // as the references render it
             // The timed TF edit comes from another preset, so every majorant really changes.
             session::PictureDescription other = mDesc;
             other.tfSource = session::TfSource{.name = tfName == "foggy" ? "spiky" : "foggy"};
-            mOtherTf = session::resolvePicture(other, volume, nullptr).tf.merged();
+            const session::Session o = session::resolvePicture(other, volume, nullptr);
+            mOtherTf = scene::albedoOf(o.tf.merged(), o.tfColors);
             mTfName = tfName;
             for (Mode mode : mOpt.modes) measureMode(mode);
             if (!mOpt.dvrSteps.empty()) {

@@ -222,6 +222,13 @@ void addStartOptions(CLI::App& app, PictureArgs& a) {
         ->type_name("FILE|PRESET");
     app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
         ->type_name("NAME");
+    app.add_option("--tf-colors", a.tfColors,
+                   "what the TF's colours mean: srgb, display colours as ParaView, matplotlib and yt mean them "
+                   "(decoded to linear albedo, the colour map interpolated as given), or linear albedo as given "
+                   "(amrvk before sessions of version 2)")
+        ->check(CLI::IsMember({"srgb", "linear"}))
+        ->capture_default_str()
+        ->type_name("srgb|linear");
 }
 
 // How the picture is made: the estimator, its majorant traversal, sampler and back-end, and the
@@ -496,6 +503,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))
         d.tfSource = session::TfSource{.name = a.tf, .preset = a.tfPreset};
     if (given(app, "--tf-range")) d.tfRange = std::make_pair(float(a.tfRange[0]), float(a.tfRange[1]));
+    if (use("--tf-colors")) s.tfColors = scene::parseTfColors(a.tfColors);
     d.fitCamera = !fromSession && !given(app, "--camera");
     const bool autoTraversal = a.traversal == "auto" && given(app, "--traversal");
     d.fit = autoTraversal                                   ? session::StructureFit::Probe

@@ -47,6 +47,7 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a);
 struct PictureArgs {
     std::string session;
     std::string tf = "ramp", tfPreset;
+    std::string tfColors = "srgb";  // scene/tf_colors.h
     std::vector<double> tfRange;
     std::string mode = "ms";
     double dt = 0.5;

@@ -71,7 +71,8 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
             note(strCat("--crop keeps nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ",
                         hi.y, " ", hi.z, "): the picture shows only the background"));
     }
-    const scene::TransferFunction tf = fittedSession.tf.merged();
+    // The renderer is linear inside: the TF's colours as albedo (scene/tf_colors.h).
+    const scene::TransferFunction tf = scene::albedoOf(fittedSession.tf.merged(), fittedSession.tfColors);
     if (d.fit == session::StructureFit::Probe) {
         // Probes start from the default combination; everything the user gave stays fixed.
         scene::StructureConfig start;
@@ -126,8 +127,14 @@ session::Session Picture::session() const {
 }
 
 void Picture::setTransferFunction(const scene::TfChannels& tf) {
-    renderer->setTransferFunction(tf.merged());
+    renderer->setTransferFunction(scene::albedoOf(tf.merged(), described.tfColors));
     described.tf = tf;
+}
+
+void Picture::setTfColors(scene::TfColors colors) {
+    if (colors == described.tfColors) return;
+    renderer->setTransferFunction(scene::albedoOf(described.tf.merged(), colors));
+    described.tfColors = colors;
 }
 
 void Picture::setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved) {

@@ -17,6 +17,7 @@
 #include "gpu/shader_library.h"
 #include "render/auto_select.h"
 #include "render/renderer.h"
+#include "scene/tf_colors.h"
 #include "session/picture_description.h"
 
 namespace amrvk::picture {
@@ -47,7 +48,10 @@ struct Picture {
     session::Session session() const;
     // Edits of what the renderer does not hold as given: applied to the renderer first, so a
     // refused one changes nothing. Settings are edited on the renderer itself.
+    // The TF's colours as given; the renderer gets scene::albedoOf(tf, session's tfColors).
     void setTransferFunction(const scene::TfChannels& tf);
+    // What the TF's colours mean (`--tf-colors`): the renderer's TF redone, the channels kept.
+    void setTfColors(scene::TfColors colors);
     void setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved);
     // Renders session().spp samples per pixel from scratch (progress(done, spp) after each batch).
     scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});

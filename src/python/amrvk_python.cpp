@@ -465,6 +465,11 @@ public:
     void setTf(const PyTf& tf) {
         locked([&] { mPicture.setTransferFunction(tf.channels); });
     }
+    std::string tfColors() const { return scene::tfColorsName(session().tfColors); }
+    void setTfColors(const std::string& name) {
+        const scene::TfColors c = scene::parseTfColors(name, "tf_colors");
+        locked([&] { mPicture.setTfColors(c); });
+    }
     // Settings edited by `edit` on a copy, validated, then applied (the renderer redoes what the
     // invalidation rule says); an invalid value changes nothing.
     template <typename Edit>
@@ -715,7 +720,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
                                    "quiet",    "fov",     "tf_range", "crop",    "clip",   "legend",
-                                   "legend_place", "legend_title", "legend_units"};
+                                   "legend_place", "legend_title", "legend_units", "tf_colors"};
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
         if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
@@ -751,6 +756,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         const auto r = keywordArg<std::pair<float, float>>(*o, "tf_range", "(lo, hi): two numbers");
         d.tfRange = r;
     }
+    if (auto o = take("tf_colors"))
+        s.tfColors = scene::parseTfColors(keywordArg<std::string>(*o, "tf_colors", "'srgb' or 'linear'"), "tf_colors");
     const std::optional<py::object> traversal = take("traversal");
     const std::string t = traversal ? keywordArg<std::string>(*traversal, "traversal", kText) : "";
     d.fit = t == "auto" ? session::StructureFit::Probe : t.empty() ? session::StructureFit::Data : session::StructureFit::None;
@@ -1032,6 +1039,9 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
         .def_property("tf", &PyRenderer::tf, [](PyRenderer& r, const py::object& t) {
             r.setTf(keywordArg<PyTf>(t, "tf", "an amrvk.TransferFunction"));
         })
+        .def_property("tf_colors", &PyRenderer::tfColors, &PyRenderer::setTfColors,
+                      "what the TF's colours mean: 'srgb' (display colours, as matplotlib, yt and ParaView; the "
+                      "default) or 'linear' (albedo as given)")
 ;
 }
 

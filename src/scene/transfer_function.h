@@ -1,10 +1,10 @@
 #pragma once
-// Transfer function: a piecewise-linear map from a field value to albedo (rgb, in [0,1]) and
+// Transfer function: a piecewise-linear map from a field value to a colour (rgb, in [0,1]) and
 // alpha (>= 0, extinction per finest cell width before densityScale). Nodes sit at ascending
 // positions in field units; two nodes may share a position (a step: the right node wins there);
 // beyond the first/last node the colour is constant. GLSL twin: shaders/lib/tf.glsl.
-// Colours from files and presets are used as albedo as given (no sRGB decoding), as ParaView's
-// path tracers and the ExaBrick tools do.
+// Colours are kept as given (display colours by default: what they mean is scene/tf_colors.h's
+// TfColors); the TF a renderer gets is albedoOf's, whose colours are linear albedo.
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -70,11 +70,11 @@ const std::vector<std::string>& presetNames();
 // A built-in preset over a range the caller fixes (--tf-range, a time series' range, the viewer's
 // editor, Python's preset(name, lo, hi)): defined over [0, 1] and mapped linearly onto [lo, hi],
 // whatever the data:
-//   ramp     viridis-like albedo, alpha 0 -> 1 linearly over the range;
-//   grey     constant albedo 0.8, alpha 0 -> 1 linearly;
+//   ramp     viridis-like colours, alpha 0 -> 1 linearly over the range;
+//   grey     constant colour 0.8, alpha 0 -> 1 linearly;
 //   spiky    alpha 0 except one triangular peak of alpha 1 at the middle (half width 1% of the range);
-//   foggy    alpha 0.05 -> 0.2, bright bluish albedo;
-//   constant alpha 1 and albedo 1 everywhere (furnace tests);
+//   foggy    alpha 0.05 -> 0.2, bright bluish colours;
+//   constant alpha 1 and colour 1 everywhere (albedo 1 in either TfColors: furnace tests);
 //   empty    alpha 0 everywhere.
 // Throws for an unknown name or a non-finite or reversed range.
 TransferFunction makePreset(std::string_view name, float lo, float hi);

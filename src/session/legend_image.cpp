@@ -57,7 +57,7 @@ int labelWidth(const Font& font, const Metrics& m, const LegendTick& t) {
 
 LegendContent legendContent(const Session& s) {
     LegendContent c;
-    c.tf = s.tf.merged();
+    c.tf = scene::albedoOf(s.tf.merged(), s.tfColors);  // linear, as the picture: a PNG shows the map as given
     c.lo = c.tf.firstPosition();
     c.hi = c.tf.lastPosition();
     c.logScale = s.read.scale == amr::FieldScale::Log;

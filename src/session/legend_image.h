@@ -30,7 +30,7 @@ struct LegendContent {
     std::string units;      // empty: no units line
     double lo = 0, hi = 0;  // the TF axis shown: the TF's first and last node (log10 of the field for a log scale)
     bool logScale = false;
-    scene::TransferFunction tf;
+    scene::TransferFunction tf;  // the picture's albedo (scene::albedoOf: linear), shown sRGB encoded
 };
 // A session's legend: its TF, field, scale and legend settings.
 LegendContent legendContent(const Session& s);

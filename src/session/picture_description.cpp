@@ -99,6 +99,7 @@ std::string renderCommandLine(const PictureDescription& d, const std::string& tf
         c += " --tf " + shellQuote(tfFile);
     }
     if (d.tfRange) c += " --tf-range " + formatNumber(d.tfRange->first) + " " + formatNumber(d.tfRange->second);
+    c += std::string(" --tf-colors ") + scene::tfColorsName(s.tfColors);  // always: a bench cache key says it
     c += scene::settingsOptions(s.settings, !d.fitCamera);
     c += " --spp " + std::to_string(s.spp > 0 ? s.spp : 64);
     c += scene::structureOptions(s.structure);

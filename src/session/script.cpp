@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
+#include "scene/tf_colors.h"
 #include "amr/model.h"
 #include "scene/cut_away.h"
 #include "scene/render_settings.h"
@@ -33,7 +34,7 @@ const std::map<std::string, Signature>& signatures() {
         {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}},
         {"scale", {1, {}}},       {"log-floor", {1, {0}}},   {"load-session", {1, {}}},
         {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}},
-        {"legend", {1, {}}}};
+        {"legend", {1, {}}},      {"tf-colors", {1, {}}}};
     return table;
 }
 
@@ -110,6 +111,7 @@ void checkValues(const ScriptAction& a) {
         scene::validateCutAway(c);
     }
     else if (n == "legend") AMRVK_CHECK(a.args[0] == "on" || a.args[0] == "off", "'", a.args[0], "': expected on or off");
+    else if (n == "tf-colors") scene::parseTfColors(a.args[0], "tf-colors");
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");

@@ -15,6 +15,7 @@
 //   load-session FILE                as the panel's "load session": the same data (another scale is read
 //                                    again), else refused with the reason
 //   legend on|off                    the colour legend over the picture and in PNG screenshots
+//   tf-colors srgb|linear            what the TF's colours mean (the "sRGB colours" checkbox)
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,

@@ -23,7 +23,7 @@ namespace amrvk::session {
 
 namespace {
 
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: "tfColors" (absent in version 1, whose colours were linear)
 
 Json vec3(glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); }
 
@@ -372,6 +372,7 @@ std::string sessionJson(const Session& s) {
     if (!s.settings.cut.empty()) j["cut"] = cutJson(s.settings.cut);
     writeSection(sectionNamed("structure"), s, j);
     j["transferFunction"] = Json::parse(scene::paraViewPresetJson(s.tf)).at(0);
+    j["tfColors"] = scene::tfColorsName(s.tfColors);
     writeSection(sectionNamed("legend"), s, j);
     return j.dump(2) + "\n";
 }
@@ -456,9 +457,10 @@ Session parseSession(const std::string& text, const fs::path& path) {
     AMRVK_CHECK(doc.is_object() && top.text("amrvk", "") == "session", file,
                 ": not an amrvk session (expected \"amrvk\": \"session\")");
     const int64_t version = top.integer("version", 1, 1 << 20);
-    AMRVK_CHECK(version == kVersion, file, ": session version ", version, " (this amrvk reads version ", kVersion, ")");
+    AMRVK_CHECK(version == 1 || version == kVersion, file, ": session version ", version,
+                " (this amrvk reads versions 1 and ", kVersion, ")");
     top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut",
-                  "structure", "transferFunction", "legend"});
+                  "structure", "transferFunction", "tfColors", "legend"});
 
     Session s;
     s.input = top.text("input");
@@ -470,6 +472,9 @@ Session parseSession(const std::string& text, const fs::path& path) {
     if (top.has("cut")) s.settings.cut = readCut(top.child("cut"));
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
+    // Version 1 knew only linear colours; a later file without the key means the default.
+    s.tfColors = top.named("tfColors", version == 1 ? "linear" : "srgb",
+                           [](std::string_view t) { return scene::parseTfColors(t); });
     return s;
 }
 

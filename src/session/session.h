@@ -1,8 +1,9 @@
 #pragma once
 // A session: everything that makes a picture, in one JSON file that both the viewer (save/load)
 // and `amrvk render --session` read, so a picture explored interactively renders the same offline.
-// Schema (docs/sessions.md): {"amrvk": "session", "version": 1, "input", "read", "field",
-// "camera", "image", "render", "lights", "structure", "transferFunction", "legend"}. The input path is
+// Schema (docs/sessions.md): {"amrvk": "session", "version": 2, "input", "read", "field",
+// "camera", "image", "render", "lights", "structure", "transferFunction", "tfColors", "legend"}.
+// Version 1 files (before "tfColors") load with the meaning they were saved with: linear colours. The input path is
 // stored absolute; a relative one in a hand-written file is taken relative to the session file.
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "amr/readers.h"
 #include "scene/render_settings.h"
 #include "scene/structure_config.h"
+#include "scene/tf_colors.h"
 #include "scene/transfer_function.h"
 #include "session/legend.h"
 
@@ -24,6 +26,7 @@ struct Session {
     uint32_t spp = 64;               // render: samples per pixel; viewer: stop accumulating there (0: run on)
     scene::StructureConfig structure;  // backend may be Auto
     scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)
+    scene::TfColors tfColors = scene::TfColors::Srgb;  // what tf's colours mean (scene/tf_colors.h)
     Legend legend;                   // the colour legend (session/legend.h)
 };
 

@@ -207,6 +207,14 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
     ImGui::SliderFloat("alpha axis", &p.alphaDisplayMax, 1e-3f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
     ImGui::Checkbox("log histogram", &p.logHistogram);
     ImGui::SameLine();
+    // What the colours mean (scene/tf_colors.h); the colour bar above shows them as given either way.
+    bool srgbColours = p.edit.tfColors == scene::TfColors::Srgb;
+    if (ImGui::Checkbox("sRGB colours", &srgbColours))
+        p.edit.tfColors = srgbColours ? scene::TfColors::Srgb : scene::TfColors::Linear;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("on: the colour map's colours are display colours, as in ParaView and matplotlib "
+                          "(decoded to linear albedo); off: linear albedo as given (--tf-colors linear)");
+    ImGui::SameLine();
     // The field's scale: the data is read again (docs/viewer.md), the TF refitted to the new range.
     bool logScale = p.edit.read.scale == amr::FieldScale::Log;
     if (ImGui::Checkbox("log scale", &logScale))

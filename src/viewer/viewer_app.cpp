@@ -247,7 +247,8 @@ void ViewerApp::adoptPicture(picture::Picture&& p) {
     mRenderer = std::move(p.renderer);
     // The editor's form of the TF: the same function, with both channels spanning its range.
     mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.described.tf)) mRenderer->setTransferFunction(mState.tf.merged());
+    if (!(mState.tf == p.described.tf))
+        mRenderer->setTransferFunction(scene::albedoOf(mState.tf.merged(), mState.tfColors));
     mTfHistory = session::TfHistory(mState.tf);
     mStats.combination = mRenderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
@@ -363,7 +364,7 @@ void ViewerApp::whileResponsive(const std::function<void()>& work) {
 
 void ViewerApp::setTransferFunction() {
     Timer t;
-    const scene::TransferFunction tf = mState.tf.merged();
+    const scene::TransferFunction tf = scene::albedoOf(mState.tf.merged(), mState.tfColors);  // linear, as rendered
     whileResponsive([&] { mRenderer->setTransferFunction(tf); });
     mStats.tfEditSeconds = t.seconds();
     updateHistogram();
@@ -528,8 +529,9 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         }
         mInteracting = true;
     }
-    if (!(e.tf == mState.tf)) {
+    if (!(e.tf == mState.tf) || e.tfColors != mState.tfColors) {
         mState.tf = e.tf;
+        mState.tfColors = e.tfColors;
         setTransferFunction();
         mInteracting = true;
     }
@@ -751,6 +753,9 @@ void ViewerApp::runAction(const session::ScriptAction& a) {
         loadSessionFile(a.args[0]);
     } else if (n == "legend") {
         mState.legend.show = a.args[0] == "on";
+    } else if (n == "tf-colors") {
+        mState.tfColors = scene::parseTfColors(a.args[0], "tf-colors");
+        setTransferFunction();
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {
@@ -995,6 +1000,7 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
         mState.settings = s.settings;
         mState.spp = s.spp;
         mState.tf = session::TfEditor::editable(s.tf);
+        mState.tfColors = s.tfColors;  // the meaning it was saved with
         mTfHistory.push(mState.tf);
         setTransferFunction();
     }

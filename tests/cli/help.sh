@@ -12,7 +12,7 @@ declare -A options=(
   [info]="--format --field --nan --dims --type --threshold --grid --bricks --traversal --sampler --json"
   [gen]="--cells --seed -o,--output --block --levels --field --time"
   [convert]="--format --field --nan --dims --type --threshold -o,--output"
-  [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --size --seed --spp --tf
+  [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --size --seed --spp --tf --tf-colors
             --tf-preset --tf-range --traversal --sampler --backend --grid --kd-leaves --dense-max-mib
             --density-scale --g --ambient --background --light-dir --light-point --camera --fov -o,--output
             --json --device --shader-dir --validation --series-range --orbit --frames --fps --frames-dir

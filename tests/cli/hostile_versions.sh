@@ -72,7 +72,7 @@ sess old-nofield.json 'del s["field"]'
 ok render --session old-nofield.json -o x.png
 
 # ---- sessions from other or newer versions: refused with one line, never misread ----
-for v in 0 2 -1 1.5 '"1"' 1e300 9223372036854775808 null true '[1]'; do
+for v in 0 3 -1 1.5 '"1"' 1e300 9223372036854775808 null true '[1]'; do
   sess "v.json" "s['version'] = json.loads('$v')"
   shown=$v; case $v in 1e300) shown=1e+300;; 9223372036854775808) shown=9.223372036854776e+18;; '"1"') shown=string;;
     null|true|'[1]') shown=expected;; esac
@@ -87,7 +87,7 @@ expect1 "not an amrvk session" -- render --session amrvk2.json -o x.png
 newkey() {  # newkey NAME PYTHON KEYPATH
   sess "$1" "$2"
   rm -f x.png
-  expect1 "$1.$3: unknown key (this amrvk reads session version 1" -- render --session "$1" -o x.png
+  expect1 "$1.$3: unknown key (this amrvk reads session version 2" -- render --session "$1" -o x.png
   check test ! -e x.png  # part of the case: no picture without the setting
 }
 newkey k-top.json 's["denoiser"] = {"on": True}' denoiser

@@ -293,3 +293,31 @@ TEST(LegendImage, TooSmallPicturesAndBadFontsAreOneLineErrors) {
         test::errorOf([&] { session::drawLegend(testPicture(30, 128), c, session::LegendPlace::Overlay, *font); }),
         "too narrow for the legend over it");
 }
+
+// Issue 35: a session's legend in a PNG shows its colour map as given (display colours, 8 bits,
+// within one step) for srgb TF colours, and for linear ones the colour the picture shows, encoded.
+TEST(LegendImage, TheSessionsColourBarShowsTheMapAsGiven) {
+    const auto font = defaultFont();
+    if (!font) GTEST_SKIP() << "built without FreeType";
+    session::Session s;
+    s.field = "Density";
+    s.tf = scene::TfChannels::split(scene::TransferFunction(
+        {0.0f, 1.0f}, {glm::vec4(0.2f, 0.4f, 0.6f, 1.0f), glm::vec4(0.9f, 0.5f, 0.0f, 1.0f)}));
+    for (const scene::TfColors colors : {scene::TfColors::Srgb, scene::TfColors::Linear}) {
+        s.tfColors = colors;
+        const session::LegendContent c = session::legendContent(s);
+        const session::LegendLayout L = session::legendLayout(80, 120, c, session::LegendPlace::Side, *font);
+        const Image8 png = legendPng(testPicture(80, 120), c, session::LegendPlace::Side, *font, "bar.png");
+        for (int y = L.colorBar.y; y < L.colorBar.y + L.colorBar.height; ++y) {
+            const glm::vec4 given = s.tf.merged().evaluate(float(session::legendBarValue(L, c, y)));
+            const Rgb p = pixel(png, L.colorBar.x + 1, y);
+            const Rgb want = colors == scene::TfColors::Srgb
+                                 ? Rgb{int(std::lround(given.r * 255)), int(std::lround(given.g * 255)),
+                                       int(std::lround(given.b * 255))}
+                                 : Rgb{srgb8(given.r), srgb8(given.g), srgb8(given.b)};
+            ASSERT_TRUE(std::abs(p.r - want.r) <= 1 && std::abs(p.g - want.g) <= 1 && std::abs(p.b - want.b) <= 1)
+                << scene::tfColorsName(colors) << " row " << y << ": " << p.r << " " << p.g << " " << p.b
+                << ", expected " << want.r << " " << want.g << " " << want.b;
+        }
+    }
+}

@@ -66,6 +66,7 @@ TEST(Script, ErrorsNameTheFileAndLine) {
         {"0 capture-window shot.exr", {"s.txt:1", "unknown image type (use .png)"}},
         {"0 edit-shader /etc/passwd a b", {"s.txt:1", "must be a path relative to --shader-dir"}},
         {"0 legend yes", {"s.txt:1", "legend", "'yes': expected on or off"}},
+        {"0 tf-colors gamma", {"s.txt:1", "tf-colors 'gamma': expected linear|srgb"}},
     };
     for (const auto& c : cases) {
         const std::string e = test::errorOf([&] { session::parseScript(c.text, "s.txt"); });

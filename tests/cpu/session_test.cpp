@@ -50,6 +50,7 @@ Session fullSession() {
     s.structure.denseMaxBytes = uint64_t(300) << 20;
     s.tf = scene::TfChannels::split(scene::makePreset("spiky", 0.0f, 3.0f));
     s.tf.name = "spiky edit";
+    s.tfColors = scene::TfColors::Linear;  // not the default, so the round trip shows it is kept
     return s;
 }
 
@@ -87,6 +88,7 @@ TEST(Session, EveryFieldRoundTrips) {
     EXPECT_EQ(y.positions(), x.positions());
     EXPECT_EQ(y.colors(), x.colors());
     EXPECT_EQ(t.tf.name, "spiky edit");
+    EXPECT_EQ(t.tfColors, scene::TfColors::Linear);
     // Saving what was loaded gives the same text.
     EXPECT_EQ(session::sessionJson(t), session::sessionJson(s));
 }
@@ -159,7 +161,8 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
     } cases[] = {
         {"{", {"/tmp/s.json", "malformed JSON"}},
         {"[]", {"/tmp/s.json", "not an amrvk session"}},
-        {with("\"version\": 1", "\"version\": 7"), {"version 7"}},
+        {with("\"version\": 2", "\"version\": 7"), {"version 7"}},
+        {with("\"tfColors\": \"linear\"", "\"tfColors\": \"gamma\""), {"/tmp/s.json.tfColors", "--tf-colors", "gamma"}},
         {with("\"fovY\": 33.0", "\"fovY\": 0.0"), {"camera.fovY", "(0, 180)"}},
         {with("\"width\": 320", "\"width\": 0"), {"image.width", "[1, 16384]"}},
         {with("\"mode\": \"ss\"", "\"mode\": \"xx\""), {"--mode", "xx"}},
@@ -208,7 +211,7 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
     const std::string c = session::renderCommandLine(s, "/tmp/a tf.json", "out.png");
     EXPECT_EQ(c.rfind("amrvk render '/data/my run/plt00010' ", 0), 0u) << c;
     for (const char* part :
-         {" --field Density", " --format enzo", " --nan drop", " --scale log", " --log-floor 0.001", " --tf '/tmp/a tf.json'", " --mode ss", " --size 320x200",
+         {" --field Density", " --format enzo", " --nan drop", " --scale log", " --log-floor 0.001", " --tf '/tmp/a tf.json'", " --tf-colors linear", " --mode ss", " --size 320x200",
           " --seed 77", " --camera 1.5 -2.25 3 0.5 0.5 0.5 0 0 1", " --fov 33", " --density-scale 0.05", " --g -0.3",
           " --ambient 0.1 0.2 0.3", " --background 0 0 0.01", " --light-dir 1 -1 2 3 3 2.5",
           " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --spp 128", " --traversal kdtree",
@@ -217,4 +220,31 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
         EXPECT_NE(c.find(part), std::string::npos) << part << " missing from: " << c;
     s.spp = 0;  // the viewer's "run on"
     EXPECT_NE(session::renderCommandLine(s, "t.json", "o.png").find(" --spp 64"), std::string::npos);
+}
+
+// Issue 35: a version 1 session (before "tfColors") meant its TF colours as linear albedo and loads
+// so; a version 2 file says its convention, and one without the key means the default (srgb).
+TEST(Session, OlderSessionsKeepTheirColourMeaning) {
+    Session s = fullSession();
+    s.tfColors = scene::TfColors::Srgb;
+    const std::string v2 = session::sessionJson(s);
+    ASSERT_NE(v2.find("\"version\": 2"), std::string::npos);
+    ASSERT_NE(v2.find("\"tfColors\": \"srgb\""), std::string::npos);
+    EXPECT_EQ(session::parseSession(v2, "/tmp/s.json").tfColors, scene::TfColors::Srgb);
+    auto without = [](std::string t, const std::string& version) {
+        const std::string key = ",\n  \"tfColors\": \"srgb\"";
+        const size_t at = t.find(key);
+        if (at != std::string::npos) t.erase(at, key.size());
+        const size_t v = t.find("\"version\": 2");
+        if (v != std::string::npos) t.replace(v, 12, "\"version\": " + version);
+        return t;
+    };
+    // As written before issue 35: version 1, no key.
+    const std::string v1 = without(v2, "1");
+    ASSERT_EQ(v1.find("tfColors"), std::string::npos);
+    EXPECT_EQ(session::parseSession(v1, "/tmp/s.json").tfColors, scene::TfColors::Linear);
+    EXPECT_EQ(session::parseSession(without(v2, "2"), "/tmp/s.json").tfColors, scene::TfColors::Srgb);
+    // Saved again, the old session says what it meant.
+    const Session old = session::parseSession(v1, "/tmp/s.json");
+    EXPECT_NE(session::sessionJson(old).find("\"tfColors\": \"linear\""), std::string::npos);
 }

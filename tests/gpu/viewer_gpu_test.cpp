@@ -246,7 +246,7 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
                    "0 orbit 10 5\n0 pan 3 -2\n0 zoom 1\n0 tf-preset foggy\n0 tf-range 0.1 1.5\n0 density 2\n"
                    "0 mode ss\n0 traversal grid-bvh\n0 sampler abr\n0 backend sw\n0 grid 8\n"
                    "0 clip 1 2 3 0 0 1\n0 cut-off\n0 crop 0 0 0 512 512 400\n0 clip 256 256 256 0 1 0\n"
-                   "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n0 legend on\n"
+                   "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n0 legend on\n0 tf-colors linear\n"
                    "0 screenshot " + (dir / "shot.pfm").string() + "\n0 save-session " + (dir / "s.json").string() +
                    "\n0 scale log\n0 log-floor 0.01\n0 load-session " + (dir / "s.json").string() +
                    "\n0 capture-window " + (dir / "w.png").string() + "\n1 quit\n");
@@ -264,6 +264,7 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
     EXPECT_EQ(s.structure.sampler, scene::SamplerKind::Abr);
     EXPECT_EQ(s.structure.grid, "8");
     EXPECT_TRUE(s.legend.show);
+    EXPECT_EQ(s.tfColors, scene::TfColors::Linear);
     EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 1.5f);
     ASSERT_TRUE(s.settings.cut.crop.has_value());
     EXPECT_EQ(s.settings.cut.crop->hi.z, 400.0);
@@ -568,7 +569,7 @@ TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
                    "14 load-session " + at("log.json") + "\n"  // another scale: read again, not refused
                    "16 save-session " + at("loaded.json") + "\n"
                    "18 log-floor 0.01\n"
-                   "19 density 0.03\n");  // the log TF makes the cloud opaque: thinner, so the image test has power
+                   "19 density 0.02\n");  // the log TF makes the cloud opaque: thinner, so the image test has power
     const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --spp 128 --headless --frames 400 --script " +
                            at("script.txt") + " --stats " + at("stats.json") + " --screenshot " + at("final.pfm") +
                            " --save-session " + at("final.json") + " --validation",
