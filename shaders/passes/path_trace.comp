@@ -64,7 +64,7 @@ void main() {
     gParams = ParamsRef(pc.params);
     UintRW pathStats = UintRW(P.pathStats);
     uint pathMaxLookups = 0u, pathMaxNulls = 0u;
-    uvec2 pix = gl_GlobalInvocationID.xy + uvec2(0u, pc.rowOffset);
+    uvec2 pix = uvec2(gl_GlobalInvocationID.x, pc.rowOffset + gl_GlobalInvocationID.y * max(pc.rowStride, 1u));
     bool inImage = pix.x < P.view.width && pix.y < min(P.view.height, pc.rowEnd);
     Counters c = newCounters();
     uint nanSamples = 0u;

@@ -161,8 +161,12 @@ struct PushConstants {
     uint rowOffset;   // first image row of this dispatch (time-budgeted tiles: a band of rows)
     uint rowEnd;      // one past its last row (the image height for a whole sample)
     uint samples;     // samples each invocation takes, numbered frameIndex.. (>= 1)
+    // Rows rowOffset, rowOffset + rowStride, ... below rowEnd (0 or 1: every row). A probe of the
+    // pace spread over the whole image (core/gpu_deadline.h) takes every rowStride-th row.
+    uint rowStride;
+    uint unused;      // keeps the size a multiple of 8 in C++ and GLSL alike
 };
-AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 24);
+AMRVK_STATIC_ASSERT(sizeof(PushConstants) == 32);
 
 // majorants.comp: majorants[i] = max TF alpha over ranges[i] for i < count. domain_aabbs.comp:
 // aabbs[i] = box i, or the point lo when majorants[i] == 0 (ray-query culling).
@@ -247,6 +251,7 @@ AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowEnd) == 16);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, samples) == 20);
+AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowStride) == 24);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, source) == 8);
 AMRVK_STATIC_ASSERT(offsetof(StructurePush, target) == 16);

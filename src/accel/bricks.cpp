@@ -7,11 +7,13 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
@@ -65,6 +67,15 @@ class BrickBuilder {
 public:
     explicit BrickBuilder(amr::Model& model) : mModel(model), mCells(model.cells) {
         for (amr::Field& f : model.fields) mFields.push_back(f.values.data());
+    }
+
+    // The bar of cells placed in bricks, drawn by whichever thread gets to it (at most every 0.1 s).
+    void showProgress(uint64_t placed) {
+        if (std::unique_lock lock(mBarMutex, std::try_to_lock); lock.owns_lock()) mBar.update(placed, mCells.size());
+    }
+    void finishProgress(bool complete) {
+        if (complete) mBar.update(mCells.size(), mCells.size());
+        mBar.finish();
     }
 
     // Builds the subtree over cells [begin, end) (bounds `info`; `cubes`: an ancestor's cube grid)
@@ -143,6 +154,7 @@ private:
         const Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), level, static_cast<uint32_t>(b)};
         orderBrick(brick, b, e);
         bricks.push_back(brick);
+        showProgress(mPlaced.fetch_add(e - b, std::memory_order_relaxed) + (e - b));
         return true;
     }
 
@@ -420,6 +432,9 @@ private:
     std::vector<amr::Cell>& mCells;
     std::vector<float*> mFields;
     std::atomic<bool> mMoved{false};  // some cell changed place
+    std::atomic<uint64_t> mPlaced{0};  // cells in bricks so far
+    std::mutex mBarMutex;
+    ProgressBar mBar{"bricks", "cells"};
 };
 
 }  // namespace
@@ -436,9 +451,11 @@ BrickSet buildBricks(amr::Model& model) {
     try {
         out.bricks = builder.build(0, n, builder.info(0, n));
     } catch (...) {
+        builder.finishProgress(false);
         model.cellOrder += builder.moved();
         throw;
     }
+    builder.finishProgress(true);
     model.cellOrder += builder.moved();
     out.buildSeconds = timer.seconds();
     return out;

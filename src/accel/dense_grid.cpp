@@ -40,22 +40,6 @@ uint64_t bytesOf(glm::i64vec3 d) {
     return bytes;
 }
 
-std::string formatBytes(uint64_t bytes) {
-    static const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
-    double v = double(bytes);
-    int u = 0;
-    while (v >= 1024.0 && u < 6) {
-        v /= 1024.0;
-        ++u;
-    }
-    char buf[48];
-    if (u == 0)
-        std::snprintf(buf, sizeof(buf), "%llu B", static_cast<unsigned long long>(bytes));
-    else
-        std::snprintf(buf, sizeof(buf), "%.1f %s", v, units[u]);
-    return buf;
-}
-
 std::string formatDims(glm::i64vec3 d) {
     if (d.x == d.y && d.y == d.z) return strCat(d.x, "^3");
     return strCat(d.x, "x", d.y, "x", d.z);

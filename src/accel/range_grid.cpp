@@ -12,6 +12,7 @@
 #include "core/checked_size.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/stats.h"
 
 namespace amrvk::accel {
@@ -245,42 +246,49 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                     strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
     g.ranges.resize(total);
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    parallelForRanges(0, total, 64, [&](size_t begin, size_t end) {
-        Scratch scratch;
-        for (size_t cell = begin; cell < end; ++cell) {
-            const glm::ivec3 c = g.coordOf(cell);
-            // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
-            glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
-            glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
-            for (int a = 0; a < 3; ++a) {
-                if (c[a] == 0) lo[a] = -INFINITY;
-                if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
+    // In about a hundred batches, so that the bar moves.
+    ProgressBar bar("macrocell value ranges", "macrocells");
+    const size_t batch = std::max<size_t>(64, total / 100);
+    for (size_t first = 0; first < total; first += batch) {
+        parallelForRanges(first, std::min(total, first + batch), 64, [&](size_t begin, size_t end) {
+            Scratch scratch;
+            for (size_t cell = begin; cell < end; ++cell) {
+                const glm::ivec3 c = g.coordOf(cell);
+                // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
+                glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
+                glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
+                for (int a = 0; a < 3; ++a) {
+                    if (c[a] == 0) lo[a] = -INFINITY;
+                    if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
+                }
+                double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
+                glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
+                for (uint32_t id : lists.bricksOf(cell)) {
+                    const Brick& b = bricks.bricks[id];
+                    const HalfBox d = brickDomain(b);
+                    const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
+                    if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
+                    extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
+                    hullLo = glm::min(hullLo, blo);
+                    hullHi = glm::max(hullHi, bhi);
+                }
+                if (rlo > rhi) continue;  // no brick has weight here: empty, majorant 0
+                // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
+                // small against the cells, the mixing of two bricks covers a small part of their
+                // union) the lattice gives f's exact range when it is small enough to evaluate.
+                // With one brick (f = t_b) or a constant range there is nothing to gain.
+                if (lists.bricksOf(cell).size() > 1 && rhi > rlo)
+                    latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
+                // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
+                // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
+                // read have one sign, else at most the largest magnitude read.
+                const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
+                g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
             }
-            double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
-            glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
-            for (uint32_t id : lists.bricksOf(cell)) {
-                const Brick& b = bricks.bricks[id];
-                const HalfBox d = brickDomain(b);
-                const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
-                if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
-                extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
-                hullLo = glm::min(hullLo, blo);
-                hullHi = glm::max(hullHi, bhi);
-            }
-            if (rlo > rhi) continue;  // no brick has weight here: empty, majorant 0
-            // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
-            // small against the cells, the mixing of two bricks covers a small part of their
-            // union) the lattice gives f's exact range when it is small enough to evaluate.
-            // With one brick (f = t_b) or a constant range there is nothing to gain.
-            if (lists.bricksOf(cell).size() > 1 && rhi > rlo)
-                latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
-            // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
-            // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
-            // read have one sign, else at most the largest magnitude read.
-            const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
-            g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
-        }
-    });
+        });
+        bar.update(std::min(total, first + batch), total);
+    }
+    bar.finish();
     g.buildSeconds = timer.seconds();
     return g;
 }

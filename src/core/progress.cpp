@@ -20,12 +20,39 @@ static bool progressEnabled() {
     return isatty(STDERR_FILENO) != 0;
 }
 
+std::string formatBytes(uint64_t bytes) {
+    static const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+    double v = double(bytes);
+    int u = 0;
+    while (v >= 1024.0 && u < 6) {
+        v /= 1024.0;
+        ++u;
+    }
+    char buf[48];
+    if (u == 0)
+        std::snprintf(buf, sizeof(buf), "%llu B", static_cast<unsigned long long>(bytes));
+    else
+        std::snprintf(buf, sizeof(buf), "%.1f %s", v, units[u]);
+    return buf;
+}
+
+std::string memoryNote(uint64_t bytes, bool upperBound) {
+    return (upperBound ? "at most " : "") + formatBytes(bytes) + " of memory";
+}
+
 ProgressStage::ProgressStage(std::string name) : mName(std::move(name)), mEnabled(progressEnabled()) {
     if (mEnabled) std::fprintf(stderr, "amrvk: %s ...\n", mName.c_str());
 }
 
+ProgressStage::ProgressStage(std::string name, const std::string& memory)
+    : mName(std::move(name)), mEnabled(progressEnabled()) {
+    if (mEnabled) std::fprintf(stderr, "amrvk: %s (%s) ...\n", mName.c_str(), memory.c_str());
+}
+
 ProgressStage::~ProgressStage() {
-    if (mEnabled) std::fprintf(stderr, "amrvk: %s done in %.2f s\n", mName.c_str(), mTimer.seconds());
+    if (!mEnabled) return;
+    if (mResult.empty()) std::fprintf(stderr, "amrvk: %s done in %.2f s\n", mName.c_str(), mTimer.seconds());
+    else std::fprintf(stderr, "amrvk: %s done in %.2f s (%s)\n", mName.c_str(), mTimer.seconds(), mResult.c_str());
 }
 
 ProgressBar::ProgressBar(std::string name, std::string unit)

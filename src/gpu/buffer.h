@@ -40,6 +40,8 @@ public:
     uint64_t allocatedBytes() const { return mAllocated; }
     const std::string& name() const { return mName; }
     bool valid() const { return mBuffer != VK_NULL_HANDLE; }
+    // Host-mapped: download() reads it without a submission (so also while work runs).
+    bool mapped() const { return mMapped != nullptr; }
 
     // Copies bytes into the buffer (directly if mapped, else through a staging buffer).
     void upload(const void* data, uint64_t bytes, uint64_t offset = 0);

@@ -42,6 +42,12 @@ ComputePipeline::ComputePipeline(Context& ctx, const std::vector<uint32_t>& spir
             AMRVK_VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &pci, nullptr, &mPipeline));
         }
         ctx.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(mPipeline), mName);
+        // JIT drivers (lavapipe) compile a pipeline at its first dispatch, for seconds on a loaded
+        // machine; an empty dispatch, which runs no shader code, compiles it here, so that no
+        // submission's time (the adaptive --gpu-timeout's probe, the GPU timers) includes it.
+        const std::vector<uint8_t> zeros(mPushBytes);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { dispatch(cmd, zeros.data(), 0, 0, 0); },
+                          "an empty dispatch compiling '" + mName + "'");
     } catch (...) {
         release();
         throw;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cctype>
 #include <csignal>
 #include <cstdio>
@@ -314,7 +315,7 @@ DriverCrashScope::DriverCrashScope(const std::string& what) {
 DriverCrashScope::~DriverCrashScope() { gGpuWorkRunning.store(false); }
 
 Context::Context(const ContextOptions& options) {
-    if (options.gpuTimeoutSeconds > 0) mGpuTimeoutSeconds = options.gpuTimeoutSeconds;
+    if (options.gpuTimeoutSeconds > 0) mFixedTimeoutSeconds = options.gpuTimeoutSeconds;
     bool validation = options.validation;
     if (const char* env = std::getenv("AMRVK_VALIDATION"); env && std::strcmp(env, "1") == 0) validation = true;
     if (validation)
@@ -440,7 +441,56 @@ void reportGpuCrashes() {
     for (int sig : {SIGSEGV, SIGBUS}) std::signal(sig, reportGpuCrash);
 }
 
-void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what) {
+namespace {
+
+// The device cannot cancel a dispatch, and waiting for it or destroying the device hangs: one
+// line, the temporaries removed, and the process ends here.
+[[noreturn]] void endRunaway(const std::string& what, const std::string& why) {
+    std::fprintf(stderr, "amrvk: error: %sGPU work '%s' ran longer than %s: a runaway loop? ending\n", gWho.c_str(),
+                 what.c_str(), why.c_str());
+    std::fflush(stderr);
+    removeTemporariesNow();
+    ::_exit(1);
+}
+
+std::string seconds(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g s", s);
+    return buf;
+}
+
+}  // namespace
+
+// Polls every 0.1 s: past the limit, the work is cut once its progress count has stood still for
+// quietSeconds (at once where there is no count).
+VkResult Context::waitAdaptive(const AdaptiveWait& wait, const std::string& what) {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+    const double limit = wait.limitSeconds > 0 ? wait.limitSeconds : kUnmeasuredLimitSeconds;
+    uint64_t last = wait.progress ? wait.progress() : 0;
+    Clock::time_point lastChange = start;
+    for (;;) {
+        const VkResult r = vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, 100'000'000);
+        if (r != VK_TIMEOUT) return r;
+        const Clock::time_point now = Clock::now();
+        if (wait.progress) {
+            const uint64_t v = wait.progress();
+            if (v != last) lastChange = now;
+            last = v;
+        }
+        const double elapsed = std::chrono::duration<double>(now - start).count();
+        const double quiet = std::chrono::duration<double>(now - lastChange).count();
+        if (elapsed < limit || (wait.progress && quiet < wait.quietSeconds)) continue;
+        if (wait.limitSeconds <= 0)
+            endRunaway(what, seconds(limit) + " (the --gpu-timeout default for work of no measured pace)");
+        endRunaway(what, seconds(limit) + (wait.progress ? ", the last " + std::to_string(int(quiet)) + " s finishing no path" : "") +
+                             " (the adaptive --gpu-timeout, from the measured pace and a floor; --gpu-timeout S "
+                             "waits S s)");
+    }
+}
+
+double Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what,
+                              const AdaptiveWait& adaptive) {
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = mCommandPool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -466,21 +516,18 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, 
     AMRVK_VK_CHECK(vkResetFences(mDevice, 1, &mFence));
     setCrashMessage(what);
     gGpuWorkRunning.store(true);
+    const auto start = std::chrono::steady_clock::now();
     AMRVK_VK_CHECK(vkQueueSubmit2(mQueue, 1, &si, mFence));
-    const double limit = mGpuTimeoutSeconds;
-    const VkResult waited = vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, uint64_t(limit * 1e9));
-    if (waited == VK_TIMEOUT) {
-        // The device cannot cancel the dispatch, and waiting for it or destroying the device hangs:
-        // one line, the temporaries removed, and the process ends here.
-        std::fprintf(stderr,
-                     "amrvk: error: %sGPU work '%s' ran longer than %g s (--gpu-timeout): a runaway loop? ending\n",
-                     gWho.c_str(), what.c_str(), limit);
-        std::fflush(stderr);
-        removeTemporariesNow();
-        ::_exit(1);
+    VkResult waited;
+    if (adaptiveTimeout()) {
+        waited = waitAdaptive(adaptive, what);
+    } else {
+        waited = vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, uint64_t(mFixedTimeoutSeconds * 1e9));
+        if (waited == VK_TIMEOUT) endRunaway(what, seconds(mFixedTimeoutSeconds) + " (--gpu-timeout)");
     }
     gGpuWorkRunning.store(false);
     AMRVK_VK_CHECK(waited);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,

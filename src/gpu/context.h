@@ -32,13 +32,24 @@ struct ContextOptions {
     uint32_t samplesPerInvocation = 0;
     // How long one submission may run (seconds) before amrvk ends the process with one line naming
     // the work: a runaway loop in a --shader-dir shader cannot be cancelled on the device, and
-    // waiting on, or destroying, a device that still runs it would hang. 0 = 600 s.
+    // waiting on, or destroying, a device that still runs it would hang. 0 = adaptive: path tracing
+    // is held to a limit that follows its measured pace (core/gpu_deadline.h), other work to 600 s.
     double gpuTimeoutSeconds = 0;
     // Presentation (the viewer): instance extensions the window system needs, and a function that
     // creates the window's surface once the instance exists. The device picked must then present
     // to that surface from its queue and gets VK_KHR_swapchain; the Context destroys the surface.
     std::vector<std::string> instanceExtensions;
     std::function<VkSurfaceKHR(VkInstance)> createSurface;
+};
+
+// The adaptive --gpu-timeout of one submission (core/gpu_deadline.h); a fixed --gpu-timeout
+// ignores it. The work is cut once it has run limitSeconds (0: Context::kUnmeasuredLimitSeconds)
+// and, where it has a progress count (one that changes while the work is alive, e.g. paths
+// finished, read from mapped memory while it runs), that count has not changed for quietSeconds.
+struct AdaptiveWait {
+    double limitSeconds = 0;
+    double quietSeconds = 0;
+    std::function<uint64_t()> progress;
 };
 
 struct DeviceReport {
@@ -130,17 +141,23 @@ public:
     const std::string& lastValidationMessage() const { return mLastValidationMessage; }
     MemoryTracker& memory() { return mMemory; }
 
-    // Records, submits and waits (at most gpuTimeoutSeconds). `what` names the work in the one-line
-    // error when it runs past the limit or crashes the process (e.g. "path_trace.ms.grid-dda/grid/sw
-    // from --shader-dir DIR"): a dispatch that reads or writes outside its buffers can crash a CPU
-    // device (lavapipe), where buffer device addresses have no robust access.
-    void submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what = "GPU work");
+    // Records, submits and waits; returns the wall seconds from submit to the fence. `what` names
+    // the work in the one-line error when it runs past the limit or crashes the process (e.g.
+    // "path_trace.ms.grid-dda/grid/sw from --shader-dir DIR"): a dispatch that reads or writes
+    // outside its buffers can crash a CPU device (lavapipe), where buffer device addresses have no
+    // robust access. The limit is --gpu-timeout where given, else `adaptive` (AdaptiveWait).
+    double submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what = "GPU work",
+                         const AdaptiveWait& adaptive = {});
+    // No --gpu-timeout was given: callers that measure their pace pass adaptive limits.
+    bool adaptiveTimeout() const { return mFixedTimeoutSeconds == 0; }
+    static constexpr double kUnmeasuredLimitSeconds = 600;  // work without a measured pace
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                             VkMemoryPropertyFlags preferred = 0) const;
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
 private:
     void release();
+    VkResult waitAdaptive(const AdaptiveWait& wait, const std::string& what);
     static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -159,7 +176,7 @@ private:
     DeviceReport mReport;
     bool mRayQuery = false;
     uint32_t mSamplesPerInvocation = 1;
-    double mGpuTimeoutSeconds = 600;
+    double mFixedTimeoutSeconds = 0;  // --gpu-timeout; 0 = adaptive
     bool mDebugUtils = false;
     uint64_t mValidationErrors = 0;
     std::string mLastValidationMessage;

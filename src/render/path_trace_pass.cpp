@@ -47,7 +47,10 @@ const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scen
     return it->second;
 }
 
-void PathTracePass::dropPipelines() { mPipelines.clear(); }
+void PathTracePass::dropPipelines() {
+    mPipelines.clear();
+    mDeadline.reset();
+}
 
 void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config,
                               const gpu::ShaderLibrary& shaders) {
@@ -55,6 +58,7 @@ void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& co
     ++mCompiled;
     mPipelines.clear();
     mPipelines.emplace(pipelineKey(mode, config), std::move(fresh));
+    mDeadline.reset();  // new shaders: their pace is not known
 }
 
 bool PathTracePass::resize(int width, int height) {
@@ -73,6 +77,7 @@ void PathTracePass::reset() {
     mSpp = 0;
     mRowsDone = 0;
     mStats = {};
+    mDeadline.reset();  // new settings or data: a new pace
 }
 
 void PathTracePass::addSamples(uint32_t n, const scene::RenderStats& stats) {
@@ -86,7 +91,7 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
     AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
     const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);
     if (count == 0) return 0.0;
-    const double seconds = submit(pipeline, {{paramsAddress, mFirstSample + mSpp, first, first + count, 1u}},
+    const double seconds = submit(pipeline, {{paramsAddress, mFirstSample + mSpp, first, first + count, 1u, 1u, 0u}},
                                   uint64_t(count) * uint64_t(mWidth)).first;
     mRowsDone += count;
     if (mRowsDone == uint32_t(mHeight)) {
@@ -96,11 +101,38 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
     return seconds;
 }
 
+void PathTracePass::probedSample(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress) {
+    const uint32_t width = uint32_t(mWidth), height = uint32_t(mHeight);
+    const uint32_t rowsPerSet = uint32_t(std::max<uint64_t>(1, (kProbePaths + width - 1) / width));
+    const uint32_t stride = std::max(1u, height / rowsPerSet);  // every set has >= rowsPerSet rows
+    // Sets of rows j, j + stride, ...: the first submission, one set, is the probe; later ones take
+    // 4x more sets each (at most 64, the timer's scopes), each held to the pace measured so far.
+    uint32_t set = 0, perSubmit = 1;
+    while (set < stride) {
+        const uint32_t count = std::min({perSubmit, stride - set, 64u});
+        std::vector<shared::PushConstants> dispatches;
+        uint64_t paths = 0;
+        for (uint32_t j = set; j < set + count; ++j) {
+            dispatches.push_back({paramsAddress, mFirstSample + mSpp, j, height, 1u, stride, 0u});
+            paths += uint64_t((height - j + stride - 1) / stride) * width;
+        }
+        submit(pipeline, dispatches, paths);
+        set += count;
+        perSubmit *= 4;
+    }
+    ++mSpp;
+}
+
 void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t n,
                                const std::function<void(uint32_t)>& afterBatch, uint32_t maxBatch) {
     AMRVK_CHECK(mAccum.valid(), "internal: accumulate() before resize()");
     if (mRowsDone > 0 && n > 0) {  // finish the sample a tile began
         rows(pipeline, paramsAddress, uint32_t(mHeight) - mRowsDone);
+        --n;
+        if (afterBatch) afterBatch(mSpp);
+    }
+    if (n > 0 && mCtx.adaptiveTimeout() && !mDeadline.measured()) {  // no pace yet: probe it
+        probedSample(pipeline, paramsAddress);
         --n;
         if (afterBatch) afterBatch(mSpp);
     }
@@ -112,7 +144,7 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
         std::vector<shared::PushConstants> dispatches;
         for (uint32_t i = 0; i < count; i += dispatches.back().samples)
             dispatches.push_back({paramsAddress, mFirstSample + mSpp + i, 0u, uint32_t(mHeight),
-                                  std::min(mCtx.samplesPerInvocation(), count - i)});
+                                  std::min(mCtx.samplesPerInvocation(), count - i), 1u, 0u});
         const uint32_t largest =
             submit(pipeline, dispatches, uint64_t(count) * uint64_t(mWidth) * uint64_t(mHeight)).second;
         mSpp += count;
@@ -124,10 +156,24 @@ void PathTracePass::accumulate(const gpu::ComputePipeline& pipeline, uint64_t pa
     }
 }
 
+gpu::AdaptiveWait PathTracePass::adaptiveWait(uint64_t paths) const {
+    gpu::AdaptiveWait wait{.limitSeconds = mDeadline.limit(paths), .quietSeconds = mDeadline.floorSeconds()};
+    // Paths finished so far: every path adds one to a lookup-count bin (path_trace.comp).
+    if (mPathStats.mapped())
+        wait.progress = [this] {
+            std::array<uint32_t, shared::kPathStatsLookupBins + shared::kPathBins> bins{};
+            mPathStats.download(bins.data(), sizeof bins);
+            uint64_t finished = 0;
+            for (uint32_t k = 0; k < shared::kPathBins; ++k) finished += bins[shared::kPathStatsLookupBins + k];
+            return finished;
+        };
+    return wait;
+}
+
 std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pipeline,
                                                   const std::vector<shared::PushConstants>& dispatches,
                                                   uint64_t paths) {
-    mCtx.submitAndWait(
+    const double wall = mCtx.submitAndWait(
         [&](VkCommandBuffer cmd) {
         mTimer.reset(cmd);
         vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -135,12 +181,15 @@ std::pair<double, uint32_t> PathTracePass::submit(const gpu::ComputePipeline& pi
         gpu::computeBarrier(cmd);
         for (const shared::PushConstants& push : dispatches) {
             const uint32_t scope = mTimer.begin(cmd);
-            pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (push.rowEnd - push.rowOffset + 7) / 8);
+            const uint32_t stride = std::max(push.rowStride, 1u);
+            const uint32_t rows = (push.rowEnd - push.rowOffset + stride - 1) / stride;
+            pipeline.dispatch(cmd, &push, (uint32_t(mWidth) + 7) / 8, (rows + 7) / 8);
             mTimer.end(cmd, scope);
             gpu::computeBarrier(cmd);
         }
     },
-        pipeline.name());
+        pipeline.name(), adaptiveWait(paths));
+    mDeadline.record(wall, paths);
     std::array<uint32_t, shared::kCounterCount> counters{};
     mCounters.download(counters.data(), sizeof counters);
     for (uint32_t k = 0; k < shared::kCounterCount; ++k) mStats.counters[k] += counters[k];

@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "core/gpu_deadline.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
@@ -81,8 +82,16 @@ public:
 private:
     // One submit: the counters zeroed, then each dispatch timed and followed by a barrier; adds the
     // counters, GPU seconds and `paths` to the statistics. Returns the GPU seconds and the largest counter.
+    // Under the adaptive --gpu-timeout it is held to mDeadline's limit and measures the pace.
     std::pair<double, uint32_t> submit(const gpu::ComputePipeline& pipeline,
                                        const std::vector<shared::PushConstants>& dispatches, uint64_t paths);
+    // The adaptive --gpu-timeout of a submission of `paths` paths: mDeadline's limit, and past it
+    // the floor's time without a path finished (read from the mapped path statistics).
+    gpu::AdaptiveWait adaptiveWait(uint64_t paths) const;
+    // One whole sample in sets of every stride-th row, the first set (about kProbePaths paths spread
+    // over the image) alone: it measures the pace with only the floor as its limit.
+    void probedSample(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress);
+    static constexpr uint64_t kProbePaths = 4096;
 
     gpu::Context& mCtx;
     std::map<std::string, gpu::ComputePipeline> mPipelines;  // key: mode + structure label
@@ -92,6 +101,7 @@ private:
     uint32_t mSpp = 0, mRowsDone = 0, mFirstSample = 0;
     uint64_t mCompiled = 0;
     scene::RenderStats mStats;
+    GpuDeadline mDeadline;  // the adaptive --gpu-timeout; reset with the accumulation
 };
 
 }  // namespace amrvk::render

@@ -75,8 +75,11 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
         v->bricks = std::move(*given);
         v->slotValues = accel::brickOrderValues(v->bricks, field);
     } else {
-        ProgressStage stage("bricks");
+        // At most one brick per cell; the cells and values are reordered in place.
+        ProgressStage stage(strCat("bricks of ", model.cells.size(), " cells"),
+                            memoryNote(uint64_t(model.cells.size()) * sizeof(accel::Brick), true));
         v->bricks = accel::buildBricks(model);
+        stage.setResult(strCat(v->bricks.bricks.size(), " bricks, ", formatBytes(v->bricks.memoryBytes())));
     }
     v->model = std::move(model);
     return v;

@@ -1,5 +1,7 @@
 #include "scene/volume_scene.h"
 
+#include <optional>
+
 #include "accel/brick_sampler.h"
 #include "accel/majorant_bounds.h"
 #include "core/error.h"
@@ -43,7 +45,9 @@ void VolumeScene::configure(const StructureConfig& next) {
 
     if (p.supportRangeQuery && !supportRanges) {
         Timer t;
+        ProgressStage stage("support ranges of the bricks");
         supportRanges.emplace(v.bricks, v.brickValues());
+        stage.setResult(formatBytes(supportRanges->memoryBytes()));
         buildSeconds.domains = t.seconds();
     }
     if (p.denseGrid && !dense) {
@@ -53,6 +57,7 @@ void VolumeScene::configure(const StructureConfig& next) {
     if (p.abrs && !abrs) {
         ProgressStage stage("active brick regions");
         abrs = accel::buildAbrs(v.bricks);
+        stage.setResult(strCat(abrs->abrs.size(), " regions, ", formatBytes(abrs->memoryBytes())));
         buildSeconds.abrs = abrs->buildSeconds;
     }
     if ((p.samplerBvh || p.samplerBoxes) && samplerBvh.nodes.empty() && samplerBoxes.empty()) {
@@ -61,7 +66,9 @@ void VolumeScene::configure(const StructureConfig& next) {
             p.lookup == Lookup::AbrBvh ? accel::abrBoxes(*abrs) : accel::brickDomainBoxes(v.bricks);
         if (p.samplerBvh) {
             for (auto& b : boxes) b = {v.toLocal(b.lo), v.toLocal(b.hi)};
+            ProgressStage stage(strCat("sampler BVH over ", boxes.size(), " boxes"));
             samplerBvh = accel::buildBvh(boxes);
+            stage.setResult(formatBytes(samplerBvh.memoryBytes()));
         } else {
             samplerBoxes.reserve(boxes.size());
             for (const auto& b : boxes) samplerBoxes.push_back(v.toLocal(b));
@@ -71,6 +78,7 @@ void VolumeScene::configure(const StructureConfig& next) {
     if (p.brickGrid && !brickGrid) {
         ProgressStage stage("brick grid");
         brickGrid = accel::buildBrickGrid(v.bricks, v.bounds(), accel::parseGridDims(next.grid, v.bounds()));
+        stage.setResult(formatBytes(brickGrid->memoryBytes()));
         buildSeconds.brickGrid = brickGrid->buildSeconds;
     }
     if (p.macrocellRanges && !grid) buildMacrocellRanges();
@@ -83,8 +91,10 @@ void VolumeScene::configure(const StructureConfig& next) {
 void VolumeScene::buildMacrocellRanges() {
     const Volume& v = *mVolume;
     const StructurePlan& p = mPlan;
-    ProgressStage stage("macrocell value ranges");
     const glm::ivec3 dims = accel::parseGridDims(mConfig.grid, v.bounds());
+    const uint64_t macrocells = uint64_t(dims.x) * uint64_t(dims.y) * uint64_t(dims.z);
+    ProgressStage stage(strCat("macrocell value ranges of ", dims.x, "x", dims.y, "x", dims.z),
+                        memoryNote(macrocells * sizeof(accel::ValueRange)));
     if (p.rangesFromDense) {  // ranges from the dense samples, not from the cells
         Timer t;
         grid = accel::rangeGridLayout(v.bounds(), dims);
@@ -105,7 +115,9 @@ void VolumeScene::buildMacrocellRanges() {
 void VolumeScene::buildStaticBoxes() {
     const Volume& v = *mVolume;
     const StructurePlan& p = mPlan;
-    ProgressStage stage("traversal value ranges");
+    const uint64_t boxes = p.traversalBoxes == BoxSet::Abrs ? abrs->abrs.size() : v.bricks.bricks.size();
+    ProgressStage stage(strCat("traversal value ranges of ", boxes, " boxes"),
+                        memoryNote(boxes * (sizeof(shared::AabbGpu) + sizeof(accel::ValueRange))));
     Timer t;
     const accel::SupportRangeQuery query(v.bricks, v.brickValues());
     const double margin = accel::positionMargin(v.bounds());
@@ -132,8 +144,14 @@ accel::KdTree VolumeScene::kdTreeFor(const TransferFunction& tf) const {
     AMRVK_CHECK(supportRanges.has_value(), "internal: a kd-tree needs the kdtree traversal's support ranges");
     accel::KdTreeParams params;
     params.maxLeaves = mConfig.kdLeaves;
-    return accel::buildKdTree(*supportRanges, mVolume->bounds(),
-                              [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
+    // Rebuilt at every TF change (the viewer's edits): a line only where the data makes it long.
+    std::optional<ProgressStage> stage;
+    if (mVolume->bricks.bricks.size() >= (size_t(1) << 16))
+        stage.emplace(strCat("kd-tree of at most ", params.maxLeaves, " leaves for the transfer function"));
+    accel::KdTree tree = accel::buildKdTree(*supportRanges, mVolume->bounds(),
+                                            [&tf](float lo, float hi) { return tf.maxAlpha(lo, hi); }, params);
+    if (stage) stage->setResult(strCat(tree.leaves.size(), " leaves, ", formatBytes(tree.memoryBytes())));
+    return tree;
 }
 
 double VolumeScene::combinationBuildSeconds() const {

@@ -498,6 +498,42 @@ expect1 "two-infos: 2 RAMSES info files (info_00001.txt, info_00002.txt): name t
   info two-infos
 expect1 "--legend-font $dir: not a font file (a directory)" -- render good.cells "${pic[@]}" --legend --legend-font "$dir" -o lf.png
 
+# ---- 10. Round 3 (issue 34, point 7): a runaway shader ends in seconds, honest work never ----
+section "round 3: adaptive gpu timeout"
+# No --gpu-timeout: a path_trace that never ends is cut after the adaptive floor (10 s; the first
+# submission is a small probe), not after 600 s. Run under `timeout 120`, which ends the landed
+# code's run (rc 124, a failure here).
+printf '#!/bin/sh\nexec timeout 120 "$AMRVK_UNDER_TEST" "$@"\n' > within120.sh; chmod +x within120.sh
+export AMRVK_UNDER_TEST="$amrvk"; amrvk="$dir/within120.sh"
+cp -r shaders sh_forever
+sed -i 's|void main() {|void main() { float spin = 0.0; for (uint k = 0u; ; ++k) { spin += sin(float(k)); if (spin < -1e30) break; } if (spin == 1.0) return;|' sh_forever/passes/path_trace.comp
+expect1 "s finishing no path (the adaptive --gpu-timeout, from the measured pace and a floor; --gpu-timeout S waits S s): a runaway loop? ending" -- \
+  render good.cells "${pic[@]}" --shader-dir sh_forever -o forever.png --json forever.json
+check1 grep -q "GPU work 'path_trace.ae.grid-dda/grid/sw from --shader-dir sh_forever' ran longer than 10 s, the last 1[0-9] s" expect.err
+check1 test ! -e forever.png
+check1 test ! -e forever.json
+# The viewer (tiles and previews) and a larger image (the probe is a strided part of it) alike;
+# AMRVK_TEST_GPU_TIMEOUT_FLOOR shortens the floor.
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "finishing no path (the adaptive --gpu-timeout" -- \
+  view good.cells "${pic[@]}" --headless --shader-dir sh_forever --script q.txt --save-session never2.json
+check1 test ! -e never2.json
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "finishing no path (the adaptive --gpu-timeout" -- \
+  render good.cells --size 640x480 --spp 4 --grid 4 --mode ae --shader-dir sh_forever -o forever.png
+# An explicit --gpu-timeout keeps its meaning (here longer than the adaptive floor).
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "ran longer than 4 s (--gpu-timeout): a runaway loop? ending" -- \
+  render good.cells "${pic[@]}" --shader-dir sh_forever --gpu-timeout 4 -o forever.png
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=0 expect1 "AMRVK_TEST_GPU_TIMEOUT_FLOOR: '0' is not a number of seconds" -- \
+  render good.cells "${pic[@]}" -o forever.png
+amrvk="$AMRVK_UNDER_TEST"
+# An honest render whose last submission (64 spp, about 9 s on lavapipe with 2 cores) runs longer
+# than a 4 s floor is never cut: each limit grows with its paths at the pace measured so far, and
+# past it paths keep finishing. (Lavapipe compiles a pipeline at its first dispatch: an empty
+# dispatch at creation does it, so the probe's time holds no compiling.)
+"$amrvk" gen cloud --cells 100000 --seed 1 -o slowcloud >/dev/null 2>&1
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 128 --mode ms -o slow.png --json slow.json
+check1 test -s slow.png
+no_temporaries
+
 section ""
 echo "hostile.sh: $cases cases"
 test "$cases" -ge 150 || { echo "FAIL: only $cases cases"; fail=1; }

@@ -170,4 +170,20 @@ check grep -q "above --until-error; --spp capped it" "$dir/capped.out"
 check /usr/bin/python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["spp"] == 8' "$dir/capped.json"
 expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
 expect "--until-error needs --spp of at least 2" -- render "$sample" --spp 1 --until-error 0.1 -o "$dir/x.png"
+# The other long builds alike (issue 34, point 8): bricks (an upper bound first, a bar over the
+# cells, the bricks and memory after), macrocell value ranges (their memory, a bar over the
+# macrocells), the kd-tree traversal's support ranges, and the upload (the device memory taken).
+"$amrvk" gen cloud --cells 200000 --seed 1 -o "$dir/progress-cloud" >/dev/null 2>&1 || fail=1
+AMRVK_PROGRESS=1 "$amrvk" render "$dir/progress-cloud.cells" --traversal grid-bvh --sampler grid --grid 32 \
+  --size 8x8 --spp 1 -o "$dir/progress.png" 2>"$dir/progress.err" >/dev/null || fail=1
+cells=$(grep -o 'bricks of [0-9]* cells (at most [0-9.]* [KMG]iB of memory) \.\.\.' "$dir/progress.err" | grep -o 'of [0-9]* cells' | tr -dc 0-9)
+check test -n "$cells"
+check grep -q "bricks \[#* *\] $cells/$cells cells" "$dir/progress.err"
+check grep -Eq "bricks of $cells cells done in [0-9.]+ s \([0-9]+ bricks, [0-9.]+ [KMG]?i?B\)" "$dir/progress.err"
+check grep -q "macrocell value ranges of 32x32x32 (256.0 KiB of memory) \.\.\." "$dir/progress.err"
+check grep -q "macrocell value ranges \[#* *\] 32768/32768 macrocells" "$dir/progress.err"
+check grep -Eq "uploading the structures to the device done in [0-9.]+ s \([0-9.]+ [KMG]iB of device memory\)" "$dir/progress.err"
+AMRVK_PROGRESS=1 "$amrvk" render "$dir/progress-cloud.cells" --traversal kdtree --size 8x8 --spp 1 \
+  -o "$dir/progress.png" 2>"$dir/progress-kd.err" >/dev/null || fail=1
+check grep -Eq "support ranges of the bricks done in [0-9.]+ s \([0-9.]+ [KMG]iB\)" "$dir/progress-kd.err"
 exit $fail

@@ -33,3 +33,22 @@ TEST(ProgressBar, ShowsTheTimeLeftAtTheRateSoFar) {
     EXPECT_EQ(last.find("eta"), std::string::npos) << "no estimate once done: " << last;
     EXPECT_EQ(text.back(), '\n');
 }
+
+// A long build states the memory it is about to take before it starts, and what it took after.
+TEST(ProgressStage, StatesTheMemoryBeforeAndTheResultAfter) {
+    ::setenv("AMRVK_PROGRESS", "1", 1);
+    testing::internal::CaptureStderr();
+    {
+        ProgressStage stage("bricks of 1000 cells", memoryNote(uint64_t(3) << 30, true));
+        stage.setResult("12 bricks, " + formatBytes(384));
+    }
+    { ProgressStage plain("reading x"); }
+    const std::string text = testing::internal::GetCapturedStderr();
+    ::unsetenv("AMRVK_PROGRESS");
+    EXPECT_NE(text.find("amrvk: bricks of 1000 cells (at most 3.0 GiB of memory) ...\n"), std::string::npos) << text;
+    EXPECT_TRUE(std::regex_search(text, std::regex(R"(amrvk: bricks of 1000 cells done in [0-9.]+ s \(12 bricks, 384 B\)\n)")))
+        << text;
+    EXPECT_NE(text.find("amrvk: reading x ...\n"), std::string::npos) << text;
+    EXPECT_EQ(formatBytes(1536), "1.5 KiB");
+    EXPECT_EQ(memoryNote(uint64_t(19) << 20), "19.0 MiB of memory");
+}
