@@ -28,11 +28,26 @@ CAMERA = {"eye": [330.0, -150.0, 260.0], "target": [64.0, 64.0, 64.0], "up": [0.
 PRESET = "Viridis (matplotlib)"
 SIZE = 512
 
-PVBATCH = r'''
+# Both pvbatch scripts start here: a black, unlabelled view volume rendering "value" of reader r.
+PRELUDE = r'''
 import json, math, sys
 import paraview
 from paraview.simple import *
 paraview.simple._DisableFirstRenderCameraReset()
+def volume_view(r, size):
+    view = CreateView("RenderView")
+    view.ViewSize = [size, size]
+    if hasattr(view, "UseColorPaletteForBackground"):
+        view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    view.OrientationAxesVisibility = 0
+    d = Show(r, view)
+    d.Representation = "Volume"
+    ColorBy(d, ("POINTS", "value"))
+    return view, d
+'''
+
+PVBATCH = PRELUDE + r'''
 raw, png, out, lo, hi, opacity, cam, preset, size = sys.argv[1], sys.argv[2], sys.argv[3], *json.loads(sys.argv[4])
 r = ImageReader(FileNames=[raw])
 r.DataScalarType = "float"
@@ -41,15 +56,7 @@ r.DataExtent = [0, 127, 0, 127, 0, 127]
 r.DataOrigin = [0.5, 0.5, 0.5]  # point data at amrvk's cell centres
 r.DataSpacing = [1.0, 1.0, 1.0]
 r.ScalarArrayName = "value"
-view = CreateView("RenderView")
-view.ViewSize = [size, size]
-if hasattr(view, "UseColorPaletteForBackground"):
-    view.UseColorPaletteForBackground = 0
-view.Background = [0.0, 0.0, 0.0]
-view.OrientationAxesVisibility = 0
-d = Show(r, view)
-d.Representation = "Volume"
-ColorBy(d, ("POINTS", "value"))
+view, d = volume_view(r, size)
 lut = GetColorTransferFunction("value")
 lut.ApplyPreset(preset, True)
 lut.RescaleTransferFunction(lo, hi)
@@ -66,26 +73,14 @@ json.dump([{"Name": preset, "ColorSpace": space, "RGBPoints": list(lut.RGBPoints
 '''
 
 
-SLAB = r'''
-import json, sys
-import paraview
-from paraview.simple import *
-paraview.simple._DisableFirstRenderCameraReset()
+SLAB = PRELUDE + r'''
 raw, png, rgb, opacity, unit = sys.argv[1], sys.argv[2], *json.loads(sys.argv[3])
 r = ImageReader(FileNames=[raw])
 r.DataScalarType = "float"
 r.DataByteOrder = "LittleEndian"
 r.DataExtent = [0, 63, 0, 63, 0, 4]  # points 0..4: four cells thick
 r.ScalarArrayName = "value"
-view = CreateView("RenderView")
-view.ViewSize = [32, 32]
-if hasattr(view, "UseColorPaletteForBackground"):
-    view.UseColorPaletteForBackground = 0
-view.Background = [0.0, 0.0, 0.0]
-view.OrientationAxesVisibility = 0
-d = Show(r, view)
-d.Representation = "Volume"
-ColorBy(d, ("POINTS", "value"))
+view, d = volume_view(r, 32)
 GetColorTransferFunction("value").RGBPoints = [0, *rgb, 2, *rgb]
 GetOpacityTransferFunction("value").Points = [0, opacity, 0.5, 0, 2, opacity, 0.5, 0]
 d.ScalarOpacityUnitDistance = unit

@@ -11,15 +11,7 @@ amrvk="$1"; src="$2"; dir="$3"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
 fail=0
-cases=0
-source "$here/lib.sh"
-# Every helper counts one case.
-expect1() { cases=$((cases + 1)); expect "$@"; }
-check1() { cases=$((cases + 1)); check "$@"; }
-ok() {  # ok ARGS...: amrvk ARGS exits 0
-  cases=$((cases + 1))
-  "$amrvk" "$@" >"$dir/ok.out" 2>"$dir/ok.err" || { echo "FAIL: amrvk $* -> rc=$?: $(tail -2 "$dir/ok.err")"; fail=1; }
-}
+source "$here/lib.sh"  # expect1, check1, ok: one case each
 same() { cmp -s "$1" "$2" || { echo "FAIL: $1 changed"; fail=1; }; }  # part of the case before it
 no_temporaries() { check1 test -z "$(find . -name '*.tmp-*' | head -1)"; }
 section_name=""; section_start=0

@@ -11,13 +11,7 @@ amrvk="$1"; dir="$2"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
 fail=0
-cases=0
-source "$here/lib.sh"
-expect1() { cases=$((cases + 1)); expect "$@"; }
-ok() {
-  cases=$((cases + 1))
-  if "$amrvk" "$@" >ok.out 2>ok.err; then echo "ok: amrvk $*"; else echo "FAIL: amrvk $* -> rc=$?: $(tail -2 ok.err)"; fail=1; fi
-}
+source "$here/lib.sh"  # expect1, ok: one case each
 python3 - <<'PY'
 import struct
 cells = [(0,0,0,1),(2,0,0,0),(3,0,0,0),(2,1,0,0),(3,1,0,0)]

@@ -12,3 +12,13 @@ expect() {
     echo "ok: amrvk $* -> $(cat "$dir/expect.err")"
   fi
 }
+# Counted cases (the hostile campaigns report how many they ran): expect1, check1, and ok ARGS...
+# (`amrvk ARGS` must exit 0), each one case.
+cases=0
+expect1() { cases=$((cases + 1)); expect "$@"; }
+check1() { cases=$((cases + 1)); check "$@"; }
+ok() {
+  cases=$((cases + 1))
+  if "$amrvk" "$@" >"$dir/ok.out" 2>"$dir/ok.err"; then echo "ok: amrvk $*"; else
+    echo "FAIL: amrvk $* -> rc=$?: $(tail -2 "$dir/ok.err")"; fail=1; fi
+}
