@@ -12,10 +12,10 @@ description fitted to the data), so a Renderer renders what the command line ren
 the same session files (``save_session``; ``amrvk view --session FILE`` opens them).
 """
 
-from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices
+from ._amrvk import Camera, Light, Renderer, TransferFunction, Volume, devices, _initialized
 from . import one_line_errors as _one_line_errors
 
-_one_line_errors.install([Camera, Light, Renderer, TransferFunction, Volume])
+_one_line_errors.install([Camera, Light, Renderer, TransferFunction, Volume], _initialized)
 devices = _one_line_errors.wrap_function(devices, "devices")
 from . import cameras as _cameras
 from . import colormaps as _colormaps

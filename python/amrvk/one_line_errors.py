@@ -115,14 +115,38 @@ def wrap_function(function, qualname):
     return _wrap(function, qualname, False)
 
 
-def install(classes):
-    """Wraps the classes' constructors, methods and static methods (properties check their own)."""
+def _made(function, qualname, initialized):
+    """`function(self, ...)` refusing a self that __init__ never filled (T.__new__(T) alone): pybind11
+    would call the C++ method on a null object and crash the interpreter."""
+
+    @functools.wraps(function)
+    def call(self, *args, **kwargs):
+        if not initialized(self):
+            raise TypeError(f"{qualname}: this {type(self).__name__} was never initialised "
+                            f"(made by __new__ without __init__)")
+        return function(self, *args, **kwargs)
+
+    return call
+
+
+# Dunder methods of the bound classes that take an initialised self.
+_DUNDERS = ("__repr__", "__str__", "__eq__", "__hash__", "__enter__", "__exit__", "__getstate__")
+
+
+def install(classes, initialized):
+    """Wraps the classes' constructors, methods and static methods; every method, dunder method and
+    property of an instance first asks `initialized(self)`."""
     for cls in classes:
         for name, attr in list(vars(cls).items()):
-            if name.startswith("_") and name != "__init__":
-                continue
             qualname = f"{cls.__name__}()" if name == "__init__" else f"{cls.__name__}.{name}"
+            if isinstance(attr, property):
+                fset = attr.fset and _made(attr.fset, qualname, initialized)
+                setattr(cls, name, property(_made(attr.fget, qualname, initialized), fset, attr.fdel, attr.__doc__))
+                continue
+            if name.startswith("_") and name != "__init__" and name not in _DUNDERS:
+                continue
             if isinstance(attr, staticmethod):
                 setattr(cls, name, staticmethod(_wrap(attr.__func__, qualname, False)))
             elif type(attr).__name__ == "instancemethod":  # pybind11's methods and constructors
-                setattr(cls, name, _wrap(attr.__func__, qualname, True))
+                wrapped = _wrap(attr.__func__, qualname, True)
+                setattr(cls, name, wrapped if name == "__init__" else _made(wrapped, qualname, initialized))

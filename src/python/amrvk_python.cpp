@@ -1222,6 +1222,13 @@ void bindSeries(py::module_& m) {
 
 PYBIND11_MODULE(_amrvk, m) {
     m.doc() = "amrvk: unbiased volumetric path tracing of AMR data on any Vulkan device (compiled part)";
+    // Whether an object of a bound class holds its C++ value: not after T.__new__(T) without
+    // __init__, where pybind11 would call a method on a null object (one_line_errors.py asks first).
+    m.def("_initialized", [](const py::handle& o) {
+        auto* inst = reinterpret_cast<py::detail::instance*>(o.ptr());
+        return py::isinstance(o, py::handle(reinterpret_cast<PyObject*>(py::detail::get_internals().instance_base))) &&
+               inst->get_value_and_holder(nullptr, false).value_ptr() != nullptr;
+    });
     bindErrors();
     bindCamera(m);
     bindLight(m);
