@@ -213,3 +213,31 @@ TEST(CarpetHostile, LevelAttributesAreChecked) {
     });
     expectError([&] { readCarpet(copy, {}); }, {copy.string(), kRl2, "has no attribute 'origin'"});
 }
+
+TEST(CarpetReader, EveryComponentOfALevelIsRead) {
+    AMRVK_REQUIRE_DATA(kWaveToy);
+    // rl3 split into two components on the same array: c=0 owns x 66..74, c=1 x 76..86 (finest
+    // index). Each gives its own cells (8 and 10 wide in x); the seam [74, 76) is one rl2 cell
+    // wide and stays with rl2 (docs/formats.md), so rl3 has 7200 leaves, rl2 100 more than whole.
+    const char* rl3 = "WAVETOY::phi it=64 tl=0 rl=3";
+    const std::string c0 = std::string(rl3) + " c=0", c1 = std::string(rl3) + " c=1";
+    const fs::path copy = editedCopy([&](hid_t f) {
+        EXPECT_GE(H5Lmove(f, rl3, f, c0.c_str(), H5P_DEFAULT, H5P_DEFAULT), 0);
+        EXPECT_GE(H5Ocopy(f, c0.c_str(), f, c1.c_str(), H5P_DEFAULT, H5P_DEFAULT), 0);
+        const std::string pre = "bboxset<CCTK_INT4,3>(set<bbox>:{(";
+        const std::string post = ":[1,1,1]/x)},stride:[1,1,1],offset:[0,0,0])";
+        writeActive(f, c0.c_str(), pre + "[66,66,66]:[74,86,86]" + post);
+        writeActive(f, c1.c_str(), pre + "[76,66,66]:[86,86,86]" + post);
+    });
+    const Model m = readModel(copy, ReadOptions{});
+    EXPECT_EQ(attribute(m, "componentsPerLevel"), "1 1 1 2");
+    EXPECT_EQ(attribute(m, "activePointsPerLevel"), "4096 9261 9261 8820");  // 21^2 x (9 + 11)
+    const ModelSummary s = summarize(m);
+    EXPECT_EQ(s.cellsPerLevel, (std::vector<uint64_t>{7200, 7100, 4832, 2646}));
+    EXPECT_DOUBLE_EQ(s.leafVolume, 120.0 * 120.0 * 120.0);
+    EXPECT_NO_THROW(validate(m));
+    // Both components' cells carry their own corner means: the first cell of each.
+    EXPECT_NEAR(valueAt(m, glm::ivec3(50), 0), 0.928110669, 1e-6);
+    EXPECT_NEAR(valueAt(m, glm::ivec3(60, 50, 50), 0), valueAt(readModel(test::dataDir() / kWaveToy, {}),
+                                                               glm::ivec3(60, 50, 50), 0), 1e-7);
+}
