@@ -5,10 +5,11 @@
 // points it owns, in the global index space of the finest level (stride = that level's spacing).
 //
 // Vertices onto cells (docs/formats.md "Carpet"): on each level, the cell between 8 neighbouring
-// active vertices takes the mean of their 8 values (trilinear interpolation at its centre). The
-// cells of a level then nest exactly inside those of the next coarser one (a vertex-centred dual
-// cell would not). A finer level's cells are cut to whole coarser cells and to the coarser level's
-// cells; the coarser cells they cover are dropped (appendLeafCells), so leaves never overlap.
+// active vertices (of any of its components) takes the mean of their 8 values (trilinear
+// interpolation at its centre). The cells of a level then nest exactly inside those of the next
+// coarser one (a vertex-centred dual cell would not). A coarser cell all of whose children are
+// cells of the finer level is replaced by them; finer cells under any other coarser cell are
+// dropped, so the leaves never overlap and tile rl0's cells.
 #include <hdf5.h>
 
 #include <algorithm>
@@ -313,60 +314,121 @@ void checkGeometry(const std::string& source, const std::vector<std::vector<Patc
             }
 }
 
-// A block's cells and the component whose vertices give their values.
-struct CellBox {
-    size_t patch;
-    IndexBox cells;  // level index of each cell's lowest vertex
+// One level on a dense grid over its active vertices' bounding box (level index lo..lo+dims-1).
+struct LevelGrid {
+    glm::i64vec3 lo{0}, dims{0};   // vertices; cells are the dims - 1 cubes between them
+    std::vector<int32_t> owner;    // per vertex: 1 + the component owning it, 0 when none does
+    std::vector<uint8_t> state;    // per cell: kOutside, kInLevel, kLeaf or kCovered
+    int64_t cellsAlong(int a) const { return std::max<int64_t>(dims[a] - 1, 0); }
+    size_t vertex(glm::i64vec3 v) const { return size_t(((v.z - lo.z) * dims.y + v.y - lo.y) * dims.x + v.x - lo.x); }
+    size_t cell(glm::i64vec3 c) const {
+        return size_t(((c.z - lo.z) * cellsAlong(1) + c.y - lo.y) * cellsAlong(0) + c.x - lo.x);
+    }
+    bool hasCell(glm::i64vec3 c) const {
+        for (int a = 0; a < 3; ++a)
+            if (c[a] < lo[a] || c[a] >= lo[a] + cellsAlong(a)) return false;
+        return true;
+    }
 };
+enum : uint8_t { kOutside, kInLevel, kLeaf, kCovered };
 
-// The cells of each level: between active vertices, cut to whole cells of the next coarser level
-// (ratio r) and to that level's cells, so that a finer level covers coarser cells whole.
-std::vector<std::vector<CellBox>> cellBoxes(const std::vector<std::vector<Patch>>& levels,
-                                            const std::vector<int>& ratios) {
-    std::vector<std::vector<CellBox>> out(levels.size());
-    for (size_t l = 0; l < levels.size(); ++l)
-        for (size_t pi = 0; pi < levels[l].size(); ++pi)
-            for (const VertexBox& v : levels[l][pi].active) {
-                glm::i64vec3 lo(v.lo), end(v.hi);  // cells [lo, end): every corner active
-                if (l > 0) {
-                    const int64_t r = ratios[l - 1];
-                    for (int a = 0; a < 3; ++a) {
-                        lo[a] = ceilDiv(lo[a], r) * r;
-                        end[a] = floorDiv(end[a], r) * r;
-                    }
-                }
-                if (glm::any(glm::lessThanEqual(end, lo))) continue;
-                if (l == 0) {
-                    out[l].push_back({pi, {glm::ivec3(lo), glm::ivec3(end - int64_t(1))}});
-                    continue;
-                }
-                const int64_t r = ratios[l - 1];
-                for (const CellBox& coarse : out[l - 1]) {
-                    const glm::i64vec3 a = glm::max(lo, glm::i64vec3(coarse.cells.lo) * r);
-                    const glm::i64vec3 b = glm::min(end, (glm::i64vec3(coarse.cells.hi) + int64_t(1)) * r);
-                    if (glm::all(glm::lessThan(a, b)))
-                        out[l].push_back({pi, {glm::ivec3(a), glm::ivec3(b - int64_t(1))}});
-                }
-            }
-    return out;
+// Calls f(c) for every cell c (level index) of `g`, x fastest.
+template <class F>
+void forCells(const LevelGrid& g, F&& f) {
+    for (int64_t z = 0; z < g.cellsAlong(2); ++z)
+        for (int64_t y = 0; y < g.cellsAlong(1); ++y)
+            for (int64_t x = 0; x < g.cellsAlong(0); ++x) f(g.lo + glm::i64vec3(x, y, z));
 }
 
-// Each cell's value: the mean of its 8 corner vertices of `values` (the component's array).
-std::vector<float> cornerMeans(const Patch& p, const IndexBox& cells, const std::vector<double>& values) {
-    const glm::ivec3 d = cells.dims();
-    std::vector<float> out;
-    out.reserve(cells.cellCount());
-    const size_t sx = 1, sy = size_t(p.shape.x), sz = size_t(p.shape.x) * size_t(p.shape.y);
-    for (int z = 0; z < d.z; ++z)
-        for (int y = 0; y < d.y; ++y)
-            for (int x = 0; x < d.x; ++x) {
-                const glm::ivec3 v = cells.lo + glm::ivec3(x, y, z) - p.iorigin;
-                const size_t i = size_t(v.z) * sz + size_t(v.y) * sy + size_t(v.x);
-                double sum = 0;
-                for (size_t c = 0; c < 8; ++c)
-                    sum += values[i + (c & 1 ? sx : 0) + (c & 2 ? sy : 0) + (c & 4 ? sz : 0)];
-                out.push_back(static_cast<float>(sum / 8));
+// A level's vertex owners, and its cells: those whose 8 corners are all active (in any component).
+LevelGrid levelGrid(const std::string& source, const std::vector<Patch>& patches, size_t l) {
+    LevelGrid g;
+    glm::i64vec3 hi(0);
+    bool any = false;
+    for (const Patch& p : patches)
+        for (const VertexBox& b : p.active) {
+            g.lo = any ? glm::min(g.lo, glm::i64vec3(b.lo)) : glm::i64vec3(b.lo);
+            hi = any ? glm::max(hi, glm::i64vec3(b.hi)) : glm::i64vec3(b.hi);
+            any = true;
+        }
+    g.dims = hi - g.lo + int64_t(1);
+    const std::string what = strCat(source, ": rl=", l, "'s active points");
+    const uint64_t n = checkedProduct({uint64_t(g.dims.x), uint64_t(g.dims.y), uint64_t(g.dims.z)}, what);
+    checkAllocation(checkedProduct({n, sizeof(int32_t) + 1}, what), what);
+    g.owner.assign(n, 0);
+    for (size_t pi = 0; pi < patches.size(); ++pi)
+        for (const VertexBox& b : patches[pi].active)
+            for (int64_t z = b.lo.z; z <= b.hi.z; ++z)
+                for (int64_t y = b.lo.y; y <= b.hi.y; ++y)
+                    for (int64_t x = b.lo.x; x <= b.hi.x; ++x) {
+                        int32_t& o = g.owner[g.vertex({x, y, z})];
+                        if (o == 0) o = int32_t(pi + 1);
+                    }
+    g.state.assign(size_t(g.cellsAlong(0) * g.cellsAlong(1) * g.cellsAlong(2)), kOutside);
+    forCells(g, [&](glm::i64vec3 c) {
+        bool all = true;
+        for (int k = 0; k < 8 && all; ++k) all = g.owner[g.vertex(c + glm::i64vec3(k & 1, k >> 1 & 1, k >> 2))] != 0;
+        if (all) g.state[g.cell(c)] = kInLevel;
+    });
+    return g;
+}
+
+// Leaves over all levels: rl0's cells; a finer cell is a leaf when its parent (ratio r) is one
+// and all r^3 children of that parent are the finer level's cells; the parent is then covered.
+std::vector<LevelGrid> leafGrids(const std::string& source, const std::vector<std::vector<Patch>>& levels,
+                                 const std::vector<int>& ratios) {
+    std::vector<LevelGrid> grids;
+    for (size_t l = 0; l < levels.size(); ++l) {
+        grids.push_back(levelGrid(source, levels[l], l));
+        LevelGrid& g = grids.back();
+        if (l == 0) {
+            for (uint8_t& s : g.state)
+                if (s == kInLevel) s = kLeaf;
+            continue;
+        }
+        LevelGrid& coarse = grids[l - 1];
+        const int64_t r = ratios[l - 1];
+        forCells(coarse, [&](glm::i64vec3 P) {
+            uint8_t& s = coarse.state[coarse.cell(P)];
+            if (s != kLeaf) return;
+            for (int64_t k = 0; k < r * r * r; ++k) {
+                const glm::i64vec3 c = P * r + glm::i64vec3(k % r, k / r % r, k / (r * r));
+                if (!g.hasCell(c) || g.state[g.cell(c)] == kOutside) return;
             }
+            s = kCovered;
+        });
+        forCells(g, [&](glm::i64vec3 c) {
+            uint8_t& s = g.state[g.cell(c)];
+            const glm::i64vec3 P(floorDiv(c.x, r), floorDiv(c.y, r), floorDiv(c.z, r));
+            if (s == kInLevel && coarse.hasCell(P) && coarse.state[coarse.cell(P)] == kCovered) s = kLeaf;
+        });
+    }
+    return grids;
+}
+
+// Each leaf of level l, x fastest: the mean of its 8 corner values, each taken from the component
+// of `own` (one field's datasets, on the grid of `levels`) that owns the corner.
+std::vector<float> leafValues(const CarpetFile& file, const LevelGrid& g, const std::vector<Patch>& own,
+                              const std::vector<Patch>& level) {
+    std::vector<std::vector<double>> values;
+    for (size_t pi = 0; pi < level.size(); ++pi) {
+        const Patch& p = own.at(pi);
+        AMRVK_CHECK(p.shape == level[pi].shape && p.iorigin == level[pi].iorigin, file.name(), ": '", p.dataset,
+                    "' is not on the grid of '", level[pi].dataset, "'");
+        values.push_back(readValues(file, p));
+    }
+    std::vector<float> out;
+    forCells(g, [&](glm::i64vec3 c) {
+        if (g.state[g.cell(c)] != kLeaf) return;
+        double sum = 0;
+        for (int k = 0; k < 8; ++k) {
+            const glm::i64vec3 v = c + glm::i64vec3(k & 1, k >> 1 & 1, k >> 2);
+            const size_t pi = size_t(g.owner[g.vertex(v)] - 1);
+            const glm::i64vec3 d = v - glm::i64vec3(own[pi].iorigin);  // inside: active lies in the data
+            sum += values[pi][size_t((d.z * own[pi].shape.y + d.y) * own[pi].shape.x + d.x)];
+        }
+        out.push_back(static_cast<float>(sum / 8));
+    });
     return out;
 }
 
@@ -393,26 +455,6 @@ std::string levelSums(const std::vector<std::vector<Patch>>& levels, bool active
         sums.push_back(n);
     }
     return join(sums);
-}
-
-// Appends one field's cell values to every block: `own` are that field's components, which must
-// lie on the grid of `levels` (the first field's).
-void appendValues(const CarpetFile& file, const std::vector<std::vector<Patch>>& own,
-                  const std::vector<std::vector<Patch>>& levels, const std::vector<std::vector<CellBox>>& boxes,
-                  std::vector<BlockLevel>& blockLevels) {
-    for (size_t l = 0; l < levels.size(); ++l) {
-        AMRVK_CHECK(own.size() == levels.size() && own[l].size() == levels[l].size(), file.name(), ": '",
-                    own[0][0].dataset, "' and '", levels[0][0].dataset, "' have different levels or components");
-        for (size_t pi = 0; pi < levels[l].size(); ++pi) {
-            const Patch& p = own[l][pi];
-            AMRVK_CHECK(p.shape == levels[l][pi].shape && p.iorigin == levels[l][pi].iorigin, file.name(), ": '",
-                        p.dataset, "' is not on the grid of '", levels[l][pi].dataset, "'");
-            const std::vector<double> values = readValues(file, p);
-            for (size_t bi = 0; bi < boxes[l].size(); ++bi)
-                if (boxes[l][bi].patch == pi)
-                    blockLevels[l].blocks[bi].values.push_back(cornerMeans(p, boxes[l][bi].cells, values));
-        }
-    }
 }
 
 }  // namespace
@@ -444,35 +486,43 @@ Model readCarpet(const fs::path& path, const ReadOptions& options) {
     std::vector<int> ratios;
     const std::vector<int> strides = levelStrides(file.name(), levels, ratios);
     checkGeometry(file.name(), levels, strides);
-    const std::vector<std::vector<CellBox>> boxes = cellBoxes(levels, ratios);
-    AMRVK_CHECK(!boxes[0].empty(), file.name(), ": rl=0 has no cell (fewer than 2 active points on an axis)");
-
-    std::vector<BlockLevel> blockLevels = levelsWithCellWidths(ratios, file.name());
-    glm::i64vec3 base(boxes[0][0].cells.lo);  // the lowest rl=0 cell corner becomes voxel 0
-    for (const CellBox& b : boxes[0]) base = glm::min(base, glm::i64vec3(b.cells.lo));
+    const std::vector<LevelGrid> grids = leafGrids(file.name(), levels, ratios);
+    // rl0's lowest active vertex becomes voxel 0 (finest-level index units).
+    const glm::i64vec3 base = grids[0].lo * int64_t(strides[0] / strides.back());
     for (size_t l = 0; l < levels.size(); ++l) {
-        blockLevels[l].indexOrigin = glm::ivec3(base * int64_t(strides[0] / strides[l]));
-        for (const CellBox& b : boxes[l]) blockLevels[l].blocks.push_back({.lo = b.cells.lo, .hi = b.cells.hi});
+        const int64_t w = strides[l] / strides.back();  // cell width in finest cells
+        const int32_t level = std::countr_zero(uint64_t(w));
+        forCells(grids[l], [&](glm::i64vec3 c) {
+            if (grids[l].state[grids[l].cell(c)] == kLeaf)
+                model.cells.push_back({glm::ivec3(c * w - base), level});
+        });
     }
-    for (size_t f : selected) {
-        const std::string& var = model.availableFields[f];
-        if (f == selected[0]) {
-            appendValues(file, levels, levels, boxes, blockLevels);
-            continue;
+    AMRVK_CHECK(!model.cells.empty(), file.name(), ": rl=0 has no cell (fewer than 2 active points on an axis)");
+    for (size_t fi = 0; fi < selected.size(); ++fi) {
+        const std::string& var = model.availableFields[selected[fi]];
+        std::vector<std::vector<Patch>> own;
+        if (fi > 0) {
+            int64_t it = 0;
+            own = readPatches(file, latestLevels(file.name(), var, vars.at(var), it));
+            AMRVK_CHECK(it == iteration, file.name(), ": '", var, "' is at iteration ", it, ", '", first, "' at ",
+                        iteration, " (fields read together must share one)");
+            AMRVK_CHECK(own.size() == levels.size(), file.name(), ": '", var, "' has ", own.size(), " levels, '",
+                        first, "' ", levels.size());
         }
-        int64_t it = 0;
-        const auto own = latestLevels(file.name(), var, vars.at(var), it);
-        AMRVK_CHECK(it == iteration, file.name(), ": '", var, "' is at iteration ", it, ", '", first, "' at ",
-                    iteration, " (fields read together must share one)");
-        appendValues(file, readPatches(file, own), levels, boxes, blockLevels);
+        Field& field = model.fields[fi];
+        for (size_t l = 0; l < levels.size(); ++l) {
+            AMRVK_CHECK(own.empty() || own[l].size() == levels[l].size(), file.name(), ": '", var, "' has ",
+                        own.empty() ? 0 : own[l].size(), " components on rl=", l, ", '", first, "' ", levels[l].size());
+            const std::vector<float> v = leafValues(file, grids[l], own.empty() ? levels[l] : own[l], levels[l]);
+            field.values.insert(field.values.end(), v.begin(), v.end());
+        }
     }
-    appendLeafCells(model, blockLevels);
 
-    // Voxel v is finest-level index base * (finest cells per rl=0 cell) + v; world = ref's own map.
+    // Voxel v is finest-level index base + v; world: rl0's own map (ref's origin at its iorigin).
     const Patch& ref = levels[0][0];
     const double finestStep = double(strides.back()) / strides[0];
     model.voxelToWorld.scale = ref.delta * finestStep;
-    model.voxelToWorld.origin = ref.origin + (glm::dvec3(base) - glm::dvec3(ref.iorigin)) * ref.delta;
+    model.voxelToWorld.origin = ref.origin + (glm::dvec3(grids[0].lo) - glm::dvec3(ref.iorigin)) * ref.delta;
 
     std::vector<std::string> deltas, components;
     for (const auto& level : levels) {
