@@ -68,7 +68,7 @@ struct Transform {
 };
 
 struct Model {
-    std::string format;                       // "exabrick", "amrex", "enzo", "chombo", "raw", ...
+    std::string format;                       // "exabrick", "amrex", "enzo", "chombo", "carpet", "raw", ...
     std::string source;                       // path the model was read from
     std::vector<Cell> cells;                  // leaf cells
     std::vector<Field> fields;                // loaded fields, each with cells.size() values

@@ -66,9 +66,9 @@ std::string detectFormat(const fs::path& path) {
     fs::path hierarchy = path;
     hierarchy += ".hierarchy";
     if (fs::exists(hierarchy)) return "enzo";
-    if (hasHdf5Magic(path)) return "chombo";
+    if (hasHdf5Magic(path)) return isCarpetFile(path) ? "carpet" : "chombo";
     AMRVK_CHECK(false, path.string(),
-                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|ramses|raw)");
+                ": unrecognised AMR format (use --format exabrick|amrex|enzo|chombo|carpet|ramses|raw)");
     return {};
 }
 
@@ -80,9 +80,10 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "amrex") model = readAmrex(path, options);
     else if (format == "enzo") model = readEnzo(path, options);
     else if (format == "chombo") model = readChombo(path, options);
+    else if (format == "carpet") model = readCarpet(path, options);
     else if (format == "ramses") model = readRamses(path, options);
     else if (format == "raw") model = readRaw(path, options);
-    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, ramses or raw)");
+    else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, carpet, ramses or raw)");
     model = checkedModel(std::move(model), options.nanPolicy);
     if (options.scale == FieldScale::Log && options.fields.empty() && options.logFloor == 0)
         dropFieldsWithoutLog(model);

@@ -15,7 +15,7 @@ namespace amrvk::amr {
 inline constexpr int kMaxRawDim = 1 << 20;
 
 struct ReadOptions {
-    std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | ramses | raw
+    std::string format = "auto";      // auto | exabrick | amrex | enzo | chombo | carpet | ramses | raw
     std::vector<std::string> fields;  // fields to load; empty = every field of the source
     NanPolicy nanPolicy = NanPolicy::Reject;
     // How field values are taken (amr::applyFieldScale): linear, or log10 of each cell's value
@@ -62,6 +62,11 @@ void visitExaBrick(const std::filesystem::path& path, const ReadOptions& options
 Model readAmrex(const std::filesystem::path& path, const ReadOptions& options);
 Model readEnzo(const std::filesystem::path& path, const ReadOptions& options);
 Model readChombo(const std::filesystem::path& path, const ReadOptions& options);
+// A Carpet (Cactus) HDF5 file: vertex-centred box-in-box levels onto cells (carpet_reader.cpp).
+Model readCarpet(const std::filesystem::path& path, const ReadOptions& options);
+// Whether the HDF5 file `path` is a Carpet file (its global-attributes group, or a dataset named
+// "THORN::var it=N tl=T ..."); false for any other file, HDF5 or not.
+bool isCarpetFile(const std::filesystem::path& path);
 // A RAMSES output: its output_NNNNN directory (or a directory holding one info_NNNNN.txt), or
 // its info_NNNNN.txt; reads every domain's amr_/hydro_ files (ramses_reader.cpp).
 Model readRamses(const std::filesystem::path& path, const ReadOptions& options);

@@ -30,8 +30,8 @@ const char* kUsage =
     "  amrvk shaders --export DIR                  write the built-in shader sources (for --shader-dir)\n"
     "\n"
     "inputs: ExaBrick .cells (+ .scalars), AMReX plotfile directory, Enzo parameter file,\n"
-    "        Chombo .hdf5, RAMSES output_NNNNN directory (or its info_NNNNN.txt), raw uniform\n"
-    "        volume (.raw); the format is detected (--format to override)\n";
+    "        Chombo .hdf5, Carpet .h5, RAMSES output_NNNNN directory (or its info_NNNNN.txt), raw\n"
+    "        uniform volume (.raw); the format is detected (--format to override)\n";
 
 }  // namespace
 

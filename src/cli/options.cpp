@@ -128,8 +128,8 @@ void addLights(std::vector<scene::Light>& out, const std::vector<double>& values
 
 void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
     app.add_option("--format", a.format, "input format (default: detected from names and magic bytes)")
-        ->check(CLI::IsMember({"auto", "exabrick", "amrex", "enzo", "chombo", "ramses", "raw"}))
-        ->type_name("auto|exabrick|amrex|enzo|chombo|ramses|raw");
+        ->check(CLI::IsMember({"auto", "exabrick", "amrex", "enzo", "chombo", "carpet", "ramses", "raw"}))
+        ->type_name("auto|exabrick|amrex|enzo|chombo|carpet|ramses|raw");
     CLI::Option* field = app.add_option("--field", a.fields,
                                         multiField ? "field to load (repeatable; default: every field)"
                                                    : "field to use (default: the first)")

@@ -101,7 +101,7 @@ struct RenderArgs {
 void addRenderOptions(CLI::App& app, RenderArgs& a) {
     app.add_option("input", a.inputs,
                    "the data set: ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, "
-                   "RAMSES output directory, raw .raw (optional with --session); several, or a quoted glob pattern, "
+                   "Carpet .h5, RAMSES output directory, raw .raw (optional with --session); several, or a quoted glob pattern, "
                    "make a series")
         ->type_name("INPUT...");
     addReadOptions(app, a.read, false);

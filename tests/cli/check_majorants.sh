@@ -42,6 +42,7 @@ sets=(
   "amrex|amrex_pelelm_3d/example_plt_3d|--field temp"
   "chombo-100|chombo_mushy_layer_2d/plt000100.2d.hdf5|--field Temperature"
   "chombo-25000|chombo_mushy_layer_2d/plt025000.2d.hdf5|--field Temperature"
+  "carpet|carpet_wavetoy_3d/CarpetWaveToyCheckpoint_test.it_64.h5|--field WAVETOY::phi"
   "ramses-galaxy|ramses_galaxy_3d/output_00010|--field density"
   "ramses-multimat|ramses_multimat_2d/output_00001|--field density"
   "ramses-sedov|ramses_sedov_2d/output_00002|--field density"
