@@ -167,7 +167,7 @@ Model readPart(const std::filesystem::path& path, const ReadOptions& options, co
         path, options,
         [&](const Model& chunk) {
             if (out.fields.empty()) {
-                out.fields = {Field{chunk.fields.at(0).name, {}, chunk.fields.at(0).units}};
+                out.fields = {Field{chunk.fields.at(0).name, {}}};
             }
             for (size_t i = 0; i < chunk.cells.size(); ++i)
                 if (supportMeets(chunk.cells[i], box)) {
