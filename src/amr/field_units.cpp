@@ -37,12 +37,18 @@ Quantity ramsesQuantity(std::string_view field) {
 
 std::string fieldUnits(Quantity q, const CodeUnits& u) {
     switch (q) {
-        case Quantity::Density: return codeUnitsOf(u.density, "g/cm^3");
-        case Quantity::Velocity: return codeUnitsOf(u.velocity, "cm/s");
-        case Quantity::SpecificEnergy: return codeUnitsOf(u.velocity * u.velocity, "erg/g");
-        case Quantity::Pressure: return codeUnitsOf(u.density * u.velocity * u.velocity, "dyn/cm^2");
-        case Quantity::Temperature: return "K";
-        case Quantity::Unknown: break;
+        case Quantity::Density:
+            return codeUnitsOf(u.density, "g/cm^3");
+        case Quantity::Velocity:
+            return codeUnitsOf(u.velocity, "cm/s");
+        case Quantity::SpecificEnergy:
+            return codeUnitsOf(u.velocity * u.velocity, "erg/g");
+        case Quantity::Pressure:
+            return codeUnitsOf(u.density * u.velocity * u.velocity, "dyn/cm^2");
+        case Quantity::Temperature:
+            return "K";
+        case Quantity::Unknown:
+            break;
     }
     return "";
 }

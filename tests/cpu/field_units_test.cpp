@@ -1,9 +1,9 @@
 // amr/field_units: which quantity a field's name tells, and the units text of each quantity.
+#include "amr/field_units.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "amr/field_units.h"
 
 using namespace amrvk::amr;
 
