@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "amr/block_structured.h"
+#include "amr/field_units.h"
 #include "amr/hdf5_util.h"
 #include "amr/readers.h"
 #include "core/checked_size.h"
@@ -58,7 +59,35 @@ struct Parameters {
     int refineBy = 2;
     std::vector<std::string> dataLabels;
     std::vector<std::pair<std::string, std::string>> attributes;
+    CodeUnits units;  // from the cosmology or the unit lines; 0 where the file has neither
 };
+
+// Enzo's code units (its CosmologyGetUnits): for a comoving run from the cosmology,
+//   density  = 1.8788e-29 g/cm^3 * OmegaMatterNow * HubbleConstantNow^2 * (1 + CurrentRedshift)^3,
+//   velocity = 1.22475e7 cm/s * ComovingBoxSize [Mpc/h] * sqrt(OmegaMatterNow) * sqrt(1 + InitialRedshift);
+// else from the DensityUnits, LengthUnits and TimeUnits lines (velocity = length / time).
+// A key that is missing leaves its scale unknown (0); one that is not a number is an error.
+CodeUnits enzoCodeUnits(const std::map<std::string, std::string>& values, const std::string& name) {
+    auto number = [&](const char* key) -> double {
+        auto it = values.find(key);
+        return it == values.end() ? 0.0 : parseNumbers<double>(it->second, 1, name + ": " + key)[0];
+    };
+    CodeUnits u;
+    if (number("ComovingCoordinates") == 1) {
+        const double omega = number("CosmologyOmegaMatterNow"), h = number("CosmologyHubbleConstantNow");
+        const double box = number("CosmologyComovingBoxSize");
+        auto it = values.find("CosmologyCurrentRedshift"), init = values.find("CosmologyInitialRedshift");
+        if (omega > 0 && h > 0 && it != values.end())
+            u.density = 1.8788e-29 * omega * h * h * std::pow(1 + number("CosmologyCurrentRedshift"), 3);
+        if (omega > 0 && box > 0 && init != values.end())
+            u.velocity = 1.22475e7 * box * std::sqrt(omega) * std::sqrt(1 + number("CosmologyInitialRedshift"));
+    } else {
+        const double length = number("LengthUnits"), time = number("TimeUnits");
+        u.density = number("DensityUnits");
+        if (length > 0 && time > 0) u.velocity = length / time;
+    }
+    return u;
+}
 
 Parameters readParameters(const fs::path& path) {
     const std::string name = path.string();
@@ -104,6 +133,9 @@ Parameters readParameters(const fs::path& path) {
                             "ComovingCoordinates", "MaximumRefinementLevel"})
         if (auto it = values.find(key); it != values.end())
             p.attributes.emplace_back(key, it->second);
+    p.units = enzoCodeUnits(values, name);
+    if (p.units.density > 0) p.attributes.emplace_back("DensityUnits", formatDouble(p.units.density));
+    if (p.units.velocity > 0) p.attributes.emplace_back("VelocityUnits", formatDouble(p.units.velocity));
     return p;
 }
 
@@ -294,6 +326,7 @@ Model readEnzo(const fs::path& path, const ReadOptions& options) {
             model.availableFields.end())
             model.availableFields.push_back(n);
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
+    for (Field& f : model.fields) f.units = fieldUnits(enzoQuantity(f.name), params.units);
 
     int finest = 0;
     for (const GridInfo& g : grids) finest = std::max(finest, g.level);

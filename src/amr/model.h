@@ -58,6 +58,10 @@ struct Box3l {
 struct Field {
     std::string name;
     std::vector<float> values;  // one per cell, in cell order
+    // The values' units as the reader knows them (amr/field_units.h): "code units (1 = X g/cm^3)",
+    // a unit ("K", yt's "g/cm**3"), or "" when not known. A log scale keeps it: the values are
+    // then log10 of numbers in these units.
+    std::string units;
 };
 
 // world = origin + scale * voxel, per axis.

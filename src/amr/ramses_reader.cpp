@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "amr/block_structured.h"
+#include "amr/field_units.h"
 #include "amr/readers.h"
 #include "core/checked_size.h"
 #include "core/error.h"
@@ -562,6 +563,10 @@ Model readRamses(const fs::path& path, const ReadOptions& options) {
     }
     model.availableFields = variableNames(out.dir / "hydro_file_descriptor.txt", nvar, info.ndim);
     const std::vector<size_t> components = addSelectedFields(model, options.fields);
+    // Code units: unit_d g/cm^3, unit_l / unit_t cm/s (0: the info file does not say).
+    const CodeUnits units{.density = info.unitD,
+                          .velocity = info.unitL > 0 && info.unitT > 0 ? info.unitL / info.unitT : 0};
+    for (Field& f : model.fields) f.units = fieldUnits(ramsesQuantity(f.name), units);
 
     Mesh mesh;
     std::vector<Leaf> leaves;
@@ -604,7 +609,6 @@ Model readRamses(const fs::path& path, const ReadOptions& options) {
         {"octsPerLevel", join(octsPerLevel)},
         {"time", formatDouble(info.time)},
         {"boxlen", formatDouble(mesh.boxlen)},
-        {"units", "code units"},
     };
     if (info.unitL > 0) model.attributes.emplace_back("unit_l", formatDouble(info.unitL));
     if (info.unitD > 0) model.attributes.emplace_back("unit_d", formatDouble(info.unitD));

@@ -247,6 +247,7 @@ void printInfoJson(const InfoData& d) {
         {"source", model.source}, {"format", model.format}, {"leafCells", model.cellCount()},
         {"cellsPerLevel", d.summary().cellsPerLevel}, {"minLevel", d.summary().minLevel},
         {"maxLevel", d.summary().maxLevel}, {"fields", model.availableFields}, {"field", v.field().name},
+        {"units", v.field().units},  // "" = not known
         {"valueRange", Json::array({double(d.stats.minValue), double(d.stats.maxValue)})},
         {"volumeWeightedMean", d.stats.volumeWeightedMean},
         {"valuePercentiles", v.percentiles.values},
@@ -314,6 +315,8 @@ void printInfoText(const InfoData& d) {
                         (long long)amr::cellWidth(int(l)));
     std::printf("field '%s'   range [%.9g, %.9g], volume-weighted mean %.9g\n", oneLineMessage(v.field().name).c_str(),
                 double(d.stats.minValue), double(d.stats.maxValue), d.stats.volumeWeightedMean);
+    std::printf("  units: %s\n", v.field().units.empty() ? "not known (the source does not say)"
+                                                          : oneLineMessage(v.field().units).c_str());
     const amr::Percentiles& p = v.percentiles;
     std::printf("  percentiles by cell count: P50 %.6g, P75 %.6g, P90 %.6g, P97 %.6g, P99 %.6g\n", double(p[50]),
                 double(p[75]), double(p[90]), double(p[97]), double(p[99]));

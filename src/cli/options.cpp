@@ -281,7 +281,7 @@ void addMethodOptions(CLI::App& app, PictureArgs& a) {
 void addLegendOptions(CLI::App& app, PictureArgs& a) {
     app.add_flag("--legend", a.legend,
                  "draw a colour legend into the PNG (render -o, the viewer's screenshots): the TF's colour bar with "
-                 "its opacity, ticks (decades for --scale log), the field's name and --legend-units; the viewer "
+                 "its opacity, ticks (decades for --scale log), the field's name and its units; the viewer "
                  "shows it over the picture");
     app.add_option("--legend-place", a.legendPlace,
                    "side: in a strip right of the picture (the PNG gets wider, no data hidden); overlay: over the "
@@ -292,7 +292,8 @@ void addLegendOptions(CLI::App& app, PictureArgs& a) {
     app.add_option("--legend-title", a.legendTitle, "the legend's title (default: the field's name)")
         ->type_name("TEXT");
     app.add_option("--legend-units", a.legendUnits,
-                   "units shown under the title, e.g. 'g/cm^3' (no reader stores units; default: none)")
+                   "units shown under the title, e.g. 'g/cm^3' (default: the field's own, as amrvk info says, "
+                   "e.g. Enzo's and RAMSES's 'code units (1 = X g/cm^3)'; none where the data do not say)")
         ->type_name("TEXT");
     app.add_option("--legend-font", a.legendFont,
                    "TrueType/OpenType font of the legend's text (default: Debian's "

@@ -274,7 +274,8 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
              if (speaks) std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
          }});
     picture.report.readSeconds = data.readSeconds;
-    if (plan.legendFont) session::checkLegendFits(picture.session(), *plan.legendFont);  // before the render
+    if (plan.legendFont)  // before the render
+        session::checkLegendFits(picture.session(), picture.volume->field().units, *plan.legendFont);
     ProgressBar bar("render", "spp");
     Timer wall;
     double firstSampleSeconds = 0;
@@ -288,7 +289,8 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
-    session::writePicture(a.output, r.out.mean, picture.session(), plan.legendFont.get());
+    session::writePicture(a.output, r.out.mean, picture.session(), picture.volume->field().units,
+                          plan.legendFont.get());
     if (!a.varianceFile.empty())
         writeImage(a.varianceFile,
                    scene::varianceImage(scene::varianceOfMean(r.out), r.out.mean.width, r.out.mean.height));

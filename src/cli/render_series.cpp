@@ -301,7 +301,8 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
     checkOutputs(s.outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
     readsChecked = filesRead.size();
     picture::Picture picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
-    if (s.legendFont) session::checkLegendFits(picture.session(), *s.legendFont);  // before the render
+    if (s.legendFont)  // before the render
+        session::checkLegendFits(picture.session(), picture.volume->field().units, *s.legendFont);
     if (!s.resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
         s.manifest.field = picture.described.field;
         s.manifest.camera = picture.renderer->settings().camera;
@@ -348,7 +349,8 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
         doneSpp += spp;
         AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                     " error(s); last: ", ctx.lastValidationMessage());
-        session::writePicture(s.frames.frame(k), out.mean, picture->session(), s.legendFont.get());
+        session::writePicture(s.frames.frame(k), out.mean, picture->session(), picture->volume->field().units,
+                              s.legendFont.get());
         s.manifest.done.insert(k);
         saveFrameManifest(s.frames.manifest, s.manifest);
         s.stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});

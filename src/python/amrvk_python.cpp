@@ -240,7 +240,6 @@ py::array_t<float> imageArray(const Image& image) {
 struct PyVolume {
     std::shared_ptr<const scene::Volume> volume;
     session::Session source;  // input, read options and field (sessions name them); input "" for arrays
-    std::string units;        // the field's units where known (yt), else ""
     std::vector<NamedPath> files;  // the files the data set was read from (none for arrays and yt)
     std::string madeBy = "file";   // "file", "arrays" or "yt" (set by from_yt)
 
@@ -260,6 +259,7 @@ struct PyVolume {
         const scene::Volume& v = *volume;
         const size_t levels = std::count_if(v.summary.cellsPerLevel.begin(), v.summary.cellsPerLevel.end(),
                                             [](uint64_t n) { return n > 0; });
+        const std::string& units = v.field().units;
         return strCat("Volume(", v.model.source, ", field '", v.field().name, "'", units.empty() ? "" : " [" + units + "]",
                       ", ", v.model.cellCount(), " cells on ", levels, levels == 1 ? " level" : " levels", ", values ",
                       g4(v.valueLo()), "..", g4(v.valueHi()), ", world ", g4(v.worldLo()), "..", g4(v.worldHi()), ")");
@@ -270,7 +270,7 @@ struct PyVolume {
         py::dict d;
         d["source"] = v.model.source;
         d["field"] = v.field().name;
-        d["units"] = units;
+        d["units"] = v.field().units;
         d["cells"] = v.model.cellCount();
         std::vector<uint64_t> perLevel = v.summary.cellsPerLevel;
         d["cells_per_level"] = perLevel;  // index = level, 0 = finest
@@ -339,7 +339,7 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
         if (!(m.voxelToWorld.scale[a] > 0)) throw py::value_error("spacing: every component must be > 0");
     checkAllocation(uint64_t(n) * (sizeof(amr::Cell) + sizeof(float)), "the cells");
     m.cells.resize(size_t(n));
-    m.fields.push_back({field, std::vector<float>(size_t(n))});
+    m.fields.push_back({field, std::vector<float>(size_t(n)), units});
     m.availableFields = {field};
     // One copy, numpy -> model; coordinates checked to fit the 32-bit cell format.
     for (py::ssize_t i = 0; i < n; ++i) {
@@ -358,7 +358,6 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
     }
     auto v = std::make_shared<PyVolume>();
     v->madeBy = "arrays";
-    v->units = units;
     v->source.field = field;
     v->source.read.nanPolicy = forKeyword("nan", [&] { return amr::parseNanPolicy(nan); });
     const amr::NanPolicy policy = v->source.read.nanPolicy;
@@ -593,8 +592,9 @@ public:
             mFont = session::openLegendFont(s.legend);
             mFontFor = s.legend.font;
         }
-        session::checkLegendFits(s, *mFont);
-        return session::drawLegend(mean, session::legendContent(s), s.legend.place, *mFont);
+        const std::string& units = mPicture.volume->field().units;
+        session::checkLegendFits(s, units, *mFont);
+        return session::drawLegend(mean, session::legendContent(s, units), s.legend.place, *mFont);
     }
     session::Legend legend() const { return session().legend; }
     template <typename Edit>
@@ -976,7 +976,10 @@ void bindVolume(py::module_& m) {
                     "(a cell is 2^level units wide, its corner a multiple of that), values (N,); world = origin + "
                     "spacing * voxel. Validated as the readers validate (alignment, levels, NaN policy, overlaps)")
         .def_property_readonly("field", [](const PyVolume& v) { return v.volume->field().name; })
-        .def_property_readonly("units", [](const PyVolume& v) { return v.units; })
+        .def_property_readonly(
+            "units", [](const PyVolume& v) { return v.volume->field().units; },
+            "the values' units as the reader or yt gives them (e.g. 'code units (1 = 2.4967e-29 g/cm^3)'); "
+            "'' = not known")
         .def_property_readonly("cells", [](const PyVolume& v) { return v.volume->model.cellCount(); })
         .def_property_readonly("value_range", [](const PyVolume& v) { return py::make_tuple(v.volume->valueLo(), v.volume->valueHi()); })
         .def_property_readonly(
@@ -1162,7 +1165,7 @@ void bindRendererLegend(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) 
                 const std::string u = keywordArg<std::string>(o, "legend_units", kText);
                 r.editLegend([&](session::Legend& l) { l.units = u; });
             },
-            "the units line under the legend's title; '' = none");
+            "the units line under the legend's title; '' = the volume's own (Volume.units)");
 }
 
 void bindDevices(py::module_& m) {

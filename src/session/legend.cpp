@@ -172,4 +172,8 @@ std::string legendTitle(const Legend& legend, const std::string& field, bool log
     return title;
 }
 
+std::string legendUnits(const Legend& legend, const std::string& fieldUnits) {
+    return legend.units.empty() ? fieldUnits : legend.units;
+}
+
 }  // namespace amrvk::session

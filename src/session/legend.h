@@ -28,7 +28,7 @@ struct Legend {
     bool show = false;                      // PNGs of render and of viewer screenshots; the viewer's overlay
     LegendPlace place = LegendPlace::Side;  // PNGs only (the viewer draws it over the picture)
     std::string title;                      // empty: the field's name
-    std::string units;                      // empty: none shown (no reader stores units)
+    std::string units;                      // overrides the field's units (amr::Field::units); empty: those
     std::string font;                       // empty: Debian's DejaVu Sans (core/font.h kDefaultFontFile)
     bool operator==(const Legend&) const = default;
 };
@@ -52,5 +52,8 @@ std::string tickLabel(double value, double step, double magnitude = 0);
 
 // The legend's title: the settings' title or the field's name, with " (log10 scale)" for a log scale.
 std::string legendTitle(const Legend& legend, const std::string& field, bool logScale);
+// The legend's units line: the settings' units (--legend-units) or else the field's own
+// (amr::Field::units, e.g. "code units (1 = 2.4967e-29 g/cm^3)"); empty: no units line.
+std::string legendUnits(const Legend& legend, const std::string& fieldUnits);
 
 }  // namespace amrvk::session

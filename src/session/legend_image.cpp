@@ -55,14 +55,14 @@ int labelWidth(const Font& font, const Metrics& m, const LegendTick& t) {
 
 }  // namespace
 
-LegendContent legendContent(const Session& s) {
+LegendContent legendContent(const Session& s, const std::string& fieldUnits) {
     LegendContent c;
     c.tf = scene::albedoOf(s.tf.merged(), s.tfColors);  // linear, as the picture: a PNG shows the map as given
     c.lo = c.tf.firstPosition();
     c.hi = c.tf.lastPosition();
     c.logScale = s.read.scale == amr::FieldScale::Log;
     c.title = legendTitle(s.legend, s.field, c.logScale);
-    c.units = s.legend.units;
+    c.units = legendUnits(s.legend, fieldUnits);
     return c;
 }
 
@@ -204,12 +204,13 @@ Image drawLegend(const Image& picture, const LegendContent& c, LegendPlace place
     return out;
 }
 
-void checkLegendFits(const Session& s, const Font& font) {
-    legendLayout(s.settings.width, s.settings.height, legendContent(s), s.legend.place, font);
+void checkLegendFits(const Session& s, const std::string& fieldUnits, const Font& font) {
+    legendLayout(s.settings.width, s.settings.height, legendContent(s, fieldUnits), s.legend.place, font);
 }
 
-void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s, const Font* font) {
-    if (font) writeImage(path, drawLegend(picture, legendContent(s), s.legend.place, *font));
+void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s,
+                  const std::string& fieldUnits, const Font* font) {
+    if (font) writeImage(path, drawLegend(picture, legendContent(s, fieldUnits), s.legend.place, *font));
     else writeImage(path, picture);
 }
 

@@ -32,8 +32,9 @@ struct LegendContent {
     bool logScale = false;
     scene::TransferFunction tf;  // the picture's albedo (scene::albedoOf: linear), shown sRGB encoded
 };
-// A session's legend: its TF, field, scale and legend settings.
-LegendContent legendContent(const Session& s);
+// A session's legend: its TF, field, scale and legend settings; `fieldUnits` is the shown field's
+// own units (scene::Volume::field().units), what the units line says unless legend.units is set.
+LegendContent legendContent(const Session& s, const std::string& fieldUnits);
 
 // The font a legend draws with (legend.font, else core/font.h's kDefaultFontFile); errors are one
 // line starting "--legend: " (a missing or unreadable font, a build without FreeType).
@@ -76,7 +77,8 @@ Image drawLegend(const Image& picture, const LegendContent& content, LegendPlace
 // What `render` and its series frames do with a session's legend: before the render, throw the
 // size it needs when s's picture cannot hold it; after, write the picture to `path` with the legend
 // drawn, or as it is when `font` is null (no legend, or not a PNG).
-void checkLegendFits(const Session& s, const Font& font);
-void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s, const Font* font);
+void checkLegendFits(const Session& s, const std::string& fieldUnits, const Font& font);
+void writePicture(const std::filesystem::path& path, const Image& picture, const Session& s,
+                  const std::string& fieldUnits, const Font* font);
 
 }  // namespace amrvk::session

@@ -17,9 +17,10 @@ ImU32 srgb(glm::vec3 linear, float alpha = 1.0f) {
 
 }  // namespace
 
-void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pictureMax) {
+void drawLegendOverlay(const session::Session& s, const std::string& fieldUnits, ImVec2 pictureMin,
+                       ImVec2 pictureMax) {
     if (!s.legend.show) return;
-    const session::LegendContent c = session::legendContent(s);
+    const session::LegendContent c = session::legendContent(s, fieldUnits);
     ImFont* font = ImGui::GetFont();
     const float px = ImGui::GetFontSize(), sup = std::round(px * 0.7f);
     const float pad = std::round(px * 0.5f), bar = px, tick = std::round(px * 0.5f), gap = std::round(px * 0.3f);

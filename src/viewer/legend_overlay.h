@@ -5,13 +5,16 @@
 // (B8G8R8A8_UNORM), so the TF's colours are encoded as the PNG's are.
 #include <imgui.h>
 
+#include <string>
+
 #include "session/session.h"
 
 namespace amrvk::viewer {
 
 // Draws `s`'s legend when s.legend.show, inside the picture's rectangle [pictureMin, pictureMax)
-// (window pixels); nothing when the rectangle is too small to hold one. Call between ImGui's
-// NewFrame and Render.
-void drawLegendOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 pictureMax);
+// (window pixels); nothing when the rectangle is too small to hold one. `fieldUnits`: the shown
+// field's own units (session::legendContent). Call between ImGui's NewFrame and Render.
+void drawLegendOverlay(const session::Session& s, const std::string& fieldUnits, ImVec2 pictureMin,
+                       ImVec2 pictureMax);
 
 }  // namespace amrvk::viewer

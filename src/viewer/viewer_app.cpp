@@ -460,7 +460,8 @@ bool ViewerApp::frame() {
         PanelRequests req;
         drawPanels(mPanel, req);
         const UiRect pr = toUi(mLayout.picture);
-        drawLegendOverlay(mState, ImVec2(pr.x, pr.y), ImVec2(pr.x + pr.width, pr.y + pr.height));
+        drawLegendOverlay(mState, mVolume->field().units, ImVec2(pr.x, pr.y),
+                          ImVec2(pr.x + pr.width, pr.y + pr.height));
         drawCutOverlay(mState, ImVec2(pr.x, pr.y), ImVec2(pr.x + pr.width, pr.y + pr.height), mCutFace);
         try {
             applyPanelEdits(req);
@@ -963,8 +964,8 @@ void ViewerApp::screenshot(const fs::path& file) {
             mLegendFont = session::openLegendFont(mState.legend);
             mLegendFontFile = mState.legend.font;
         }
-        writeImage(file, session::drawLegend(mRenderer->output().mean, session::legendContent(mState),
-                                             mState.legend.place, *mLegendFont));
+        const session::LegendContent legend = session::legendContent(mState, mVolume->field().units);
+        writeImage(file, session::drawLegend(mRenderer->output().mean, legend, mState.legend.place, *mLegendFont));
     } else {
         writeImage(file, mRenderer->output().mean);
     }

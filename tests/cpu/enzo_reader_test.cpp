@@ -99,6 +99,59 @@ TEST(EnzoReader, RealOutputMatchesOracles) {
     EXPECT_EQ(attrs["CosmologyCurrentRedshift"], "1.1456033320512");
 }
 
+// Units (issue 33, point 5): the comoving run's code units from its cosmology, each field's own.
+// The density unit must turn the sample's code values into the cgs values of its VTK export
+// (FORMATS.md 6: 0.0123641 ... 1029.37 code units, 3.08695e-31 ... 2.57002e-26 g/cm^3);
+// tests/python/test_units_yt.py checks every unit against yt's.
+TEST(EnzoReader, FieldsCarryTheirCodeUnitsFromTheCosmology) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const Model m = readModel(dataPath("DD0018"), ReadOptions{});
+    std::map<std::string, std::string> units;
+    for (const Field& f : m.fields) units[f.name] = f.units;
+    EXPECT_EQ(units["Density"], "code units (1 = 2.4967e-29 g/cm^3)");
+    EXPECT_EQ(units["Dark_Matter_Density"], units["Density"]);
+    EXPECT_EQ(units["Metal_Density"], units["Density"]);
+    EXPECT_EQ(units["x-velocity"], "code units (1 = 1.4624e+09 cm/s)");
+    EXPECT_EQ(units["TotalEnergy"], "code units (1 = 2.1386e+18 erg/g)");
+    EXPECT_EQ(units["Temperature"], "K");
+    std::map<std::string, std::string> attrs(m.attributes.begin(), m.attributes.end());
+    const double density = std::stod(attrs.at("DensityUnits"));
+    const FieldStats st = computeFieldStats(m, m.field("Density"));
+    EXPECT_NEAR(density * st.minValue, 3.08695e-31, 1e-4 * 3.08695e-31);
+    EXPECT_NEAR(density * st.maxValue, 2.57002e-26, 1e-4 * 2.57002e-26);
+}
+
+// A run without comoving coordinates states its units in DensityUnits, LengthUnits and TimeUnits;
+// without them the units are not known, and a unit line that is not a number is one line.
+TEST(EnzoReader, UnitLinesGiveTheUnitsOfARunWithoutCosmology) {
+    AMRVK_REQUIRE_DATA(kParam);
+    const fs::path dir = test::scratchDir();
+    const fs::path param = copyTextFiles(dir);
+    for (const char* cpu : {"DD0018.cpu0000", "DD0018.cpu0001"})
+        fs::create_symlink(dataPath(cpu), dir / "DD0018" / cpu);
+    std::string text = readAll(param);
+    const std::string key = "ComovingCoordinates                   = 1";
+    const size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, key.size(), "ComovingCoordinates = 0");
+    writeAll(param, text);
+    ReadOptions o;
+    o.fields = {"Density", "x-velocity"};
+    Model m = readEnzo(param, o);
+    EXPECT_EQ(m.field("Density").units, "");  // nothing says what a code unit is
+    EXPECT_EQ(m.field("x-velocity").units, "");
+
+    writeAll(param, text + "DensityUnits = 1.5e-24\nLengthUnits = 3e21\nTimeUnits = 1e13\n");
+    m = readEnzo(param, o);
+    EXPECT_EQ(m.field("Density").units, "code units (1 = 1.5e-24 g/cm^3)");
+    EXPECT_EQ(m.field("x-velocity").units, "code units (1 = 3e+08 cm/s)");
+
+    writeAll(param, text + "DensityUnits = lots\n");
+    const std::string msg = errorOf([&] { readEnzo(param, o); });
+    expectContains(msg, param.string() + ": DensityUnits: 'lots' is not a list of numbers");
+    EXPECT_EQ(msg.find('\n'), std::string::npos);
+}
+
 TEST(EnzoReader, HierarchyPathAndAllFields) {
     AMRVK_REQUIRE_DATA(kParam);
     const Model m = readModel(dataPath("DD0018.hierarchy"), ReadOptions{});

@@ -256,12 +256,24 @@ TEST(LegendImage, ContentComesFromTheSession) {
     s.read.scale = amr::FieldScale::Log;
     s.legend.units = "g/cm^3";
     s.tf = scene::TfChannels::split(scene::makePreset("ramp", -1.5f, 2.5f));
-    const session::LegendContent c = session::legendContent(s);
+    const session::LegendContent c = session::legendContent(s, "code units (1 = 2.4967e-29 g/cm^3)");
     EXPECT_EQ(c.title, "Density (log10 scale)");
-    EXPECT_EQ(c.units, "g/cm^3");
+    EXPECT_EQ(c.units, "g/cm^3");  // --legend-units overrides the field's own
     EXPECT_TRUE(c.logScale);
     EXPECT_FLOAT_EQ(float(c.lo), -1.5f);
     EXPECT_FLOAT_EQ(float(c.hi), 2.5f);
+}
+
+TEST(LegendImage, UnitsLineIsTheFieldsOwnUnlessTheSessionGivesOne) {
+    session::Session s;
+    s.field = "Density";
+    s.tf = scene::TfChannels::split(scene::makePreset("ramp", 0.0f, 1.0f));
+    EXPECT_EQ(session::legendContent(s, "code units (1 = 2.4967e-29 g/cm^3)").units,
+              "code units (1 = 2.4967e-29 g/cm^3)");
+    EXPECT_EQ(session::legendContent(s, "").units, "");  // not known: no units line
+    s.legend.units = "cm^-3";
+    EXPECT_EQ(session::legendContent(s, "code units (1 = 2.4967e-29 g/cm^3)").units, "cm^-3");
+    EXPECT_EQ(session::legendContent(s, "").units, "cm^-3");
 }
 
 TEST(LegendImage, TooSmallPicturesAndBadFontsAreOneLineErrors) {

@@ -166,6 +166,18 @@ TEST(RamsesReader, Galaxy3dEightDomainsIsTheUniform64CubeOfFormatsMd) {
     EXPECT_EQ(m.voxelToWorld.toWorld(glm::dvec3(0)), glm::dvec3(0.0));
 }
 
+// Units (issue 33, point 5) from the info file: unit_d 1.66e-24 g/cm^3, unit_l 3.0857e21 cm and
+// unit_t 3.1557e13 s, so a code velocity is unit_l / unit_t cm/s and a code pressure unit_d times
+// its square; a passive scalar is not known. tests/python/test_units_yt.py checks them against yt.
+TEST(RamsesReader, FieldsCarryTheirCodeUnitsFromTheInfoFile) {
+    AMRVK_REQUIRE_DATA(kGalaxy);
+    const Model m = readModel(dataDir() / kGalaxy, {.fields = {"density", "velocity_y", "pressure", "scalar_00"}});
+    EXPECT_EQ(m.field("density").units, "code units (1 = 1.66e-24 g/cm^3)");
+    EXPECT_EQ(m.field("velocity_y").units, "code units (1 = 9.7782e+07 cm/s)");
+    EXPECT_EQ(m.field("pressure").units, "code units (1 = 1.5872e-08 dyn/cm^2)");
+    EXPECT_EQ(m.field("scalar_00").units, "");
+}
+
 TEST(RamsesReader, Sedov2dOldFormatHasAdaptiveLeavesOnSevenLevels) {
     AMRVK_REQUIRE_DATA(kSedov);
     const Model m = readModel(dataDir() / kSedov / "info_00002.txt", {});

@@ -175,3 +175,15 @@ TEST(SpacePartition, MorePartsThanOccupiedBinsIsOneLine) {
         EXPECT_NE(std::string(e.what()).find("cannot split 2 cells into 3 parts"), std::string::npos) << e.what();
     }
 }
+
+// A rank's part keeps its field's units (issue 33, point 5): the data-parallel legend shows them.
+TEST(SpacePartition, APartKeepsItsFieldsUnits) {
+    AMRVK_REQUIRE_DATA("ramses_galaxy_3d/output_00010");
+    amr::ReadOptions ro;
+    ro.fields = {"density"};
+    const amr::Box3l box{glm::i64vec3(0), glm::i64vec3(32)};
+    const amr::Model part = amr::readPart(test::dataDir() / "ramses_galaxy_3d" / "output_00010", ro, box);
+    ASSERT_EQ(part.fields.size(), 1u);
+    EXPECT_FALSE(part.cells.empty());
+    EXPECT_EQ(part.fields[0].units, "code units (1 = 1.66e-24 g/cm^3)");
+}

@@ -86,6 +86,23 @@ def test_yts_synthetic_data_set(amrvk, yt):
     assert v.units == "g/cm**3"
 
 
+def test_native_units_name_what_yt_converts_to(amrvk, yt):
+    """Volume.units of the native reader (code values, "code units (1 = X g/cm^3)") against
+    from_yt's of yt's cgs field: X times the native values is yt's g/cm^3, cell for cell on the
+    whole (the volume-weighted means); X uses Enzo's critical density, yt's differs by 2e-4."""
+    ds = yt.load(str(need(ENZO)))
+    native = amrvk.Volume(str(ENZO), field="Density")
+    cgs = amrvk.Volume.from_yt(ds, ("gas", "density"))
+    assert cgs.units == "g/cm**3"
+    prefix, suffix = "code units (1 = ", " g/cm^3)"
+    assert native.units.startswith(prefix) and native.units.endswith(suffix), native.units
+    scale = float(native.units[len(prefix) : -len(suffix)])
+    assert scale * native.summary()["volume_weighted_mean"] == pytest.approx(
+        cgs.summary()["volume_weighted_mean"], rel=3e-4, abs=0
+    )
+    assert "[code units (1 = " in repr(native)
+
+
 def test_derived_fields_log_and_cut_outs(amrvk, yt):
     ds = yt.load(str(need(ENZO)))
     ad = ds.all_data()
