@@ -317,7 +317,7 @@ TEST(LegendImage, TheSessionsColourBarShowsTheMapAsGiven) {
         {0.0f, 1.0f}, {glm::vec4(0.2f, 0.4f, 0.6f, 1.0f), glm::vec4(0.9f, 0.5f, 0.0f, 1.0f)}));
     for (const scene::TfColors colors : {scene::TfColors::Srgb, scene::TfColors::Linear}) {
         s.tfColors = colors;
-        const session::LegendContent c = session::legendContent(s);
+        const session::LegendContent c = session::legendContent(s, "");
         const session::LegendLayout L = session::legendLayout(80, 120, c, session::LegendPlace::Side, *font);
         const Image8 png = legendPng(testPicture(80, 120), c, session::LegendPlace::Side, *font, "bar.png");
         for (int y = L.colorBar.y; y < L.colorBar.y + L.colorBar.height; ++y) {
