@@ -10,13 +10,14 @@ north vector and a width that shows the same height at the focus.
 import math
 
 from . import _amrvk
+from .one_line_errors import _shown  # a value in a message: one short line
 
 Camera = _amrvk.Camera
 
 
 def _number(value, name):
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise TypeError(f"{name}: expected a finite number, got {value!r}")
+        raise TypeError(f"{name}: expected a finite number, got {_shown(value)}")
     return float(value)
 
 
@@ -28,7 +29,7 @@ def orbit(camera, degrees, axis=None):
     angle = math.radians(_number(degrees, "degrees"))
     k = np.asarray(camera.up if axis is None else axis, dtype=np.float64)
     if k.shape != (3,) or not np.all(np.isfinite(k)) or not np.linalg.norm(k) > 0:
-        raise ValueError(f"axis: expected 3 finite numbers, not all 0, got {axis!r}")
+        raise ValueError(f"axis: expected 3 finite numbers, not all 0, got {_shown(axis)}")
     k = k / np.linalg.norm(k)
     target = np.asarray(camera.target)
     v = np.asarray(camera.eye) - target
@@ -41,7 +42,7 @@ def zoom(camera, factor):
     """The camera `factor` times closer to its target (2: half the distance; 0.5: twice as far)."""
     f = _number(factor, "factor")
     if not f > 0:
-        raise ValueError(f"factor: {factor!r} must be > 0")
+        raise ValueError(f"factor: {_shown(factor)} must be > 0")
     eye = [t + (e - t) / f for e, t in zip(camera.eye, camera.target)]
     return Camera(eye, camera.target, camera.up, camera.fov)
 

@@ -10,13 +10,14 @@ evenly spaced nodes over [lo, hi]; the opacity is that of the ``ramp`` preset ov
 """
 
 from . import _amrvk
+from .one_line_errors import _shown  # a value in a message: one short line
 
 _builtin_preset = _amrvk.TransferFunction.preset
 
 
 def _colormap(name):
     if not isinstance(name, str):
-        raise TypeError(f"name: expected a preset or colormap name, got {name!r}")
+        raise TypeError(f"name: expected a preset or colormap name, got {_shown(name)}")
     try:
         import matplotlib
     except ImportError:
@@ -36,7 +37,7 @@ def from_colormap(name, lo, hi=None, *, nodes=16):
 
     cmap = _colormap(name)
     if isinstance(nodes, bool) or not isinstance(nodes, int) or not 2 <= nodes <= 4096:
-        raise ValueError(f"nodes: expected a whole number in [2, 4096], got {nodes!r}")
+        raise ValueError(f"nodes: expected a whole number in [2, 4096], got {_shown(nodes)}")
     _check_over(lo, hi)
     if isinstance(lo, _amrvk.Volume):
         if hi is not None:
@@ -63,18 +64,18 @@ def _check_over(lo, hi):
 
     if hi is None:
         if not isinstance(lo, _amrvk.Volume):
-            raise TypeError(f"volume: expected an amrvk.Volume (or lo, hi), got {lo!r}")
+            raise TypeError(f"volume: expected an amrvk.Volume (or lo, hi), got {_shown(lo)}")
         return
     for name, value in (("lo", lo), ("hi", hi)):
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise TypeError(f"{name}: expected a number, got {value!r}")
+            raise TypeError(f"{name}: expected a number, got {_shown(value)}")
 
 
 def preset(name, volume_or_lo=None, hi=None, **kwargs):
     """A built-in preset (``preset(name, volume)`` or ``preset(name, lo, hi)``), else the matplotlib
     colormap of that name (from_colormap)."""
     if not isinstance(name, str):
-        raise TypeError(f"name: expected a preset or colormap name, got {name!r}")
+        raise TypeError(f"name: expected a preset or colormap name, got {_shown(name)}")
     _check_over(volume_or_lo, hi)
     if name in BUILT_IN:
         return _builtin_preset(name, volume_or_lo, **kwargs) if hi is None else _builtin_preset(name, volume_or_lo, hi)

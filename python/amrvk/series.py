@@ -16,6 +16,7 @@ import tempfile
 
 from . import _amrvk
 from .colormaps import preset
+from .one_line_errors import _shown  # a value in a message: one short line
 
 
 def _is_yt(item):
@@ -53,7 +54,7 @@ def _range(tf_range, volume_of, order):
         return min(r[0] for r in ranges), max(r[1] for r in ranges)
     if (not isinstance(tf_range, (tuple, list)) or len(tf_range) != 2
             or not all(isinstance(x, numbers.Real) and not isinstance(x, bool) for x in tf_range)):
-        raise TypeError(f"tf_range: expected 'first', 'union' or (lo, hi), got {tf_range!r}")
+        raise TypeError(f"tf_range: expected 'first', 'union' or (lo, hi), got {_shown(tf_range)}")
     lo, hi = map(float, tf_range)
     if not lo < hi:
         raise ValueError(f"tf_range: {lo:g} is not below {hi:g}")
@@ -76,9 +77,9 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
     progress: callable(frame, frames) after each frame.
     """
     if orbit is not None and (isinstance(orbit, bool) or not isinstance(orbit, numbers.Real)):
-        raise TypeError(f"orbit: expected degrees (a number), got {orbit!r}")
+        raise TypeError(f"orbit: expected degrees (a number), got {_shown(orbit)}")
     if frames is not None and (isinstance(frames, bool) or not isinstance(frames, int)):
-        raise TypeError(f"frames: expected a whole number, got {frames!r}")
+        raise TypeError(f"frames: expected a whole number, got {_shown(frames)}")
     sources, from_yt = _sources(inputs)
     # A DatasetSeries is indexed (ts[i] loads data set i when asked), never loaded whole.
     names = [str(i) for i in range(len(sources))] if from_yt else sources
@@ -105,7 +106,7 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
         if tf is None or isinstance(tf, str):
             tf = preset(tf or "ramp", lo, hi)
         elif not isinstance(tf, _amrvk.TransferFunction):
-            raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {tf!r}")
+            raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {_shown(tf)}")
         first = camera if camera is not None else _amrvk.Camera.frame(volume_of(order[0]))
         images = []
         for k in range(count):

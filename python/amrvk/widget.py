@@ -18,6 +18,7 @@ import numpy as np
 
 from . import _amrvk
 from .cameras import orbit, zoom
+from .one_line_errors import _shown  # a value in a message: one short line
 
 
 class Widget:
@@ -30,7 +31,7 @@ class Widget:
             raise TypeError(f"renderer: expected an amrvk.Renderer, got {type(renderer).__name__}")
         for name, value, hi in (("spp", spp, 1 << 24), ("batch", batch, 1 << 24)):
             if isinstance(value, bool) or not isinstance(value, int):
-                raise TypeError(f"{name}: expected a whole number in [1, {hi}], got {value!r}")
+                raise TypeError(f"{name}: expected a whole number in [1, {hi}], got {_shown(value)}")
             if not 1 <= value <= hi:
                 raise ValueError(f"{name}: {value} is outside [1, {hi}]")
         self.renderer = renderer

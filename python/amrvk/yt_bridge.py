@@ -20,6 +20,7 @@ then owns (the brick build reorders it in place, no further copy).
 """
 
 import numpy as np
+from .one_line_errors import _shown  # a value in a message: one short line
 
 
 def _widths(cell_size, finest, what):
@@ -110,11 +111,11 @@ def _mesh_field(ds, field):
     """The field as yt names it, checked to be one yt knows with values on cells (not particles)."""
     if not isinstance(field, (str, tuple)) or (isinstance(field, tuple) and (
             len(field) != 2 or not all(isinstance(p, str) for p in field))):
-        raise TypeError(f"field: expected a yt field name such as ('gas', 'density') or 'density', got {field!r}")
+        raise TypeError(f"field: expected a yt field name such as ('gas', 'density') or 'density', got {_shown(field)}")
     try:
         info = ds._get_field_info(field)
     except Exception as e:  # yt's YTFieldNotFound and its kin: one line naming the keyword
-        raise ValueError(f"field: {field!r} is not a field of {ds} (see ds.derived_field_list)") from None
+        raise ValueError(f"field: {_shown(field)} is not a field of {ds} (see ds.derived_field_list)") from None
     if getattr(info, "sampling_type", "cell") == "particle":  # "cell" and "local" (derived per cell) are fine
         raise ValueError(
             f"field: {info.name!r} is a particle field; amrvk renders fields with a value per cell, "
@@ -153,7 +154,7 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
         raise TypeError(f"from_yt: expected a yt data set or data object, got {type(data).__name__}")
     _mesh_field(ds, field)
     if not isinstance(log, bool):
-        raise TypeError(f"log: expected True or False, got {log!r}")
+        raise TypeError(f"log: expected True or False, got {_shown(log)}")
     if is_dataset and hasattr(ds.index, "grids"):
         lower, width, values, units, spacing = _grid_cells(ds, field, log, log_floor)
     else:

@@ -119,7 +119,7 @@ void addRenderOptions(CLI::App& app, RenderArgs& a) {
         ->type_name("FILE");
     app.add_option("--until-error", a.untilError,
                    "stop once the image's noise is at most E: the mean, over the visible pixels, of each pixel's "
-                   "standard error over its value (0.02 = 2%); checked at 4 spp and at each doubling, --spp is the cap; "
+                   "standard error over its value (0.02 = 2%); checked at 16 spp and at each doubling, --spp is the cap; "
                    "the spp reached and the noise are printed and in --json (spp, meanRelativeError)")
         ->check(interval(0, 1, true, false))
         ->type_name("E");

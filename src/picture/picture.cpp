@@ -40,7 +40,7 @@ scene::RenderOutput Picture::renderUntil(double targetError, const std::function
     AMRVK_CHECK(targetError > 0 && std::isfinite(targetError), "--until-error ", targetError, ": must be > 0");
     const uint32_t cap = described.spp;
     AMRVK_CHECK(cap >= 2, "--until-error needs --spp of at least 2 as its cap (got ", cap, ")");
-    uint32_t first = std::min<uint32_t>(4, cap);
+    const uint32_t first = std::min(scene::kFirstNoiseCheckSpp, cap);
     auto reported = [&](uint32_t, uint32_t) {
         if (progress) progress(renderer->accumulatedSpp(), cap);
     };

@@ -56,8 +56,9 @@ struct Picture {
     // Renders session().spp samples per pixel from scratch (progress(done, spp) after each batch).
     scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});
     // Renders from scratch until the image's noise (scene::meanRelativeError) is at most
-    // `targetError`, or session().spp samples per pixel (the cap) are in; checks at 4 spp and at
-    // each doubling (progress(done, cap) after each batch). out.spp says how many it took.
+    // `targetError`, or session().spp samples per pixel (the cap) are in; checks at
+    // scene::kFirstNoiseCheckSpp and at each doubling (progress(done, cap) after each batch).
+    // out.spp says how many it took.
     scene::RenderOutput renderUntil(double targetError, const std::function<void(uint32_t, uint32_t)>& progress = {});
 
     // The fitted description less its settings (Picture::session adds the renderer's); set by

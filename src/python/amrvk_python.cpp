@@ -557,11 +557,11 @@ public:
             accumulate(py::int_(n), progress);
             return imageArray(picture(withLegend));
         }
-        // As render --until-error: checks at 4 spp and at each doubling, spp the cap.
+        // As render --until-error: checks at scene::kFirstNoiseCheckSpp and at each doubling, spp the cap.
         const double target = keywordArg<double>(until, "until", "a number in (0, 1]");
         if (!(target > 0 && target <= 1)) throw py::value_error(strCat("until: ", formatDouble(target), " is outside (0, 1]"));
         if (n < 2) throw py::value_error(strCat("until: needs spp of at least 2 as its cap (got ", n, ")"));
-        accumulate(py::int_(std::min<uint32_t>(4, n)), progress);
+        accumulate(py::int_(std::min(scene::kFirstNoiseCheckSpp, n)), progress);
         for (scene::RenderOutput out = output(); out.spp < n && scene::meanRelativeError(out) > target; out = output())
             accumulate(py::int_(std::min(out.spp, n - out.spp)), progress);
         return imageArray(picture(withLegend));
@@ -861,7 +861,7 @@ void bindErrors() {
         } catch (const gpu::ShaderCompileError& e) {
             raise(PyExc_RuntimeError, e.what());
         } catch (const Error& e) {
-            PyErr_SetString(PyExc_ValueError, python::keywordMessage(e.what()).c_str());
+            raise(PyExc_ValueError, python::keywordMessage(e.what()));
         } catch (const std::bad_alloc&) {
             PyErr_SetString(PyExc_MemoryError, "out of memory");
         } catch (const py::cast_error& e) {  // a value that keywordArg did not name: still one line, a TypeError

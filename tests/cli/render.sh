@@ -140,7 +140,7 @@ AMRVK_PROGRESS=1 "$amrvk" render "$dir/v_170x170x170_uint8.raw" --sampler dense 
   -o "$dir/dense.png" 2>"$dir/dense.err" >/dev/null || fail=1
 check grep -q "dense grid of 170^3 samples: 18.7 MiB of memory" "$dir/dense.err"
 check grep -q "dense grid \[#* *\] 170/170 slices" "$dir/dense.err"
-# --until-error E: the render stops at the first check (4 spp, then each doubling) whose noise is
+# --until-error E: the render stops at the first check (16 spp, then each doubling) whose noise is
 # at most E, and --spp caps it; the noise printed and in --json is the image's, recomputed here
 # from --variance and the PFM independently.
 "$amrvk" render "$sample" --size 24x24 --grid 16 --tf-range 0.3 2 --spp 4096 --until-error 0.03 \
@@ -156,7 +156,7 @@ def pfm(path):
         return np.fromfile(f, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3)
 j = json.load(open(sys.argv[1]))
 spp, err = j["spp"], j["meanRelativeError"]
-assert 4 < spp < 4096 and (spp & (spp - 1)) == 0, spp  # 8, 16, ...: doubled, then stopped early
+assert 16 < spp < 4096 and (spp & (spp - 1)) == 0, spp  # 32, 64, ...: doubled, then stopped early
 assert err <= 0.03, err
 m, v = pfm(sys.argv[2]).mean(axis=2), pfm(sys.argv[3]).mean(axis=2)
 n = m.size

@@ -340,15 +340,15 @@ def test_volumes_from_paths_with_random_options(amrvk, kwargs, path):
 # What the random campaign found, kept as plain cases (each failed on the landed module).
 def test_wrong_argument_types_are_one_line_naming_the_function(amrvk):
     c = np.asarray(FIVE, dtype=np.int64)
-    with pytest.raises(TypeError, match=r"^Volume.from_arrays: incompatible arguments \(.*origin=list.*\); expected ") as e:
+    with pytest.raises(TypeError, match=r"^spacing: expected a list of numbers, got None$") as e:
         amrvk.Volume.from_arrays(c[:, :3].copy(), c[:, 3].copy(), np.arange(5, dtype=np.float32), origin=[], spacing=None)
     assert "\n" not in str(e.value) and "array(" not in str(e.value)
 
 
 def test_keywords_and_properties_of_the_wrong_type_name_themselves(amrvk, five, renderer):
-    with pytest.raises(ValueError, match=r"^width: 2147483648 is outside \[-2147483648, 2147483647\]$"):
+    with pytest.raises(ValueError, match=r"^width: 2147483648 is outside \[1, 16384\]$"):
         amrvk.Renderer(five, width=2**31)
-    with pytest.raises(TypeError, match=r"^crop: expected \(lo, hi\) with 3 numbers each, or None, got \[\]$"):
+    with pytest.raises(TypeError, match=r"^crop: expected \(lo, hi\): two lists of 3 numbers, or None, got \[\]$"):
         renderer.crop = []
     with pytest.raises(TypeError, match=r"^spp: expected a whole number in \[1, 16777216\], got a numpy.ndarray$"):
         renderer.render(spp=np.zeros((2, 2)))

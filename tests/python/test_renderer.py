@@ -64,13 +64,13 @@ def test_accumulate_continues_the_same_estimate(amrvk):
 
 
 def test_render_until_a_target_noise(amrvk):
-    # render(until=E): checks at 4 spp and each doubling, stops at the first whose noise is at most
+    # render(until=E): checks at 16 spp and each doubling, stops at the first whose noise is at most
     # E (spp the cap); noise is the mean relative standard error of the visible pixels, recomputed
     # here from the image and its variance.
     r = picture(amrvk)
     assert r.noise is None
     r.render(spp=4096, until=0.03)
-    assert 4 < r.spp < 4096 and (r.spp & (r.spp - 1)) == 0, r.spp  # doubled, then stopped early
+    assert 16 < r.spp < 4096 and (r.spp & (r.spp - 1)) == 0, r.spp  # doubled, then stopped early
     m, v = r.image()[..., :3].mean(axis=2), r.variance().mean(axis=2)
     n = m.size
     visible = (m > 0) & (m >= np.sort(m.ravel())[min(n - 1, int(0.99 * n))] / 256)
