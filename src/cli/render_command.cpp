@@ -234,11 +234,11 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
     std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", a.output.c_str(), rs.width,
                 rs.height, out.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
                 out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
-    if (a.untilError > 0)
-        std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n",
-                    scene::meanRelativeError(out), out.spp,
-                    scene::meanRelativeError(out) <= a.untilError ? "at or below --until-error"
-                                                                  : "above --until-error; --spp capped it");
+    if (a.untilError > 0) {
+        const double noise = scene::meanRelativeError(out);
+        std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n", noise, out.spp,
+                    noise <= a.untilError ? "at or below --until-error" : "above --until-error; --spp capped it");
+    }
     if (c[shared::kCounterMajorantViolations] || c[shared::kCounterNanSamples] || c[shared::kCounterBounceLimitHits] ||
         c[shared::kCounterTrackingCapHits])
         std::fprintf(stderr,

@@ -40,15 +40,14 @@ scene::RenderOutput Picture::renderUntil(double targetError, const std::function
     AMRVK_CHECK(targetError > 0 && std::isfinite(targetError), "--until-error ", targetError, ": must be > 0");
     const uint32_t cap = described.spp;
     AMRVK_CHECK(cap >= 2, "--until-error needs --spp of at least 2 as its cap (got ", cap, ")");
-    const uint32_t first = std::min(scene::kFirstNoiseCheckSpp, cap);
     auto reported = [&](uint32_t, uint32_t) {
         if (progress) progress(renderer->accumulatedSpp(), cap);
     };
-    scene::RenderOutput out = renderer->render(renderer->settings(), first, reported);
-    while (out.spp < cap && scene::meanRelativeError(out) > targetError) {
-        renderer->accumulate(std::min(out.spp, cap - out.spp), reported);  // double the samples
-        out = renderer->output();
-    }
+    // From scratch: the first batch is what the schedule gives an empty image.
+    scene::RenderOutput out =
+        renderer->render(renderer->settings(), scene::nextNoiseBatch({}, cap, targetError), reported);
+    for (uint32_t n; (n = scene::nextNoiseBatch(out, cap, targetError)) > 0; out = renderer->output())
+        renderer->accumulate(n, reported);
     return out;
 }
 

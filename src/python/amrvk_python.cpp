@@ -561,9 +561,7 @@ public:
         const double target = keywordArg<double>(until, "until", "a number in (0, 1]");
         if (!(target > 0 && target <= 1)) throw py::value_error(strCat("until: ", formatDouble(target), " is outside (0, 1]"));
         if (n < 2) throw py::value_error(strCat("until: needs spp of at least 2 as its cap (got ", n, ")"));
-        accumulate(py::int_(std::min(scene::kFirstNoiseCheckSpp, n)), progress);
-        for (scene::RenderOutput out = output(); out.spp < n && scene::meanRelativeError(out) > target; out = output())
-            accumulate(py::int_(std::min(out.spp, n - out.spp)), progress);
+        for (uint32_t k; (k = scene::nextNoiseBatch(output(), n, target)) > 0;) accumulate(py::int_(k), progress);
         return imageArray(picture(withLegend));
     }
     // The image's noise so far (scene::meanRelativeError); None below 2 spp.

@@ -96,6 +96,12 @@ double meanRelativeError(const RenderOutput& o) {
     return visible ? sum / double(visible) : 0.0;
 }
 
+uint32_t nextNoiseBatch(const RenderOutput& out, uint32_t cap, double target) {
+    if (out.spp >= cap) return 0;
+    if (out.spp < kFirstNoiseCheckSpp) return std::min(kFirstNoiseCheckSpp, cap) - out.spp;
+    return meanRelativeError(out) > target ? std::min(out.spp, cap - out.spp) : 0;
+}
+
 Image varianceImage(const std::vector<float>& rgb, int width, int height) {
     Image image(width, height);
     AMRVK_CHECK(rgb.size() == 3 * image.pixels.size(), "internal: ", rgb.size(), " variances for ", width, "x", height);

@@ -65,6 +65,10 @@ double meanRelativeError(const RenderOutput& out);
 // not visible and the measure says less than the image's noise (on the bundled cloud at 32x24 ms
 // it read 0.027 at 4 spp and 0.036 at 8).
 inline constexpr uint32_t kFirstNoiseCheckSpp = 16;
+// The schedule every noise-targeted render follows (render --until-error, Python's until=): the
+// samples per pixel to add next to `out` so the image stops at `target` noise or at `cap` spp
+// (0: stop). Below kFirstNoiseCheckSpp that many; then double the samples.
+uint32_t nextNoiseBatch(const RenderOutput& out, uint32_t cap, double target);
 // Those variances (3 per pixel) as a width x height image, alpha 1: what --variance and the
 // bench's reference cache write.
 Image varianceImage(const std::vector<float>& rgb, int width, int height);

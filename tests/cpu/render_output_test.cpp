@@ -88,5 +88,16 @@ TEST(ImageNoise, MeanOfEachVisiblePixelsStandardErrorOverItsValue) {
     EXPECT_EQ(scene::meanRelativeError(imageOf({glm::vec3(0.0f)}, {0.0f}, 4)), 0.0) << "nothing visible";
 }
 
+TEST(ImageNoise, TheScheduleChecksAtSixteenThenDoublesUpToTheCap) {
+    // Noise of this image: 0.1 at n = 16 (one visible pixel, standard error 0.1 of its value 1).
+    const scene::RenderOutput noisy = imageOf({glm::vec3(1.0f)}, {0.16f}, 16);
+    EXPECT_EQ(scene::nextNoiseBatch({}, 4096, 0.05), scene::kFirstNoiseCheckSpp) << "an empty image";
+    EXPECT_EQ(scene::nextNoiseBatch({}, 8, 0.05), 8u) << "the cap below the first check";
+    EXPECT_EQ(scene::nextNoiseBatch(noisy, 4096, 0.05), 16u) << "above the target: double";
+    EXPECT_EQ(scene::nextNoiseBatch(noisy, 4096, 0.2), 0u) << "at or below the target: stop";
+    EXPECT_EQ(scene::nextNoiseBatch(noisy, 20, 0.05), 4u) << "doubling stops at the cap";
+    EXPECT_EQ(scene::nextNoiseBatch(noisy, 16, 0.05), 0u) << "at the cap";
+}
+
 }  // namespace
 }  // namespace amrvk
