@@ -1,7 +1,7 @@
 """Colormaps by name: matplotlib's (where matplotlib is installed; Debian: python3-matplotlib) as
 transfer functions, next to amrvk's built-in presets.
 
-``TransferFunction.preset(name, ...)`` takes a built-in preset first (ramp, grey, spiky, foggy,
+``TransferFunction.preset(name, ...)`` takes a built-in preset first (layers, ramp, grey, spiky, foggy,
 constant, empty) and otherwise a matplotlib colormap of that name (viridis, magma, inferno, ...);
 ``TransferFunction.from_colormap(name, lo, hi)`` (or ``(name, volume)``) takes the colormap always.
 The map's colours are taken as given (display colours, as matplotlib states them) at `nodes`
@@ -26,7 +26,7 @@ def _colormap(name):
     try:
         return matplotlib.colormaps[name]
     except KeyError:
-        raise ValueError(f"name: '{name}' is neither a built-in preset (ramp, grey, spiky, foggy, constant, empty) "
+        raise ValueError(f"name: '{name}' is neither a built-in preset (layers, ramp, grey, spiky, foggy, constant, empty) "
                          "nor a matplotlib colormap (see matplotlib.colormaps)") from None
 
 
@@ -55,7 +55,7 @@ def from_colormap(name, lo, hi=None, *, nodes=16):
 
 
 # The built-in presets (scene/transfer_function.cpp's makePreset); other names are colormaps.
-BUILT_IN = ("ramp", "grey", "spiky", "foggy", "constant", "empty")
+BUILT_IN = ("ramp", "grey", "spiky", "foggy", "constant", "empty", "layers")
 
 
 def _check_over(lo, hi):

@@ -7,7 +7,7 @@ Renderer, all on one device.
 
 TF range (`tf_range`): ``"first"`` (the first data set's value range, the CLI's default),
 ``"union"`` (every data set's: a pass over them first, one in memory at a time) or ``(lo, hi)``.
-`tf`: None (the ramp preset), a preset or colormap name, fitted over that range; or a
+`tf`: None (the layers preset), a preset or colormap name, fitted over that range; or a
 TransferFunction, used as it is (its own range is the one range).
 """
 import numbers
@@ -104,7 +104,7 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
 
         lo, hi = _range(tf_range, volume_of, order)
         if tf is None or isinstance(tf, str):
-            tf = preset(tf or "ramp", lo, hi)
+            tf = preset(tf or "layers", lo, hi)
         elif not isinstance(tf, _amrvk.TransferFunction):
             raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {_shown(tf)}")
         first = camera if camera is not None else _amrvk.Camera.frame(volume_of(order[0]))

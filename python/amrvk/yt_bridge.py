@@ -124,7 +124,18 @@ def _mesh_field(ds, field):
     return info.name
 
 
-def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
+def _yt_takes_log(ds, obj, field):
+    """yt's own choice for a field (its ``take_log``), where every value is positive (yt would floor
+    the others; amrvk then stays linear, as ``--scale auto`` does)."""
+    try:
+        finfo = ds._get_field_info(field)
+        take_log = bool(getattr(finfo, "take_log", False))
+    except Exception:  # a field yt cannot describe: linear
+        return False
+    return take_log and float(obj.min(field)) > 0
+
+
+def from_yt(data, field, *, log=None, log_floor=None, nan="reject"):
     """An amrvk Volume of `field` from a yt data set or data object.
 
     data: ``yt.load(...)`` (grid index: leaf cells grid by grid; octree: yt's leaf selection), or a
@@ -132,8 +143,9 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
       whose cells keep their size and place (the medium is empty outside it).
     field: any field yt knows, e.g. ``("gas", "density")``, ``("gas", "velocity_magnitude")``,
       ``("enzo", "Density")``.
-    log: take log10 of the values (yt's default for density); values <= 0 are an error unless
-      ``log_floor`` clamps them first.
+    log: take log10 of the values; values <= 0 are an error unless ``log_floor`` clamps them first.
+      None (the default): as yt takes the field (its ``take_log``: densities, temperatures, ...)
+      where every value is positive, else linear.
     nan: ``"reject"`` (an error naming the cell) or ``"drop"`` (those cells are removed).
 
     Refinement must be by powers of two (2, 4, ...; ratios may differ between levels); 2-D data
@@ -153,8 +165,10 @@ def from_yt(data, field, *, log=False, log_floor=None, nan="reject"):
     if ds is None:
         raise TypeError(f"from_yt: expected a yt data set or data object, got {type(data).__name__}")
     _mesh_field(ds, field)
-    if not isinstance(log, bool):
-        raise TypeError(f"log: expected True or False, got {_shown(log)}")
+    if log is not None and not isinstance(log, bool):
+        raise TypeError(f"log: expected True, False or None, got {_shown(log)}")
+    if log is None:
+        log = _yt_takes_log(ds, data if not is_dataset else ds.all_data(), field)
     if is_dataset and hasattr(ds.index, "grids"):
         lower, width, values, units, spacing = _grid_cells(ds, field, log, log_floor)
     else:

@@ -152,11 +152,34 @@ void applyNanPolicy(Model& model, NanPolicy policy) {
 FieldScale parseFieldScale(std::string_view text) {
     if (text == "linear") return FieldScale::Linear;
     if (text == "log") return FieldScale::Log;
-    AMRVK_CHECK(false, "--scale: '", text, "' is not linear or log");
+    if (text == "auto") return FieldScale::Auto;
+    AMRVK_CHECK(false, "--scale: '", text, "' is not auto, linear or log");
     return FieldScale::Linear;
 }
 
-const char* fieldScaleName(FieldScale scale) { return scale == FieldScale::Log ? "log" : "linear"; }
+const char* fieldScaleName(FieldScale scale) {
+    return scale == FieldScale::Log ? "log" : scale == FieldScale::Auto ? "auto" : "linear";
+}
+
+FieldScale autoScaleOf(float smallest, float largest) {
+    return smallest > 0 && double(largest) >= kAutoLogSpan * double(smallest) ? FieldScale::Log : FieldScale::Linear;
+}
+
+FieldScale autoScaleOf(std::span<const float> values) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+    for (float v : values)
+        if (std::isfinite(v)) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+    return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear;
+}
+
+FieldScale scaleOf(const Model& model) {
+    for (const auto& [key, value] : model.attributes)
+        if (key == "scale" && value == "log10") return FieldScale::Log;
+    return FieldScale::Linear;
+}
 
 float smallestPositive(std::span<const float> values) {
     float best = 0;
@@ -167,6 +190,7 @@ float smallestPositive(std::span<const float> values) {
 
 ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
     ScaleReport first;
+    AMRVK_CHECK(scale != FieldScale::Auto, "internal: the auto scale is resolved before it is applied");
     if (scale == FieldScale::Linear) return first;
     AMRVK_CHECK(floor >= 0 && std::isfinite(floor), "--log-floor: ", floor, " must be positive");
     for (size_t f = 0; f < model.fields.size(); ++f) {

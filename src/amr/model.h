@@ -122,8 +122,10 @@ void applyNanPolicy(Model& model, NanPolicy policy);
 // How field values are taken. Log: log10 of each cell's value, before reconstruction (as yt does),
 // so reconstruction, ranges and exact majorants all work on the logs (a monotone map of each cell
 // range). Values <= 0 have no logarithm: they are floored at `floor` (> 0), by default the field's
-// smallest positive value; a field with no positive value is an error.
-enum class FieldScale { Linear, Log };
+// smallest positive value; a field with no positive value is an error. Auto: the field decides
+// (autoScaleOf) once its values are read, as yt takes the log of fields that span decades; it is
+// resolved to Linear or Log before the values are used (readModel, resolvedScale).
+enum class FieldScale { Linear, Log, Auto };
 FieldScale parseFieldScale(std::string_view text);
 const char* fieldScaleName(FieldScale scale);
 struct ScaleReport {
@@ -132,7 +134,14 @@ struct ScaleReport {
 };
 // The smallest positive finite value of `values` (0 when there is none).
 float smallestPositive(std::span<const float> values);
-// Applies `scale` to every field of `model` (NaN policy first: NaN stays NaN); floor 0 = each
+// Auto's choice for a field: Log where every finite value is positive and the largest is at least
+// kAutoLogSpan times the smallest (two decades or more), else Linear (NaN values are ignored).
+constexpr double kAutoLogSpan = 100;
+FieldScale autoScaleOf(float smallest, float largest);
+FieldScale autoScaleOf(std::span<const float> values);
+// The scale a model's values are in: Log where applyFieldScale took their log10.
+FieldScale scaleOf(const Model& model);
+// Applies `scale` (Linear or Log) to every field of `model` (NaN policy first: NaN stays NaN); floor 0 = each
 // field's smallest positive value. Records "scale" (and "logFloored" when cells were floored) in
 // model.attributes and returns what the first field needed. Throws "SOURCE: field 'F' has no
 // positive value: log scale needs one (or --log-floor)".

@@ -1,6 +1,9 @@
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "amr/readers.h"
 #include "core/error.h"
@@ -85,13 +88,34 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
     else if (format == "raw") model = readRaw(path, options);
     else AMRVK_CHECK(false, "unknown format '", format, "' (expected auto, exabrick, amrex, enzo, chombo, carpet, ramses or raw)");
     model = checkedModel(std::move(model), options.nanPolicy);
-    if (options.scale == FieldScale::Log && options.fields.empty() && options.logFloor == 0)
+    // Auto: the field shown (the named one, else the default) decides for every field loaded.
+    const FieldScale scale = options.scale == FieldScale::Auto ? autoScaleOf(model.defaultField().values) : options.scale;
+    if (scale == FieldScale::Log && options.fields.empty() && options.logFloor == 0)
         dropFieldsWithoutLog(model);
-    applyFieldScale(model, options.scale, options.logFloor);
+    applyFieldScale(model, scale, options.logFloor);
     return model;
 }
 
+FieldScale resolvedScale(const fs::path& path, const ReadOptions& options) {
+    if (options.scale != FieldScale::Auto) return options.scale;
+    const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
+    ReadOptions linear = options;
+    linear.scale = FieldScale::Linear;
+    if (format != "exabrick") return scaleOf(readModel(path, options));
+    // The whole field's extremes: one streamed pass over the values.
+    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+    visitExaBrick(path, linear, uint64_t(1) << 20, [&](Model& chunk) {
+        for (float v : chunk.fields[0].values)
+            if (std::isfinite(v)) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    }, nullptr);
+    return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear;
+}
+
 double logFloorOf(const fs::path& path, const ReadOptions& options) {
+    AMRVK_CHECK(options.scale != FieldScale::Auto, "internal: logFloorOf before the scale is resolved");
     if (options.scale != FieldScale::Log || options.logFloor != 0) return options.logFloor;
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
     if (format != "exabrick") return 0;  // read whole: applyFieldScale finds it
@@ -105,9 +129,11 @@ double logFloorOf(const fs::path& path, const ReadOptions& options) {
     return lo;
 }
 
-void visitCells(const fs::path& path, const ReadOptions& options, const std::function<void(const Model& chunk)>& visit,
+void visitCells(const fs::path& path, const ReadOptions& given, const std::function<void(const Model& chunk)>& visit,
                 Model* head) {
-    AMRVK_CHECK(options.fields.size() <= 1, "internal: visitCells takes one field");
+    AMRVK_CHECK(given.fields.size() <= 1, "internal: visitCells takes one field");
+    ReadOptions options = given;
+    options.scale = resolvedScale(path, given);
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
     if (format == "exabrick") {
         const double floor = logFloorOf(path, options);

@@ -20,7 +20,7 @@ struct ReadOptions {
     NanPolicy nanPolicy = NanPolicy::Reject;
     // How field values are taken (amr::applyFieldScale): linear, or log10 of each cell's value
     // before reconstruction (as yt does); values <= 0 are floored at logFloor, by default (0) the
-    // field's smallest positive value.
+    // field's smallest positive value; auto: as the field decides (amr::autoScaleOf).
     FieldScale scale = FieldScale::Linear;
     double logFloor = 0;
     // Raw uniform volumes only (dims/type may instead come from a name like vol_64x64x32_uint8.raw):
@@ -49,7 +49,11 @@ Model checkedModel(Model model, NanPolicy nanPolicy);
 void visitCells(const std::filesystem::path& path, const ReadOptions& options,
                 const std::function<void(const Model& chunk)>& visit, Model* head = nullptr);
 
-// The log floor visitCells uses for `path`: options.logFloor, or for a log scale without one the
+// The scale the values of `path` are read in: options.scale, or for Auto what the field decides
+// (autoScaleOf; ExaBrick: one streamed pass over the values; other formats: read whole).
+FieldScale resolvedScale(const std::filesystem::path& path, const ReadOptions& options);
+
+// The log floor visitCells uses for `path` (options.scale resolved): options.logFloor, or for a log scale without one the
 // field's smallest positive value (ExaBrick: one streamed pass over the values; other formats: 0,
 // found when read whole). Callers that visit a file several times resolve it once.
 double logFloorOf(const std::filesystem::path& path, const ReadOptions& options);

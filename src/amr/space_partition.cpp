@@ -122,10 +122,11 @@ void bisect(const CellCensus& c, const BinBox& box, int parts, std::vector<BinBo
 
 CellCensus censusOf(const std::filesystem::path& path, const ReadOptions& options) {
     CellCensus c;
-    // The log floor once, for both passes here and every rank's readPart (a given --log-floor kept).
-    c.logFloor = logFloorOf(path, options);
+    // The scale and log floor once, for both passes here and every rank's readPart (a given
+    // --log-floor kept).
     ReadOptions o = options;
-    o.logFloor = c.logFloor;
+    o.scale = c.scale = resolvedScale(path, options);
+    o.logFloor = c.logFloor = logFloorOf(path, o);
     visitCells(
         path, o, [&](const Model& chunk) { addExtent(c, chunk); }, &c.head);
     placeBins(c);
@@ -138,6 +139,7 @@ CellCensus censusOf(const Model& model) {
     c.head = model;
     c.head.cells.clear();
     for (Field& f : c.head.fields) f.values.clear();
+    c.scale = scaleOf(model);
     addExtent(c, model);
     placeBins(c);
     addCounts(c, model.cells);
@@ -176,6 +178,8 @@ Model readPart(const std::filesystem::path& path, const ReadOptions& options, co
                 }
         },
         &out);
+    if (options.scale == FieldScale::Log && scaleOf(out) != FieldScale::Log)  // as readModel records it
+        out.attributes.emplace_back("scale", "log10");
     return out;
 }
 

@@ -18,6 +18,7 @@ struct CellCensus {
     Box3l bounds;  // union of the cells (voxel space)
     int minLevel = kMaxLevel, maxLevel = 0;
     float valueLo = 0, valueHi = 0;  // the field's range
+    FieldScale scale = FieldScale::Linear;  // the scale resolved (amr::resolvedScale), for readPart too
     double logFloor = 0;             // --scale log: the floor used (amr::logFloorOf), for readPart too
     Model head;                      // the source's metadata (no cells)
     // Cells counted by the bin holding their lower corner: bins of binWidth voxels (a power of two)

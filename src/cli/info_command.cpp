@@ -59,7 +59,7 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
     for (const std::string& spec : specs) {
         // As render fits them: presets follow the data unless --tf-range fixes them.
         scene::TransferFunction tf = tfRange.size() == 2 ? scene::loadTransferFunction(trim(spec), lo, hi).rescaled(lo, hi)
-                                                         : scene::loadTransferFunction(trim(spec), volume->percentiles);
+                                                         : scene::loadTransferFunction(trim(spec), volume->percentiles, volume->volumeHistogram);
         options.tfs.push_back(std::move(tf));
     }
     ProgressBar bar("checking majorants", "boxes");

@@ -144,10 +144,12 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
         ->type_name("reject|drop");
     app.add_option("--scale", a.scale,
                    "field values as they are (linear) or log10 of each cell's value, before reconstruction as yt "
-                   "takes it (log): the TF, its range, the histogram and info then work on the logs")
-        ->check(CLI::IsMember({"linear", "log"}))
+                   "takes it (log): the TF, its range, the histogram and info then work on the logs; auto: log where "
+                   "every value is positive and the largest is at least 100 times the smallest (the field shown "
+                   "decides), else linear")
+        ->check(CLI::IsMember({"auto", "linear", "log"}))
         ->capture_default_str()
-        ->type_name("linear|log");
+        ->type_name("auto|linear|log");
     app.add_option("--log-floor", a.logFloor,
                    "--scale log: values below V (and every value <= 0) become log10(V) (default: the field's smallest "
                    "positive value)")
@@ -216,10 +218,12 @@ void addStartOptions(CLI::App& app, PictureArgs& a) {
         ->check(CLI::ExistingFile)
         ->type_name("FILE");
     app.add_option("--tf", a.tf,
-                   "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: ramp, grey, "
-                   "constant, empty over the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th "
-                   "percentiles of the cell values) and foggy (alpha 0 up to the median value, rising to 0.05 at "
-                   "the maximum) over the field's percentiles by cell count")
+                   "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: layers (eight "
+                   "semi-transparent layers over the field's range, each as opaque as the space its values fill "
+                   "allows: about 0.15 optical depth per layer across the data); ramp, grey, constant, empty over "
+                   "the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell "
+                   "values) and foggy (alpha 0 up to the median value, rising to 0.05 at the maximum) over the "
+                   "field's percentiles by cell count")
         ->capture_default_str()
         ->type_name("FILE|PRESET");
     app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
@@ -358,7 +362,7 @@ void addMediumOptions(CLI::App& app, PictureArgs& a) {
         ->expected(3)
         ->check(interval(0, INFINITY, false, true))
         ->type_name("R G B");
-    app.add_option("--background", a.background, "radiance seen by primary rays that escape (default: the ambient)")
+    app.add_option("--background", a.background, "radiance seen by primary rays that escape (default 0 0 0: the data, lit by the ambient, on black)")
         ->expected(3)
         ->check(interval(0, INFINITY, false, true))
         ->type_name("R G B");
@@ -500,7 +504,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (given(app, "--type")) s.read.rawType = read.type;
     if (use("--threshold")) s.read.rawThreshold = read.threshold;
     if (given(app, "--field")) s.field = read.fields.front();
-    s.settings = pictureSettings(app, a, fromSession ? s.settings : scene::RenderSettings{});
+    s.settings = pictureSettings(app, a, fromSession ? s.settings : session::Session{}.settings);
     if (use("--spp")) s.spp = uint32_t(a.spp);
     // The TF: the session's unless --tf or --tf-preset is given; --tf-range maps either.
     if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))

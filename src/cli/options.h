@@ -28,7 +28,7 @@ struct ReadArgs {
     std::vector<int> dims;
     std::string type;
     double threshold = 0;
-    std::string scale = "linear";
+    std::string scale = "auto";
     double logFloor = 0;
 };
 // --format, --field (repeatable where multiField), --nan, --scale, --log-floor, --dims, --type,
@@ -46,7 +46,7 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a);
 // The options that make a picture (render, view; bench takes a subset).
 struct PictureArgs {
     std::string session;
-    std::string tf = "ramp", tfPreset;
+    std::string tf = "layers", tfPreset;
     std::string tfColors = "srgb";  // scene/tf_colors.h
     std::vector<double> tfRange;
     std::string mode = "ms";

@@ -34,7 +34,8 @@ DataPart loadPart(World& world, const session::PictureDescription& d) {
     amr::Model model;
     {
         ProgressStage stage("reading this rank's part of " + s.input);
-        ro.logFloor = part.census.logFloor;  // found once by the census
+        ro.scale = part.census.scale;  // resolved once by the census
+        ro.logFloor = part.census.logFloor;
         model = amr::readPart(s.input, ro, mine);
     }
     part.readSeconds = timer.seconds();
@@ -42,9 +43,13 @@ DataPart loadPart(World& world, const session::PictureDescription& d) {
     // The whole field's percentiles (the presets are fitted to them): each rank counts the values of
     // the cells it owns, so every cell counts once, and the counts are summed over the ranks.
     std::vector<float> owned;
+    std::vector<amr::Cell> ownedCells;
     const std::vector<float>& values = model.fields.at(0).values;
     for (size_t i = 0; i < model.cells.size(); ++i)
-        if (amr::ownsCell(mine, model.cells[i])) owned.push_back(values[i]);
+        if (amr::ownsCell(mine, model.cells[i])) {
+            owned.push_back(values[i]);
+            ownedCells.push_back(model.cells[i]);
+        }
     part.ownedCells = owned.size();
     world.checkpoint();  // every rank read its part: the sums below are collective
     amr::PercentileSelection selection;
@@ -53,14 +58,20 @@ DataPart loadPart(World& world, const session::PictureDescription& d) {
         world.sumEverywhere(counts);
         selection.advance(counts);
     }
-    owned = {};
     const amr::CellCensus& whole = part.census;
+    // The space each value fills, likewise: every rank bins the cells it owns over the whole range.
+    amr::VolumeHistogram histogram = amr::volumeHistogramOf(ownedCells, owned, whole.valueLo, whole.valueHi,
+                                                            whole.minLevel, whole.bounds.volume());
+    world.sumEverywhere(histogram.volume);
+    owned = {};
+    ownedCells = {};
     part.volume = scene::makeVolume(std::move(model), s.field,
                                     scene::VolumeFrame{.bounds = whole.bounds,
                                                        .minLevel = whole.minLevel,
                                                        .valueLo = whole.valueLo,
                                                        .valueHi = whole.valueHi,
-                                                       .percentiles = selection.result()});
+                                                       .percentiles = selection.result(),
+                                                       .volumeHistogram = std::move(histogram)});
     return part;
 }
 

@@ -305,7 +305,7 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
     }
     s.read.rawType = type;
     s.read.rawThreshold = threshold;
-    s.read.scale = amr::parseFieldScale(scale);
+    s.read.scale = forKeyword("scale", [&] { return amr::parseFieldScale(scale); });
     s.read.logFloor = logFloor;
     {
         py::gil_scoped_release release;
@@ -314,6 +314,7 @@ std::shared_ptr<PyVolume> volumeFromFile(const fs::path& path, const std::string
         v->files = recorder.files("the volume's data");
     }
     s.field = v->volume->field().name;
+    s.read.scale = amr::scaleOf(v->volume->model);  // auto: what the field decided
     return v;
 }
 
@@ -383,7 +384,7 @@ struct PyTf {
     }
     // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles).
     static PyTf presetFor(const std::string& name, const PyVolume& v) {
-        return {scene::TfChannels::split(scene::makePreset(name, v.volume->percentiles))};
+        return {scene::TfChannels::split(scene::makePreset(name, v.volume->percentiles, v.volume->volumeHistogram))};
     }
     static PyTf fromFile(const fs::path& path, const std::string& preset, float lo, float hi) {
         return {scene::TfChannels::split(scene::loadTransferFunction(path.string(), lo, hi, preset))};
@@ -961,11 +962,12 @@ void bindVolume(py::module_& m) {
                                                     "one field of an AMR data set, in brick order with its bricks")
         .def(py::init(&volumeFromFile), py::arg("path"), py::arg("field") = "", py::arg("format") = "auto",
              py::arg("nan") = "reject", py::arg("dims") = py::none(), py::arg("type") = "", py::arg("threshold") = 0.0,
-             py::arg("scale") = "linear", py::arg("log_floor") = 0.0,
+             py::arg("scale") = "auto", py::arg("log_floor") = 0.0,
              "read a data set (ExaBrick .cells, AMReX plotfile, Enzo parameter file, Chombo .hdf5, RAMSES output "
              "directory, raw .raw); "
              "scale='log': log10 of each cell's value (values <= 0 floored at log_floor, default the smallest "
-             "positive value), as amrvk render --scale log")
+             "positive value), as amrvk render --scale log; 'auto' (the default): log where every value is "
+             "positive and spans two decades or more, as amrvk render")
         .def_static("from_arrays", &volumeFromArrays, py::arg("lower"), py::arg("level"), py::arg("values"),
                     py::arg("field") = "values", py::arg("origin") = std::vector<double>{0, 0, 0},
                     py::arg("spacing") = std::vector<double>{1, 1, 1}, py::arg("nan") = "reject", py::arg("units") = "",

@@ -34,6 +34,17 @@ constexpr float kSpikyMinSide = 1e-4f;  // a side's shortest width, in units of 
 // foggy fitted to the data: nodes at these percentiles, alpha kFoggyMaxAlpha (k - 50) / 50 above the median.
 constexpr int kFoggyPercentiles[] = {0, 50, 60, 70, 80, 90, 95, 99, 100};
 constexpr float kFoggyMaxAlpha = 0.05f;  // a quarter of the range-fixed foggy's top: haze, not a wall
+// layers: kLayerCount triangular layers, apexes evenly over the range, each a quarter of the
+// spacing wide on either side, albedo cool to warm (ColorBrewer's Spectral, bright end first).
+constexpr int kLayerCount = 8;
+const uint32_t kLayerColors[kLayerCount] = {0x5e4fa2, 0x3288bd, 0x66c2a5, 0xabdda4,
+                                            0xe6f598, 0xfee08b, 0xfdae61, 0xf46d43};
+// Fitted, each layer's expected optical depth along a chord through the data (so all eight add to
+// about 1.2: the far side shows through), at most kLayerMaxAlpha per finest cell.
+constexpr double kLayerDepth = 0.15;
+constexpr float kLayerMaxAlpha = 1.0f;
+// Range-fixed, alpha kLayerTopAlpha at the top layer, halving layer by layer below it.
+constexpr float kLayerTopAlpha = 0.5f;
 constexpr int kMaxXfNodes = 1 << 20;
 constexpr uint64_t kXfHeaderBytes = 8 + 4 + 2 * 4 + 2 * 4 + 4;
 constexpr uint64_t kOldXfBytes = 128 * sizeof(float);
@@ -217,6 +228,26 @@ glm::vec3 hexColor(uint32_t rgb) {
     return glm::vec3(float((rgb >> 16) & 0xff), float((rgb >> 8) & 0xff), float(rgb & 0xff)) / 255.0f;
 }
 
+// The layers over [lo, hi] (lo < hi) with alphas[k] at apex k: alpha 0 at both ends and between
+// layers.
+PresetNodes layerNodes(float lo, float hi, const std::vector<float>& alphas) {
+    PresetNodes p{"layers", {lo}, {glm::vec4(hexColor(kLayerColors[0]), 0.0f)}};
+    const double spacing = (double(hi) - lo) / kLayerCount;
+    for (int k = 0; k < kLayerCount; ++k) {
+        const glm::vec3 c = hexColor(kLayerColors[k]);
+        const double apex = lo + (k + 0.5) * spacing;
+        for (int side = -1; side <= 1; ++side) {
+            // Clamped and kept ascending: a range only a few floats wide collapses layers, never reverses them.
+            const float x = std::clamp(float(apex + side * 0.25 * spacing), std::max(lo, p.positions.back()), hi);
+            p.positions.push_back(x);
+            p.colors.emplace_back(c, side == 0 ? alphas[size_t(k)] : 0.0f);
+        }
+    }
+    p.positions.push_back(hi);
+    p.colors.emplace_back(p.colors.back());
+    return p;
+}
+
 const std::vector<PresetNodes>& presetTable() {
     static const std::vector<PresetNodes> table = [] {
         std::vector<PresetNodes> t;
@@ -241,6 +272,9 @@ const std::vector<PresetNodes>& presetTable() {
         t.push_back({"constant", {0.0f, 1.0f}, {glm::vec4(1.0f), glm::vec4(1.0f)}});
         t.push_back({"empty", {0.0f, 1.0f}, {glm::vec4(1.0f, 1.0f, 1.0f, 0.0f),
                                              glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}});
+        std::vector<float> layerAlphas(kLayerCount);
+        for (int k = 0; k < kLayerCount; ++k) layerAlphas[size_t(k)] = std::ldexp(kLayerTopAlpha, k - (kLayerCount - 1));
+        t.push_back(layerNodes(0.0f, 1.0f, layerAlphas));
         return t;
     }();
     return table;
@@ -353,7 +387,7 @@ TransferFunction makePreset(std::string_view name, float lo, float hi) {
     return TransferFunction(p.positions, p.colors, p.name).rescaled(lo, hi);
 }
 
-bool presetFollowsData(std::string_view name) { return name == "spiky" || name == "foggy"; }
+bool presetFollowsData(std::string_view name) { return name == "spiky" || name == "foggy" || name == "layers"; }
 
 namespace {
 
@@ -419,13 +453,34 @@ TransferFunction foggyOver(const amr::Percentiles& p) {
     return TransferFunction(positions, colors, "foggy");
 }
 
+// layers over the histogram h's range (lo < hi): see makePreset(name, percentiles, volumes).
+TransferFunction layersOver(const amr::VolumeHistogram& h) {
+    const double spacing = (double(h.hi) - h.lo) / kLayerCount;
+    const double chord = h.depth();
+    std::vector<float> alphas(kLayerCount);
+    for (int k = 0; k < kLayerCount; ++k) {
+        // The share of the bounds' volume under layer k's triangle (weight 1 at its apex).
+        const double apex = h.lo + (k + 0.5) * spacing, half = 0.25 * spacing;
+        double share = 0;
+        for (int b = 0; b < amr::VolumeHistogram::kBins; ++b)
+            share += h.volume[size_t(b)] * std::max(0.0, 1.0 - std::abs(h.binCentre(b) - apex) / half);
+        share = h.boundsVolume > 0 ? share / h.boundsVolume : 0;
+        const double alpha = share * chord > 0 ? kLayerDepth / (share * chord) : double(kLayerMaxAlpha);
+        alphas[size_t(k)] = float(std::min(alpha, double(kLayerMaxAlpha)));
+    }
+    const PresetNodes nodes = layerNodes(h.lo, h.hi, alphas);
+    return TransferFunction(nodes.positions, nodes.colors, "layers");
+}
+
 }  // namespace
 
-TransferFunction makePreset(std::string_view name, const amr::Percentiles& p) {
+TransferFunction makePreset(std::string_view name, const amr::Percentiles& p, const amr::VolumeHistogram& volumes) {
     findPreset(name);  // an unknown name is an error whatever the data
     AMRVK_CHECK(p.count > 0, "preset '", name, "': the field has no values to fit it to");
     checkRange(p.lo(), p.hi(), strCat("preset '", name, "'"));
     if (!presetFollowsData(name) || !(p.lo() < p.hi())) return makePreset(name, p.lo(), p.hi());
+    if (name == "layers")
+        return volumes.empty() || !(volumes.lo < volumes.hi) ? makePreset(name, p.lo(), p.hi()) : layersOver(volumes);
     return name == "spiky" ? spikyOver(p) : foggyOver(p);
 }
 
@@ -591,9 +646,9 @@ TransferFunction loadXf(const fs::path& path, float dataLo, float dataHi) {
 }
 
 TransferFunction loadTransferFunction(std::string_view spec, const amr::Percentiles& data,
-                                      std::string_view presetName) {
+                                      const amr::VolumeHistogram& volumes, std::string_view presetName) {
     for (const std::string& name : presetNames())
-        if (spec == name) return makePreset(spec, data);
+        if (spec == name) return makePreset(spec, data, volumes);
     return loadTransferFunction(spec, data.lo(), data.hi(), presetName);
 }
 

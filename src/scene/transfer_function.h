@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "amr/value_percentiles.h"
+#include "amr/volume_histogram.h"
 
 namespace amrvk::scene {
 
@@ -64,7 +65,7 @@ private:
     std::string mName;
 };
 
-// Names of the built-in presets: ramp (default), grey, spiky, foggy, constant, empty.
+// Names of the built-in presets: ramp, grey, spiky, foggy, constant, empty, layers (the default).
 const std::vector<std::string>& presetNames();
 
 // A built-in preset over a range the caller fixes (--tf-range, a time series' range, the viewer's
@@ -75,11 +76,15 @@ const std::vector<std::string>& presetNames();
 //   spiky    alpha 0 except one triangular peak of alpha 1 at the middle (half width 1% of the range);
 //   foggy    alpha 0.05 -> 0.2, bright bluish colours;
 //   constant alpha 1 and colour 1 everywhere (albedo 1 in either TfColors: furnace tests);
-//   empty    alpha 0 everywhere.
+//   empty    alpha 0 everywhere;
+//   layers   eight triangular layers, apexes at (k + 0.5) / 8 of the range, each a quarter of the
+//            spacing wide on either side (alpha 0 in the gaps), albedo cool to warm (ColorBrewer
+//            Spectral: 5e4fa2 ... f46d43); alpha 0.5 at the top layer, halving layer by layer below.
 // Throws for an unknown name or a non-finite or reversed range.
 TransferFunction makePreset(std::string_view name, float lo, float hi);
 
-// Whether a preset follows the data's distribution in makePreset(name, percentiles): spiky, foggy.
+// Whether a preset follows the data's distribution in makePreset(name, percentiles, volumes):
+// spiky, foggy, layers.
 bool presetFollowsData(std::string_view name);
 
 // A built-in preset fitted to the data (what render, view, bench, the Python module and the MPI
@@ -96,10 +101,20 @@ bool presetFollowsData(std::string_view name);
 //            99, 100 (linear in the value in between): haze that thickens with the value's rank,
 //            none over the lower half of the cells (on AMR data, the coarse background); albedo
 //            bluish to white. Of percentiles sharing a value only the lowest is kept.
+//   layers   the range-fixed layers over the histogram's range (the field's), each layer's alpha
+//            sized by the space its values fill (`volumes`, amr/volume_histogram.h): the share s_k
+//            of the bounds' volume under layer k's triangle (1 at its apex), over a chord of
+//            length D (the cube root of the bounds' volume, finest cells), gets alpha
+//            min(1, 0.15 / (s_k D)): each layer's expected optical depth along a chord is 0.15,
+//            about 1.2 for all eight, so the picture is semi-transparent at any resolution, and
+//            values that fill little space (the dense structure) are drawn nearly opaque. yt's
+//            default (ten Gaussian layers over the log range) is the model. Without a histogram
+//            (`volumes` empty): the range-fixed shape over [P0, P100].
 //   ramp, grey, constant, empty: makePreset(name, P0, P100), i.e. over the field's range.
 // A field with one value (P0 == P100) gets makePreset(name, P0, P100). Throws for an unknown name
 // or no values (percentiles.count == 0).
-TransferFunction makePreset(std::string_view name, const amr::Percentiles& percentiles);
+TransferFunction makePreset(std::string_view name, const amr::Percentiles& percentiles,
+                            const amr::VolumeHistogram& volumes = {});
 
 // ParaView colour-map preset JSON: an array of presets or one preset object with "Name",
 // "RGBPoints" [x, r, g, b, ...] and optional "Points" [x, opacity, midpoint, sharpness, ...].
@@ -156,9 +171,9 @@ TransferFunction loadXf(const std::filesystem::path& path, float dataLo, float d
 // keep their own positions. presetName selects a preset inside a ParaView JSON file.
 TransferFunction loadTransferFunction(std::string_view spec, float dataLo, float dataHi,
                                       std::string_view presetName = {});
-// The same fitted to the data: presets through makePreset(name, percentiles), files as above over
-// [P0, P100] (the field's range; an owlExaBrick alpha table spans it).
+// The same fitted to the data: presets through makePreset(name, percentiles, volumes), files as
+// above over [P0, P100] (the field's range; an owlExaBrick alpha table spans it).
 TransferFunction loadTransferFunction(std::string_view spec, const amr::Percentiles& data,
-                                      std::string_view presetName = {});
+                                      const amr::VolumeHistogram& volumes, std::string_view presetName = {});
 
 }  // namespace amrvk::scene

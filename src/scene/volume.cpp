@@ -67,9 +67,13 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
         v->fieldStats.minValue = frame->valueLo;
         v->fieldStats.maxValue = frame->valueHi;
         v->percentiles = frame->percentiles;
+        v->volumeHistogram = frame->volumeHistogram;
     } else {
         ProgressStage stage("percentiles");
         v->percentiles = amr::percentilesOf(field.values);
+        if (v->percentiles.count > 0)  // else no finite value: nothing to fit a TF to
+            v->volumeHistogram = amr::volumeHistogramOf(model.cells, field.values, v->valueLo(), v->valueHi(),
+                                                        v->summary.minLevel, v->frameBounds.volume());
     }
     if (given) {  // the model stays in its order; the field is copied into slot order
         v->bricks = std::move(*given);

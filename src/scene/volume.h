@@ -15,6 +15,7 @@
 #include "accel/bvh.h"
 #include "amr/model.h"
 #include "amr/value_percentiles.h"
+#include "amr/volume_histogram.h"
 #include "shared/amr_gpu.h"
 
 namespace amrvk::scene {
@@ -27,6 +28,9 @@ struct Volume {
     // The field's percentiles by cell count (what the spiky and foggy presets are laid over);
     // [0] and [100] are valueLo() and valueHi().
     amr::Percentiles percentiles;
+    // The space each value fills (what the layers preset sizes its opacities by), over
+    // [valueLo(), valueHi()] in the frame's bounds.
+    amr::VolumeHistogram volumeHistogram;
     glm::i64vec3 localOrigin{0};   // voxel space; = lower corner of frameBounds
     // The box a picture of it frames (voxel space): its bounds, or for a part of a larger data set
     // (VolumeFrame) the whole data's.
@@ -82,6 +86,7 @@ struct VolumeFrame {
     int32_t minLevel = 0;         // the whole data's finest level: extinction per the same width
     float valueLo = 0, valueHi = 0;  // the whole field's range (TF fitting)
     amr::Percentiles percentiles;    // the whole field's percentiles (TF fitting; each cell counted once)
+    amr::VolumeHistogram volumeHistogram;  // the whole field's (TF fitting; each cell counted once)
 };
 // makeVolume for a part: its own bounds and bricks, `frame`'s origin, finest level and range.
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field, const VolumeFrame& frame);

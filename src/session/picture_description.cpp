@@ -31,6 +31,15 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
         return std::string(text);
     };
     if (!(p.lo() < p.hi())) return strCat("tf ", name, ": the field has one value (", formatNumber(p.lo()), ")");
+    if (name == "layers") {
+        std::string alphas;  // at each layer's apex
+        for (int k = 0; k < 8; ++k) {
+            if (k) alphas += ' ';
+            alphas += formatNumber(tf.evaluate(float(p.lo() + (k + 0.5) * (double(p.hi()) - p.lo()) / 8)).a);
+        }
+        return strCat("tf layers: 8 layers over [", formatNumber(p.lo()), ", ", formatNumber(p.hi()),
+                      "], alphas by the space their values fill: ", alphas);
+    }
     if (name == "spiky")
         return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values (",
                       formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
@@ -42,6 +51,7 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
 Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std::vector<std::string>* notes) {
     Session s = d.session;
     s.field = v.field().name;
+    if (s.read.scale == amr::FieldScale::Auto) s.read.scale = amr::scaleOf(v.model);  // as the field decided
     if (d.tfSource || d.tfRange) {
         const std::pair<float, float> range = d.tfRange     ? *d.tfRange
                                               : d.dataRange ? *d.dataRange
@@ -52,7 +62,7 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
         const bool fitted = !d.tfRange && !d.dataRange;
         scene::TransferFunction tf =
             !d.tfSource ? s.tf.merged()
-            : fitted    ? scene::loadTransferFunction(d.tfSource->name, v.percentiles, d.tfSource->preset)
+            : fitted    ? scene::loadTransferFunction(d.tfSource->name, v.percentiles, v.volumeHistogram, d.tfSource->preset)
                         : scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset);
         if (d.tfRange) tf = tf.rescaled(lo, hi);
         if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && notes)
@@ -85,7 +95,7 @@ std::string renderCommandLine(const PictureDescription& d, const std::string& tf
     if (!s.field.empty()) c += " --field " + shellQuote(s.field);
     if (s.read.format != "auto") c += " --format " + shellQuote(s.read.format);
     if (s.read.nanPolicy == amr::NanPolicy::Drop) c += " --nan drop";
-    if (s.read.scale == amr::FieldScale::Log) c += " --scale log";
+    if (s.read.scale != amr::FieldScale::Auto) c += std::string(" --scale ") + amr::fieldScaleName(s.read.scale);
     if (s.read.logFloor != 0.0) c += " --log-floor " + formatNumber(s.read.logFloor);
     if (s.read.rawDims != glm::ivec3(0))
         c += " --dims " + std::to_string(s.read.rawDims.x) + " " + std::to_string(s.read.rawDims.y) + " " +

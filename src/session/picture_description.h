@@ -19,7 +19,7 @@ namespace amrvk::session {
 
 // A transfer function to load once the field's range is known.
 struct TfSource {
-    std::string name = "ramp";  // a ParaView JSON or .xf file, or a preset (ramp, grey, spiky, ...)
+    std::string name = "layers";  // a ParaView JSON or .xf file, or a preset (layers, ramp, spiky, ...)
     std::string preset;         // the preset inside a ParaView JSON file (empty: the first)
 };
 

@@ -23,7 +23,9 @@ namespace amrvk::session {
 
 namespace {
 
-constexpr int kVersion = 2;  // 2: "tfColors" (absent in version 1, whose colours were linear)
+// 2: "tfColors" (absent in version 1, whose colours were linear); 3: read.scale defaults to auto and
+// render.background to black (absent in versions 1-2: linear and the ambient).
+constexpr int kVersion = 3;
 
 Json vec3(glm::dvec3 v) { return Json::array({v.x, v.y, v.z}); }
 
@@ -271,12 +273,14 @@ const std::vector<Section>& sections() {
           integerKey("spp", AT(spp), 0, scene::kMaxSpp), integerKey("seed", AT(settings.seed), 0, UINT32_MAX),
           numberKey("densityScale", AT(settings.densityScale), {0, kInf}),
           numberKey("g", AT(settings.g), {-1, 1}), vectorKey("ambient", AT(settings.ambient), false, true),
-          {"background",
+          {"background",  // three radiances, or "ambient": what escaping rays see (the default: black)
            [](const Session& s, Json& j) {
-               if (s.settings.background) j["background"] = vec3(*s.settings.background);
+               j["background"] = s.settings.background ? vec3(*s.settings.background) : Json("ambient");
            },
            [](const Reader& r, Session& s) {
-               if (r.has("background")) s.settings.background = readVector(r, "background", true);
+               if (!r.has("background")) return;
+               if (r.json().at("background") == "ambient") s.settings.background.reset();
+               else s.settings.background = readVector(r, "background", true);
            }},
           numberKey("dvrStep", AT(settings.dvrStep), {0, 64, true}),
           flagKey("dvrShading", AT(settings.dvrShading))}},
@@ -457,8 +461,8 @@ Session parseSession(const std::string& text, const fs::path& path) {
     AMRVK_CHECK(doc.is_object() && top.text("amrvk", "") == "session", file,
                 ": not an amrvk session (expected \"amrvk\": \"session\")");
     const int64_t version = top.integer("version", 1, 1 << 20);
-    AMRVK_CHECK(version == 1 || version == kVersion, file, ": session version ", version,
-                " (this amrvk reads versions 1 and ", kVersion, ")");
+    AMRVK_CHECK(version >= 1 && version <= kVersion, file, ": session version ", version,
+                " (this amrvk reads versions 1 to ", kVersion, ")");
     top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut",
                   "structure", "transferFunction", "tfColors", "legend"});
 
@@ -468,6 +472,10 @@ Session parseSession(const std::string& text, const fs::path& path) {
     if (fs::path(s.input).is_relative()) s.input = (path.parent_path() / s.input).lexically_normal().string();
     s.field = top.text("field", "");
     for (const Section& sec : sections()) readSection(sec, top, s);
+    if (version < 3) {  // what a missing key meant then: linear values, the ambient behind
+        if (!(top.has("read") && top.child("read").has("scale"))) s.read.scale = amr::FieldScale::Linear;
+        if (!(top.has("render") && top.child("render").has("background"))) s.settings.background.reset();
+    }
     if (top.has("lights")) s.settings.lights = readLights(doc.at("lights"), file + ".lights");
     if (top.has("cut")) s.settings.cut = readCut(top.child("cut"));
     // One ParaView preset object, read by the same code as preset files.

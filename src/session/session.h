@@ -1,9 +1,11 @@
 #pragma once
 // A session: everything that makes a picture, in one JSON file that both the viewer (save/load)
 // and `amrvk render --session` read, so a picture explored interactively renders the same offline.
-// Schema (docs/sessions.md): {"amrvk": "session", "version": 2, "input", "read", "field",
+// Schema (docs/sessions.md): {"amrvk": "session", "version": 3, "input", "read", "field",
 // "camera", "image", "render", "lights", "structure", "transferFunction", "tfColors", "legend"}.
-// Version 1 files (before "tfColors") load with the meaning they were saved with: linear colours. The input path is
+// Older files load with the meaning they were saved with: version 1 (before "tfColors") linear
+// colours; versions 1-2 (before the auto scale and the black background) a missing read.scale is
+// linear and a missing render.background the ambient. The input path is
 // stored absolute; a relative one in a hand-written file is taken relative to the session file.
 #include <cstdint>
 #include <filesystem>
@@ -19,10 +21,22 @@
 namespace amrvk::session {
 
 struct Session {
-    std::string input;               // the data set (file or directory)
-    amr::ReadOptions read;           // format, NaN policy, raw-volume options (fields: see `field`)
-    std::string field;               // empty: the source's default field
-    scene::RenderSettings settings;  // camera, image size, mode, seed, medium, lights, dvr
+    std::string input;  // the data set (file or directory)
+    // format, NaN policy, raw-volume options (fields: see `field`); the scale starts as auto (the
+    // field decides, amr::autoScaleOf) and a fitted picture holds what it decided
+    amr::ReadOptions read = [] {
+        amr::ReadOptions r;
+        r.scale = amr::FieldScale::Auto;
+        return r;
+    }();
+    std::string field;  // empty: the source's default field
+    // camera, image size, mode, seed, medium, lights, dvr; the first picture shows the data lit by
+    // the white ambient against a black background (emission-friendly, as yt's and ParaView's)
+    scene::RenderSettings settings = [] {
+        scene::RenderSettings r;
+        r.background = glm::dvec3(0.0);
+        return r;
+    }();
     uint32_t spp = 64;               // render: samples per pixel; viewer: stop accumulating there (0: run on)
     scene::StructureConfig structure;  // backend may be Auto
     scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)

@@ -43,13 +43,15 @@ TEST(PictureDescription, PresetsFollowTheDataUnlessARangeIsGiven) {
         d.tfSource = TfSource{.name = name};
         std::vector<std::string> notes;
         const scene::TransferFunction fitted = resolvedTf(d, *v, &notes);
-        expectSameTf(fitted, scene::makePreset(name, p));
+        expectSameTf(fitted, scene::makePreset(name, p, v->volumeHistogram));
         EXPECT_EQ(fitted.firstPosition(), v->valueLo());
         EXPECT_EQ(fitted.lastPosition(), v->valueHi());
         if (scene::presetFollowsData(name)) {
             ASSERT_EQ(notes.size(), 1u);
             EXPECT_NE(notes[0].find("tf " + name), std::string::npos) << notes[0];
-            EXPECT_NE(notes[0].find(name == "spiky" ? "percentiles" : "median"), std::string::npos) << notes[0];
+            EXPECT_NE(notes[0].find(name == "spiky" ? "percentiles" : name == "layers" ? "space" : "median"),
+                      std::string::npos)
+                << notes[0];
         } else {
             EXPECT_TRUE(notes.empty());
         }

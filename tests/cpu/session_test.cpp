@@ -96,7 +96,7 @@ TEST(Session, EveryFieldRoundTrips) {
 TEST(Session, KeysLeftOutTakeTheDefaultsTheFrontEndsStartWith) {
     // Only what a session must name: every other key of every section reads as its default, the
     // same default a Session (and the CLI) starts with, and writing it back states them.
-    const std::string text = R"({"amrvk": "session", "version": 1, "input": "/d/c.cells",
+    const std::string text = R"({"amrvk": "session", "version": 3, "input": "/d/c.cells",
         "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}, "image": {"width": 8, "height": 6},
         "transferFunction": {"Name": "t", "RGBPoints": [0, 1, 1, 1, 1, 1, 1, 1], "Points": [0, 0, 0.5, 0, 1, 1, 0.5, 0]}})";
     const Session s = session::parseSession(text, "/tmp/min.json");
@@ -111,7 +111,9 @@ TEST(Session, KeysLeftOutTakeTheDefaultsTheFrontEndsStartWith) {
     EXPECT_EQ(s.settings.densityScale, d.settings.densityScale);
     EXPECT_EQ(s.settings.g, d.settings.g);
     EXPECT_EQ(s.settings.ambient, d.settings.ambient);
-    EXPECT_FALSE(s.settings.background.has_value());
+    EXPECT_EQ(s.settings.background, d.settings.background);
+    EXPECT_EQ(s.settings.background, glm::dvec3(0.0));  // black: the data lit by the sky, on black
+    EXPECT_EQ(s.read.scale, amr::FieldScale::Auto);
     EXPECT_EQ(s.settings.camera.fovYDegrees, d.settings.camera.fovYDegrees);
     EXPECT_EQ(s.settings.dvrStep, d.settings.dvrStep);
     EXPECT_EQ(s.structure.traversal, d.structure.traversal);
@@ -121,9 +123,10 @@ TEST(Session, KeysLeftOutTakeTheDefaultsTheFrontEndsStartWith) {
     EXPECT_EQ(s.structure.denseMaxBytes, d.structure.denseMaxBytes);
     EXPECT_TRUE(s.legend == d.legend);
     const std::string written = session::sessionJson(s);
-    for (const char* key : {"\"nan\"", "\"spp\"", "\"seed\"", "\"dvrShading\"", "\"sampler\"", "\"denseMaxMiB\""})
+    for (const char* key : {"\"nan\"", "\"spp\"", "\"seed\"", "\"dvrShading\"", "\"sampler\"", "\"denseMaxMiB\"",
+                            "\"background\""})
         EXPECT_NE(written.find(key), std::string::npos) << key;
-    for (const char* key : {"\"dims\"", "\"threshold\"", "\"background\"", "\"legend\""})
+    for (const char* key : {"\"dims\"", "\"threshold\"", "\"scale\"", "\"legend\""})
         EXPECT_EQ(written.find(key), std::string::npos) << key << " is written only when set";
 }
 
@@ -161,7 +164,7 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
     } cases[] = {
         {"{", {"/tmp/s.json", "malformed JSON"}},
         {"[]", {"/tmp/s.json", "not an amrvk session"}},
-        {with("\"version\": 2", "\"version\": 7"), {"version 7"}},
+        {with("\"version\": 3", "\"version\": 7"), {"version 7"}},
         {with("\"tfColors\": \"linear\"", "\"tfColors\": \"gamma\""), {"/tmp/s.json.tfColors", "--tf-colors", "gamma"}},
         {with("\"fovY\": 33.0", "\"fovY\": 0.0"), {"camera.fovY", "(0, 180)"}},
         {with("\"width\": 320", "\"width\": 0"), {"image.width", "[1, 16384]"}},
@@ -228,14 +231,14 @@ TEST(Session, OlderSessionsKeepTheirColourMeaning) {
     Session s = fullSession();
     s.tfColors = scene::TfColors::Srgb;
     const std::string v2 = session::sessionJson(s);
-    ASSERT_NE(v2.find("\"version\": 2"), std::string::npos);
+    ASSERT_NE(v2.find("\"version\": 3"), std::string::npos);
     ASSERT_NE(v2.find("\"tfColors\": \"srgb\""), std::string::npos);
     EXPECT_EQ(session::parseSession(v2, "/tmp/s.json").tfColors, scene::TfColors::Srgb);
     auto without = [](std::string t, const std::string& version) {
         const std::string key = ",\n  \"tfColors\": \"srgb\"";
         const size_t at = t.find(key);
         if (at != std::string::npos) t.erase(at, key.size());
-        const size_t v = t.find("\"version\": 2");
+        const size_t v = t.find("\"version\": 3");
         if (v != std::string::npos) t.replace(v, 12, "\"version\": " + version);
         return t;
     };
@@ -247,4 +250,33 @@ TEST(Session, OlderSessionsKeepTheirColourMeaning) {
     // Saved again, the old session says what it meant.
     const Session old = session::parseSession(v1, "/tmp/s.json");
     EXPECT_NE(session::sessionJson(old).find("\"tfColors\": \"linear\""), std::string::npos);
+}
+
+// Issue 33: version 3 starts from the auto scale and a black background; a version 1-2 file without
+// those keys meant linear values and the ambient behind the data, loads so and says so when saved.
+TEST(Session, OlderSessionsKeepTheirScaleAndBackground) {
+    const std::string minimal = R"({"amrvk": "session", "version": V, "input": "/d/c.cells",
+        "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}, "image": {"width": 8, "height": 6},
+        "transferFunction": {"Name": "t", "RGBPoints": [0, 1, 1, 1, 1, 1, 1, 1]}})";
+    auto versioned = [&](const char* v) {
+        std::string t = minimal;
+        t.replace(t.find("V,"), 1, v);
+        return session::parseSession(t, "/tmp/s.json");
+    };
+    for (const char* v : {"1", "2"}) {
+        const Session old = versioned(v);
+        EXPECT_EQ(old.read.scale, amr::FieldScale::Linear) << v;
+        EXPECT_FALSE(old.settings.background.has_value()) << v;
+        const std::string saved = session::sessionJson(old);
+        EXPECT_NE(saved.find("\"scale\": \"linear\""), std::string::npos) << saved;
+        EXPECT_NE(saved.find("\"background\": \"ambient\""), std::string::npos) << saved;
+        const Session again = session::parseSession(saved, "/tmp/s.json");  // version 3 now
+        EXPECT_EQ(again.read.scale, amr::FieldScale::Linear);
+        EXPECT_FALSE(again.settings.background.has_value());
+    }
+    const Session now = versioned("3");
+    EXPECT_EQ(now.read.scale, amr::FieldScale::Auto);
+    EXPECT_EQ(now.settings.background, glm::dvec3(0.0));
+    EXPECT_NE(test::errorOf([&] { versioned("4"); }).find("session version 4 (this amrvk reads versions 1 to 3)"),
+              std::string::npos);
 }

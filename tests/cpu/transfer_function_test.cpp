@@ -295,7 +295,7 @@ TEST(TransferFunction, RescaledMapsTheNodeRange) {
 }
 
 TEST(TransferFunction, Presets) {
-    const std::vector<std::string> expected = {"ramp", "grey", "spiky", "foggy", "constant", "empty"};
+    const std::vector<std::string> expected = {"ramp", "grey", "spiky", "foggy", "constant", "empty", "layers"};
     EXPECT_EQ(scene::presetNames(), expected);
     for (const std::string& name : scene::presetNames()) {
         TransferFunction tf = scene::makePreset(name, 2.0f, 6.0f);
@@ -399,7 +399,7 @@ TEST(TransferFunction, FittedPresetsSitAtTheDataPercentiles) {
 
     expectError([&] { scene::makePreset("rainbow", p); }, {"unknown transfer function preset 'rainbow'"});
     expectError([] { scene::makePreset("spiky", amr::Percentiles{}); }, {"preset 'spiky'", "no values"});
-    const TransferFunction loaded = scene::loadTransferFunction("spiky", p);
+    const TransferFunction loaded = scene::loadTransferFunction("spiky", p, amr::VolumeHistogram{});
     EXPECT_EQ(loaded.positions(), spiky.positions());
 }
 
