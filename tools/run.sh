@@ -289,12 +289,12 @@ case "$cmd" in
     if [ -f "$enzo" ]; then
       say "demo: Enzo cosmology at redshift 1.15 (137,502 leaf cells on 5 levels), gas density, the cosmic web"
       ./build/bin/amrvk info "$enzo" --field Density
-      ./build/bin/amrvk render "$enzo" --field Density --tf assets/tf/cosmic-web.json --tf-range 0 4 \
+      ./build/bin/amrvk render "$enzo" --field Density --scale linear --tf assets/tf/cosmic-web.json --tf-range 0 4 \
         --density-scale 0.06 "${look[@]}" --size 384x384 --spp 32 -o out/demo.png --json out/demo.json
     else
       say "demo: $enzo is absent; the bundled sample instead (synthetic turbulent cloud, 32768 cells, 8 levels)"
       ./build/bin/amrvk info assets/samples/cloud.cells
-      ./build/bin/amrvk render assets/samples/cloud.cells --tf ramp --tf-range 0.3 2 --density-scale 3 --grid 64 \
+      ./build/bin/amrvk render assets/samples/cloud.cells --scale linear --tf ramp --tf-range 0.3 2 --density-scale 3 --grid 64 \
         "${look[@]}" --size 256x256 --spp 16 -o out/demo.png --json out/demo.json
     fi
     say "demo image: $here/out/demo.png (statistics: $here/out/demo.json)"

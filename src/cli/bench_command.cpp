@@ -125,6 +125,7 @@ void addBenchOptions(CLI::App& app, BenchArgs& a) {
     app.add_option("-o,--output", a.outDir, "output directory (created; references are cached in DIR/references)")
         ->required()
         ->type_name("DIR");
+    a.read.scale = "linear";  // the protocol's data as the paper takes it unless asked
     addReadOptions(app, a.read, false);
     addProtocolOptions(app, a);
     addPictureOptions(app, a.pic, true);

@@ -415,6 +415,7 @@ int runConvert(const std::vector<std::string>& argv) {
     setUpCommand(app);
     std::string input, base;
     ReadArgs read;
+    read.scale = "linear";  // a conversion keeps the values as they are unless asked
     app.add_option("input", input, "the data set")->required()->type_name("INPUT");
     addReadOptions(app, read, true);
     app.add_option("-o,--output", base, "output base: writes BASE.cells and BASE.<field>.scalars")

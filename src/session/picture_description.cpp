@@ -65,7 +65,8 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
             : fitted    ? scene::loadTransferFunction(d.tfSource->name, v.percentiles, v.volumeHistogram, d.tfSource->preset)
                         : scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset);
         if (d.tfRange) tf = tf.rescaled(lo, hi);
-        if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && notes)
+        // spiky and foggy say where they were laid; the default (layers) adds no line to every picture.
+        if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && d.tfSource->name != "layers" && notes)
             notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles, tf));
         s.tf = scene::TfChannels::split(tf);
     }

@@ -23,7 +23,7 @@ sets = j["majorantCheck"]
 names = {s["boxes"].split()[0] for s in sets}
 assert names == {"macrocells", "abrs", "brick", "kd"}, names
 assert j["ok"] and all(s["ok"] for s in sets), [s for s in sets if not s["ok"]]
-presets = {"ramp", "grey", "spiky", "foggy", "constant", "empty"}
+presets = {"ramp", "grey", "spiky", "foggy", "constant", "empty", "layers"}
 assert {s["builtForTf"] for s in sets if s["boxes"] == "kd leaves"} == presets
 assert all({t["tf"] for t in s["tfs"]} == presets for s in sets if s["boxes"] != "kd leaves")
 assert all(s["withData"] > 0 and s["vertices"] >= s["withData"] for s in sets), sets

@@ -203,8 +203,8 @@ sess deep.json 's["transferFunction"]["X"] = 0; s = json.dumps(s).replace("\"X\"
 expect1 "deep.json: JSON nested deeper than 64 levels" -- render --session deep.json -o d.png
 expect1 "deep.json: JSON nested deeper than 64 levels" -- view --session deep.json --headless --frames 1
 expect1 "deep.json: JSON nested deeper than 64 levels" -- render good.cells "${pic[@]}" --tf deep.json -o d.png
-sess v3.json 's["version"] = 3'
-expect1 "v3.json: session version 3" -- render --session v3.json -o x.png
+sess v4.json 's["version"] = 4'
+expect1 "v4.json: session version 4" -- render --session v4.json -o x.png
 sess notsession.json 's["amrvk"] = "image"'
 expect1 "not an amrvk session" -- render --session notsession.json -o x.png
 sess noinput.json 'del s["input"]'

@@ -50,9 +50,12 @@ cases=$((cases + 1))
 check python3 - old.json resaved.json <<'PY'
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
-for k in ("camera", "image", "lights", "structure", "field", "read"):
+for k in ("camera", "image", "lights", "structure", "field"):
     assert a[k] == b[k], (k, a[k], b[k])
+assert {k: b["read"][k] for k in a["read"]} == a["read"], (a["read"], b["read"])
 assert {k: b["render"][k] for k in a["render"]} == a["render"], (a["render"], b["render"])
+# What a missing key meant in version 1 is stated when written again (version 3 defaults differ).
+assert b["read"]["scale"] == "linear" and b["render"]["background"] == "ambient", (b["read"], b["render"])
 assert "cut" not in b and "legend" not in b, b
 PY
 # Earlier versions wrote fewer keys (each later key optional, with the old behaviour as default).
@@ -66,7 +69,7 @@ sess old-nofield.json 'del s["field"]'
 ok render --session old-nofield.json -o x.png
 
 # ---- sessions from other or newer versions: refused with one line, never misread ----
-for v in 0 3 -1 1.5 '"1"' 1e300 9223372036854775808 null true '[1]'; do
+for v in 0 4 -1 1.5 '"1"' 1e300 9223372036854775808 null true '[1]'; do
   sess "v.json" "s['version'] = json.loads('$v')"
   shown=$v; case $v in 1e300) shown=1e+300;; 9223372036854775808) shown=9.223372036854776e+18;; '"1"') shown=string;;
     null|true|'[1]') shown=expected;; esac
@@ -81,7 +84,7 @@ expect1 "not an amrvk session" -- render --session amrvk2.json -o x.png
 newkey() {  # newkey NAME PYTHON KEYPATH
   sess "$1" "$2"
   rm -f x.png
-  expect1 "$1.$3: unknown key (this amrvk reads session version 2" -- render --session "$1" -o x.png
+  expect1 "$1.$3: unknown key (this amrvk reads session version 3" -- render --session "$1" -o x.png
   check test ! -e x.png  # part of the case: no picture without the setting
 }
 newkey k-top.json 's["denoiser"] = {"on": True}' denoiser

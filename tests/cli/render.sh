@@ -130,7 +130,7 @@ assert abs(got[0] - lo) < 1e-5 and abs(got[1] - hi) < 1e-5, (got, lo, hi)
 PY
 "$amrvk" render "$sample" --size 16x12 --spp 2 --scale log -o "$dir/log.png" --json "$dir/logr.json" >/dev/null || fail=1
 check test -s "$dir/log.png"
-expect "--scale: ln not in {linear,log}" -- render "$sample" --scale ln -o "$dir/x.png"
+expect "--scale: ln not in {auto,linear,log}" -- render "$sample" --scale ln -o "$dir/x.png"
 expect "--log-floor: '-1' is outside" -- render "$sample" --scale log --log-floor -1 -o "$dir/x.png"
 # A long structure build states the memory it is about to take and shows progress (issue 34,
 # point 8): a 170^3 raw volume's dense grid (4.9M samples, 19 MiB) with progress forced on.
@@ -143,7 +143,7 @@ check grep -q "dense grid \[#* *\] 170/170 slices" "$dir/dense.err"
 # --until-error E: the render stops at the first check (16 spp, then each doubling) whose noise is
 # at most E, and --spp caps it; the noise printed and in --json is the image's, recomputed here
 # from --variance and the PFM independently.
-"$amrvk" render "$sample" --size 24x24 --grid 16 --tf-range 0.3 2 --spp 4096 --until-error 0.03 \
+"$amrvk" render "$sample" --size 24x24 --grid 16 --scale linear --tf ramp --background 1 1 1 --tf-range 0.3 2 --spp 4096 --until-error 0.03 \
   -o "$dir/until.pfm" --variance "$dir/until_var.pfm" --json "$dir/until.json" >"$dir/until.out" || fail=1
 check grep -q "at or below --until-error" "$dir/until.out"
 check /usr/bin/python3 - "$dir/until.json" "$dir/until.pfm" "$dir/until_var.pfm" <<'PY'

@@ -61,7 +61,7 @@ TEST(FieldScale, NoPositiveValueIsOneLine) {
               std::string::npos)
         << e;
     EXPECT_EQ(amr::parseFieldScale("log"), amr::FieldScale::Log);
-    EXPECT_NE(test::errorOf([] { amr::parseFieldScale("ln"); }).find("--scale: 'ln' is not linear or log"),
+    EXPECT_NE(test::errorOf([] { amr::parseFieldScale("ln"); }).find("--scale: 'ln' is not auto, linear or log"),
               std::string::npos);
 }
 

@@ -58,7 +58,7 @@ TEST(Script, ErrorsNameTheFileAndLine) {
         {"0 grid 8x8", {"s.txt:1", "expected auto, N or NxMxK"}},
         {"0 tf-preset rainbow", {"s.txt:1", "tf-preset", "rainbow"}},
         {"0 tf-range 3 1", {"s.txt:1", "LO 3 must be below HI 1"}},
-        {"0 scale ln", {"s.txt:1", "scale", "'ln' is not linear or log"}},
+        {"0 scale ln", {"s.txt:1", "scale", "'ln' is not auto, linear or log"}},
         {"0 scale", {"s.txt:1", "scale takes 1 argument(s), not 0"}},
         {"0 log-floor -1", {"s.txt:1", "log floor -1 must be >= 0"}},
         {"0 log-floor tiny", {"s.txt:1", "log-floor", "not a number"}},

@@ -107,7 +107,7 @@ def test_volumes_and_images_name_the_keyword(amrvk, tmp_path):
     assert "nan='drop'" in message and "--nan" not in message, message
     one_line(ValueError, "^nan: unknown NaN policy 'keep'", lambda: amrvk.Volume.from_arrays(lower, level, values, nan="keep"))
     one_line(ValueError, "^nan: unknown NaN policy 'keep'", lambda: amrvk.Volume(str(SAMPLE), nan="keep"))
-    one_line(ValueError, "^scale: 'ln' is not linear or log$", lambda: amrvk.Volume(str(SAMPLE), scale="ln"))
+    one_line(ValueError, "^scale: 'ln' is not auto, linear or log$", lambda: amrvk.Volume(str(SAMPLE), scale="ln"))
     # show() checks its array when called, not when Jupyter displays it.
     one_line(ValueError, re.escape("image: expected shape (height, width, 3) or (height, width, 4), got (5, 5)"),
              lambda: amrvk.show(np.zeros((5, 5))))
@@ -126,7 +126,7 @@ def test_yt_input_names_the_keyword(amrvk, yt, tmp_path):
     one_line(ValueError, r"^field: \('gas', 'nope'\) is not a field of DD0018",
              lambda: amrvk.Volume.from_yt(ds, ("gas", "nope")))
     one_line(TypeError, r"^field: expected a yt field name", lambda: amrvk.Volume.from_yt(ds, 3))
-    one_line(TypeError, r"^log: expected True or False, got 'yes'$",
+    one_line(TypeError, r"^log: expected True, False or None, got 'yes'$",
              lambda: amrvk.Volume.from_yt(ds, ("gas", "density"), log="yes"))
     region = ds.region([0.5] * 3, [0.45] * 3, [0.55] * 3)
     r = amrvk.Renderer(amrvk.Volume.from_yt(region, ("gas", "density"), log=True), width=8, height=8, quiet=True)

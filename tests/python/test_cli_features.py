@@ -21,7 +21,7 @@ def png_pixels(data):
 
 
 def test_the_legend_is_the_command_lines(amrvk, tmp_path):
-    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), legend=True, **SMALL)
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), legend=True, **SMALL)
     image = r.render(spp=2)
     assert image.shape == (64, 96, 4), "an array is the picture alone unless legend=True"
     with_legend = r.image(legend=True)
@@ -46,7 +46,7 @@ def test_the_legend_is_the_command_lines(amrvk, tmp_path):
         r.save(str(tmp_path / "a.exr"), legend=True)
     with pytest.raises(ValueError, match="^legend_place 'left': expected side|overlay"):
         r.legend_place = "left"
-    tiny = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **{**SMALL, "width": 8, "height": 8})
+    tiny = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **{**SMALL, "width": 8, "height": 8})
     tiny.render(spp=1)
     with pytest.raises(ValueError, match="^legend: the picture 8x8 is too small for a legend"):
         tiny.image(legend=True)
@@ -54,7 +54,7 @@ def test_the_legend_is_the_command_lines(amrvk, tmp_path):
 
 def test_colormaps_by_name(amrvk):
     matplotlib = pytest.importorskip("matplotlib", reason="Debian: python3-matplotlib")
-    v = amrvk.Volume(str(SAMPLE))
+    v = amrvk.Volume(str(SAMPLE), scale="linear")
     tf = amrvk.TransferFunction.preset("viridis", 0.5, 2.5)
     positions, colors = tf.nodes
     assert tf.name == "viridis" and tf.range == (0.5, 2.5) and len(positions) == 16
@@ -88,7 +88,7 @@ def test_camera_orbit_and_zoom(amrvk):
         c.orbit("a")
     with pytest.raises(ValueError, match="^axis: expected 3 finite numbers"):
         c.orbit(10, axis=[0, 0, 0])
-    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **SMALL)
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **SMALL)
     first = r.camera
     r.render(spp=1)
     r.orbit(45).zoom(1.5)
@@ -119,7 +119,7 @@ def test_cameras_to_and_from_yt(amrvk, yt):
 
 def test_the_widget_refines_and_orbits(amrvk):
     pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
-    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **SMALL)
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **SMALL)
     first = r.camera
     w = amrvk.Widget(r, spp=8, batch=2)
     try:

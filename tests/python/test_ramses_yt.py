@@ -63,7 +63,7 @@ def test_info_json_summary_agrees_with_yt(yt_leaves):
     binary = amrvk_binary()
     if not binary.exists():
         pytest.skip(f"{binary} is not built")
-    p = subprocess.run([str(binary), "info", str(GALAXY), "--field", "density", "--json"],
+    p = subprocess.run([str(binary), "info", str(GALAXY), "--field", "density", "--scale", "linear", "--json"],
                        capture_output=True, text=True, check=True)
     info = json.loads(p.stdout)
     assert info["format"] == "ramses"

@@ -17,11 +17,15 @@ import pytest
 
 from conftest import SAMPLE, SOURCE, amrvk_binary, run_cli
 
-SMALL = dict(width=32, height=24, density_scale=3.0, tf_range=(0.3, 2.0), grid="16", quiet=True)
+# The bundled cloud as these tests were written for it (not the first picture's defaults): linear
+# values, the ramp over [0.3, 2] and a white background.
+SMALL = dict(width=32, height=24, density_scale=3.0, tf_range=(0.3, 2.0), grid="16", background=(1, 1, 1), quiet=True)
+CLI_SMALL = ["--scale", "linear", "--tf", "ramp", "--background", "1", "1", "1"]
 
 
 def picture(amrvk, **kw):
-    return amrvk.Renderer(amrvk.Volume(str(SAMPLE)), **{**SMALL, **kw})
+    kw.setdefault("tf", amrvk.TransferFunction.preset("ramp", 0.3, 2.0))
+    return amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **{**SMALL, **kw})
 
 
 def test_it_renders_what_the_command_line_renders(amrvk, tmp_path):
@@ -29,7 +33,7 @@ def test_it_renders_what_the_command_line_renders(amrvk, tmp_path):
     image = r.render(spp=8)
     assert image.shape == (24, 32, 4) and image.dtype == np.float32
     assert np.all(image[..., 3] == 1.0)
-    run_cli("render", SAMPLE, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
+    run_cli("render", SAMPLE, *CLI_SMALL, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
             "--mode", "ss", "--seed", "3", "--light-dir", "1", "-1", "2", "3", "3", "3", "--spp", "8",
             "-o", tmp_path / "cli.pfm")
     from amrvk import _amrvk  # noqa: F401  (the reader below is the command line's own PFM)
@@ -155,7 +159,7 @@ def test_outputs_never_replace_the_data_they_were_rendered_from(amrvk, tmp_path)
     cells = tmp_path / "cloud.cells"
     before = cells.read_bytes()
     (tmp_path / "out.pfm").symlink_to(cells)
-    r = amrvk.Renderer(amrvk.Volume(str(cells)), width=8, height=8, grid="16", quiet=True)
+    r = amrvk.Renderer(amrvk.Volume(str(cells), scale="linear"), width=8, height=8, grid="16", quiet=True)
     r.render(spp=1)
     with pytest.raises(ValueError, match=r"save .*out.pfm.* is the input the volume's data .*cloud.cells"):
         r.save(str(tmp_path / "out.pfm"))
@@ -235,7 +239,7 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
         # A shell that starts jobs in the background hands them SIGINT ignored, and Python then
         # installs no handler: give the child the one an interactive Python has.
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
-        f"r = amrvk.Renderer(amrvk.Volume({str(SAMPLE)!r}), width=256, height=256, quiet=True)\n"
+        f"r = amrvk.Renderer(amrvk.Volume({str(SAMPLE)!r}, scale='linear'), width=256, height=256, quiet=True)\n"
         "r.render(spp=1)\n"
         "print('ready', flush=True)\n"
         "try:\n"
@@ -283,7 +287,7 @@ def test_cut_aways_follow_the_command_line_and_the_session(amrvk, tmp_path):
     r = picture(amrvk, crop=crop, clip=clip, seed=4)
     assert r.crop == crop and r.clip == clip
     cut = r.render(spp=4).copy()
-    run_cli("render", SAMPLE, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
+    run_cli("render", SAMPLE, *CLI_SMALL, "--size", "32x24", "--density-scale", "3", "--tf-range", "0.3", "2", "--grid", "16",
             "--seed", "4", "--crop", "0", "0", "0", "512", "512", "256", "--clip", "256", "256", "256", "1", "1", "0",
             "--spp", "4", "-o", tmp_path / "cli.pfm")
     assert np.max(np.abs(read_pfm(tmp_path / "cli.pfm") - cut[..., :3])) < 1e-4, "same cut, same samples"
@@ -338,7 +342,7 @@ def test_reprs_say_what_a_scientist_checks(amrvk):
     """Volume, TransferFunction, Renderer and Light print their content, not `<... object at 0x...>`
     (issue 33, point 3): field, cells, levels, value range, world bounds; the TF's name, nodes and
     range; the renderer's size, mode, TF, samples so far and their mean standard error."""
-    v = amrvk.Volume(str(SAMPLE))
+    v = amrvk.Volume(str(SAMPLE), scale="linear")
     levels = sum(1 for n in v.summary()["cells_per_level"] if n > 0)
     lo, hi = v.value_range
     assert repr(v) == (f"Volume({SAMPLE}, field 'scalars', {v.cells} cells on {levels} levels, "

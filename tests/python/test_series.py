@@ -24,38 +24,38 @@ def series(tmp_path):
 
 
 def test_a_glob_in_natural_order_with_one_tf_range(amrvk, series):
-    frames = amrvk.render_series(str(series / "s_*.cells"), tf_range="union", spp=2, **SMALL)
+    frames = amrvk.render_series(str(series / "s_*.cells"), tf_range="union", tf="ramp", spp=2, **SMALL)
     assert len(frames) == 3
     # Frame k is the picture of the k-th file in natural order (s_1, s_2, s_10) under the TF over
     # the union of the three ranges, with the first file's camera.
     tf = amrvk.TransferFunction.preset("ramp", 1.0, 3.75)
-    first = amrvk.Volume(str(series / "s_1.cells"))
+    first = amrvk.Volume(str(series / "s_1.cells"), scale="linear")
     camera = amrvk.Camera.frame(first)
     for frame, name in zip(frames, ("s_1", "s_2", "s_10")):
-        with amrvk.Renderer(amrvk.Volume(str(series / f"{name}.cells")), tf, camera, quiet=True, **SMALL) as r:
+        with amrvk.Renderer(amrvk.Volume(str(series / f"{name}.cells"), scale="linear"), tf, camera, quiet=True, **SMALL) as r:
             np.testing.assert_allclose(frame, r.render(spp=2), atol=1e-5, err_msg=name)
     # tf_range="first": the first file's range, so the later (denser) files are shown differently.
-    firsts = amrvk.render_series([str(series / n) for n in ("s_10.cells", "s_1.cells")], spp=2, **SMALL)
+    firsts = amrvk.render_series([str(series / n) for n in ("s_10.cells", "s_1.cells")], tf="ramp", spp=2, **SMALL)
     with amrvk.Renderer(first, amrvk.TransferFunction.preset("ramp", 1.0, 1.75), camera, quiet=True, **SMALL) as r:
         np.testing.assert_allclose(firsts[0], r.render(spp=2), atol=1e-5)
 
 
 def test_frames_movies_and_turntables(amrvk, series, tmp_path):
-    files = amrvk.render_series(str(series / "s_*.cells"), str(tmp_path / "out" / "f_%02d.png"), spp=1,
+    files = amrvk.render_series(str(series / "s_*.cells"), str(tmp_path / "out" / "f_%02d.png"), tf="ramp", spp=1,
                                 legend=False, **SMALL)
     assert [f.rsplit("/", 1)[1] for f in files] == ["f_00.png", "f_01.png", "f_02.png"]
     assert all((tmp_path / "out" / f"f_{k:02d}.png").stat().st_size > 0 for k in range(3))
     # A turntable: one input, 4 frames over 360 degrees; frame k turned by 90 k.
     one = str(series / "s_2.cells")
-    turns = amrvk.render_series(one, frames=4, orbit=360, spp=2, **SMALL)
-    camera = amrvk.Camera.frame(amrvk.Volume(one)).orbit(90)
-    with amrvk.Renderer(amrvk.Volume(one), amrvk.TransferFunction.preset("ramp", 2.0, 2.75), camera, quiet=True,
+    turns = amrvk.render_series(one, frames=4, orbit=360, tf="ramp", spp=2, **SMALL)
+    camera = amrvk.Camera.frame(amrvk.Volume(one, scale="linear")).orbit(90)
+    with amrvk.Renderer(amrvk.Volume(one, scale="linear"), amrvk.TransferFunction.preset("ramp", 2.0, 2.75), camera, quiet=True,
                         **SMALL) as r:
         np.testing.assert_allclose(turns[1], r.render(spp=2), atol=1e-5)
     if shutil.which("ffmpeg") is None:
         pytest.skip("ffmpeg is absent (Debian: ffmpeg)")
     movie = tmp_path / "m.mp4"
-    assert amrvk.render_series(str(series / "s_*.cells"), str(movie), spp=1, fps=2, **SMALL) == [str(movie)]
+    assert amrvk.render_series(str(series / "s_*.cells"), str(movie), tf="ramp", spp=1, fps=2, **SMALL) == [str(movie)]
     assert movie.read_bytes()[4:8] == b"ftyp"
 
 
@@ -81,7 +81,7 @@ def test_a_yt_dataset_series(amrvk, yt):
     ts = yt.DatasetSeries([str(need(ENZO))])
     with pytest.raises(TypeError, match="^data: a yt DatasetSeries is a series: amrvk.render_series"):
         amrvk.Volume.from_yt(ts, ("gas", "density"))
-    frames = amrvk.render_series(ts, field=("gas", "density"), log=True, frames=2, orbit=180, spp=1, width=16,
+    frames = amrvk.render_series(ts, field=("gas", "density"), log=True, frames=2, orbit=180, tf="ramp", spp=1, width=16,
                                  height=16)
     assert len(frames) == 2 and frames[0].shape == (16, 16, 4)
     assert not np.array_equal(frames[0], frames[1]), "the second frame is turned by 90 degrees"

@@ -23,7 +23,7 @@ def info_json(path, field):
     binary = amrvk_binary()
     if not binary.exists():
         pytest.skip(f"{binary} is not built")
-    p = subprocess.run([str(binary), "info", str(path), "--field", field, "--json"], capture_output=True, text=True)
+    p = subprocess.run([str(binary), "info", str(path), "--field", field, "--scale", "linear", "--json"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     return json.loads(p.stdout)
 

@@ -15,7 +15,7 @@ def arrays(cells=FIVE, values=(1, 2, 3, 4, 5)):
 
 
 def test_a_file_and_its_summary(amrvk):
-    v = amrvk.Volume(str(SAMPLE))
+    v = amrvk.Volume(str(SAMPLE), scale="linear")
     s = v.summary()
     assert v.cells == 32768 and s["cells"] == 32768
     assert sum(s["cells_per_level"]) == 32768
@@ -32,13 +32,13 @@ def test_a_log_scaled_file_has_the_logs_of_its_values(amrvk, tmp_path):
     assert lo == pytest.approx(-2, abs=1e-6) and hi == pytest.approx(3, abs=1e-6)  # 0 floored at 1e-2
     floored = amrvk.Volume(str(tmp_path / "five.cells"), scale="log", log_floor=0.5)
     assert floored.value_range[0] == pytest.approx(np.log10(0.5), abs=1e-6)
-    with pytest.raises(ValueError, match="^scale: 'ln' is not linear or log"):
+    with pytest.raises(ValueError, match="^scale: 'ln' is not auto, linear or log"):
         amrvk.Volume(str(tmp_path / "five.cells"), scale="ln")
 
 
 def test_arrays_make_the_volume_the_same_cells_make_from_a_file(amrvk, tmp_path):
     write_cells(tmp_path / "five", FIVE, [1, 2, 3, 4, 5])
-    from_file = amrvk.Volume(str(tmp_path / "five.cells")).summary()
+    from_file = amrvk.Volume(str(tmp_path / "five.cells"), scale="linear").summary()
     from_arrays = amrvk.Volume.from_arrays(*arrays(), field="scalars").summary()
     for key in ("cells", "cells_per_level", "value_range", "volume_weighted_mean", "bricks"):
         assert from_arrays[key] == from_file[key], key
@@ -128,8 +128,8 @@ def test_refinement_must_be_by_powers_of_two(amrvk):
 
 def test_a_file_that_is_not_a_data_set(amrvk, tmp_path):
     with pytest.raises(ValueError, match="no such file"):
-        amrvk.Volume(str(tmp_path / "missing.cells"))
+        amrvk.Volume(str(tmp_path / "missing.cells"), scale="linear")
     with pytest.raises(ValueError, match="unknown field 'rho'"):
-        amrvk.Volume(str(SAMPLE), field="rho")
+        amrvk.Volume(str(SAMPLE), field="rho", scale="linear")
     with pytest.raises(ValueError, match="unknown NaN policy"):
-        amrvk.Volume(str(SAMPLE), nan="maybe")
+        amrvk.Volume(str(SAMPLE), nan="maybe", scale="linear")

@@ -37,12 +37,12 @@ def yt_mean(ds, field):
 def test_leaf_cells_and_mean_agree_with_yt(amrvk, yt, relative, field, native):
     path = need(DATA / relative)
     ds = yt.load(str(path))
-    v = amrvk.Volume.from_yt(ds, field)
+    v = amrvk.Volume.from_yt(ds, field, log=False)
     assert amrvk_counts(v) == [int(c) for c in yt_counts(ds) if c > 0]
     assert v.summary()["volume_weighted_mean"] == pytest.approx(yt_mean(ds, field), rel=1e-7)
     assert v.units == str(ds.all_data()[field].units)
     if native:
-        n = amrvk.Volume(str(path), field=native).summary()
+        n = amrvk.Volume(str(path), field=native, scale="linear").summary()
         s = v.summary()
         for key in ("cells", "cells_per_level", "volume_weighted_mean", "value_range", "world_lo", "world_hi"):
             assert s[key] == n[key], key
@@ -52,9 +52,9 @@ def test_chombo_leaves_agree_with_the_native_reader_where_yt_double_counts(amrvk
     # Ratios 2, 2: yt, the native reader and the bridge agree.
     path = need(DATA / "chombo_mushy_layer_2d/plt000100.2d.hdf5")
     ds = yt.load(str(path))
-    v = amrvk.Volume.from_yt(ds, ("chombo", "Porosity"))
+    v = amrvk.Volume.from_yt(ds, ("chombo", "Porosity"), log=False)
     assert amrvk_counts(v) == [int(c) for c in yt_counts(ds) if c > 0] == [64, 224, 2176]
-    n = amrvk.Volume(str(path), field="Porosity").summary()
+    n = amrvk.Volume(str(path), field="Porosity", scale="linear").summary()
     assert v.summary()["cells_per_level"] == n["cells_per_level"]
     # 2-D cells are as deep as they are wide (slabs, as the readers make them): weight w^3.
     dx = ds.all_data()["index", "dx"].d
@@ -66,8 +66,8 @@ def test_chombo_leaves_agree_with_the_native_reader_where_yt_double_counts(amrvk
     path = need(DATA / "chombo_mushy_layer_2d/plt025000.2d.hdf5")
     ds = yt.load(str(path))
     assert int(yt_counts(ds).sum()) == 10984
-    v = amrvk.Volume.from_yt(ds, ("chombo", "Porosity"))
-    s, n = v.summary(), amrvk.Volume(str(path), field="Porosity").summary()
+    v = amrvk.Volume.from_yt(ds, ("chombo", "Porosity"), log=False)
+    s, n = v.summary(), amrvk.Volume(str(path), field="Porosity", scale="linear").summary()
     assert s["cells"] == n["cells"] == 10240 and s["cells_per_level"] == n["cells_per_level"]
     widths = 2 ** np.nonzero(s["cells_per_level"])[0]
     area = sum(int(c) * int(w) ** 2 for c, w in zip(np.array(s["cells_per_level"])[np.nonzero(s["cells_per_level"])], widths))
@@ -80,7 +80,7 @@ def test_yts_synthetic_data_set(amrvk, yt):
     import yt.testing
 
     ds = yt.testing.fake_amr_ds(fields=[("gas", "density")], units=["g/cm**3"])
-    v = amrvk.Volume.from_yt(ds, ("gas", "density"))
+    v = amrvk.Volume.from_yt(ds, ("gas", "density"), log=False)
     assert amrvk_counts(v) == [int(c) for c in yt_counts(ds) if c > 0]
     assert v.summary()["volume_weighted_mean"] == pytest.approx(yt_mean(ds, ("gas", "density")), rel=1e-7)
     assert v.units == "g/cm**3"
@@ -91,8 +91,8 @@ def test_native_units_name_what_yt_converts_to(amrvk, yt):
     from_yt's of yt's cgs field: X times the native values is yt's g/cm^3, cell for cell on the
     whole (the volume-weighted means); X uses Enzo's critical density, yt's differs by 2e-4."""
     ds = yt.load(str(need(ENZO)))
-    native = amrvk.Volume(str(ENZO), field="Density")
-    cgs = amrvk.Volume.from_yt(ds, ("gas", "density"))
+    native = amrvk.Volume(str(ENZO), field="Density", scale="linear")
+    cgs = amrvk.Volume.from_yt(ds, ("gas", "density"), log=False)
     assert cgs.units == "g/cm**3"
     prefix, suffix = "code units (1 = ", " g/cm^3)"
     assert native.units.startswith(prefix) and native.units.endswith(suffix), native.units
@@ -106,7 +106,7 @@ def test_native_units_name_what_yt_converts_to(amrvk, yt):
 def test_derived_fields_log_and_cut_outs(amrvk, yt):
     ds = yt.load(str(need(ENZO)))
     ad = ds.all_data()
-    speed = amrvk.Volume.from_yt(ds, ("gas", "velocity_magnitude"))
+    speed = amrvk.Volume.from_yt(ds, ("gas", "velocity_magnitude"), log=False)
     ref = ad[("gas", "velocity_magnitude")].d
     assert speed.value_range == pytest.approx((ref.min(), ref.max()), rel=1e-6)
     assert speed.units == "cm/s"
@@ -119,12 +119,12 @@ def test_derived_fields_log_and_cut_outs(amrvk, yt):
     floored = amrvk.Volume.from_yt(ds, ("gas", "velocity_x"), log=True, log_floor=1.0)
     assert floored.value_range[0] == 0.0
     region = ds.region([0.5] * 3, [0.25] * 3, [0.75] * 3)
-    cut = amrvk.Volume.from_yt(region, ("enzo", "Density"))
+    cut = amrvk.Volume.from_yt(region, ("enzo", "Density"), log=False)
     assert cut.cells == len(region[("index", "ones")])
     assert np.all(np.array(cut.summary()["world_lo"]) >= 0.25 - 1e-9)
     assert np.all(np.array(cut.summary()["world_hi"]) <= 0.75 + 1e-9)
     with pytest.raises(TypeError, match="expected a yt data set or data object"):
-        amrvk.Volume.from_yt("DD0018", ("enzo", "Density"))
+        amrvk.Volume.from_yt("DD0018", ("enzo", "Density"), log=False)
 
 
 def test_refinement_by_three_is_refused(amrvk, yt):
@@ -136,14 +136,15 @@ def test_refinement_by_three_is_refused(amrvk, yt):
     ]
     ds = yt.load_amr_grids(grids, [3, 3, 3], refine_by=3)
     with pytest.raises(ValueError, match="3 times the finest one: amrvk needs refinement by powers of two"):
-        amrvk.Volume.from_yt(ds, ("stream", "density"))
+        amrvk.Volume.from_yt(ds, ("stream", "density"), log=False)
 
 
 def test_the_picture_of_from_yt_is_the_native_readers(amrvk, yt):
     ds = yt.load(str(need(ENZO)))
-    native = amrvk.Volume(str(ENZO), field="Density")
-    bridged = amrvk.Volume.from_yt(ds, ("enzo", "Density"))
+    native = amrvk.Volume(str(ENZO), field="Density", scale="linear")
+    bridged = amrvk.Volume.from_yt(ds, ("enzo", "Density"), log=False)
     settings = dict(width=32, height=32, mode="ss", density_scale=0.05, tf_range=(0.0, 3.0),
+                    tf=amrvk.TransferFunction.preset("ramp", 0.0, 3.0), background=(1, 1, 1),
                     lights=[amrvk.Light.directional([1, -1, 2], [4, 4, 4])], quiet=True)
     camera = amrvk.Camera.frame(native)
     a = amrvk.Renderer(native, camera=camera, seed=1, **settings)
