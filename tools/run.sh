@@ -184,6 +184,15 @@ fuzz_signature() {
   echo "${err} at ${frame:-?}"
 }
 
+# fuzz_scratch_left DIR WHO: fails, saying how many, when DIR holds scratch directories of the
+# fuzz targets (amrvk-fuzz-*, tests/fuzz/fuzz_common.h), which each input must remove itself.
+fuzz_scratch_left() {
+  local n; n=$(find "$1" -mindepth 1 -maxdepth 1 -name 'amrvk-fuzz-*' | wc -l)
+  [ "$n" = 0 ] && return 0
+  say "fuzz: $2 left $n scratch directories behind in $1 (tests/fuzz/fuzz_common.h removes each input's)"
+  return 1
+}
+
 # Builds the libFuzzer targets (clang, ASan + UBSan) into build-fuzz/, writes the seed corpora
 # (generated + cut from the data beside the checkout) into build-fuzz/corpus/<target>/, which
 # grows from run to run, and runs every target (or those in AMRVK_FUZZ_TARGETS) for $1 seconds.
@@ -202,12 +211,21 @@ fuzz() {
   export LSAN_OPTIONS="suppressions=$here/tools/lsan.supp:print_suppressions=0"
   local targets; read -r -a targets <<<"${AMRVK_FUZZ_TARGETS:-$(tr '\n' ' ' <"$bd/fuzz_targets.txt")}"
   local t failed=() summary=()
+  # Every process below makes its scratch directories (tests/fuzz/fuzz_common.h) under a folder of
+  # this run's, in $TMPDIR (e.g. /dev/shm) or /tmp, removed at the end: an input that kills its
+  # process (a finding) leaves its directory there, not in /tmp.
+  local scratch; scratch=$(mktemp -d "${TMPDIR:-/tmp}/amrvk-fuzz-run-XXXXXX")
+  trap "rm -rf '$scratch'" EXIT  # expanded now: \$scratch is local
   for t in "${targets[@]}"; do mkdir -p "$bd/corpus/$t"; done
-  "$bd/bin/amrvk_fuzz_seeds" "$bd/corpus" "$data" "$here" >/dev/null
+  TMPDIR="$scratch" "$bd/bin/amrvk_fuzz_seeds" "$bd/corpus" "$data" "$here" >/dev/null
+  fuzz_scratch_left "$scratch" "the seed generator" || failed+=(seeds)
   mkdir -p "$bd/logs"
   for t in "${targets[@]}"; do
     local art="$bd/artifacts/$t" log="$bd/logs/$t.log" dict=()
     mkdir -p "$art"
+    local TMPDIR="$scratch/$t"
+    mkdir -p "$TMPDIR"
+    export TMPDIR
     [ -f "tests/fuzz/dict/$t.dict" ] && dict=(-dict="tests/fuzz/dict/$t.dict")
     : >"$log.start"
     # The committed inputs of earlier findings (tests/fuzz/findings.md) first: each must now give
@@ -220,6 +238,8 @@ fuzz() {
         echo "    regression $r: $(fuzz_signature "$bd/logs/replay.txt")" >&2
       fi
     done
+    # A replay that found nothing leaves no scratch directory.
+    [ "$regressed" -gt 0 ] || fuzz_scratch_left "$TMPDIR" "$t's replay" || regressed=$((regressed + 1))
     if [ "$seconds" -le 0 ]; then  # fuzz 0: build, seeds and the replay only
       summary+=("$(printf '%-12s replay only, %s regressions' "$t" "$regressed")")
       [ "$regressed" -gt 0 ] && failed+=("$t")
@@ -251,9 +271,14 @@ fuzz() {
     found=$(find "$art" -type f -newer "$log.start" -size +0 \( -name 'crash-*' -o -name 'leak-*' \
       -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
     local slow; slow=$(find "$art" -type f -newer "$log.start" -name 'slow-unit-*' ! -name '*.txt' | wc -l)
-    summary+=("$(printf '%-12s %10s execs %6s exec/s  %s new findings, %s slow inputs, %s regressions' \
-      "$t" "${execs:-0}" "$(( ${execs:-0} / secs ))" "$found" "$slow" "$regressed")")
-    [ "$found" -gt 0 ] || [ "$regressed" -gt 0 ] && failed+=("$t")
+    # Without a finding, no process of the run may have left a scratch directory; with one, the
+    # inputs that killed their process left theirs (removed with $scratch).
+    local leaked=0
+    [ "$found" -gt 0 ] || fuzz_scratch_left "$TMPDIR" "$t" || leaked=1
+    summary+=("$(printf '%-12s %10s execs %6s exec/s  %s new findings, %s slow inputs, %s regressions%s' \
+      "$t" "${execs:-0}" "$(( ${execs:-0} / secs ))" "$found" "$slow" "$regressed" \
+      "$([ "$leaked" = 0 ] || echo ', scratch directories left')")")
+    [ "$found" -gt 0 ] || [ "$regressed" -gt 0 ] || [ "$leaked" -gt 0 ] && failed+=("$t")
     if [ "$found" -gt 0 ] || [ "$slow" -gt 0 ]; then
       # Fork mode keeps the children's reports to itself: replay each new artifact once, keep its
       # report beside it (<artifact>.txt) and print each distinct (error, first amrvk frame).

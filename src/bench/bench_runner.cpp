@@ -387,6 +387,7 @@ BenchResults Runner::run() {
                         .deviceType = mCtx.deviceReport().type,
                         .commandLine = mOpt.commandLine,
                         .date = date,
+                        .tfColors = scene::tfColorsName(mOpt.tfColors),
                         .width = mOpt.width > 0 ? mOpt.width : (cpu ? 256 : 1024),
                         .height = mOpt.height > 0 ? mOpt.height : (cpu ? 256 : 1024),
                         .frames = mOpt.frames,
@@ -403,6 +404,7 @@ BenchResults Runner::run() {
         base.session.read = mOpt.read;
         base.session.read.fields.clear();
         base.session.field = ds.field;
+        base.session.tfColors = mOpt.tfColors;
         mVolume = session::loadVolume(base.session);
         const scene::Volume& volume = *mVolume;
         const amr::ModelSummary& summary = volume.summary;

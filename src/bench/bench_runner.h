@@ -20,6 +20,7 @@
 #include "gpu/shader_library.h"
 #include "render/auto_select.h"
 #include "render/renderer.h"
+#include "scene/tf_colors.h"
 
 namespace amrvk::bench {
 
@@ -36,6 +37,7 @@ struct BenchOptions {
     // Map every TF onto [lo, hi], presets in their range-fixed shape (default: presets fitted to
     // each data set, spiky and foggy over its percentiles; scene::makePreset).
     std::optional<std::pair<float, float>> tfRange;
+    scene::TfColors tfColors = scene::TfColors::Srgb;  // what every TF's colours mean (--tf-colors)
     std::vector<scene::Mode> modes = {scene::Mode::Ms};  // unbiased modes of the matrix
     std::vector<scene::TraversalKind> traversals = scene::allTraversals();
     std::vector<scene::SamplerKind> samplers = scene::allSamplers();
@@ -125,6 +127,7 @@ struct DatasetInfo {
 
 struct BenchResults {
     std::string device, driver, deviceType, commandLine, date;
+    std::string tfColors;  // scene::tfColorsName of BenchOptions::tfColors
     int width = 0, height = 0;
     uint32_t frames = 0, warmup = 0, referenceSpp = 0;
     uint32_t samplesPerInvocation = 1;  // frames one GPU thread takes per dispatch (gpu::Context)

@@ -141,7 +141,8 @@ std::vector<std::string> modesOf(const BenchResults& res) {
 
 std::string resultsJson(const BenchResults& res) {
     Json j = {{"device", res.device}, {"driver", res.driver}, {"deviceType", res.deviceType},
-              {"commandLine", res.commandLine}, {"date", res.date}, {"width", res.width}, {"height", res.height},
+              {"commandLine", res.commandLine}, {"date", res.date}, {"tfColors", res.tfColors},
+              {"width", res.width}, {"height", res.height},
               {"frames", res.frames}, {"warmupFrames", res.warmup}, {"referenceSpp", res.referenceSpp},
               {"samplesPerFrame", 1}, {"samplesPerInvocation", res.samplesPerInvocation}};
     Json& datasets = j["datasets"] = Json::array();
@@ -215,7 +216,8 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     md += "- protocol: " + std::to_string(res.width) + "x" + std::to_string(res.height) + ", 1 spp per frame, " +
           std::to_string(res.warmup) + " warm-up frames, " + std::to_string(res.frames) +
           " timed frames (GPU timer; " + std::to_string(res.samplesPerInvocation) +
-          " frames per GPU thread and dispatch); references " + std::to_string(res.referenceSpp) + " spp\n";
+          " frames per GPU thread and dispatch); references " + std::to_string(res.referenceSpp) + " spp; TF colours " +
+          res.tfColors + "\n";
     md += "- data sets:";
     for (const DatasetInfo& d : res.datasets)
         md += " " + d.tag + " (" + d.input + ", field " + d.field + ", " + std::to_string(d.cells) + " cells, " +

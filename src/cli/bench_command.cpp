@@ -17,6 +17,7 @@
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 #include "scene/limits.h"
+#include "scene/tf_colors.h"
 
 #if AMRVK_MPI
 #include "mpi/sample_parallel.h"
@@ -66,7 +67,7 @@ namespace {
 // The bench command's options, bound by addBenchOptions.
 struct BenchArgs {
     std::vector<std::string> inputs;
-    std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
+    std::string outDir, tfs = "spiky,foggy", tfColors = "srgb", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
     bool noDense = false, autoSelect = false;
@@ -82,6 +83,12 @@ void addProtocolOptions(CLI::App& app, BenchArgs& a) {
                    "over its percentiles, as render fits them) unless --tf-range fixes them")
         ->capture_default_str()
         ->type_name("LIST");
+    app.add_option("--tf-colors", a.tfColors,
+                   "what the TFs' colours mean, as render's --tf-colors: srgb (display colours, decoded to linear "
+                   "albedo) or linear (albedo as given); the references are keyed by it")
+        ->check(CLI::IsMember({"srgb", "linear"}))
+        ->capture_default_str()
+        ->type_name("srgb|linear");
     app.add_option("--modes", a.modes, "unbiased modes of the matrix: ae,ss,ms")
         ->capture_default_str()
         ->type_name("LIST");
@@ -215,6 +222,7 @@ bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::v
     o.datasets = benchDatasets(a.inputs, a.read);
     o.read = readOptions(a.read);
     parseMatrix(app, a, o);
+    o.tfColors = scene::parseTfColors(a.tfColors, "--tf-colors");
     if (app.count("--size")) parseSize("--size", a.pic.size, o.width, o.height);
     o.frames = uint32_t(a.frames);
     o.warmup = uint32_t(a.warmup);

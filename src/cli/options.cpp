@@ -192,9 +192,10 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
     app.add_flag("--validation", a.context.validation, "enable the Vulkan validation layer");
     app.add_option("--gpu-timeout", a.context.gpuTimeoutSeconds,
                    "seconds one GPU submission may run before amrvk ends with an error naming the work (a runaway "
-                   "shader loop cannot be cancelled); 0 = adaptive: path tracing past 32 x its measured pace (at "
-                   "least 10 s; a small first probe measures it) ends once no path finished for 10 s, other "
-                   "work after 600 s")
+                   "shader loop cannot be cancelled); 0 = adaptive: path tracing, the staged data-parallel "
+                   "pass and the majorants past 32 x their measured pace (at least 10 s; a small first probe "
+                   "measures it) end once they made no progress for 10 s (the majorants at once), other work "
+                   "after 600 s")
         ->check(interval(0, 1e6))
         ->capture_default_str()
         ->type_name("S");

@@ -38,4 +38,15 @@ void GpuDeadline::record(double seconds, uint64_t paths) {
     mSecondsPerPath = std::max({mSecondsPerPath, seconds / double(paths), 1e-12});
 }
 
+std::vector<GpuDeadline::Part> GpuDeadline::submissions(uint64_t work, uint64_t probe) const {
+    std::vector<Part> parts;
+    uint64_t next = measured() ? work : std::max<uint64_t>(probe, 1);
+    for (uint64_t first = 0; first < work; next *= 4) {
+        const uint64_t count = std::min(next, work - first);
+        parts.push_back({first, count});
+        first += count;
+    }
+    return parts;
+}
+
 }  // namespace amrvk

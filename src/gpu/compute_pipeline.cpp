@@ -37,6 +37,7 @@ ComputePipeline::ComputePipeline(Context& ctx, const std::vector<uint32_t>& spir
         pci.stage.pName = "main";
         pci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
         pci.layout = mLayout;
+        pci.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;  // dispatchPart
         {
             const DriverCrashScope scope("compiling pipeline '" + mName + "'");
             AMRVK_VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &pci, nullptr, &mPipeline));
@@ -87,6 +88,12 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, const void* push, uint32_t g
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline);
     if (mPushBytes) vkCmdPushConstants(cmd, mLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, mPushBytes, push);
     vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+void ComputePipeline::dispatchPart(VkCommandBuffer cmd, const void* push, uint32_t firstX, uint32_t groupsX) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline);
+    if (mPushBytes) vkCmdPushConstants(cmd, mLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, mPushBytes, push);
+    vkCmdDispatchBase(cmd, firstX, 0, 0, groupsX, 1, 1);
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, const ImageUse& from, const ImageUse& to) {

@@ -32,6 +32,10 @@ public:
     // Binds, pushes `push` (exactly pushConstantBytes) and dispatches the given workgroups.
     void dispatch(VkCommandBuffer cmd, const void* push, uint32_t groupsX, uint32_t groupsY = 1,
                   uint32_t groupsZ = 1) const;
+    // The same for workgroups [firstX, firstX + groupsX) of a 1-D dispatch: gl_WorkGroupID and
+    // gl_GlobalInvocationID count from firstX, so parts of one dispatch run as it would (every
+    // pipeline is created with VK_PIPELINE_CREATE_DISPATCH_BASE_BIT; gpu/paced_submit.h).
+    void dispatchPart(VkCommandBuffer cmd, const void* push, uint32_t firstX, uint32_t groupsX) const;
 
 private:
     void release();

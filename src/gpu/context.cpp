@@ -483,7 +483,7 @@ VkResult Context::waitAdaptive(const AdaptiveWait& wait, const std::string& what
         if (elapsed < limit || (wait.progress && quiet < wait.quietSeconds)) continue;
         if (wait.limitSeconds <= 0)
             endRunaway(what, seconds(limit) + " (the --gpu-timeout default for work of no measured pace)");
-        endRunaway(what, seconds(limit) + (wait.progress ? ", the last " + std::to_string(int(quiet)) + " s finishing no path" : "") +
+        endRunaway(what, seconds(limit) + (wait.progress ? ", the last " + std::to_string(int(quiet)) + " s " + wait.stillText : "") +
                              " (the adaptive --gpu-timeout, from the measured pace and a floor; --gpu-timeout S "
                              "waits S s)");
     }

@@ -32,8 +32,9 @@ struct ContextOptions {
     uint32_t samplesPerInvocation = 0;
     // How long one submission may run (seconds) before amrvk ends the process with one line naming
     // the work: a runaway loop in a --shader-dir shader cannot be cancelled on the device, and
-    // waiting on, or destroying, a device that still runs it would hang. 0 = adaptive: path tracing
-    // is held to a limit that follows its measured pace (core/gpu_deadline.h), other work to 600 s.
+    // waiting on, or destroying, a device that still runs it would hang. 0 = adaptive: path tracing,
+    // the staged data-parallel pass and the majorants are held to a limit that follows their
+    // measured pace (core/gpu_deadline.h, gpu/paced_submit.h), other work to 600 s.
     double gpuTimeoutSeconds = 0;
     // Presentation (the viewer): instance extensions the window system needs, and a function that
     // creates the window's surface once the instance exists. The device picked must then present
@@ -50,6 +51,7 @@ struct AdaptiveWait {
     double limitSeconds = 0;
     double quietSeconds = 0;
     std::function<uint64_t()> progress;
+    std::string stillText = "finishing no path";  // what the runaway line says of a count standing still
 };
 
 struct DeviceReport {

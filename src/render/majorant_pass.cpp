@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/stats.h"
+#include "gpu/paced_submit.h"
 #include "gpu/shader_library.h"
 
 namespace amrvk::render {
@@ -126,6 +127,9 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     AMRVK_CHECK(!positions.empty() && positions.size() == colors.size(), "transfer function has no nodes");
     Timer host;
     const scene::StructurePlan& plan = mScene.plan();
+    // The majorants' work per box grows with the TF's nodes (tfMaxAlpha walks its alpha tree).
+    if (positions.size() != mTfNodesMeasured) mMajorantDeadline.reset();
+    mTfNodesMeasured = positions.size();
     mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
     mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
     mTfAlphaTree = gpu::makeBuffer<float>(mCtx, tf.alphaTree(), "tfAlphaTree");
@@ -149,43 +153,69 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
 
 void MajorantPass::dispatch(uint64_t paramsAddress) {
     const scene::StructurePlan& plan = mScene.plan();
-    if (!mMajorantPipeline.valid())
-        mMajorantPipeline = gpu::ComputePipeline(
-            mCtx, mShaders.load("majorants"),
-            "majorants" + (mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string()),
+    const std::string from = mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string();
+    if (!mMajorantPipeline.valid()) {
+        mMajorantPipeline = gpu::ComputePipeline(mCtx, mShaders.load("majorants"), "majorants" + from,
                                                  sizeof(shared::StructurePush));
+        mMajorantDeadline.reset();
+    }
     const bool rq = plan.rayQueryCulling;
-    if (rq && !mAabbPipeline.valid())
-        mAabbPipeline = gpu::ComputePipeline(mCtx, mShaders.load("domain_aabbs"), "domain_aabbs",
+    if (rq && !mAabbPipeline.valid()) {
+        mAabbPipeline = gpu::ComputePipeline(mCtx, mShaders.load("domain_aabbs"), "domain_aabbs" + from,
                                              sizeof(shared::StructurePush));
+        mAabbDeadline.reset();
+    }
     const uint32_t boxCount = plan.boxMajorants ? mParams.domainCount : 0;
-    const bool ownDomainMajorants = mDomainMajorants.valid();
     gpu::GpuTimer timer(mCtx, 4);
-    mCtx.submitAndWait([&](VkCommandBuffer cmd) {
-        timer.reset(cmd);
-        const uint32_t scope = timer.begin(cmd);
-        if (mScene.grid) {
-            const uint32_t n = uint32_t(mScene.grid->ranges.size());
-            shared::StructurePush push{paramsAddress, mDevice.gridRanges().address(), mGridMajorants.address(), n, 0};
-            mMajorantPipeline.dispatch(cmd, &push, (n + 63) / 64);
-        }
-        if (ownDomainMajorants && boxCount > 0) {
-            shared::StructurePush push{paramsAddress, mParams.domainRanges, mDomainMajorants.address(), boxCount, 0};
-            mMajorantPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
-        }
-        gpu::computeBarrier(cmd);
-        if (rq && boxCount > 0) {
-            shared::StructurePush push{paramsAddress, mParams.domainMajorants, mDomainAabbs.address(), boxCount,
-                                       uint32_t(plan.traversal)};
-            mAabbPipeline.dispatch(cmd, &push, (boxCount + 63) / 64);
-            gpu::computeBarrier(cmd);
+    mGpuSeconds = 0;
+    // One dispatch space of workgroups: the macrocells' majorants, then the traversal boxes' own.
+    const uint32_t gridCount = mScene.grid ? uint32_t(mScene.grid->ranges.size()) : 0;
+    const uint32_t boxesOwn = mDomainMajorants.valid() ? boxCount : 0;
+    const uint32_t gridGroups = (gridCount + 63) / 64, boxGroups = (boxesOwn + 63) / 64;
+    const shared::StructurePush gridPush{paramsAddress, mDevice.gridRanges().address(), mGridMajorants.address(),
+                                         gridCount, 0};
+    const shared::StructurePush boxPush{paramsAddress, mParams.domainRanges, mDomainMajorants.address(), boxesOwn, 0};
+    if (gridGroups + boxGroups > 0)
+        mGpuSeconds += gpu::submitPaced(mCtx, mMajorantDeadline,
+                                        {.groups = uint64_t(gridGroups) + boxGroups,
+                                         .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool) {
+                                             const uint32_t end = first + count;
+                                             if (first < gridGroups)
+                                                 mMajorantPipeline.dispatchPart(cmd, &gridPush, first,
+                                                                                std::min(end, gridGroups) - first);
+                                             if (end > gridGroups) {
+                                                 const uint32_t lo = std::max(first, gridGroups) - gridGroups;
+                                                 mMajorantPipeline.dispatchPart(cmd, &boxPush, lo, end - gridGroups - lo);
+                                             }
+                                             gpu::computeBarrier(cmd);
+                                         },
+                                         .what = mMajorantPipeline.name(),
+                                         .timer = &timer})
+                           .gpuSeconds;
+    if (!rq || boxCount == 0) return;
+    // Ray-query culling: the BLAS input (a shader, paced like the majorants), then the BLAS build
+    // (the driver's work, no --shader-dir code: the default limit).
+    const shared::StructurePush aabbPush{paramsAddress, mParams.domainMajorants, mDomainAabbs.address(), boxCount,
+                                         uint32_t(plan.traversal)};
+    mGpuSeconds += gpu::submitPaced(mCtx, mAabbDeadline,
+                                    {.groups = (uint64_t(boxCount) + 63) / 64,
+                                     .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool) {
+                                         mAabbPipeline.dispatchPart(cmd, &aabbPush, first, count);
+                                         gpu::computeBarrier(cmd);
+                                     },
+                                     .what = mAabbPipeline.name(),
+                                     .timer = &timer})
+                       .gpuSeconds;
+    mCtx.submitAndWait(
+        [&](VkCommandBuffer cmd) {
+            timer.reset(cmd);
+            const uint32_t scope = timer.begin(cmd);
             mDomainAccel.build(cmd, mDomainAabbs);
-        }
-        timer.end(cmd, scope);
-        gpu::computeBarrier(cmd);
-    },
-        mMajorantPipeline.name());
-    mGpuSeconds = timer.seconds();
+            timer.end(cmd, scope);
+            gpu::computeBarrier(cmd);
+        },
+        "the culling BLAS build of " + std::to_string(boxCount) + " boxes");
+    mGpuSeconds += timer.seconds();
 }
 
 std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {

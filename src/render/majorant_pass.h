@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "accel/kdtree.h"
+#include "core/gpu_deadline.h"
 #include "gpu/acceleration_structure.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
@@ -37,7 +38,8 @@ public:
     // set changed). Fills params(); dispatch() must follow once they are on the GPU.
     void prepare(const scene::TransferFunction& tf);
     // GPU part: majorants of every structure, and for rq the AABBs and BLAS of the culled boxes.
-    // paramsAddress: a RenderParams buffer holding params() and the scene's SceneGpu.
+    // paramsAddress: a RenderParams buffer holding params() and the scene's SceneGpu. Under the
+    // adaptive --gpu-timeout the two shaders are held to their measured pace (gpu/paced_submit.h).
     void dispatch(uint64_t paramsAddress);
 
     const shared::MajorantsGpu& params() const { return mParams; }
@@ -75,6 +77,10 @@ private:
     gpu::Buffer mDomainAabbs;                      // rq culling: BLAS input
     gpu::AabbAccelerationStructure mDomainAccel;
     gpu::ComputePipeline mMajorantPipeline, mAabbPipeline;
+    // The adaptive --gpu-timeout of each shader (units: workgroups); the majorants' forgotten when
+    // the TF's node count changes.
+    GpuDeadline mMajorantDeadline, mAabbDeadline;
+    size_t mTfNodesMeasured = 0;
     std::optional<accel::KdTree> mKdTree;
     std::vector<shared::AabbGpu> mKdBoxesHost;     // local voxel space
     std::vector<uint8_t> mActive;                  // boxes whose range can reach alpha > 0

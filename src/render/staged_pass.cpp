@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/stats.h"
+#include "gpu/paced_submit.h"
 
 namespace amrvk::render {
 
@@ -40,13 +41,27 @@ StagedPass::StagedPass(gpu::Context& ctx, gpu::ComputePipeline pipeline, uint32_
 
 void StagedPass::stage(uint32_t stage) {
     mPush.stage = stage;
-    mCtx.submitAndWait(
-        [&](VkCommandBuffer cmd) {
-            vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
-            gpu::computeBarrier(cmd);
-            mPipeline.dispatch(cmd, &mPush, (mPush.count + 63) / 64);
-        },
-        mPipeline.name());
+    gpu::PacedWork work{.groups = (uint64_t(mPush.count) + 63) / 64,
+                        .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool opening) {
+                            if (opening) {
+                                vkCmdFillBuffer(cmd, mCounters.handle(), 0, VK_WHOLE_SIZE, 0);
+                                gpu::computeBarrier(cmd);
+                            }
+                            mPipeline.dispatchPart(cmd, &mPush, first, count);
+                            gpu::computeBarrier(cmd);
+                        },
+                        .what = mPipeline.name()};
+    // Tracking stages count density lookups as their workgroups finish (read while they run).
+    if (mCounters.mapped())
+        work.progress = [this] {
+            std::array<uint32_t, shared::kCounterCount + 1> c{};
+            mCounters.download(c.data(), sizeof c);
+            uint64_t sum = 0;
+            for (uint32_t v : c) sum += v;
+            return sum;
+        };
+    work.stillText = "counting nothing";
+    gpu::submitPaced(mCtx, mDeadlines.at(stage), work);
 }
 
 uint32_t StagedPass::addCounters(scene::RenderStats& stats) const {

@@ -5,6 +5,7 @@
 // of space before the paths go on. Data-parallel MPI ranks render with it through
 // Renderer::accumulateStaged (mpi/data_parallel.cpp supplies the exchange over MPI); the samples
 // are added to the renderer's accumulation like any other.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -12,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/gpu_deadline.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
@@ -63,7 +65,9 @@ public:
                      const std::function<void(uint32_t, uint32_t)>& progress);
 
 private:
-    void stage(uint32_t stage);  // one stage over every path, its counters zeroed first
+    // One stage over every path, its counters zeroed first; under the adaptive --gpu-timeout held
+    // to the pace measured for that stage (gpu/paced_submit.h).
+    void stage(uint32_t stage);
     uint32_t addCounters(scene::RenderStats& stats) const;  // returns the live-path count
     uint64_t step(const StagedRender& staged, StagedStep at, StagedReport& report);
 
@@ -71,6 +75,7 @@ private:
     gpu::ComputePipeline mPipeline;
     gpu::Buffer mPaths, mHits, mShadow, mCounters;
     shared::DataParallelPush mPush{};
+    std::array<GpuDeadline, shared::kDpStageAccumulate + 1> mDeadlines;  // per stage; units: workgroups
     // Host copies of the hits and shadow buffers, and the live paths' entries: kept across steps.
     std::vector<shared::DataParallelHitGpu> mHitsHost, mLiveHits;
     std::vector<float> mShadowHost, mLiveShadow;

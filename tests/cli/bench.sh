@@ -41,6 +41,36 @@ PY
 "$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda --no-dense --dvr-steps none \
   --grid-sweep none >/dev/null || fail=1
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert all(r["cached"] for r in j["references"]), j["references"]' "$dir/out/results.json"
+# --tf-colors: the default srgb decodes the TF's colours; linear takes them as albedo. The reference
+# is keyed by it (rendered anew, its command says linear) and is another picture.
+check python3 -c 'import json,sys; assert json.load(open(sys.argv[1]))["tfColors"] == "srgb"' "$dir/out/results.json"
+ref=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["references"][0]["file"])' "$dir/out/results.json")
+cp "$ref" "$dir/srgb.pfm"
+"$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda --no-dense --dvr-steps none \
+  --grid-sweep none --tf-colors linear >/dev/null || fail=1
+check python3 - "$dir/out/results.json" "$dir/srgb.pfm" "$ref" <<'PY'
+import array, json, sys
+j = json.load(open(sys.argv[1]))
+assert j["tfColors"] == "linear", j["tfColors"]
+ref = j["references"][0]
+assert not ref["cached"] and "--tf-colors linear" in ref["command"], ref
+def pfm(path):  # the float values of a PFM (no numpy: python3 on PATH may lack it)
+    with open(path, "rb") as f:
+        assert f.readline().strip() in (b"PF", b"Pf")
+        f.readline()
+        scale = float(f.readline())
+        a = array.array("f", f.read())
+        if (scale < 0) != (sys.byteorder == "little"):
+            a.byteswap()
+        return a
+srgb, linear = pfm(sys.argv[2]), pfm(sys.argv[3])
+# The same paths (ae: the colour does not steer them; the same seed), each ending in the TF's colour
+# or the background: decoding darkens every channel below 1, so no value grows and some shrink
+# (measured: by up to 0.073, 21 of 768 values by more than 1e-4).
+assert len(srgb) == len(linear), (len(srgb), len(linear))
+diff = [b - a for a, b in zip(srgb, linear)]
+assert min(diff) >= -1e-6 and max(diff) > 0.01, (min(diff), max(diff))
+PY
 
 expect "--output is required" -- bench "$sample"
 expect "--frames: '1' is outside [2, 1048576]" -- bench "$sample" -o "$dir/x" --frames 1
@@ -49,6 +79,7 @@ expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
 expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr
 expect "--dvr-steps: '0' is not in (0, 64]" -- bench "$sample" -o "$dir/x" --dvr-steps 0
 expect "--traversals: empty list" -- bench "$sample" -o "$dir/x" --traversals ''
+expect "--tf-colors: gamma not in {srgb,linear}" -- bench "$sample" -o "$dir/x" --tf-colors gamma
 check test ! -e "$dir/x"  # nothing is created before every option is checked
 expect "unknown field 'rho'" -- bench "$sample" -o "$dir/x" --field rho   # --field reaches the reader
 exit $fail

@@ -17,7 +17,7 @@ declare -A options=(
             --density-scale --g --ambient --background --light-dir --light-point --camera --fov -o,--output
             --json --device --shader-dir --validation --series-range --orbit --frames --fps --frames-dir
             --legend --legend-place --legend-title --legend-units --legend-font"
-  [bench]="--field -o,--output --tfs --tf-range --modes --traversals --samplers --backends --size --seed --frames
+  [bench]="--field -o,--output --tfs --tf-colors --tf-range --modes --traversals --samplers --backends --size --seed --frames
            --warmup --reference-spp --target-rmse --dvr-steps --grid-sweep --no-dense --auto --grid --kd-leaves
            --dense-max-mib --density-scale --g --ambient --background --light-dir --light-point --camera --fov
            --device --shader-dir --validation"

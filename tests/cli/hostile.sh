@@ -516,6 +516,19 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "ran longer than 4 s (--gpu-timeout): a r
   render good.cells "${pic[@]}" --shader-dir sh_forever --gpu-timeout 4 -o forever.png
 AMRVK_TEST_GPU_TIMEOUT_FLOOR=0 expect1 "AMRVK_TEST_GPU_TIMEOUT_FLOOR: '0' is not a number of seconds" -- \
   render good.cells "${pic[@]}" -o forever.png
+# The majorant shaders (run on every TF change) are held to the adaptive timeout too (issue 34's
+# leftover: they waited 600 s): majorants.comp, and domain_aabbs.comp of ray-query culling, each
+# looping forever, end after the floor with the same line; nothing is written.
+cp -r shaders sh_maj_forever
+sed -i 's|void main() {|void main() { float spin = 0.0; for (uint k = 0u; ; ++k) { spin += sin(float(k)); if (spin < -1e30) break; } if (spin == 1.0) return;|' \
+  sh_maj_forever/passes/majorants.comp sh_maj_forever/passes/domain_aabbs.comp
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "GPU work 'majorants from --shader-dir sh_maj_forever' ran longer than 2 s (the adaptive --gpu-timeout, from the measured pace and a floor; --gpu-timeout S waits S s): a runaway loop? ending" -- \
+  render good.cells "${pic[@]}" --shader-dir sh_maj_forever -o maj.png --json maj.json
+check1 test ! -e maj.png
+check1 test ! -e maj.json
+cp shaders/passes/majorants.comp sh_maj_forever/passes/majorants.comp  # only domain_aabbs loops now
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 expect1 "GPU work 'domain_aabbs from --shader-dir sh_maj_forever' ran longer than 2 s (the adaptive --gpu-timeout" -- \
+  render good.cells "${pic[@]}" --traversal abr --backend rq --shader-dir sh_maj_forever -o maj.png
 amrvk="$AMRVK_UNDER_TEST"
 # An honest render whose last submission (64 spp, about 9 s on lavapipe with 2 cores) runs longer
 # than a 4 s floor is never cut: each limit grows with its paths at the pace measured so far, and

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <vector>
 
 #include "core/error.h"
 
@@ -58,4 +59,36 @@ TEST(GpuDeadline, TheTestFloorComesFromTheEnvironmentAndIsChecked) {
     EXPECT_THROW(GpuDeadline(), amrvk::Error);
     ::unsetenv("AMRVK_TEST_GPU_TIMEOUT_FLOOR");
     EXPECT_EQ(GpuDeadline().floorSeconds(), GpuDeadline::kFloorSeconds);
+}
+
+TEST(GpuDeadline, UnmeasuredWorkIsSplitIntoAProbeAndGrowingPartsThatCoverIt) {
+    GpuDeadline d(10);
+    using Parts = std::vector<GpuDeadline::Part>;
+    auto covers = [](const Parts& parts, uint64_t work) {
+        uint64_t next = 0;
+        for (const GpuDeadline::Part& p : parts) {
+            if (p.first != next || p.count == 0) return false;
+            next += p.count;
+        }
+        return next == work;
+    };
+    // 64 + 256 + 1024 + the rest (of 4096): each part 4x the last, the last cut to what is left.
+    const Parts parts = d.submissions(2000, 64);
+    ASSERT_EQ(parts.size(), 4u);
+    EXPECT_EQ(parts[0].count, 64u);
+    EXPECT_EQ(parts[1].count, 256u);
+    EXPECT_EQ(parts[2].count, 1024u);
+    EXPECT_EQ(parts[3].count, 2000u - 64 - 256 - 1024);
+    EXPECT_TRUE(covers(parts, 2000));
+    EXPECT_EQ(d.submissions(10, 64).size(), 1u);  // smaller than the probe: one part
+    EXPECT_TRUE(covers(d.submissions(10, 64), 10));
+    EXPECT_TRUE(d.submissions(0, 64).empty());
+    for (uint64_t work : {uint64_t(1), uint64_t(64), uint64_t(65), uint64_t(1) << 32}) {
+        EXPECT_TRUE(covers(d.submissions(work, 64), work)) << work;
+        EXPECT_LE(d.submissions(work, 64).size(), 18u) << work;  // log4 of the work: few submissions
+    }
+    // Measured: all at once, however large.
+    d.record(1, 64);
+    EXPECT_EQ(d.submissions(uint64_t(1) << 32, 64).size(), 1u);
+    EXPECT_TRUE(covers(d.submissions(uint64_t(1) << 32, 64), uint64_t(1) << 32));
 }

@@ -11,7 +11,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const char* const kNames[] = {"Header", "Level_0/Cell_H", "Level_0/Cell_D_00000",
                                          "Level_1/Cell_H", "Level_1/Cell_D_00000"};
     const auto parts = fuzz::splitParts(data, size, std::size(kNames));
-    const auto dir = fuzz::freshScratch() / "plt";
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path() / "plt";
     for (size_t i = 0; i < parts.size(); ++i)
         if (i == 0 || !parts[i].empty()) fuzz::writeFile(dir / kNames[i], parts[i]);
     fuzz::expectOnlyAmrvkErrors("amrex", [&] {

@@ -10,7 +10,8 @@ using namespace amrvk;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const auto parts = fuzz::splitParts(data, size, 3);
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "m.cells", parts[0]);
     fuzz::writeFile(dir / "m.scalars", parts[1]);
     fuzz::writeFile(dir / "m.bricks", parts[2]);

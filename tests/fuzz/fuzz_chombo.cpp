@@ -101,7 +101,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool quiet = (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr), true);
     (void)quiet;
     FuzzedDataProvider p(data, size);
-    const auto path = fuzz::freshScratch() / "plt.hdf5";
+    const fuzz::Scratch scratch;
+    const auto path = scratch.path() / "plt.hdf5";
     writeChombo(path, p);
     fuzz::expectOnlyAmrvkErrors("chombo", [&] {
         amr::ReadOptions options;

@@ -7,7 +7,8 @@
 using namespace amrvk;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "plt.hdf5", std::string_view(reinterpret_cast<const char*>(data), size));
     fuzz::expectOnlyAmrvkErrors("chombo_bytes", [&] {
         amr::ReadOptions options;  // format auto: HDF5 magic

@@ -53,7 +53,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool quiet = (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr), true);
     (void)quiet;
     const auto parts = fuzz::splitParts(data, size, 3);
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "DD0000", parts[0]);
     fuzz::writeFile(dir / "DD0000.hierarchy", parts[1]);
     writeGrids(dir / "DD0000.cpu0000", parts[2]);

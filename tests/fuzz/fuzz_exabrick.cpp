@@ -8,7 +8,8 @@ using namespace amrvk;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const auto parts = fuzz::splitParts(data, size, 3);
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "f.cells", parts[0]);
     if (parts[2].empty()) {
         fuzz::writeFile(dir / "f.scalars", parts[1]);

@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const char* const kNames[] = {"info_00001.txt",       "hydro_file_descriptor.txt", "amr_00001.out00001",
                                          "hydro_00001.out00001", "amr_00001.out00002",        "hydro_00001.out00002"};
     const auto parts = fuzz::splitParts(data, size, std::size(kNames));
-    const auto dir = fuzz::freshScratch() / "output_00001";
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path() / "output_00001";
     for (size_t i = 0; i < parts.size(); ++i)
         if (i == 0 || !parts[i].empty()) fuzz::writeFile(dir / kNames[i], parts[i]);
     fuzz::expectOnlyAmrvkErrors("ramses", [&] {

@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string voxels(reinterpret_cast<const char*>(data + 5), size - 5);
     if (!asGiven) voxels.resize(size_t(dims.x) * size_t(dims.y) * size_t(dims.z) * kBytes[t], '\0');
 
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     amr::ReadOptions options;
     options.format = "raw";
     options.rawThreshold = threshold;

@@ -8,7 +8,8 @@ using namespace amrvk;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "shaders/passes/path_trace.comp", "void main() {}\n");
     fuzz::writeFile(dir / "shaders/lib/tf.glsl", "// tf\n");
     fuzz::writeFile(dir / "outside.txt", "precious\n");

@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         exercise(ch.merged());
         (void)scene::paraViewPresetJson(ch);
     });
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     fuzz::writeFile(dir / "tf.json", text);
     fuzz::expectOnlyAmrvkErrors("tf_json(load)", [&] {
         exercise(scene::loadParaViewPreset(dir / "tf.json"));

@@ -15,7 +15,8 @@ void exercise(const scene::TransferFunction& tf) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const auto dir = fuzz::freshScratch();
+    const fuzz::Scratch scratch;
+    const auto dir = scratch.path();
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
     fuzz::writeFile(dir / "tf.xf", bytes);
     fuzz::writeFile(dir / "tf.bin", bytes);

@@ -66,7 +66,8 @@ void exabrickSeeds(const fs::path& source) {
     amr::Model m;
     m.cells = cells;
     m.fields.push_back({"scalars", a});
-    const fs::path tmp = fuzz::freshScratch() / "m.bricks";
+    const fuzz::Scratch scratch;
+    const fs::path tmp = scratch.path() / "m.bricks";
     accel::writeBricksFile(tmp, accel::buildBricks(m));  // m is now in brick order: write it so
     seed("bricks", "five", fuzz::joinParts({bytesOf(m.cells), bytesOf(m.fields[0].values), readAll(tmp)}));
 }

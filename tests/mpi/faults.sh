@@ -65,6 +65,16 @@ limitMs=150000 expect_fault diverged "ranks disagree on the paths alive before t
   "same driver, device kind and shaders" "(every rank of 2)" -- \
   "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --mode ms --distribute data -o "$dir/out.png" \
   : -n 1 "$amrvk" render "$cloud" "${small[@]}" --mode ms --distribute data --shader-dir "$dir/diverged" -o "$dir/out.png"
+# A runaway in the staged data-parallel pass (rank 1's path_trace_dp loops forever) is held to the
+# adaptive --gpu-timeout as path_trace is (it waited 600 s): rank 1 ends after the floor (2 s here)
+# with one line, and mpirun ends rank 0, which waits for it at the first reduction.
+"$amrvk" shaders --export "$dir/dp_forever" >/dev/null || fail=1
+sed -i 's|void main() {|void main() { float spin = 0.0; for (uint k = 0u; ; ++k) { spin += sin(float(k)); if (spin < -1e30) break; } if (spin == 1.0) return;|' \
+  "$dir/dp_forever/passes/path_trace_dp.comp"
+AMRVK_TEST_GPU_TIMEOUT_FLOOR=2 limitMs=60000 expect_fault dp-runaway "rank 1 of 2" \
+  "GPU work 'path_trace_dp.ae." "from --shader-dir $dir/dp_forever' ran longer than 2 s" "(the adaptive --gpu-timeout" -- \
+  "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" --mode ae --distribute data -o "$dir/out.png" \
+  : -n 1 "$amrvk" render "$cloud" "${small[@]}" --mode ae --distribute data --shader-dir "$dir/dp_forever" -o "$dir/out.png"
 expect_fault series "is rendered by one process, not under an MPI launcher" "(every rank of 2)" -- \
   "${mpi[@]}" -n 2 "$amrvk" render "$cloud" "${small[@]}" --frames 2 --orbit 90 -o "$dir/f_%d.png"
 check test -z "$(ls "$dir" | grep '^f_' || true)"
