@@ -31,16 +31,19 @@ double halfArea(glm::dvec3 s) { return s.x * s.y + s.y * s.z + s.z * s.x; }
 // slab or coarse cube of it. Bounds are int32: validated cells end at or below 2^31-1.
 struct CellStats {
     uint32_t levelMask = 0;
+    uint32_t count = 0;  // cells (a model has fewer than 2^32)
     double volume = 0;
     glm::ivec3 lo{std::numeric_limits<int32_t>::max()}, hi{std::numeric_limits<int32_t>::min()};
     void add(const amr::Cell& c) {
         levelMask |= 1u << c.level;
+        ++count;
         volume += amr::cellVolume(c.level);
         lo = glm::min(lo, c.lower);
         hi = glm::max(hi, c.lower + (int32_t{1} << c.level));
     }
     void merge(const CellStats& o) {
         levelMask |= o.levelMask;
+        count += o.count;
         volume += o.volume;
         lo = glm::min(lo, o.lo);
         hi = glm::max(hi, o.hi);
@@ -54,18 +57,200 @@ double sahCost(const CellStats& s) {
     return halfArea(size) * (size.x * size.y * size.z) * std::popcount(s.levelMask);
 }
 
-// Slab statistics per coarse cube (cw^3) of a box [lo, lo + dims cw), x fastest.
+// Cell statistics per cube (cw^3) of a box [lo, lo + dims cw), x fastest; a cell counts in the
+// cube of its lower corner. It serves every node inside the box whose coarsest cell width is a
+// multiple of cw (a power of two at least cw): such a node's slabs and planes are unions of cubes.
 struct CubeGrid {
     glm::i64vec3 lo{0}, dims{0};
-    int64_t cw = 1;
+    int64_t cw = 1;  // cube width, voxel space
     std::vector<CellStats> cubes;
+    // The cube of a cell of this grid's box (its lower corner's), as an index into `cubes`.
+    size_t cubeOf(const amr::Cell& c) const {
+        const int64_t shift = std::countr_zero(uint64_t(cw));
+        const glm::i64vec3 q = (glm::i64vec3(c.lower) - lo) >> shift;
+        return size_t((q.z * dims.y + q.y) * dims.x + q.x);
+    }
+};
+
+using Slabs = std::array<std::vector<CellStats>, 3>;
+
+// A node's candidate planes: multiples of its coarsest cell width cw inside its bounds rounded out
+// to cw (voxel space); `slabs` coarse slabs per axis, `used[a]` = slabs[a] where axis a gets slab
+// statistics, else 0 (fewer than 2 slabs, or more than 4 per cell).
+struct SplitFrame {
+    int64_t cw = 1;
+    glm::i64vec3 lo{0}, hi{0}, slabs{0}, used{0};
+};
+SplitFrame frameOf(const CellStats& in) {
+    SplitFrame f;
+    f.cw = amr::cellWidth(in.maxLevel());
+    const uint64_t slabLimit = 4 * uint64_t(in.count) + 1024;
+    for (int a = 0; a < 3; ++a) {
+        f.lo[a] = floorDiv(in.lo[a], f.cw) * f.cw;
+        f.hi[a] = ceilDiv(in.hi[a], f.cw) * f.cw;
+        f.slabs[a] = (f.hi[a] - f.lo[a]) / f.cw;
+        f.used[a] = f.slabs[a] < 2 || uint64_t(f.slabs[a]) > slabLimit ? 0 : f.slabs[a];
+    }
+    return f;
+}
+
+// A node's split plane; axis -1 when no plane exists (the node lies in one coarse cell).
+struct SplitChoice {
+    int axis = -1;
+    int64_t plane = 0;
+    bool sidesFromSlabs = false;  // then left and right hold the two sides' statistics
+    CellStats left, right;
+};
+
+// exaBuilder's SAH-alike cost over the boundary planes between coarse slabs (where the level set or
+// fullness changes), else the spatial median of the longest axis. A function of the statistics
+// alone, so a plan on a cube grid chooses what a split over the cells chooses.
+SplitChoice chooseSplit(const SplitFrame& f, const Slabs& stats) {
+    SplitChoice c;
+    double bestCost = std::numeric_limits<double>::infinity();
+    std::vector<CellStats> suffix;
+    for (int a = 0; a < 3; ++a) {
+        const std::vector<CellStats>& slab = stats[size_t(a)];
+        if (slab.empty()) continue;
+        const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+        const double fullVolume = double(f.cw) * double(f.hi[b1] - f.lo[b1]) * double(f.hi[b2] - f.lo[b2]);
+        suffix.assign(slab.size() + 1, CellStats{});
+        for (size_t k = slab.size(); k-- > 0;) {
+            suffix[k] = suffix[k + 1];
+            suffix[k].merge(slab[k]);
+        }
+        CellStats prefix;
+        for (size_t k = 1; k < slab.size(); ++k) {
+            prefix.merge(slab[k - 1]);
+            const CellStats& l = slab[k - 1];
+            const CellStats& r = slab[k];
+            bool boundary = l.levelMask != r.levelMask || l.volume < fullVolume || r.volume < fullVolume;
+            if (!boundary) continue;
+            double cost = sahCost(prefix) + sahCost(suffix[k]);
+            if (cost < bestCost) {
+                bestCost = cost;
+                c.axis = a;
+                c.plane = f.lo[a] + int64_t(k) * f.cw;
+            }
+        }
+    }
+    if (c.axis < 0) {  // spatial median of the longest axis, in coarse cells
+        int a = 0;
+        for (int k = 1; k < 3; ++k)
+            if (f.slabs[k] > f.slabs[a]) a = k;
+        if (f.slabs[a] < 2) return c;
+        c.axis = a;
+        c.plane = f.lo[a] + f.slabs[a] / 2 * f.cw;
+    }
+    // The sides' bounds come from the slabs when the split axis has them, else from the cells.
+    const std::vector<CellStats>& slab = stats[size_t(c.axis)];
+    c.sidesFromSlabs = !slab.empty();
+    const size_t k = size_t((c.plane - f.lo[c.axis]) / f.cw);
+    for (size_t m = 0; m < slab.size(); ++m) (m < k ? c.left : c.right).merge(slab[m]);
+    return c;
+}
+
+// A frame's slabs from the cubes of a grid that serves it (g.cw divides f.cw): slab k of axis a
+// merges the cubes whose coordinate along a, counted from the frame's lower corner, is k f.cw/g.cw
+// up to (k + 1) f.cw/g.cw.
+Slabs slabsFromCubes(const CubeGrid& g, const SplitFrame& f) {
+    Slabs s;
+    for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(f.used[a]), CellStats{});
+    const int64_t shift = std::countr_zero(uint64_t(f.cw / g.cw));
+    const glm::i64vec3 q0 = (f.lo - g.lo) / g.cw, span = f.slabs << shift;
+    for (int64_t z = 0; z < span.z; ++z)
+        for (int64_t y = 0; y < span.y; ++y) {
+            const size_t row = size_t(((q0.z + z) * g.dims.y + q0.y + y) * g.dims.x + q0.x);
+            for (int64_t x = 0; x < span.x; ++x) {
+                const CellStats& c = g.cubes[row + size_t(x)];
+                if (c.levelMask == 0) continue;
+                const int64_t q[3] = {x >> shift, y >> shift, z >> shift};
+                for (int a = 0; a < 3; ++a)
+                    if (f.used[a] > 0) s[size_t(a)][size_t(q[a])].merge(c);
+            }
+        }
+    return s;
+}
+
+// A node that becomes a brick: one level, completely filled, at most kMaxBrickCells per axis;
+// `dims` its cells per axis.
+bool brickShaped(const CellStats& in, glm::i64vec3& dims) {
+    const int32_t level = in.minLevel();
+    if (in.levelMask == 0 || level != in.maxLevel()) return false;
+    const int64_t w = amr::cellWidth(level);
+    dims = (glm::i64vec3(in.hi) - glm::i64vec3(in.lo)) / w;
+    if (dims.x > kMaxBrickCells || dims.y > kMaxBrickCells || dims.z > kMaxBrickCells) return false;
+    return uint64_t(dims.x * dims.y * dims.z) == in.count;  // else not completely filled
+}
+
+// The top of a kd subtree decided on a cube grid alone. While a node keeps the grid's coarsest
+// width or a coarser one its slabs come from the cubes, so its split (chooseSplit, as split() would
+// choose it) and its sides' statistics need no pass over its cells. Leaves of the plan: nodes of
+// fewer than `minCells` cells, whose coarsest width is below the cubes', brick-shaped, or split on an
+// axis without slabs.
+// Every leaf is a box of whole cubes; the leaves tile the root's box, in left-to-right order.
+struct Plan {
+    struct Node {
+        CellStats info;
+        glm::i64vec3 qlo{0}, qhi{0};  // the node's region, in the grid's cubes [qlo, qhi)
+        int axis = -1;                // split axis; -1 for a leaf
+        int32_t plane = 0;            // voxel space
+        uint32_t left = 0;            // children: nodes[left], nodes[left + 1]
+        uint32_t leafBegin = 0, leafEnd = 0;  // its leaves: leaves[leafBegin, leafEnd)
+    };
+    const CubeGrid& grid;
+    size_t minCells;
+    std::vector<Node> nodes;
+    std::vector<uint32_t> leaves;  // node indices, left to right
+
+    Plan(const CubeGrid& g, size_t min, const CellStats& root, const SplitFrame& f) : grid(g), minCells(min) {
+        nodes.push_back({root, (f.lo - g.lo) / g.cw, (f.hi - g.lo) / g.cw});
+        grow(0);
+    }
+    void grow(uint32_t i) {
+        nodes[i].leafBegin = uint32_t(leaves.size());
+        const CellStats in = nodes[i].info;
+        SplitChoice c;
+        glm::i64vec3 dims;
+        if (in.count >= minCells && !brickShaped(in, dims)) {
+            const SplitFrame f = frameOf(in);
+            if (f.cw >= grid.cw) c = chooseSplit(f, slabsFromCubes(grid, f));
+        }
+        if (c.axis < 0 || !c.sidesFromSlabs) {
+            leaves.push_back(i);
+            nodes[i].leafEnd = uint32_t(leaves.size());
+            return;
+        }
+        const uint32_t l = uint32_t(nodes.size());
+        Node left{c.left, nodes[i].qlo, nodes[i].qhi}, right{c.right, nodes[i].qlo, nodes[i].qhi};
+        left.qhi[c.axis] = right.qlo[c.axis] = (c.plane - grid.lo[c.axis]) / grid.cw;
+        nodes[i].axis = c.axis;
+        nodes[i].plane = int32_t(c.plane);  // inside the node's int32 bounds
+        nodes[i].left = l;
+        nodes.push_back(left);
+        nodes.push_back(right);
+        grow(l);
+        grow(l + 1);
+        nodes[i].leafEnd = uint32_t(leaves.size());
+    }
+    // Cube -> index in `leaves` (UINT32_MAX outside the root's box).
+    std::vector<uint32_t> leafOfCube() const {
+        std::vector<uint32_t> out(grid.cubes.size(), UINT32_MAX);
+        for (uint32_t k = 0; k < leaves.size(); ++k) {
+            const Node& n = nodes[leaves[k]];
+            for (int64_t z = n.qlo.z; z < n.qhi.z; ++z)
+                for (int64_t y = n.qlo.y; y < n.qhi.y; ++y)
+                    for (int64_t x = n.qlo.x; x < n.qhi.x; ++x) out[size_t((z * grid.dims.y + y) * grid.dims.x + x)] = k;
+        }
+        return out;
+    }
 };
 
 // The kd build over the model's own arrays: cells and every field are partitioned together, in
 // place, so no per-cell copy exists; leaves are then put in x-fastest order inside their brick.
 class BrickBuilder {
 public:
-    explicit BrickBuilder(amr::Model& model) : mModel(model), mCells(model.cells) {
+    BrickBuilder(amr::Model& model, size_t planCells) : mModel(model), mCells(model.cells), mPlanCells(planCells) {
         for (amr::Field& f : model.fields) mFields.push_back(f.values.data());
     }
 
@@ -78,23 +263,40 @@ public:
         mBar.finish();
     }
 
+    // A node of the kd build: cells [b, e), their statistics, and an ancestor's cube grid.
+    struct Node {
+        size_t b, e;
+        CellStats info;
+        std::shared_ptr<const CubeGrid> cubes;
+    };
+
     // Builds the subtree over cells [begin, end) (bounds `info`; `cubes`: an ancestor's cube grid)
     // and returns its bricks in left-to-right order. The two sides of a node of at least
-    // kParallelCells cells are built concurrently: they own disjoint parts of the arrays, so the
-    // result does not depend on the schedule.
+    // kParallelCells cells (or the leaves of its plan) are built concurrently: they own disjoint
+    // parts of the arrays, so the result does not depend on the schedule.
     std::vector<Brick> build(size_t begin, size_t end, const CellStats& info,
                              std::shared_ptr<const CubeGrid> cubes = nullptr) {
         std::vector<Brick> bricks;
-        struct Node {
-            size_t b, e;
-            CellStats info;
-            std::shared_ptr<const CubeGrid> cubes;
-        };
-        std::vector<Node> stack{{begin, end, info, cubes}};
+        std::vector<Node> stack{{begin, end, info, std::move(cubes)}};
         while (!stack.empty()) {
             Node n = std::move(stack.back());
             stack.pop_back();
             if (tryLeaf(n.b, n.e, n.info, bricks)) continue;
+            if (n.e - n.b >= mPlanCells) {
+                std::vector<Node> parts = planned(n);
+                if (parts.size() >= 2 && n.e - n.b >= kParallelCells) {
+                    std::vector<std::vector<Brick>> built(parts.size());
+                    parallelFor(0, parts.size(), [&](size_t k) {
+                        built[k] = build(parts[k].b, parts[k].e, parts[k].info, parts[k].cubes);
+                    });
+                    for (const std::vector<Brick>& p : built) bricks.insert(bricks.end(), p.begin(), p.end());
+                    continue;
+                }
+                if (parts.size() >= 2) {
+                    for (size_t k = parts.size(); k-- > 0;) stack.push_back(std::move(parts[k]));
+                    continue;
+                }
+            }
             CellStats left, right;
             const size_t mid = split(n.b, n.e, n.info, n.cubes, left, right);
             if (n.e - n.b >= kParallelCells) {
@@ -128,16 +330,21 @@ private:
     static constexpr size_t kParallelCells = size_t{1} << 15;
     // Nodes at least this large gather their slab statistics on every core.
     static constexpr size_t kParallelSlabCells = size_t{1} << 20;
-    // A node with at least this many cells per coarse cube gathers a cube grid (one update per
-    // cell; at most 40 / 4 = 10 bytes per cell while its subtree is built) that its descendants of
-    // the same coarsest level read their slabs from, instead of gathering three slab arrays from
-    // their cells at every split (which took 40% of the build at 10^8 cells with 16 here).
+    // A node with at least this many cells per coarse cube (cw^3) gathers a cube grid (one update
+    // per cell) that its descendants read their slabs from, instead of gathering three slab arrays
+    // from their cells at every split (which took 40% of the build at 10^8 cells with 16 here).
     static constexpr double kCellsPerCube = 4;
+    // Its cubes are halved while they keep at least this many cells each (40 / 32 = 1.25 bytes per
+    // cell), so that one grid serves the levels below the node's coarsest too (10^8-cell cloud:
+    // 128^3 cubes of 32 voxels at the root serve cell widths 128, 64 and 32).
+    static constexpr double kCellsPerFineCube = 32;
+    // A plan stops at nodes of 1/kPlanLeaves of its root's cells (flagSort).
+    static constexpr size_t kPlanLeaves = 256;
     // Nodes at least this large are partitioned on every core.
     static constexpr size_t kParallelPartitionCells = size_t{1} << 21;
 
+    // The caller sets mMoved (once, not per swap: one shared flag written by every core).
     void swapCells(size_t i, size_t j) {
-        mMoved.store(true, std::memory_order_relaxed);
         std::swap(mCells[i], mCells[j]);
         for (float* v : mFields) std::swap(v[i], v[j]);
     }
@@ -145,13 +352,9 @@ private:
     // A node becomes a brick when it is one level, completely filled and at most kMaxBrickCells
     // wide; its cells are then put in brick order. Two cells on one slot overlap.
     bool tryLeaf(size_t b, size_t e, const CellStats& in, std::vector<Brick>& bricks) {
-        const int32_t level = in.minLevel();
-        if (level != in.maxLevel()) return false;
-        const int64_t w = amr::cellWidth(level);
-        const glm::i64vec3 dims = (glm::i64vec3(in.hi) - glm::i64vec3(in.lo)) / w;
-        if (dims.x > kMaxBrickCells || dims.y > kMaxBrickCells || dims.z > kMaxBrickCells) return false;
-        if (uint64_t(dims.x * dims.y * dims.z) != e - b) return false;  // not completely filled
-        const Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), level, static_cast<uint32_t>(b)};
+        glm::i64vec3 dims;
+        if (!brickShaped(in, dims)) return false;
+        const Brick brick{glm::ivec3(in.lo), glm::ivec3(dims), in.minLevel(), static_cast<uint32_t>(b)};
         orderBrick(brick, b, e);
         bricks.push_back(brick);
         showProgress(mPlaced.fetch_add(e - b, std::memory_order_relaxed) + (e - b));
@@ -188,35 +391,50 @@ private:
         }
     }
 
-    using Slabs = std::array<std::vector<CellStats>, 3>;
+    // Gives the node a cube grid where its ancestor's does not serve it (cubes wider than its
+    // coarsest cell width cw) and it holds at least kCellsPerCube cells per cw^3: its cells are
+    // merged per cube once (one update per cell), in cubes of cw or finer (kCellsPerFineCube). A
+    // descendant whose coarsest width is a multiple of the cube width holds exactly the cells of the
+    // cubes in its box (every plane between them is a multiple of its cw), so it reads its slabs
+    // from the grid; cubes stays null where the node is too sparse for one.
+    void ensureCubes(size_t b, size_t e, const SplitFrame& f, std::shared_ptr<const CubeGrid>& cubes) const {
+        if (cubes && cubes->cw <= f.cw) return;
+        cubes.reset();
+        const double n = double(e - b);
+        auto cubesOf = [&](int64_t c) {
+            const double r = double(f.cw / c);
+            return double(f.slabs.x) * r * double(f.slabs.y) * r * double(f.slabs.z) * r;
+        };
+        if (cubesOf(f.cw) * kCellsPerCube > n) return;
+        int64_t c = f.cw;
+        while (c > 1 && cubesOf(c / 2) * kCellsPerFineCube <= n) c /= 2;
+        cubes = gatherCubes(b, e, f.lo, c, f.slabs * (f.cw / c), size_t(cubesOf(c)));
+    }
 
-    // Slab statistics of cells [b, e) along every axis: slab k of axis a covers
-    // [lo[a] + k cw, lo[a] + (k + 1) cw), `slabs` per axis; an axis with `used[a] == 0` is skipped.
-    // Where the node holds at least kCellsPerCube cells per coarse cube (cw^3), its cells are merged
-    // per cube once (one update per cell instead of three) and the grid is handed to the subtree: a
-    // descendant with the same coarsest level holds exactly the cells of the cubes in its box
-    // (every plane between them is a multiple of cw), so it reads its slabs from the grid.
-    Slabs slabStats(size_t b, size_t e, glm::i64vec3 lo, int64_t cw, glm::i64vec3 slabs, glm::i64vec3 used,
-                    std::shared_ptr<const CubeGrid>& cubes) const {
+    // Slab statistics of cells [b, e) along every axis of the frame (slab k of axis a covers
+    // [lo[a] + k cw, lo[a] + (k + 1) cw)); an axis with `used[a] == 0` is skipped. From the node's
+    // cube grid where it has one (ensureCubes), else from its cells.
+    Slabs slabStats(size_t b, size_t e, const SplitFrame& f, std::shared_ptr<const CubeGrid>& cubes) const {
         const size_t n = e - b;
-        const int shift = std::countr_zero(uint64_t(cw));
-        if (!cubes || cubes->cw != cw) {
-            cubes.reset();
-            const double cubeCount = double(slabs.x) * double(slabs.y) * double(slabs.z);
-            if (cubeCount * kCellsPerCube <= double(n)) cubes = gatherCubes(b, e, lo, cw, slabs, size_t(cubeCount));
+        const int shift = std::countr_zero(uint64_t(f.cw));
+        ensureCubes(b, e, f, cubes);
+        // From the cubes unless the node is sparse in them (few cells in a wide box of fine cubes).
+        if (cubes) {
+            const double r = double(f.cw / cubes->cw);
+            if (double(f.slabs.x) * double(f.slabs.y) * double(f.slabs.z) * r * r * r <= 16.0 * double(n) + 4096)
+                return slabsFromCubes(*cubes, f);
         }
-        if (cubes) return slabsFromCubes(*cubes, lo, slabs, used);
         auto gather = [&](size_t from, size_t to) {
             Slabs s;
-            for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), CellStats{});
+            for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(f.used[a]), CellStats{});
             for (size_t i = from; i < to; ++i) {
                 const amr::Cell& c = mCells[i];
                 for (int a = 0; a < 3; ++a)
-                    if (used[a] > 0) s[size_t(a)][size_t((int64_t(c.lower[a]) - lo[a]) >> shift)].add(c);
+                    if (f.used[a] > 0) s[size_t(a)][size_t((int64_t(c.lower[a]) - f.lo[a]) >> shift)].add(c);
             }
             return s;
         };
-        const uint64_t slabTotal = uint64_t(used.x + used.y + used.z);
+        const uint64_t slabTotal = uint64_t(f.used.x + f.used.y + f.used.z);
         if (n < kParallelSlabCells || slabTotal * 64 > n) return gather(b, e);
         return parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs);
     }
@@ -239,105 +457,115 @@ private:
             }
             return s;
         };
-        // Every core gathers its own copy of the cubes only while they are small against the node.
+        // Every core gathers its own copy of the cubes, as many copies as keep them at most 2.5 bytes
+        // per cell of the node (merging is exact in any order: the grid is the same for any count).
         const size_t n = e - b;
-        Slabs s = n >= kParallelSlabCells && count * 256 <= n ? parallelReduce<Slabs>(b, e, 16, gather, mergeSlabs)
-                                                              : gather(b, e);
+        const size_t copies = std::min<size_t>(size_t(threadCount()), n / (count * 16));
+        Slabs s = n >= kParallelSlabCells && copies >= 2 ? parallelReduce<Slabs>(b, e, copies, gather, mergeSlabs)
+                                                         : gather(b, e);
         return std::make_shared<const CubeGrid>(CubeGrid{lo, dims, cw, std::move(s[0])});
     }
 
-    // Slabs of the box [lo, lo + slabs cw) from the cubes that lie in it.
-    static Slabs slabsFromCubes(const CubeGrid& g, glm::i64vec3 lo, glm::i64vec3 slabs, glm::i64vec3 used) {
-        Slabs s;
-        for (int a = 0; a < 3; ++a) s[size_t(a)].assign(size_t(used[a]), CellStats{});
-        const glm::i64vec3 q0 = (lo - g.lo) / g.cw;
-        for (int64_t z = 0; z < slabs.z; ++z)
-            for (int64_t y = 0; y < slabs.y; ++y) {
-                const size_t row = size_t(((q0.z + z) * g.dims.y + q0.y + y) * g.dims.x + q0.x);
-                for (int64_t x = 0; x < slabs.x; ++x) {
-                    const CellStats& c = g.cubes[row + size_t(x)];
-                    if (c.levelMask == 0) continue;
-                    const int64_t q[3] = {x, y, z};
-                    for (int a = 0; a < 3; ++a)
-                        if (used[a] > 0) s[size_t(a)][size_t(q[a])].merge(c);
-                }
-            }
-        return s;
-    }
-
-    // Chooses a plane (exaBuilder's SAH-alike cost over boundary planes between coarse-cell slabs,
-    // else the spatial median of the longest axis) and partitions; returns the split index and the
-    // sides' bounds. Planes lie on multiples of the node's coarsest cell width, so no cell straddles
-    // one: the subtrees' regions are disjoint and cells in different bricks never overlap.
+    // Chooses a plane (chooseSplit) and partitions; returns the split index and the sides' bounds.
+    // Planes lie on multiples of the node's coarsest cell width, so no cell straddles one: the
+    // subtrees' regions are disjoint and cells in different bricks never overlap.
     size_t split(size_t b, size_t e, const CellStats& in, std::shared_ptr<const CubeGrid>& cubes, CellStats& left,
                  CellStats& right) {
-        const int64_t cw = amr::cellWidth(in.maxLevel());
-        glm::i64vec3 lo, hi, slabs, used;
-        const uint64_t slabLimit = 4 * (e - b) + 1024;
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = floorDiv(in.lo[a], cw) * cw;
-            hi[a] = ceilDiv(in.hi[a], cw) * cw;
-            slabs[a] = (hi[a] - lo[a]) / cw;
-            used[a] = slabs[a] < 2 || uint64_t(slabs[a]) > slabLimit ? 0 : slabs[a];
+        const SplitFrame f = frameOf(in);
+        SplitChoice c = chooseSplit(f, slabStats(b, e, f, cubes));
+        if (c.axis < 0) reportOverlap(b, e, in);
+        if (c.sidesFromSlabs) {
+            left = c.left;
+            right = c.right;
         }
-        double bestCost = std::numeric_limits<double>::infinity();
-        int bestAxis = -1;
-        int64_t bestPlane = 0;
-        const Slabs stats = slabStats(b, e, lo, cw, slabs, used, cubes);
-        std::vector<CellStats> suffix;
-        for (int a = 0; a < 3; ++a) {
-            const std::vector<CellStats>& slab = stats[size_t(a)];
-            if (slab.empty()) continue;
-            const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-            const double fullVolume = double(cw) * double(hi[b1] - lo[b1]) * double(hi[b2] - lo[b2]);
-            suffix.assign(slab.size() + 1, CellStats{});
-            for (size_t k = slab.size(); k-- > 0;) {
-                suffix[k] = suffix[k + 1];
-                suffix[k].merge(slab[k]);
-            }
-            CellStats prefix;
-            for (size_t k = 1; k < slab.size(); ++k) {
-                prefix.merge(slab[k - 1]);
-                const CellStats& l = slab[k - 1];
-                const CellStats& r = slab[k];
-                bool boundary = l.levelMask != r.levelMask || l.volume < fullVolume || r.volume < fullVolume;
-                if (!boundary) continue;
-                double cost = sahCost(prefix) + sahCost(suffix[k]);
-                if (cost < bestCost) {
-                    bestCost = cost;
-                    bestAxis = a;
-                    bestPlane = lo[a] + int64_t(k) * cw;
-                }
-            }
-        }
-        if (bestAxis < 0) {  // spatial median of the longest axis, in coarse cells
-            int a = 0;
-            for (int k = 1; k < 3; ++k)
-                if (slabs[k] > slabs[a]) a = k;
-            if (slabs[a] < 2) reportOverlap(b, e, in);
-            bestAxis = a;
-            bestPlane = lo[a] + slabs[a] / 2 * cw;
-        }
-        // The sides' bounds come from the slabs when the split axis has them, else from the cells.
-        const std::vector<CellStats>& slab = stats[size_t(bestAxis)];
-        const bool sidesFromSlabs = !slab.empty();
-        if (sidesFromSlabs) {
-            const size_t k = size_t((bestPlane - lo[bestAxis]) / cw);
-            for (size_t m = 0; m < slab.size(); ++m) (m < k ? left : right).merge(slab[m]);
-        }
-        const int32_t plane = int32_t(bestPlane);  // inside the node's int32 bounds
+        const int32_t plane = int32_t(c.plane);  // inside the node's int32 bounds
         const size_t i = e - b >= kParallelPartitionCells
-                             ? parallelPartition(b, e, bestAxis, plane, !sidesFromSlabs, left, right)
-                             : partition(b, e, bestAxis, plane, !sidesFromSlabs, left, right);
-        AMRVK_CHECK(i > b && i < e, "brick builder: empty side at plane ", bestPlane, " axis ", bestAxis);
+                             ? parallelPartition(b, e, c.axis, plane, !c.sidesFromSlabs, left, right)
+                             : partition(b, e, c.axis, plane, !c.sidesFromSlabs, left, right);
+        AMRVK_CHECK(i > b && i < e, "brick builder: empty side at plane ", c.plane, " axis ", c.axis);
         return i;
+    }
+
+    // The node's plan on its cube grid, carried out: its cells moved once into the plan's leaves
+    // (applyPlan), which are returned in left-to-right order. Fewer than two leaves: nothing moved.
+    std::vector<Node> planned(Node& n) {
+        const SplitFrame f = frameOf(n.info);
+        ensureCubes(n.b, n.e, f, n.cubes);
+        if (!n.cubes) return {};
+        // At most about kPlanLeaves leaves: a multi-way pass stays fast while its destinations are
+        // few (a cache line and a page each); the leaves are planned again in their turn.
+        const Plan plan(*n.cubes, std::max(mPlanCells, (n.e - n.b) / kPlanLeaves), n.info, f);
+        if (plan.leaves.size() < 2) return {};
+        applyPlan(plan, plan.leafOfCube(), 0, n.b, n.e);
+        std::vector<Node> parts;
+        size_t at = n.b;
+        for (uint32_t leaf : plan.leaves) {
+            const CellStats& s = plan.nodes[leaf].info;
+            parts.push_back({at, at + s.count, s, n.cubes});
+            at += s.count;
+        }
+        return parts;
+    }
+
+    // Moves cells [b, e) of plan node i into its leaves' ranges. Nodes that hold more than a core's
+    // share of all the cells are split in two on every core (parallelPartition) and their sides
+    // done concurrently; below that, one multi-way pass per node (flagSort), while other cores
+    // work on other nodes.
+    void applyPlan(const Plan& p, const std::vector<uint32_t>& leafOfCube, uint32_t i, size_t b, size_t e) {
+        const Plan::Node& n = p.nodes[i];
+        if (n.axis >= 0 && threadCount() > 1 && (e - b) * size_t(threadCount()) > mCells.size()) {
+            CellStats unused;
+            const size_t mid = parallelPartition(b, e, n.axis, n.plane, false, unused, unused);
+            AMRVK_CHECK(mid == b + p.nodes[n.left].info.count, "internal: the brick plan's counts do not match");
+            parallelInvoke([&] { applyPlan(p, leafOfCube, n.left, b, mid); },
+                           [&] { applyPlan(p, leafOfCube, n.left + 1, mid, e); });
+            return;
+        }
+        flagSort(p, leafOfCube, n.leafBegin, n.leafEnd, b);
+    }
+
+    // American flag sort of the cells from b on into the plan's leaves [lb, le), whose counts are
+    // known: each leaf's next free place takes the cells of that leaf. A misplaced cell is carried
+    // along its cycle (to its leaf's next place, whose cell is carried on) until the cycle returns,
+    // so every cell is read once and written at most once.
+    void flagSort(const Plan& p, const std::vector<uint32_t>& leafOfCube, uint32_t lb, uint32_t le, size_t b) {
+        const size_t k = le - lb;
+        if (k < 2) return;
+        std::vector<size_t> head(k), end(k);
+        for (size_t m = 0, at = b; m < k; ++m) {
+            head[m] = at;
+            at += p.nodes[p.leaves[lb + m]].info.count;
+            end[m] = at;
+        }
+        auto leafOf = [&](const amr::Cell& c) { return size_t(leafOfCube[p.grid.cubeOf(c)] - lb); };
+        std::vector<float> values(mFields.size());
+        bool moved = false;
+        for (size_t m = 0; m + 1 < k; ++m)  // the last leaf then holds what is left
+            for (; head[m] < end[m]; ++head[m]) {
+                const size_t at = head[m];
+                amr::Cell cell = mCells[at];
+                size_t d = leafOf(cell);
+                if (d == m) continue;
+                for (size_t f = 0; f < mFields.size(); ++f) values[f] = mFields[f][at];
+                do {
+                    AMRVK_CHECK(d < k && head[d] < end[d], "internal: a cell outside the brick plan's leaves");
+                    const size_t to = head[d]++;
+                    std::swap(cell, mCells[to]);
+                    for (size_t f = 0; f < mFields.size(); ++f) std::swap(values[f], mFields[f][to]);
+                    d = leafOf(cell);
+                } while (d != m);
+                mCells[at] = cell;
+                for (size_t f = 0; f < mFields.size(); ++f) mFields[f][at] = values[f];
+                moved = true;
+            }
+        if (moved) mMoved.store(true, std::memory_order_relaxed);
     }
 
     // Hoare partition of cells [b, e) and their values: those with lower[axis] < plane first.
     // Returns the first of the others; with `stats`, adds each side's cells to left and right.
     size_t partition(size_t b, size_t e, int axis, int32_t plane, bool stats, CellStats& left, CellStats& right) {
         size_t i = b, j = e;
-        for (;;) {
+        for (bool swapped = false;; swapped = true) {
             if (!stats) {
                 while (i < j && mCells[i].lower[axis] < plane) ++i;
                 while (i < j && mCells[j - 1].lower[axis] >= plane) --j;
@@ -345,7 +573,10 @@ private:
                 while (i < j && mCells[i].lower[axis] < plane) left.add(mCells[i++]);
                 while (i < j && mCells[j - 1].lower[axis] >= plane) right.add(mCells[--j]);
             }
-            if (i >= j) return i;
+            if (i >= j) {
+                if (swapped) mMoved.store(true, std::memory_order_relaxed);
+                return i;
+            }
             swapCells(i, j - 1);
         }
     }
@@ -414,6 +645,7 @@ private:
             Cursor r(wrongRight, first), l(wrongLeft, first);
             for (size_t m = first; m < end; ++m, r.next(), l.next()) swapCells(r.pos, l.pos);
         });
+        if (nr > 0) mMoved.store(true, std::memory_order_relaxed);
         return split;
     }
 
@@ -431,6 +663,7 @@ private:
     amr::Model& mModel;
     std::vector<amr::Cell>& mCells;
     std::vector<float*> mFields;
+    size_t mPlanCells;  // nodes at least this large are planned on a cube grid (BrickBuildTuning)
     std::atomic<bool> mMoved{false};  // some cell changed place
     std::atomic<uint64_t> mPlaced{0};  // cells in bricks so far
     std::mutex mBarMutex;
@@ -439,7 +672,7 @@ private:
 
 }  // namespace
 
-BrickSet buildBricks(amr::Model& model) {
+BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning) {
     Timer timer;
     BrickSet out;
     const size_t n = model.cells.size();
@@ -447,7 +680,7 @@ BrickSet buildBricks(amr::Model& model) {
     for (const amr::Field& f : model.fields)
         AMRVK_CHECK(f.values.size() == n, model.source, ": field '", f.name, "' has ", f.values.size(),
                     " values for ", n, " cells");
-    BrickBuilder builder(model);
+    BrickBuilder builder(model, std::max<size_t>(tuning.planCells, 2));
     try {
         out.bricks = builder.build(0, n, builder.info(0, n));
     } catch (...) {

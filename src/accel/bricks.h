@@ -51,7 +51,14 @@ struct BrickSet {
 // inside one cell of its own) and throws "SOURCE: overlapping cells: (lower ..) lies inside (..)";
 // the model is then some permutation of itself. The order is a function of the set of cells, so
 // building again (or from any file order) gives the same model and bricks.
-BrickSet buildBricks(amr::Model& model);
+//
+// Where a node's cube grid (its cells' statistics per coarsest cell) decides its top levels, the
+// build plans them on the grid and moves the cells once (a multi-way partition) instead of once per
+// level; the bricks and the order are the same either way.
+struct BrickBuildTuning {
+    size_t planCells = size_t{1} << 16;  // nodes of at least this many cells are planned; SIZE_MAX: never
+};
+BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning = {});
 
 // Reads a .bricks file of the ExaBrick builders (records: int3 size, int3 lower, int level,
 // int cellId[size]) and checks it against the model: every cell id valid and used once, ids -1

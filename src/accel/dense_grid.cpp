@@ -77,6 +77,7 @@ DenseGrid buildDenseGrid(const amr::Model& model, const BrickSet& bricks, std::s
     // Inside mask: rasterise the closed leaf-cell boxes; a sample is inside when its centre
     // origin + (i + 0.5) W lies in [lo, hi], i.e. 2(lo - o) - W <= 2 i W <= 2(hi - o) - W.
     // Inside samples hold 0 until evaluated, the others NaN.
+    AMRVK_CHECK(!model.cells.empty(), "dense sampler: the cells were released after the brick build (internal)");
     g.values.assign(total, kNaN);
     const int64_t w = amr::cellWidth(level);
     for (const amr::Cell& c : model.cells) {

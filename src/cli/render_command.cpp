@@ -187,7 +187,13 @@ LoadedData loadData(const session::PictureDescription& description, [[maybe_unus
         data.volume = data.part->volume;
     } else
 #endif
-        data.volume = session::loadVolume(description.session);
+    {
+        // One picture and nothing after it that reads the cells: they go once the bricks exist
+        // (issue 31, point 7). Under mpirun the ranks compare cell counts; the dense sampler
+        // rasterises the cells.
+        const bool release = !world && description.session.structure.sampler != scene::SamplerKind::Dense;
+        data.volume = session::loadVolume(description.session, {.releaseCells = release});
+    }
     data.readSeconds = readTimer.seconds() - data.volume->bricks.buildSeconds;
     return data;
 }

@@ -29,8 +29,13 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
                                           accel::BrickSet* given);
 }
 
-std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName) {
-    return makeMutableVolume(std::move(model), fieldName, nullptr, nullptr);
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, const VolumeOptions& options) {
+    std::shared_ptr<Volume> v = makeMutableVolume(std::move(model), fieldName, nullptr, nullptr);
+    if (options.releaseCells) {
+        std::vector<amr::Cell>().swap(v->model.cells);  // frees the memory, not just the size
+        v->cellsReleased = true;
+    }
+    return v;
 }
 
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, accel::BrickSet given) {
@@ -45,6 +50,7 @@ namespace {
 std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fieldName, const VolumeFrame* frame,
                                           accel::BrickSet* given) {
     auto v = std::make_shared<Volume>();
+    v->cellCount = model.cells.size();
     const amr::Field& field = fieldName.empty() ? model.defaultField() : model.field(fieldName);
     v->fieldIndex = size_t(&field - model.fields.data());
     v->summary = amr::summarize(model);

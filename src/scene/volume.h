@@ -39,6 +39,10 @@ struct Volume {
     // One value of the field per brick slot (NaN for an empty slot) when the bricks were given
     // (bricks.cellIds not empty: a .bricks file, the model in its file order); else empty.
     std::vector<float> slotValues;
+    // The cells were freed after the brick build (VolumeOptions::releaseCells); cellCount holds
+    // their number.
+    bool cellsReleased = false;
+    uint64_t cellCount = 0;  // leaf cells of the model, released or not
 
     const amr::Field& field() const { return model.fields[fieldIndex]; }
     // The field in brick-slot order: the model's own values when it is in brick order.
@@ -68,11 +72,22 @@ struct Volume {
     shared::AabbGpu toLocal(const accel::BoxD& voxelBox) const;
 };
 
+// What makeVolume keeps of the model once the bricks exist.
+struct VolumeOptions {
+    // Frees the 16-byte cell array after the brick build (4 of the 20 bytes per cell of a
+    // one-field model are left): the bricks hold every cell's position, and the field in brick
+    // order is all the traversals and the ext-brick, abr and grid samplers read. For a one-shot
+    // render: model.cells is then empty (Volume::cellsReleased), and what reads the cells (the
+    // dense sampler, the majorant check, histograms, reference samplers) refuses with an error.
+    bool releaseCells = false;
+};
+
 // Takes `model` (validated cells, as amr::readModel returns them), selects `field` (a loaded
 // field's name; empty: the default field) and builds the bricks, which puts the model in brick
 // order. Throws a one-line error for an unknown field, overlapping cells or a domain wider than
 // 2^31 finest cells (what local int32 coordinates can hold).
-std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field = {});
+std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view field = {},
+                                         const VolumeOptions& options = {});
 // makeVolume with bricks made elsewhere (accel::readBricksFile: checked against `model`, may have
 // empty slots): the model keeps its order and the field is copied into slot order. What `amrvk
 // info --bricks` describes; the renderers build their own bricks.

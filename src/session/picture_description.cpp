@@ -10,7 +10,7 @@
 
 namespace amrvk::session {
 
-std::shared_ptr<const scene::Volume> loadVolume(const Session& s) {
+std::shared_ptr<const scene::Volume> loadVolume(const Session& s, const scene::VolumeOptions& options) {
     AMRVK_CHECK(!s.input.empty(), "no input data set (give one, or --session FILE)");
     amr::ReadOptions ro = s.read;
     if (!s.field.empty()) ro.fields = {s.field};
@@ -19,7 +19,7 @@ std::shared_ptr<const scene::Volume> loadVolume(const Session& s) {
         ProgressStage stage("reading " + s.input);
         model = amr::readModel(s.input, ro);
     }
-    return scene::makeVolume(std::move(model), s.field);
+    return scene::makeVolume(std::move(model), s.field, options);
 }
 
 namespace {

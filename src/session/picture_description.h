@@ -50,7 +50,7 @@ struct PictureDescription {
 
 // Reads the data a session names (its input, read options and field; only that field is loaded
 // when one is named) and makes the volume every picture of it shares. Progress on stderr.
-std::shared_ptr<const scene::Volume> loadVolume(const Session& s);
+std::shared_ptr<const scene::Volume> loadVolume(const Session& s, const scene::VolumeOptions& options = {});
 
 // `d` fitted to `volume`: the field named, the TF loaded (tfSource; a fitted spiky or foggy notes
 // the percentiles it was laid over), the camera framed

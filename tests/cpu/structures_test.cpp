@@ -131,6 +131,37 @@ TEST(Bricks, ParallelPartitionsNearTheRootGiveTheSameBricks) {
     EXPECT_EQ(shuffled.fields[0].values, m.fields[0].values);
 }
 
+// The top levels planned on a cube grid, their cells moved once (BrickBuildTuning::planCells), give
+// the bricks and the model order of the level-by-level splits exactly: on block-structured clouds
+// and a cell octree, from a shuffled order, planned at the default size and at every node.
+TEST(Bricks, PlannedTopLevelsGiveTheBricksOfLevelByLevelSplits) {
+    for (const auto& [kind, cells, block] : {std::tuple{amr::SyntheticKind::Cloud, 300000, 8},
+                                             std::tuple{amr::SyntheticKind::Cloud, 60000, 1},
+                                             std::tuple{amr::SyntheticKind::Shells, 100000, 4}}) {
+        amr::SyntheticParams p;
+        p.kind = kind;
+        p.cells = uint64_t(cells);
+        p.blockCells = block;
+        p.seed = 5;
+        const amr::Model original = shuffledCopy(amr::makeSyntheticModel(p), 13);
+        amr::Model levelByLevel = original;
+        const BrickSet want = buildBricks(levelByLevel, {.planCells = SIZE_MAX});
+        for (size_t planCells : {size_t{1} << 16, size_t{2}}) {
+            SCOPED_TRACE(strCat("cells ", cells, " block ", block, " planCells ", planCells));
+            amr::Model m = original;
+            const BrickSet got = buildBricks(m, {.planCells = planCells});
+            ASSERT_EQ(got.bricks.size(), want.bricks.size());
+            for (size_t k = 0; k < got.bricks.size(); ++k) {
+                const Brick &g = got.bricks[k], &w = want.bricks[k];
+                ASSERT_TRUE(g.lower == w.lower && g.size == w.size && g.level == w.level && g.begin == w.begin)
+                    << "brick " << k;
+            }
+            EXPECT_EQ(std::memcmp(m.cells.data(), levelByLevel.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+            EXPECT_EQ(m.fields[0].values, levelByLevel.fields[0].values);
+        }
+    }
+}
+
 // Overlaps are found by the build itself (no hash): a cell inside a coarser one, and a duplicate,
 // each wherever it sits in the file; the message names both cells by position and level.
 TEST(Bricks, OverlappingCellsAreFoundByTheBuild) {

@@ -181,6 +181,34 @@ TEST(VolumeScene, TheVolumeOwnsTheModelItReorders) {
     EXPECT_THROW(scene::makeVolume(m, "no-such-field"), Error);
 }
 
+TEST(VolumeScene, ReleasedCellsLeaveTheSameBricksValuesAndRanges) {
+    // VolumeOptions::releaseCells (one-shot renders): the cell array is freed after the brick
+    // build, and every structure of the paper's samplers is what the volume with its cells builds;
+    // what needs the cells refuses instead of reading an empty array.
+    const std::shared_ptr<const scene::Volume> kept = scene::makeVolume(test::makeThreeLevelCloud());
+    const std::shared_ptr<const scene::Volume> v =
+        scene::makeVolume(test::makeThreeLevelCloud(), "", {.releaseCells = true});
+    EXPECT_TRUE(v->cellsReleased);
+    EXPECT_FALSE(kept->cellsReleased);
+    EXPECT_TRUE(v->model.cells.empty());
+    EXPECT_EQ(v->model.cells.capacity(), 0u) << "the memory is freed, not just the size";
+    EXPECT_EQ(v->cellCount, kept->model.cells.size());
+    EXPECT_EQ(kept->cellCount, kept->model.cells.size());
+    EXPECT_EQ(v->modelBytes() + kept->cellCount * sizeof(amr::Cell), kept->modelBytes());
+    ASSERT_EQ(v->bricks.bricks.size(), kept->bricks.bricks.size());
+    ASSERT_EQ(v->brickValues().size(), kept->brickValues().size());
+    EXPECT_TRUE(std::equal(v->brickValues().begin(), v->brickValues().end(), kept->brickValues().begin()));
+    scene::StructureConfig c;  // grid-dda/grid: macrocell ranges and brick lists
+    scene::VolumeScene a(kept, c), b(v, c);
+    ASSERT_EQ(a.grid->ranges.size(), b.grid->ranges.size());
+    for (size_t i = 0; i < a.grid->ranges.size(); ++i) {
+        EXPECT_EQ(a.grid->ranges[i].lo, b.grid->ranges[i].lo) << i;
+        EXPECT_EQ(a.grid->ranges[i].hi, b.grid->ranges[i].hi) << i;
+    }
+    c.sampler = scene::SamplerKind::Dense;
+    EXPECT_THROW(b.configure(c), Error);
+}
+
 TEST(VolumeScene, GivenBricksKeepTheModelOrderAndGiveTheSameRanges) {
     // `amrvk info --bricks FILE`: a volume over bricks read from a file (the model in its own order,
     // the field copied into slot order, NaN for an empty slot) builds every plan's structures, and
