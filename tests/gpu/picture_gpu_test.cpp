@@ -26,6 +26,7 @@ class PictureGpu : public test::GpuTest {};
 session::PictureDescription cloudDescription(const fs::path& input) {
     session::PictureDescription d;
     d.session.input = input.string();
+    d.session.read.scale = amr::FieldScale::Linear;  // the cells' values as they are, as from memory
     d.session.settings.width = d.session.settings.height = 20;
     d.session.settings.mode = scene::Mode::Ss;
     d.session.settings.densityScale = 3;

@@ -79,7 +79,7 @@ int run(const std::string& commandLine, const fs::path& dir, const std::string& 
 
 // The picture options every run here shares: small, quick, and sensitive to the density (an
 // optically thin-to-medium cloud on black, so the comparison has power).
-const std::string kPicture = " --size 48x32 --tf ramp --tf-range 0 1.2 --density-scale 1 --grid 16 --mode ae"
+const std::string kPicture = " --size 48x32 --scale linear --tf ramp --tf-range 0 1.2 --density-scale 1 --grid 16 --mode ae"
                              " --background 0 0 0 --backend sw";
 
 // `render` of a session in process, with another seed (independent samples) and a density factor.
@@ -209,7 +209,7 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
 
 TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
     const fs::path dir = scratchWithShaders("viewer-reload");
-    // ae with a camera looking past the data: every pixel is the background radiance (ambient 1).
+    // ae with a camera looking past the data: every pixel is the background radiance (1, given).
     test::writeAll(dir / "script.txt",
                    "3 screenshot " + (dir / "before.pfm").string() + "\n"
                    "4 edit-shader ../lib/estimator.glsl \"? color : P.shading.background;\" \"? color : 2.0 * P.shading.background;\"\n"
@@ -219,7 +219,7 @@ TEST_F(ViewerGpu, ShaderEditsReloadAndAnErrorKeepsThePreviousPipeline) {
                    "32 reload\n"
                    "60 screenshot " + (dir / "kept.pfm").string() + "\n"
                    "61 quit\n");
-    const int rc = run(amrvkBinary() + " view " + sample() + " --size 8x8 --mode ae --spp 4 --backend sw --camera 1000 0 0 "
+    const int rc = run(amrvkBinary() + " view " + sample() + " --size 8x8 --mode ae --spp 4 --background 1 1 1 --backend sw --camera 1000 0 0 "
                            "2000 0 0 0 0 1 --headless --shader-dir " + (dir / "shaders" / "passes").string() +
                            " --script " + (dir / "script.txt").string() + " --validation",
                        dir, "view");

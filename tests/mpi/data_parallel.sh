@@ -47,13 +47,15 @@ same cloud-ae-2 2 "$cloud" "${absorb[@]}"
 same cloud-ae-3 3 "$cloud" "${absorb[@]}"
 # ss and ms (shadow rays through other ranks' parts, roulette) at 2048 spp: enough for the power
 # check below to reject a 5% denser part with pooled |z| well above 4.
-ss=(--size 32x32 --spp 2048 --mode ss --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3)
-ms=(--size 32x32 --spp 2048 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2)
+# As written before the first picture's defaults: linear values, the ramp, the ambient behind.
+old=(--scale linear --tf ramp --background 1 1 1)
+ss=(--size 32x32 --spp 2048 --mode ss --scale linear --tf ramp --tf-range 0 1 --light-dir 1 1 0 2 2 2 --ambient 0.3 0.3 0.3 --background 0.3 0.3 0.3)
+ms=(--size 32x32 --spp 2048 --mode ms "${old[@]}" --tf-range 0 1 --light-dir 1 1 0 2 2 2)
 same cloud-ss-2 2 "$cloud" "${ss[@]}"
 same cloud-ss-3 3 "$cloud" "${ss[@]}"
 same cloud-ms-2 2 "$cloud" "${ms[@]}"
 same cloud-ms-3 3 "$cloud" "${ms[@]}"
-same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms --tf-range 0 4 --density-scale 2
+same enzo-ms-2 2 "$enzo" --size 32x32 --spp 128 --mode ms "${old[@]}" --tf-range 0 4 --density-scale 2
 # Presets fitted to the data (no --tf-range): every rank fits spiky and foggy to the whole field's
 # percentiles (the summed counts of the cells each owns), the TF one process fits; the note each
 # prints names the percentiles it used.
@@ -67,7 +69,7 @@ for fit in "enzo-spiky-2 2 $enzo spiky" "cloud-foggy-3 3 $cloud foggy"; do
   else echo "FAIL: $1: one process fits '$one', $2 ranks '$many'"; fail=1; fi
 done
 # A cut-away (docs/cut-aways.md): a crop box across the partition faces and an oblique clip plane.
-same cloud-ms-cut-2 2 "$cloud" --size 32x32 --spp 128 --mode ms --tf-range 0 1 --light-dir 1 1 0 2 2 2 \
+same cloud-ms-cut-2 2 "$cloud" --size 32x32 --spp 128 --mode ms "${old[@]}" --tf-range 0 1 --light-dir 1 1 0 2 2 2 \
   --crop 0 0 0 512 512 300 --clip 256 256 256 1 1 0
 
 # The report: boxes that tile the bounds without overlap, each cell owned once, halos held.
