@@ -99,10 +99,10 @@ Model readModel(const fs::path& path, const ReadOptions& options) {
 FieldScale resolvedScale(const fs::path& path, const ReadOptions& options) {
     if (options.scale != FieldScale::Auto) return options.scale;
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
-    ReadOptions linear = options;
-    linear.scale = FieldScale::Linear;
     if (format != "exabrick") return scaleOf(readModel(path, options));
     // The whole field's extremes: one streamed pass over the values.
+    ReadOptions linear = options;
+    linear.scale = FieldScale::Linear;
     float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
     visitExaBrick(path, linear, uint64_t(1) << 20, [&](Model& chunk) {
         for (float v : chunk.fields[0].values)
@@ -133,9 +133,9 @@ void visitCells(const fs::path& path, const ReadOptions& given, const std::funct
                 Model* head) {
     AMRVK_CHECK(given.fields.size() <= 1, "internal: visitCells takes one field");
     ReadOptions options = given;
-    options.scale = resolvedScale(path, given);
     const std::string format = options.format.empty() || options.format == "auto" ? detectFormat(path) : options.format;
     if (format == "exabrick") {
+        options.scale = resolvedScale(path, given);  // chunks need it before the first (readModel decides alone)
         const double floor = logFloorOf(path, options);
         visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
             applyNanPolicy(chunk, options.nanPolicy);

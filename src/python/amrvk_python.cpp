@@ -382,7 +382,8 @@ struct PyTf {
         checkTfRange(lo, hi, "preset");
         return {scene::TfChannels::split(scene::makePreset(name, lo, hi))};
     }
-    // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles).
+    // Fitted to a volume's data as `amrvk render --tf NAME` fits it (spiky and foggy over its percentiles,
+    // layers over its volume histogram).
     static PyTf presetFor(const std::string& name, const PyVolume& v) {
         return {scene::TfChannels::split(scene::makePreset(name, v.volume->percentiles, v.volume->volumeHistogram))};
     }

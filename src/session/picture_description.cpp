@@ -31,15 +31,6 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
         return std::string(text);
     };
     if (!(p.lo() < p.hi())) return strCat("tf ", name, ": the field has one value (", formatNumber(p.lo()), ")");
-    if (name == "layers") {
-        std::string alphas;  // at each layer's apex
-        for (int k = 0; k < 8; ++k) {
-            if (k) alphas += ' ';
-            alphas += formatNumber(tf.evaluate(float(p.lo() + (k + 0.5) * (double(p.hi()) - p.lo()) / 8)).a);
-        }
-        return strCat("tf layers: 8 layers over [", formatNumber(p.lo()), ", ", formatNumber(p.hi()),
-                      "], alphas by the space their values fill: ", alphas);
-    }
     if (name == "spiky")
         return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values (",
                       formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
