@@ -99,8 +99,9 @@ Renderer.accumulate = _with_progress(Renderer.accumulate)
 
 
 def _repr_png_(self):
-    """Jupyter shows a Renderer as its image so far (tone-mapped sRGB PNG)."""
-    return self.png() if not self.closed and self.spp > 0 else None
+    """Jupyter shows a Renderer as its image so far (tone-mapped sRGB PNG); before any sample, its
+    first frame (the same TF ray-marched, a clean picture in about a second; first_frame)."""
+    return None if self.closed else self.png()
 
 
 def _enter(self):

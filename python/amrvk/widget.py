@@ -1,7 +1,8 @@
 """A Jupyter widget (ipywidgets; Debian: python3-ipywidgets) that shows a Renderer's progressive
 image and orbits it with sliders: ``amrvk.Widget(renderer, spp=256)`` as a cell's last expression.
 
-A background thread adds `batch` samples per pixel at a time until the image has `spp`, showing
+It first shows the renderer's first frame (the picture ray-marched)
+where the renderer holds no sample (Renderer.first_frame). A background thread adds `batch` samples per pixel at a time until the image has `spp`, showing
 the image (the PNG that ``renderer.png()`` makes, legend included where the renderer has one) and
 the samples and mean standard error so far after each batch. Moving a slider sets the renderer's
 camera from the camera it had when the widget was made: turned by `azimuth` degrees about the
@@ -47,6 +48,11 @@ class Widget:
         for slider in (self.azimuth, self.elevation, self.zoom):
             slider.observe(self._moved, names="value")
         self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
+        self.first_frame = None  # the PNG shown before any sample: the renderer's dvr first frame
+        if renderer.spp == 0:  # shown at once, while the first batch runs
+            self.first_frame = self.image.value = renderer.png()
+            f = renderer.first_frame
+            self.status.value = f"first frame (dvr, {f['spp']} spp, dt {f['dt']:g}, noise {f['noise']:.3g}); path tracing"
         self._wake = threading.Event()
         self._idle = threading.Event()
         self._stop = False

@@ -23,19 +23,24 @@ glm::ivec3 MacrocellLayout::cellOf(glm::dvec3 p) const {
                       dims - 1);
 }
 
-glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest) {
+glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest, uint64_t maxMacrocells) {
     glm::dvec3 size(bounds.size());
     double maxSize = std::max({size.x, size.y, size.z});
     // Never more macrocells than voxel units along the longest axis.
     longest = int(std::min<double>(longest, std::max(1.0, maxSize)));
-    glm::ivec3 dims;
-    for (int a = 0; a < 3; ++a)
-        dims[a] = std::clamp(int(std::ceil(size[a] * longest / maxSize - 1e-9)), 1, longest);
+    auto dimsOf = [&](int n) {
+        glm::ivec3 dims;
+        for (int a = 0; a < 3; ++a) dims[a] = std::clamp(int(std::ceil(size[a] * n / maxSize - 1e-9)), 1, n);
+        return dims;
+    };
+    glm::ivec3 dims = dimsOf(longest);
+    auto count = [](glm::ivec3 d) { return uint64_t(d.x) * uint64_t(d.y) * uint64_t(d.z); };
+    while (maxMacrocells > 0 && longest > 1 && count(dims) > maxMacrocells) dims = dimsOf(--longest);
     return dims;
 }
 
-glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds) {
-    if (text == "auto") return autoGridDims(bounds);
+glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds, uint64_t leafCells) {
+    if (text == "auto") return autoGridDims(bounds, 128, leafCells * kAutoMacrocellsPerCell);
     int x = 0, y = 0, z = 0;
     char c1 = 0, c2 = 0, tail = 0;
     glm::ivec3 dims;

@@ -43,11 +43,19 @@ struct RangeGrid : MacrocellLayout {
 struct BrickGrid;
 
 // Grid resolution with `longest` macrocells on the longest axis (at most one per voxel unit) and
-// near-cubical macrocells elsewhere.
-glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest = 128);
+// near-cubical macrocells elsewhere; with maxMacrocells > 0, `longest` shrinks until the grid has
+// at most that many macrocells.
+glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest = 128, uint64_t maxMacrocells = 0);
+
+// What "auto" allows per leaf cell: a finer grid than about one macrocell per cell bounds the
+// field no tighter than its cells do, and its ranges cost more to build than a small data set's
+// whole picture (Enzo DD0018: 137,502 cells, 128^3 ranges in 1.4 s, 64^3 in 0.3 s, with no
+// slower samples; docs/benchmarks.md "Macrocells for small data").
+inline constexpr uint64_t kAutoMacrocellsPerCell = 2;
 
 // Parses "auto", "N" (N on the longest axis) or "NxMxK". Throws on anything else or N outside [1, 4096].
-glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds);
+// "auto" is autoGridDims(bounds) capped at kAutoMacrocellsPerCell x leafCells (no cap when 0).
+glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds, uint64_t leafCells = 0);
 
 // The grid's dims, origin and macrocell size over `bounds`, with no ranges yet.
 MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims);

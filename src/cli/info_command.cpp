@@ -355,7 +355,7 @@ int runInfo(const std::vector<std::string>& argv) {
     ReadArgs read;
     app.add_option("input", input, "the data set")->required()->type_name("INPUT");
     addReadOptions(app, read, false);
-    app.add_option("--grid", gridSpec, "macrocell grid (auto: 128 on the longest axis)")
+    app.add_option("--grid", gridSpec, "macrocell grid (auto: 128 on the longest axis, at most 2 macrocells per leaf cell)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--bricks", bricksFile, "use the bricks of an ExaBrick .bricks file instead of building them")

@@ -319,7 +319,7 @@ void addTfRangeOption(CLI::App& app, PictureArgs& a) {
 
 // The structures' sizes: macrocell grid, kd-tree leaves, dense grid.
 void addStructureOptions(CLI::App& app, PictureArgs& a) {
-    app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis)")
+    app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis, fewer for small data: at most 2 macrocells per leaf cell)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
     app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")

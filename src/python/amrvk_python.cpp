@@ -35,6 +35,7 @@
 #include "core/strings.h"
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
+#include "picture/first_frame.h"
 #include "picture/picture.h"
 #include "python/keyword_messages.h"
 #include "scene/camera.h"
@@ -583,9 +584,11 @@ public:
     bool legendWanted(const py::object& legend) const {
         return legend.is_none() ? session().legend.show : keywordArg<bool>(legend, "legend", "True, False or None");
     }
-    // The picture so far, with the legend drawn at its side or over it when `withLegend`.
+    // The picture so far, with the legend drawn at its side or over it when `withLegend`. Before
+    // any sample it is the first frame (firstFrame), not a black image.
     Image picture(bool withLegend) const {
-        Image mean = output().mean;
+        const scene::RenderOutput out = output();
+        Image mean = out.spp > 0 ? out.mean : firstFrame().image;  // before any sample: the first frame
         if (!withLegend) return mean;
         const session::Session s = session();
         if (!mFont || !(mFontFor == s.legend.font)) {
@@ -668,13 +671,59 @@ public:
             for (float x : var) sum += std::sqrt(std::max(x, 0.0f));
             noise = ", mean standard error " + g4(sum / double(std::max<size_t>(var.size(), 1)));
         }
+        const picture::FirstFrame* f = shownFirstFrame();
+        const std::string first = f ? strCat(" (shown: the dvr first frame, ", picture::kFirstFrameSpp, " spp, dt ",
+                                             g4(f->dt), ", noise ", g4(f->noise), ")")
+                                    : std::string();
         return strCat("Renderer(", mPicture.volume->model.source, " '", mPicture.volume->field().name, "', ", rs.width,
                       "x", rs.height, " ", scene::modeName(rs.mode), ", tf '", s.tf.name, "' over [", g4(tf.firstPosition()),
                       ", ", g4(tf.lastPosition()), "], density_scale ", g4(rs.densityScale), ", ", out.spp,
-                      " spp so far", noise, ", ", scene::traversalName(c.traversal), "/", scene::samplerName(c.sampler),
+                      " spp so far", noise, first, ", ", scene::traversalName(c.traversal), "/", scene::samplerName(c.sampler),
                       "/", scene::backendName(c.backend), ")");
     }
     std::string noSessionReason;  // why save_session cannot name a file (a volume from arrays or yt)
+
+    // The first frame (picture/first_frame.h): what a renderer with no sample shows (inline,
+    // image(), save()): the same picture ray-marched, clean in about a second where path tracing a
+    // haze is still grainy at 16 spp (docs/python.md section 1). The renderer keeps its own mode
+    // and no sample, so render() and accumulate() path-trace from scratch and refine it. Kept
+    // until an edit resets the image.
+    struct ShownFirstFrame {
+        picture::FirstFrame frame;
+        uint64_t resets = 0;  // the renderer's accumulationResets after it was made
+    };
+    const picture::FirstFrame& firstFrame() const {
+        render::Renderer& r = *open().renderer;
+        if (mFirstFrame && mFirstFrame->resets == r.updateCounts().accumulationResets) return mFirstFrame->frame;
+        py::gil_scoped_release release;
+        std::lock_guard lock(mMutex);
+        ShownFirstFrame shown{picture::renderFirstFrame(r)};
+        AMRVK_CHECK(mCtx->validationErrors() == 0, "Vulkan validation reported ", mCtx->validationErrors(),
+                    " error(s); last: ", mCtx->lastValidationMessage());
+        shown.resets = r.updateCounts().accumulationResets;
+        mFirstFrame = std::move(shown);
+        return mFirstFrame->frame;
+    }
+    // The first frame shown while the renderer holds no sample: {"mode", "spp", "dt", "noise",
+    // "gpu_seconds", "frames"}; None before one is shown and once the image has samples.
+    const picture::FirstFrame* shownFirstFrame() const {
+        if (mClosed || !mPicture.renderer || !mFirstFrame || mPicture.renderer->accumulatedSpp() > 0 ||
+            mFirstFrame->resets != mPicture.renderer->updateCounts().accumulationResets)
+            return nullptr;
+        return &mFirstFrame->frame;
+    }
+    py::object firstFrameInfo() const {
+        const picture::FirstFrame* f = shownFirstFrame();
+        if (!f) return py::none();
+        py::dict d;
+        d["mode"] = "dvr";
+        d["spp"] = picture::kFirstFrameSpp;
+        d["dt"] = f->dt;
+        d["noise"] = f->noise;
+        d["gpu_seconds"] = f->gpuSeconds;
+        d["frames"] = f->frames;
+        return d;
+    }
 
 private:
     static constexpr double kChunkSeconds = 0.25;
@@ -698,6 +747,7 @@ private:
     mutable std::unique_ptr<Font> mFont;  // the legend's, opened when first drawn
     mutable std::string mFontFor;         // the legend.font it was opened for
     double mSecondsPerRow = 0;  // measured, for chunk sizes
+    mutable std::optional<ShownFirstFrame> mFirstFrame;  // the last first frame made (firstFrame)
     bool mClosed = false;
 };
 
@@ -1010,6 +1060,9 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
              py::arg("legend") = py::none(), py::arg("until") = py::none(),
              "from scratch: spp samples per pixel (default the session's), returns image(legend); until=E stops "
              "once the noise (mean relative standard error of the visible pixels) is at most E, spp the cap")
+        .def_property_readonly("first_frame", &PyRenderer::firstFrameInfo,
+                               "while the image has no sample and its first frame was shown (inline, image(), "
+                               "save()): {'mode': 'dvr', 'spp', 'dt', 'noise', 'gpu_seconds', 'frames'}; else None")
         .def_property_readonly("noise", &PyRenderer::noise,
                                "the image's noise: mean relative standard error of its visible pixels (None below 2 spp)")
         .def("accumulate", &PyRenderer::accumulate, py::arg("n"), py::arg("progress") = py::none(),

@@ -77,7 +77,7 @@ void VolumeScene::configure(const StructureConfig& next) {
     }
     if (p.brickGrid && !brickGrid) {
         ProgressStage stage("brick grid");
-        brickGrid = accel::buildBrickGrid(v.bricks, v.bounds(), accel::parseGridDims(next.grid, v.bounds()));
+        brickGrid = accel::buildBrickGrid(v.bricks, v.bounds(), accel::parseGridDims(next.grid, v.bounds(), v.cellCount));
         stage.setResult(formatBytes(brickGrid->memoryBytes()));
         buildSeconds.brickGrid = brickGrid->buildSeconds;
     }
@@ -91,7 +91,7 @@ void VolumeScene::configure(const StructureConfig& next) {
 void VolumeScene::buildMacrocellRanges() {
     const Volume& v = *mVolume;
     const StructurePlan& p = mPlan;
-    const glm::ivec3 dims = accel::parseGridDims(mConfig.grid, v.bounds());
+    const glm::ivec3 dims = accel::parseGridDims(mConfig.grid, v.bounds(), v.cellCount);
     const uint64_t macrocells = uint64_t(dims.x) * uint64_t(dims.y) * uint64_t(dims.z);
     ProgressStage stage(strCat("macrocell value ranges of ", dims.x, "x", dims.y, "x", dims.z),
                         memoryNote(macrocells * sizeof(accel::ValueRange)));

@@ -187,7 +187,9 @@ private:
     bool mQuit = false;
     bool mInteracting = false;                    // a change or a drag this frame: preview
     bool mNeedPreview = true;                     // nothing on screen for the current picture yet: preview first
+    bool mPreviewing = false;                     // this frame traces a preview (ray-marched, one sample)
     int mPreviewScale = 1;                        // the renderer's current size is full / scale
+    std::map<std::string, uint64_t> mPreviewFrames;  // preview frames traced, by mode (--stats)
     bool mDisplayFresh = false;                   // the display buffer holds an image worth showing
     std::optional<Clock::time_point> mChangedAt;  // since the last change, until the first full sample
     double mTraceSeconds = 0;  // wall seconds spent in trace() in all
@@ -793,9 +795,14 @@ void ViewerApp::applyEdits() {
     if (!changes.empty() && mFrame > 0) mInteracting = true;
     scene::RenderSettings s = full;
     if (mInteracting) mNeedPreview = true;
+    mPreviewing = mNeedPreview;
     mPreviewScale = mNeedPreview ? mBudget.previewScale(full.width, full.height) : 1;
     s.width = std::max(1, full.width / mPreviewScale);
     s.height = std::max(1, full.height / mPreviewScale);
+    // The preview (the first frame of a picture, and every frame while interacting) is the same
+    // TF ray-marched: clean in one sample where path tracing a haze is grainy for many; the path
+    // tracer then refines the still picture at full resolution.
+    if (mPreviewing) s.mode = scene::Mode::Dvr;
     mRenderer->setSettings(s);
     if (!changes.empty() && mFrame > 0) noteReset(scene::describe(changes));
     if (mInteracting) mChangedAt = Clock::now();
@@ -805,14 +812,15 @@ void ViewerApp::applyEdits() {
 void ViewerApp::trace() {
     const scene::RenderSettings& s = mRenderer->settings();
     const uint32_t limit = mState.spp;
-    const bool done = mPreviewScale == 1 && limit > 0 && mRenderer->accumulatedSpp() >= limit;
+    const bool done = !mPreviewing && limit > 0 && mRenderer->accumulatedSpp() >= limit;
     if (done) {
         if (mWindow) mWindow->waitEvents(0.03);  // converged: wait for the user instead of spinning
         return;
     }
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     const double gpuBefore = mRenderer->stats().gpuSeconds;
-    if (mPreviewScale > 1) {
+    if (mPreviewing) {
+        ++mPreviewFrames[scene::modeName(s.mode)];
         mRenderer->accumulate(1);
         mBudget.record(mRenderer->stats().gpuSeconds - gpuBefore, pixels);
         mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
@@ -835,7 +843,7 @@ void ViewerApp::trace() {
             mChangedAt.reset();
         }
     }
-    mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
+    mDisplayFresh = mPreviewing || mRenderer->accumulatedSpp() >= 1;
 }
 
 void ViewerApp::present() {
@@ -851,7 +859,7 @@ void ViewerApp::present() {
         }
         mDisplay.fillZero();
         mDisplayRect = picture;
-        mDisplayFresh = mPreviewScale > 1 || mRenderer->accumulatedSpp() >= 1;
+        mDisplayFresh = mPreviewing || mRenderer->accumulatedSpp() >= 1;
     }
     // The swapchain can lag the layout by a frame while the window is resized: draw only a
     // rectangle that lies in it.
@@ -953,6 +961,7 @@ void ViewerApp::finishSample() {
     const scene::RenderSettings& s = mState.settings;
     mRenderer->setSettings(s);
     mPreviewScale = 1;
+    mPreviewing = false;
     if (mRenderer->accumulatedSpp() == 0 || mRenderer->rowsDone() > 0)
         mRenderer->accumulateRows(uint32_t(s.height) - mRenderer->rowsDone());
 }
@@ -1034,6 +1043,7 @@ void ViewerApp::writeStats() const {
     j["interactiveFrames"] = summary(mTimings.interactiveFrames);
     j["idleFrames"] = summary(mTimings.idleFrames);
     j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
+    j["previewFrames"] = mPreviewFrames;  // by mode: dvr (the preview is always ray-marched)
     j["spp"] = mRenderer->accumulatedSpp();
     j["resets"] = nlohmann::ordered_json::array();
     for (const Reset& r : mResets)

@@ -339,3 +339,21 @@ TEST(RangeGrid, ParsesGridOptions) {
     EXPECT_THROW(parseGridDims("4x5", b), Error);
     EXPECT_THROW(parseGridDims("big", b), Error);
 }
+
+// "auto" never gives a small data set more than kAutoMacrocellsPerCell macrocells per leaf cell:
+// the largest near-cubical grid under the cap (shrinking the longest axis keeps the aspect), and
+// the full 128 once the cells can pay for it; N and NxMxK are taken as given.
+TEST(RangeGrid, AutoGridFollowsTheCellCount) {
+    amr::Box3l b{{0, 0, 0}, {256, 128, 64}};  // 128x64x32 = 262,144 macrocells uncapped
+    EXPECT_EQ(parseGridDims("auto", b, 131072), glm::ivec3(128, 64, 32));  // 2 x 131,072 = the full grid
+    const glm::ivec3 capped = parseGridDims("auto", b, 131071);
+    EXPECT_EQ(capped, glm::ivec3(127, 64, 32));  // one step below: 260,096 <= 262,142
+    const glm::ivec3 small = parseGridDims("auto", b, 1000);  // <= 2,000 macrocells
+    EXPECT_LE(uint64_t(small.x) * small.y * small.z, 2000u);
+    EXPECT_GT(uint64_t(small.x + 1) * ((small.x + 1 + 1) / 2) * ((small.x + 1 + 3) / 4), 2000u);  // the next is over
+    EXPECT_EQ(small, autoGridDims(b, small.x));  // the same shape as the uncapped grid of that size
+    EXPECT_EQ(parseGridDims("auto", b, 1), glm::ivec3(2, 1, 1));  // two macrocells for one cell
+    EXPECT_EQ(autoGridDims(b, 128, 1), glm::ivec3(1));            // and never below one macrocell
+    EXPECT_EQ(parseGridDims("64", b, 10), glm::ivec3(64, 32, 16));  // given sizes are not capped
+    EXPECT_EQ(parseGridDims("4x5x6", b, 10), glm::ivec3(4, 5, 6));
+}

@@ -10,6 +10,7 @@
 #include "gpu_fixture.h"
 #include "image_compare.h"
 #include "model_fixtures.h"
+#include "picture/first_frame.h"
 #include "picture/picture.h"
 #include "render_fixtures.h"
 #include "scene/camera.h"
@@ -124,4 +125,40 @@ TEST_F(PictureGpu, TheCommandLineOfADescriptionRendersItsPicture) {
     d.session.settings.seed += 1;
     EXPECT_GT(maxRelativeDifference(viaCommand, picture::makePicture(ctx(), session::loadVolume(d.session), d).render().mean),
               1e-3);
+}
+
+// The first frame (picture/first_frame.h): the picture ray-marched at 2 spp, the step halved while
+// it is noisier than kFirstFrameNoise and the next fits the budget; the renderer is left as given,
+// with no sample. Checked against dvr renders of the same description at the steps it reports.
+TEST_F(PictureGpu, TheFirstFrameHalvesTheStepWhileItIsNoisyAndLeavesTheRendererAsGiven) {
+    const fs::path dir = test::scratchDir();
+    amr::writeExaBrick(test::makeThreeLevelCloud(), dir / "cloud", true);
+    session::PictureDescription d = cloudDescription(dir / "cloud.cells");
+    d.session.settings.width = d.session.settings.height = 32;
+    d.session.settings.mode = scene::Mode::Ms;
+    d.tfSource = session::TfSource{.name = "spiky"};  // thin layers: aliasing at dt 0.5
+    picture::Picture p = picture::makePicture(ctx(), session::loadVolume(d.session), d);
+    const scene::RenderSettings given = p.renderer->settings();
+    const picture::FirstFrame f = picture::renderFirstFrame(*p.renderer);
+    EXPECT_TRUE(p.renderer->settings() == given);
+    EXPECT_EQ(p.renderer->accumulatedSpp(), 0u);
+    // dvr of the same description at a step: what a dvr renderer of it renders at 2 spp.
+    auto dvrAt = [&](double dt) {
+        scene::RenderSettings s = given;
+        s.mode = scene::Mode::Dvr;
+        s.dvrStep = dt;
+        return p.renderer->render(s, picture::kFirstFrameSpp);
+    };
+    const scene::RenderOutput coarse = dvrAt(given.dvrStep);
+    ASSERT_GT(scene::meanRelativeError(coarse), picture::kFirstFrameNoise) << "the case must need refining";
+    ASSERT_GE(f.frames, 2u);
+    EXPECT_DOUBLE_EQ(f.dt, given.dvrStep / double(1u << (f.frames - 1)));
+    const bool budgetLeft = f.gpuSeconds * 1.5 < picture::kFirstFrameGpuSeconds;  // this machine: far under
+    EXPECT_TRUE(f.noise <= picture::kFirstFrameNoise || f.dt / 2 < picture::kFirstFrameMinDt || !budgetLeft)
+        << "stopped early: noise " << f.noise << " at dt " << f.dt;
+    EXPECT_LT(f.noise, scene::meanRelativeError(coarse));
+    const scene::RenderOutput same = dvrAt(f.dt);
+    EXPECT_LT(maxRelativeDifference(f.image, same.mean), 1e-6);
+    EXPECT_NEAR(f.noise, scene::meanRelativeError(same), 1e-9);
+    EXPECT_GT(maxRelativeDifference(f.image, coarse.mean), 1e-3) << "a finer step is another picture";
 }

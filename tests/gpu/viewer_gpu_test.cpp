@@ -196,6 +196,10 @@ TEST_F(ViewerGpu, ScriptedEditsResetTheImageAndEndAtTheFinalState) {
         EXPECT_TRUE(found) << "no reset for " << what << " at frame " << frame << ": " << stats["resets"].dump();
     }
     EXPECT_EQ(stats["spp"].get<uint32_t>(), 128u);
+    // Previews (the first frame, and after each edit) are ray-marched whatever the picture's mode.
+    ASSERT_TRUE(stats["previewFrames"].is_object()) << stats.dump();
+    EXPECT_GE(stats["previewFrames"].value("dvr", uint64_t(0)), expected.size() + 1) << stats["previewFrames"].dump();
+    EXPECT_EQ(stats["previewFrames"].size(), 1u) << stats["previewFrames"].dump();
     const session::Session s = session::loadSession(dir / "final.json");
     EXPECT_EQ(s.structure.traversal, scene::TraversalKind::Abr);
     EXPECT_EQ(s.settings.mode, scene::Mode::Dvr);

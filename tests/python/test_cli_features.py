@@ -121,9 +121,14 @@ def test_the_widget_refines_and_orbits(amrvk):
     pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
     r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **SMALL)
     first = r.camera
+    dvr = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **SMALL).png()  # its first frame
     w = amrvk.Widget(r, spp=8, batch=2)
     try:
+        # At once, before any path-traced sample: the renderer's dvr first frame (the thread
+        # replaces it from its first batch on).
+        assert w.first_frame == dvr
         assert w.wait(120), "the widget reaches its sample count"
+        assert w.image.value != dvr
         assert r.spp == 8 and w.image.value == r.png() and w.status.value.startswith("8/8 spp, mean standard error")
         w.azimuth.value = 90
         w.zoom.value = 2

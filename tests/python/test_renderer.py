@@ -132,9 +132,49 @@ def test_every_edit_follows_the_session(amrvk, tmp_path):
         r.mode = "pt"
 
 
+def test_a_renderer_with_no_sample_shows_its_dvr_first_frame(amrvk):
+    # The first frame is the same picture ray-marched at 2 spp with the step it reports: a dvr
+    # renderer of the same description at that dt gives it sample for sample (independently: it
+    # is that renderer's own render).
+    r = picture(amrvk, mode="ms", seed=5)
+    assert r.first_frame is None, "not made until shown"
+    first = r.image()
+    f = r.first_frame
+    assert f["mode"] == "dvr" and f["spp"] == 2 and f["frames"] >= 1 and f["gpu_seconds"] > 0
+    assert f["dt"] == 0.5 / 2 ** (f["frames"] - 1), "the step starts at the session's 0.5 and halves per frame"
+    dvr = picture(amrvk, mode="dvr", seed=5, dt=f["dt"]).render(spp=2)
+    assert np.max(np.abs(first - dvr)) < 1e-6 * max(1.0, float(np.abs(dvr).max()))
+    assert r.spp == 0 and r.mode == "ms", "the renderer's own mode and (empty) image stay"
+    assert 0 < f["noise"] < 1
+    assert f["noise"] <= 0.05 or f["frames"] > 1 or f["gpu_seconds"] * 3 > 1.0, "refined while noisy and cheap"
+    assert f"shown: the dvr first frame, 2 spp, dt {f['dt']:g}, noise" in repr(r)
+    ms = picture(amrvk, mode="ms", seed=5).render(spp=2)
+    assert np.abs(first - ms)[..., :3].mean() > 1e-3, "the first frame is not the path-traced image"
+    assert r.png() == r._repr_png_() and r._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    # Path tracing then refines it: from the first sample on the image is the renderer's own.
+    image = r.render(spp=2)
+    assert np.max(np.abs(image - ms)) < 1e-6 * max(1.0, float(np.abs(ms).max()))
+    assert r.first_frame is None and "first frame" not in repr(r)
+    # An edit that empties the image makes the next first frame anew, for the new picture.
+    r.density_scale = 1.0
+    assert r.spp == 0 and r.first_frame is None
+    again = r.image()
+    g = r.first_frame
+    thinner = picture(amrvk, mode="dvr", seed=5, density_scale=1.0, dt=g["dt"]).render(spp=2)
+    assert np.max(np.abs(again - thinner)) < 1e-6 * max(1.0, float(np.abs(thinner).max()))
+    assert np.abs(again - first)[..., :3].mean() > 1e-4
+    # A dvr renderer shows a first frame too, and then renders with its own step (0.5), not the
+    # first frame's.
+    d = picture(amrvk, mode="dvr", seed=5)
+    d.image()
+    assert d.spp == 0 and d.first_frame is not None
+    own = picture(amrvk, mode="dvr", seed=5).render(spp=2)
+    assert np.max(np.abs(d.render(spp=2) - own)) < 1e-6 * max(1.0, float(np.abs(own).max()))
+
+
 def test_images_sessions_and_notebooks(amrvk, tmp_path):
     r = picture(amrvk)
-    assert r._repr_png_() is None, "nothing rendered yet"
+    assert r._repr_png_() == r.png() and r.spp == 0, "nothing rendered yet: the first frame"
     r.render(spp=2)
     for name in ("a.png", "a.exr", "a.pfm"):
         r.save(str(tmp_path / name))
