@@ -103,21 +103,30 @@ double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t params
 
 void PathTracePass::probedSample(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress) {
     const uint32_t width = uint32_t(mWidth), height = uint32_t(mHeight);
-    const uint32_t rowsPerSet = uint32_t(std::max<uint64_t>(1, (kProbePaths + width - 1) / width));
-    const uint32_t stride = std::max(1u, height / rowsPerSet);  // every set has >= rowsPerSet rows
-    // Sets of rows j, j + stride, ...: the first submission, one set, is the probe; later ones take
-    // 4x more sets each (at most 64, the timer's scopes), each held to the pace measured so far.
-    uint32_t set = 0, perSubmit = 1;
-    while (set < stride) {
-        const uint32_t count = std::min({perSubmit, stride - set, 64u});
+    const uint32_t probeRows = uint32_t(std::max<uint64_t>(1, (kProbePaths + width - 1) / width));
+    const uint32_t stride = std::max(1u, height / probeRows);  // the probe has >= probeRows rows
+    const uint32_t sample = mFirstSample + mSpp;
+    // The probe, alone: rows 0, stride, 2 stride, ... (spread over the image, so its pace is the
+    // image's, sky and data alike).
+    submit(pipeline, {{paramsAddress, sample, 0u, height, 1u, stride, 0u}},
+           uint64_t((height + stride - 1) / stride) * width);
+    // The rest: the bands of rows between the probe's, each one dispatch of whole contiguous rows
+    // (coherent 8x8 tiles; the probe's strided rows cost llvmpipe about 2x per path), 4x more
+    // bands per submission, each submission held to the pace measured so far.
+    std::vector<std::pair<uint32_t, uint32_t>> bands;  // [first, end) rows
+    for (uint32_t r = 0; r < height; r += stride)
+        if (r + 1 < std::min(r + stride, height)) bands.emplace_back(r + 1, std::min(r + stride, height));
+    size_t next = 0, perSubmit = 1;
+    while (next < bands.size()) {
+        const size_t count = std::min({perSubmit, bands.size() - next, size_t(64)});
         std::vector<shared::PushConstants> dispatches;
         uint64_t paths = 0;
-        for (uint32_t j = set; j < set + count; ++j) {
-            dispatches.push_back({paramsAddress, mFirstSample + mSpp, j, height, 1u, stride, 0u});
-            paths += uint64_t((height - j + stride - 1) / stride) * width;
+        for (size_t k = next; k < next + count; ++k) {
+            dispatches.push_back({paramsAddress, sample, bands[k].first, bands[k].second, 1u, 1u, 0u});
+            paths += uint64_t(bands[k].second - bands[k].first) * width;
         }
         submit(pipeline, dispatches, paths);
-        set += count;
+        next += count;
         perSubmit *= 4;
     }
     ++mSpp;

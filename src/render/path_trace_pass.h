@@ -88,8 +88,9 @@ private:
     // The adaptive --gpu-timeout of a submission of `paths` paths: mDeadline's limit, and past it
     // the floor's time without a path finished (read from the mapped path statistics).
     gpu::AdaptiveWait adaptiveWait(uint64_t paths) const;
-    // One whole sample in sets of every stride-th row, the first set (about kProbePaths paths spread
-    // over the image) alone: it measures the pace with only the floor as its limit.
+    // One whole sample: first every stride-th row (about kProbePaths paths spread over the image)
+    // alone, which measures the pace with only the floor as its limit; then the bands of rows
+    // between them, held to that pace.
     void probedSample(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress);
     static constexpr uint64_t kProbePaths = 4096;
 
