@@ -33,15 +33,13 @@ step("1. yt data set -> amrvk image")
 ds = yt.load(str(data / "enzo_tiny_cosmology/DD0018/DD0018"))
 vol = amrvk.Volume.from_yt(ds, ("gas", "density"))   # log10, as yt takes densities
 r = amrvk.Renderer(vol, width=384, height=384)
-image = r.render(spp=16)
-print(vol, "|", vol.units, "|", image.shape, image.dtype, "| first picture",
-      f"{time.perf_counter() - t_import:.1f} s after import, noise {r.noise:.3f}")
+r.save(out / "1-first-picture.png")  # no sample yet: the first frame, what a notebook shows of r
+print(vol, "|", vol.units, "| first picture", f"{time.perf_counter() - t_import:.1f} s after import:", r.first_frame)
 print("structure:", r.structure, *r.notes)
-r.save(out / "1-first-picture.png")
-preview = amrvk.Renderer(vol, width=384, height=384, mode="dvr")
-preview.render(spp=4)
-print(f"dvr first frame: noise {preview.noise:.3f}")
-preview.save(out / "1-dvr-first-frame.png")
+t = time.perf_counter()
+image = r.render(spp=16)  # path tracing refines it
+print(image.shape, image.dtype, f"| ms, 16 spp: {time.perf_counter() - t:.1f} s, noise {r.noise:.3f}")
+r.save(out / "1-path-traced.png")
 
 # 2. A transfer function and light ---------------------------------------------------------------
 step("2. transfer function, lights, multiple scattering")
