@@ -1,5 +1,8 @@
 #include "picture/first_frame.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "scene/render_output.h"
 
 namespace amrvk::picture {
@@ -21,11 +24,18 @@ FirstFrame renderFirstFrame(render::Renderer& renderer) {
         lastSeconds = renderer.stats().gpuSeconds;
         f.gpuSeconds += lastSeconds;
         ++f.frames;
-        // Another frame at half the step costs about twice this one's samples.
-        if (!(f.noise > kFirstFrameNoise) || dvr.dvrStep / 2 < kFirstFrameMinDt ||
-            f.gpuSeconds + 2 * lastSeconds > kFirstFrameGpuSeconds)
-            break;
-        dvr.dvrStep /= 2;
+        if (!(f.noise > kFirstFrameNoise)) break;
+        // Aliasing noise falls about 2x per halving of the step (PeleLM: 0.22, 0.078, 0.034), so
+        // jump by the halvings that bring it to the target, fewer where they do not fit the time
+        // left (a frame at dt / 2^k costs about 2^k times this one) or the finest step.
+        int halvings = std::max(1, int(std::lround(std::log2(f.noise / kFirstFrameNoise))));
+        auto fits = [&](int k) {
+            return f.gpuSeconds + lastSeconds * std::ldexp(1.0, k) <= kFirstFrameGpuSeconds &&
+                   std::ldexp(dvr.dvrStep, -k) >= kFirstFrameMinDt;
+        };
+        while (halvings > 1 && !fits(halvings)) --halvings;
+        if (!fits(halvings)) break;
+        dvr.dvrStep = std::ldexp(dvr.dvrStep, -halvings);
     }
     renderer.setSettings(asGiven);
     renderer.resetAccumulation();  // the picture's own mode and step, no sample

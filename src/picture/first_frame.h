@@ -5,7 +5,8 @@
 // light), clean in about a second where path tracing a haze is grainy for hundreds of samples
 // (docs/python.md section 1). dvr's noise is mostly aliasing of thin TF layers crossed within a
 // step, so while it is noisier than kFirstFrameNoise and another frame fits the time left, the
-// step dt is halved, not the samples doubled: on AMReX PeleLM's flame sheet (`render --mode dvr`,
+// frame is rendered again at a finer step dt (halved as often as the noise calls for, about 2x
+// per halving), not with more samples: on AMReX PeleLM's flame sheet (`render --mode dvr`,
 // linear temp, 384^2, 2 spp) halving dt twice takes the noise from 0.091 to 0.035, four times the
 // samples only to 0.059.
 #include <cstdint>
@@ -17,13 +18,13 @@ namespace amrvk::picture {
 
 inline constexpr uint32_t kFirstFrameSpp = 2;         // samples per pixel: two, so its noise is known
 inline constexpr double kFirstFrameNoise = 0.05;      // mean relative standard error: no visible grain
-inline constexpr double kFirstFrameGpuSeconds = 1.0;  // the refinements' budget (a halved dt is
-                                                      // predicted at twice the last frame's time)
+inline constexpr double kFirstFrameGpuSeconds = 1.0;  // every frame's GPU time together (dt / 2^k
+                                                      // is predicted at 2^k the last frame's time)
 inline constexpr double kFirstFrameMinDt = 1.0 / 16;  // finest step tried, in finest-cell widths
 
 struct FirstFrame {
     Image image;            // linear radiance, row 0 the top (as RenderOutput::mean)
-    double dt = 0;          // the dvr step it was rendered with (finest-cell widths at the sample)
+    double dt = 0;          // the dvr step it was rendered with: the settings' dvrStep / 2^k
     double noise = 0;       // scene::meanRelativeError of it
     double gpuSeconds = 0;  // every frame made for it, together
     uint32_t frames = 0;    // frames rendered (1 + the refinements)
