@@ -165,14 +165,20 @@ FieldScale autoScaleOf(float smallest, float largest) {
     return smallest > 0 && double(largest) >= kAutoLogSpan * double(smallest) ? FieldScale::Log : FieldScale::Linear;
 }
 
-FieldScale autoScaleOf(std::span<const float> values) {
-    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+void FiniteExtremes::add(std::span<const float> values) {
     for (float v : values)
         if (std::isfinite(v)) {
             lo = std::min(lo, v);
             hi = std::max(hi, v);
         }
-    return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear;
+}
+
+FieldScale FiniteExtremes::autoScale() const { return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear; }
+
+FieldScale autoScaleOf(std::span<const float> values) {
+    FiniteExtremes e;
+    e.add(values);
+    return e.autoScale();
 }
 
 FieldScale scaleOf(const Model& model) {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -137,6 +138,13 @@ float smallestPositive(std::span<const float> values);
 // Auto's choice for a field: Log where every finite value is positive and the largest is at least
 // kAutoLogSpan times the smallest (two decades or more), else Linear (NaN values are ignored).
 constexpr double kAutoLogSpan = 100;
+// The finite extremes of values seen so far (a field read whole, or streamed in chunks).
+struct FiniteExtremes {
+    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+    void add(std::span<const float> values);
+    // Auto's choice for them (Linear when no finite value was seen).
+    FieldScale autoScale() const;
+};
 FieldScale autoScaleOf(float smallest, float largest);
 FieldScale autoScaleOf(std::span<const float> values);
 // The scale a model's values are in: Log where applyFieldScale took their log10.

@@ -103,15 +103,9 @@ FieldScale resolvedScale(const fs::path& path, const ReadOptions& options) {
     // The whole field's extremes: one streamed pass over the values.
     ReadOptions linear = options;
     linear.scale = FieldScale::Linear;
-    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
-    visitExaBrick(path, linear, uint64_t(1) << 20, [&](Model& chunk) {
-        for (float v : chunk.fields[0].values)
-            if (std::isfinite(v)) {
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
-            }
-    }, nullptr);
-    return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear;
+    FiniteExtremes extremes;
+    visitExaBrick(path, linear, uint64_t(1) << 20, [&](Model& chunk) { extremes.add(chunk.fields[0].values); }, nullptr);
+    return extremes.autoScale();
 }
 
 double logFloorOf(const fs::path& path, const ReadOptions& options) {

@@ -86,6 +86,10 @@ int runDevices(const std::vector<std::string>& argv) {
 
 namespace {
 
+// The noise above which `render` says the picture is grainy (mean relative standard error of the
+// visible pixels; the first frame's target, picture::kFirstFrameNoise, is 0.05).
+constexpr double kGrainyNoise = 0.1;
+
 // The render command's options, bound by addRenderOptions.
 struct RenderArgs {
     std::vector<std::string> inputs;
@@ -237,9 +241,20 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
     const scene::RenderSettings& rs = picture.renderer->settings();
     const auto& c = out.stats.counters;
     const double paths = double(out.stats.paths);
-    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s\n", a.output.c_str(), rs.width,
+    // The noise of the picture (scene::meanRelativeError), with a hint where it shows as grain.
+    std::string noiseNote;
+    if (out.spp >= 2 && a.untilError == 0) {
+        const double e = scene::meanRelativeError(out);
+        char text[32];
+        std::snprintf(text, sizeof text, "%.2g", e);
+        noiseNote = strCat(", noise ", text);
+        if (e > kGrainyNoise && rs.mode != scene::Mode::Dvr)
+            noiseNote += ": grainy; more --spp, --until-error E, or --mode dvr (ray-marched) for less";
+    }
+    std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s%s\n", a.output.c_str(), rs.width,
                 rs.height, out.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
-                out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0);
+                out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0,
+                noiseNote.c_str());
     if (a.untilError > 0) {
         const double noise = scene::meanRelativeError(out);
         std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n", noise, out.spp,

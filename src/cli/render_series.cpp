@@ -297,7 +297,11 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
         d.fitCamera = false;
         d.session.settings.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
     }
-    std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
+    // Each frame is one picture and nothing after it reads the cells (the histogram and ranges are
+    // made with the bricks): they go once the bricks exist, as for one render (issue 31, point 7);
+    // the dense sampler rasterises them.
+    std::shared_ptr<const scene::Volume> volume = session::loadVolume(
+        d.session, {.releaseCells = d.session.structure.sampler != scene::SamplerKind::Dense});
     if (!s.resolved && s.rangeOfFirst) s.manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
     // Several outputs: one TF over the series' range (a given --tf-range wins over it in
     // resolvePicture), presets in their range-fixed shape. One output (a turntable): fitted to

@@ -168,6 +168,22 @@ PY
   --json "$dir/capped.json" >"$dir/capped.out" || fail=1
 check grep -q "above --until-error; --spp capped it" "$dir/capped.out"
 check /usr/bin/python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["spp"] == 8' "$dir/capped.json"
+# Every render of 2 spp or more states its noise (the --json's, rounded), and says when it shows
+# as grain, with what to do; a ray-marched picture is not called grainy.
+"$amrvk" render "$sample" --size 16x12 --grid 16 --spp 4 -o "$dir/noisy.png" --json "$dir/noisy.json" >"$dir/noisy.out" || fail=1
+check /usr/bin/python3 - "$dir/noisy.out" "$dir/noisy.json" <<'PY'
+import json, re, sys
+line = open(sys.argv[1]).read()
+e = json.load(open(sys.argv[2]))["meanRelativeError"]
+m = re.search(r", noise ([0-9.e+-]+)(: grainy; more --spp, --until-error E, or --mode dvr \(ray-marched\) for less)?$", line.strip())
+assert m and abs(float(m.group(1)) - e) <= 0.01 * e, (line, e)
+assert (m.group(2) is not None) == (e > 0.1), (line, e)
+assert e > 0.1, "4 spp of the sample: grainy"
+PY
+"$amrvk" render "$sample" --size 16x12 --grid 16 --spp 4 --mode dvr -o "$dir/dvr.png" >"$dir/dvr.out" || fail=1
+check grep -q ", noise [0-9.e+-]*$" "$dir/dvr.out"
+"$amrvk" render "$sample" --size 16x12 --grid 16 --spp 1 -o "$dir/one.png" >"$dir/one.out" || fail=1
+check bash -c '! grep -q "noise" "$1"' _ "$dir/one.out"
 expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
 expect "--until-error needs --spp of at least 2" -- render "$sample" --spp 1 --until-error 0.1 -o "$dir/x.png"
 # The other long builds alike (issue 34, point 8): bricks (an upper bound first, a bar over the
