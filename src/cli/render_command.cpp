@@ -19,6 +19,7 @@
 #include "core/stats.h"
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
+#include "picture/first_frame.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
 #include "session/legend_image.h"
@@ -95,6 +96,7 @@ struct RenderArgs {
     std::vector<std::string> inputs;
     std::string output = "amrvk.png", jsonFile, varianceFile, distribute = "samples";
     double untilError = 0;  // > 0: stop at this noise (--spp is the cap)
+    bool firstFrame = false;  // the first frame instead of path tracing (picture/first_frame.h)
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
@@ -127,6 +129,10 @@ void addRenderOptions(CLI::App& app, RenderArgs& a) {
                    "the spp reached and the noise are printed and in --json (spp, meanRelativeError)")
         ->check(interval(0, 1, true, false))
         ->type_name("E");
+    app.add_flag("--first-frame", a.firstFrame,
+                 "render the first frame Python and the viewer show before path tracing: the picture ray-marched "
+                 "(dvr, 2 spp), its step made finer while its noise is above 0.05, within 1 s of GPU time; it "
+                 "chooses the mode, samples and step (not with --mode, --spp, --dt or --until-error)");
     app.add_option("--distribute", a.distribute,
                    "under mpirun: samples (every rank holds the data and renders a share of the samples) or "
                    "data (every rank reads and tracks only its box of space; ae, ss, ms; docs/mpi.md)")
@@ -206,13 +212,19 @@ LoadedData loadData(const session::PictureDescription& description, [[maybe_unus
 struct Rendered {
     scene::RenderOutput out;
     Json mpiReport;
+    std::optional<picture::FirstFrame> firstFrame;  // --first-frame: how it was made
 };
 
 // Renders the picture alone, or this rank's share of a data- or sample-parallel render.
 Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedData& data,
-                     [[maybe_unused]] mpi::World* world, double untilError,
+                     [[maybe_unused]] mpi::World* world, double untilError, bool firstFrame,
                      const std::function<void(uint32_t, uint32_t)>& progress) {
     Rendered r;
+    if (firstFrame) {  // one process (checked with the options)
+        r.firstFrame = picture::renderFirstFrame(*picture.renderer, picture::AfterFirstFrame::Keep);
+        r.out = picture.renderer->output();
+        return r;
+    }
 #if AMRVK_MPI
     if (data.part) {
         world->checkpoint();  // every rank has its part and structures
@@ -249,12 +261,17 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
         std::snprintf(text, sizeof text, "%.2g", e);
         noiseNote = strCat(", noise ", text);
         if (e > kGrainyNoise && rs.mode != scene::Mode::Dvr)
-            noiseNote += ": grainy; more --spp, --until-error E, or --mode dvr (ray-marched) for less";
+            noiseNote += ": grainy; more --spp, --until-error E, or --first-frame (ray-marched) for less";
     }
     std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s%s\n", a.output.c_str(), rs.width,
                 rs.height, out.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
                 out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0,
                 noiseNote.c_str());
+    if (r.firstFrame)
+        std::printf("first frame: dvr at dt %g after %u frame%s (%.2f s GPU in all; its step is made finer while the "
+                    "noise is above %g)\n",
+                    r.firstFrame->dt, r.firstFrame->frames, r.firstFrame->frames == 1 ? "" : "s",
+                    r.firstFrame->gpuSeconds, picture::kFirstFrameNoise);
     if (a.untilError > 0) {
         const double noise = scene::meanRelativeError(out);
         std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n", noise, out.spp,
@@ -304,7 +321,7 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
         if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
         bar.update(d, t);
     };
-    const Rendered r = renderImage(picture, data, world, a.untilError, progress);
+    const Rendered r = renderImage(picture, data, world, a.untilError, a.firstFrame, progress);
     bar.finish();
     const double wallSeconds = wall.seconds();
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
@@ -337,8 +354,15 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
                 "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
     AMRVK_CHECK(!world || a.untilError == 0,
                 "--until-error: not under mpirun (the ranks would each stop at their own share's noise); give --spp");
+    if (a.firstFrame) {
+        for (const char* given : {"--mode", "--spp", "--dt", "--until-error"})
+            AMRVK_CHECK(app.count(given) == 0, "--first-frame chooses the mode (dvr), the samples (2) and the step; "
+                        "leave out ", given);
+        AMRVK_CHECK(!world, "--first-frame: one process, not under mpirun");
+    }
     if (isSeries(app, a.inputs, a.output)) {
         AMRVK_CHECK(a.untilError == 0, "--until-error renders one picture, not a series or a turntable; give --spp");
+        AMRVK_CHECK(!a.firstFrame, "--first-frame renders one picture, not a series or a turntable");
         return renderSeries(
             app, {.inputs = a.inputs, .output = a.output, .jsonFile = a.jsonFile, .varianceFile = a.varianceFile},
             a.read, a.pic, a.series, a.dev, world);

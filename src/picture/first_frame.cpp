@@ -7,7 +7,7 @@
 
 namespace amrvk::picture {
 
-FirstFrame renderFirstFrame(render::Renderer& renderer) {
+FirstFrame renderFirstFrame(render::Renderer& renderer, AfterFirstFrame after) {
     const scene::RenderSettings asGiven = renderer.settings();
     scene::RenderSettings dvr = asGiven;
     dvr.mode = scene::Mode::Dvr;
@@ -37,8 +37,10 @@ FirstFrame renderFirstFrame(render::Renderer& renderer) {
         if (!fits(halvings)) break;
         dvr.dvrStep = std::ldexp(dvr.dvrStep, -halvings);
     }
-    renderer.setSettings(asGiven);
-    renderer.resetAccumulation();  // the picture's own mode and step, no sample
+    if (after == AfterFirstFrame::Restore) {
+        renderer.setSettings(asGiven);
+        renderer.resetAccumulation();  // the picture's own mode and step, no sample
+    }
     return f;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The first frame of a picture: what a front end shows before the path tracer has a sample (the
-// Python Renderer inline and as image(); the viewer's previews are its one-sample, reduced-size
-// kin). The same description ray-marched (dvr: emission-absorption of the same TF, no global
+// Python Renderer inline and as image(), `render --first-frame`; the viewer's previews are its
+// one-sample, reduced-size kin). The same description ray-marched (dvr: emission-absorption of the same TF, no global
 // light), clean in about a second where path tracing a haze is grainy for hundreds of samples
 // (docs/python.md section 1). dvr's noise is mostly aliasing of thin TF layers crossed within a
 // step, so while it is noisier than kFirstFrameNoise and another frame fits the time left, the
@@ -30,8 +30,14 @@ struct FirstFrame {
     uint32_t frames = 0;    // frames rendered (1 + the refinements)
 };
 
+// What the renderer holds after the first frame.
+enum class AfterFirstFrame {
+    Restore,  // its own settings and no sample (a front end that path-traces next)
+    Keep,     // the first frame itself: dvr at FirstFrame::dt, kFirstFrameSpp samples (`render --first-frame`)
+};
+
 // Renders the first frame of the picture `renderer` holds (its settings, TF and structures, from
-// dt = its settings' dvrStep) and leaves the renderer with its own settings and no sample.
-FirstFrame renderFirstFrame(render::Renderer& renderer);
+// dt = its settings' dvrStep).
+FirstFrame renderFirstFrame(render::Renderer& renderer, AfterFirstFrame after = AfterFirstFrame::Restore);
 
 }  // namespace amrvk::picture

@@ -175,7 +175,7 @@ check /usr/bin/python3 - "$dir/noisy.out" "$dir/noisy.json" <<'PY'
 import json, re, sys
 line = open(sys.argv[1]).read()
 e = json.load(open(sys.argv[2]))["meanRelativeError"]
-m = re.search(r", noise ([0-9.e+-]+)(: grainy; more --spp, --until-error E, or --mode dvr \(ray-marched\) for less)?$", line.strip())
+m = re.search(r", noise ([0-9.e+-]+)(: grainy; more --spp, --until-error E, or --first-frame \(ray-marched\) for less)?$", line.strip())
 assert m and abs(float(m.group(1)) - e) <= 0.01 * e, (line, e)
 assert (m.group(2) is not None) == (e > 0.1), (line, e)
 assert e > 0.1, "4 spp of the sample: grainy"
@@ -184,6 +184,33 @@ PY
 check grep -q ", noise [0-9.e+-]*$" "$dir/dvr.out"
 "$amrvk" render "$sample" --size 16x12 --grid 16 --spp 1 -o "$dir/one.png" >"$dir/one.out" || fail=1
 check bash -c '! grep -q "noise" "$1"' _ "$dir/one.out"
+# --first-frame: what Python and the viewer show first, as a file; the step it reports renders
+# the same picture as --mode dvr --spp 2 --dt that step (the same samples), and it is finer than
+# the default 0.5 where the 0.5 frame is noisier than 0.05.
+"$amrvk" render "$sample" --size 32x24 --grid 16 --first-frame -o "$dir/ff.pfm" --json "$dir/ff.json" >"$dir/ff.out" || fail=1
+dt=$(sed -n 's/^first frame: dvr at dt \([0-9.e+-]*\) after .*/\1/p' "$dir/ff.out")
+check test -n "$dt"
+"$amrvk" render "$sample" --size 32x24 --grid 16 --mode dvr --spp 2 --dt "${dt:-0.5}" -o "$dir/ffdvr.pfm" --json "$dir/ffdvr.json" >/dev/null || fail=1
+"$amrvk" render "$sample" --size 32x24 --grid 16 --mode dvr --spp 2 -o "$dir/ff05.pfm" --json "$dir/ff05.json" >/dev/null || fail=1
+check /usr/bin/python3 - "$dir" "${dt:-0}" <<'PY'
+import json, sys
+import numpy as np
+d, dt = sys.argv[1], float(sys.argv[2])
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = map(int, f.readline().split()); scale = float(f.readline())
+        return np.fromfile(f, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3)
+ff, same = pfm(f"{d}/ff.pfm"), pfm(f"{d}/ffdvr.pfm")
+j, j05 = json.load(open(f"{d}/ff.json")), json.load(open(f"{d}/ff05.json"))
+assert j["mode"] == "dvr" and j["spp"] == 2, j["mode"]
+assert np.max(np.abs(ff - same)) <= 1e-6 * max(1.0, float(np.abs(same).max())), "the reported step renders it"
+n05 = j05["meanRelativeError"]
+assert (dt < 0.5) == (n05 > 0.05), (dt, n05)  # refined exactly where dt 0.5 is noisy (cheap here)
+assert dt == 0.5 or j["meanRelativeError"] < n05, (j["meanRelativeError"], n05)
+PY
+expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --spp" -- render "$sample" --first-frame --spp 8 -o "$dir/x.png"
+expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --mode" -- render "$sample" --first-frame --mode ms -o "$dir/x.png"
 expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
 expect "--until-error needs --spp of at least 2" -- render "$sample" --spp 1 --until-error 0.1 -o "$dir/x.png"
 # The other long builds alike (issue 34, point 8): bricks (an upper bound first, a bar over the
