@@ -97,3 +97,41 @@ TEST(FieldScale, ReadersWholeAndStreamedTakeTheSameLogs) {
     EXPECT_EQ(given.valueLo, *std::min_element(wholeGiven.fields[0].values.begin(), wholeGiven.fields[0].values.end()));
     EXPECT_FLOAT_EQ(given.valueLo, float(std::log10(0.5)));
 }
+
+// --scale auto (amr::autoScaleOf): log where every finite value is positive and the largest is at
+// least 100 times the smallest; NaN and infinities are ignored; chunks seen one by one
+// (FiniteExtremes, the streamed ExaBrick read) decide as the whole does; resolvedScale of a file
+// (one streamed pass) decides what readModel does with the values whole.
+TEST(FieldScale, AutoTakesTheLogWhereEveryValueIsPositiveAndTheySpanTwoDecades) {
+    using amr::FieldScale;
+    auto decide = [](std::vector<float> v) { return amr::autoScaleOf(std::span<const float>(v)); };
+    EXPECT_EQ(decide({1.0f, 99.9f}), FieldScale::Linear);
+    EXPECT_EQ(decide({1.0f, 100.0f}), FieldScale::Log);
+    EXPECT_EQ(decide({0.0f, 1e6f}), FieldScale::Linear) << "a zero: no log";
+    EXPECT_EQ(decide({-1.0f, 1e6f}), FieldScale::Linear);
+    EXPECT_EQ(decide({NAN, 2.0f, 400.0f, INFINITY}), FieldScale::Log) << "non-finite values are ignored";
+    EXPECT_EQ(decide({NAN, -INFINITY}), FieldScale::Linear) << "no finite value";
+    EXPECT_EQ(decide({}), FieldScale::Linear);
+    // In chunks: the extremes of the whole, whichever chunk holds them.
+    const std::vector<float> a = {5.0f, 7.0f}, b = {NAN, 600.0f}, c = {0.5f};
+    amr::FiniteExtremes e;
+    for (const auto* chunk : {&a, &b, &c}) e.add(*chunk);
+    EXPECT_EQ(e.lo, 0.5f);
+    EXPECT_EQ(e.hi, 600.0f);
+    EXPECT_EQ(e.autoScale(), FieldScale::Log);
+    // A file: the streamed decision and the whole read's agree, both ways.
+    for (const bool spans : {true, false}) {
+        amr::Model m = test::makeThreeLevelCloud();
+        m.fields.resize(1);
+        for (size_t i = 0; i < m.fields[0].values.size(); ++i)
+            m.fields[0].values[i] = spans ? std::pow(10.0f, float(i % 5)) : 1.0f + float(i % 5);
+        const std::filesystem::path base = test::scratchDir() / (spans ? "auto_log" : "auto_linear");
+        amr::writeExaBrick(m, base);
+        const std::filesystem::path cells = std::filesystem::path(base) += ".cells";
+        amr::ReadOptions ro;
+        ro.scale = FieldScale::Auto;
+        const FieldScale streamed = amr::resolvedScale(cells, ro);
+        EXPECT_EQ(streamed, spans ? FieldScale::Log : FieldScale::Linear);
+        EXPECT_EQ(amr::scaleOf(amr::readModel(cells, ro)), streamed);
+    }
+}
