@@ -1,10 +1,11 @@
 """A Jupyter widget (ipywidgets; Debian: python3-ipywidgets) that shows a Renderer's progressive
 image and orbits it with sliders: ``amrvk.Widget(renderer, spp=256)`` as a cell's last expression.
 
-It first shows the renderer's first frame (the picture ray-marched)
-where the renderer holds no sample (Renderer.first_frame). A background thread adds `batch` samples per pixel at a time until the image has `spp`, showing
-the image (the PNG that ``renderer.png()`` makes, legend included where the renderer has one) and
-the samples and mean standard error so far after each batch. Moving a slider sets the renderer's
+Where the renderer holds no sample it first shows the renderer's first frame (the picture
+ray-marched; Renderer.first_frame). A background thread adds `batch` samples per pixel at a time
+until the image has `spp`, showing the image (the PNG that ``renderer.png()`` makes, legend
+included where the renderer has one) and the samples and mean standard error so far after each
+batch. Moving a slider sets the renderer's
 camera from the camera it had when the widget was made: turned by `azimuth` degrees about the
 target around the up vector, then by `elevation` degrees over the view's right vector, then
 `zoom` times closer (Camera.orbit, Camera.zoom); the estimate restarts and refines again. Only

@@ -543,10 +543,7 @@ public:
                 completed = r.accumulatedSpp() - before;
             }
             done += completed;
-            // As the CLI: with validation on, any validation error fails the call (its message
-            // went to stderr when it happened).
-            AMRVK_CHECK(mCtx->validationErrors() == 0, "Vulkan validation reported ", mCtx->validationErrors(),
-                        " error(s); last: ", mCtx->lastValidationMessage());
+            requireNoValidationErrors();
             if (PyErr_CheckSignals() != 0) throw py::error_already_set();
             if (!progress.is_none() && completed > 0) progress(done, n);
         }
@@ -692,14 +689,17 @@ public:
         picture::FirstFrame frame;
         uint64_t resets = 0;  // the renderer's accumulationResets after it was made
     };
+    // Whether the last first frame made is of the renderer's current picture (no edit since).
+    bool firstFrameCurrent() const {
+        return mFirstFrame && mFirstFrame->resets == mPicture.renderer->updateCounts().accumulationResets;
+    }
     const picture::FirstFrame& firstFrame() const {
         render::Renderer& r = *open().renderer;
-        if (mFirstFrame && mFirstFrame->resets == r.updateCounts().accumulationResets) return mFirstFrame->frame;
+        if (firstFrameCurrent()) return mFirstFrame->frame;
         py::gil_scoped_release release;
         std::lock_guard lock(mMutex);
         ShownFirstFrame shown{picture::renderFirstFrame(r)};
-        AMRVK_CHECK(mCtx->validationErrors() == 0, "Vulkan validation reported ", mCtx->validationErrors(),
-                    " error(s); last: ", mCtx->lastValidationMessage());
+        requireNoValidationErrors();
         shown.resets = r.updateCounts().accumulationResets;
         mFirstFrame = std::move(shown);
         return mFirstFrame->frame;
@@ -707,8 +707,7 @@ public:
     // The first frame shown while the renderer holds no sample: {"mode", "spp", "dt", "noise",
     // "gpu_seconds", "frames"}; None before one is shown and once the image has samples.
     const picture::FirstFrame* shownFirstFrame() const {
-        if (mClosed || !mPicture.renderer || !mFirstFrame || mPicture.renderer->accumulatedSpp() > 0 ||
-            mFirstFrame->resets != mPicture.renderer->updateCounts().accumulationResets)
+        if (mClosed || !mPicture.renderer || mPicture.renderer->accumulatedSpp() > 0 || !firstFrameCurrent())
             return nullptr;
         return &mFirstFrame->frame;
     }
@@ -727,6 +726,13 @@ public:
 
 private:
     static constexpr double kChunkSeconds = 0.25;
+
+    // As the CLI: with validation on, any validation error fails the call (its message went to
+    // stderr when it happened).
+    void requireNoValidationErrors() const {
+        AMRVK_CHECK(mCtx->validationErrors() == 0, "Vulkan validation reported ", mCtx->validationErrors(),
+                    " error(s); last: ", mCtx->lastValidationMessage());
+    }
 
     const picture::Picture& open() const {
         if (mClosed || !mPicture.renderer) throw py::value_error("the renderer is closed");
