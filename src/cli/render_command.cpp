@@ -1,6 +1,8 @@
 // amrvk render: path-trace an AMR data set on a Vulkan device; amrvk devices: list devices.
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -46,7 +48,9 @@ const char* kRenderHelp =
     "'plt*', expanded by amrvk, in natural order), --frames N --orbit 360 (a turntable of one input), a "
     "numbered -o (frames/f_%04d.png), a directory -o (frames/) or -o movie.mp4 (through ffmpeg) render a "
     "series of frames with one camera, TF range and settings; a re-run of the same command skips the "
-    "frames already written (docs/movies.md).";
+    "frames already written (docs/movies.md). One picture with none of --mode, --spp, --dt, --until-error or --session "
+    "is its first frame (see --first-frame: ray-marched, clean, seconds); any of them path-traces it (defaults below: "
+    "ms, 64 spp). Series and mpirun path-trace by default.";
 
 }  // namespace
 
@@ -91,12 +95,16 @@ namespace {
 // visible pixels; the first frame's target, picture::kFirstFrameNoise, is 0.05).
 constexpr double kGrainyNoise = 0.1;
 
+// The options that say how a picture is made; with none of them, one picture is its first frame.
+constexpr std::array<const char*, 5> kHowItIsMade = {"--mode", "--spp", "--dt", "--until-error", "--session"};
+
 // The render command's options, bound by addRenderOptions.
 struct RenderArgs {
     std::vector<std::string> inputs;
     std::string output = "amrvk.png", jsonFile, varianceFile, distribute = "samples";
     double untilError = 0;  // > 0: stop at this noise (--spp is the cap)
     bool firstFrame = false;  // the first frame instead of path tracing (picture/first_frame.h)
+    bool firstFrameByDefault = false;  // nothing said how the picture is made: its first frame
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
@@ -132,7 +140,8 @@ void addRenderOptions(CLI::App& app, RenderArgs& a) {
     app.add_flag("--first-frame", a.firstFrame,
                  "render the first frame Python and the viewer show before path tracing: the picture ray-marched "
                  "(dvr, 2 spp), its step made finer while its noise is above 0.05, within 1 s of GPU time; it "
-                 "chooses the mode, samples and step (not with --mode, --spp, --dt or --until-error)");
+                 "chooses the mode, samples and step (not with --mode, --spp, --dt or --until-error); the default "
+                 "for one picture when none of those nor --session is given");
     app.add_option("--distribute", a.distribute,
                    "under mpirun: samples (every rank holds the data and renders a share of the samples) or "
                    "data (every rank reads and tracks only its box of space; ae, ss, ms; docs/mpi.md)")
@@ -272,6 +281,9 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
                     "noise is above %g)\n",
                     r.firstFrame->dt, r.firstFrame->frames, r.firstFrame->frames == 1 ? "" : "s",
                     r.firstFrame->gpuSeconds, picture::kFirstFrameNoise);
+    if (a.firstFrameByDefault)
+        std::printf("the default picture is this first frame; path-trace it with --mode ms (or ae, ss), --spp N or "
+                    "--until-error E\n");
     if (a.untilError > 0) {
         const double noise = scene::meanRelativeError(out);
         std::printf("noise %.4g (mean relative standard error of the visible pixels) at %u spp: %s\n", noise, out.spp,
@@ -321,7 +333,8 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
         if (firstSampleSeconds == 0) firstSampleSeconds = sinceStart.seconds();
         bar.update(d, t);
     };
-    const Rendered r = renderImage(picture, data, world, a.untilError, a.firstFrame, progress);
+    const Rendered r =
+        renderImage(picture, data, world, a.untilError, a.firstFrame || a.firstFrameByDefault, progress);
     bar.finish();
     const double wallSeconds = wall.seconds();
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
@@ -354,13 +367,20 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
                 "--distribute: only under an MPI launcher (mpirun -n N amrvk render ...; docs/mpi.md)");
     AMRVK_CHECK(!world || a.untilError == 0,
                 "--until-error: not under mpirun (the ranks would each stop at their own share's noise); give --spp");
+    // The default picture (issue 33): one picture, made by one process, with nothing said about how
+    // it is made (no --mode, --spp, --dt, --until-error or --session), is its first frame, the clean
+    // picture Python and the viewer show first; any of those asks for the estimator as before.
+    const bool series = isSeries(app, a.inputs, a.output);
+    a.firstFrameByDefault = !a.firstFrame && !world && !series &&
+                            std::none_of(kHowItIsMade.begin(), kHowItIsMade.end(),
+                                         [&](const char* o) { return app.count(o) > 0; });
     if (a.firstFrame) {
         for (const char* given : {"--mode", "--spp", "--dt", "--until-error"})
             AMRVK_CHECK(app.count(given) == 0, "--first-frame chooses the mode (dvr), the samples (2) and the step; "
                         "leave out ", given);
         AMRVK_CHECK(!world, "--first-frame: one process, not under mpirun");
     }
-    if (isSeries(app, a.inputs, a.output)) {
+    if (series) {
         AMRVK_CHECK(a.untilError == 0, "--until-error renders one picture, not a series or a turntable; give --spp");
         AMRVK_CHECK(!a.firstFrame, "--first-frame renders one picture, not a series or a turntable");
         return renderSeries(

@@ -209,6 +209,31 @@ n05 = j05["meanRelativeError"]
 assert (dt < 0.5) == (n05 > 0.05), (dt, n05)  # refined exactly where dt 0.5 is noisy (cheap here)
 assert dt == 0.5 or j["meanRelativeError"] < n05, (j["meanRelativeError"], n05)
 PY
+# The default picture: one picture with nothing said about how it is made is that first frame;
+# any of --mode, --spp, --dt or --until-error path-traces it as before (ms, 64 spp by default).
+"$amrvk" render "$sample" --size 32x24 --grid 16 -o "$dir/def.pfm" --json "$dir/def.json" >"$dir/def.out" || fail=1
+check grep -q "^the default picture is this first frame; path-trace it with --mode ms" "$dir/def.out"
+"$amrvk" render "$sample" --size 16x12 --grid 16 --mode ae -o "$dir/ae.png" --json "$dir/ae.json" >"$dir/ae.out" || fail=1
+"$amrvk" render "$sample" --size 16x12 --grid 16 --spp 3 -o "$dir/s3.png" --json "$dir/s3.json" >/dev/null || fail=1
+check bash -c '! grep -q "default picture" "$1"' _ "$dir/ae.out"
+check /usr/bin/python3 - "$dir" <<'PY'
+import json, sys
+import numpy as np
+d = sys.argv[1]
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = map(int, f.readline().split()); scale = float(f.readline())
+        return np.fromfile(f, dtype="<f4" if scale < 0 else ">f4").reshape(h, w, 3)
+j, ff = json.load(open(f"{d}/def.json")), json.load(open(f"{d}/ff.json"))
+assert (j["mode"], j["spp"]) == ("dvr", 2), (j["mode"], j["spp"])
+assert abs(j["meanRelativeError"] - ff["meanRelativeError"]) <= 1e-6, "the default is --first-frame's picture"
+a, b = pfm(f"{d}/def.pfm"), pfm(f"{d}/ff.pfm")
+assert np.max(np.abs(a - b)) <= 1e-6 * max(1.0, float(np.abs(b).max()))
+ae, s3 = json.load(open(f"{d}/ae.json")), json.load(open(f"{d}/s3.json"))
+assert (ae["mode"], ae["spp"]) == ("ae", 64), (ae["mode"], ae["spp"])
+assert (s3["mode"], s3["spp"]) == ("ms", 3), (s3["mode"], s3["spp"])
+PY
 expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --spp" -- render "$sample" --first-frame --spp 8 -o "$dir/x.png"
 expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --mode" -- render "$sample" --first-frame --mode ms -o "$dir/x.png"
 expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
