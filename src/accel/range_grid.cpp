@@ -93,6 +93,7 @@ struct Scratch {
     AxisPositions axis[3];
     std::vector<double> ax, ay;  // t_b interpolated along x, then along y
     std::vector<double> planes[3];  // lattice breakpoints per axis
+    std::vector<uint32_t> touching;  // the listed bricks whose domains meet the macrocell's box
 };
 
 // Extends `range` by the range of brick b's t_b over the closed voxel-space box [lo, hi] (already
@@ -268,11 +269,13 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                 }
                 double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
                 glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
+                scratch.touching.clear();
                 for (uint32_t id : lists.bricksOf(cell)) {
                     const Brick& b = bricks.bricks[id];
                     const HalfBox d = brickDomain(b);
                     const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
                     if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
+                    scratch.touching.push_back(id);
                     extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
                     hullLo = glm::min(hullLo, blo);
                     hullHi = glm::max(hullHi, bhi);
@@ -281,9 +284,11 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                 // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
                 // small against the cells, the mixing of two bricks covers a small part of their
                 // union) the lattice gives f's exact range when it is small enough to evaluate.
-                // With one brick (f = t_b) or a constant range there is nothing to gain.
-                if (lists.bricksOf(cell).size() > 1 && rhi > rlo)
-                    latticeRange(lists.bricksOf(cell), bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
+                // Only the bricks whose domains meet the box have weight in it (the lists hold more,
+                // by the lists' margin); with one of them (f = t_b) or a constant range there is
+                // nothing to gain.
+                if (scratch.touching.size() > 1 && rhi > rlo)
+                    latticeRange(scratch.touching, bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
                 // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
                 // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
                 // read have one sign, else at most the largest magnitude read.

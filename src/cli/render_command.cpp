@@ -303,6 +303,12 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
     if (!a.jsonFile.empty()) {
         Json j = picture::renderStats(picture, out, times);
         if (!r.mpiReport.is_null()) j["mpi"] = r.mpiReport;
+        if (r.firstFrame)  // how the first frame was made; "seconds" is its last frame's GPU time
+            j["firstFrame"] = {{"dt", r.firstFrame->dt},
+                               {"frames", r.firstFrame->frames},
+                               {"gpuSeconds", r.firstFrame->gpuSeconds},
+                               {"noiseTarget", picture::kFirstFrameNoise},
+                               {"byDefault", a.firstFrameByDefault}};
         writeFileAtomic(a.jsonFile, j.dump(2) + "\n");
     }
 }

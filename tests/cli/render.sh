@@ -204,6 +204,8 @@ def pfm(path):
 ff, same = pfm(f"{d}/ff.pfm"), pfm(f"{d}/ffdvr.pfm")
 j, j05 = json.load(open(f"{d}/ff.json")), json.load(open(f"{d}/ff05.json"))
 assert j["mode"] == "dvr" and j["spp"] == 2, j["mode"]
+assert j["firstFrame"]["dt"] == dt and j["firstFrame"]["frames"] >= 1, (j["firstFrame"], dt)
+assert j["firstFrame"]["gpuSeconds"] >= j["seconds"] - 1e-9, j["firstFrame"]
 assert np.max(np.abs(ff - same)) <= 1e-6 * max(1.0, float(np.abs(same).max())), "the reported step renders it"
 n05 = j05["meanRelativeError"]
 assert (dt < 0.5) == (n05 > 0.05), (dt, n05)  # refined exactly where dt 0.5 is noisy (cheap here)
@@ -228,10 +230,13 @@ def pfm(path):
 j, ff = json.load(open(f"{d}/def.json")), json.load(open(f"{d}/ff.json"))
 assert (j["mode"], j["spp"]) == ("dvr", 2), (j["mode"], j["spp"])
 assert abs(j["meanRelativeError"] - ff["meanRelativeError"]) <= 1e-6, "the default is --first-frame's picture"
+assert j["firstFrame"]["byDefault"] is True and ff["firstFrame"]["byDefault"] is False
+assert j["firstFrame"]["dt"] == ff["firstFrame"]["dt"] and j["firstFrame"]["noiseTarget"] == 0.05, j["firstFrame"]
 a, b = pfm(f"{d}/def.pfm"), pfm(f"{d}/ff.pfm")
 assert np.max(np.abs(a - b)) <= 1e-6 * max(1.0, float(np.abs(b).max()))
 ae, s3 = json.load(open(f"{d}/ae.json")), json.load(open(f"{d}/s3.json"))
 assert (ae["mode"], ae["spp"]) == ("ae", 64), (ae["mode"], ae["spp"])
+assert "firstFrame" not in ae and "firstFrame" not in s3
 assert (s3["mode"], s3["spp"]) == ("ms", 3), (s3["mode"], s3["spp"])
 PY
 expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --spp" -- render "$sample" --first-frame --spp 8 -o "$dir/x.png"
