@@ -40,7 +40,10 @@ struct AutoOptions {
     int probeSize = 0;           // probe image is probeSize^2; 0 = fill the device (1024 on GPUs, 96 on CPUs)
     uint32_t probeSpp = 0;       // timed samples per pixel after one warm-up sample (>= 2: a variance); 0 = 2 on GPUs, 16 on CPUs
     double slowFactor = 4.0;     // stop a probe whose warm-up frame is this much slower than the best
-    std::vector<std::string> gridChoices = {"32", "64", "256"};  // besides auto (128)
+    // Macrocell resolutions measured besides auto's, as multiples of auto's macrocells on the
+    // longest axis (accel::parseGridDims: 128 from 1,048,576 cells on, fewer for smaller data, so
+    // 32, 64 and 256 there); a resolution equal to auto's or below 4 is left out.
+    std::vector<double> gridFactors = {0.25, 0.5, 2.0};
     double minProbeSeconds = -1;  // timed GPU seconds a probe aims at (more samples, up to 256); < 0 = 0.25 on CPUs, 0.05 on GPUs
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
 };
