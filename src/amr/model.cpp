@@ -165,12 +165,33 @@ FieldScale autoScaleOf(float smallest, float largest) {
     return smallest > 0 && double(largest) >= kAutoLogSpan * double(smallest) ? FieldScale::Log : FieldScale::Linear;
 }
 
+namespace {
+// Chunks for the per-value passes over a field (min, max, log): fixed, so results do not depend on
+// the thread count; fields below kParallelValues are done in one.
+constexpr size_t kValueChunks = 64;
+constexpr size_t kParallelValues = size_t{1} << 16;
+size_t valueChunks(size_t n) { return n < kParallelValues ? 1 : kValueChunks; }
+}  // namespace
+
 void FiniteExtremes::add(std::span<const float> values) {
-    for (float v : values)
-        if (std::isfinite(v)) {
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
-        }
+    // Order-independent (min and max), so any chunking gives the same extremes.
+    const FiniteExtremes part = parallelReduce<FiniteExtremes>(
+        0, values.size(), valueChunks(values.size()),
+        [&](size_t b, size_t e) {
+            FiniteExtremes x;
+            for (size_t i = b; i < e; ++i)
+                if (const float v = values[i]; std::isfinite(v)) {
+                    x.lo = std::min(x.lo, v);
+                    x.hi = std::max(x.hi, v);
+                }
+            return x;
+        },
+        [](FiniteExtremes& a, FiniteExtremes&& o) {
+            a.lo = std::min(a.lo, o.lo);
+            a.hi = std::max(a.hi, o.hi);
+        });
+    lo = std::min(lo, part.lo);
+    hi = std::max(hi, part.hi);
 }
 
 FieldScale FiniteExtremes::autoScale() const { return lo <= hi ? autoScaleOf(lo, hi) : FieldScale::Linear; }
@@ -188,10 +209,15 @@ FieldScale scaleOf(const Model& model) {
 }
 
 float smallestPositive(std::span<const float> values) {
-    float best = 0;
-    for (float v : values)
-        if (v > 0 && std::isfinite(v) && (best == 0 || v < best)) best = v;
-    return best;
+    auto smaller = [](float best, float v) { return v > 0 && std::isfinite(v) && (best == 0 || v < best) ? v : best; };
+    return parallelReduce<float>(
+        0, values.size(), valueChunks(values.size()),
+        [&](size_t b, size_t e) {
+            float best = 0;
+            for (size_t i = b; i < e; ++i) best = smaller(best, values[i]);
+            return best;
+        },
+        [&](float& a, float&& o) { a = smaller(a, o); });
 }
 
 ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
@@ -204,12 +230,20 @@ ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
         const double lo = floor > 0 ? floor : double(smallestPositive(field.values));
         AMRVK_CHECK(lo > 0, model.source, ": field '", field.name,
                     "' has no positive value: log scale needs one (or --log-floor)");
-        uint64_t floored = 0;
-        for (float& v : field.values) {
-            if (std::isnan(v)) continue;
-            if (!(double(v) >= lo)) ++floored;  // <= 0, or below an explicit floor
-            v = float(std::log10(std::max(double(v), lo)));
-        }
+        std::span<float> values(field.values);
+        const uint64_t floored = parallelReduce<uint64_t>(
+            0, values.size(), valueChunks(values.size()),
+            [&](size_t b, size_t e) {
+                uint64_t n = 0;
+                for (size_t i = b; i < e; ++i) {
+                    float& v = values[i];
+                    if (std::isnan(v)) continue;
+                    if (!(double(v) >= lo)) ++n;  // <= 0, or below an explicit floor
+                    v = float(std::log10(std::max(double(v), lo)));
+                }
+                return n;
+            },
+            [](uint64_t& a, uint64_t&& o) { a += o; });
         if (f == 0) first = {floored, lo};
     }
     model.attributes.emplace_back("scale", "log10");

@@ -135,3 +135,49 @@ TEST(FieldScale, AutoTakesTheLogWhereEveryValueIsPositiveAndTheySpanTwoDecades) 
         EXPECT_EQ(amr::scaleOf(amr::readModel(cells, ro)), streamed);
     }
 }
+
+// A field large enough to be done in parallel chunks (64 from 65,536 values on): the logs, the
+// floored count, the smallest positive value and the finite extremes are those of one pass over
+// the values, whatever the thread count; the smallest positive value and the extremes sit in
+// the last chunk, the floored cells in every one.
+TEST(FieldScale, LargeFieldsInChunksMatchOnePass) {
+    const size_t n = 300007;
+    std::vector<float> values(n);
+    for (size_t i = 0; i < n; ++i) {
+        const float x = float(1 + (i * 7919) % 100000) * 0.01f;  // 0.01 .. 1000
+        values[i] = i % 97 == 0 ? 0.0f : i % 89 == 0 ? -x : i % 83 == 0 ? NAN : i % 79 == 0 ? INFINITY : x;
+    }
+    values[n - 2] = 1e-6f;  // the smallest positive value
+    values[n - 3] = 5e6f;   // the largest finite one
+    float smallest = 0, lo = INFINITY, hi = -INFINITY;
+    for (float v : values) {
+        if (v > 0 && std::isfinite(v) && (smallest == 0 || v < smallest)) smallest = v;
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    ASSERT_EQ(smallest, 1e-6f);
+    EXPECT_EQ(amr::smallestPositive(values), smallest);
+    amr::FiniteExtremes e;
+    e.add(values);
+    EXPECT_EQ(e.lo, lo);
+    EXPECT_EQ(e.hi, 5e6f);
+    EXPECT_EQ(e.hi, hi);
+
+    amr::Model m;
+    m.source = "large.cells";
+    m.cells.resize(n, amr::Cell{{0, 0, 0}, 0});
+    m.fields = {amr::Field{"rho", values}};
+    const amr::ScaleReport r = amr::applyFieldScale(m, amr::FieldScale::Log);
+    uint64_t floored = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const float v = values[i];
+        if (std::isnan(v)) {
+            EXPECT_TRUE(std::isnan(m.fields[0].values[i])) << i;
+            continue;
+        }
+        floored += !(double(v) >= double(smallest));
+        ASSERT_EQ(m.fields[0].values[i], float(std::log10(std::max(double(v), double(smallest))))) << i;
+    }
+    EXPECT_GT(floored, n / 100);
+    EXPECT_EQ(r.floored, floored);
+    EXPECT_EQ(r.floor, double(smallest));
+}
