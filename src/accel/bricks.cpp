@@ -661,7 +661,7 @@ private:
     }
 
     amr::Model& mModel;
-    std::vector<amr::Cell>& mCells;
+    amr::CellArray& mCells;
     std::vector<float*> mFields;
     size_t mPlanCells;  // nodes at least this large are planned on a cube grid (BrickBuildTuning)
     std::atomic<bool> mMoved{false};  // some cell changed place

@@ -80,11 +80,11 @@ public:
         mCells.push_back(c);
         mValues.push_back(v);
     }
-    std::vector<Cell> takeCells() { return std::move(mCells); }
+    CellArray takeCells() { return std::move(mCells); }
     std::vector<float> takeValues() { return std::move(mValues); }
 
 private:
-    std::vector<Cell> mCells;
+    CellArray mCells;
     std::vector<float> mValues;
 };
 

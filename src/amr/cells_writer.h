@@ -32,7 +32,7 @@ private:
     void flush();
 
     AtomicFileWriter mCellsOut, mScalarsOut;
-    std::vector<Cell> mCells;
+    CellArray mCells;
     std::vector<float> mValues;
 };
 

@@ -6,6 +6,8 @@
 //  - Leaf cells never overlap; together they are the medium. Field values are cell averages.
 #include <glm/glm.hpp>
 
+#include "core/file_io.h"
+
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -24,6 +26,10 @@ struct Cell {
 static_assert(sizeof(Cell) == 16, "Cell must match the 16-byte .cells record");
 // "(lower X,Y,Z level L)", for messages.
 std::string describeCell(const Cell& c);
+
+// The model's cell array: resize() leaves new cells uninitialised, so a reader writes each page
+// once (core/file_io.h, NoInitAllocator).
+using CellArray = std::vector<Cell, NoInitAllocator<Cell>>;
 
 constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
 
@@ -75,7 +81,7 @@ struct Transform {
 struct Model {
     std::string format;                       // "exabrick", "amrex", "enzo", "chombo", "carpet", "raw", ...
     std::string source;                       // path the model was read from
-    std::vector<Cell> cells;                  // leaf cells
+    CellArray cells;                          // leaf cells
     std::vector<Field> fields;                // loaded fields, each with cells.size() values
     std::vector<std::string> availableFields; // every field the source offers (loaded or not)
     Transform voxelToWorld;

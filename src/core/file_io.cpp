@@ -19,6 +19,7 @@
 
 #include "core/checked_size.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace fs = std::filesystem;
 
@@ -64,6 +65,33 @@ void BinaryReader::seek(uint64_t offset) {
 void BinaryReader::requireBytes(uint64_t bytes) const {
     AMRVK_CHECK(bytes <= mSize - mOffset, mPath.string(), ": truncated at byte ", mSize, " (needed ",
                 bytes - (mSize - mOffset), " more bytes at offset ", mOffset, ")");
+}
+
+void BinaryReader::readLarge(void* dst, uint64_t bytes) {
+    if (bytes < kParallelReadBytes) return read(dst, bytes);
+    requireBytes(bytes);
+    // Fixed 8 MiB chunks at explicit offsets (pread), each written (and its pages first touched)
+    // by whichever core takes it; the FILE's position and buffer are reset past them afterwards.
+    constexpr uint64_t kChunk = uint64_t{8} << 20;
+    const int fd = fileno(mFile);
+    const uint64_t chunks = (bytes + kChunk - 1) / kChunk;
+    std::atomic<uint64_t> failedAt{UINT64_MAX};
+    parallelFor(0, size_t(chunks), [&](size_t k) {
+        uint64_t at = uint64_t(k) * kChunk;
+        const uint64_t end = std::min(bytes, at + kChunk);
+        while (at < end) {
+            const ssize_t got = pread(fd, static_cast<char*>(dst) + at, size_t(end - at), off_t(mOffset + at));
+            if (got <= 0) {
+                uint64_t expected = UINT64_MAX;
+                while (at < expected && !failedAt.compare_exchange_weak(expected, at)) {
+                }
+                return;
+            }
+            at += uint64_t(got);
+        }
+    });
+    AMRVK_CHECK(failedAt.load() == UINT64_MAX, mPath.string(), ": read error at byte ", mOffset + failedAt.load());
+    seek(mOffset + bytes);
 }
 
 void BinaryReader::read(void* dst, uint64_t bytes) {

@@ -43,7 +43,7 @@ DataPart loadPart(World& world, const session::PictureDescription& d) {
     // The whole field's percentiles (the presets are fitted to them): each rank counts the values of
     // the cells it owns, so every cell counts once, and the counts are summed over the ranks.
     std::vector<float> owned;
-    std::vector<amr::Cell> ownedCells;
+    amr::CellArray ownedCells;
     const std::vector<float>& values = model.fields.at(0).values;
     for (size_t i = 0; i < model.cells.size(); ++i)
         if (amr::ownsCell(mine, model.cells[i])) {

@@ -32,7 +32,7 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
 std::shared_ptr<const Volume> makeVolume(amr::Model model, std::string_view fieldName, const VolumeOptions& options) {
     std::shared_ptr<Volume> v = makeMutableVolume(std::move(model), fieldName, nullptr, nullptr);
     if (options.releaseCells) {
-        std::vector<amr::Cell>().swap(v->model.cells);  // frees the memory, not just the size
+        amr::CellArray().swap(v->model.cells);  // frees the memory, not just the size
         v->cellsReleased = true;
     }
     return v;
