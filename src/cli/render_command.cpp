@@ -281,6 +281,11 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
                     "noise is above %g)\n",
                     r.firstFrame->dt, r.firstFrame->frames, r.firstFrame->frames == 1 ? "" : "s",
                     r.firstFrame->gpuSeconds, picture::kFirstFrameNoise);
+    if (r.firstFrame && r.firstFrame->noise > picture::kFirstFrameNoise)
+        std::printf("first frame: stopped at noise %.2g, above %g, by its %g s GPU budget or its finest step %g; "
+                    "--mode dvr --dt %g --spp 8 is finer and less noisy\n",
+                    r.firstFrame->noise, picture::kFirstFrameNoise, picture::kFirstFrameGpuSeconds,
+                    picture::kFirstFrameMinDt, r.firstFrame->dt / 2);
     if (a.firstFrameByDefault)
         std::printf("the default picture is this first frame; path-trace it with --mode ms (or ae, ss), --spp N or "
                     "--until-error E\n");

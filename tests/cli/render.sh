@@ -232,6 +232,12 @@ PY
 # any of --mode, --spp, --dt or --until-error path-traces it as before (ms, 64 spp by default).
 "$amrvk" render "$sample" --size 32x24 --grid 16 -o "$dir/def.pfm" --json "$dir/def.json" >"$dir/def.out" || fail=1
 check grep -q "^the default picture is this first frame; path-trace it with --mode ms" "$dir/def.out"
+# Above the target only where its budget or finest step stopped it, and then it says so.
+check /usr/bin/python3 - "$dir/def.out" "$dir/def.json" <<'PY'
+import json, sys
+out, noise = open(sys.argv[1]).read(), json.load(open(sys.argv[2]))["meanRelativeError"]
+assert ("first frame: stopped at noise" in out) == (noise > 0.05), (noise, out)
+PY
 "$amrvk" render "$sample" --size 16x12 --grid 16 --mode ae -o "$dir/ae.png" --json "$dir/ae.json" >"$dir/ae.out" || fail=1
 "$amrvk" render "$sample" --size 16x12 --grid 16 --spp 3 -o "$dir/s3.png" --json "$dir/s3.json" >/dev/null || fail=1
 check bash -c '! grep -q "default picture" "$1"' _ "$dir/ae.out"
