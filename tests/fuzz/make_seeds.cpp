@@ -45,8 +45,8 @@ void seed(const std::string& target, const std::string& name, const std::string&
     ++gCount;
 }
 
-template <typename T>
-std::string bytesOf(const std::vector<T>& v) {
+template <typename T, typename A>
+std::string bytesOf(const std::vector<T, A>& v) {
     return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
@@ -64,7 +64,7 @@ void exabrickSeeds(const fs::path& source) {
 
     // .bricks: the five-cell model's own bricks (written as `amrvk convert --bricks` would).
     amr::Model m;
-    m.cells = cells;
+    m.cells.assign(cells.begin(), cells.end());
     m.fields.push_back({"scalars", a});
     const fuzz::Scratch scratch;
     const fs::path tmp = scratch.path() / "m.bricks";
