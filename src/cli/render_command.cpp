@@ -95,8 +95,9 @@ namespace {
 // visible pixels; the first frame's target, picture::kFirstFrameNoise, is 0.05).
 constexpr double kGrainyNoise = 0.1;
 
-// The options that say how a picture is made; with none of them, one picture is its first frame.
-constexpr std::array<const char*, 5> kHowItIsMade = {"--mode", "--spp", "--dt", "--until-error", "--session"};
+// The options that choose the estimator: --first-frame chooses them itself, and with none of them
+// (nor --session) one picture is its first frame.
+constexpr std::array<const char*, 4> kEstimatorOptions = {"--mode", "--spp", "--dt", "--until-error"};
 
 // The render command's options, bound by addRenderOptions.
 struct RenderArgs {
@@ -382,11 +383,11 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     // it is made (no --mode, --spp, --dt, --until-error or --session), is its first frame, the clean
     // picture Python and the viewer show first; any of those asks for the estimator as before.
     const bool series = isSeries(app, a.inputs, a.output);
-    a.firstFrameByDefault = !a.firstFrame && !world && !series &&
-                            std::none_of(kHowItIsMade.begin(), kHowItIsMade.end(),
+    a.firstFrameByDefault = !a.firstFrame && !world && !series && app.count("--session") == 0 &&
+                            std::none_of(kEstimatorOptions.begin(), kEstimatorOptions.end(),
                                          [&](const char* o) { return app.count(o) > 0; });
     if (a.firstFrame) {
-        for (const char* given : {"--mode", "--spp", "--dt", "--until-error"})
+        for (const char* given : kEstimatorOptions)
             AMRVK_CHECK(app.count(given) == 0, "--first-frame chooses the mode (dvr), the samples (2) and the step; "
                         "leave out ", given);
         AMRVK_CHECK(!world, "--first-frame: one process, not under mpirun");
