@@ -67,9 +67,7 @@ void BinaryReader::requireBytes(uint64_t bytes) const {
                 bytes - (mSize - mOffset), " more bytes at offset ", mOffset, ")");
 }
 
-void BinaryReader::readLarge(void* dst, uint64_t bytes) {
-    if (bytes < kParallelReadBytes) return read(dst, bytes);
-    requireBytes(bytes);
+void BinaryReader::readInChunks(void* dst, uint64_t bytes) {
     // Fixed 8 MiB chunks at explicit offsets (pread), each written (and its pages first touched)
     // by whichever core takes it; the FILE's position and buffer are reset past them afterwards.
     constexpr uint64_t kChunk = uint64_t{8} << 20;
@@ -96,6 +94,7 @@ void BinaryReader::readLarge(void* dst, uint64_t bytes) {
 
 void BinaryReader::read(void* dst, uint64_t bytes) {
     requireBytes(bytes);
+    if (bytes >= kParallelReadBytes) return readInChunks(dst, bytes);
     size_t got = std::fread(dst, 1, bytes, mFile);
     AMRVK_CHECK(got == bytes, mPath.string(), ": read error at byte ", mOffset + got);
     mOffset += bytes;

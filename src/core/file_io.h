@@ -51,23 +51,23 @@ public:
     bool atEnd() const { return mOffset >= mSize; }
     void seek(uint64_t offset);
     // Reads exactly `bytes` bytes or throws "FILE: truncated at byte N (needed M more bytes)".
+    // kParallelReadBytes or more are read in chunks on every core (pread).
     void read(void* dst, uint64_t bytes);
-    // read(), in chunks on every core from kParallelReadBytes on; the offset then follows it.
-    void readLarge(void* dst, uint64_t bytes);
+    static constexpr uint64_t kParallelReadBytes = uint64_t{32} << 20;
     // Throws the truncation error of read() unless `bytes` more bytes are left.
     void requireBytes(uint64_t bytes) const;
     // Reads `count` values; the file is checked to hold them before anything is allocated.
-    // Arrays of kParallelReadBytes or more are read in chunks on every core (pread).
     template <typename T, typename A>
     void readArray(std::vector<T, A>& out, uint64_t count) {
         requireBytes(count > UINT64_MAX / sizeof(T) ? UINT64_MAX : count * sizeof(T));
         out.resize(count);
-        readLarge(out.data(), count * sizeof(T));
+        read(out.data(), count * sizeof(T));
     }
-    static constexpr uint64_t kParallelReadBytes = uint64_t{32} << 20;
     const std::filesystem::path& path() const { return mPath; }
 
 private:
+    void readInChunks(void* dst, uint64_t bytes);  // read() from kParallelReadBytes on
+
     std::filesystem::path mPath;
     std::FILE* mFile = nullptr;
     uint64_t mSize = 0;

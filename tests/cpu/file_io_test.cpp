@@ -1,4 +1,4 @@
-// core/file_io: BinaryReader::readArray of arrays large enough to be read in chunks on every core
+// core/file_io: BinaryReader::readArray (read) of arrays large enough to be read in chunks on every core
 // (kParallelReadBytes), into a plain vector and into a NoInitAllocator one: every element as
 // written, the offset after it, a read after it that continues there (the FILE's position is
 // reset past the chunks), and a request past the end refused before anything is read.
