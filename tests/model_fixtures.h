@@ -97,7 +97,7 @@ inline void expectExaBrickRoundTrip(const amr::Model& m) {
     for (const amr::Field& f : m.fields) back.fields.push_back(f.name);
     const amr::Model r = amr::readModel(base, back);
     ASSERT_EQ(r.cells.size(), m.cells.size());
-    EXPECT_EQ(std::memcmp(r.cells.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_TRUE(r.cells == m.cells);
     ASSERT_EQ(r.fields.size(), m.fields.size());
     for (size_t f = 0; f < m.fields.size(); ++f) {
         EXPECT_EQ(r.fields[f].name, m.fields[f].name);

@@ -345,7 +345,7 @@ private:
 
     // The caller sets mMoved (once, not per swap: one shared flag written by every core).
     void swapCells(size_t i, size_t j) {
-        std::swap(mCells[i], mCells[j]);
+        mCells.swapCells(i, j);
         for (float* v : mFields) std::swap(v[i], v[j]);
     }
 
@@ -381,9 +381,11 @@ private:
                             amr::describeCell(mCells[b + slot]));
             slot = static_cast<uint32_t>(i - b);
         }
-        std::vector<amr::Cell> cells(n);
-        for (size_t k = 0; k < n; ++k) cells[k] = mCells[b + from[k]];
-        std::copy(cells.begin(), cells.end(), mCells.begin() + std::ptrdiff_t(b));
+        mCells.visitStorage([&](auto cells) {
+            std::vector<typename decltype(cells)::value_type> moved(n);
+            for (size_t k = 0; k < n; ++k) moved[k] = cells[b + from[k]];
+            std::copy(moved.begin(), moved.end(), cells.begin() + std::ptrdiff_t(b));
+        });
         std::vector<float> values(n);
         for (float* v : mFields) {
             for (size_t k = 0; k < n; ++k) values[k] = v[b + from[k]];
@@ -540,24 +542,26 @@ private:
         auto leafOf = [&](const amr::Cell& c) { return size_t(leafOfCube[p.grid.cubeOf(c)] - lb); };
         std::vector<float> values(mFields.size());
         bool moved = false;
-        for (size_t m = 0; m + 1 < k; ++m)  // the last leaf then holds what is left
-            for (; head[m] < end[m]; ++head[m]) {
-                const size_t at = head[m];
-                amr::Cell cell = mCells[at];
-                size_t d = leafOf(cell);
-                if (d == m) continue;
-                for (size_t f = 0; f < mFields.size(); ++f) values[f] = mFields[f][at];
-                do {
-                    AMRVK_CHECK(d < k && head[d] < end[d], "internal: a cell outside the brick plan's leaves");
-                    const size_t to = head[d]++;
-                    std::swap(cell, mCells[to]);
-                    for (size_t f = 0; f < mFields.size(); ++f) std::swap(values[f], mFields[f][to]);
-                    d = leafOf(cell);
-                } while (d != m);
-                mCells[at] = cell;
-                for (size_t f = 0; f < mFields.size(); ++f) mFields[f][at] = values[f];
-                moved = true;
-            }
+        mCells.visitStorage([&](auto cells) {  // cells move as stored: no repacking
+            for (size_t m = 0; m + 1 < k; ++m)  // the last leaf then holds what is left
+                for (; head[m] < end[m]; ++head[m]) {
+                    const size_t at = head[m];
+                    auto cell = cells[at];
+                    size_t d = leafOf(amr::CellArray::decode(cell));
+                    if (d == m) continue;
+                    for (size_t f = 0; f < mFields.size(); ++f) values[f] = mFields[f][at];
+                    do {
+                        AMRVK_CHECK(d < k && head[d] < end[d], "internal: a cell outside the brick plan's leaves");
+                        const size_t to = head[d]++;
+                        std::swap(cell, cells[to]);
+                        for (size_t f = 0; f < mFields.size(); ++f) std::swap(values[f], mFields[f][to]);
+                        d = leafOf(amr::CellArray::decode(cell));
+                    } while (d != m);
+                    cells[at] = cell;
+                    for (size_t f = 0; f < mFields.size(); ++f) mFields[f][at] = values[f];
+                    moved = true;
+                }
+        });
         if (moved) mMoved.store(true, std::memory_order_relaxed);
     }
 

@@ -22,7 +22,7 @@ bool sameKey(const Cell& c, glm::ivec3 p, int32_t level) {
 }
 }  // namespace
 
-CellHash::CellHash(std::span<const Cell> cells) : mCells(cells) {
+CellHash::CellHash(const CellArray& cells) : mCells(cells) {
     AMRVK_CHECK(cells.size() < kNone, "too many cells for one model (", cells.size(), ", limit ",
                 kNone - 1, ")");
     uint64_t capacity = std::bit_ceil(std::max<uint64_t>(16, cells.size() * 2));

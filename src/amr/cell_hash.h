@@ -13,7 +13,7 @@ class CellHash {
 public:
     static constexpr uint32_t kNone = UINT32_MAX;
 
-    explicit CellHash(std::span<const Cell> cells);
+    explicit CellHash(const CellArray& cells);  // held by reference
 
     // Index of the cell with exactly this lower corner and level, or kNone.
     uint32_t find(glm::ivec3 lower, int32_t level) const;
@@ -24,7 +24,7 @@ public:
     const std::vector<int32_t>& levels() const { return mLevels; }
 
 private:
-    std::span<const Cell> mCells;
+    const CellArray& mCells;
     std::vector<uint32_t> mSlots;
     uint64_t mMask = 0;
     std::vector<int32_t> mLevels;

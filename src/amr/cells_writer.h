@@ -32,7 +32,7 @@ private:
     void flush();
 
     AtomicFileWriter mCellsOut, mScalarsOut;
-    CellArray mCells;
+    std::vector<Cell> mCells;  // one chunk of 16-byte records
     std::vector<float> mValues;
 };
 

@@ -87,7 +87,7 @@ Model readExaBrick(const fs::path& path, const ReadOptions& options) {
         checkedProduct({count, sizeof(Cell) + components.size() * sizeof(float)}, cellsPath.string());
     checkAllocation(bytes, cellsPath.string() + ": the cells and their values");
     BinaryReader cells(cellsPath);
-    cells.readArray(model.cells, count);
+    readCells(cells, count, model.cells);
     for (size_t i = 0; i < components.size(); ++i)
         BinaryReader(scalarFiles[components[i]].second).readArray(model.fields[i].values, count);
     return model;
@@ -107,7 +107,7 @@ void visitExaBrick(const fs::path& path, const ReadOptions& options, uint64_t ch
     BinaryReader cells(o.cellsPath), values(scalarsPath);
     for (uint64_t at = 0; at < o.count; at += chunkCells) {
         const uint64_t n = std::min(chunkCells, o.count - at);
-        cells.readArray(model.cells, n);
+        readCells(cells, n, model.cells);
         values.readArray(model.fields[0].values, n);
         visit(model);
     }
@@ -143,7 +143,7 @@ void writeExaBrick(const Model& model, const fs::path& base, bool writeSingleAsP
     // written, so a failure leaves none of them behind.
     std::vector<std::unique_ptr<AtomicFileWriter>> writers;
     writers.push_back(std::make_unique<AtomicFileWriter>(files[0]));
-    writers.back()->writeSpan(std::span<const Cell>(model.cells));
+    writeCells(*writers.back(), model.cells);
     for (size_t i = 0; i < model.fields.size(); ++i) {
         writers.push_back(std::make_unique<AtomicFileWriter>(files[i + 1]));
         writers.back()->writeSpan(std::span<const float>(model.fields[i].values));

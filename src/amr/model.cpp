@@ -140,7 +140,7 @@ void applyNanPolicy(Model& model, NanPolicy policy) {
     size_t out = 0;
     for (size_t i = 0; i < model.cells.size(); ++i) {
         if (bad[i]) continue;
-        model.cells[out] = model.cells[i];
+        model.cells.set(out, model.cells[i]);
         for (Field& f : model.fields) f.values[out] = f.values[i];
         ++out;
     }

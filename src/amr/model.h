@@ -6,6 +6,7 @@
 //  - Leaf cells never overlap; together they are the medium. Field values are cell averages.
 #include <glm/glm.hpp>
 
+#include "amr/cell_array.h"
 #include "core/file_io.h"
 
 #include <array>
@@ -19,17 +20,8 @@
 
 namespace amrvk::amr {
 
-struct Cell {
-    glm::ivec3 lower;  // lower corner, finest-level integer units
-    int32_t level;     // width = 1 << level units; 0 = finest
-};
-static_assert(sizeof(Cell) == 16, "Cell must match the 16-byte .cells record");
 // "(lower X,Y,Z level L)", for messages.
 std::string describeCell(const Cell& c);
-
-// The model's cell array: resize() leaves new cells uninitialised, so a reader writes each page
-// once (core/file_io.h, NoInitAllocator).
-using CellArray = std::vector<Cell, NoInitAllocator<Cell>>;
 
 constexpr int kMaxLevel = 30;  // widths up to 2^30 keep int32 corners exact
 

@@ -44,7 +44,7 @@ void placeBins(CellCensus& c) {
     c.counts.assign(size_t(c.bins.x) * size_t(c.bins.y) * size_t(c.bins.z), 0);
 }
 
-void addCounts(CellCensus& c, std::span<const Cell> cells) {
+void addCounts(CellCensus& c, const CellArray& cells) {
     for (const Cell& cell : cells) {
         const glm::i64vec3 b = (glm::i64vec3(cell.lower) - c.binOrigin) / c.binWidth;
         ++c.counts[(size_t(b.z) * size_t(c.bins.y) + size_t(b.y)) * size_t(c.bins.x) + size_t(b.x)];

@@ -21,7 +21,7 @@ int VolumeHistogram::binOf(float v) const {
 
 double VolumeHistogram::depth() const { return std::cbrt(boundsVolume); }
 
-VolumeHistogram volumeHistogramOf(std::span<const Cell> cells, std::span<const float> values, float lo, float hi,
+VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float> values, float lo, float hi,
                                   int minLevel, double boundsVoxels) {
     AMRVK_CHECK(cells.size() == values.size(), "internal: ", cells.size(), " cells but ", values.size(), " values");
     AMRVK_CHECK(std::isfinite(lo) && std::isfinite(hi) && lo <= hi, "internal: histogram range [", lo, ", ", hi,

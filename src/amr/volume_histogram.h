@@ -35,7 +35,7 @@ struct VolumeHistogram {
 // data set whose finest level is `minLevel` and whose bounding box holds boundsVolume voxels^3
 // (voxel units, as ModelSummary::bounds). Parallel; throws for lo > hi, non-finite ends, a
 // minLevel above a cell's level or sizes that differ.
-VolumeHistogram volumeHistogramOf(std::span<const Cell> cells, std::span<const float> values, float lo, float hi,
+VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float> values, float lo, float hi,
                                   int minLevel, double boundsVoxels);
 
 }  // namespace amrvk::amr

@@ -67,6 +67,22 @@ void BinaryReader::requireBytes(uint64_t bytes) const {
                 bytes - (mSize - mOffset), " more bytes at offset ", mOffset, ")");
 }
 
+// pread until `bytes` are in; returns how many arrived before an error or the end of the file.
+static uint64_t preadFully(int fd, void* dst, uint64_t bytes, uint64_t offset) {
+    uint64_t at = 0;
+    while (at < bytes) {
+        const ssize_t got = pread(fd, static_cast<char*>(dst) + at, size_t(bytes - at), off_t(offset + at));
+        if (got <= 0) break;
+        at += uint64_t(got);
+    }
+    return at;
+}
+
+void BinaryReader::readAt(uint64_t offset, void* dst, uint64_t bytes) const {
+    const uint64_t got = preadFully(fileno(mFile), dst, bytes, offset);
+    AMRVK_CHECK(got == bytes, mPath.string(), ": read error at byte ", offset + got);
+}
+
 void BinaryReader::readInChunks(void* dst, uint64_t bytes) {
     // Fixed 8 MiB chunks at explicit offsets (pread), each written (and its pages first touched)
     // by whichever core takes it; the FILE's position and buffer are reset past them afterwards.
@@ -75,17 +91,11 @@ void BinaryReader::readInChunks(void* dst, uint64_t bytes) {
     const uint64_t chunks = (bytes + kChunk - 1) / kChunk;
     std::atomic<uint64_t> failedAt{UINT64_MAX};
     parallelFor(0, size_t(chunks), [&](size_t k) {
-        uint64_t at = uint64_t(k) * kChunk;
-        const uint64_t end = std::min(bytes, at + kChunk);
-        while (at < end) {
-            const ssize_t got = pread(fd, static_cast<char*>(dst) + at, size_t(end - at), off_t(mOffset + at));
-            if (got <= 0) {
-                uint64_t expected = UINT64_MAX;
-                while (at < expected && !failedAt.compare_exchange_weak(expected, at)) {
-                }
-                return;
-            }
-            at += uint64_t(got);
+        const uint64_t at = uint64_t(k) * kChunk, n = std::min(bytes, at + kChunk) - at;
+        const uint64_t got = preadFully(fd, static_cast<char*>(dst) + at, n, mOffset + at);
+        if (got == n) return;
+        uint64_t expected = UINT64_MAX;
+        while (at + got < expected && !failedAt.compare_exchange_weak(expected, at + got)) {
         }
     });
     AMRVK_CHECK(failedAt.load() == UINT64_MAX, mPath.string(), ": read error at byte ", mOffset + failedAt.load());

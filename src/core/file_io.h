@@ -63,6 +63,9 @@ public:
         out.resize(count);
         read(out.data(), count * sizeof(T));
     }
+    // Reads `bytes` bytes at absolute `offset` without moving the reader (pread), from any thread;
+    // the caller checked that they exist. Throws "FILE: read error at byte N".
+    void readAt(uint64_t offset, void* dst, uint64_t bytes) const;
     const std::filesystem::path& path() const { return mPath; }
 
 private:

@@ -345,17 +345,19 @@ std::shared_ptr<PyVolume> volumeFromArrays(const py::object& lowerObj, const py:
     m.availableFields = {field};
     // One copy, numpy -> model; coordinates checked to fit the 32-bit cell format.
     for (py::ssize_t i = 0; i < n; ++i) {
+        amr::Cell cell;
         for (int a = 0; a < 3; ++a) {
             const WholeNumber c = wholeElement(lower, i, a);
             if (!c.value || *c.value < INT32_MIN || *c.value > INT32_MAX)
                 throw py::value_error("lower[" + std::to_string(i) + "]: " + c.text + " does not fit in 32 bits");
-            m.cells[size_t(i)].lower[a] = int32_t(*c.value);
+            cell.lower[a] = int32_t(*c.value);
         }
         const WholeNumber l = wholeElement(level, i);
         if (!l.value || *l.value < 0 || *l.value > amr::kMaxLevel)
             throw py::value_error("level[" + std::to_string(i) + "]: " + l.text + " is outside [0, " +
                                   std::to_string(amr::kMaxLevel) + "] (0 = finest)");
-        m.cells[size_t(i)].level = int32_t(*l.value);
+        cell.level = int32_t(*l.value);
+        m.cells.set(size_t(i), cell);
         m.fields[0].values[size_t(i)] = element<float>(values, i);
     }
     auto v = std::make_shared<PyVolume>();

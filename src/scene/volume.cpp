@@ -19,7 +19,7 @@ shared::AabbGpu Volume::toLocal(const accel::BoxD& b) const {
 }
 
 uint64_t Volume::modelBytes() const {
-    uint64_t bytes = model.cells.size() * sizeof(amr::Cell);
+    uint64_t bytes = model.cells.size() * model.cells.bytesPerCell();
     for (const amr::Field& f : model.fields) bytes += f.values.size() * sizeof(float);
     return bytes + slotValues.size() * sizeof(float);
 }

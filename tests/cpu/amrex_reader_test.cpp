@@ -1,6 +1,7 @@
 // AMReX plotfile reader: the real PeleLM plotfile (oracles in shared/data/amr/FORMATS.md 6) and
 // small synthetic plotfiles written here for what the real one lacks (2-D, ghost cells, float32,
 // big-endian, raw VisMF versions 2-4, refinement ratio 3).
+#include <optional>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,13 +43,13 @@ void copyPlotfile(const fs::path& src, const fs::path& dst) {
             copyPrefix(entry.path(), dst / fs::relative(entry.path(), src));
 }
 
-const Cell* findCell(const Model& m, glm::ivec3 lower, int level, size_t* index) {
+std::optional<Cell> findCell(const Model& m, glm::ivec3 lower, int level, size_t* index) {
     for (size_t i = 0; i < m.cells.size(); ++i)
         if (m.cells[i].lower == lower && m.cells[i].level == level) {
             *index = i;
-            return &m.cells[i];
+            return m.cells[i];
         }
-    return nullptr;
+    return std::nullopt;
 }
 
 // ---- synthetic plotfiles ----
@@ -129,7 +130,7 @@ TEST(AmrexReader, RealPlotfileMatchesOracles) {
 
     // One value checked against the FAB bytes: finest cell (5, 17, 30).
     size_t i = 0;
-    ASSERT_NE(findCell(m, {5, 17, 30}, 0, &i), nullptr);
+    ASSERT_TRUE(findCell(m, {5, 17, 30}, 0, &i));
     EXPECT_FLOAT_EQ(m.fields[0].values[i], static_cast<float>(1579.7857281345207));
 
     bool hasTime = false;
@@ -149,7 +150,7 @@ TEST(AmrexReader, HeaderPathAndAllFields) {
     const FieldStats density = computeFieldStats(m, m.field("density"));
     EXPECT_GT(density.minValue, 0.0f);
     size_t i = 0;
-    ASSERT_NE(findCell(m, {5, 17, 30}, 0, &i), nullptr);
+    ASSERT_TRUE(findCell(m, {5, 17, 30}, 0, &i));
     EXPECT_FLOAT_EQ(m.field("density").values[i], static_cast<float>(0.21436366927536127));
 }
 

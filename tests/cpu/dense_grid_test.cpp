@@ -67,9 +67,11 @@ amr::Model holeyModel(uint32_t seed) {
 
 // The same model with every cell twice as wide (finest level present = 1).
 amr::Model coarsened(amr::Model m) {
-    for (amr::Cell& c : m.cells) {
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        amr::Cell c = m.cells[i];
         c.lower *= 2;
         c.level += 1;
+        m.cells.set(i, c);
     }
     return m;
 }

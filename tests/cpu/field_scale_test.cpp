@@ -164,7 +164,7 @@ TEST(FieldScale, LargeFieldsInChunksMatchOnePass) {
 
     amr::Model m;
     m.source = "large.cells";
-    m.cells.resize(n, amr::Cell{{0, 0, 0}, 0});
+    m.cells.resize(n, amr::Cell{{0, 0, 0}, 0});  // one cell n times: the scale reads values only
     m.fields = {amr::Field{"rho", values}};
     const amr::ScaleReport r = amr::applyFieldScale(m, amr::FieldScale::Log);
     uint64_t floored = 0;

@@ -35,7 +35,7 @@ TEST(Model, ValidModelPasses) {
 
 TEST(Model, MisalignedCellIsRejected) {
     Model m = twoLevelModel();
-    m.cells[0].lower = {1, 0, 0};
+    m.cells.set(0, {{1, 0, 0}, m.cells[0].level});
     try {
         validate(m);
         FAIL() << "expected an error";

@@ -158,7 +158,7 @@ TEST(SpacePartition, ReadPartStreamsTheCellsThatMeetTheBox) {
         std::filesystem::path(base) += ".cells", ro, 1000,
         [&](amr::Model& chunk) { chunked.insert(chunked.end(), chunk.cells.begin(), chunk.cells.end()); }, nullptr);
     ASSERT_EQ(chunked.size(), m.cells.size());
-    EXPECT_EQ(std::memcmp(chunked.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_TRUE(std::equal(chunked.begin(), chunked.end(), m.cells.begin()));
 }
 
 TEST(SpacePartition, MorePartsThanOccupiedBinsIsOneLine) {

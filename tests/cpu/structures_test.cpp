@@ -41,7 +41,7 @@ amr::Model shuffledCopy(const amr::Model& m, uint32_t seed) {
     std::mt19937 rng(seed);
     for (size_t i = shuffled.cells.size(); i-- > 1;) {
         const size_t j = std::uniform_int_distribution<size_t>(0, i)(rng);
-        std::swap(shuffled.cells[i], shuffled.cells[j]);
+        shuffled.cells.swapCells(i, j);
         for (amr::Field& f : shuffled.fields) std::swap(f.values[i], f.values[j]);
     }
     return shuffled;
@@ -93,12 +93,12 @@ TEST(Bricks, EveryCellInExactlyOneBrickAtItsPositionAndTheModelInBrickOrder) {
     const amr::ReferenceSampler fresh(m, m.fields[0]);
     const BrickSet again = buildBricks(m);
     EXPECT_NO_THROW(fresh.sample(glm::dvec3(m.cells[0].lower) + 0.5)) << "nothing moved";
-    EXPECT_EQ(std::memcmp(m.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_TRUE(m.cells == ordered.cells);
     EXPECT_EQ(m.fields[0].values, ordered.fields[0].values);
     amr::Model shuffled = shuffledCopy(original, 7);
     const BrickSet fromShuffled = buildBricks(shuffled);
     ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
-    EXPECT_EQ(std::memcmp(shuffled.cells.data(), ordered.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_TRUE(shuffled.cells == ordered.cells);
     EXPECT_EQ(shuffled.fields.back().values, ordered.fields.back().values);
 }
 
@@ -127,7 +127,7 @@ TEST(Bricks, ParallelPartitionsNearTheRootGiveTheSameBricks) {
     amr::Model shuffled = shuffledCopy(original, 11);
     const BrickSet fromShuffled = buildBricks(shuffled);
     ASSERT_EQ(fromShuffled.bricks.size(), bs.bricks.size());
-    EXPECT_EQ(std::memcmp(shuffled.cells.data(), m.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+    EXPECT_TRUE(shuffled.cells == m.cells);
     EXPECT_EQ(shuffled.fields[0].values, m.fields[0].values);
 }
 
@@ -156,7 +156,7 @@ TEST(Bricks, PlannedTopLevelsGiveTheBricksOfLevelByLevelSplits) {
                 ASSERT_TRUE(g.lower == w.lower && g.size == w.size && g.level == w.level && g.begin == w.begin)
                     << "brick " << k;
             }
-            EXPECT_EQ(std::memcmp(m.cells.data(), levelByLevel.cells.data(), m.cells.size() * sizeof(amr::Cell)), 0);
+            EXPECT_TRUE(m.cells == levelByLevel.cells);
             EXPECT_EQ(m.fields[0].values, levelByLevel.fields[0].values);
         }
     }
@@ -171,12 +171,17 @@ TEST(Bricks, OverlappingCellsAreFoundByTheBuild) {
             const size_t pos = std::min(at, m.cells.size());
             amr::Cell extra = m.cells[m.cells.size() / 2];
             if (!duplicate) {  // a finest cell inside the coarsest cell of the model
-                const auto coarse = std::max_element(m.cells.begin(), m.cells.end(),
-                                                     [](const amr::Cell& a, const amr::Cell& b) { return a.level < b.level; });
-                ASSERT_GT(coarse->level, 0);
-                extra = {coarse->lower + glm::ivec3(1, 0, 1), 0};
+                const amr::Cell coarse = *std::max_element(
+                    m.cells.begin(), m.cells.end(), [](const amr::Cell& a, const amr::Cell& b) { return a.level < b.level; });
+                ASSERT_GT(coarse.level, 0);
+                extra = {coarse.lower + glm::ivec3(1, 0, 1), 0};
             }
-            m.cells.insert(m.cells.begin() + std::ptrdiff_t(pos), extra);
+            amr::CellArray cells;
+            for (size_t i = 0; i <= m.cells.size(); ++i) {
+                if (i == pos) cells.push_back(extra);
+                if (i < m.cells.size()) cells.push_back(m.cells[i]);
+            }
+            m.cells.swap(cells);
             for (amr::Field& f : m.fields) f.values.insert(f.values.begin() + std::ptrdiff_t(pos), 1.0f);
             amr::validateCells(m);
             EXPECT_THROW(amr::validate(m), Error);  // the hash check agrees

@@ -41,7 +41,7 @@ uint64_t digest(const Model& m) {
         const auto* p = static_cast<const unsigned char*>(data);
         for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
     };
-    add(m.cells.data(), m.cells.size() * sizeof(Cell));
+    for (const Cell& c : m.cells) add(&c, sizeof(Cell));
     add(m.fields[0].values.data(), m.fields[0].values.size() * sizeof(float));
     return h;
 }
@@ -155,10 +155,10 @@ TEST_P(SyntheticKinds, SameSeedIsIdenticalOtherSeedDiffers) {
     Model b = makeSyntheticModel(params(GetParam(), 50000, 7));
     Model c = makeSyntheticModel(params(GetParam(), 50000, 8));
     ASSERT_EQ(a.cellCount(), b.cellCount());
-    EXPECT_EQ(0, std::memcmp(a.cells.data(), b.cells.data(), a.cells.size() * sizeof(Cell)));
+    EXPECT_TRUE(a.cells == b.cells);
     EXPECT_EQ(a.fields[0].values, b.fields[0].values);
     const bool sameCells = a.cellCount() == c.cellCount() &&
-                           std::memcmp(a.cells.data(), c.cells.data(), a.cells.size() * sizeof(Cell)) == 0;
+                           a.cells == c.cells;
     EXPECT_FALSE(sameCells && a.fields[0].values == c.fields[0].values);
 }
 
@@ -339,7 +339,7 @@ TEST(Synthetic, FilesEqualTheInMemoryModelAndAreDeterministic) {
     EXPECT_EQ(st.cells, files.cellCount());
     EXPECT_EQ(st.bytes, files.cellCount() * 20);
     ASSERT_EQ(files.cellCount(), memory.cellCount());
-    EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+    EXPECT_TRUE(files.cells == memory.cells);
     EXPECT_EQ(files.field("scalars").values, memory.fields[0].values);
 }
 
@@ -370,7 +370,7 @@ TEST(Synthetic, StreamsMoreThanOneChunkAndReportsProgress) {
     Model memory = makeSyntheticModel(p);
     Model files = readModel(dir / "big", ReadOptions{});
     ASSERT_EQ(files.cellCount(), memory.cellCount());
-    EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+    EXPECT_TRUE(files.cells == memory.cells);
     EXPECT_EQ(files.field("density").values, memory.field("density").values);
 }
 
@@ -395,7 +395,7 @@ TEST(GenCommand, WritesFilesThatReadBackAsTheInMemoryModel) {
         Model files = readModel(withSuffix(base, ".cells"), ReadOptions{});
         Model memory = makeSyntheticModel(params(parseSyntheticKind(kind), 10000, 5));
         ASSERT_EQ(files.cellCount(), memory.cellCount()) << kind;
-        EXPECT_EQ(0, std::memcmp(files.cells.data(), memory.cells.data(), files.cells.size() * sizeof(Cell)));
+        EXPECT_TRUE(files.cells == memory.cells);
         EXPECT_EQ(files.fields[0].values, memory.fields[0].values);
     }
 }

@@ -148,7 +148,9 @@ TEST(ValuePercentiles, TheVolumeHoldsItsFieldsByCellCount) {
     amr::Model m = test::makeRefinedModel(9, glm::ivec3(4, 4, 4), 3, 0.0);
     const size_t coarse = m.cells.size();
     const amr::Cell corner = m.cells.front();
-    m.cells.erase(m.cells.begin());
+    amr::CellArray rest;
+    for (size_t i = 1; i < m.cells.size(); ++i) rest.push_back(m.cells[i]);
+    m.cells.swap(rest);
     for (int z = 0; z < 8; ++z)
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x) m.cells.push_back({corner.lower + glm::ivec3(x, y, z), 0});

@@ -60,7 +60,9 @@ TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
     EXPECT_TRUE(fromFile.session().settings == fromMemory.session().settings);
     // Bad cells from memory get the readers' one-line errors.
     amr::Model bad = cloud;
-    bad.cells[3].lower.x += 1;  // misaligned
+    amr::Cell misaligned = bad.cells[3];
+    misaligned.lower.x += 1;
+    bad.cells.set(3, misaligned);
     EXPECT_NE(test::errorOf([&] { amr::checkedModel(std::move(bad), amr::NanPolicy::Reject); }).find("aligned"),
               std::string::npos);
 }
