@@ -34,9 +34,19 @@ bool CellArray::tryStore(size_t first, std::span<const Cell> in) {
         std::copy(in.begin(), in.end(), mWideCells.begin() + std::ptrdiff_t(first));
         return true;
     }
-    if (!std::all_of(in.begin(), in.end(), fits)) return false;
-    for (size_t i = 0; i < in.size(); ++i) mCompact[first + i] = pack(in[i]);
-    return true;
+    // fits() and pack() in one branch-free pass: every condition ORs into `bad`.
+    uint32_t bad = 0;
+    uint64_t* out = mCompact.data() + first;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const Cell& c = in[i];
+        const uint32_t level = uint32_t(c.level), l = level & 31u;
+        const uint32_t x = uint32_t(c.lower.x), y = uint32_t(c.lower.y), z = uint32_t(c.lower.z);
+        bad |= uint32_t(level > 30u) | ((x | y | z) >> 31) | ((x | y | z) & ((1u << l) - 1u)) |
+               ((x >> l) >> kXBits) | ((y >> l) >> kYBits) | ((z >> l) >> kZBits);
+        out[i] = uint64_t(l) | uint64_t(x >> l) << kLevelBits | uint64_t(y >> l) << (kLevelBits + kXBits) |
+                 uint64_t(z >> l) << (kLevelBits + kXBits + kYBits);
+    }
+    return bad == 0;
 }
 
 void CellArray::append(std::span<const Cell> in) {

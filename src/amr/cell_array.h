@@ -126,9 +126,9 @@ public:
 
     // Cells [first, first + out.size()) as 16-byte records (writers, a chunk at a time).
     void copyOut(size_t first, std::span<Cell> out) const;
-    // Stores records as cells [first, first + in.size()), which must exist; returns false, with
-    // nothing stored, when the array is compact and a record does not fit. Safe from several
-    // threads at once for disjoint ranges (it never widens).
+    // Stores records as cells [first, first + in.size()), which must exist; returns false when
+    // the array is compact and a record does not fit, and those cells are then unspecified (widen
+    // and store them again). Safe from several threads at once for disjoint ranges (it never widens).
     bool tryStore(size_t first, std::span<const Cell> in);
     // Appends records (widening if one does not fit).
     void append(std::span<const Cell> in);

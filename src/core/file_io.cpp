@@ -1,6 +1,7 @@
 #include "core/file_io.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -65,6 +66,14 @@ void BinaryReader::seek(uint64_t offset) {
 void BinaryReader::requireBytes(uint64_t bytes) const {
     AMRVK_CHECK(bytes <= mSize - mOffset, mPath.string(), ": truncated at byte ", mSize, " (needed ",
                 bytes - (mSize - mOffset), " more bytes at offset ", mOffset, ")");
+}
+
+void adviseHugePages(void* p, size_t bytes) {
+    if (bytes < kHugePageAdviceBytes) return;
+    constexpr uintptr_t kHuge = uintptr_t{2} << 20;
+    const uintptr_t lo = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
+    const uintptr_t hi = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
+    if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice: failure is harmless
 }
 
 // pread until `bytes` are in; returns how many arrived before an error or the end of the file.

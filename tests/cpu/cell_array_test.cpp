@@ -59,6 +59,10 @@ TEST(CellArray, EveryFittingCellComesBackExactlyFromEightBytes) {
         EXPECT_TRUE(CellArray::fits(c)) << c.lower.x << " " << c.lower.z << " level " << c.level;
         EXPECT_EQ(CellArray::unpack(CellArray::pack(c)), c);
         a.push_back(c);
+        CellArray one;
+        one.resize(1);
+        EXPECT_TRUE(one.tryStore(0, std::span<const Cell>(&c, 1)));
+        EXPECT_EQ(one[0], c);
     }
     EXPECT_TRUE(a.compact());
     EXPECT_LE(a.size() * 8, a.bytes());
@@ -83,6 +87,9 @@ TEST(CellArray, ACellThatDoesNotFitTurnsTheArrayWideAndKeepsEveryValue) {
     };
     for (const Cell& bad : misfits) {
         EXPECT_FALSE(CellArray::fits(bad)) << bad.lower.x << " " << bad.lower.y << " " << bad.lower.z << " " << bad.level;
+        CellArray one;  // the reader's packing pass agrees
+        one.resize(1);
+        EXPECT_FALSE(one.tryStore(0, std::span<const Cell>(&bad, 1)));
         const std::vector<Cell> good = randomFittingCells(1000, 3);
         CellArray a;
         for (const Cell& c : good) a.push_back(c);
