@@ -123,6 +123,18 @@ NanPolicy parseNanPolicy(std::string_view text) {
 const char* nanPolicyName(NanPolicy policy) { return policy == NanPolicy::Drop ? "drop" : "reject"; }
 
 void applyNanPolicy(Model& model, NanPolicy policy) {
+    // The common case, every value finite, found on every core; the rest is serial.
+    constexpr size_t kChunks = 64;
+    const bool allFinite = std::all_of(model.fields.begin(), model.fields.end(), [](const Field& f) {
+        return parallelReduce<bool>(
+            0, f.values.size(), kChunks,
+            [&](size_t lo, size_t hi) {
+                return std::all_of(f.values.begin() + std::ptrdiff_t(lo), f.values.begin() + std::ptrdiff_t(hi),
+                                   [](float v) { return std::isfinite(v); });
+            },
+            [](bool& a, bool b) { a = a && b; });
+    });
+    if (allFinite) return;
     std::vector<uint8_t> bad;
     uint64_t badCount = 0;
     for (const Field& f : model.fields) {

@@ -76,6 +76,10 @@ void adviseHugePages(void* p, size_t bytes) {
     if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice: failure is harmless
 }
 
+void prepareStorage(void* p, size_t bytes) {
+    if (bytes >= kHugePageAdviceBytes) parallelZero(p, bytes);
+}
+
 // pread until `bytes` are in; returns how many arrived before an error or the end of the file.
 static uint64_t preadFully(int fd, void* dst, uint64_t bytes, uint64_t offset) {
     uint64_t at = 0;

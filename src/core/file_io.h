@@ -24,6 +24,10 @@ std::string readTextFile(const std::filesystem::path& path);
 inline constexpr size_t kHugePageAdviceBytes = size_t{8} << 20;
 void adviseHugePages(void* p, size_t bytes);
 
+// Faults in [p, p + bytes) on every core (huge pages advised, zero-filled) from
+// kHugePageAdviceBytes on, so that the resize() that follows does not do it on one.
+void prepareStorage(void* p, size_t bytes);
+
 // A vector allocator that leaves elements made without a value (resize) default-initialised:
 // uninitialised for trivial types, so no page is touched before a reader writes it. A large
 // array read into such a vector is written once, in parallel (BinaryReader::readArray), instead of
@@ -77,10 +81,10 @@ public:
     template <typename T, typename A>
     void readArray(std::vector<T, A>& out, uint64_t count) {
         requireBytes(count > UINT64_MAX / sizeof(T) ? UINT64_MAX : count * sizeof(T));
-        if (out.capacity() < count) {  // fresh storage, advised before resize() first touches it
+        if (out.capacity() < count) {  // fresh storage: its pages faulted in on every core
             std::vector<T, A>().swap(out);
             out.reserve(count);
-            adviseHugePages(out.data(), count * sizeof(T));
+            if (std::is_trivially_default_constructible_v<T>) prepareStorage(out.data(), count * sizeof(T));
         }
         out.resize(count);
         read(out.data(), count * sizeof(T));

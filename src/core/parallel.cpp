@@ -1,6 +1,7 @@
 #include "core/parallel.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cstdlib>
 #include <memory>
 #include <mutex>
@@ -13,6 +14,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
+#include "core/file_io.h"
 
 namespace amrvk {
 
@@ -52,6 +54,34 @@ void parallelForRanges(size_t begin, size_t end, size_t grain,
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b) {
     initThreads();
     tbb::parallel_invoke(a, b);
+}
+
+namespace {
+constexpr size_t kCopyChunk = size_t{8} << 20;
+}
+
+void parallelCopy(void* dst, const void* src, size_t bytes) {
+    if (bytes < 2 * kCopyChunk) {
+        std::memcpy(dst, src, bytes);
+        return;
+    }
+    adviseHugePages(dst, bytes);
+    parallelFor(0, (bytes + kCopyChunk - 1) / kCopyChunk, [&](size_t k) {
+        const size_t at = k * kCopyChunk;
+        std::memcpy(static_cast<char*>(dst) + at, static_cast<const char*>(src) + at, std::min(kCopyChunk, bytes - at));
+    });
+}
+
+void parallelZero(void* dst, size_t bytes) {
+    if (bytes < 2 * kCopyChunk) {
+        std::memset(dst, 0, bytes);
+        return;
+    }
+    adviseHugePages(dst, bytes);
+    parallelFor(0, (bytes + kCopyChunk - 1) / kCopyChunk, [&](size_t k) {
+        const size_t at = k * kCopyChunk;
+        std::memset(static_cast<char*>(dst) + at, 0, std::min(kCopyChunk, bytes - at));
+    });
 }
 
 }  // namespace amrvk

@@ -31,6 +31,13 @@ void parallelFor(size_t begin, size_t end, Fn&& fn, size_t grain = 1) {
     });
 }
 
+// memcpy / memset(0) of large arrays in 8 MiB chunks on every core, the destination advised onto
+// huge pages first (core/file_io.h): its pages are then faulted in (and cleared by the kernel) on
+// every core instead of one. The 10^8-cell first sample spent about 2 s of one core in the
+// device upload's memcpy and the field's zero-fill alone.
+void parallelCopy(void* dst, const void* src, size_t bytes);
+void parallelZero(void* dst, size_t bytes);
+
 // Runs a() and b(), possibly at the same time; returns when both have (rethrows as above).
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b);
 

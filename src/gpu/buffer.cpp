@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/parallel.h"
 #include "gpu/vk_check.h"
 
 namespace amrvk::gpu {
@@ -99,7 +100,7 @@ void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
                 mName, "' of ", mSize, " bytes");
     if (bytes == 0) return;
     if (mMapped) {
-        std::memcpy(static_cast<char*>(mMapped) + offset, data, bytes);
+        parallelCopy(static_cast<char*>(mMapped) + offset, data, bytes);  // large: on every core
         if (!mCoherent) {
             VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
             range.memory = mMemory;
