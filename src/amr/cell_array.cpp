@@ -17,7 +17,7 @@ void CellArray::widen() {
     if (mWide) return;
     mWideCells.resize(mCompact.size());
     parallelForRanges(0, mCompact.size(), kChunkCells, [&](size_t lo, size_t hi) {
-        for (size_t i = lo; i < hi; ++i) mWideCells[i] = unpack(mCompact[i]);
+        for (size_t i = lo; i < hi; ++i) mWideCells[i] = decode(mCompact[i]);
     });
     decltype(mCompact)().swap(mCompact);
     mWide = true;
@@ -26,7 +26,7 @@ void CellArray::widen() {
 void CellArray::copyOut(size_t first, std::span<Cell> out) const {
     if (mWide) std::copy_n(mWideCells.begin() + std::ptrdiff_t(first), out.size(), out.begin());
     else
-        for (size_t i = 0; i < out.size(); ++i) out[i] = unpack(mCompact[first + i]);
+        for (size_t i = 0; i < out.size(); ++i) out[i] = decode(mCompact[first + i]);
 }
 
 bool CellArray::tryStore(size_t first, std::span<const Cell> in) {
@@ -34,18 +34,9 @@ bool CellArray::tryStore(size_t first, std::span<const Cell> in) {
         std::copy(in.begin(), in.end(), mWideCells.begin() + std::ptrdiff_t(first));
         return true;
     }
-    // fits() and pack() in one branch-free pass: every condition ORs into `bad`.
-    uint32_t bad = 0;
+    uint32_t bad = 0;  // one branch-free pass: fits() and pack() together
     uint64_t* out = mCompact.data() + first;
-    for (size_t i = 0; i < in.size(); ++i) {
-        const Cell& c = in[i];
-        const uint32_t level = uint32_t(c.level), l = level & 31u;
-        const uint32_t x = uint32_t(c.lower.x), y = uint32_t(c.lower.y), z = uint32_t(c.lower.z);
-        bad |= uint32_t(level > 30u) | ((x | y | z) >> 31) | ((x | y | z) & ((1u << l) - 1u)) |
-               ((x >> l) >> kXBits) | ((y >> l) >> kYBits) | ((z >> l) >> kZBits);
-        out[i] = uint64_t(l) | uint64_t(x >> l) << kLevelBits | uint64_t(y >> l) << (kLevelBits + kXBits) |
-                 uint64_t(z >> l) << (kLevelBits + kXBits + kYBits);
-    }
+    for (size_t i = 0; i < in.size(); ++i) out[i] = packChecked(in[i], bad);
     return bad == 0;
 }
 

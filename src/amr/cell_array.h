@@ -37,21 +37,29 @@ class CellArray {
 public:
     static constexpr int kLevelBits = 5, kXBits = 20, kYBits = 20, kZBits = 19;
 
-    // True when `c` is stored in 8 bytes.
+    // The 8-byte form of c, with every condition of fits() ORed into `bad` (no branches: the
+    // reader packs each chunk in one pass with it); the result means nothing where bad != 0.
+    static uint64_t packChecked(const Cell& c, uint32_t& bad) {
+        const uint32_t level = uint32_t(c.level), l = level & 31u;
+        const uint32_t x = uint32_t(c.lower.x), y = uint32_t(c.lower.y), z = uint32_t(c.lower.z);
+        bad |= uint32_t(level > 30u) | ((x | y | z) >> 31) | ((x | y | z) & ((1u << l) - 1u)) |
+               ((x >> l) >> kXBits) | ((y >> l) >> kYBits) | ((z >> l) >> kZBits);
+        return uint64_t(l) | uint64_t(x >> l) << kLevelBits | uint64_t(y >> l) << (kLevelBits + kXBits) |
+               uint64_t(z >> l) << (kLevelBits + kXBits + kYBits);
+    }
+    // True when `c` is stored in 8 bytes: level 0..30, corner non-negative and aligned, and
+    // lower >> level within the bits of its axis.
     static bool fits(const Cell& c) {
-        if (uint32_t(c.level) > 30u) return false;
-        const uint32_t align = (uint32_t{1} << c.level) - 1;
-        if ((c.lower.x | c.lower.y | c.lower.z) < 0) return false;  // any sign bit set
-        if ((uint32_t(c.lower.x) | uint32_t(c.lower.y) | uint32_t(c.lower.z)) & align) return false;
-        return (uint32_t(c.lower.x) >> c.level) < (1u << kXBits) && (uint32_t(c.lower.y) >> c.level) < (1u << kYBits) &&
-               (uint32_t(c.lower.z) >> c.level) < (1u << kZBits);
+        uint32_t bad = 0;
+        packChecked(c, bad);
+        return bad == 0;
     }
     static uint64_t pack(const Cell& c) {  // fits(c)
-        return uint64_t(c.level) | uint64_t(uint32_t(c.lower.x) >> c.level) << kLevelBits |
-               uint64_t(uint32_t(c.lower.y) >> c.level) << (kLevelBits + kXBits) |
-               uint64_t(uint32_t(c.lower.z) >> c.level) << (kLevelBits + kXBits + kYBits);
+        uint32_t bad = 0;
+        return packChecked(c, bad);
     }
-    static Cell unpack(uint64_t v) {
+    // A cell from either storage (visitStorage's elements).
+    static Cell decode(uint64_t v) {
         const int level = int(v & 31u);
         const auto axis = [&](int shift, int bits) {
             return int32_t(uint32_t((v >> shift) & ((uint64_t{1} << bits) - 1)) << level);
@@ -60,6 +68,7 @@ public:
                      axis(kLevelBits + kXBits + kYBits, kZBits)},
                     level};
     }
+    static const Cell& decode(const Cell& c) { return c; }
 
     CellArray() = default;
     CellArray(std::initializer_list<Cell> cells);
@@ -74,17 +83,15 @@ public:
     }
 
     // const: `cells[i].lower = p` must not compile (it would change a copy); use set().
-    const Cell operator[](size_t i) const { return mWide ? mWideCells[i] : unpack(mCompact[i]); }
+    const Cell operator[](size_t i) const { return mWide ? mWideCells[i] : decode(mCompact[i]); }
     const Cell front() const { return (*this)[0]; }
     const Cell back() const { return (*this)[size() - 1]; }
     void set(size_t i, const Cell& c) {
-        if (mWide) {
-            mWideCells[i] = c;
-            return;
-        }
-        if (!fits(c)) widen();
+        uint32_t bad = 0;
+        const uint64_t v = mWide ? 0 : packChecked(c, bad);
+        if (bad) widen();
         if (mWide) mWideCells[i] = c;
-        else mCompact[i] = pack(c);
+        else mCompact[i] = v;
     }
     // Exchanges cells i and j (the brick build's partitions): no repacking.
     void swapCells(size_t i, size_t j) {
@@ -98,12 +105,12 @@ public:
     decltype(auto) visitStorage(Fn&& fn) {
         return mWide ? fn(std::span<Cell>(mWideCells)) : fn(std::span<uint64_t>(mCompact));
     }
-    static Cell decode(uint64_t v) { return unpack(v); }
-    static const Cell& decode(const Cell& c) { return c; }
     void push_back(const Cell& c) {
-        if (!mWide && !fits(c)) widen();
+        uint32_t bad = 0;
+        const uint64_t v = mWide ? 0 : packChecked(c, bad);
+        if (bad) widen();
         if (mWide) mWideCells.push_back(c);
-        else mCompact.push_back(pack(c));
+        else mCompact.push_back(v);
     }
     // New cells are uninitialised: set each before it is read.
     void resize(size_t n) { mWide ? mWideCells.resize(n) : mCompact.resize(n); }

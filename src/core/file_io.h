@@ -84,7 +84,9 @@ public:
         if (out.capacity() < count) {  // fresh storage: its pages faulted in on every core
             std::vector<T, A>().swap(out);
             out.reserve(count);
-            if (std::is_trivially_default_constructible_v<T>) prepareStorage(out.data(), count * sizeof(T));
+            // (resize() of a NoInitAllocator vector touches nothing: the read is the first touch.)
+            if constexpr (std::is_trivially_default_constructible_v<T> && !std::is_same_v<A, NoInitAllocator<T>>)
+                prepareStorage(out.data(), count * sizeof(T));
         }
         out.resize(count);
         read(out.data(), count * sizeof(T));

@@ -58,30 +58,28 @@ void parallelInvoke(const std::function<void()>& a, const std::function<void()>&
 
 namespace {
 constexpr size_t kCopyChunk = size_t{8} << 20;
-}
 
-void parallelCopy(void* dst, const void* src, size_t bytes) {
-    if (bytes < 2 * kCopyChunk) {
-        std::memcpy(dst, src, bytes);
-        return;
-    }
+// fn(at, n) over [0, bytes) in kCopyChunk pieces on every core, dst advised onto huge pages first;
+// below two chunks, once on this thread.
+template <class Fn>
+void inChunks(void* dst, size_t bytes, Fn&& fn) {
+    if (bytes < 2 * kCopyChunk) return fn(size_t{0}, bytes);
     adviseHugePages(dst, bytes);
     parallelFor(0, (bytes + kCopyChunk - 1) / kCopyChunk, [&](size_t k) {
         const size_t at = k * kCopyChunk;
-        std::memcpy(static_cast<char*>(dst) + at, static_cast<const char*>(src) + at, std::min(kCopyChunk, bytes - at));
+        fn(at, std::min(kCopyChunk, bytes - at));
+    });
+}
+}  // namespace
+
+void parallelCopy(void* dst, const void* src, size_t bytes) {
+    inChunks(dst, bytes, [&](size_t at, size_t n) {
+        std::memcpy(static_cast<char*>(dst) + at, static_cast<const char*>(src) + at, n);
     });
 }
 
 void parallelZero(void* dst, size_t bytes) {
-    if (bytes < 2 * kCopyChunk) {
-        std::memset(dst, 0, bytes);
-        return;
-    }
-    adviseHugePages(dst, bytes);
-    parallelFor(0, (bytes + kCopyChunk - 1) / kCopyChunk, [&](size_t k) {
-        const size_t at = k * kCopyChunk;
-        std::memset(static_cast<char*>(dst) + at, 0, std::min(kCopyChunk, bytes - at));
-    });
+    inChunks(dst, bytes, [&](size_t at, size_t n) { std::memset(static_cast<char*>(dst) + at, 0, n); });
 }
 
 }  // namespace amrvk

@@ -57,7 +57,7 @@ TEST(CellArray, EveryFittingCellComesBackExactlyFromEightBytes) {
     CellArray a;
     for (const Cell& c : cells) {
         EXPECT_TRUE(CellArray::fits(c)) << c.lower.x << " " << c.lower.z << " level " << c.level;
-        EXPECT_EQ(CellArray::unpack(CellArray::pack(c)), c);
+        EXPECT_EQ(CellArray::decode(CellArray::pack(c)), c);
         a.push_back(c);
         CellArray one;
         one.resize(1);
