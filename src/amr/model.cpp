@@ -233,6 +233,7 @@ float smallestPositive(std::span<const float> values) {
 }
 
 ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
+    constexpr double kLog10Of2 = 0.30102999566398119521;
     ScaleReport first;
     AMRVK_CHECK(scale != FieldScale::Auto, "internal: the auto scale is resolved before it is applied");
     if (scale == FieldScale::Linear) return first;
@@ -251,7 +252,10 @@ ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
                     float& v = values[i];
                     if (std::isnan(v)) continue;
                     if (!(double(v) >= lo)) ++n;  // <= 0, or below an explicit floor
-                    v = float(std::log10(std::max(double(v), lo)));
+                    // log10 as log2 times log10(2): glibc's log2 is about 3x faster than its
+                    // log10 (10^8 cells: 0.3 s of both cores), and within 2 double ulps of it,
+                    // so the float differs from float(log10) about once in 10^8 values, by 1 ulp.
+                    v = float(std::log2(std::max(double(v), lo)) * kLog10Of2);
                 }
                 return n;
             },
@@ -265,14 +269,25 @@ ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor) {
 }
 
 namespace {
-// What is wrong with a cell on its own, or "" (level, alignment, the int32 voxel range).
-std::string cellProblem(const Cell& c) {
-    if (c.level < 0 || c.level > kMaxLevel) return strCat("has a level outside [0, ", kMaxLevel, "]");
+// What can be wrong with a cell on its own (level, alignment, the int32 voxel range): found without
+// building a string, so that the check of 10^8 cells costs a few ns each.
+enum class CellFault { None, Level, Alignment, Range };
+CellFault cellFault(const Cell& c) {
+    if (c.level < 0 || c.level > kMaxLevel) return CellFault::Level;
     const int64_t w = cellWidth(c.level);
-    if (((c.lower.x | c.lower.y | c.lower.z) & static_cast<int32_t>(w - 1)) != 0)
-        return strCat("is not aligned to its width ", w);
+    if (((c.lower.x | c.lower.y | c.lower.z) & static_cast<int32_t>(w - 1)) != 0) return CellFault::Alignment;
     if (int64_t{c.lower.x} + w > INT32_MAX || int64_t{c.lower.y} + w > INT32_MAX || int64_t{c.lower.z} + w > INT32_MAX)
-        return "reaches past 2^31-1";
+        return CellFault::Range;
+    return CellFault::None;
+}
+// The fault in words, or "".
+std::string cellProblem(const Cell& c) {
+    switch (cellFault(c)) {
+        case CellFault::Level: return strCat("has a level outside [0, ", kMaxLevel, "]");
+        case CellFault::Alignment: return strCat("is not aligned to its width ", cellWidth(c.level));
+        case CellFault::Range: return "reaches past 2^31-1";
+        case CellFault::None: break;
+    }
     return {};
 }
 }  // namespace
@@ -289,7 +304,7 @@ void validateCells(const Model& model) {
     std::vector<size_t> firstBad(kChunks, SIZE_MAX);
     parallelFor(0, kChunks, [&](size_t k) {
         for (size_t i = k * n / kChunks; i < (k + 1) * n / kChunks; ++i)
-            if (!cellProblem(model.cells[i]).empty()) {
+            if (cellFault(model.cells[i]) != CellFault::None) {
                 firstBad[k] = i;
                 return;
             }

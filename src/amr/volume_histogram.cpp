@@ -31,6 +31,9 @@ VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float>
     h.lo = lo;
     h.hi = hi;
     h.boundsVolume = std::ldexp(boundsVoxels, -3 * minLevel);
+    // A cell's volume in finest cells, per level: 8^(level - minLevel), exact in a double.
+    double weight[kMaxLevel + 1] = {};
+    for (int l = minLevel; l <= kMaxLevel; ++l) weight[l] = std::ldexp(1.0, 3 * (l - minLevel));
     using Bins = std::vector<double>;
     h.volume = parallelReduce<Bins>(
         0, cells.size(), kChunks,
@@ -39,9 +42,10 @@ VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float>
             for (size_t i = from; i < to; ++i) {
                 const int bin = h.binOf(values[i]);
                 if (bin < 0) continue;
-                AMRVK_CHECK(cells[i].level >= minLevel, "internal: a cell of level ", cells[i].level,
-                            " below the finest level ", minLevel);
-                b[size_t(bin)] += std::ldexp(1.0, 3 * (cells[i].level - minLevel));
+                const int level = cells[i].level;
+                AMRVK_CHECK(level >= minLevel, "internal: a cell of level ", level, " below the finest level ",
+                            minLevel);
+                b[size_t(bin)] += weight[level];
             }
             return b;
         },

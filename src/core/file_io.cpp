@@ -76,6 +76,18 @@ void adviseHugePages(void* p, size_t bytes) {
     if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice: failure is harmless
 }
 
+void prefaultForWrite(void* p, size_t bytes) {
+#ifdef MADV_POPULATE_WRITE
+    const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
+    const uintptr_t lo = (reinterpret_cast<uintptr_t>(p) + page - 1) & ~(page - 1);
+    const uintptr_t hi = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(page - 1);
+    if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);  // failure is harmless
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
 void prepareStorage(void* p, size_t bytes) {
     if (bytes >= kHugePageAdviceBytes) parallelZero(p, bytes);
 }

@@ -59,15 +59,16 @@ void parallelInvoke(const std::function<void()>& a, const std::function<void()>&
 namespace {
 constexpr size_t kCopyChunk = size_t{8} << 20;
 
-// fn(at, n) over [0, bytes) in kCopyChunk pieces on every core, dst advised onto huge pages first;
-// below two chunks, once on this thread.
+// fn(at, n) over [0, bytes) in kCopyChunk pieces on every core, dst advised onto huge pages first
+// and each piece faulted in before fn writes it; below two chunks, once on this thread.
 template <class Fn>
 void inChunks(void* dst, size_t bytes, Fn&& fn) {
     if (bytes < 2 * kCopyChunk) return fn(size_t{0}, bytes);
     adviseHugePages(dst, bytes);
     parallelFor(0, (bytes + kCopyChunk - 1) / kCopyChunk, [&](size_t k) {
-        const size_t at = k * kCopyChunk;
-        fn(at, std::min(kCopyChunk, bytes - at));
+        const size_t at = k * kCopyChunk, n = std::min(kCopyChunk, bytes - at);
+        prefaultForWrite(static_cast<char*>(dst) + at, n);
+        fn(at, n);
     });
 }
 }  // namespace
