@@ -57,6 +57,20 @@ double sahCost(const CellStats& s) {
     return halfArea(size) * (size.x * size.y * size.z) * std::popcount(s.levelMask);
 }
 
+// The statistics of all cells from the model's summary (the pass over the cells it took), as
+// BrickBuilder::info would gather them: the volume is the same sum of powers of 8.
+CellStats rootStats(const amr::ModelSummary& s, size_t cells) {
+    CellStats in;
+    for (size_t l = 0; l < s.cellsPerLevel.size(); ++l)
+        if (s.cellsPerLevel[l] > 0) in.levelMask |= 1u << l;
+    AMRVK_CHECK(in.levelMask != 0 && cells < UINT32_MAX, "internal: a summary of ", cells, " cells");
+    in.count = uint32_t(cells);
+    in.volume = s.leafVolume;
+    in.lo = glm::ivec3(s.bounds.lower);  // validated cells end at or below 2^31-1
+    in.hi = glm::ivec3(s.bounds.upper);
+    return in;
+}
+
 // Cell statistics per cube (cw^3) of a box [lo, lo + dims cw), x fastest; a cell counts in the
 // cube of its lower corner. It serves every node inside the box whose coarsest cell width is a
 // multiple of cw (a power of two at least cw): such a node's slabs and planes are unions of cubes.
@@ -64,12 +78,6 @@ struct CubeGrid {
     glm::i64vec3 lo{0}, dims{0};
     int64_t cw = 1;  // cube width, voxel space
     std::vector<CellStats> cubes;
-    // The cube of a cell of this grid's box (its lower corner's), as an index into `cubes`.
-    size_t cubeOf(const amr::Cell& c) const {
-        const int64_t shift = std::countr_zero(uint64_t(cw));
-        const glm::i64vec3 q = (glm::i64vec3(c.lower) - lo) >> shift;
-        return size_t((q.z * dims.y + q.y) * dims.x + q.x);
-    }
 };
 
 using Slabs = std::array<std::vector<CellStats>, 3>;
@@ -233,14 +241,24 @@ struct Plan {
         grow(l + 1);
         nodes[i].leafEnd = uint32_t(leaves.size());
     }
-    // Cube -> index in `leaves` (UINT32_MAX outside the root's box).
+    // The plan root's box of cubes, x fastest: each plan allocates and fills a table of its own
+    // cubes only, not of the whole (ancestor's) grid, which the ~256 plans below the root shared.
+    glm::i64vec3 boxDims() const { return nodes[0].qhi - nodes[0].qlo; }
+    // The index in the root's box of a cell inside it (its lower corner's cube).
+    size_t boxCubeOf(const amr::Cell& c) const {
+        const int64_t shift = std::countr_zero(uint64_t(grid.cw));
+        const glm::i64vec3 q = ((glm::i64vec3(c.lower) - grid.lo) >> shift) - nodes[0].qlo, d = boxDims();
+        return size_t((q.z * d.y + q.y) * d.x + q.x);
+    }
+    // Cube of the root's box -> index in `leaves`; the leaves tile the box.
     std::vector<uint32_t> leafOfCube() const {
-        std::vector<uint32_t> out(grid.cubes.size(), UINT32_MAX);
+        const glm::i64vec3 d = boxDims(), o = nodes[0].qlo;
+        std::vector<uint32_t> out(size_t(d.x * d.y * d.z), UINT32_MAX);
         for (uint32_t k = 0; k < leaves.size(); ++k) {
             const Node& n = nodes[leaves[k]];
-            for (int64_t z = n.qlo.z; z < n.qhi.z; ++z)
-                for (int64_t y = n.qlo.y; y < n.qhi.y; ++y)
-                    for (int64_t x = n.qlo.x; x < n.qhi.x; ++x) out[size_t((z * grid.dims.y + y) * grid.dims.x + x)] = k;
+            for (int64_t z = n.qlo.z - o.z; z < n.qhi.z - o.z; ++z)
+                for (int64_t y = n.qlo.y - o.y; y < n.qhi.y - o.y; ++y)
+                    std::fill_n(out.begin() + std::ptrdiff_t((z * d.y + y) * d.x + n.qlo.x - o.x), n.qhi.x - n.qlo.x, k);
         }
         return out;
     }
@@ -539,7 +557,7 @@ private:
             at += p.nodes[p.leaves[lb + m]].info.count;
             end[m] = at;
         }
-        auto leafOf = [&](const amr::Cell& c) { return size_t(leafOfCube[p.grid.cubeOf(c)] - lb); };
+        auto leafOf = [&](const amr::Cell& c) { return size_t(leafOfCube[p.boxCubeOf(c)] - lb); };
         std::vector<float> values(mFields.size());
         bool moved = false;
         mCells.visitStorage([&](auto cells) {  // cells move as stored: no repacking
@@ -676,7 +694,7 @@ private:
 
 }  // namespace
 
-BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning) {
+BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning, const amr::ModelSummary* known) {
     Timer timer;
     BrickSet out;
     const size_t n = model.cells.size();
@@ -686,7 +704,7 @@ BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning) {
                     " values for ", n, " cells");
     BrickBuilder builder(model, std::max<size_t>(tuning.planCells, 2));
     try {
-        out.bricks = builder.build(0, n, builder.info(0, n));
+        out.bricks = builder.build(0, n, known ? rootStats(*known, n) : builder.info(0, n));
     } catch (...) {
         builder.finishProgress(false);
         model.cellOrder += builder.moved();

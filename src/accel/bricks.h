@@ -58,7 +58,9 @@ struct BrickSet {
 struct BrickBuildTuning {
     size_t planCells = size_t{1} << 16;  // nodes of at least this many cells are planned; SIZE_MAX: never
 };
-BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning = {});
+// `known`: the model's summary where the caller has it (scene::makeVolume), which saves the
+// build's first pass over the cells; it must be summarize(model).
+BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning = {}, const amr::ModelSummary* known = nullptr);
 
 // Reads a .bricks file of the ExaBrick builders (records: int3 size, int3 lower, int level,
 // int cellId[size]) and checks it against the model: every cell id valid and used once, ids -1

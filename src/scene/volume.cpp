@@ -88,7 +88,7 @@ std::shared_ptr<Volume> makeMutableVolume(amr::Model model, std::string_view fie
         // At most one brick per cell; the cells and values are reordered in place.
         ProgressStage stage(strCat("bricks of ", model.cells.size(), " cells"),
                             memoryNote(uint64_t(model.cells.size()) * sizeof(accel::Brick), true));
-        v->bricks = accel::buildBricks(model);
+        v->bricks = accel::buildBricks(model, {}, &v->summary);  // its levels, count and bounds are the model's
         stage.setResult(strCat(v->bricks.bricks.size(), " bricks, ", formatBytes(v->bricks.memoryBytes())));
     }
     v->model = std::move(model);

@@ -133,7 +133,8 @@ TEST(Bricks, ParallelPartitionsNearTheRootGiveTheSameBricks) {
 
 // The top levels planned on a cube grid, their cells moved once (BrickBuildTuning::planCells), give
 // the bricks and the model order of the level-by-level splits exactly: on block-structured clouds
-// and a cell octree, from a shuffled order, planned at the default size and at every node.
+// and a cell octree, from a shuffled order, planned at the default size and at every node, and with
+// the root's statistics taken from the model's summary instead of a pass over the cells.
 TEST(Bricks, PlannedTopLevelsGiveTheBricksOfLevelByLevelSplits) {
     for (const auto& [kind, cells, block] : {std::tuple{amr::SyntheticKind::Cloud, 300000, 8},
                                              std::tuple{amr::SyntheticKind::Cloud, 60000, 1},
@@ -146,10 +147,12 @@ TEST(Bricks, PlannedTopLevelsGiveTheBricksOfLevelByLevelSplits) {
         const amr::Model original = shuffledCopy(amr::makeSyntheticModel(p), 13);
         amr::Model levelByLevel = original;
         const BrickSet want = buildBricks(levelByLevel, {.planCells = SIZE_MAX});
-        for (size_t planCells : {size_t{1} << 16, size_t{2}}) {
-            SCOPED_TRACE(strCat("cells ", cells, " block ", block, " planCells ", planCells));
+        const amr::ModelSummary summary = amr::summarize(original);
+        for (const auto& [planCells, known] : {std::pair{size_t{1} << 16, false}, std::pair{size_t{2}, false},
+                                               std::pair{size_t{1} << 16, true}}) {
+            SCOPED_TRACE(strCat("cells ", cells, " block ", block, " planCells ", planCells, " summary given ", known));
             amr::Model m = original;
-            const BrickSet got = buildBricks(m, {.planCells = planCells});
+            const BrickSet got = buildBricks(m, {.planCells = planCells}, known ? &summary : nullptr);
             ASSERT_EQ(got.bricks.size(), want.bricks.size());
             for (size_t k = 0; k < got.bricks.size(); ++k) {
                 const Brick &g = got.bricks[k], &w = want.bricks[k];
