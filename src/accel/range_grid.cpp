@@ -252,51 +252,65 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                     strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
     g.ranges.resize(total);
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    // In about a hundred batches, so that the bar moves.
+    // One macrocell's range (the empty range where no brick has weight).
+    auto rangeOf = [&](glm::ivec3 c, Scratch& scratch) {
+        const size_t cell = g.index(c);
+        // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
+        glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
+        glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
+        for (int a = 0; a < 3; ++a) {
+            if (c[a] == 0) lo[a] = -INFINITY;
+            if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
+        }
+        double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
+        glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
+        scratch.touching.clear();
+        for (uint32_t id : lists.bricksOf(cell)) {
+            const Brick& b = bricks.bricks[id];
+            const HalfBox d = brickDomain(b);
+            const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
+            if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
+            scratch.touching.push_back(id);
+            extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
+            hullLo = glm::min(hullLo, blo);
+            hullHi = glm::max(hullHi, bhi);
+        }
+        if (rlo > rhi) return;  // no brick has weight here: empty, majorant 0
+        // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
+        // small against the cells, the mixing of two bricks covers a small part of their
+        // union) the lattice gives f's exact range when it is small enough to evaluate.
+        // Only the bricks whose domains meet the box have weight in it (the lists hold more,
+        // by the lists' margin); with one of them (f = t_b) or a constant range there is
+        // nothing to gain.
+        if (scratch.touching.size() > 1 && rhi > rlo)
+            latticeRange(scratch.touching, bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
+        // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
+        // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
+        // read have one sign, else at most the largest magnitude read.
+        const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
+        g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
+    };
+    // In tiles of kTile^3 macrocells, whose bricks' values stay in the cache from one macrocell to
+    // the next (rows of the whole grid read each brick's values again a row later; 10^8 cells on
+    // two cores: 1.70 -> 1.64 s); in about a hundred batches of tiles, so that the bar moves.
+    constexpr int kTile = 8;
+    const glm::ivec3 tiles = (g.dims + kTile - 1) / kTile;
+    const size_t tileCount = size_t(tiles.x) * size_t(tiles.y) * size_t(tiles.z);
     ProgressBar bar("macrocell value ranges", "macrocells");
-    const size_t batch = std::max<size_t>(64, total / 100);
-    for (size_t first = 0; first < total; first += batch) {
-        parallelForRanges(first, std::min(total, first + batch), 64, [&](size_t begin, size_t end) {
+    const size_t batch = std::max<size_t>(1, tileCount / 100);
+    for (size_t first = 0; first < tileCount; first += batch) {
+        parallelForRanges(first, std::min(tileCount, first + batch), 1, [&](size_t begin, size_t end) {
             Scratch scratch;
-            for (size_t cell = begin; cell < end; ++cell) {
-                const glm::ivec3 c = g.coordOf(cell);
-                // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
-                glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
-                glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
-                for (int a = 0; a < 3; ++a) {
-                    if (c[a] == 0) lo[a] = -INFINITY;
-                    if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
-                }
-                double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
-                glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
-                scratch.touching.clear();
-                for (uint32_t id : lists.bricksOf(cell)) {
-                    const Brick& b = bricks.bricks[id];
-                    const HalfBox d = brickDomain(b);
-                    const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
-                    if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
-                    scratch.touching.push_back(id);
-                    extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
-                    hullLo = glm::min(hullLo, blo);
-                    hullHi = glm::max(hullHi, bhi);
-                }
-                if (rlo > rhi) continue;  // no brick has weight here: empty, majorant 0
-                // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
-                // small against the cells, the mixing of two bricks covers a small part of their
-                // union) the lattice gives f's exact range when it is small enough to evaluate.
-                // Only the bricks whose domains meet the box have weight in it (the lists hold more,
-                // by the lists' margin); with one of them (f = t_b) or a constant range there is
-                // nothing to gain.
-                if (scratch.touching.size() > 1 && rhi > rlo)
-                    latticeRange(scratch.touching, bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
-                // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
-                // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
-                // read have one sign, else at most the largest magnitude read.
-                const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
-                g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
+            for (size_t t = begin; t < end; ++t) {
+                const glm::ivec3 lo = kTile * glm::ivec3(int(t % size_t(tiles.x)), int(t / size_t(tiles.x) % size_t(tiles.y)),
+                                                         int(t / (size_t(tiles.x) * size_t(tiles.y))));
+                const glm::ivec3 hi = glm::min(lo + kTile, g.dims);
+                for (int z = lo.z; z < hi.z; ++z)
+                    for (int y = lo.y; y < hi.y; ++y)
+                        for (int x = lo.x; x < hi.x; ++x) rangeOf({x, y, z}, scratch);
             }
         });
-        bar.update(std::min(total, first + batch), total);
+        bar.update(std::min(total, (std::min(tileCount, first + batch)) * total / tileCount), total);
     }
     bar.finish();
     g.buildSeconds = timer.seconds();
