@@ -63,6 +63,51 @@ Buffer::Buffer(Context& ctx, uint64_t bytes, MemoryKind kind, std::string name,
     }
 }
 
+Buffer Buffer::importHost(Context& ctx, const void* data, uint64_t bytes, std::string name) {
+    Buffer b;
+    const uint64_t align = ctx.hostImportAlignment();
+    if (align == 0 || bytes == 0) return b;
+    const uintptr_t at = reinterpret_cast<uintptr_t>(data), base = at / align * align;
+    const uint64_t size = (at + bytes - base + align - 1) / align * align;  // whole pages
+    void* pages = reinterpret_cast<void*>(base);  // read only: the buffer refuses writes
+    const uint32_t types = ctx.hostPointerMemoryTypes(pages);
+    if (types == 0) return b;
+    b.mCtx = &ctx;
+    b.mName = std::move(name);
+    b.mSize = bytes;
+    b.mOffset = at - base;
+    b.mImported = true;
+    VkExternalMemoryBufferCreateInfo external{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO};
+    external.handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, &external};
+    bci.size = size;
+    bci.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    if (vkCreateBuffer(ctx.device(), &bci, nullptr, &b.mBuffer) != VK_SUCCESS) return Buffer();
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(ctx.device(), b.mBuffer, &req);
+    const uint32_t usable = req.memoryTypeBits & types;
+    if (usable == 0 || req.size > size) return Buffer();  // b releases the VkBuffer
+    VkImportMemoryHostPointerInfoEXT import{VK_STRUCTURE_TYPE_IMPORT_MEMORY_HOST_POINTER_INFO_EXT};
+    import.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+    import.pHostPointer = pages;
+    VkMemoryAllocateFlagsInfo flagsInfo{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO, &import};
+    flagsInfo.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flagsInfo};
+    mai.allocationSize = size;
+    mai.memoryTypeIndex = ctx.findMemoryType(usable, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (vkAllocateMemory(ctx.device(), &mai, nullptr, &b.mMemory) != VK_SUCCESS) return Buffer();
+    AMRVK_VK_CHECK(vkBindBufferMemory(ctx.device(), b.mBuffer, b.mMemory, 0));
+    VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    ai.buffer = b.mBuffer;
+    b.mAddress = vkGetBufferDeviceAddress(ctx.device(), &ai) + b.mOffset;
+    ctx.setDebugName(VK_OBJECT_TYPE_BUFFER, uint64_t(b.mBuffer), b.mName);
+    ctx.memory().add(b.mName, size);
+    b.mAllocated = size;
+    return b;
+}
+
 Buffer::~Buffer() { release(); }
 
 void Buffer::release() {
@@ -74,6 +119,8 @@ void Buffer::release() {
     mBuffer = VK_NULL_HANDLE;
     mMemory = VK_NULL_HANDLE;
     mMapped = nullptr;
+    mOffset = 0;
+    mImported = false;
     mCtx = nullptr;
 }
 
@@ -88,6 +135,8 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
         mAddress = std::exchange(o.mAddress, 0);
         mSize = std::exchange(o.mSize, 0);
         mAllocated = std::exchange(o.mAllocated, 0);
+        mOffset = std::exchange(o.mOffset, 0);
+        mImported = std::exchange(o.mImported, false);
         mMapped = std::exchange(o.mMapped, nullptr);
         mCoherent = o.mCoherent;
         mName = std::move(o.mName);
@@ -98,6 +147,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
     AMRVK_CHECK(offset + bytes <= mSize, "upload of ", bytes, " bytes at ", offset, " overflows buffer '",
                 mName, "' of ", mSize, " bytes");
+    AMRVK_CHECK(!mImported, "buffer '", mName, "' shares host memory with its source: it is read-only");
     if (bytes == 0) return;
     if (mMapped) {
         parallelCopy(static_cast<char*>(mMapped) + offset, data, bytes);  // large: on every core
@@ -117,6 +167,7 @@ void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
 void Buffer::uploadStaged(const void* data, uint64_t bytes, uint64_t offset, uint64_t chunkBytes) {
     AMRVK_CHECK(offset + bytes <= mSize && chunkBytes > 0, "staged upload of ", bytes, " bytes at ", offset,
                 " overflows buffer '", mName, "' of ", mSize, " bytes");
+    AMRVK_CHECK(!mImported, "buffer '", mName, "' shares host memory with its source: it is read-only");
     if (bytes == 0) return;
     const uint64_t chunk = std::min(bytes, chunkBytes);
     Buffer staging(*mCtx, chunk, MemoryKind::HostRead, mName + ".staging");
@@ -155,7 +206,7 @@ void Buffer::downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) con
     for (uint64_t done = 0; done < bytes; done += chunk) {
         const uint64_t n = std::min(chunk, bytes - done);
         mCtx->submitAndWait([&](VkCommandBuffer cmd) {
-            VkBufferCopy copy{done, 0, n};
+            VkBufferCopy copy{mOffset + done, 0, n};
             vkCmdCopyBuffer(cmd, mBuffer, staging.handle(), 1, &copy);
         });
         staging.download(static_cast<char*>(data) + done, n);
@@ -163,6 +214,7 @@ void Buffer::downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) con
 }
 
 void Buffer::fillZero() {
+    AMRVK_CHECK(!mImported, "buffer '", mName, "' shares host memory with its source: it is read-only");
     mCtx->submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, mBuffer, 0, VK_WHOLE_SIZE, 0); });
 }
 

@@ -33,6 +33,13 @@ public:
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
 
+    // A buffer over host memory that the device reads where it lies (Context::hostImportAlignment()
+    // > 0: a CPU device): [data, data + bytes) stays the caller's, alive and unchanged while the
+    // buffer lives. The whole pages around it are imported; address() is data's. Read-only: upload
+    // and fillZero refuse it. An invalid Buffer where the device cannot import that memory.
+    static Buffer importHost(Context& ctx, const void* data, uint64_t bytes, std::string name);
+    bool imported() const { return mImported; }
+
     VkBuffer handle() const { return mBuffer; }
     VkDeviceAddress address() const { return mAddress; }
     uint64_t size() const { return mSize; }
@@ -72,6 +79,8 @@ private:
     VkDeviceAddress mAddress = 0;
     uint64_t mSize = 0;
     uint64_t mAllocated = 0;  // bytes counted in the MemoryTracker
+    uint64_t mOffset = 0;     // bytes from the VkBuffer's start to the data (imported: to the caller's)
+    bool mImported = false;
     void* mMapped = nullptr;
     bool mCoherent = true;
     std::string mName;
@@ -84,6 +93,16 @@ Buffer makeBuffer(Context& ctx, std::span<const T> values, const std::string& na
     Buffer b(ctx, std::max<uint64_t>(values.size_bytes(), 16), MemoryKind::Device, name, extraUsage);
     if (!values.empty()) b.upload(values);
     return b;
+}
+
+// A device buffer holding `values`: the values themselves where the device imports host memory
+// (the caller keeps them alive and unchanged while the buffer lives; no copy, no second array),
+// else a copy (makeBuffer).
+template <typename T>
+Buffer shareOrCopyBuffer(Context& ctx, std::span<const T> values, const std::string& name) {
+    if (!values.empty())
+        if (Buffer b = Buffer::importHost(ctx, values.data(), values.size_bytes(), name); b.valid()) return b;
+    return makeBuffer<T>(ctx, values, name);
 }
 
 }  // namespace amrvk::gpu

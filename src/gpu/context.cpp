@@ -385,6 +385,13 @@ Context::Context(const ContextOptions& options) {
                     VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
         }
         if (mSurface) exts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+        // On a CPU device, device memory is host memory: arrays are shared, not copied, where the
+        // driver can import them (lavapipe can). On a GPU an import would leave them across the bus.
+        const bool hostImport =
+            pick.type == VK_PHYSICAL_DEVICE_TYPE_CPU && !options.disableHostImport &&
+            hasExtension(vkList<VkExtensionProperties>(vkEnumerateDeviceExtensionProperties, mPhysical, (const char*)nullptr),
+                         VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+        if (hostImport) exts.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f};
         dci.queueCreateInfoCount = 1;
         dci.pQueueCreateInfos = &qci;
@@ -395,6 +402,16 @@ Context::Context(const ContextOptions& options) {
             AMRVK_VK_CHECK(vkCreateDevice(mPhysical, &dci, nullptr, &mDevice));
         }
         vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
+        if (hostImport) {
+            VkPhysicalDeviceExternalMemoryHostPropertiesEXT hp{
+                VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
+            VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &hp};
+            vkGetPhysicalDeviceProperties2(mPhysical, &p2);
+            mHostPointerProperties = reinterpret_cast<PFN_vkGetMemoryHostPointerPropertiesEXT>(
+                vkGetDeviceProcAddr(mDevice, "vkGetMemoryHostPointerPropertiesEXT"));
+            if (mHostPointerProperties && hp.minImportedHostPointerAlignment > 0)
+                mHostImportAlignment = hp.minImportedHostPointerAlignment;
+        }
 
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -528,6 +545,14 @@ double Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record
     gGpuWorkRunning.store(false);
     AMRVK_VK_CHECK(waited);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint32_t Context::hostPointerMemoryTypes(const void* p) const {
+    if (mHostImportAlignment == 0 || reinterpret_cast<uintptr_t>(p) % mHostImportAlignment != 0) return 0;
+    VkMemoryHostPointerPropertiesEXT props{VK_STRUCTURE_TYPE_MEMORY_HOST_POINTER_PROPERTIES_EXT};
+    if (mHostPointerProperties(mDevice, VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT, p, &props) != VK_SUCCESS)
+        return 0;
+    return props.memoryTypeBits;
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,

@@ -7,6 +7,9 @@
 //    shaderInt64, and the float control shaderRoundingModeRTEFloat32 (the path tracer declares
 //    RoundingModeRTE for its double-float sums, lib/double_float.glsl). Optional: rayQuery +
 //    accelerationStructure (hasRayQuery()).
+//  - Host memory import: on a CPU device (lavapipe) with VK_EXT_external_memory_host, large
+//    read-only arrays are handed to the device where they lie instead of copied
+//    (hostImportAlignment(), gpu::importHostBuffer), since device memory is host memory there.
 //  - Validation: the Khronos layer with a messenger that counts errors (tests fail on any).
 #include <vulkan/vulkan.h>
 
@@ -27,6 +30,7 @@ struct ContextOptions {
     uint32_t spread = 0;
     bool requireRayQuery = false;
     bool disableRayQuery = false;  // leave ray queries off even where supported (tests, comparisons)
+    bool disableHostImport = false;  // copy arrays even on a CPU device that could share them (tests)
     // Samples per pixel one path-trace invocation takes in a whole-image dispatch; 0 = automatic
     // (8 on CPU devices, where it was measured to help; 1 on GPUs until measured there).
     uint32_t samplesPerInvocation = 0;
@@ -155,6 +159,11 @@ public:
     static constexpr double kUnmeasuredLimitSeconds = 600;  // work without a measured pace
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                             VkMemoryPropertyFlags preferred = 0) const;
+    // The alignment host memory imported into this device must have (minImportedHostPointerAlignment),
+    // or 0 where it imports none: not a CPU device, no VK_EXT_external_memory_host, or disabled.
+    uint64_t hostImportAlignment() const { return mHostImportAlignment; }
+    // The memory types host memory at p (aligned to hostImportAlignment()) can be imported as; 0 if none.
+    uint32_t hostPointerMemoryTypes(const void* p) const;
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
 private:
@@ -178,6 +187,8 @@ private:
     DeviceReport mReport;
     bool mRayQuery = false;
     uint32_t mSamplesPerInvocation = 1;
+    uint64_t mHostImportAlignment = 0;
+    PFN_vkGetMemoryHostPointerPropertiesEXT mHostPointerProperties = nullptr;
     double mFixedTimeoutSeconds = 0;  // --gpu-timeout; 0 = adaptive
     bool mDebugUtils = false;
     uint64_t mValidationErrors = 0;

@@ -13,7 +13,7 @@ std::string traversalResourceName(TraversalKind traversal, const char* what) {
     return std::string(scene::traversalName(traversal)) + "Traversal" + what;
 }
 
-DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
+DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) : mVolume(scene.sharedVolume()) {
     const scene::StructurePlan& plan = scene.plan();
     const scene::Volume& v = scene.volume();
     AMRVK_CHECK(plan.backend == Backend::Sw || ctx.hasRayQuery(), "--backend rq: device '", ctx.deviceReport().name,
@@ -29,7 +29,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) {
         for (const accel::Brick& b : v.bricks.bricks)
             bricks.push_back({v.toLocal(glm::i64vec3(b.lower)), b.level, b.size, uint32_t(b.begin)});
         mBricks = gpu::makeBuffer<shared::BrickGpu>(ctx, bricks, "bricks");
-        mBrickValues = gpu::makeBuffer<float>(ctx, v.brickValues(), "brickValues");
+        mBrickValues = gpu::shareOrCopyBuffer<float>(ctx, v.brickValues(), "brickValues");  // 4 B a cell
         mParams.bricks = mBricks.address();
         mParams.brickValues = mBrickValues.address();
     }

@@ -7,6 +7,7 @@
 // combination; a TF edit never touches it. Fills shared::SceneGpu. Local voxel space throughout
 // (every coordinate goes through VolumeScene::toLocal).
 #include <cstdint>
+#include <memory>
 
 #include "gpu/acceleration_structure.h"
 #include "gpu/buffer.h"
@@ -28,6 +29,9 @@ public:
     const gpu::Buffer& domainRanges() const { return mDomainRanges; }
 
 private:
+    // The volume whose values a CPU device reads where they lie (gpu::shareOrCopyBuffer): declared
+    // before the buffers, so that it outlives them.
+    std::shared_ptr<const scene::Volume> mVolume;
     shared::SceneGpu mParams{};
     gpu::Buffer mBricks, mBrickValues, mSamplerNodes, mSamplerPrims, mSamplerAabbs, mAbrs, mAbrBrickList;
     gpu::Buffer mGridRanges, mDenseValues, mGridBrickLists, mDomainBoxes, mDomainRanges;

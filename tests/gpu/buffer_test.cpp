@@ -1,6 +1,7 @@
 // Buffers: upload/download round trips, device addresses, and memory accounting per resource.
 #include <algorithm>
 #include <numeric>
+#include <span>
 
 #include "core/error.h"
 #include "gpu/buffer.h"
@@ -53,4 +54,40 @@ TEST_F(Buffer, StagedCopiesGoChunkByChunk) {
     EXPECT_TRUE(std::equal(data.begin(), data.end(), back.begin() + 5));
     EXPECT_THROW(b.uploadStaged(data.data(), data.size() * sizeof(uint32_t), 24, 4096), Error);
     EXPECT_EQ(gpu::kStagingBytes, uint64_t{64} << 20);
+}
+
+// On a CPU device (lavapipe) a large read-only array is handed to the device where it lies: the
+// device reads the caller's memory (a later host write shows through), at the caller's address
+// inside the imported pages (an unaligned start), refuses writes, and counts the whole pages. A
+// context that disables the import copies instead, with the same content.
+TEST_F(Buffer, HostMemoryIsSharedOnACpuDevice) {
+    if (ctx().deviceReport().type != "CPU") GTEST_SKIP() << "host memory is imported on CPU devices only";
+    const uint64_t align = ctx().hostImportAlignment();
+    ASSERT_GT(align, 0u) << "lavapipe offers VK_EXT_external_memory_host";
+    std::vector<uint32_t> data(100003);
+    std::iota(data.begin(), data.end(), 5u);
+    const std::span<const uint32_t> part(data.data() + 3, 100000);  // not page-aligned
+    gpu::Buffer b = gpu::Buffer::importHost(ctx(), part.data(), part.size_bytes(), "imported");
+    ASSERT_TRUE(b.valid());
+    EXPECT_TRUE(b.imported());
+    EXPECT_EQ(b.size(), part.size_bytes());
+    EXPECT_EQ(b.download<uint32_t>(), std::vector<uint32_t>(part.begin(), part.end()));  // a device copy
+    data[3 + 777] = 424242u;  // shared, not copied: the device sees the host's write
+    EXPECT_EQ(b.download<uint32_t>()[777], 424242u);
+    EXPECT_THROW(b.upload(part.data(), 16), Error);
+    EXPECT_THROW(b.fillZero(), Error);
+    const uint64_t counted = ctx().memory().perResource().at("imported").current;
+    EXPECT_GE(counted, part.size_bytes());
+    EXPECT_EQ(counted % align, 0u);
+    EXPECT_TRUE(gpu::shareOrCopyBuffer<uint32_t>(ctx(), part, "sharedOrCopied").imported());
+
+    gpu::ContextOptions o;
+    o.validation = true;
+    o.disableHostImport = true;
+    gpu::Context copying(o);
+    EXPECT_EQ(copying.hostImportAlignment(), 0u);
+    const gpu::Buffer c = gpu::shareOrCopyBuffer<uint32_t>(copying, part, "copied");
+    EXPECT_FALSE(c.imported());
+    EXPECT_EQ(c.download<uint32_t>(), std::vector<uint32_t>(part.begin(), part.end()));
+    EXPECT_EQ(copying.validationErrors(), 0u) << copying.lastValidationMessage();
 }
