@@ -332,9 +332,12 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
     gpu::Context ctx(co);
     picture::Picture picture = picture::makePicture(
         ctx, std::move(data.volume), plan.description,
-        {.shaders = gpu::ShaderLibrary(a.dev.shaderDir), .note = [speaks](const std::string& line) {
+        {.shaders = gpu::ShaderLibrary(a.dev.shaderDir),
+         .note = [speaks](const std::string& line) {
              if (speaks) std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
-         }});
+         },
+         // The first frame is dvr; else the estimator's mode (the session's, as fitted).
+         .warmMode = a.firstFrame || a.firstFrameByDefault ? scene::Mode::Dvr : plan.description.session.settings.mode});
     picture.report.readSeconds = data.readSeconds;
     if (plan.legendFont)  // before the render
         session::checkLegendFits(picture.session(), picture.volume->field().units, *plan.legendFont);

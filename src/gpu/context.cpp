@@ -267,6 +267,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* self = static_cast<Context*>(user);
+    const std::lock_guard lock(self->mValidationMutex);  // messages may come from two threads
     if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
         ++self->mValidationErrors;
         self->mLastValidationMessage = data->pMessage ? data->pMessage : "";
@@ -284,10 +285,10 @@ namespace {
 constexpr size_t kCrashMessageBytes = 1024;
 char gCrashMessage[kCrashMessageBytes];
 std::string gWho;  // "rank R of N: " in an MPI job (setErrorPrefix)
-std::atomic<bool> gGpuWorkRunning{false};
+std::atomic<int> gGpuWorkRunning{0};  // scopes open now, on any thread (a pipeline warms on another)
 
 extern "C" void reportGpuCrash(int sig) {
-    if (gGpuWorkRunning.load()) {
+    if (gGpuWorkRunning.load() > 0) {
         const ssize_t n = ::write(2, gCrashMessage, ::strnlen(gCrashMessage, kCrashMessageBytes));
         (void)n;
         removeTemporariesNow();
@@ -309,10 +310,10 @@ void setCrashMessage(const std::string& what) {
 DriverCrashScope::DriverCrashScope(const std::string& what) {
     std::snprintf(gCrashMessage, kCrashMessageBytes, "amrvk: error: %sthe Vulkan driver crashed %s (out of memory?)\n",
                   gWho.c_str(), what.c_str());
-    gGpuWorkRunning.store(true);
+    gGpuWorkRunning.fetch_add(1);
 }
 
-DriverCrashScope::~DriverCrashScope() { gGpuWorkRunning.store(false); }
+DriverCrashScope::~DriverCrashScope() { gGpuWorkRunning.fetch_sub(1); }
 
 Context::Context(const ContextOptions& options) {
     if (options.gpuTimeoutSeconds > 0) mFixedTimeoutSeconds = options.gpuTimeoutSeconds;
@@ -508,6 +509,7 @@ VkResult Context::waitAdaptive(const AdaptiveWait& wait, const std::string& what
 
 double Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what,
                               const AdaptiveWait& adaptive) {
+    const std::lock_guard lock(mSubmitMutex);
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = mCommandPool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -532,7 +534,7 @@ double Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record
     si.pCommandBufferInfos = &cbi;
     AMRVK_VK_CHECK(vkResetFences(mDevice, 1, &mFence));
     setCrashMessage(what);
-    gGpuWorkRunning.store(true);
+    gGpuWorkRunning.fetch_add(1);
     const auto start = std::chrono::steady_clock::now();
     AMRVK_VK_CHECK(vkQueueSubmit2(mQueue, 1, &si, mFence));
     VkResult waited;
@@ -542,7 +544,7 @@ double Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record
         waited = vkWaitForFences(mDevice, 1, &mFence, VK_TRUE, uint64_t(mFixedTimeoutSeconds * 1e9));
         if (waited == VK_TIMEOUT) endRunaway(what, seconds(mFixedTimeoutSeconds) + " (--gpu-timeout)");
     }
-    gGpuWorkRunning.store(false);
+    gGpuWorkRunning.fetch_sub(1);
     AMRVK_VK_CHECK(waited);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

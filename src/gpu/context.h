@@ -13,6 +13,7 @@
 //  - Validation: the Khronos layer with a messenger that counts errors (tests fail on any).
 #include <vulkan/vulkan.h>
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -152,6 +153,8 @@ public:
     // "path_trace.ms.grid-dda/grid/sw from --shader-dir DIR"): a dispatch that reads or writes
     // outside its buffers can crash a CPU device (lavapipe), where buffer device addresses have no
     // robust access. The limit is --gpu-timeout where given, else `adaptive` (AdaptiveWait).
+    // Thread-safe: submissions from several threads (a pipeline compiled on another thread while
+    // structures upload, render::warmPathTracer) take turns on the one queue and command pool.
     double submitAndWait(const std::function<void(VkCommandBuffer)>& record, const std::string& what = "GPU work",
                          const AdaptiveWait& adaptive = {});
     // No --gpu-timeout was given: callers that measure their pace pass adaptive limits.
@@ -191,7 +194,9 @@ private:
     PFN_vkGetMemoryHostPointerPropertiesEXT mHostPointerProperties = nullptr;
     double mFixedTimeoutSeconds = 0;  // --gpu-timeout; 0 = adaptive
     bool mDebugUtils = false;
-    uint64_t mValidationErrors = 0;
+    std::recursive_mutex mSubmitMutex;  // the queue, command pool and fence of submitAndWait
+    std::mutex mValidationMutex;        // the two fields below, written by the validation callback
+    std::atomic<uint64_t> mValidationErrors{0};
     std::string mLastValidationMessage;
     MemoryTracker mMemory;
 };

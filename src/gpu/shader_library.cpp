@@ -27,7 +27,10 @@ std::vector<uint32_t> readSpirv(const fs::path& p) {
 
 void registerShaders(std::span<const EmbeddedShader> shaders) {
     std::lock_guard lock(gMutex);
-    for (const auto& s : shaders) gShaders[s.name] = s;
+    // An entry already there from the same set stays untouched: a pipeline may be compiling from it
+    // on another thread (render::warmPathTracer).
+    for (const auto& s : shaders)
+        if (auto it = gShaders.find(s.name); it == gShaders.end() || it->second.words != s.words) gShaders[s.name] = s;
 }
 
 ShaderLibrary::ShaderLibrary(fs::path dir) : mDir(std::move(dir)) {

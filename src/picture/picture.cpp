@@ -105,10 +105,13 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         // Said only where it matters: a combination with a box hierarchy.
         const scene::StructurePlan plan = config.plan();
         if (!backend.why.empty() && (plan.boxMajorants || plan.samplerBvh || plan.samplerBoxes)) note(backend.why);
+        std::future<gpu::ComputePipeline> warm;
+        if (options.warmMode) warm = render::warmPathTracer(ctx, *options.warmMode, config, options.shaders);
         {
             ProgressStage stage("structures for " + config.label());
             p.renderer = std::make_unique<render::Renderer>(ctx, volume, config, options.shaders);
         }
+        if (options.warmMode) p.renderer->adoptPathTracer(*options.warmMode, warm);
         p.renderer->setTransferFunction(tf);
     }
     p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();

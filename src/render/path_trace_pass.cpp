@@ -47,6 +47,11 @@ const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scen
     return it->second;
 }
 
+void PathTracePass::adopt(scene::Mode mode, const scene::StructureConfig& config, gpu::ComputePipeline compiled) {
+    AMRVK_CHECK(compiled.valid(), "internal: adopting an empty pipeline");
+    if (mPipelines.try_emplace(pipelineKey(mode, config), std::move(compiled)).second) ++mCompiled;
+}
+
 void PathTracePass::dropPipelines() {
     mPipelines.clear();
     mDeadline.reset();

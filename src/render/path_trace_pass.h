@@ -37,6 +37,10 @@ public:
     // dropPipelines().
     const gpu::ComputePipeline& pipeline(scene::Mode mode, const scene::StructureConfig& config,
                                          const gpu::ShaderLibrary& shaders);
+    // Keeps `compiled` (compilePathTracer of the same mode, config and shaders, made elsewhere, e.g.
+    // on another thread while the structures were built) as the pipeline for (mode, config), unless
+    // one is already there.
+    void adopt(scene::Mode mode, const scene::StructureConfig& config, gpu::ComputePipeline compiled);
     // Forgets every pipeline (structure or shader change); the next pipeline() compiles again.
     void dropPipelines();
     // Compiles the pipeline for (mode, config) from `shaders` and only then replaces every old

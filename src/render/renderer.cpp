@@ -179,6 +179,25 @@ void Renderer::setCamera(const scene::Camera& camera) {
     setSettings(s);
 }
 
+std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
+                                                 const gpu::ShaderLibrary& shaders) {
+    gpu::registerShaders(shaders::passShaders());  // here, before the other thread looks them up
+    return std::async(std::launch::async, [&ctx, mode, config, shaders] {
+        return compilePathTracer(ctx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders);
+    });
+}
+
+void Renderer::adoptPathTracer(scene::Mode mode, std::future<gpu::ComputePipeline>& warm) {
+    if (!warm.valid()) return;
+    gpu::ComputePipeline compiled;
+    try {
+        compiled = warm.get();
+    } catch (...) {  // compiled again at the first accumulate, which reports the error
+        return;
+    }
+    mPathTrace.adopt(mode, mScene.config(), std::move(compiled));
+}
+
 void Renderer::setShaders(gpu::ShaderLibrary shaders) {
     // Compile first (throws before anything is replaced), then drop the rest and reset.
     if (mHasSettings) mPathTrace.recompile(mSettings.mode, mScene.config(), shaders);

@@ -11,6 +11,7 @@
 // redoes exactly what it lists (counted in UpdateCounts).
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -73,6 +74,10 @@ public:
     // at the first accumulate); on a compile error throws, and the previous pipelines and library
     // stay. reloadShaders() does it again from the current library (a file in it was edited).
     void setShaders(gpu::ShaderLibrary shaders);
+    // Takes the path tracer of `mode` for the current structures, compiled by warmPathTracer while
+    // they were built; a pipeline that failed to compile is left for the first accumulate to
+    // compile again (and report).
+    void adoptPathTracer(scene::Mode mode, std::future<gpu::ComputePipeline>& warm);
     void reloadShaders() { setShaders(mShaders); }
     void resetAccumulation();
     // Numbers (and seeds) the samples of the next accumulation from `first` on: a sample-parallel
@@ -165,5 +170,12 @@ private:
     std::string mBroken;  // non-empty: a failed structure change left no usable structures (why)
     UpdateCounts mCounts;
 };
+
+// Compiles the path tracer of (mode, config) from `shaders` on another thread, so that it is ready
+// when the structures of config are (Renderer::adoptPathTracer): on a JIT driver (lavapipe) the
+// compile is about 0.5 s of one core, the first sample's last serial stretch. config's back-end is
+// resolved.
+std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
+                                                 const gpu::ShaderLibrary& shaders);
 
 }  // namespace amrvk::render
