@@ -1,5 +1,9 @@
 #include "render/renderer.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -183,6 +187,9 @@ std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, scene::Mode 
                                                  const gpu::ShaderLibrary& shaders) {
     gpu::registerShaders(shaders::passShaders());  // here, before the other thread looks them up
     return std::async(std::launch::async, [&ctx, mode, config, shaders] {
+        // At the lowest priority: it takes a core when one idles (the serial stretches of the
+        // build), and runs alone once the renderer waits for it.
+        setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 19);
         return compilePathTracer(ctx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders);
     });
 }
