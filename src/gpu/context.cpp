@@ -79,6 +79,7 @@ struct Probe {
     DeviceReport report;
     uint32_t queueFamily = 0;
     VkPhysicalDeviceType type{};
+    bool hostMemoryImport = false;  // VK_EXT_external_memory_host
 };
 
 Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK_NULL_HANDLE) {
@@ -130,6 +131,7 @@ Probe probeDevice(VkPhysicalDevice pd, uint32_t index, VkSurfaceKHR surface = VK
         }
     }
     const bool swapchain = hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    p.hostMemoryImport = hasExtension(exts, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
 
     DeviceCapabilities c;
     c.apiVersion = v;
@@ -388,10 +390,7 @@ Context::Context(const ContextOptions& options) {
         if (mSurface) exts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
         // On a CPU device, device memory is host memory: arrays are shared, not copied, where the
         // driver can import them (lavapipe can). On a GPU an import would leave them across the bus.
-        const bool hostImport =
-            pick.type == VK_PHYSICAL_DEVICE_TYPE_CPU && !options.disableHostImport &&
-            hasExtension(vkList<VkExtensionProperties>(vkEnumerateDeviceExtensionProperties, mPhysical, (const char*)nullptr),
-                         VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+        const bool hostImport = pick.type == VK_PHYSICAL_DEVICE_TYPE_CPU && pick.hostMemoryImport && !options.disableHostImport;
         if (hostImport) exts.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
         VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f};
         dci.queueCreateInfoCount = 1;

@@ -7,9 +7,9 @@
 //    shaderInt64, and the float control shaderRoundingModeRTEFloat32 (the path tracer declares
 //    RoundingModeRTE for its double-float sums, lib/double_float.glsl). Optional: rayQuery +
 //    accelerationStructure (hasRayQuery()).
-//  - Host memory import: on a CPU device (lavapipe) with VK_EXT_external_memory_host, large
-//    read-only arrays are handed to the device where they lie instead of copied
-//    (hostImportAlignment(), gpu::importHostBuffer), since device memory is host memory there.
+//  - Host memory import: on a CPU device (lavapipe) with VK_EXT_external_memory_host, read-only
+//    arrays are handed to the device where they lie instead of copied (hostImportAlignment(),
+//    gpu::Buffer::importHost, gpu::shareOrCopyBuffer), since device memory is host memory there.
 //  - Validation: the Khronos layer with a messenger that counts errors (tests fail on any).
 #include <vulkan/vulkan.h>
 
