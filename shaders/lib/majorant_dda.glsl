@@ -2,8 +2,9 @@
 // [t0, t1] covering the ray's overlap with the grid, each with its macrocell index.
 // Direction components may be +0 or -0 (that axis never steps); the start cell is clamped into
 // the grid, so rays starting on faces, edges or corners, or inside the grid, work.
-// The grid is clipped with the shared slab test (ray_box.glsl). CPU twin: accel/dda.h (the same
-// steps, in float bit for bit or in double).
+// The grid is clipped with the shared slab test (ray_box.glsl). grid-dda crosses blocks of
+// macrocells whose majorants are all 0 in one step (ddaNextSkipping). CPU twin: accel/dda.h (the
+// same steps, in float bit for bit or in double).
 #ifndef AMRVK_MAJORANT_DDA_GLSL
 #define AMRVK_MAJORANT_DDA_GLSL
 
@@ -80,6 +81,52 @@ bool ddaNext(inout DdaState s, out uint cellIndex, out float t0, out float t1) {
         }
     s.t = t1;
     return true;
+}
+
+// grid-dda's block majorant (P.scene.gridBlockShift > 0): the max of the majorants of the block's
+// macrocells, stored after theirs (block_majorants.comp); blocks are numbered x fastest.
+float ddaBlockMajorant(ivec3 block) {
+    ivec3 dims = P.scene.gridDims;
+    ivec3 blocks = (dims + (1 << P.scene.gridBlockShift) - 1) >> P.scene.gridBlockShift;
+    uint cells = uint(dims.x) * uint(dims.y) * uint(dims.z);
+    return FloatRef(P.majorants.gridMajorants).v[cells + uint(block.x + blocks.x * (block.y + blocks.y * block.z))];
+}
+
+// ddaNext over blocks of 2^gridBlockShift macrocells per axis: a block whose majorant is 0 holds
+// only macrocells of majorant 0, whose segments the tracker skips anyway, so it is crossed in one
+// step. The walk restarts at the block's exit parameter in the first macrocell past the face it
+// leaves by (the neighbour along every axis whose exit plane comes first; inside the block on the
+// others). The block index only moves forward along each axis, so the walk ends. A sliver that
+// rounding puts across the exit face lies within the majorant margin of the block's own
+// macrocells, whose majorants are 0 there too. So this yields the segments of ddaNext less those
+// inside blocks of majorant 0; a segment after a skip starts at the block's exit parameter (the
+// plane through the same float expression as ddaStart's). `steps` counts macrocells and blocks.
+bool ddaNextSkipping(vec3 o, vec3 d, inout DdaState s, inout uint steps, out uint cellIndex, out float t0,
+                     out float t1) {
+    ivec3 dims = P.scene.gridDims;
+    int shift = int(P.scene.gridBlockShift);
+    for (;;) {
+        if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
+        ivec3 first = (s.cell >> shift) << shift;
+        steps++;
+        if (ddaBlockMajorant(s.cell >> shift) > 0.0) return ddaNext(s, cellIndex, t0, t1);
+        ivec3 last = min(first + (1 << shift), dims) - 1;
+        vec3 lo = P.scene.gridOrigin;
+        vec3 size = P.scene.gridCellSize;
+        vec3 tExit = vec3(kInf);
+        for (int a = 0; a < 3; ++a) {
+            if (s.stepDir[a] > 0) tExit[a] = max(s.t, (lo[a] + float(last[a] + 1) * size[a] - o[a]) / d[a]);
+            else if (s.stepDir[a] < 0) tExit[a] = max(s.t, (lo[a] + float(first[a]) * size[a] - o[a]) / d[a]);
+        }
+        float tx = min(min(tExit.x, tExit.y), tExit.z);
+        if (!(tx < s.tEnd)) return false;
+        vec3 p = (o + d * tx - lo) / size;
+        ivec3 cell;
+        for (int a = 0; a < 3; ++a)
+            cell[a] = tExit[a] == tx ? (s.stepDir[a] > 0 ? last[a] + 1 : first[a] - 1)
+                                     : int(floor(clamp(p[a], float(first[a]), float(last[a]))));
+        ddaStart(o, d, cell, tx, s.tEnd, s);
+    }
 }
 
 #endif

@@ -1,8 +1,10 @@
 // One interface over every majorant traversal (kTraversal*): segments [t0, t1] front to back,
-// contiguous, each with the id of its macrocell or box and its majorant (max TF alpha; multiply
-// by densityScale / finestCellWidth for extinction per voxel unit). grid-dda steps the macrocell
-// grid (majorant_dda.glsl); grid-bvh steps it too and queries its active macrocells only to skip
-// culled ones; every other traversal queries its boxes (domain_traversal.glsl).
+// each with the id of its macrocell or box and its majorant (max TF alpha; multiply by
+// densityScale / finestCellWidth for extinction per voxel unit); a gap between segments holds
+// nothing of alpha > 0. grid-dda steps the macrocell grid (majorant_dda.glsl), crossing blocks of
+// macrocells whose majorants are all 0 in one step; grid-bvh steps it too and queries its active
+// macrocells only to skip culled ones; every other traversal queries its boxes
+// (domain_traversal.glsl).
 #ifndef AMRVK_TRAVERSAL_GLSL
 #define AMRVK_TRAVERSAL_GLSL
 #include "lib/cut_away.glsl"
@@ -109,8 +111,12 @@ bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out 
 bool traversalNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out uint id, out float majAlpha,
                    out float t0, out float t1) {
     if (cfg.traversal == kTraversalGridDda) {
-        if (!ddaNext(tr.dda, id, t0, t1)) return false;
-        steps++;
+        if (P.scene.gridBlockShift > 0u) {
+            if (!ddaNextSkipping(tr.o, tr.d, tr.dda, steps, id, t0, t1)) return false;
+        } else {
+            if (!ddaNext(tr.dda, id, t0, t1)) return false;
+            steps++;
+        }
         majAlpha = FloatRef(P.majorants.gridMajorants).v[id];
         return true;
     }

@@ -90,7 +90,8 @@ struct SceneGpu {
     vec3 boundsHi;              // the union of leaf cells is [0, boundsHi] (local voxel)
     float invFinestCellWidth;   // 1 / (1 << finest level): extinction per voxel unit per unit alpha
     ivec3 gridDims;             // macrocells per axis (grid traversals, dense majorants, grid sampler)
-    uint pad0;
+    uint gridBlockShift;        // grid-dda: blocks of 2^shift macrocells per axis, crossed in one step
+                                // where all their majorants are 0 (majorant_dda.glsl); 0: no blocks
     vec3 gridOrigin;            // local voxel
     float pad1;
     vec3 gridCellSize;          // voxel units per macrocell
@@ -119,7 +120,8 @@ struct MajorantsGpu {
     uint domainCount;          // traversal boxes (grid-bvh: macrocells)
     uint domainAnyActive;      // 1 when some traversal box has majorant > 0
     uint pad;
-    uint64_t gridMajorants;    // float[] max alpha per macrocell
+    uint64_t gridMajorants;    // float[] max alpha per macrocell, then (gridBlockShift > 0) per block the
+                               // max of its macrocells' (block_majorants.comp), blocks numbered x fastest
     uint64_t domainBoxes;      // AabbGpu[] traversal boxes (not for grid-bvh: computed from the grid)
     uint64_t domainRanges;     // ValueRangeGpu[] per traversal box (grid-bvh: = gridRanges)
     uint64_t domainMajorants;  // float[] max alpha per traversal box (grid-bvh: = gridMajorants)
@@ -205,6 +207,7 @@ AMRVK_STATIC_ASSERT(offsetof(ShadingGpu, lights) == 80);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, boundsHi) == 0);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, invFinestCellWidth) == 12);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridDims) == 16);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridBlockShift) == 28);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridOrigin) == 32);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridCellSize) == 48);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseDims) == 64);

@@ -21,7 +21,8 @@ struct TestDdaPush {
     uint64_t rays;
     uint64_t results;
     uint rayCount;
-    uint startCells;  // 0: ddaInit; 1: ddaStart in a given macrocell (a third vec4 per ray: x, y, z)
+    uint startCells;  // 0: ddaInit; 1: ddaStart in a given macrocell (a third vec4 per ray: x, y, z);
+                      // 2: ddaInit, then ddaNextSkipping over the params' blocks
 };
 AMRVK_STATIC_ASSERT(sizeof(TestDdaPush) == 32);
 

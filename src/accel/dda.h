@@ -3,9 +3,11 @@
 // with the same operations in the same order (templated on the scalar type: float reproduces the
 // shader, double is the precise reference). Segments are contiguous and cover the ray's overlap
 // with the grid within [tMin, tMax]; the grid is clipped by the shared slab test (ray_box.h).
-// ddaStart begins the walk in a given macrocell (grid-bvh resumes there after a box query).
+// ddaStart begins the walk in a given macrocell (grid-bvh resumes there after a box query);
+// ddaNextSkipping crosses blocks of inactive macrocells in one step (grid-dda).
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -87,6 +89,51 @@ bool ddaNext(const DdaGrid& grid, DdaState<T>& s, DdaSegment<T>& seg) {
     return true;
 }
 
+// grid-dda's block size, 2^shift macrocells per axis (0: no blocks): blocks of 8^3 from 64
+// macrocells on the longest axis, 4^3 from 16; a smaller grid is crossed in a few steps anyway.
+inline int ddaBlockShift(glm::ivec3 dims) {
+    const int longest = std::max({dims.x, dims.y, dims.z});
+    return longest >= 64 ? 3 : longest >= 16 ? 2 : 0;
+}
+
+// Blocks of 2^shift macrocells per axis over the grid (the last ones cut at its far faces).
+inline glm::ivec3 ddaBlockDims(const DdaGrid& grid, int shift) { return (grid.dims + (1 << shift) - 1) >> shift; }
+
+// ddaNext over blocks of 2^shift macrocells per axis, as the shader's ddaNextSkipping: a block for
+// which blockActive(x + bx * (y + by * z)) is false (all its majorants are 0) is crossed in one
+// step, the walk restarting at its exit parameter in the first macrocell past the face it leaves
+// by (inside the block on the other axes). Yields the segments of ddaNext less those inside
+// inactive blocks; `steps` counts macrocells and crossed blocks.
+template <typename T, typename BlockActive>
+bool ddaNextSkipping(const DdaGrid& grid, int shift, glm::vec<3, T> o, glm::vec<3, T> d, DdaState<T>& s,
+                     const BlockActive& blockActive, uint32_t& steps, DdaSegment<T>& seg) {
+    using V = glm::vec<3, T>;
+    const glm::ivec3 dims = grid.dims, blocks = ddaBlockDims(grid, shift);
+    const V lo(grid.origin), size(grid.cellSize);
+    for (;;) {
+        if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
+            !glm::all(glm::lessThan(s.cell, dims)))
+            return false;
+        const glm::ivec3 block = s.cell >> shift, first = block << shift;
+        ++steps;
+        if (blockActive(uint32_t(block.x + blocks.x * (block.y + blocks.y * block.z)))) return ddaNext(grid, s, seg);
+        const glm::ivec3 last = glm::min(first + (1 << shift), dims) - 1;
+        V tExit(std::numeric_limits<T>::infinity());
+        for (int a = 0; a < 3; ++a) {
+            if (s.step[a] > 0) tExit[a] = std::max(s.t, (lo[a] + T(last[a] + 1) * size[a] - o[a]) / d[a]);
+            else if (s.step[a] < 0) tExit[a] = std::max(s.t, (lo[a] + T(first[a]) * size[a] - o[a]) / d[a]);
+        }
+        const T tx = std::min(std::min(tExit.x, tExit.y), tExit.z);
+        if (!(tx < s.tEnd)) return false;
+        const V p = (o + d * tx - lo) / size;
+        glm::ivec3 cell;
+        for (int a = 0; a < 3; ++a)
+            cell[a] = tExit[a] == tx ? (s.step[a] > 0 ? last[a] + 1 : first[a] - 1)
+                                     : int(std::floor(std::clamp(p[a], T(first[a]), T(last[a]))));
+        s = ddaStart(grid, o, d, cell, tx, s.tEnd);
+    }
+}
+
 // Every segment of a walk started with ddaStart.
 template <typename T>
 std::vector<DdaSegment<T>> ddaSegmentsFrom(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, glm::ivec3 cell,
@@ -108,6 +155,27 @@ std::vector<DdaSegment<T>> ddaSegments(const DdaGrid& grid, glm::vec<3, T> o, gl
     T t = tMin, tEnd = tMax;
     if (!clipRay(lo, hi, o, d, t, tEnd)) return {};
     return ddaSegmentsFrom(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
+}
+
+// Every segment ddaNextSkipping yields over the ray's overlap with the grid within [tMin, tMax];
+// `steps` gets the steps taken.
+template <typename T, typename BlockActive>
+std::vector<DdaSegment<T>> ddaSegmentsSkipping(const DdaGrid& grid, int shift, glm::vec<3, T> o, glm::vec<3, T> d,
+                                               T tMin, T tMax, const BlockActive& blockActive,
+                                               uint32_t* steps = nullptr) {
+    using V = glm::vec<3, T>;
+    const V lo(grid.origin), size(grid.cellSize);
+    const V hi = lo + size * V(grid.dims);
+    T t = tMin, tEnd = tMax;
+    std::vector<DdaSegment<T>> out;
+    uint32_t n = 0;
+    if (clipRay(lo, hi, o, d, t, tEnd)) {
+        DdaState<T> s = ddaStart(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
+        DdaSegment<T> seg;
+        while (ddaNextSkipping(grid, shift, o, d, s, blockActive, n, seg)) out.push_back(seg);
+    }
+    if (steps) *steps = n;
+    return out;
 }
 
 }  // namespace amrvk::accel

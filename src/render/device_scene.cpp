@@ -1,5 +1,6 @@
 #include "render/device_scene.h"
 
+#include "accel/dda.h"
 #include "core/error.h"
 #include "core/progress.h"
 
@@ -84,6 +85,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) : m
         mParams.gridOrigin = glm::vec3(v.toLocal(scene.grid->origin));
         mParams.gridCellSize = glm::vec3(scene.grid->cellSize);
         mParams.gridRanges = mGridRanges.address();
+        if (plan.traversal == TraversalKind::GridDda) mParams.gridBlockShift = uint32_t(accel::ddaBlockShift(scene.grid->dims));
     }
     if (plan.staticBoxes) {
         const TraversalKind t = plan.traversal;

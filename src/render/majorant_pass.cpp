@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "accel/dda.h"
 #include "core/error.h"
 #include "core/stats.h"
 #include "gpu/paced_submit.h"
@@ -24,7 +25,11 @@ MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, c
     const scene::StructurePlan& plan = scene.plan();
     const TraversalKind t = plan.traversal;
     if (plan.macrocellRanges) {
-        mGridMajorants = floatBuffer(ctx, scene.grid->ranges.size(), "macrocellMajorants");
+        const shared::SceneGpu& sp = device.params();
+        const glm::ivec3 blocks = accel::ddaBlockDims({.dims = sp.gridDims}, int(sp.gridBlockShift));
+        mBlockCount = sp.gridBlockShift > 0 ? uint32_t(blocks.x * blocks.y * blocks.z) : 0;
+        // grid-dda's block majorants follow the macrocells' in the same buffer.
+        mGridMajorants = floatBuffer(ctx, scene.grid->ranges.size() + mBlockCount, "macrocellMajorants");
         mParams.gridMajorants = mGridMajorants.address();
     }
     if (plan.traversalBoxes == scene::BoxSet::Macrocells) {  // the macrocells' own majorants
@@ -192,6 +197,8 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
                                          .what = mMajorantPipeline.name(),
                                          .timer = &timer})
                            .gpuSeconds;
+    mParamsAddress = paramsAddress;
+    if (mBlockCount > 0) mGpuSeconds += dispatchBlockMajorants(&timer);
     if (!rq || boxCount == 0) return;
     // Ray-query culling: the BLAS input (a shader, paced like the majorants), then the BLAS build
     // (the driver's work, no --shader-dir code: the default limit).
@@ -218,6 +225,29 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
     mGpuSeconds += timer.seconds();
 }
 
+// grid-dda's blocks: the max of each block's macrocell majorants, after the majorants themselves.
+double MajorantPass::dispatchBlockMajorants(gpu::GpuTimer* timer) {
+    if (!mBlockPipeline.valid()) {
+        const std::string from =
+            mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string();
+        mBlockPipeline = gpu::ComputePipeline(mCtx, mShaders.load("block_majorants"), "block_majorants" + from,
+                                              sizeof(shared::StructurePush));
+        mBlockDeadline.reset();
+    }
+    const uint64_t cells = mScene.grid->ranges.size();
+    const shared::StructurePush push{mParamsAddress, mGridMajorants.address(),
+                                     mGridMajorants.address() + cells * sizeof(float), mBlockCount, 0};
+    return gpu::submitPaced(mCtx, mBlockDeadline,
+                            {.groups = (uint64_t(mBlockCount) + 63) / 64,
+                             .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool) {
+                                 mBlockPipeline.dispatchPart(cmd, &push, first, count);
+                                 gpu::computeBarrier(cmd);
+                             },
+                             .what = mBlockPipeline.name(),
+                             .timer = timer})
+        .gpuSeconds;
+}
+
 std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {
     std::vector<std::pair<std::string, uint64_t>> out;
     if (mKdTree) out.emplace_back("kdTree", mKdTree->memoryBytes());
@@ -229,6 +259,12 @@ std::vector<float> MajorantPass::downloadGridMajorants() const {
     std::vector<float> out(mScene.grid->ranges.size());
     mGridMajorants.download(out.data(), out.size() * sizeof(float));
     return out;
+}
+
+std::vector<float> MajorantPass::downloadBlockMajorants() const {
+    std::vector<float> all(mScene.grid ? mScene.grid->ranges.size() + mBlockCount : 0);
+    if (mBlockCount > 0) mGridMajorants.download(all.data(), all.size() * sizeof(float));
+    return {all.begin() + std::ptrdiff_t(all.size() - mBlockCount), all.end()};
 }
 
 std::vector<float> MajorantPass::downloadDomainMajorants() const {
@@ -244,6 +280,11 @@ void MajorantPass::overrideGridMajorants(const std::vector<float>& majorants) {
     AMRVK_CHECK(majorants.size() == mScene.grid->ranges.size(), "overrideMajorants: ", majorants.size(),
                 " values for ", mScene.grid->ranges.size(), " macrocells");
     mGridMajorants.upload(majorants.data(), majorants.size() * sizeof(float));
+    if (mBlockCount > 0) {
+        AMRVK_CHECK(mParamsAddress != 0, "overrideMajorants: dispatch() must run first");
+        gpu::GpuTimer timer(mCtx, 2);
+        dispatchBlockMajorants(&timer);
+    }
 }
 
 }  // namespace amrvk::render

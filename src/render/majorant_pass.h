@@ -58,12 +58,17 @@ public:
     // Majorant per macrocell / traversal box as computed on the GPU (tests and statistics).
     std::vector<float> downloadGridMajorants() const;
     std::vector<float> downloadDomainMajorants() const;
-    // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
+    // grid-dda's block majorants (empty without blocks): the max over each block's macrocells.
+    std::vector<float> downloadBlockMajorants() const;
+    uint32_t blockCount() const { return mBlockCount; }
+    // Overwrites the macrocell majorants, then the blocks' (grid-dda only; after a dispatch;
+    // tests: deliberate overestimates).
     void overrideGridMajorants(const std::vector<float>& majorants);
 
 private:
     void buildKdTree(const scene::TransferFunction& tf);
     void updateSwCulling();
+    double dispatchBlockMajorants(gpu::GpuTimer* timer);
     const std::vector<accel::ValueRange>& domainRanges() const;
 
     gpu::Context& mCtx;
@@ -76,10 +81,12 @@ private:
     gpu::Buffer mDomainNodes, mDomainPrims;        // sw culling: BVH over the active boxes
     gpu::Buffer mDomainAabbs;                      // rq culling: BLAS input
     gpu::AabbAccelerationStructure mDomainAccel;
-    gpu::ComputePipeline mMajorantPipeline, mAabbPipeline;
+    gpu::ComputePipeline mMajorantPipeline, mAabbPipeline, mBlockPipeline;
+    uint32_t mBlockCount = 0;      // grid-dda's blocks (majorants after the macrocells')
+    uint64_t mParamsAddress = 0;   // the RenderParams of the last dispatch
     // The adaptive --gpu-timeout of each shader (units: workgroups); the majorants' forgotten when
     // the TF's node count changes.
-    GpuDeadline mMajorantDeadline, mAabbDeadline;
+    GpuDeadline mMajorantDeadline, mAabbDeadline, mBlockDeadline;
     size_t mTfNodesMeasured = 0;
     std::optional<accel::KdTree> mKdTree;
     std::vector<shared::AabbGpu> mKdBoxesHost;     // local voxel space

@@ -140,6 +140,8 @@ public:
     const std::vector<shared::AabbGpu>& traversalBoxes() const { return mMajorants->traversalBoxes(); }
     std::vector<float> downloadMajorants() const { return mMajorants->downloadGridMajorants(); }
     std::vector<float> downloadDomainMajorants() const { return mMajorants->downloadDomainMajorants(); }
+    // grid-dda's block majorants (empty without blocks), blocks of 2^gridBlockShift macrocells.
+    std::vector<float> downloadBlockMajorants() const { return mMajorants->downloadBlockMajorants(); }
     // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
     void overrideMajorants(const std::vector<float>& majorants);
     // Device address of the RenderParams buffer (current after any edit), for test kernels.

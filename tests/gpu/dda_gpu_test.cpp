@@ -1,7 +1,8 @@
 // The GLSL DDA (majorant_dda.glsl) against its CPU twin (accel/dda.h) run in float: identical
 // segment lists for random rays and for the hard rays (axis-parallel with +0/-0, rays in
 // macrocell planes, through corners, starting inside the grid), and for walks started in a given
-// macrocell (ddaStart, as grid-bvh resumes).
+// macrocell (ddaStart, as grid-bvh resumes), and for grid-dda's walk that crosses blocks of
+// inactive macrocells in one step (ddaNextSkipping).
 #include <random>
 
 #include "accel/dda.h"
@@ -17,7 +18,9 @@ class DdaGpu : public test::GpuTest {
 protected:
     // Runs test_dda over `rays` (2 vec4 per ray, or 3 with startCells) and compares every segment
     // with accel::ddaSegments (or ddaSegmentsFrom) in float; returns the mismatches (at most 11).
-    size_t compareWithTwin(const accel::DdaGrid& grid, const std::vector<glm::vec4>& rays, bool startCells) {
+    // With blockShift > 0 the walk is ddaNextSkipping over `blockMajorants` (one per block).
+    size_t compareWithTwin(const accel::DdaGrid& grid, const std::vector<glm::vec4>& rays, bool startCells,
+                           int blockShift = 0, const std::vector<float>& blockMajorants = {}) {
         const uint32_t perRay = startCells ? 3 : 2;
         const uint32_t count = uint32_t(rays.size() / perRay), maxSegs = 64, stride = 1 + 3 * maxSegs;
         auto& c = ctx();
@@ -25,12 +28,20 @@ protected:
         p.scene.gridDims = grid.dims;
         p.scene.gridOrigin = glm::vec3(grid.origin);
         p.scene.gridCellSize = glm::vec3(grid.cellSize);
+        p.scene.gridBlockShift = uint32_t(blockShift);
+        // The macrocells' majorants (unread by the walk), then the blocks'.
+        std::vector<float> majorants(size_t(grid.dims.x) * size_t(grid.dims.y) * size_t(grid.dims.z), 1.0f);
+        majorants.insert(majorants.end(), blockMajorants.begin(), blockMajorants.end());
+        gpu::Buffer majorantBuf = gpu::makeBuffer<float>(c, majorants, "majorants");
+        p.majorants.gridMajorants = majorantBuf.address();
         gpu::Buffer params(c, sizeof p, gpu::MemoryKind::Device, "params");
         params.upload(&p, sizeof p);
         gpu::Buffer rayBuf = gpu::makeBuffer<glm::vec4>(c, rays, "rays");
         gpu::Buffer out(c, uint64_t(count) * stride * 4, gpu::MemoryKind::HostRead, "segments");
         gpu::ComputePipeline pipe(c, gpu::loadShader("test_dda"), "test_dda", sizeof(shared::TestDdaPush));
-        shared::TestDdaPush push{params.address(), rayBuf.address(), out.address(), count, startCells ? 1u : 0u};
+        shared::TestDdaPush push{params.address(), rayBuf.address(), out.address(), count,
+                                 startCells ? 1u : blockShift > 0 ? 2u : 0u};
+        auto blockActive = [&](uint32_t b) { return blockMajorants[b] > 0.0f; };
         c.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (count + 31) / 32); });
         auto got = out.download<float>();
         size_t mismatches = 0;
@@ -38,6 +49,8 @@ protected:
             glm::vec4 o = rays[perRay * i], d = rays[perRay * i + 1];
             auto cpu = startCells ? accel::ddaSegmentsFrom<float>(grid, glm::vec3(o), glm::vec3(d),
                                                                    glm::ivec3(glm::vec3(rays[perRay * i + 2])), o.w, d.w)
+                       : blockShift > 0 ? accel::ddaSegmentsSkipping<float>(grid, blockShift, glm::vec3(o), glm::vec3(d),
+                                                                           o.w, d.w, blockActive)
                                   : accel::ddaSegments<float>(grid, glm::vec3(o), glm::vec3(d), o.w, d.w);
             if (cpu.size() > maxSegs) cpu.resize(maxSegs);
             uint32_t n;
@@ -114,4 +127,35 @@ TEST_F(DdaGpu, StartInAGivenMacrocellEqualsTheCpuTwin) {
         rays.emplace_back(glm::vec3(cell), 0.0f);
     }
     EXPECT_EQ(compareWithTwin(grid, rays, true), 0u);
+}
+
+// grid-dda's walk over blocks (ddaNextSkipping): on a grid of 2 x 3 x 2 blocks of 4^3 macrocells
+// (the last ones cut at the far faces), half of them inactive, the segment lists of random rays,
+// axis-parallel ones with +0/-0 and rays in block planes equal the twin's in float.
+TEST_F(DdaGpu, WalkAcrossBlocksEqualsTheCpuTwin) {
+    const accel::DdaGrid grid{{-2.0, 1.0, 0.5}, {0.5, 0.75, 0.4}, {7, 11, 6}};
+    const int shift = 2;
+    const glm::ivec3 blocks = accel::ddaBlockDims(grid, shift);
+    ASSERT_EQ(blocks, glm::ivec3(2, 3, 2));
+    std::vector<float> blockMajorants(size_t(blocks.x * blocks.y * blocks.z));
+    for (size_t b = 0; b < blockMajorants.size(); ++b) blockMajorants[b] = (b * 7 % 3 == 0) ? 0.0f : 0.5f;
+    std::vector<glm::vec4> rays;
+    auto add = [&](glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = INFINITY) {
+        rays.emplace_back(o, tMin);
+        rays.emplace_back(d, tMax);
+    };
+    for (float z : {0.0f, -0.0f}) {
+        add({-10.0f, 2.3f, 1.1f}, {1.0f, z, z});
+        add({20.0f, 4.0f, 1.3f}, {-1.0f, z, -z});  // y = 4.0: a block plane
+        add({0.0f, 2.0f, 10.0f}, {z, -z, -1.0f});
+    }
+    add({-2.0f, 1.0f, 0.5f}, glm::normalize(glm::vec3(3.5f, 8.25f, 2.4f)));  // from a corner
+    add({-10.0f, 2.3f, 1.1f}, {1.0f, 0.0f, 0.0f}, 9.0f, 11.0f);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(-5.0f, 15.0f);
+    while (rays.size() < 2 * 3000) {
+        glm::vec3 d(u(rng), u(rng), u(rng));
+        if (glm::length(d) > 1e-3f) add({pos(rng), pos(rng), pos(rng)}, glm::normalize(d));
+    }
+    EXPECT_EQ(compareWithTwin(grid, rays, false, shift, blockMajorants), 0u);
 }

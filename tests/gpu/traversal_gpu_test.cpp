@@ -10,6 +10,7 @@
 #include <random>
 
 #include "accel/brick_sampler.h"
+#include "accel/dda.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
@@ -111,7 +112,8 @@ struct BoxSet {
 BoxSet traversalBoxes(const render::Renderer& r) {
     BoxSet s;
     const scene::VolumeScene& scene = r.scene();
-    if (scene.config().traversal == scene::TraversalKind::GridBvh) {
+    if (scene.config().traversal == scene::TraversalKind::GridBvh ||
+        scene.config().traversal == scene::TraversalKind::GridDda) {
         const accel::RangeGrid& g = *scene.grid;
         const glm::dvec3 o = scene.volume().toLocal(g.origin);
         for (int z = 0; z < g.dims.z; ++z)
@@ -268,6 +270,53 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
             EXPECT_EQ(differingRays(segs, reference), 0u);
         }
     }
+}
+
+// grid-dda crosses blocks of macrocells whose majorants are all 0 in one step: the block
+// majorants are the max of their macrocells', some blocks are empty under a TF that is zero below
+// the median, and the segments with majorant > 0 match brute force over the macrocells: no gap
+// hides an active macrocell, every active macrocell a ray crosses lies in a segment.
+TEST_F(TraversalGpu, GridDdaCrossesEmptyBlocksWithoutLosingAnActiveMacrocell) {
+    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
+    const amr::FieldStats& st = volume->fieldStats;
+    const float mid = 0.5f * (st.minValue + st.maxValue);
+    const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
+                                      {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "half");
+    scene::StructureConfig cfg;
+    cfg.traversal = scene::TraversalKind::GridDda;
+    cfg.grid = "32";
+    render::Renderer r(ctx(), volume, cfg);
+    r.setTransferFunction(tf);
+    const accel::RangeGrid& g = *r.scene().grid;
+    const int shift = accel::ddaBlockShift(g.dims);
+    ASSERT_GT(shift, 0) << "a grid of 32 has blocks";
+    const glm::ivec3 blocks = accel::ddaBlockDims({.dims = g.dims}, shift);
+    const std::vector<float> cells = r.downloadMajorants(), blockMaj = r.downloadBlockMajorants();
+    ASSERT_EQ(blockMaj.size(), size_t(blocks.x) * size_t(blocks.y) * size_t(blocks.z));
+    std::vector<float> want(blockMaj.size(), 0.0f);
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const glm::ivec3 b = g.coordOf(i) >> shift;
+        float& m = want[size_t(b.x) + size_t(blocks.x) * (size_t(b.y) + size_t(blocks.y) * size_t(b.z))];
+        m = std::max(m, cells[i]);
+    }
+    EXPECT_EQ(blockMaj, want);
+    const size_t empty = size_t(std::count(blockMaj.begin(), blockMaj.end(), 0.0f));
+    EXPECT_GT(empty, 0u) << "the TF should empty some blocks";
+    EXPECT_LT(empty, blockMaj.size());
+    const BoxSet boxes = traversalBoxes(r);
+    const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
+    const std::vector<Ray> rays = testRays(glm::vec3(hi), 11);
+    const auto segs = segments(r, scene::Backend::Sw, rays);
+    size_t multi = 0;
+    int faults = 0;
+    for (size_t i = 0; i < rays.size() && faults < 10; ++i) {
+        std::vector<Segment> active;  // what the tracker uses
+        for (const Segment& s : segs[i])
+            if (s.maj > 0.0f && s.t1 > s.t0) active.push_back(s);
+        multi += active.size() >= 2;
+        faults += checkRay(boxes, hi, rays[i], active);
+    }
+    EXPECT_GT(multi, rays.size() / 10) << "rays should cross several active macrocells";
 }
 
 // grid-bvh continues from the current macrocell: where every macrocell is active it is grid-dda's

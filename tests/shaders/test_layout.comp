@@ -45,7 +45,7 @@ void main() {
         f3(P.shading.lights[l].radiance); f(P.shading.lights[l].pad);
     }
     // RenderParams.scene
-    f3(P.scene.boundsHi); f(P.scene.invFinestCellWidth); i3(P.scene.gridDims); u(P.scene.pad0);
+    f3(P.scene.boundsHi); f(P.scene.invFinestCellWidth); i3(P.scene.gridDims); u(P.scene.gridBlockShift);
     f3(P.scene.gridOrigin); f(P.scene.pad1); f3(P.scene.gridCellSize); f(P.scene.pad2);
     i3(P.scene.denseDims); i(P.scene.denseLevel); f3(P.scene.denseOrigin); f(P.scene.denseSpacing);
     u64(P.scene.bricks); u64(P.scene.brickValues); u64(P.scene.samplerNodes); u64(P.scene.samplerPrims);
