@@ -17,6 +17,8 @@ struct DdaState {
     vec3 tDelta;  // ray parameter per macrocell per axis
     float t;      // start of the current segment
     float tEnd;
+    ivec3 block;  // ddaNextSkipping: the block it last found active (-1 after ddaStart)
+    int blockShift;  // P.scene.gridBlockShift where P.majorants.gridBlocks says the blocks pay, else 0
 };
 
 // Starts in macrocell `cell` at ray parameter t, stepping until tEnd; no clip and no floor: for a
@@ -27,6 +29,8 @@ void ddaStart(vec3 o, vec3 d, ivec3 cell, float t, float tEnd, out DdaState s) {
     s.t = t;
     s.tEnd = tEnd;
     s.cell = cell;
+    s.block = ivec3(-1);
+    s.blockShift = P.majorants.gridBlocks != 0u ? int(P.scene.gridBlockShift) : 0;
     for (int a = 0; a < 3; ++a) {
         if (d[a] > 0.0) {
             s.stepDir[a] = 1;
@@ -94,39 +98,48 @@ float ddaBlockMajorant(ivec3 block) {
 
 // ddaNext over blocks of 2^gridBlockShift macrocells per axis: a block whose majorant is 0 holds
 // only macrocells of majorant 0, whose segments the tracker skips anyway, so it is crossed in one
-// step. The walk restarts at the block's exit parameter in the first macrocell past the face it
-// leaves by (the neighbour along every axis whose exit plane comes first; inside the block on the
-// others). The block index only moves forward along each axis, so the walk ends. A sliver that
-// rounding puts across the exit face lies within the majorant margin of the block's own
-// macrocells, whose majorants are 0 there too. So this yields the segments of ddaNext less those
-// inside blocks of majorant 0; a segment after a skip starts at the block's exit parameter (the
-// plane through the same float expression as ddaStart's). `steps` counts macrocells and blocks.
-bool ddaNextSkipping(vec3 o, vec3 d, inout DdaState s, inout uint steps, out uint cellIndex, out float t0,
-                     out float t1) {
+// step, yielded as one segment with `empty` set (majorant 0) and no macrocell. The walk restarts
+// at the block's exit parameter in the first macrocell past the face it leaves by (the neighbour
+// along every axis whose exit plane comes first; inside the block on the others). The block index
+// only moves forward along each axis, so the walk ends. A sliver that rounding puts across the
+// exit face lies within the majorant margin of the block's own macrocells, whose majorants are 0
+// there too. So the segments that are not empty are those of ddaNext in blocks of majorant > 0; a
+// segment after a skip starts at the block's exit parameter (the plane through the same float
+// expression as ddaStart's). One step per call and no inner loop: lanes that skip and lanes that
+// step stay in step with each other.
+bool ddaNextSkipping(vec3 o, vec3 d, inout DdaState s, out uint cellIndex, out float t0, out float t1,
+                     out bool empty) {
+    empty = false;
+    ivec3 block = s.cell >> s.blockShift;
+    if (block == s.block) return ddaNext(s, cellIndex, t0, t1);  // inside the grid: s.block is a block
     ivec3 dims = P.scene.gridDims;
-    int shift = int(P.scene.gridBlockShift);
-    for (;;) {
-        if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
-        ivec3 first = (s.cell >> shift) << shift;
-        steps++;
-        if (ddaBlockMajorant(s.cell >> shift) > 0.0) return ddaNext(s, cellIndex, t0, t1);
-        ivec3 last = min(first + (1 << shift), dims) - 1;
-        vec3 lo = P.scene.gridOrigin;
-        vec3 size = P.scene.gridCellSize;
-        vec3 tExit = vec3(kInf);
-        for (int a = 0; a < 3; ++a) {
-            if (s.stepDir[a] > 0) tExit[a] = max(s.t, (lo[a] + float(last[a] + 1) * size[a] - o[a]) / d[a]);
-            else if (s.stepDir[a] < 0) tExit[a] = max(s.t, (lo[a] + float(first[a]) * size[a] - o[a]) / d[a]);
-        }
-        float tx = min(min(tExit.x, tExit.y), tExit.z);
-        if (!(tx < s.tEnd)) return false;
-        vec3 p = (o + d * tx - lo) / size;
-        ivec3 cell;
-        for (int a = 0; a < 3; ++a)
-            cell[a] = tExit[a] == tx ? (s.stepDir[a] > 0 ? last[a] + 1 : first[a] - 1)
-                                     : int(floor(clamp(p[a], float(first[a]), float(last[a]))));
-        ddaStart(o, d, cell, tx, s.tEnd, s);
+    if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
+    if (ddaBlockMajorant(block) > 0.0) {  // read once per block entered
+        s.block = block;
+        return ddaNext(s, cellIndex, t0, t1);
     }
+    ivec3 first = block << s.blockShift;
+    ivec3 last = min(first + (1 << s.blockShift), dims) - 1;
+    vec3 lo = P.scene.gridOrigin;
+    vec3 size = P.scene.gridCellSize;
+    vec3 tExit = vec3(kInf);
+    for (int a = 0; a < 3; ++a) {
+        if (s.stepDir[a] > 0) tExit[a] = max(s.t, (lo[a] + float(last[a] + 1) * size[a] - o[a]) / d[a]);
+        else if (s.stepDir[a] < 0) tExit[a] = max(s.t, (lo[a] + float(first[a]) * size[a] - o[a]) / d[a]);
+    }
+    float tx = min(min(tExit.x, tExit.y), tExit.z);
+    if (!(tx < s.tEnd)) return false;  // the ray ends inside the empty block
+    vec3 p = (o + d * tx - lo) / size;
+    ivec3 cell;
+    for (int a = 0; a < 3; ++a)
+        cell[a] = tExit[a] == tx ? (s.stepDir[a] > 0 ? last[a] + 1 : first[a] - 1)
+                                 : int(floor(clamp(p[a], float(first[a]), float(last[a]))));
+    empty = true;
+    cellIndex = 0u;
+    t0 = s.t;
+    t1 = tx;
+    ddaStart(o, d, cell, tx, s.tEnd, s);
+    return true;
 }
 
 #endif

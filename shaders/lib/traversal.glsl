@@ -111,13 +111,14 @@ bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out 
 bool traversalNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out uint id, out float majAlpha,
                    out float t0, out float t1) {
     if (cfg.traversal == kTraversalGridDda) {
-        if (P.scene.gridBlockShift > 0u) {
-            if (!ddaNextSkipping(tr.o, tr.d, tr.dda, steps, id, t0, t1)) return false;
+        bool empty = false;
+        if (tr.dda.blockShift > 0) {
+            if (!ddaNextSkipping(tr.o, tr.d, tr.dda, id, t0, t1, empty)) return false;
         } else {
             if (!ddaNext(tr.dda, id, t0, t1)) return false;
-            steps++;
         }
-        majAlpha = FloatRef(P.majorants.gridMajorants).v[id];
+        steps++;
+        majAlpha = empty ? 0.0 : FloatRef(P.majorants.gridMajorants).v[id];
         return true;
     }
     if (cfg.traversal == kTraversalGridBvh) return gridBvhNext(cfg, tr, steps, id, majAlpha, t0, t1);

@@ -119,7 +119,7 @@ struct MajorantsGpu {
     uint tfNodeCount;
     uint domainCount;          // traversal boxes (grid-bvh: macrocells)
     uint domainAnyActive;      // 1 when some traversal box has majorant > 0
-    uint pad;
+    uint gridBlocks;           // grid-dda: 1 when it crosses empty blocks under this TF (enough are empty)
     uint64_t gridMajorants;    // float[] max alpha per macrocell, then (gridBlockShift > 0) per block the
                                // max of its macrocells' (block_majorants.comp), blocks numbered x fastest
     uint64_t domainBoxes;      // AabbGpu[] traversal boxes (not for grid-bvh: computed from the grid)
@@ -229,6 +229,7 @@ AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfColors) == 8);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfNodeCount) == 16);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainCount) == 20);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainAnyActive) == 24);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, gridBlocks) == 28);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, gridMajorants) == 32);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainBoxes) == 40);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainRanges) == 48);

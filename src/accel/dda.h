@@ -37,6 +37,7 @@ struct DdaState {
     glm::vec<3, T> tNext{std::numeric_limits<T>::infinity()};   // per axis (inf: never)
     glm::vec<3, T> tDelta{std::numeric_limits<T>::infinity()};  // ray parameter per macrocell per axis
     T t{}, tEnd{};                                                // start of the current segment; end
+    glm::ivec3 block{-1};  // ddaNextSkipping: the block it last found active (-1 after ddaStart)
 };
 
 // The macrocell holding o + d t, clamped into the grid.
@@ -96,42 +97,55 @@ inline int ddaBlockShift(glm::ivec3 dims) {
     return longest >= 64 ? 3 : longest >= 16 ? 2 : 0;
 }
 
+// grid-dda crosses empty blocks under a TF only where at least this fraction of the blocks is
+// empty: a lane that crosses or enters a block makes the others of its SIMD group wait, which
+// costs more than the steps saved where few blocks are empty (lavapipe, benchmarks section 23:
+// the synthetic clouds, 91-96% empty, 1.15-1.4x the paths/s; Enzo, PeleLM and RAMSES, 22-63%
+// empty, 0.86-1.0x).
+inline constexpr double kMinEmptyBlockFraction = 0.75;
+
 // Blocks of 2^shift macrocells per axis over the grid (the last ones cut at its far faces).
 inline glm::ivec3 ddaBlockDims(const DdaGrid& grid, int shift) { return (grid.dims + (1 << shift) - 1) >> shift; }
 
+// The cell of a segment that crosses an empty block (majorant 0, no macrocell).
+inline constexpr uint32_t kDdaEmptyBlock = 0xffffffffu;
+
 // ddaNext over blocks of 2^shift macrocells per axis, as the shader's ddaNextSkipping: a block for
 // which blockActive(x + bx * (y + by * z)) is false (all its majorants are 0) is crossed in one
-// step, the walk restarting at its exit parameter in the first macrocell past the face it leaves
-// by (inside the block on the other axes). Yields the segments of ddaNext less those inside
-// inactive blocks; `steps` counts macrocells and crossed blocks.
+// step, yielded as one segment with cell kDdaEmptyBlock; the walk restarts at its exit parameter
+// in the first macrocell past the face it leaves by (inside the block on the other axes). The
+// other segments are those of ddaNext inside active blocks.
 template <typename T, typename BlockActive>
 bool ddaNextSkipping(const DdaGrid& grid, int shift, glm::vec<3, T> o, glm::vec<3, T> d, DdaState<T>& s,
-                     const BlockActive& blockActive, uint32_t& steps, DdaSegment<T>& seg) {
+                     const BlockActive& blockActive, DdaSegment<T>& seg) {
     using V = glm::vec<3, T>;
     const glm::ivec3 dims = grid.dims, blocks = ddaBlockDims(grid, shift);
-    const V lo(grid.origin), size(grid.cellSize);
-    for (;;) {
-        if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
-            !glm::all(glm::lessThan(s.cell, dims)))
-            return false;
-        const glm::ivec3 block = s.cell >> shift, first = block << shift;
-        ++steps;
-        if (blockActive(uint32_t(block.x + blocks.x * (block.y + blocks.y * block.z)))) return ddaNext(grid, s, seg);
-        const glm::ivec3 last = glm::min(first + (1 << shift), dims) - 1;
-        V tExit(std::numeric_limits<T>::infinity());
-        for (int a = 0; a < 3; ++a) {
-            if (s.step[a] > 0) tExit[a] = std::max(s.t, (lo[a] + T(last[a] + 1) * size[a] - o[a]) / d[a]);
-            else if (s.step[a] < 0) tExit[a] = std::max(s.t, (lo[a] + T(first[a]) * size[a] - o[a]) / d[a]);
-        }
-        const T tx = std::min(std::min(tExit.x, tExit.y), tExit.z);
-        if (!(tx < s.tEnd)) return false;
-        const V p = (o + d * tx - lo) / size;
-        glm::ivec3 cell;
-        for (int a = 0; a < 3; ++a)
-            cell[a] = tExit[a] == tx ? (s.step[a] > 0 ? last[a] + 1 : first[a] - 1)
-                                     : int(std::floor(std::clamp(p[a], T(first[a]), T(last[a]))));
-        s = ddaStart(grid, o, d, cell, tx, s.tEnd);
+    const glm::ivec3 block = s.cell >> shift;
+    if (block == s.block) return ddaNext(grid, s, seg);  // inside the grid: s.block is a block
+    if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
+        !glm::all(glm::lessThan(s.cell, dims)))
+        return false;
+    if (blockActive(uint32_t(block.x + blocks.x * (block.y + blocks.y * block.z)))) {
+        s.block = block;  // read once per block entered
+        return ddaNext(grid, s, seg);
     }
+    const V lo(grid.origin), size(grid.cellSize);
+    const glm::ivec3 first = block << shift, last = glm::min(first + (1 << shift), dims) - 1;
+    V tExit(std::numeric_limits<T>::infinity());
+    for (int a = 0; a < 3; ++a) {
+        if (s.step[a] > 0) tExit[a] = std::max(s.t, (lo[a] + T(last[a] + 1) * size[a] - o[a]) / d[a]);
+        else if (s.step[a] < 0) tExit[a] = std::max(s.t, (lo[a] + T(first[a]) * size[a] - o[a]) / d[a]);
+    }
+    const T tx = std::min(std::min(tExit.x, tExit.y), tExit.z);
+    if (!(tx < s.tEnd)) return false;  // the ray ends inside the empty block
+    const V p = (o + d * tx - lo) / size;
+    glm::ivec3 cell;
+    for (int a = 0; a < 3; ++a)
+        cell[a] = tExit[a] == tx ? (s.step[a] > 0 ? last[a] + 1 : first[a] - 1)
+                                 : int(std::floor(std::clamp(p[a], T(first[a]), T(last[a]))));
+    seg = {kDdaEmptyBlock, s.t, tx};
+    s = ddaStart(grid, o, d, cell, tx, s.tEnd);
+    return true;
 }
 
 // Every segment of a walk started with ddaStart.
@@ -157,24 +171,20 @@ std::vector<DdaSegment<T>> ddaSegments(const DdaGrid& grid, glm::vec<3, T> o, gl
     return ddaSegmentsFrom(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
 }
 
-// Every segment ddaNextSkipping yields over the ray's overlap with the grid within [tMin, tMax];
-// `steps` gets the steps taken.
+// Every segment ddaNextSkipping yields over the ray's overlap with the grid within [tMin, tMax]
+// (one a step, empty blocks included).
 template <typename T, typename BlockActive>
 std::vector<DdaSegment<T>> ddaSegmentsSkipping(const DdaGrid& grid, int shift, glm::vec<3, T> o, glm::vec<3, T> d,
-                                               T tMin, T tMax, const BlockActive& blockActive,
-                                               uint32_t* steps = nullptr) {
+                                               T tMin, T tMax, const BlockActive& blockActive) {
     using V = glm::vec<3, T>;
     const V lo(grid.origin), size(grid.cellSize);
     const V hi = lo + size * V(grid.dims);
     T t = tMin, tEnd = tMax;
     std::vector<DdaSegment<T>> out;
-    uint32_t n = 0;
-    if (clipRay(lo, hi, o, d, t, tEnd)) {
-        DdaState<T> s = ddaStart(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
-        DdaSegment<T> seg;
-        while (ddaNextSkipping(grid, shift, o, d, s, blockActive, n, seg)) out.push_back(seg);
-    }
-    if (steps) *steps = n;
+    if (!clipRay(lo, hi, o, d, t, tEnd)) return out;
+    DdaState<T> s = ddaStart(grid, o, d, ddaCellAt(grid, o, d, t), t, tEnd);
+    DdaSegment<T> seg;
+    while (ddaNextSkipping(grid, shift, o, d, s, blockActive, seg)) out.push_back(seg);
     return out;
 }
 

@@ -222,6 +222,8 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["majorantSeconds"] = renderer.majorantSeconds();
     j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
     j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
+    if (const render::MajorantPass& m = renderer.majorantPass(); m.blockCount() > 0)  // grid-dda's blocks
+        j["gridBlocks"] = {{"count", m.blockCount()}, {"empty", m.emptyBlocks()}, {"crossedInOneStep", m.gridBlocksUsed()}};
     j["readSeconds"] = p.report.readSeconds;           // read and per-cell validation
     j["firstSampleSeconds"] = times.firstSampleSeconds;  // command start to the first finished batch
     j["peakHostBytes"] = peakResidentBytes();           // so far (lavapipe: device memory included)

@@ -198,7 +198,10 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
                                          .timer = &timer})
                            .gpuSeconds;
     mParamsAddress = paramsAddress;
-    if (mBlockCount > 0) mGpuSeconds += dispatchBlockMajorants(&timer);
+    if (mBlockCount > 0) {
+        mGpuSeconds += dispatchBlockMajorants(&timer);
+        countEmptyBlocks();
+    }
     if (!rq || boxCount == 0) return;
     // Ray-query culling: the BLAS input (a shader, paced like the majorants), then the BLAS build
     // (the driver's work, no --shader-dir code: the default limit).
@@ -248,6 +251,26 @@ double MajorantPass::dispatchBlockMajorants(gpu::GpuTimer* timer) {
         .gpuSeconds;
 }
 
+// Whether grid-dda crosses empty blocks under this TF (MajorantsGpu::gridBlocks): from the
+// blocks' majorants, read back (one float a block: 16 KiB for a grid of 128^3).
+void MajorantPass::countEmptyBlocks() {
+    const std::vector<float> blocks = downloadBlockMajorants();
+    mEmptyBlocks = uint32_t(std::count(blocks.begin(), blocks.end(), 0.0f));
+    decideGridBlocks();
+}
+
+void MajorantPass::decideGridBlocks() {
+    const bool pays = mBlockCount > 0 && double(mEmptyBlocks) >= accel::kMinEmptyBlockFraction * double(mBlockCount);
+    mParams.gridBlocks = mBlockCount > 0 && (mBlockUse == GridBlockUse::Always || (mBlockUse == GridBlockUse::Auto && pays))
+                             ? 1u
+                             : 0u;
+}
+
+void MajorantPass::setGridBlockUse(GridBlockUse use) {
+    mBlockUse = use;
+    decideGridBlocks();
+}
+
 std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {
     std::vector<std::pair<std::string, uint64_t>> out;
     if (mKdTree) out.emplace_back("kdTree", mKdTree->memoryBytes());
@@ -284,6 +307,7 @@ void MajorantPass::overrideGridMajorants(const std::vector<float>& majorants) {
         AMRVK_CHECK(mParamsAddress != 0, "overrideMajorants: dispatch() must run first");
         gpu::GpuTimer timer(mCtx, 2);
         dispatchBlockMajorants(&timer);
+        countEmptyBlocks();
     }
 }
 

@@ -61,6 +61,12 @@ public:
     // grid-dda's block majorants (empty without blocks): the max over each block's macrocells.
     std::vector<float> downloadBlockMajorants() const;
     uint32_t blockCount() const { return mBlockCount; }
+    uint32_t emptyBlocks() const { return mEmptyBlocks; }  // of majorant 0 under the last TF
+    // Whether grid-dda crosses empty blocks in one step: Auto where at least
+    // accel::kMinEmptyBlockFraction of them are empty under the TF (params().gridBlocks).
+    enum class GridBlockUse { Auto, Always, Never };
+    void setGridBlockUse(GridBlockUse use);
+    bool gridBlocksUsed() const { return mParams.gridBlocks != 0; }
     // Overwrites the macrocell majorants, then the blocks' (grid-dda only; after a dispatch;
     // tests: deliberate overestimates).
     void overrideGridMajorants(const std::vector<float>& majorants);
@@ -69,6 +75,8 @@ private:
     void buildKdTree(const scene::TransferFunction& tf);
     void updateSwCulling();
     double dispatchBlockMajorants(gpu::GpuTimer* timer);
+    void countEmptyBlocks();
+    void decideGridBlocks();
     const std::vector<accel::ValueRange>& domainRanges() const;
 
     gpu::Context& mCtx;
@@ -83,6 +91,8 @@ private:
     gpu::AabbAccelerationStructure mDomainAccel;
     gpu::ComputePipeline mMajorantPipeline, mAabbPipeline, mBlockPipeline;
     uint32_t mBlockCount = 0;      // grid-dda's blocks (majorants after the macrocells')
+    uint32_t mEmptyBlocks = 0;     // of them, with majorant 0 under the last TF
+    GridBlockUse mBlockUse = GridBlockUse::Auto;
     uint64_t mParamsAddress = 0;   // the RenderParams of the last dispatch
     // The adaptive --gpu-timeout of each shader (units: workgroups); the majorants' forgotten when
     // the TF's node count changes.

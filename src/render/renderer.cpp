@@ -37,6 +37,7 @@ void Renderer::buildDeviceScene() {
     mDevice.reset();
     mDevice = std::make_unique<DeviceScene>(mCtx, mScene);
     mMajorants = std::make_unique<MajorantPass>(mCtx, mScene, *mDevice, mShaders);
+    mMajorants->setGridBlockUse(mGridBlockUse);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
     mParams.majorants = mMajorants->params();
@@ -69,6 +70,8 @@ void Renderer::redo(const scene::Invalidation& inv, const scene::RenderSettings*
         mParamsDirty = true;
         uploadParams();
         mMajorants->dispatch(mParamsBuffer.address());
+        mParams.majorants = mMajorants->params();  // grid-dda's block decision comes from the GPU's majorants
+        mParamsDirty = true;
         ++mCounts.majorantDispatches;
     }
     if (inv.accumulation) {
@@ -290,7 +293,16 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
 
 void Renderer::overrideMajorants(const std::vector<float>& majorants) {
     mMajorants->overrideGridMajorants(majorants);
+    mParams.majorants = mMajorants->params();
+    mParamsDirty = true;
     resetAccumulation();
+}
+
+void Renderer::setGridBlockUse(MajorantPass::GridBlockUse use) {
+    mGridBlockUse = use;
+    mMajorants->setGridBlockUse(use);
+    mParams.majorants = mMajorants->params();
+    mParamsDirty = true;
 }
 
 }  // namespace amrvk::render

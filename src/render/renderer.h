@@ -142,6 +142,10 @@ public:
     std::vector<float> downloadDomainMajorants() const { return mMajorants->downloadDomainMajorants(); }
     // grid-dda's block majorants (empty without blocks), blocks of 2^gridBlockShift macrocells.
     std::vector<float> downloadBlockMajorants() const { return mMajorants->downloadBlockMajorants(); }
+    const MajorantPass& majorantPass() const { return *mMajorants; }
+    // Whether grid-dda crosses empty blocks (default Auto: where enough are empty under the TF);
+    // kept across structure changes. The walk changes no expectation: accumulation goes on.
+    void setGridBlockUse(MajorantPass::GridBlockUse use);
     // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
     void overrideMajorants(const std::vector<float>& majorants);
     // Device address of the RenderParams buffer (current after any edit), for test kernels.
@@ -166,6 +170,7 @@ private:
     gpu::Buffer mParamsBuffer;
     shared::RenderParams mParams{};
     bool mParamsDirty = true;
+    MajorantPass::GridBlockUse mGridBlockUse = MajorantPass::GridBlockUse::Auto;
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;
     bool mHasSettings = false;

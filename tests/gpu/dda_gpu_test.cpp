@@ -29,6 +29,7 @@ protected:
         p.scene.gridOrigin = glm::vec3(grid.origin);
         p.scene.gridCellSize = glm::vec3(grid.cellSize);
         p.scene.gridBlockShift = uint32_t(blockShift);
+        p.majorants.gridBlocks = blockShift > 0 ? 1u : 0u;
         // The macrocells' majorants (unread by the walk), then the blocks'.
         std::vector<float> majorants(size_t(grid.dims.x) * size_t(grid.dims.y) * size_t(grid.dims.z), 1.0f);
         majorants.insert(majorants.end(), blockMajorants.begin(), blockMajorants.end());

@@ -65,7 +65,7 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(c, SceneGpu, denseValues, 2),  AMRVK_FIELD(c, SceneGpu, gridBrickLists, 2),
         AMRVK_FIELD(m, MajorantsGpu, tfPositions, 2),   AMRVK_FIELD(m, MajorantsGpu, tfColors, 2),
         AMRVK_FIELD(m, MajorantsGpu, tfNodeCount, 1),   AMRVK_FIELD(m, MajorantsGpu, domainCount, 1),
-        AMRVK_FIELD(m, MajorantsGpu, domainAnyActive, 1), AMRVK_FIELD(m, MajorantsGpu, pad, 1),
+        AMRVK_FIELD(m, MajorantsGpu, domainAnyActive, 1), AMRVK_FIELD(m, MajorantsGpu, gridBlocks, 1),
         AMRVK_FIELD(m, MajorantsGpu, gridMajorants, 2), AMRVK_FIELD(m, MajorantsGpu, domainBoxes, 2),
         AMRVK_FIELD(m, MajorantsGpu, domainRanges, 2),  AMRVK_FIELD(m, MajorantsGpu, domainMajorants, 2),
         AMRVK_FIELD(m, MajorantsGpu, domainNodes, 2),   AMRVK_FIELD(m, MajorantsGpu, domainPrims, 2),

@@ -9,6 +9,7 @@
 layout(push_constant, scalar) uniform Push { TestDdaPush tp; };
 layout(local_size_x = 32) in;
 const uint kMaxSegs = 64u;
+const uint kDdaEmptyBlock = 0xffffffffu;  // accel::kDdaEmptyBlock: the segment of a skipped block
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -29,10 +30,10 @@ void main() {
     if (started) {
         uint cell;
         float t0, t1;
-        uint steps = 0u;
+        bool empty = false;
         while (n < kMaxSegs &&
-               (tp.startCells == 2u ? ddaNextSkipping(o.xyz, d.xyz, s, steps, cell, t0, t1) : ddaNext(s, cell, t0, t1))) {
-            out_.v[base + 1u + 3u * n] = uintBitsToFloat(cell);
+               (tp.startCells == 2u ? ddaNextSkipping(o.xyz, d.xyz, s, cell, t0, t1, empty) : ddaNext(s, cell, t0, t1))) {
+            out_.v[base + 1u + 3u * n] = uintBitsToFloat(empty ? kDdaEmptyBlock : cell);
             out_.v[base + 2u + 3u * n] = t0;
             out_.v[base + 3u + 3u * n] = t1;
             ++n;

@@ -53,7 +53,7 @@ void main() {
     u64(P.scene.denseValues); u64(P.scene.gridBrickLists);
     // RenderParams.majorants
     u64(P.majorants.tfPositions); u64(P.majorants.tfColors); u(P.majorants.tfNodeCount);
-    u(P.majorants.domainCount); u(P.majorants.domainAnyActive); u(P.majorants.pad);
+    u(P.majorants.domainCount); u(P.majorants.domainAnyActive); u(P.majorants.gridBlocks);
     u64(P.majorants.gridMajorants); u64(P.majorants.domainBoxes); u64(P.majorants.domainRanges);
     u64(P.majorants.domainMajorants); u64(P.majorants.domainNodes); u64(P.majorants.domainPrims);
     u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
