@@ -53,6 +53,16 @@ inline scene::TransferFunction constantTf(glm::vec3 albedo, float alpha) {
     return scene::TransferFunction({0.0f}, {glm::vec4(albedo, alpha)}, "constant-test");
 }
 
+// Zero alpha below the middle of the field's range, rising to `top` at its maximum: under it
+// many macrocells, blocks and traversal boxes are empty (culled).
+inline scene::TransferFunction zeroBelowMiddleTf(const scene::Volume& v, float top = 1.0f,
+                                                 glm::vec3 albedo = glm::vec3(1.0f)) {
+    const amr::FieldStats& st = v.fieldStats;
+    const float mid = 0.5f * (st.minValue + st.maxValue);
+    return scene::TransferFunction({st.minValue, mid, st.maxValue},
+                                   {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(albedo, top)}, "half");
+}
+
 // Back-ends this device can run: sw always, rq where the device has VK_KHR_ray_query.
 inline std::vector<scene::Backend> availableBackends(const gpu::Context& ctx) {
     std::vector<scene::Backend> out{scene::Backend::Sw};

@@ -417,10 +417,7 @@ TEST_F(RendererGpu, PathStatisticsAddUpToTheCounters) {
 // empty blocks under the TF (accel::kMinEmptyBlockFraction), and Always / Never override it.
 TEST_F(RendererGpu, GridDdaAcrossEmptyBlocksRendersWhatTheMacrocellWalkRenders) {
     const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
-    const amr::FieldStats& st = volume->fieldStats;
-    const float mid = 0.5f * (st.minValue + st.maxValue);
-    const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
-                                      {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(0.8f, 0.9f, 1, 2)}, "half");
+    const scene::TransferFunction tf = test::zeroBelowMiddleTf(*volume, 2.0f, {0.8f, 0.9f, 1.0f});
     scene::StructureConfig c;
     c.grid = "32";
     render::Renderer r(ctx(), volume, c);

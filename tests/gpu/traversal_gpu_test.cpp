@@ -232,11 +232,7 @@ int checkRay(const BoxSet& boxes, glm::dvec3 hi, const Ray& ray, const std::vect
 
 TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
     const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
-    const amr::FieldStats& st = volume->fieldStats;
-    // A TF that is zero below the median value: many boxes become empty (culled).
-    const float mid = 0.5f * (st.minValue + st.maxValue);
-    const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
-                                      {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "half");
+    const scene::TransferFunction tf = test::zeroBelowMiddleTf(*volume);  // many boxes empty (culled)
     for (scene::TraversalKind t : scene::allTraversals()) {
         if (t == scene::TraversalKind::GridDda) continue;  // tests/gpu/dda_gpu_test.cpp
         std::vector<std::vector<Segment>> reference;
@@ -274,14 +270,11 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
 
 // grid-dda crosses blocks of macrocells whose majorants are all 0 in one step: the block
 // majorants are the max of their macrocells', some blocks are empty under a TF that is zero below
-// the median, and the segments with majorant > 0 match brute force over the macrocells: no gap
+// the middle of the range, and the segments with majorant > 0 match brute force over the macrocells: no gap
 // hides an active macrocell, every active macrocell a ray crosses lies in a segment.
 TEST_F(TraversalGpu, GridDdaCrossesEmptyBlocksWithoutLosingAnActiveMacrocell) {
     const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
-    const amr::FieldStats& st = volume->fieldStats;
-    const float mid = 0.5f * (st.minValue + st.maxValue);
-    const scene::TransferFunction tf({st.minValue, mid, st.maxValue},
-                                      {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "half");
+    const scene::TransferFunction tf = test::zeroBelowMiddleTf(*volume);
     scene::StructureConfig cfg;
     cfg.traversal = scene::TraversalKind::GridDda;
     cfg.grid = "32";
