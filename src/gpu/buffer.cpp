@@ -181,8 +181,9 @@ void Buffer::uploadStaged(const void* data, uint64_t bytes, uint64_t offset, uin
     }
 }
 
-void Buffer::download(void* data, uint64_t bytes) const {
-    AMRVK_CHECK(bytes <= mSize, "download of ", bytes, " bytes from buffer '", mName, "' of ", mSize, " bytes");
+void Buffer::download(void* data, uint64_t bytes, uint64_t offset) const {
+    AMRVK_CHECK(offset <= mSize && bytes <= mSize - offset, "download of ", bytes, " bytes at ", offset,
+                " from buffer '", mName, "' of ", mSize, " bytes");
     if (bytes == 0) return;
     if (mMapped) {
         if (!mCoherent) {
@@ -191,22 +192,22 @@ void Buffer::download(void* data, uint64_t bytes) const {
             range.size = VK_WHOLE_SIZE;
             AMRVK_VK_CHECK(vkInvalidateMappedMemoryRanges(mCtx->device(), 1, &range));
         }
-        std::memcpy(data, mMapped, bytes);
+        std::memcpy(data, static_cast<const char*>(mMapped) + offset, bytes);
         return;
     }
-    downloadStaged(data, bytes, kStagingBytes);
+    downloadStaged(data, bytes, kStagingBytes, offset);
 }
 
-void Buffer::downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) const {
-    AMRVK_CHECK(bytes <= mSize && chunkBytes > 0, "staged download of ", bytes, " bytes from buffer '", mName,
-                "' of ", mSize, " bytes");
+void Buffer::downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes, uint64_t offset) const {
+    AMRVK_CHECK(offset <= mSize && bytes <= mSize - offset && chunkBytes > 0, "staged download of ", bytes,
+                " bytes at ", offset, " from buffer '", mName, "' of ", mSize, " bytes");
     if (bytes == 0) return;
     const uint64_t chunk = std::min(bytes, chunkBytes);
     Buffer staging(*mCtx, chunk, MemoryKind::HostRead, mName + ".readback");
     for (uint64_t done = 0; done < bytes; done += chunk) {
         const uint64_t n = std::min(chunk, bytes - done);
         mCtx->submitAndWait([&](VkCommandBuffer cmd) {
-            VkBufferCopy copy{mOffset + done, 0, n};
+            VkBufferCopy copy{mOffset + offset + done, 0, n};
             vkCmdCopyBuffer(cmd, mBuffer, staging.handle(), 1, &copy);
         });
         staging.download(static_cast<char*>(data) + done, n);

@@ -56,13 +56,13 @@ public:
     void upload(std::span<const T> values) {
         upload(values.data(), values.size_bytes());
     }
-    // Copies the buffer's first `bytes` to host memory.
-    void download(void* data, uint64_t bytes) const;
+    // Copies `bytes` of the buffer from `offset` on to host memory.
+    void download(void* data, uint64_t bytes, uint64_t offset = 0) const;
     // The copies unmapped (device-local) buffers take: through a staging buffer of chunkBytes,
     // one chunk at a time (kStagingBytes by default). Public so tests exercise them on devices
     // whose memory is all mapped (lavapipe).
     void uploadStaged(const void* data, uint64_t bytes, uint64_t offset, uint64_t chunkBytes);
-    void downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes) const;
+    void downloadStaged(void* data, uint64_t bytes, uint64_t chunkBytes, uint64_t offset = 0) const;
     template <typename T>
     std::vector<T> download() const {
         std::vector<T> out(mSize / sizeof(T));

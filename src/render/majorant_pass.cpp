@@ -285,9 +285,10 @@ std::vector<float> MajorantPass::downloadGridMajorants() const {
 }
 
 std::vector<float> MajorantPass::downloadBlockMajorants() const {
-    std::vector<float> all(mScene.grid ? mScene.grid->ranges.size() + mBlockCount : 0);
-    if (mBlockCount > 0) mGridMajorants.download(all.data(), all.size() * sizeof(float));
-    return {all.begin() + std::ptrdiff_t(all.size() - mBlockCount), all.end()};
+    std::vector<float> out(mBlockCount);
+    if (mBlockCount > 0)
+        mGridMajorants.download(out.data(), out.size() * sizeof(float), mScene.grid->ranges.size() * sizeof(float));
+    return out;
 }
 
 std::vector<float> MajorantPass::downloadDomainMajorants() const {

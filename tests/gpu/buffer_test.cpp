@@ -41,7 +41,8 @@ TEST_F(Buffer, MemoryIsAccountedPerResource) {
 }
 
 // Unmapped (device-local) buffers are filled and read through one staging buffer, a chunk at a
-// time, so a 4 GB upload needs 64 MiB beside it: every chunk lands at its offset, the last one short.
+// time, so a 4 GB upload needs 64 MiB beside it: every chunk lands at its offset, the last one
+// short; a part is read back from its offset.
 TEST_F(Buffer, StagedCopiesGoChunkByChunk) {
     std::vector<uint32_t> data(100003);
     std::iota(data.begin(), data.end(), 11u);
@@ -53,6 +54,13 @@ TEST_F(Buffer, StagedCopiesGoChunkByChunk) {
     for (size_t i = 0; i < 5; ++i) EXPECT_EQ(back[i], 0u);
     EXPECT_TRUE(std::equal(data.begin(), data.end(), back.begin() + 5));
     EXPECT_THROW(b.uploadStaged(data.data(), data.size() * sizeof(uint32_t), 24, 4096), Error);
+    // A part read back from an offset, staged and plainly; past the end is an error.
+    std::vector<uint32_t> part(7), plain(7);
+    b.downloadStaged(part.data(), part.size() * sizeof(uint32_t), 12, (5 + 100) * sizeof(uint32_t));
+    b.download(plain.data(), plain.size() * sizeof(uint32_t), (5 + 100) * sizeof(uint32_t));
+    EXPECT_TRUE(std::equal(part.begin(), part.end(), data.begin() + 100));
+    EXPECT_EQ(part, plain);
+    EXPECT_THROW(b.download(part.data(), part.size() * sizeof(uint32_t), b.size() - 8), Error);
     EXPECT_EQ(gpu::kStagingBytes, uint64_t{64} << 20);
 }
 
