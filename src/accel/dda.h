@@ -100,8 +100,8 @@ inline int ddaBlockShift(glm::ivec3 dims) {
 // grid-dda crosses empty blocks under a TF only where at least this fraction of the blocks is
 // empty: a lane that crosses or enters a block makes the others of its SIMD group wait, which
 // costs more than the steps saved where few blocks are empty (lavapipe, benchmarks section 23:
-// the synthetic clouds, 91-96% empty, 1.15-1.4x the paths/s; Enzo, PeleLM and RAMSES, 22-63%
-// empty, 0.86-1.0x).
+// the synthetic clouds, 91-96% empty, 1.09-1.19x the paths/s at grid 128 and 1.8-2.5x at 256;
+// Enzo, PeleLM and RAMSES, 22-63% empty, 0.86-1.09x with blocks forced on).
 inline constexpr double kMinEmptyBlockFraction = 0.75;
 
 // Blocks of 2^shift macrocells per axis over the grid (the last ones cut at its far faces).
