@@ -53,6 +53,9 @@ public:
     // DIR (--shader-dir) first; throws "--shader-dir DIR: not a directory".
     explicit ShaderLibrary(std::filesystem::path dir);
     const std::filesystem::path& directory() const { return mDir; }
+    // " from --shader-dir DIR" with a directory, else "": the end of a pipeline's name, by which a
+    // runaway or crashing dispatch is reported.
+    std::string origin() const { return mDir.empty() ? "" : " from --shader-dir " + mDir.string(); }
     // The SPIR-V of `name`. Throws "shader 'X' not found (...)", or gpu::ShaderCompileError (one
     // line with file and line) when a source in the directory does not compile.
     std::vector<uint32_t> load(const std::string& name) const;

@@ -156,18 +156,20 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     mHostSeconds = host.seconds();
 }
 
+// One of the pass's shaders (push constants: shared::StructurePush), named with where it came from.
+gpu::ComputePipeline MajorantPass::structurePipeline(const std::string& name) const {
+    return gpu::ComputePipeline(mCtx, mShaders.load(name), name + mShaders.origin(), sizeof(shared::StructurePush));
+}
+
 void MajorantPass::dispatch(uint64_t paramsAddress) {
     const scene::StructurePlan& plan = mScene.plan();
-    const std::string from = mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string();
     if (!mMajorantPipeline.valid()) {
-        mMajorantPipeline = gpu::ComputePipeline(mCtx, mShaders.load("majorants"), "majorants" + from,
-                                                 sizeof(shared::StructurePush));
+        mMajorantPipeline = structurePipeline("majorants");
         mMajorantDeadline.reset();
     }
     const bool rq = plan.rayQueryCulling;
     if (rq && !mAabbPipeline.valid()) {
-        mAabbPipeline = gpu::ComputePipeline(mCtx, mShaders.load("domain_aabbs"), "domain_aabbs" + from,
-                                             sizeof(shared::StructurePush));
+        mAabbPipeline = structurePipeline("domain_aabbs");
         mAabbDeadline.reset();
     }
     const uint32_t boxCount = plan.boxMajorants ? mParams.domainCount : 0;
@@ -231,10 +233,7 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
 // grid-dda's blocks: the max of each block's macrocell majorants, after the majorants themselves.
 double MajorantPass::dispatchBlockMajorants(gpu::GpuTimer* timer) {
     if (!mBlockPipeline.valid()) {
-        const std::string from =
-            mShaders.directory().empty() ? "" : " from --shader-dir " + mShaders.directory().string();
-        mBlockPipeline = gpu::ComputePipeline(mCtx, mShaders.load("block_majorants"), "block_majorants" + from,
-                                              sizeof(shared::StructurePush));
+        mBlockPipeline = structurePipeline("block_majorants");
         mBlockDeadline.reset();
     }
     const uint64_t cells = mScene.grid->ranges.size();
@@ -260,7 +259,7 @@ void MajorantPass::countEmptyBlocks() {
 }
 
 void MajorantPass::decideGridBlocks() {
-    const bool pays = mBlockCount > 0 && double(mEmptyBlocks) >= accel::kMinEmptyBlockFraction * double(mBlockCount);
+    const bool pays = double(mEmptyBlocks) >= accel::kMinEmptyBlockFraction * double(mBlockCount);
     mParams.gridBlocks = mBlockCount > 0 && (mBlockUse == GridBlockUse::Always || (mBlockUse == GridBlockUse::Auto && pays))
                              ? 1u
                              : 0u;

@@ -74,6 +74,7 @@ public:
 private:
     void buildKdTree(const scene::TransferFunction& tf);
     void updateSwCulling();
+    gpu::ComputePipeline structurePipeline(const std::string& name) const;
     double dispatchBlockMajorants(gpu::GpuTimer* timer);
     void countEmptyBlocks();
     void decideGridBlocks();

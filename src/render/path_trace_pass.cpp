@@ -21,9 +21,8 @@ gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& ent
     // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
     const std::string shader = config.backend == scene::Backend::Rq ? entry + "_rq" : entry;
     // Named with where its source came from: the name a runaway or crashing dispatch is reported by.
-    const std::string origin = shaders.directory().empty() ? "" : " from --shader-dir " + shaders.directory().string();
     return gpu::ComputePipeline(ctx, shaders.load(shader),
-                                entry + "." + scene::modeName(mode) + "." + config.label() + origin, pushBytes,
+                                entry + "." + scene::modeName(mode) + "." + config.label() + shaders.origin(), pushBytes,
                                 {{0, uint32_t(mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
