@@ -40,6 +40,10 @@ void Renderer::buildDeviceScene() {
     mMajorants->setGridBlockUse(mGridBlockUse);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
+    takeMajorantParams();
+}
+
+void Renderer::takeMajorantParams() {
     mParams.majorants = mMajorants->params();
     mParamsDirty = true;
 }
@@ -66,12 +70,10 @@ void Renderer::redo(const scene::Invalidation& inv, const scene::RenderSettings*
     // Majorants, culling and the kd-tree go together (invalidatedBy sets all three); they need a TF.
     if ((inv.majorants || inv.culling || inv.kdTree) && mTf) {
         mMajorants->prepare(*mTf);
-        mParams.majorants = mMajorants->params();
-        mParamsDirty = true;
+        takeMajorantParams();
         uploadParams();
         mMajorants->dispatch(mParamsBuffer.address());
-        mParams.majorants = mMajorants->params();  // grid-dda's block decision comes from the GPU's majorants
-        mParamsDirty = true;
+        takeMajorantParams();  // grid-dda's block decision comes from the GPU's majorants
         ++mCounts.majorantDispatches;
     }
     if (inv.accumulation) {
@@ -293,16 +295,14 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
 
 void Renderer::overrideMajorants(const std::vector<float>& majorants) {
     mMajorants->overrideGridMajorants(majorants);
-    mParams.majorants = mMajorants->params();
-    mParamsDirty = true;
+    takeMajorantParams();
     resetAccumulation();
 }
 
 void Renderer::setGridBlockUse(MajorantPass::GridBlockUse use) {
     mGridBlockUse = use;
     mMajorants->setGridBlockUse(use);
-    mParams.majorants = mMajorants->params();
-    mParamsDirty = true;
+    takeMajorantParams();
 }
 
 }  // namespace amrvk::render

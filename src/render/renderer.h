@@ -155,6 +155,7 @@ private:
     // Redoes what `inv` lists (the only place an edit takes effect).
     void redo(const scene::Invalidation& inv, const scene::RenderSettings* settings = nullptr);
     void buildDeviceScene();
+    void takeMajorantParams();  // the majorant pass's params into RenderParams, to upload
     void requireRenderable() const;  // structures, a TF and settings exist
     const gpu::ComputePipeline& currentPipeline();  // compiled on first use; params uploaded
     void writeView(const scene::RenderSettings& s);
