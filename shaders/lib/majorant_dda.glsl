@@ -70,10 +70,15 @@ bool ddaInit(vec3 o, vec3 d, float tMin, float tMax, out DdaState s) {
     return true;
 }
 
+// Whether the walk is over: tEnd reached, or the ray has left the grid.
+bool ddaEnded(DdaState s) {
+    return s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, P.scene.gridDims));
+}
+
 // Next segment: macrocell index and [t0, t1]; false when the ray has left the grid.
 bool ddaNext(inout DdaState s, out uint cellIndex, out float t0, out float t1) {
     ivec3 dims = P.scene.gridDims;
-    if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
+    if (ddaEnded(s)) return false;
     float tExit = min(min(s.tNext.x, s.tNext.y), s.tNext.z);
     cellIndex = uint(s.cell.x + dims.x * (s.cell.y + dims.y * s.cell.z));
     t0 = s.t;
@@ -112,14 +117,13 @@ bool ddaNextSkipping(vec3 o, vec3 d, inout DdaState s, out uint cellIndex, out f
     empty = false;
     ivec3 block = s.cell >> s.blockShift;
     if (block == s.block) return ddaNext(s, cellIndex, t0, t1);  // inside the grid: s.block is a block
-    ivec3 dims = P.scene.gridDims;
-    if (s.t >= s.tEnd || any(lessThan(s.cell, ivec3(0))) || any(greaterThanEqual(s.cell, dims))) return false;
+    if (ddaEnded(s)) return false;
     if (ddaBlockMajorant(block) > 0.0) {  // read once per block entered
         s.block = block;
         return ddaNext(s, cellIndex, t0, t1);
     }
     ivec3 first = block << s.blockShift;
-    ivec3 last = min(first + (1 << s.blockShift), dims) - 1;
+    ivec3 last = min(first + (1 << s.blockShift), P.scene.gridDims) - 1;
     vec3 lo = P.scene.gridOrigin;
     vec3 size = P.scene.gridCellSize;
     vec3 tExit = vec3(kInf);

@@ -72,13 +72,18 @@ DdaState<T> ddaStart(const DdaGrid& grid, glm::vec<3, T> o, glm::vec<3, T> d, gl
     return s;
 }
 
+// Whether the walk is over: tEnd reached, or the ray has left the grid.
+template <typename T>
+bool ddaEnded(const DdaGrid& grid, const DdaState<T>& s) {
+    return s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
+           !glm::all(glm::lessThan(s.cell, grid.dims));
+}
+
 // Next segment; false when the ray has left the grid or reached tEnd.
 template <typename T>
 bool ddaNext(const DdaGrid& grid, DdaState<T>& s, DdaSegment<T>& seg) {
     const glm::ivec3 dims = grid.dims;
-    if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
-        !glm::all(glm::lessThan(s.cell, dims)))
-        return false;
+    if (ddaEnded(grid, s)) return false;
     T tExit = std::min(std::min(s.tNext.x, s.tNext.y), s.tNext.z);
     seg = {uint32_t(s.cell.x + dims.x * (s.cell.y + dims.y * s.cell.z)), s.t, std::min(tExit, s.tEnd)};
     for (int a = 0; a < 3; ++a)
@@ -122,9 +127,7 @@ bool ddaNextSkipping(const DdaGrid& grid, int shift, glm::vec<3, T> o, glm::vec<
     const glm::ivec3 dims = grid.dims, blocks = ddaBlockDims(grid, shift);
     const glm::ivec3 block = s.cell >> shift;
     if (block == s.block) return ddaNext(grid, s, seg);  // inside the grid: s.block is a block
-    if (s.t >= s.tEnd || !glm::all(glm::greaterThanEqual(s.cell, glm::ivec3(0))) ||
-        !glm::all(glm::lessThan(s.cell, dims)))
-        return false;
+    if (ddaEnded(grid, s)) return false;
     if (blockActive(uint32_t(block.x + blocks.x * (block.y + blocks.y * block.z)))) {
         s.block = block;  // read once per block entered
         return ddaNext(grid, s, seg);
