@@ -14,6 +14,28 @@
 
 using namespace amrvk;
 
+namespace {
+
+// Rays as test_dda reads them without start cells: (origin, tMin), (direction, tMax).
+struct RayList {
+    std::vector<glm::vec4> v;
+    void add(glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = INFINITY) {
+        v.emplace_back(o, tMin);
+        v.emplace_back(d, tMax);
+    }
+    // Up to `count` rays in all: the rest random, from origins in [-5, 15]^3.
+    void fillRandom(size_t count, unsigned seed) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(-5.0f, 15.0f);
+        while (v.size() < 2 * count) {
+            glm::vec3 d(u(rng), u(rng), u(rng));
+            if (glm::length(d) > 1e-3f) add({pos(rng), pos(rng), pos(rng)}, glm::normalize(d));
+        }
+    }
+};
+
+}  // namespace
+
 class DdaGpu : public test::GpuTest {
 protected:
     // Runs test_dda over `rays` (2 vec4 per ray, or 3 with startCells) and compares every segment
@@ -78,27 +100,18 @@ protected:
 
 TEST_F(DdaGpu, SegmentsEqualTheCpuTwin) {
     accel::DdaGrid grid{{-2.0, 1.0, 0.5}, {1.5, 2.0, 0.75}, {8, 5, 6}};
-    std::vector<glm::vec4> rays;  // (origin, tMin), (direction, tMax)
-    auto add = [&](glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = INFINITY) {
-        rays.emplace_back(o, tMin);
-        rays.emplace_back(d, tMax);
-    };
+    RayList rays;
     for (float z : {0.0f, -0.0f}) {
-        add({-10.0f, 2.3f, 1.1f}, {1.0f, z, z});
-        add({20.0f, 2.3f, 1.1f}, {-1.0f, z, -z});
-        add({0.1f, 2.0f, 10.0f}, {z, -z, -1.0f});
+        rays.add({-10.0f, 2.3f, 1.1f}, {1.0f, z, z});
+        rays.add({20.0f, 2.3f, 1.1f}, {-1.0f, z, -z});
+        rays.add({0.1f, 2.0f, 10.0f}, {z, -z, -1.0f});
     }
-    add({-10.0f, 3.0f, 2.0f}, {1.0f, 0.0f, 0.0f});
-    add({-2.0f, 1.0f, 0.5f}, glm::normalize(glm::vec3(1.5f, 2.0f, 0.75f)));
-    add({3.0f, 4.0f, 2.2f}, glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)));
-    add({-10.0f, 2.3f, 1.1f}, {1.0f, 0.0f, 0.0f}, 9.0f, 11.0f);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(-5.0f, 15.0f);
-    while (rays.size() < 2 * 2000) {
-        glm::vec3 d(u(rng), u(rng), u(rng));
-        if (glm::length(d) > 1e-3f) add({pos(rng), pos(rng), pos(rng)}, glm::normalize(d));
-    }
-    EXPECT_EQ(compareWithTwin(grid, rays, false), 0u);
+    rays.add({-10.0f, 3.0f, 2.0f}, {1.0f, 0.0f, 0.0f});
+    rays.add({-2.0f, 1.0f, 0.5f}, glm::normalize(glm::vec3(1.5f, 2.0f, 0.75f)));
+    rays.add({3.0f, 4.0f, 2.2f}, glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)));
+    rays.add({-10.0f, 2.3f, 1.1f}, {1.0f, 0.0f, 0.0f}, 9.0f, 11.0f);
+    rays.fillRandom(2000, 5);
+    EXPECT_EQ(compareWithTwin(grid, rays.v, false), 0u);
 }
 
 // ddaStart, grid-bvh's resumption after a box query: the walk from a given macrocell at a given t
@@ -140,23 +153,14 @@ TEST_F(DdaGpu, WalkAcrossBlocksEqualsTheCpuTwin) {
     ASSERT_EQ(blocks, glm::ivec3(2, 3, 2));
     std::vector<float> blockMajorants(size_t(blocks.x * blocks.y * blocks.z));
     for (size_t b = 0; b < blockMajorants.size(); ++b) blockMajorants[b] = (b * 7 % 3 == 0) ? 0.0f : 0.5f;
-    std::vector<glm::vec4> rays;
-    auto add = [&](glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = INFINITY) {
-        rays.emplace_back(o, tMin);
-        rays.emplace_back(d, tMax);
-    };
+    RayList rays;
     for (float z : {0.0f, -0.0f}) {
-        add({-10.0f, 2.3f, 1.1f}, {1.0f, z, z});
-        add({20.0f, 4.0f, 1.3f}, {-1.0f, z, -z});  // y = 4.0: a block plane
-        add({0.0f, 2.0f, 10.0f}, {z, -z, -1.0f});
+        rays.add({-10.0f, 2.3f, 1.1f}, {1.0f, z, z});
+        rays.add({20.0f, 4.0f, 1.3f}, {-1.0f, z, -z});  // y = 4.0: a block plane
+        rays.add({0.0f, 2.0f, 10.0f}, {z, -z, -1.0f});
     }
-    add({-2.0f, 1.0f, 0.5f}, glm::normalize(glm::vec3(3.5f, 8.25f, 2.4f)));  // from a corner
-    add({-10.0f, 2.3f, 1.1f}, {1.0f, 0.0f, 0.0f}, 9.0f, 11.0f);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(-5.0f, 15.0f);
-    while (rays.size() < 2 * 3000) {
-        glm::vec3 d(u(rng), u(rng), u(rng));
-        if (glm::length(d) > 1e-3f) add({pos(rng), pos(rng), pos(rng)}, glm::normalize(d));
-    }
-    EXPECT_EQ(compareWithTwin(grid, rays, false, shift, blockMajorants), 0u);
+    rays.add({-2.0f, 1.0f, 0.5f}, glm::normalize(glm::vec3(3.5f, 8.25f, 2.4f)));  // from a corner
+    rays.add({-10.0f, 2.3f, 1.1f}, {1.0f, 0.0f, 0.0f}, 9.0f, 11.0f);
+    rays.fillRandom(3000, 11);
+    EXPECT_EQ(compareWithTwin(grid, rays.v, false, shift, blockMajorants), 0u);
 }
