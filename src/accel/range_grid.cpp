@@ -92,26 +92,24 @@ void axisPositions(double lo, double hi, int size, AxisPositions& out) {
 struct Scratch {
     AxisPositions axis[3];
     std::vector<double> ax, ay;  // t_b interpolated along x, then along y
-    std::vector<double> planes[3];  // lattice breakpoints per axis
-    std::vector<uint32_t> touching;  // the listed bricks whose domains meet the macrocell's box
 };
 
-// Extends `range` by the range of brick b's t_b over the closed voxel-space box [lo, hi] (already
-// cut to the brick's domain); tracks the range of the values read in [readLo, readHi].
-void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm::dvec3 hi, Scratch& s,
-                   double& rlo, double& rhi, double& readLo, double& readHi) {
+// The range [clo, chi] of brick b's non-empty cells read by t_b over the closed voxel-space box
+// [lo, hi] (cut to the brick's domain), with s.axis set to the box's positions; returns whether an
+// empty slot is among them (clo > chi: nothing but empty slots).
+bool cellsRead(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm::dvec3 hi, Scratch& s, double& clo,
+               double& chi) {
     const double w = double(b.cellWidth());
     for (int d = 0; d < 3; ++d)
         axisPositions((lo[d] - b.lower[d]) / w - 0.5, (hi[d] - b.lower[d]) / w - 0.5, b.size[d], s.axis[d]);
-    const AxisPositions &X = s.axis[0], &Y = s.axis[1], &Z = s.axis[2];
-    auto at = [&](int x, int y, int z) { return values[b.begin + size_t((z * b.size.y + y) * b.size.x + x)]; };
-    // The cells read; with an empty slot among them, t_b is a convex combination of the others.
     bool hole = false;
-    double clo = INFINITY, chi = -INFINITY;
-    for (int z = Z.first; z <= Z.last; ++z)
-        for (int y = Y.first; y <= Y.last; ++y)
-            for (int x = X.first; x <= X.last; ++x) {
-                const float v = at(x, y, z);
+    clo = INFINITY;
+    chi = -INFINITY;
+    for (int z = s.axis[2].first; z <= s.axis[2].last; ++z)
+        for (int y = s.axis[1].first; y <= s.axis[1].last; ++y) {
+            const size_t row = b.begin + size_t((z * b.size.y + y) * b.size.x);
+            for (int x = s.axis[0].first; x <= s.axis[0].last; ++x) {
+                const float v = values[row + size_t(x)];
                 if (std::isnan(v)) {
                     hole = true;
                     continue;
@@ -119,6 +117,18 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
                 clo = std::min(clo, double(v));
                 chi = std::max(chi, double(v));
             }
+        }
+    return hole;
+}
+
+// Extends `range` by the range of brick b's t_b over the closed voxel-space box [lo, hi] (already
+// cut to the brick's domain); tracks the range of the values read in [readLo, readHi].
+void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm::dvec3 hi, Scratch& s,
+                   double& rlo, double& rhi, double& readLo, double& readHi) {
+    auto at = [&](int x, int y, int z) { return values[b.begin + size_t((z * b.size.y + y) * b.size.x + x)]; };
+    double clo = 0, chi = 0;
+    // With an empty slot among the cells read, t_b is a convex combination of the others.
+    const bool hole = cellsRead(b, values, lo, hi, s, clo, chi);
     if (clo > chi) return;  // nothing but empty slots
     readLo = std::min(readLo, clo);
     readHi = std::max(readHi, chi);
@@ -127,6 +137,7 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
         rhi = std::max(rhi, chi);
         return;
     }
+    const AxisPositions &X = s.axis[0], &Y = s.axis[1], &Z = s.axis[2];
     // Separable evaluation on the lattice X x Y x Z: along x for every cell row read, then along y,
     // then along z.
     const int ny = Y.last - Y.first + 1, nz = Z.last - Z.first + 1;
@@ -159,88 +170,427 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
     }
 }
 
-// The exact range of the reconstruction f = N / D over the box [lo, hi] (N = sum phi v, D = sum phi
-// over every brick cell): between consecutive breakpoints of the tent weights along each axis (cell
-// centres and domain ends of the listed bricks) every phi is a product of linear factors, so N and
-// D are multilinear on each sub-box, and so is N - M D for any M. With M the largest f over the
-// sub-box's vertices where D > 0, N - M D <= 0 at every vertex (where D = 0 also N = 0), hence
-// everywhere in the sub-box: f <= M wherever D > 0. The same holds for the minimum. So f's range
-// over the box is its range over the lattice of breakpoints. Returns false (and leaves the range
-// alone) when the lattice would have more than kMaxLatticeVertices vertices (8^3: up to six
-// breakpoints inside the macrocell per axis, i.e. a few cells of the finest listed brick; 64 left
-// Enzo's ranges at --grid 64 as loose as the dense grid's, 1.22 null collisions per real one
-// instead of 1.14, for 5% less build time).
-constexpr size_t kMaxLatticeVertices = 512;
+// The exact range of the reconstruction f = N / D over a macrocell's box (N = sum phi v, D = sum
+// phi over every brick cell, empty slots skipped): between consecutive breakpoints of the tent
+// weights along each axis (cell centres and domain ends of the bricks) every phi is a product of
+// linear factors, so N and D are multilinear on each sub-box, and so is N - M D for any M. With M
+// the largest f over the sub-box's vertices where D > 0, N - M D <= 0 at every vertex (where D = 0
+// also N = 0), hence everywhere in the sub-box: f <= M wherever D > 0; the same holds for the
+// minimum. So f's range over a box is its range over the vertices of the lattice of breakpoints
+// and the box's faces inside the box. Neighbouring macrocells share a lattice: a tile of
+// macrocells gets one (every macrocell's grown faces, and every breakpoint of the bricks that meet
+// the tile), split in two while it has more than kSharedVertices per macrocell (a fine brick's
+// planes cross its coarse neighbours' macrocells too) or a macrocell over kMaxExactVertices in it,
+// down to one macrocell. N and D are summed brick by brick, separably (along x for every cell row,
+// then along y, then z), in chunks of at most kChunkPlanes^3 vertices, and each macrocell's range
+// is reduced separably over its vertices. A macrocell whose own lattice has more than
+// kMaxExactVertices vertices (a few cells of its finest brick across it) takes the union of the
+// exact per-brick ranges (extendByBrick), as before the lattice: looser only where bricks blend,
+// O(cells) to make. The ranges are those of one lattice per macrocell, up to rounding, made with
+// less work per macrocell (docs/benchmarks.md section 24).
+constexpr size_t kMaxExactVertices = 512;
+constexpr size_t kChunkPlanes = 64;
+constexpr size_t kSharedVertices = 512;
 
-bool latticeRange(std::span<const uint32_t> ids, const BrickSet& bricks, std::span<const float> values, glm::dvec3 lo,
-                  glm::dvec3 hi, std::vector<double> (&planes)[3], double& rlo, double& rhi) {
-    size_t vertices = 1;
-    for (int d = 0; d < 3; ++d) {
-        std::vector<double>& pl = planes[d];
-        pl.assign({lo[d], hi[d]});
-        for (uint32_t id : ids) {
-            const Brick& b = bricks.bricks[id];
-            const double w = double(b.cellWidth()), base = double(b.lower[d]);
-            for (double e : {base - 0.5 * w, base + (double(b.size[d]) + 0.5) * w})  // domain ends
-                if (e > lo[d] && e < hi[d]) pl.push_back(e);
-            const double k0 = std::max(0.0, std::ceil((lo[d] - base) / w - 0.5));
-            const double k1 = std::min(double(b.size[d] - 1), std::floor((hi[d] - base) / w - 0.5));
-            if (k1 - k0 + double(pl.size()) > double(kMaxLatticeVertices)) return false;
-            for (double k = k0; k <= k1; k += 1.0) pl.push_back(base + (k + 0.5) * w);  // centres
-        }
-        std::sort(pl.begin(), pl.end());
-        pl.erase(std::unique(pl.begin(), pl.end()), pl.end());
-        vertices *= pl.size();
-        if (vertices > kMaxLatticeVertices) return false;
-    }
-    // N and D at every vertex, brick by brick: a brick's tent weights are products of per-axis
-    // factors, so each axis's corner cells and weights are found once per plane, not per vertex
-    // (the sums of sampleBricks, regrouped; empty slots skipped as there).
-    const size_t nx = planes[0].size(), ny = planes[1].size(), nz = planes[2].size();
-    double num[kMaxLatticeVertices], den[kMaxLatticeVertices];
-    std::fill_n(num, nx * ny * nz, 0.0);
-    std::fill_n(den, nx * ny * nz, 0.0);
-    TentAxis factor[3][kMaxLatticeVertices];  // per axis and plane, of the current brick
-    double mlo = INFINITY, mhi = -INFINITY;
-    for (uint32_t id : ids) {
-        const Brick& b = bricks.bricks[id];
-        const HalfBox d = brickDomain(b);
-        const double w = double(b.cellWidth());
-        // The planes inside the brick's closed domain: [first[a], end[a]) (planes are sorted).
-        size_t first[3], end[3];
-        for (int a = 0; a < 3; ++a) {
-            const std::vector<double>& pl = planes[a];
-            first[a] = size_t(std::lower_bound(pl.begin(), pl.end(), d.lower()[a]) - pl.begin());
-            end[a] = size_t(std::upper_bound(pl.begin(), pl.end(), d.upper()[a]) - pl.begin());
-            for (size_t q = first[a]; q < end[a]; ++q)
-                factor[a][q] = tentAxis((pl[q] - double(b.lower[a])) / w - 0.5, b.size[a]);
-        }
-        for (size_t k = first[2]; k < end[2]; ++k) {
-            const TentAxis& fz = factor[2][k];
-            for (size_t j = first[1]; j < end[1]; ++j) {
-                const TentAxis& fy = factor[1][j];
-                for (size_t i = first[0]; i < end[0]; ++i) {
-                    const TentAxis& fx = factor[0][i];
-                    double sw = 0, swv = 0;  // this brick's sums, added to the vertex's as one term
-                    addTentCells(b, values, fx, fy, fz, sw, swv);
-                    const size_t v = (k * ny + j) * nx + i;
-                    num[v] += swv;
-                    den[v] += sw;
-                }
+// What the padding needs of a brick without reading its cells again: the range of its non-empty
+// values.
+struct BrickSigns {
+    float lo = INFINITY, hi = -INFINITY;
+    bool hole = false;  // an empty slot among its cells
+};
+
+struct TileScratch {
+    std::vector<uint32_t> bricks[16];              // per depth of the split: whose domains meet the box, ascending
+    std::vector<double> planes[3];                 // the box's lattice, per axis, ascending
+    std::vector<std::pair<size_t, size_t>> span[3];  // per macrocell of the box and axis: planes [first, end)
+    std::vector<double> num, den;                  // per vertex of the current chunk (num becomes f)
+    std::vector<double> ax, axw, ay, ayw;          // partial sums of N (and of D, with empty slots)
+    std::vector<TentAxis> factor[3];               // per plane of the current brick and chunk
+    std::vector<double> weightSum[3];              // sum of each factor's weights
+    std::vector<double> rx, ry, rz;                // a chunk's ranges per macrocell along x, then y, then z
+    std::vector<double> lo, hi;                    // per macrocell of the tile: the range so far
+    std::vector<uint8_t> exact;                    // per macrocell of the tile: made on the lattice
+    bool nonNegative = false, nonPositive = false;  // every value the tile's bricks hold
+    Scratch perBrick;
+};
+
+// Adds brick b's N and D at the chunk's vertices (plane indices [q0, q1) per axis) that lie in its
+// closed domain [dlo, dhi]; the chunk's arrays are x fastest.
+void addBrickAtVertices(const Brick& b, std::span<const float> values, bool hole, glm::dvec3 dlo, glm::dvec3 dhi,
+                        const size_t (&q0)[3], const size_t (&q1)[3], TileScratch& s) {
+    size_t first[3], count[3];
+    int cmin[3], cmax[3];
+    const double w = double(b.cellWidth());
+    for (int a = 0; a < 3; ++a) {
+        const std::vector<double>& pl = s.planes[a];
+        first[a] = std::max(q0[a], size_t(std::lower_bound(pl.begin(), pl.end(), dlo[a]) - pl.begin()));
+        const size_t end = std::min(q1[a], size_t(std::upper_bound(pl.begin(), pl.end(), dhi[a]) - pl.begin()));
+        if (first[a] >= end) return;
+        count[a] = end - first[a];
+        s.factor[a].resize(count[a]);
+        s.weightSum[a].resize(count[a]);
+        cmin[a] = INT32_MAX;
+        cmax[a] = -1;
+        for (size_t q = 0; q < count[a]; ++q) {
+            const TentAxis t = tentAxis((pl[first[a] + q] - double(b.lower[a])) / w - 0.5, b.size[a]);
+            s.factor[a][q] = t;
+            s.weightSum[a][q] = 0;
+            for (int k = 0; k < t.count; ++k) {
+                s.weightSum[a][q] += t.weight[k];
+                cmin[a] = std::min(cmin[a], t.cell[k]);
+                cmax[a] = std::max(cmax[a], t.cell[k]);
             }
         }
+        if (cmin[a] > cmax[a]) return;  // only the far domain end: no weight
     }
-    for (size_t v = 0; v < nx * ny * nz; ++v) {
-        if (!(den[v] > 0)) continue;
-        const double f = num[v] / den[v];
-        mlo = std::min(mlo, f);
-        mhi = std::max(mhi, f);
-    }
-    if (mlo > mhi) return false;
-    rlo = mlo;
-    rhi = mhi;
-    return true;
+    const size_t nx = count[0], ny = count[1], nz = count[2];
+    const size_t rows = size_t(cmax[1] - cmin[1] + 1), layers = size_t(cmax[2] - cmin[2] + 1);
+    const std::vector<TentAxis>&fx = s.factor[0], &fy = s.factor[1], &fz = s.factor[2];
+    // Along x, for every cell row the chunk's planes read.
+    s.ax.resize(nx * rows * layers);
+    if (hole) s.axw.resize(nx * rows * layers);
+    for (size_t z = 0; z < layers; ++z)
+        for (size_t y = 0; y < rows; ++y) {
+            const size_t row = b.begin + size_t((int64_t(cmin[2]) + int64_t(z)) * b.size.y + cmin[1] + int64_t(y)) * size_t(b.size.x);
+            double* out = &s.ax[(z * rows + y) * nx];
+            double* outW = hole ? &s.axw[(z * rows + y) * nx] : nullptr;
+            for (size_t i = 0; i < nx; ++i) {
+                double sum = 0, sumW = 0;
+                for (int k = 0; k < fx[i].count; ++k) {
+                    const float v = values[row + size_t(fx[i].cell[k])];
+                    if (std::isnan(v)) continue;
+                    sum += fx[i].weight[k] * double(v);
+                    sumW += fx[i].weight[k];
+                }
+                out[i] = sum;
+                if (hole) outW[i] = sumW;
+            }
+        }
+    // Along y.
+    s.ay.resize(nx * ny * layers);
+    if (hole) s.ayw.resize(nx * ny * layers);
+    for (size_t z = 0; z < layers; ++z)
+        for (size_t j = 0; j < ny; ++j) {
+            double* out = &s.ay[(z * ny + j) * nx];
+            std::fill_n(out, nx, 0.0);
+            double* outW = hole ? &s.ayw[(z * ny + j) * nx] : nullptr;
+            if (hole) std::fill_n(outW, nx, 0.0);
+            for (int k = 0; k < fy[j].count; ++k) {
+                const double wy = fy[j].weight[k];
+                const size_t in = (z * rows + size_t(fy[j].cell[k] - cmin[1])) * nx;
+                for (size_t i = 0; i < nx; ++i) out[i] += wy * s.ax[in + i];
+                if (hole)
+                    for (size_t i = 0; i < nx; ++i) outW[i] += wy * s.axw[in + i];
+            }
+        }
+    // Along z, into the chunk's vertices.
+    const size_t cx = q1[0] - q0[0], cy = q1[1] - q0[1];
+    for (size_t k = 0; k < nz; ++k)
+        for (size_t j = 0; j < ny; ++j) {
+            const size_t v0 = ((first[2] + k - q0[2]) * cy + (first[1] + j - q0[1])) * cx + (first[0] - q0[0]);
+            double* num = &s.num[v0];
+            double* den = &s.den[v0];
+            for (int c = 0; c < fz[k].count; ++c) {
+                const double wz = fz[k].weight[c];
+                const size_t in = (size_t(fz[k].cell[c] - cmin[2]) * ny + j) * nx;
+                for (size_t i = 0; i < nx; ++i) num[i] += wz * s.ay[in + i];
+                if (hole)
+                    for (size_t i = 0; i < nx; ++i) den[i] += wz * s.ayw[in + i];
+            }
+            if (!hole) {
+                const double wyz = s.weightSum[1][j] * s.weightSum[2][k];
+                for (size_t i = 0; i < nx; ++i) den[i] += s.weightSum[0][i] * wyz;
+            }
+        }
 }
+
+
+// The ranges of one tile of macrocells on shared lattices (see kMaxExactVertices).
+struct TileLattice {
+    const MacrocellLayout& g;
+    glm::dvec3 margin;
+    const BrickGrid& lists;
+    const BrickSet& bricks;
+    std::span<const float> values;
+    const std::vector<BrickSigns>& signs;
+
+    // A macrocell's box grown by the margin (the lists' box), per axis; edge macrocells reach outwards.
+    double boxLo(int a, int i) const { return i == 0 ? -INFINITY : g.origin[a] + g.cellSize[a] * double(i) - margin[a]; }
+    double boxHi(int a, int i) const {
+        return i == g.dims[a] - 1 ? INFINITY : g.origin[a] + g.cellSize[a] * double(i + 1) + margin[a];
+    }
+    static bool meets(const HalfBox& d, glm::dvec3 lo, glm::dvec3 hi) {
+        const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
+        return blo.x <= bhi.x && blo.y <= bhi.y && blo.z <= bhi.z;
+    }
+
+    // Writes the ranges of the macrocells [c0, c1) into `ranges`.
+    void tile(glm::ivec3 c0, glm::ivec3 c1, std::vector<ValueRange>& ranges, TileScratch& s) const {
+        const glm::ivec3 n = c1 - c0;
+        const size_t count = size_t(n.x) * size_t(n.y) * size_t(n.z);
+        s.lo.assign(count, INFINITY);
+        s.hi.assign(count, -INFINITY);
+        s.exact.assign(count, 0);
+        std::vector<uint32_t>& listed = s.bricks[0];
+        listed.clear();
+        for (int z = c0.z; z < c1.z; ++z)
+            for (int y = c0.y; y < c1.y; ++y)
+                for (int x = c0.x; x < c1.x; ++x)
+                    for (uint32_t id : lists.bricksOf(g.index({x, y, z}))) listed.push_back(id);
+        std::sort(listed.begin(), listed.end());
+        listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+        // Where every listed brick's values have one sign, so do the values any macrocell reads.
+        s.nonNegative = s.nonPositive = true;
+        for (uint32_t id : listed) {
+            s.nonNegative &= signs[id].lo >= 0;
+            s.nonPositive &= signs[id].hi <= 0;
+        }
+        box(c0, c1, c0, n, 1, s);
+        for (int z = 0; z < n.z; ++z)
+            for (int y = 0; y < n.y; ++y)
+                for (int x = 0; x < n.x; ++x) {
+                    const glm::ivec3 c = c0 + glm::ivec3(x, y, z);
+                    const size_t local = (size_t(z) * size_t(n.y) + size_t(y)) * size_t(n.x) + size_t(x);
+                    ranges[g.index(c)] = finish(c, s.exact[local] != 0, s.lo[local], s.hi[local], s);
+                }
+    }
+
+    // The lattice of the macrocells [c0, c1) (of the tile at t0, n per axis) over the bricks of
+    // s.bricks[depth - 1] that meet them; split in two while it has more than kSharedVertices per
+    // macrocell (a fine brick's planes cross its coarse neighbours' macrocells too).
+    void box(glm::ivec3 c0, glm::ivec3 c1, glm::ivec3 t0, glm::ivec3 n, int depth, TileScratch& s) const {
+        const glm::ivec3 m = c1 - c0;
+        glm::dvec3 lo, hi;
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = boxLo(a, c0[a]);
+            hi[a] = boxHi(a, c1[a] - 1);
+        }
+        std::vector<uint32_t>& own = s.bricks[depth];
+        own.clear();
+        for (uint32_t id : s.bricks[depth - 1])
+            if (meets(brickDomain(bricks.bricks[id]), lo, hi)) own.push_back(id);
+        if (own.empty()) return;  // no brick has weight here: empty, majorant 0
+        // Planes per axis, counted without gathering them (duplicates counted twice, so at least
+        // the lattice's): split, or give a macrocell across many cells up, before any sorting.
+        // Faces outside the bricks' domains add no vertex with weight: only those inside count.
+        glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);
+        for (uint32_t id : own) {
+            const HalfBox d = brickDomain(bricks.bricks[id]);
+            hullLo = glm::min(hullLo, d.lower());
+            hullHi = glm::max(hullHi, d.upper());
+        }
+        auto faceInside = [&](int a, double f) { return std::isfinite(f) && f >= hullLo[a] && f <= hullHi[a]; };
+        double counted = 1;
+        for (int a = 0; a < 3; ++a) {
+            double planes = 0;
+            for (int i = c0[a]; i < c1[a]; ++i) planes += faceInside(a, boxLo(a, i)) + faceInside(a, boxHi(a, i));
+            for (uint32_t id : own) {
+                const Brick& b = bricks.bricks[id];
+                const double w = double(b.cellWidth()), base = double(b.lower[a]);
+                for (double e : {base - 0.5 * w, base + (double(b.size[a]) + 0.5) * w}) planes += e >= lo[a] && e <= hi[a];
+                const double k0 = std::max(0.0, std::ceil((lo[a] - base) / w - 0.5));
+                const double k1 = std::min(double(b.size[a] - 1), std::floor((hi[a] - base) / w - 0.5));
+                planes += std::max(0.0, k1 - k0 + 1);
+            }
+            counted *= planes;
+        }
+        const size_t macrocells = size_t(m.x) * size_t(m.y) * size_t(m.z);
+        auto split = [&] {
+            const int a = m.x >= m.y && m.x >= m.z ? 0 : m.y >= m.z ? 1 : 2;
+            glm::ivec3 mid = c1;
+            mid[a] = c0[a] + m[a] / 2;
+            glm::ivec3 second = c0;
+            second[a] = mid[a];
+            box(c0, mid, t0, n, depth + 1, s);
+            box(second, c1, t0, n, depth + 1, s);
+        };
+        if (macrocells > 1 && counted > double(kSharedVertices * macrocells)) return split();
+        // One macrocell across many cells: the per-brick ranges (finish); up to 4 counted per plane.
+        if (macrocells == 1 && counted > 64.0 * double(kMaxExactVertices)) return;
+        for (int a = 0; a < 3; ++a) {
+            std::vector<double>& pl = s.planes[a];
+            pl.clear();
+            for (int i = c0[a]; i < c1[a]; ++i)
+                for (double f : {boxLo(a, i), boxHi(a, i)})
+                    if (faceInside(a, f)) pl.push_back(f);
+            for (uint32_t id : own) {
+                const Brick& b = bricks.bricks[id];
+                const double w = double(b.cellWidth()), base = double(b.lower[a]);
+                for (double e : {base - 0.5 * w, base + (double(b.size[a]) + 0.5) * w})  // domain ends
+                    if (e >= lo[a] && e <= hi[a]) pl.push_back(e);
+                const double k0 = std::max(0.0, std::ceil((lo[a] - base) / w - 0.5));
+                const double k1 = std::min(double(b.size[a] - 1), std::floor((hi[a] - base) / w - 0.5));
+                for (double k = k0; k <= k1; k += 1.0) {  // cell centres
+                    const double c = base + (k + 0.5) * w;
+                    if (c >= lo[a] && c <= hi[a]) pl.push_back(c);
+                }
+            }
+            std::sort(pl.begin(), pl.end());
+            pl.erase(std::unique(pl.begin(), pl.end()), pl.end());
+        }
+        if (macrocells == 1 && s.planes[0].size() * s.planes[1].size() * s.planes[2].size() > kMaxExactVertices) return;
+        for (int a = 0; a < 3; ++a) {
+            const std::vector<double>& pl = s.planes[a];
+            s.span[a].resize(size_t(m[a]));
+            for (int i = 0; i < m[a]; ++i)
+                s.span[a][size_t(i)] = {size_t(std::lower_bound(pl.begin(), pl.end(), boxLo(a, c0[a] + i)) - pl.begin()),
+                                        size_t(std::upper_bound(pl.begin(), pl.end(), boxHi(a, c0[a] + i)) - pl.begin())};
+        }
+        auto spanOf = [&](int a, int i) { return s.span[a][size_t(i)]; };
+        auto exactAt = [&](int x, int y, int z) {
+            return (spanOf(0, x).second - spanOf(0, x).first) * (spanOf(1, y).second - spanOf(1, y).first) *
+                       (spanOf(2, z).second - spanOf(2, z).first) <=
+                   kMaxExactVertices;
+        };
+        auto local = [&](int x, int y, int z) {  // in the tile
+            const glm::ivec3 t = c0 - t0 + glm::ivec3(x, y, z);
+            return (size_t(t.z) * size_t(n.y) + size_t(t.y)) * size_t(n.x) + size_t(t.x);
+        };
+        if (macrocells > 1)  // a macrocell that its neighbours' planes would put over the limit
+            for (int z = 0; z < m.z; ++z)
+                for (int y = 0; y < m.y; ++y)
+                    for (int x = 0; x < m.x; ++x)
+                        if (!exactAt(x, y, z)) return split();
+        bool any = false;
+        for (int z = 0; z < m.z; ++z)
+            for (int y = 0; y < m.y; ++y)
+                for (int x = 0; x < m.x; ++x)
+                    if (exactAt(x, y, z)) s.exact[local(x, y, z)] = any = true;
+        if (!any) return;  // one macrocell across many cells: the per-brick ranges (finish)
+        // N and D at the lattice's vertices, chunk by chunk, and the macrocells' ranges over them.
+        const size_t np[3] = {s.planes[0].size(), s.planes[1].size(), s.planes[2].size()};
+        for (size_t z0 = 0; z0 < np[2]; z0 += kChunkPlanes)
+            for (size_t y0 = 0; y0 < np[1]; y0 += kChunkPlanes)
+                for (size_t x0 = 0; x0 < np[0]; x0 += kChunkPlanes) {
+                    const size_t q0[3] = {x0, y0, z0};
+                    const size_t q1[3] = {std::min(np[0], x0 + kChunkPlanes), std::min(np[1], y0 + kChunkPlanes),
+                                          std::min(np[2], z0 + kChunkPlanes)};
+                    const size_t cx = q1[0] - q0[0], cy = q1[1] - q0[1], cz = q1[2] - q0[2];
+                    s.num.assign(cx * cy * cz, 0.0);
+                    s.den.assign(cx * cy * cz, 0.0);
+                    for (uint32_t id : own) {
+                        const Brick& b = bricks.bricks[id];
+                        const HalfBox d = brickDomain(b);
+                        addBrickAtVertices(b, values, signs[id].hole, d.lower(), d.upper(), q0, q1, s);
+                    }
+                    // f where D > 0; else N = 0 too, and 0 / 0 is NaN, which std::min(r, NaN) and
+                    // std::max(r, NaN) pass over.
+                    for (size_t v = 0; v < s.num.size(); ++v) s.num[v] /= s.den[v];
+                    reduceChunk(m, q0, q1, s);
+                    for (int z = 0; z < m.z; ++z)
+                        for (int y = 0; y < m.y; ++y)
+                            for (int x = 0; x < m.x; ++x) {
+                                const size_t r = (size_t(z) * size_t(m.y) + size_t(y)) * size_t(m.x) + size_t(x);
+                                if (!exactAt(x, y, z) || !(s.rz[2 * r] <= s.rz[2 * r + 1])) continue;
+                                s.lo[local(x, y, z)] = std::min(s.lo[local(x, y, z)], s.rz[2 * r]);
+                                s.hi[local(x, y, z)] = std::max(s.hi[local(x, y, z)], s.rz[2 * r + 1]);
+                            }
+                }
+    }
+
+    // The range of f (s.num) over each macrocell's vertices in the chunk [q0, q1), separably:
+    // along x per vertex row, then along y, then z; into s.rz (lo, hi per macrocell of the box,
+    // x fastest; empty where none of its vertices has weight or lies in the chunk).
+    static void reduceChunk(glm::ivec3 m, const size_t (&q0)[3], const size_t (&q1)[3], TileScratch& s) {
+        const size_t cx = q1[0] - q0[0], cy = q1[1] - q0[1], cz = q1[2] - q0[2];
+        const size_t mx = size_t(m.x), my = size_t(m.y), mz = size_t(m.z);
+        // The planes of macrocell i along axis a inside the chunk, chunk-relative: [first, end).
+        auto inChunk = [&](int a, size_t i) {
+            const auto [f, e] = s.span[a][i];
+            const size_t lo = std::max(f, q0[a]), hi = std::min(e, q1[a]);
+            return lo < hi ? std::pair{lo - q0[a], hi - q0[a]} : std::pair{size_t(0), size_t(0)};
+        };
+        s.rx.assign(2 * cz * cy * mx, 0.0);
+        for (size_t r = 0; r < cz * cy; ++r) {
+            const double* f = &s.num[r * cx];
+            for (size_t x = 0; x < mx; ++x) {
+                const auto [i0, i1] = inChunk(0, x);
+                double lo = INFINITY, hi = -INFINITY;
+                for (size_t i = i0; i < i1; ++i) {
+                    lo = std::min(lo, f[i]);
+                    hi = std::max(hi, f[i]);
+                }
+                s.rx[2 * (r * mx + x)] = lo;
+                s.rx[2 * (r * mx + x) + 1] = hi;
+            }
+        }
+        s.ry.assign(2 * cz * my * mx, 0.0);
+        for (size_t k = 0; k < cz; ++k)
+            for (size_t y = 0; y < my; ++y) {
+                const auto [j0, j1] = inChunk(1, y);
+                for (size_t x = 0; x < mx; ++x) {
+                    double lo = INFINITY, hi = -INFINITY;
+                    for (size_t j = j0; j < j1; ++j) {
+                        lo = std::min(lo, s.rx[2 * ((k * cy + j) * mx + x)]);
+                        hi = std::max(hi, s.rx[2 * ((k * cy + j) * mx + x) + 1]);
+                    }
+                    s.ry[2 * ((k * my + y) * mx + x)] = lo;
+                    s.ry[2 * ((k * my + y) * mx + x) + 1] = hi;
+                }
+            }
+        s.rz.assign(2 * mz * my * mx, 0.0);
+        for (size_t z = 0; z < mz; ++z) {
+            const auto [k0, k1] = inChunk(2, z);
+            for (size_t y = 0; y < my; ++y)
+                for (size_t x = 0; x < mx; ++x) {
+                    double lo = INFINITY, hi = -INFINITY;
+                    for (size_t k = k0; k < k1; ++k) {
+                        lo = std::min(lo, s.ry[2 * ((k * my + y) * mx + x)]);
+                        hi = std::max(hi, s.ry[2 * ((k * my + y) * mx + x) + 1]);
+                    }
+                    s.rz[2 * ((z * my + y) * mx + x)] = lo;
+                    s.rz[2 * ((z * my + y) * mx + x) + 1] = hi;
+                }
+        }
+    }
+
+    // Macrocell c's range, padded: [rlo, rhi] from its lattice where `exact`, else the union of
+    // the per-brick ranges.
+    ValueRange finish(glm::ivec3 c, bool exact, double rlo, double rhi, TileScratch& s) const {
+        const glm::dvec3 mlo(boxLo(0, c.x), boxLo(1, c.y), boxLo(2, c.z));
+        const glm::dvec3 mhi(boxHi(0, c.x), boxHi(1, c.y), boxHi(2, c.z));
+        if (exact && rlo > rhi) return {};  // no brick has weight here: empty, majorant 0
+        if (exact && (s.nonNegative || s.nonPositive)) return padForGpu(rlo, rhi, s.nonNegative ? rhi : -rlo);
+        // The range of the values read near the macrocell (the padding's magnitude where they have
+        // both signs). Where the bricks that meet it have one sign, their ranges say so.
+        double readLo = INFINITY, readHi = -INFINITY;
+        bool nonNegative = true, nonPositive = true;
+        auto touching = [&](auto&& visit) {
+            for (uint32_t id : lists.bricksOf(g.index(c))) {
+                const Brick& b = bricks.bricks[id];
+                const HalfBox d = brickDomain(b);
+                const glm::dvec3 blo = glm::max(mlo, d.lower()), bhi = glm::min(mhi, d.upper());
+                if (blo.x <= bhi.x && blo.y <= bhi.y && blo.z <= bhi.z) visit(id, b, blo, bhi);
+            }
+        };
+        if (exact)
+            touching([&](uint32_t id, const Brick&, glm::dvec3, glm::dvec3) {
+                nonNegative &= signs[id].lo >= 0;
+                nonPositive &= signs[id].hi <= 0;
+            });
+        const bool oneSign = exact && (nonNegative || nonPositive);
+        if (!oneSign)
+            touching([&](uint32_t, const Brick& b, glm::dvec3 blo, glm::dvec3 bhi) {
+                if (!exact) {
+                    extendByBrick(b, values, blo, bhi, s.perBrick, rlo, rhi, readLo, readHi);
+                    return;
+                }
+                double clo = 0, chi = 0;
+                (void)cellsRead(b, values, blo, bhi, s.perBrick, clo, chi);
+                readLo = std::min(readLo, clo);
+                readHi = std::max(readHi, chi);
+            });
+        if (rlo > rhi) return {};  // no brick has weight here: empty, majorant 0
+        // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
+        // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values read
+        // have one sign, else at most the largest magnitude read.
+        const double magnitude = oneSign     ? (nonNegative ? rhi : -rlo)
+                                 : readLo >= 0 ? rhi
+                                 : readHi <= 0 ? -rlo
+                                               : std::max(-readLo, readHi);
+        return padForGpu(rlo, rhi, magnitude);
+    }
+};
 
 }  // namespace
 
@@ -252,47 +602,24 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
                     strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
     g.ranges.resize(total);
     const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    // One macrocell's range (the empty range where no brick has weight).
-    auto rangeOf = [&](glm::ivec3 c, Scratch& scratch) {
-        const size_t cell = g.index(c);
-        // The macrocell grown by the margin (the lists' box); edge macrocells reach outwards.
-        glm::dvec3 lo = g.origin + g.cellSize * glm::dvec3(c) - margin;
-        glm::dvec3 hi = g.origin + g.cellSize * glm::dvec3(c + 1) + margin;
-        for (int a = 0; a < 3; ++a) {
-            if (c[a] == 0) lo[a] = -INFINITY;
-            if (c[a] == g.dims[a] - 1) hi[a] = INFINITY;
+    // Every brick's value range and holes, once (what the padding needs of most macrocells).
+    std::vector<BrickSigns> signs(bricks.bricks.size());
+    parallelFor(0, signs.size(), [&](size_t i) {
+        const Brick& b = bricks.bricks[i];
+        BrickSigns& r = signs[i];
+        for (uint64_t k = 0; k < b.cellCount(); ++k) {
+            const float v = brickValues[b.begin + k];
+            if (std::isnan(v)) {
+                r.hole = true;
+                continue;
+            }
+            r.lo = std::min(r.lo, v);
+            r.hi = std::max(r.hi, v);
         }
-        double rlo = INFINITY, rhi = -INFINITY, readLo = INFINITY, readHi = -INFINITY;
-        glm::dvec3 hullLo(INFINITY), hullHi(-INFINITY);  // of the box's parts inside domains
-        scratch.touching.clear();
-        for (uint32_t id : lists.bricksOf(cell)) {
-            const Brick& b = bricks.bricks[id];
-            const HalfBox d = brickDomain(b);
-            const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
-            if (blo.x > bhi.x || blo.y > bhi.y || blo.z > bhi.z) continue;
-            scratch.touching.push_back(id);
-            extendByBrick(b, brickValues, blo, bhi, scratch, rlo, rhi, readLo, readHi);
-            hullLo = glm::min(hullLo, blo);
-            hullHi = glm::max(hullHi, bhi);
-        }
-        if (rlo > rhi) return;  // no brick has weight here: empty, majorant 0
-        // The per-brick bound is exact inside one brick; across bricks (where a macrocell is
-        // small against the cells, the mixing of two bricks covers a small part of their
-        // union) the lattice gives f's exact range when it is small enough to evaluate.
-        // Only the bricks whose domains meet the box have weight in it (the lists hold more,
-        // by the lists' margin); with one of them (f = t_b) or a constant range there is
-        // nothing to gain.
-        if (scratch.touching.size() > 1 && rhi > rlo)
-            latticeRange(scratch.touching, bricks, brickValues, hullLo, hullHi, scratch.planes, rlo, rhi);
-        // Room for the GPU's float sums (accel/majorant_bounds.h): their error scales with the
-        // reconstruction of |v|, which is f itself (so at most rhi, or -rlo) where the values
-        // read have one sign, else at most the largest magnitude read.
-        const double magnitude = readLo >= 0 ? rhi : readHi <= 0 ? -rlo : std::max(-readLo, readHi);
-        g.ranges[cell] = padForGpu(rlo, rhi, magnitude);
-    };
-    // In tiles of kTile^3 macrocells, whose bricks' values stay in the cache from one macrocell to
-    // the next (rows of the whole grid read each brick's values again a row later; 10^8 cells on
-    // two cores: 1.70 -> 1.64 s); in about a hundred batches of tiles, so that the bar moves.
+    }, 64);
+    TileLattice lattice{g, margin, lists, bricks, brickValues, signs};
+    // In tiles of kTile^3 macrocells, whose bricks' values stay in the cache; in about a hundred
+    // batches of tiles, so that the bar moves.
     constexpr int kTile = 8;
     const glm::ivec3 tiles = (g.dims + kTile - 1) / kTile;
     const size_t tileCount = size_t(tiles.x) * size_t(tiles.y) * size_t(tiles.z);
@@ -300,14 +627,11 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
     const size_t batch = std::max<size_t>(1, tileCount / 100);
     for (size_t first = 0; first < tileCount; first += batch) {
         parallelForRanges(first, std::min(tileCount, first + batch), 1, [&](size_t begin, size_t end) {
-            Scratch scratch;
+            TileScratch scratch;
             for (size_t t = begin; t < end; ++t) {
                 const glm::ivec3 lo = kTile * glm::ivec3(int(t % size_t(tiles.x)), int(t / size_t(tiles.x) % size_t(tiles.y)),
                                                          int(t / (size_t(tiles.x) * size_t(tiles.y))));
-                const glm::ivec3 hi = glm::min(lo + kTile, g.dims);
-                for (int z = lo.z; z < hi.z; ++z)
-                    for (int y = lo.y; y < hi.y; ++y)
-                        for (int x = lo.x; x < hi.x; ++x) rangeOf({x, y, z}, scratch);
+                lattice.tile(lo, glm::min(lo + kTile, g.dims), g.ranges, scratch);
             }
         });
         bar.update(std::min(total, (std::min(tileCount, first + batch)) * total / tileCount), total);

@@ -5,8 +5,10 @@
 // values t_b (W_b = the brick's tent-weight sum), so it lies in the union over bricks b meeting
 // the macrocell of the range of t_b over (macrocell and b's domain); t_b is trilinear at the point
 // clamped to the brick's cell centres, whose extremes over a box lie on the lattice of the box's
-// faces and the centre planes inside it: the range below is exact per brick, not the range of
-// every cell whose support touches the macrocell (the paper's splat, up to 6x looser).
+// faces and the centre planes inside it: that union is exact per brick, not the range of every
+// cell whose support touches the macrocell (the paper's splat, up to 6x looser). Where a
+// macrocell spans at most a few cells, its range is exact for the blend too: f's range over the
+// lattice of every brick's breakpoints, shared by neighbouring macrocells (range_grid.cpp).
 #include <glm/glm.hpp>
 
 #include <span>
