@@ -514,34 +514,29 @@ struct TileLattice {
                 s.rx[2 * (r * mx + x) + 1] = hi;
             }
         }
-        s.ry.assign(2 * cz * my * mx, 0.0);
-        for (size_t k = 0; k < cz; ++k)
-            for (size_t y = 0; y < my; ++y) {
-                const auto [j0, j1] = inChunk(1, y);
-                for (size_t x = 0; x < mx; ++x) {
+        reduceAxis(s.rx, s.ry, cz, cy, my, mx, [&](size_t y) { return inChunk(1, y); });
+        reduceAxis(s.ry, s.rz, 1, cz, mz, my * mx, [&](size_t z) { return inChunk(2, z); });
+    }
+
+    // (lo, hi) pairs of an (outer, n, inner) array reduced over the middle axis to (outer,
+    // spans.size(), inner): out's middle index m takes the input's [span(m).first, span(m).second).
+    template <typename Span>
+    static void reduceAxis(const std::vector<double>& in, std::vector<double>& out, size_t outer, size_t n,
+                           size_t reduced, size_t inner, Span&& span) {
+        out.assign(2 * outer * reduced * inner, 0.0);
+        for (size_t o = 0; o < outer; ++o)
+            for (size_t m = 0; m < reduced; ++m) {
+                const auto [j0, j1] = span(m);
+                for (size_t x = 0; x < inner; ++x) {
                     double lo = INFINITY, hi = -INFINITY;
                     for (size_t j = j0; j < j1; ++j) {
-                        lo = std::min(lo, s.rx[2 * ((k * cy + j) * mx + x)]);
-                        hi = std::max(hi, s.rx[2 * ((k * cy + j) * mx + x) + 1]);
+                        lo = std::min(lo, in[2 * ((o * n + j) * inner + x)]);
+                        hi = std::max(hi, in[2 * ((o * n + j) * inner + x) + 1]);
                     }
-                    s.ry[2 * ((k * my + y) * mx + x)] = lo;
-                    s.ry[2 * ((k * my + y) * mx + x) + 1] = hi;
+                    out[2 * ((o * reduced + m) * inner + x)] = lo;
+                    out[2 * ((o * reduced + m) * inner + x) + 1] = hi;
                 }
             }
-        s.rz.assign(2 * mz * my * mx, 0.0);
-        for (size_t z = 0; z < mz; ++z) {
-            const auto [k0, k1] = inChunk(2, z);
-            for (size_t y = 0; y < my; ++y)
-                for (size_t x = 0; x < mx; ++x) {
-                    double lo = INFINITY, hi = -INFINITY;
-                    for (size_t k = k0; k < k1; ++k) {
-                        lo = std::min(lo, s.ry[2 * ((k * my + y) * mx + x)]);
-                        hi = std::max(hi, s.ry[2 * ((k * my + y) * mx + x) + 1]);
-                    }
-                    s.rz[2 * ((z * my + y) * mx + x)] = lo;
-                    s.rz[2 * ((z * my + y) * mx + x) + 1] = hi;
-                }
-        }
     }
 
     // Macrocell c's range, padded: [rlo, rhi] from its lattice where `exact`, else the union of
