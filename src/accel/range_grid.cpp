@@ -191,6 +191,11 @@ void extendByBrick(const Brick& b, std::span<const float> values, glm::dvec3 lo,
 constexpr size_t kMaxExactVertices = 512;
 constexpr size_t kChunkPlanes = 64;
 constexpr size_t kSharedVertices = 512;
+// Tiles of kTile^3 macrocells, whose bricks' values stay in the cache; halving one axis at a time,
+// a tile's split is at most 3 log2(kTile) deep below it.
+constexpr int kTile = 8;
+constexpr int kMaxSplitDepth = 1 + 3 * 3;
+static_assert(kTile == 1 << 3, "kMaxSplitDepth assumes tiles of 8^3");
 
 // What the padding needs of a brick without reading its cells again: the range of its non-empty
 // values.
@@ -200,7 +205,7 @@ struct BrickSigns {
 };
 
 struct TileScratch {
-    std::vector<uint32_t> bricks[16];              // per depth of the split: whose domains meet the box, ascending
+    std::vector<uint32_t> bricks[kMaxSplitDepth + 1];  // per depth of the split: whose domains meet the box, ascending
     std::vector<double> planes[3];                 // the box's lattice, per axis, ascending
     std::vector<std::pair<size_t, size_t>> span[3];  // per macrocell of the box and axis: planes [first, end)
     std::vector<double> num, den;                  // per vertex of the current chunk (num becomes f)
@@ -613,9 +618,7 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
         }
     }, 64);
     TileLattice lattice{g, margin, lists, bricks, brickValues, signs};
-    // In tiles of kTile^3 macrocells, whose bricks' values stay in the cache; in about a hundred
-    // batches of tiles, so that the bar moves.
-    constexpr int kTile = 8;
+    // In about a hundred batches of tiles, so that the bar moves.
     const glm::ivec3 tiles = (g.dims + kTile - 1) / kTile;
     const size_t tileCount = size_t(tiles.x) * size_t(tiles.y) * size_t(tiles.z);
     ProgressBar bar("macrocell value ranges", "macrocells");
