@@ -102,22 +102,20 @@ bool cellsRead(const Brick& b, std::span<const float> values, glm::dvec3 lo, glm
     const double w = double(b.cellWidth());
     for (int d = 0; d < 3; ++d)
         axisPositions((lo[d] - b.lower[d]) / w - 0.5, (hi[d] - b.lower[d]) / w - 0.5, b.size[d], s.axis[d]);
+    // Without branches, so that it vectorises: std::min(r, NaN) and std::max(r, NaN) keep r.
     bool hole = false;
-    clo = INFINITY;
-    chi = -INFINITY;
+    float vlo = INFINITY, vhi = -INFINITY;
     for (int z = s.axis[2].first; z <= s.axis[2].last; ++z)
         for (int y = s.axis[1].first; y <= s.axis[1].last; ++y) {
-            const size_t row = b.begin + size_t((z * b.size.y + y) * b.size.x);
+            const float* row = values.data() + b.begin + size_t((z * b.size.y + y) * b.size.x);
             for (int x = s.axis[0].first; x <= s.axis[0].last; ++x) {
-                const float v = values[row + size_t(x)];
-                if (std::isnan(v)) {
-                    hole = true;
-                    continue;
-                }
-                clo = std::min(clo, double(v));
-                chi = std::max(chi, double(v));
+                vlo = std::min(vlo, row[x]);
+                vhi = std::max(vhi, row[x]);
+                hole |= row[x] != row[x];
             }
         }
+    clo = double(vlo);
+    chi = double(vhi);
     return hole;
 }
 
@@ -606,16 +604,16 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
     std::vector<BrickSigns> signs(bricks.bricks.size());
     parallelFor(0, signs.size(), [&](size_t i) {
         const Brick& b = bricks.bricks[i];
-        BrickSigns& r = signs[i];
+        const float* v = brickValues.data() + b.begin;
+        // Without branches, so that it vectorises: std::min(r, NaN) and std::max(r, NaN) keep r.
+        float lo = INFINITY, hi = -INFINITY;
+        bool hole = false;
         for (uint64_t k = 0; k < b.cellCount(); ++k) {
-            const float v = brickValues[b.begin + k];
-            if (std::isnan(v)) {
-                r.hole = true;
-                continue;
-            }
-            r.lo = std::min(r.lo, v);
-            r.hi = std::max(r.hi, v);
+            lo = std::min(lo, v[k]);
+            hi = std::max(hi, v[k]);
+            hole |= v[k] != v[k];
         }
+        signs[i] = {lo, hi, hole};
     }, 64);
     TileLattice lattice{g, margin, lists, bricks, brickValues, signs};
     // In about a hundred batches of tiles, so that the bar moves.
