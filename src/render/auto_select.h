@@ -15,8 +15,9 @@
 // measured before it can win. Macrocell resolutions (32, 64, 256
 // besides auto = 128) are then measured for a grid winner and for the grid traversals within
 // slowFactor of the best. A probe far slower than the best so far is stopped after its first
-// sample. Measured probes within tieTolerance of the best tie (two runs of one combination on
-// lavapipe differ by 10-20%): the one with the fewest structures wins, then the default grid.
+// sample. The measured probes within contenderBand of the best are measured again and keep the
+// mean of both. Measured probes within tieTolerance of the best tie (two runs of one combination
+// on lavapipe differ by 10-40%): the one with the fewest structures wins, then the default grid.
 #include <functional>
 #include <optional>
 #include <string>
@@ -46,6 +47,8 @@ struct AutoOptions {
     std::vector<double> gridFactors = {0.25, 0.5, 2.0};
     double minProbeSeconds = -1;  // timed GPU seconds a probe aims at (more samples, up to 256); < 0 = 0.25 on CPUs, 0.05 on GPUs
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
+    double contenderBand = 0.75;  // measured probes this close to the best are measured again ...
+    int contenders = 3;           // ... at most this many (0: none), and keep the mean of both
 };
 
 struct AutoProbe {
