@@ -84,13 +84,22 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
     AutoChoice choice;
     choice.probeSize = size;
     double bestEfficiency = -1, bestSecondsPerSpp = 0;
-    auto consider = [&](const AutoProbe& p) {
+    auto takeIfBest = [&](const AutoProbe& p) {
         if (p.efficiency > bestEfficiency) {
             bestEfficiency = p.efficiency;
             bestSecondsPerSpp = p.secondsPerSpp;
             choice.config = p.config;
         }
+    };
+    auto consider = [&](const AutoProbe& p) {
+        takeIfBest(p);
         choice.probes.push_back(p);
+    };
+    // The best again, from the probes made so far (after some were superseded or averaged).
+    auto rescan = [&](bool measuredOnly) {
+        bestEfficiency = -1;
+        for (const AutoProbe& p : choice.probes)
+            if (!(measuredOnly && p.predicted)) takeIfBest(p);
     };
     auto measure = [&](const scene::StructureConfig& config, bool mayStop) {
         AutoProbe p;
@@ -208,13 +217,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         const scene::StructureConfig config = best->config;
         best->efficiency = 0;  // superseded by its measurement
         best->note = "predicted best, measured";
-        bestEfficiency = -1;
-        for (const AutoProbe& p : choice.probes)
-            if (p.efficiency > bestEfficiency) {
-                bestEfficiency = p.efficiency;
-                bestSecondsPerSpp = p.secondsPerSpp;
-                choice.config = p.config;
-            }
+        rescan(false);
         consider(measure(config, true));
     }
     // 4. Macrocell resolutions, measured: the winner's when it uses the grid, and those of the grid
@@ -264,13 +267,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 first.efficiency = 1.0 / ((first.variance > 0 ? first.variance : 1e-30) * first.secondsPerSpp);
                 first.note = "measured twice: the mean of both";
             }
-            bestEfficiency = -1;
-            for (const AutoProbe& p : choice.probes)
-                if (!p.predicted && p.efficiency > bestEfficiency) {
-                    bestEfficiency = p.efficiency;
-                    bestSecondsPerSpp = p.secondsPerSpp;
-                    choice.config = p.config;
-                }
+            rescan(true);
         }
     }
     // 5. Ties within the probes' noise go to the combination that builds less (fewer structures,
