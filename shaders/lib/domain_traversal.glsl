@@ -4,8 +4,8 @@
 // nearest entry of a box ahead; the segment is [t, min(both)]. Boxes may overlap (ext-brick);
 // disjoint boxes give exactly one covering box. Segments are contiguous and never skip a box with
 // majorant > 0; where nothing covers t the ray skips to the next entry (majorant 0 there).
-// grid-bvh steps its macrocells with the DDA and queries only to skip culled ones (gridBvhNext,
-// traversal.glsl).
+// grid-bvh steps its macrocells with the DDA and queries only to skip long runs of culled ones
+// (gridBvhNext, traversal.glsl).
 // Back-ends: software BVH over the non-empty boxes (kBackendSw) or a ray query over an AABB BLAS
 // whose culled boxes are inactive (kBackendRq). Both filter candidates with the same exact slab
 // test (rayBoxInterval, ray_box.glsl), so they yield identical segments.

@@ -55,6 +55,17 @@ ivec3 ddaCellAt(vec3 o, vec3 d, float t) {
     return clamp(ivec3(floor(start)), ivec3(0), P.scene.gridDims - 1);
 }
 
+// The macrocell the ray enters at o + d t: ddaCellAt's, except that a point exactly on a face the
+// ray crosses in a negative direction belongs to the cell below the face, the one it enters
+// (grid-bvh resumes there after a box query: no empty first segment in the cell behind).
+ivec3 ddaCellEntered(vec3 o, vec3 d, float t) {
+    vec3 start = (o + d * t - P.scene.gridOrigin) / P.scene.gridCellSize;
+    ivec3 cell = ivec3(floor(start));
+    for (int a = 0; a < 3; ++a)
+        if (d[a] < 0.0 && start[a] == float(cell[a])) cell[a] -= 1;
+    return clamp(cell, ivec3(0), P.scene.gridDims - 1);
+}
+
 // Macrocell coordinates of index x + dims.x * (y + dims.y * z).
 ivec3 ddaCellOfIndex(uint index) {
     uvec3 dims = uvec3(P.scene.gridDims);

@@ -62,9 +62,11 @@ bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, 
 }
 
 // grid-bvh: steps the grid with the DDA while its macrocells are active (majorant > 0), exactly as
-// grid-dda does; the first culled macrocell's entry t starts ONE box query over the active
+// grid-dda does, and through runs of culled ones up to P.scene.gridBvhQueryAfter (K) macrocells
+// long; the K-th culled macrocell of a run starts ONE box query at its entry t over the active
 // macrocells, which jumps to the nearest active entry ahead (or ends the ray), where the DDA
-// resumes in the macrocell holding that point. The DDA's plane crossings and the query's slab test
+// resumes in the macrocell holding that point. A run of L culled macrocells thus costs L steps
+// when L < K and K steps plus a query otherwise (K = 1: a query at every culled run). The DDA's plane crossings and the query's slab test
 // round apart at a face, so a query may find an active macrocell covering t: its segment (exact
 // ends) is yielded and the DDA resumes in that macrocell at the segment's end. Every query moves
 // t strictly forward and the DDA leaves the grid, so the walk ends. Empty DDA segments (a start
@@ -73,6 +75,7 @@ bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, 
 // (bit-identical) query answers, so their segments stay bit-identical.
 bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out uint id, out float majAlpha,
                  out float t0, out float t1) {
+    uint culled = 0u;  // culled macrocells stepped in a row
     for (;;) {
         if (tr.stepping) {
             if (!ddaNext(tr.dda, id, t0, t1)) return false;
@@ -80,8 +83,11 @@ bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out 
             majAlpha = domainMajorant(id);
             if (majAlpha > 0.0) {
                 if (t1 > t0) return true;
+                culled = 0u;
                 continue;
             }
+            if (++culled < P.scene.gridBvhQueryAfter) continue;
+            culled = 0u;
             tr.t = t0;
             tr.stepping = false;
         }
@@ -91,7 +97,7 @@ bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out 
         if (!q.covered) {
             if (!(q.end < tr.tEnd)) return false;  // no active macrocell ahead
             tr.t = q.end;
-            ddaStart(tr.o, tr.d, ddaCellAt(tr.o, tr.d, tr.t), tr.t, tr.tEnd, tr.dda);
+            ddaStart(tr.o, tr.d, ddaCellEntered(tr.o, tr.d, tr.t), tr.t, tr.tEnd, tr.dda);
             tr.stepping = true;
             continue;
         }

@@ -93,7 +93,8 @@ struct SceneGpu {
     uint gridBlockShift;        // grid-dda: blocks of 2^shift macrocells per axis, crossed in one step
                                 // where all their majorants are 0 (majorant_dda.glsl); 0: no blocks
     vec3 gridOrigin;            // local voxel
-    float pad1;
+    uint gridBvhQueryAfter;     // grid-bvh: culled macrocells in a row stepped by the DDA before one box
+                                // query skips the rest of the run (>= 1; traversal.glsl)
     vec3 gridCellSize;          // voxel units per macrocell
     float pad2;
     ivec3 denseDims;            // dense sampler: samples per axis
@@ -209,6 +210,7 @@ AMRVK_STATIC_ASSERT(offsetof(SceneGpu, invFinestCellWidth) == 12);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridDims) == 16);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridBlockShift) == 28);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridOrigin) == 32);
+AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridBvhQueryAfter) == 44);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, gridCellSize) == 48);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseDims) == 64);
 AMRVK_STATIC_ASSERT(offsetof(SceneGpu, denseLevel) == 76);

@@ -109,6 +109,14 @@ inline int ddaBlockShift(glm::ivec3 dims) {
 // Enzo, PeleLM and RAMSES, 22-63% empty, 0.86-1.09x with blocks forced on).
 inline constexpr double kMinEmptyBlockFraction = 0.75;
 
+// grid-bvh steps this many culled macrocells in a row with the DDA before one box query skips the
+// rest of the run (1: a query at every culled run). Stepping a run until it has cost about one
+// query, then querying, costs at most about twice the cheaper of the two ways for every run. On
+// lavapipe a software BVH query costs as much as 30-60 DDA steps: swept over 1-64 on five data
+// sets under foggy, 32 brought grid-bvh from 1.9-2.0x (Enzo), 1.4-1.5x (RAMSES) and 2.0-2.3x (the
+// clouds) of grid-dda's time to 1.3x, 1.3x and 1.0-1.25x (benchmarks section 26).
+inline constexpr uint32_t kGridBvhQueryAfter = 32;
+
 // Blocks of 2^shift macrocells per axis over the grid (the last ones cut at its far faces).
 inline glm::ivec3 ddaBlockDims(const DdaGrid& grid, int shift) { return (grid.dims + (1 << shift) - 1) >> shift; }
 

@@ -86,6 +86,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) : m
         mParams.gridCellSize = glm::vec3(scene.grid->cellSize);
         mParams.gridRanges = mGridRanges.address();
         if (plan.traversal == TraversalKind::GridDda) mParams.gridBlockShift = uint32_t(accel::ddaBlockShift(scene.grid->dims));
+        if (plan.traversal == TraversalKind::GridBvh) mParams.gridBvhQueryAfter = accel::kGridBvhQueryAfter;
     }
     if (plan.staticBoxes) {
         const TraversalKind t = plan.traversal;

@@ -40,6 +40,7 @@ void Renderer::buildDeviceScene() {
     mMajorants->setGridBlockUse(mGridBlockUse);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
+    if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0) mParams.scene.gridBvhQueryAfter = mGridBvhQueryAfter;
     takeMajorantParams();
 }
 
@@ -297,6 +298,15 @@ void Renderer::overrideMajorants(const std::vector<float>& majorants) {
     mMajorants->overrideGridMajorants(majorants);
     takeMajorantParams();
     resetAccumulation();
+}
+
+void Renderer::setGridBvhQueryAfter(uint32_t culledSteps) {
+    AMRVK_CHECK(culledSteps >= 1, "grid-bvh: culled macrocells stepped before a box query must be >= 1, not 0");
+    mGridBvhQueryAfter = culledSteps;
+    if (mParams.scene.gridBvhQueryAfter > 0) {  // grid-bvh
+        mParams.scene.gridBvhQueryAfter = culledSteps;
+        mParamsDirty = true;
+    }
 }
 
 void Renderer::setGridBlockUse(MajorantPass::GridBlockUse use) {

@@ -146,6 +146,9 @@ public:
     // Whether grid-dda crosses empty blocks (default Auto: where enough are empty under the TF);
     // kept across structure changes. The walk changes no expectation: accumulation goes on.
     void setGridBlockUse(MajorantPass::GridBlockUse use);
+    // grid-bvh: culled macrocells in a row stepped before one box query (>= 1; default
+    // accel::kGridBvhQueryAfter); kept across structure changes. Changes no expectation.
+    void setGridBvhQueryAfter(uint32_t culledSteps);
     // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
     void overrideMajorants(const std::vector<float>& majorants);
     // Device address of the RenderParams buffer (current after any edit), for test kernels.
@@ -172,6 +175,7 @@ private:
     shared::RenderParams mParams{};
     bool mParamsDirty = true;
     MajorantPass::GridBlockUse mGridBlockUse = MajorantPass::GridBlockUse::Auto;
+    uint32_t mGridBvhQueryAfter = 0;  // 0: the device scene's default
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;
     bool mHasSettings = false;

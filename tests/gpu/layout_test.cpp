@@ -54,7 +54,7 @@ std::vector<Field> renderParamsFields() {
     f.insert(f.end(), {
         AMRVK_FIELD(c, SceneGpu, boundsHi, 3),     AMRVK_FIELD(c, SceneGpu, invFinestCellWidth, 1),
         AMRVK_FIELD(c, SceneGpu, gridDims, 3),     AMRVK_FIELD(c, SceneGpu, gridBlockShift, 1),
-        AMRVK_FIELD(c, SceneGpu, gridOrigin, 3),   AMRVK_FIELD(c, SceneGpu, pad1, 1),
+        AMRVK_FIELD(c, SceneGpu, gridOrigin, 3),   AMRVK_FIELD(c, SceneGpu, gridBvhQueryAfter, 1),
         AMRVK_FIELD(c, SceneGpu, gridCellSize, 3), AMRVK_FIELD(c, SceneGpu, pad2, 1),
         AMRVK_FIELD(c, SceneGpu, denseDims, 3),    AMRVK_FIELD(c, SceneGpu, denseLevel, 1),
         AMRVK_FIELD(c, SceneGpu, denseOrigin, 3),  AMRVK_FIELD(c, SceneGpu, denseSpacing, 1),

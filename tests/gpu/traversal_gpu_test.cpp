@@ -66,16 +66,17 @@ std::vector<Ray> testRays(glm::vec3 hi, uint32_t seed) {
 
 class TraversalGpu : public test::GpuTest {
 protected:
-    // Segments of every ray (rays in local voxel space, t in [0, inf)).
-    std::vector<std::vector<Segment>> segments(render::Renderer& r, scene::Backend backend,
-                                               const std::vector<Ray>& rays) {
+    // Segments of every ray (rays in local voxel space, t in [0, inf)); `steps`, when given, gets
+    // each ray's traversal steps (DDA steps plus box queries).
+    std::vector<std::vector<Segment>> segments(render::Renderer& r, scene::Backend backend, const std::vector<Ray>& rays,
+                                               std::vector<uint32_t>* steps = nullptr) {
         const bool rq = backend == scene::Backend::Rq;
         std::vector<glm::vec4> packed;
         for (const Ray& ray : rays) {
             packed.emplace_back(ray.o, 0.0f);
             packed.emplace_back(ray.d, INFINITY);
         }
-        const uint32_t n = uint32_t(rays.size()), stride = 1 + 4 * kMaxSegments;
+        const uint32_t n = uint32_t(rays.size()), stride = 2 + 4 * kMaxSegments;
         gpu::Buffer in = gpu::makeBuffer<glm::vec4>(ctx(), packed, "rays");
         gpu::Buffer out(ctx(), uint64_t(n) * stride * 4, gpu::MemoryKind::HostRead, "segments");
         gpu::ComputePipeline pipe(ctx(), gpu::loadShader(rq ? "test_segments_rq" : "test_segments"), "test_segments",
@@ -85,12 +86,14 @@ protected:
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, (n + 31) / 32); });
         auto raw = out.download<uint32_t>();
         std::vector<std::vector<Segment>> result(n);
+        if (steps) steps->assign(n, 0u);
         for (uint32_t i = 0; i < n; ++i) {
             const uint32_t count = raw[size_t(i) * stride];
+            if (steps) (*steps)[i] = raw[size_t(i) * stride + 1];
             EXPECT_LE(count, kMaxSegments) << "ray " << i;
             for (uint32_t k = 0; k < std::min(count, kMaxSegments); ++k) {
                 Segment s;
-                std::memcpy(&s, &raw[size_t(i) * stride + 1 + 4 * k], sizeof s);
+                std::memcpy(&s, &raw[size_t(i) * stride + 2 + 4 * k], sizeof s);
                 result[i].push_back(s);
             }
         }
@@ -350,63 +353,151 @@ TEST_F(TraversalGpu, GridBvhStepsLikeGridDdaWhereEveryMacrocellIsActive) {
     }
 }
 
-// Macrocells active or culled at random (half each), so rays alternate between runs of active
-// macrocells (stepped by the DDA) and runs of culled ones (skipped by one box query): segments
-// against brute force, and sw = rq bit for bit.
-TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
-    // 48^3 finest cells, macrocells of 4^3 (--grid 12). A chosen macrocell holds value 1 in its
-    // inner 2^3 cells, whose tent supports stay inside it; every other value is 0. The TF is 0 up
-    // to 0.5, so exactly the chosen macrocells are active.
+// 48^3 finest cells, macrocells of 4^3 (--grid 12); macrocell (x, y, z) is chosen when
+// chosen[x + 12 (y + 12 z)]. A chosen macrocell holds value 1 in its inner 2^3 cells, whose tent
+// supports stay inside it; every other value is 0. Under chosenOnlyTf() exactly the chosen
+// macrocells are active.
+std::shared_ptr<const scene::Volume> chosenMacrocells(const std::vector<char>& chosen) {
     amr::Model m = test::makeUniformBox(glm::ivec3(48), 0, 0.0f);
-    std::mt19937 rng(21);
-    std::vector<char> chosen(12 * 12 * 12);
-    for (char& c : chosen) c = char(rng() % 2);
-    size_t chosenCount = 0;
-    for (char c : chosen) chosenCount += c;
     for (size_t i = 0; i < m.cells.size(); ++i) {
         const glm::ivec3 p = m.cells[i].lower, mc = p / 4, in = p % 4;
         const bool inner = glm::all(glm::greaterThanEqual(in, glm::ivec3(1))) && glm::all(glm::lessThanEqual(in, glm::ivec3(2)));
         if (inner && chosen[size_t(mc.x + 12 * (mc.y + 12 * mc.z))]) m.fields[0].values[i] = 1.0f;
     }
-    const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(std::move(m));
-    const scene::TransferFunction tf({0.0f, 0.5f, 1.0f}, {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)},
-                                     "alternating");
+    return scene::makeVolume(std::move(m));
+}
+
+scene::TransferFunction chosenOnlyTf() {  // 0 up to 0.5
+    return scene::TransferFunction({0.0f, 0.5f, 1.0f}, {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)},
+                                   "chosen");
+}
+
+// Macrocells active or culled at random (half each), so rays alternate between runs of active
+// macrocells (stepped by the DDA) and runs of culled ones (stepped, or skipped by one box query
+// after gridBvhQueryAfter of them; 1: every run is queried): segments against brute force, and
+// sw = rq bit for bit.
+TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
+    std::mt19937 rng(21);
+    std::vector<char> chosen(12 * 12 * 12);
+    for (char& c : chosen) c = char(rng() % 2);
+    size_t chosenCount = 0;
+    for (char c : chosen) chosenCount += c;
+    const std::shared_ptr<const scene::Volume> volume = chosenMacrocells(chosen);
     const glm::dvec3 hi(volume->bounds().upper - volume->bounds().lower);
     const std::vector<Ray> rays = testRays(glm::vec3(hi), 17);
-    std::vector<std::vector<Segment>> reference;
-    for (scene::Backend b : test::availableBackends(ctx())) {
-        scene::StructureConfig cfg;
-        cfg.traversal = scene::TraversalKind::GridBvh;
-        cfg.backend = b;
-        cfg.grid = "12";
-        SCOPED_TRACE(cfg.label());
-        render::Renderer r(ctx(), volume, cfg);
-        r.setTransferFunction(tf);
-        ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
-        const BoxSet boxes = traversalBoxes(r);
-        const auto segs = segments(r, b, rays);
-        // Rays that skip a culled run between two segments, and rays that step from one active
-        // macrocell straight into the next.
-        size_t skipping = 0, stepping = 0;
-        int faults = 0;
-        for (size_t i = 0; i < rays.size() && faults < 10; ++i) {
-            bool gap = false, step = false;
-            for (size_t k = 1; k < segs[i].size(); ++k) {
-                gap |= segs[i][k].t0 > segs[i][k - 1].t1;
-                step |= segs[i][k].t0 == segs[i][k - 1].t1 && segs[i][k].id != segs[i][k - 1].id;
+    for (uint32_t after : {1u, 4u, accel::kGridBvhQueryAfter}) {
+        std::vector<std::vector<Segment>> reference;  // sw's segments
+        for (scene::Backend b : test::availableBackends(ctx())) {
+            scene::StructureConfig cfg;
+            cfg.traversal = scene::TraversalKind::GridBvh;
+            cfg.backend = b;
+            cfg.grid = "12";
+            SCOPED_TRACE(cfg.label() + ", query after " + std::to_string(after));
+            render::Renderer r(ctx(), volume, cfg);
+            r.setTransferFunction(chosenOnlyTf());
+            r.setGridBvhQueryAfter(after);
+            ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
+            const BoxSet boxes = traversalBoxes(r);
+            const auto segs = segments(r, b, rays);
+            // Rays that skip a culled run between two segments, and rays that step from one active
+            // macrocell straight into the next.
+            size_t skipping = 0, stepping = 0;
+            int faults = 0;
+            for (size_t i = 0; i < rays.size() && faults < 10; ++i) {
+                bool gap = false, step = false;
+                for (size_t k = 1; k < segs[i].size(); ++k) {
+                    gap |= segs[i][k].t0 > segs[i][k - 1].t1;
+                    step |= segs[i][k].t0 == segs[i][k - 1].t1 && segs[i][k].id != segs[i][k - 1].id;
+                }
+                skipping += gap;
+                stepping += step;
+                faults += checkRay(boxes, hi, rays[i], segs[i]);
             }
-            skipping += gap;
-            stepping += step;
-            faults += checkRay(boxes, hi, rays[i], segs[i]);
+            EXPECT_GT(skipping, rays.size() / 2) << "rays should skip culled macrocells";
+            EXPECT_GT(stepping, rays.size() / 2) << "rays should step between active macrocells";
+            if (reference.empty()) {
+                reference = segs;
+                continue;
+            }
+            EXPECT_EQ(differingRays(segs, reference), 0u);
         }
-        EXPECT_GT(skipping, rays.size() / 2) << "rays should skip culled macrocells";
-        EXPECT_GT(stepping, rays.size() / 2) << "rays should step between active macrocells";
-        if (reference.empty()) {
-            reference = segs;
-            continue;
-        }
-        EXPECT_EQ(differingRays(segs, reference), 0u);
     }
+}
+
+// grid-bvh steps a culled run of L macrocells (L steps) while L < K = gridBvhQueryAfter, and
+// otherwise steps K of them and skips the rest with one box query. Rays along the x axis through
+// macrocell centres, both ways, over rows with culled runs of every length 1-11: the steps are
+// counted exactly by a walk over the row on the host, and the segments (the row's active
+// macrocells in order) do not depend on K.
+TEST_F(TraversalGpu, GridBvhStepsShortCulledRunsAndQueriesLongOnes) {
+    std::mt19937 rng(5);
+    std::vector<char> chosen(12 * 12 * 12);
+    for (char& c : chosen) c = char(rng() % 10 < 3);
+    for (int x = 0; x < 12; ++x) chosen[size_t(x + 12 * (0 + 12 * 0))] = x == 0;  // a run of 11 to the far face
+    size_t chosenCount = 0;
+    for (char c : chosen) chosenCount += c;
+    const std::shared_ptr<const scene::Volume> volume = chosenMacrocells(chosen);
+    std::vector<Ray> rays;
+    std::vector<std::vector<uint32_t>> rows;  // the macrocell ids each ray passes, in order
+    for (int z = 0; z < 12; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int dir : {1, -1}) {
+                const glm::vec3 c(0.0f, float(4 * y + 2), float(4 * z + 2));
+                rays.push_back({dir > 0 ? c - glm::vec3(1, 0, 0) : c + glm::vec3(49, 0, 0), glm::vec3(float(dir), 0, 0)});
+                std::vector<uint32_t>& row = rows.emplace_back();
+                for (int k = 0; k < 12; ++k) row.push_back(uint32_t((dir > 0 ? k : 11 - k) + 12 * (y + 12 * z)));
+            }
+    // Host walk: a step per macrocell entered; the K-th culled one of a run adds a query that jumps
+    // to the next active macrocell (or ends the ray).
+    auto expectedSteps = [&](const std::vector<uint32_t>& row, uint32_t after) {
+        uint32_t steps = 0, culled = 0;
+        for (size_t k = 0; k < row.size(); ++k) {
+            ++steps;
+            if (chosen[row[k]]) {
+                culled = 0;
+                continue;
+            }
+            if (++culled < after) continue;
+            ++steps;  // the query
+            culled = 0;
+            while (k + 1 < row.size() && !chosen[row[k + 1]]) ++k;
+        }
+        return steps;
+    };
+    size_t longRuns = 0;  // runs of 5 culled macrocells or more: where K = 5 makes a difference
+    for (const auto& row : rows)
+        for (size_t k = 0, run = 0; k < row.size(); ++k) {
+            run = chosen[row[k]] ? 0 : run + 1;
+            longRuns += run == 5;
+        }
+    EXPECT_GE(longRuns, 10u);
+    // 11: only the longest runs are queried; the default (32 > 11 macrocells) never queries here.
+    for (scene::Backend b : test::availableBackends(ctx()))
+        for (uint32_t after : {1u, 2u, 5u, 11u, accel::kGridBvhQueryAfter}) {
+            scene::StructureConfig cfg;
+            cfg.traversal = scene::TraversalKind::GridBvh;
+            cfg.backend = b;
+            cfg.grid = "12";
+            SCOPED_TRACE(cfg.label() + ", query after " + std::to_string(after));
+            render::Renderer r(ctx(), volume, cfg);
+            r.setTransferFunction(chosenOnlyTf());
+            r.setGridBvhQueryAfter(after);
+            ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
+            std::vector<uint32_t> steps;
+            const auto segs = segments(r, b, rays, &steps);
+            size_t wrongSteps = 0, wrongSegments = 0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                std::vector<uint32_t> active, seen;
+                for (uint32_t id : rows[i])
+                    if (chosen[id]) active.push_back(id);
+                for (const Segment& s : segs[i]) seen.push_back(s.id);
+                if (seen != active && wrongSegments++ < 3) ADD_FAILURE() << "ray " << i << ": segments are not the row's active macrocells";
+                if (steps[i] != expectedSteps(rows[i], after) && wrongSteps++ < 3)
+                    ADD_FAILURE() << "ray " << i << ": " << steps[i] << " steps, expected " << expectedSteps(rows[i], after);
+            }
+            EXPECT_EQ(wrongSegments, 0u);
+            EXPECT_EQ(wrongSteps, 0u);
+        }
 }
 
 TEST_F(TraversalGpu, SwAndRqReconstructIdenticalValues) {

@@ -46,7 +46,7 @@ void main() {
     }
     // RenderParams.scene
     f3(P.scene.boundsHi); f(P.scene.invFinestCellWidth); i3(P.scene.gridDims); u(P.scene.gridBlockShift);
-    f3(P.scene.gridOrigin); f(P.scene.pad1); f3(P.scene.gridCellSize); f(P.scene.pad2);
+    f3(P.scene.gridOrigin); u(P.scene.gridBvhQueryAfter); f3(P.scene.gridCellSize); f(P.scene.pad2);
     i3(P.scene.denseDims); i(P.scene.denseLevel); f3(P.scene.denseOrigin); f(P.scene.denseSpacing);
     u64(P.scene.bricks); u64(P.scene.brickValues); u64(P.scene.samplerNodes); u64(P.scene.samplerPrims);
     u64(P.scene.samplerAccel); u64(P.scene.abrs); u64(P.scene.abrBrickList); u64(P.scene.gridRanges);
