@@ -45,6 +45,10 @@ struct AutoOptions {
     // longest axis (accel::parseGridDims: 128 from 1,048,576 cells on, fewer for smaller data, so
     // 32, 64 and 256 there); a resolution equal to auto's or below 4 is left out.
     std::vector<double> gridFactors = {0.25, 0.5, 2.0};
+    // Where the finest of those is a combination's best measured grid, twice it is measured, and so
+    // on while the finest wins, up to this many macrocells on the longest axis (the protocol's
+    // finest grid; 256^3 macrocells hold about 400 MB of ranges and majorants).
+    int maxExtendedGrid = 256;
     double minProbeSeconds = -1;  // timed GPU seconds a probe aims at (more samples, up to 256); < 0 = 0.25 on CPUs, 0.05 on GPUs
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins
     double contenderBand = 0.75;  // measured probes this close to the best are measured again ...
@@ -71,6 +75,12 @@ struct AutoChoice {
     double seconds = 0;           // wall time of all probes
     double configureSeconds = 0;  // configuring the scene for the pick at the end
 };
+
+// Step 4a's rule: the next --grid to measure for `combination` (its traversal, sampler and
+// back-end) when its best measured probe so far is at grid `finest`: twice `finest`, at most
+// maxGrid; 0 when another grid is its best, or the step would be less than 1.5x finer.
+int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureConfig& combination, int finest,
+                  int maxGrid);
 
 // Probes with the renderer's volume under `tf` and `settings` (mode, camera, lights; size and
 // spp are the probe's): each probe switches the renderer's structures, and it is left with the
