@@ -62,14 +62,14 @@ bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, 
 }
 
 // grid-bvh: steps the grid with the DDA while its macrocells are active (majorant > 0), exactly as
-// grid-dda does, and through runs of culled ones up to P.scene.gridBvhQueryAfter (K) macrocells
-// long; the K-th culled macrocell of a run starts ONE box query at its entry t over the active
-// macrocells, which jumps to the nearest active entry ahead (or ends the ray), where the DDA
-// resumes in the macrocell holding that point. A run of L culled macrocells thus costs L steps
-// when L < K and K steps plus a query otherwise (K = 1: a query at every culled run). The DDA's plane crossings and the query's slab test
-// round apart at a face, so a query may find an active macrocell covering t: its segment (exact
-// ends) is yielded and the DDA resumes in that macrocell at the segment's end. Every query moves
-// t strictly forward and the DDA leaves the grid, so the walk ends. Empty DDA segments (a start
+// grid-dda does, and through runs of culled ones shorter than P.scene.gridBvhQueryAfter (K); the
+// K-th culled macrocell of a run starts ONE box query at its entry t over the active macrocells,
+// which jumps to the nearest active entry ahead (or ends the ray), where the DDA resumes in the
+// macrocell the ray enters. A run of L culled macrocells thus costs L steps when L < K and K steps
+// plus a query otherwise (K = 1: a query at every culled run). The DDA's plane crossings and the
+// query's slab test round apart at a face, so a query may find an active macrocell covering t:
+// its segment (exact ends) is yielded and the DDA resumes in that macrocell at the segment's end.
+// Every query moves t strictly forward and the DDA leaves the grid, so the walk ends. Empty DDA segments (a start
 // on a face, an edge crossing) are skipped. Segments stay contiguous within runs of active
 // macrocells and never skip an active macrocell; sw and rq make the same decisions from the same
 // (bit-identical) query answers, so their segments stay bit-identical.

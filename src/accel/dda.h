@@ -113,8 +113,8 @@ inline constexpr double kMinEmptyBlockFraction = 0.75;
 // rest of the run (1: a query at every culled run). Stepping a run until it has cost about one
 // query, then querying, costs at most about twice the cheaper of the two ways for every run. On
 // lavapipe a software BVH query costs as much as 30-60 DDA steps: swept over 1-64 on five data
-// sets under foggy, 32 brought grid-bvh from 1.9-2.0x (Enzo), 1.4-1.5x (RAMSES) and 2.0-2.3x (the
-// clouds) of grid-dda's time to 1.3x, 1.3x and 1.0-1.25x (benchmarks section 26).
+// sets under foggy, 32 took grid-bvh from 4.4x (Enzo), 2.7-2.9x (RAMSES) and 2.1-2.5x (the
+// clouds) of grid-dda's time to 1.36-1.53x, 1.19-1.42x and 1.08-1.35x (benchmarks section 26).
 inline constexpr uint32_t kGridBvhQueryAfter = 32;
 
 // Blocks of 2^shift macrocells per axis over the grid (the last ones cut at its far faces).

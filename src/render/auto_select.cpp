@@ -264,13 +264,15 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         //     default 65, benchmarks section 25). Doubling while the finest wins, up to
         //     options.maxExtendedGrid macrocells on the longest axis (a step of less than 1.5x is
         //     not taken).
-        const int finestProbed = grids.empty() ? 0 : std::stoi(*std::max_element(grids.begin(), grids.end(),
-            [](const std::string& a, const std::string& b) { return std::stoi(a) < std::stoi(b); }));
-        for (scene::StructureConfig c : candidates)
-            for (int finest = finestProbed; (finest = nextFinerGrid(choice.probes, c, finest, options.maxExtendedGrid)) > 0;) {
+        int finestProbed = 0;
+        for (const std::string& g : grids) finestProbed = std::max(finestProbed, std::stoi(g));
+        for (scene::StructureConfig c : candidates) {
+            int finest = finestProbed;
+            while ((finest = nextFinerGrid(choice.probes, c, finest, options.maxExtendedGrid)) > 0) {
                 c.grid = std::to_string(finest);
                 consider(measure(c, true));
             }
+        }
     }
     // 4b. The contenders measured again: a CPU device's probes of one combination vary by up to 40%
     //     from run to run (benchmarks section 25), enough to put a slower one first. Every measured

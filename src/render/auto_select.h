@@ -47,7 +47,7 @@ struct AutoOptions {
     std::vector<double> gridFactors = {0.25, 0.5, 2.0};
     // Where the finest of those is a combination's best measured grid, twice it is measured, and so
     // on while the finest wins, up to this many macrocells on the longest axis (the protocol's
-    // finest grid; 256^3 macrocells hold about 400 MB of ranges and majorants).
+    // finest grid; Enzo DD0018 at 256 took 389 MB of device memory, benchmarks section 25).
     int maxExtendedGrid = 256;
     double minProbeSeconds = -1;  // timed GPU seconds a probe aims at (more samples, up to 256); < 0 = 0.25 on CPUs, 0.05 on GPUs
     double tieTolerance = 0.1;   // measured probes this close to the best tie; the one that builds less wins

@@ -40,7 +40,8 @@ void Renderer::buildDeviceScene() {
     mMajorants->setGridBlockUse(mGridBlockUse);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
-    if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0) mParams.scene.gridBvhQueryAfter = mGridBvhQueryAfter;
+    if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0)  // grid-bvh, K set by a test
+        mParams.scene.gridBvhQueryAfter = mGridBvhQueryAfter;
     takeMajorantParams();
 }
 

@@ -68,8 +68,8 @@ class TraversalGpu : public test::GpuTest {
 protected:
     // Segments of every ray (rays in local voxel space, t in [0, inf)); `steps`, when given, gets
     // each ray's traversal steps (DDA steps plus box queries).
-    std::vector<std::vector<Segment>> segments(render::Renderer& r, scene::Backend backend, const std::vector<Ray>& rays,
-                                               std::vector<uint32_t>* steps = nullptr) {
+    std::vector<std::vector<Segment>> segments(render::Renderer& r, scene::Backend backend,
+                                               const std::vector<Ray>& rays, std::vector<uint32_t>* steps = nullptr) {
         const bool rq = backend == scene::Backend::Rq;
         std::vector<glm::vec4> packed;
         for (const Ray& ray : rays) {
@@ -368,8 +368,8 @@ std::shared_ptr<const scene::Volume> chosenMacrocells(const std::vector<char>& c
 }
 
 scene::TransferFunction chosenOnlyTf() {  // 0 up to 0.5
-    return scene::TransferFunction({0.0f, 0.5f, 1.0f}, {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)},
-                                   "chosen");
+    return scene::TransferFunction({0.0f, 0.5f, 1.0f},
+                                   {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "chosen");
 }
 
 // Macrocells active or culled at random (half each), so rays alternate between runs of active
@@ -443,7 +443,8 @@ TEST_F(TraversalGpu, GridBvhStepsShortCulledRunsAndQueriesLongOnes) {
         for (int y = 0; y < 12; ++y)
             for (int dir : {1, -1}) {
                 const glm::vec3 c(0.0f, float(4 * y + 2), float(4 * z + 2));
-                rays.push_back({dir > 0 ? c - glm::vec3(1, 0, 0) : c + glm::vec3(49, 0, 0), glm::vec3(float(dir), 0, 0)});
+                const glm::vec3 o = dir > 0 ? c - glm::vec3(1, 0, 0) : c + glm::vec3(49, 0, 0);  // outside
+                rays.push_back({o, glm::vec3(float(dir), 0, 0)});
                 std::vector<uint32_t>& row = rows.emplace_back();
                 for (int k = 0; k < 12; ++k) row.push_back(uint32_t((dir > 0 ? k : 11 - k) + 12 * (y + 12 * z)));
             }
@@ -491,9 +492,11 @@ TEST_F(TraversalGpu, GridBvhStepsShortCulledRunsAndQueriesLongOnes) {
                 for (uint32_t id : rows[i])
                     if (chosen[id]) active.push_back(id);
                 for (const Segment& s : segs[i]) seen.push_back(s.id);
-                if (seen != active && wrongSegments++ < 3) ADD_FAILURE() << "ray " << i << ": segments are not the row's active macrocells";
-                if (steps[i] != expectedSteps(rows[i], after) && wrongSteps++ < 3)
-                    ADD_FAILURE() << "ray " << i << ": " << steps[i] << " steps, expected " << expectedSteps(rows[i], after);
+                if (seen != active && wrongSegments++ < 3)
+                    ADD_FAILURE() << "ray " << i << ": segments are not the row's active macrocells";
+                const uint32_t expected = expectedSteps(rows[i], after);
+                if (steps[i] != expected && wrongSteps++ < 3)
+                    ADD_FAILURE() << "ray " << i << ": " << steps[i] << " steps, expected " << expected;
             }
             EXPECT_EQ(wrongSegments, 0u);
             EXPECT_EQ(wrongSteps, 0u);

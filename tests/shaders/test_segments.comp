@@ -1,8 +1,9 @@
 #version 460
 // Majorant segments of rays, as the tracker sees them: per ray r, out[r * stride] = segment count
 // n (capped at maxSegments; the true count when larger), out[r * stride + 1] = traversal steps
-// (traversalNext's count), then n records (id, majorant bits, t0 bits, t1 bits). Traversal and back-end come from the push constants. Built twice: test_segments
-// (sw) and test_segments_rq (-DAMRVK_RAY_QUERY).
+// (traversalNext's count), then n records (id, majorant bits, t0 bits, t1 bits). Traversal and
+// back-end come from the push constants. Built twice: test_segments (sw) and test_segments_rq
+// (-DAMRVK_RAY_QUERY).
 #ifdef AMRVK_RAY_QUERY
 #extension GL_EXT_ray_query : require
 #endif
