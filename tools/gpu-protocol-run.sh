@@ -309,9 +309,12 @@ $rows"
 
 # ---- d. speed on the big cloud (points 2 and 5)
 declare -A best bestLabel
-# traversal/sampler[@grid]: grid-dda crosses empty blocks of macrocells in one step, so a finer
-# grid's tighter majorants can pay for its steps (benchmarks section 23).
-combos=(grid-dda/grid grid-dda/grid@256 grid-bvh/grid abr/abr brick/grid kdtree/grid abr/ext-brick)
+# traversal/sampler[@grid][~K]: grid-dda crosses empty blocks of macrocells in one step, so a finer
+# grid's tighter majorants can pay for its steps (benchmarks section 23); ~K: grid-bvh querying after
+# K culled macrocells in a row instead of 32, the device's best K being unknown (section 26). Last,
+# so they are the first skipped for time.
+combos=(grid-dda/grid grid-dda/grid@256 grid-bvh/grid abr/abr brick/grid kdtree/grid abr/ext-brick
+  grid-bvh/grid~8 grid-bvh/grid~128)
 common=(--size "$size" --spp "$spp" --samples-per-invocation 1 --mode ms --ambient 1 1 1 --backend sw)
 renderRows() {  # renderRows TAG TF LABEL: sets speedRow and distRow from one render's JSON
   local t=$1 p k q
@@ -327,23 +330,42 @@ renderRows() {  # renderRows TAG TF LABEL: sets speedRow and distRow from one re
   done
   distRow+=" |"
 }
+# kShaders K: OUT/shaders-kK, amrvk's shaders with grid-bvh's K (culled macrocells stepped before a
+# box query) a constant, for --shader-dir; prints the folder, or fails.
+kShaders() {
+  local d="$out/shaders-k$1" f
+  f="$d/lib/traversal.glsl"
+  if [ ! -d "$d" ]; then
+    if ! "$amrvk" shaders --export "$d" >/dev/null 2>&1 || [ "$(grep -c 'culled < P\.scene\.gridBvhQueryAfter)' "$f")" != 1 ] ||
+      ! sed -i "s/culled < P\.scene\.gridBvhQueryAfter)/culled < ${1}u)/" "$f"; then
+      rm -rf "$d"
+      return 1
+    fi
+  fi
+  printf '%s' "$d"
+}
 stepD() {
   step=d
-  local end lim c tf trav samp grid tag p last=0 speed="" dist="" note="" skipped="" why="" paper target
+  local end lim c base k tf trav samp grid tag p last=0 speed="" dist="" note="" skipped="" why="" paper target
   end=$(( $(elapsed) + $(share 1 2) ))
   for c in "${combos[@]}"; do
+    base=${c%~*} k=(); [[ $c == *~* ]] && k=(--shader-dir "$out/shaders-k${c#*~}")
+    if (( ${#k[@]} )) && ! kShaders "${c#*~}" >/dev/null; then
+      note+="- $c: \`amrvk shaders --export\` or its edit failed."$'\n'; continue
+    fi
     for tf in spiky foggy; do
-      grid=(); [[ $c == *@* ]] && grid=(--grid "${c#*@}")
-      trav=${c%%/*} samp=${c#*/} samp=${samp%@*} tag="d-$tf-${c/\//-}" tag=${tag/@/-grid}
+      grid=(); [[ $base == *@* ]] && grid=(--grid "${base#*@}")
+      trav=${base%%/*} samp=${base#*/} samp=${samp%@*} tag="d-$tf-${base/\//-}" tag=${tag/@/-grid}
+      (( ${#k[@]} )) && tag+="-k${c#*~}"
       lim=$(upTo "$end")
       if (( lim < 3 || lim < last )); then
         why="$lim s left for step d$( (( last > 0 )) && echo ", the last render took $last s")"
-        skip "\`amrvk render cloud$big.cells --tf $tf --traversal $trav --sampler $samp ${grid[*]} ...\`" "$why"
+        skip "\`amrvk render cloud$big.cells --tf $tf --traversal $trav --sampler $samp ${grid[*]} ${k[*]//"$out"/OUT} ...\`" "$why"
         skipped+="${skipped:+, }$c $tf"
         continue
       fi
       run "$lim" "$tag" "$amrvk" render "$bigData.cells" "${common[@]}" --tf "$tf" --traversal "$trav" \
-        --sampler "$samp" "${grid[@]}" --json "$out/raw/$tag.json" -o "$out/images/$tag.png"
+        --sampler "$samp" "${grid[@]}" "${k[@]}" --json "$out/raw/$tag.json" -o "$out/images/$tag.png"
       last=$(( us / 1000000 + 1 ))
       if [ "$rc" != 0 ] || ! jsonLoad "$tag" "$out/raw/$tag.json"; then
         note+="- $c $tf: $status."$'\n'; continue
@@ -351,6 +373,7 @@ stepD() {
       renders+=("$tag")
       renderRows "$tag" "$tf" "$c"; speed+="$speedRow"$'\n'; dist+="$distRow"$'\n'
       p=$(get "$tag:pathsPerSecond")
+      (( ${#k[@]} )) && continue  # a shader experiment: not a configuration amrvk ships
       if isNum "$p" && { [ -z "${best[$tf]-}" ] || [ "$(calc '%d' 'X > Y' "$p" "${best[$tf]}")" = 1 ]; }; then
         best[$tf]=$p bestLabel[$tf]=$c
       fi
@@ -362,6 +385,8 @@ The paper's RTX 4090 on its 102M-cell cloud at 1024^2, 1 spp per frame: spiky 14
 | TF | traversal/sampler | M paths/s | fps | lookups / path | null / path | steps / path | lookup lane use | GPU ns / lookup | violations | first sample s | read s | build s | host peak | device peak |
 |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|
 ${speed}
+grid-bvh/grid~K: grid-bvh querying its BVH after K culled macrocells in a row instead of 32 (\`--shader-dir OUT/shaders-kK\`, amrvk's shaders with K a constant; docs/benchmarks.md section 26).
+
 Per path (lookups, then null collisions): mean, p50, p90, p99, p99.9 (quantiles from amrvk's histogram: exact below 8, 4 bins per octave above), max.
 
 | TF | traversal/sampler | mean | p50 | p90 | p99 | p999 | max | null: mean | p50 | p90 | p99 | p999 | max |

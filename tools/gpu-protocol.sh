@@ -135,8 +135,9 @@ bash run.sh OUT      # issue 31's protocol in at most 8 minutes: OUT/results.md,
 run.sh measures, each step under \`timeout\` within one budget (later steps skipped with a note when
 it is spent; OUT/results.md is rewritten after every step): a) devices, driver and machine, and
 which Vulkan loader and ICD were loaded; b) 10^6- and 10^8-cell clouds (\`amrvk gen\`); c) the
-exhaustive majorant check and every render's violation counter; d) speed of six structure
-combinations x the spiky and foggy TFs at 1024^2 (1 spp per frame) beside the paper's RTX 4090;
+exhaustive majorant check and every render's violation counter; d) speed of seven structure
+combinations x the spiky and foggy TFs at 1024^2 (1 spp per frame) beside the paper's RTX 4090,
+then grid-bvh querying after 8 and 128 culled macrocells instead of 32 (exported shaders);
 e) \`--traversal auto\` against the best of d; f) the first sample against AMRVK_THREADS; g) 10^9
 cells (host and device bytes per cell, first sample) when at least 150 s remain.
 Environment: AMRVK_PROTOCOL_ICD (another ICD manifest), AMRVK_PROTOCOL_BUDGET (seconds, default

@@ -63,6 +63,9 @@ check grep -qE '^- State: finished; some steps were stopped or skipped' "$r"
 check grep -qE '\| (skipped: |stopped at its limit)' "$r"
 check [ -s "$dir/out/raw/devices.json" ]
 check [ -s "$dir/out/raw/d-spiky-grid-dda-grid.json" ]
+# grid-bvh's K as a constant in exported shaders (step d's grid-bvh/grid~K, made even when skipped).
+check grep -qF "culled < 8u)" "$dir/out/shaders-k8/lib/traversal.glsl"
+check grep -qF "culled < 128u)" "$dir/out/shaders-k128/lib/traversal.glsl"
 check [ ! -e "$dir/out/data" ]
 check [ -z "$(ls -A "$dir/cwd")" ]
 
