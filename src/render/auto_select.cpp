@@ -37,6 +37,25 @@ std::vector<std::string> gridChoices(const scene::Volume& volume, const std::vec
 
 }  // namespace
 
+const AutoProbe* pickAmongTies(const std::vector<AutoProbe>& probes, double tieTolerance) {
+    auto structures = [](const scene::StructureConfig& c) {
+        const scene::StructurePlan p = c.plan();
+        return int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) + int(p.boxMajorants) +
+               int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
+    };
+    double best = 0;
+    for (const AutoProbe& p : probes)
+        if (!p.predicted) best = std::max(best, p.efficiency);
+    const AutoProbe* pick = nullptr;
+    for (const AutoProbe& p : probes) {
+        if (p.predicted || !(p.efficiency >= (1.0 - tieTolerance) * best)) continue;
+        if (!pick || structures(p.config) < structures(pick->config) ||
+            (structures(p.config) == structures(pick->config) && p.efficiency > pick->efficiency))
+            pick = &p;
+    }
+    return pick;
+}
+
 int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureConfig& combination, int finest,
                   int maxGrid) {
     const AutoProbe* best = nullptr;
@@ -301,25 +320,8 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             rescan(true);
         }
     }
-    // 5. Ties within the probes' noise go to the combination that builds less (fewer structures,
-    //    none rebuilt per TF edit), then to the default grid: among measured probes within
-    //    tieTolerance of the best.
-    {
-        auto structures = [&](const scene::StructureConfig& c) {
-            const scene::StructurePlan p = c.plan();
-            const int n = int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) +
-                          int(p.boxMajorants) + int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
-            return 2 * n + int(c.usesGrid() && c.grid != base.grid);
-        };
-        const AutoProbe* pick = nullptr;
-        for (const AutoProbe& p : choice.probes) {
-            if (p.predicted || !(p.efficiency >= (1.0 - options.tieTolerance) * bestEfficiency)) continue;
-            if (!pick || structures(p.config) < structures(pick->config) ||
-                (structures(p.config) == structures(pick->config) && p.efficiency > pick->efficiency))
-                pick = &p;
-        }
-        if (pick) choice.config = pick->config;
-    }
+    // 5. Ties within the probes' noise go to the combination that builds less.
+    if (const AutoProbe* pick = pickAmongTies(choice.probes, options.tieTolerance)) choice.config = pick->config;
     choice.seconds = total.seconds();
     Timer configure;
     renderer.setStructure(choice.config);

@@ -17,7 +17,7 @@
 // slowFactor of the best. A probe far slower than the best so far is stopped after its first
 // sample. The measured probes within contenderBand of the best are measured again and keep the
 // mean of both. Measured probes within tieTolerance of the best tie (two runs of one combination
-// on lavapipe differ by 10-40%): the one with the fewest structures wins, then the default grid.
+// on lavapipe differ by 10-40%): the one with the fewest structures wins, then the most efficient.
 #include <functional>
 #include <optional>
 #include <string>
@@ -75,6 +75,13 @@ struct AutoChoice {
     double seconds = 0;           // wall time of all probes
     double configureSeconds = 0;  // configuring the scene for the pick at the end
 };
+
+// Step 5's rule: among the measured probes within tieTolerance of the most efficient, the one
+// that builds the fewest structures (one rebuilt per TF edit counts once more), then the most
+// efficient of those; any grid, the default one no more than another (benchmarks section 26: the
+// default grid won a tie on Enzo at 0.93 of the best probe and rendered at 0.76 of grid 256).
+// Null when no probe was measured.
+const AutoProbe* pickAmongTies(const std::vector<AutoProbe>& probes, double tieTolerance);
 
 // Step 4a's rule: the next --grid to measure for `combination` (its traversal, sampler and
 // back-end) when its best measured probe so far is at grid `finest`: twice `finest`, at most

@@ -68,3 +68,36 @@ TEST(AutoSelect, FinerGridStepsAreAtLeastOneAndAHalfTimes) {
     EXPECT_EQ(render::nextFinerGrid(probes, dda, 250, 375), 375);
     EXPECT_EQ(render::nextFinerGrid(probes, dda, 250, 374), 0);
 }
+
+// Step 5: ties within the tolerance go to the fewest structures, then to the most efficient, the
+// default grid no more than another: Enzo spiky's second run of benchmarks section 26.
+TEST(AutoSelect, TiesGoToFewerStructuresThenTheMostEfficientWhateverTheGrid) {
+    std::vector<render::AutoProbe> probes = {probe(kDda, "auto", 1271), probe(kBvh, "auto", 1237),
+                                             probe(kDda, "130", 1234), probe(kBvh, "130", 1367),
+                                             probe(kDda, "256", 1357), probe(kBvh, "256", 1218),
+                                             probe(kDda, "auto", 5000, true)};
+    const render::AutoProbe* pick = render::pickAmongTies(probes, 0.1);
+    ASSERT_NE(pick, nullptr);
+    // grid-bvh (its culling BVH) builds more than grid-dda; of grid-dda's ties, 256 is the best.
+    EXPECT_EQ(pick->config.traversal, kDda);
+    EXPECT_EQ(pick->config.grid, "256");
+    // Outside the tolerance only the best is left, whatever it builds.
+    pick = render::pickAmongTies(probes, 0.005);
+    ASSERT_NE(pick, nullptr);
+    EXPECT_EQ(pick->config.traversal, kBvh);
+    EXPECT_EQ(pick->config.grid, "130");
+    // abr/abr (ABRs and their boxes) ties with grid-dda at 0.95 of it and loses; at 0.85 it is alone.
+    render::AutoProbe abr = probe(scene::TraversalKind::Abr, "auto", 2000);
+    abr.config.sampler = scene::SamplerKind::Abr;
+    probes.push_back(abr);
+    probes.push_back(probe(kDda, "33", 1900));
+    pick = render::pickAmongTies(probes, 0.1);
+    ASSERT_NE(pick, nullptr);
+    EXPECT_EQ(pick->config.traversal, kDda);
+    EXPECT_EQ(pick->config.grid, "33");
+    probes.back().efficiency = 1700;
+    pick = render::pickAmongTies(probes, 0.1);
+    ASSERT_NE(pick, nullptr);
+    EXPECT_EQ(pick->config.traversal, scene::TraversalKind::Abr);
+    EXPECT_EQ(render::pickAmongTies({probe(kDda, "auto", 9, true)}, 0.1), nullptr) << "nothing measured";
+}
