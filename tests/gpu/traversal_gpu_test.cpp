@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 
 #include "accel/brick_sampler.h"
@@ -64,6 +65,25 @@ std::vector<Ray> testRays(glm::vec3 hi, uint32_t seed) {
     return rays;
 }
 
+// 48^3 finest cells, macrocells of 4^3 (--grid 12); macrocell (x, y, z) is chosen when
+// chosen[x + 12 (y + 12 z)]. A chosen macrocell holds value 1 in its inner 2^3 cells, whose tent
+// supports stay inside it; every other value is 0. Under chosenOnlyTf() exactly the chosen
+// macrocells are active.
+std::shared_ptr<const scene::Volume> chosenMacrocells(const std::vector<char>& chosen) {
+    amr::Model m = test::makeUniformBox(glm::ivec3(48), 0, 0.0f);
+    for (size_t i = 0; i < m.cells.size(); ++i) {
+        const glm::ivec3 p = m.cells[i].lower, mc = p / 4, in = p % 4;
+        const bool inner = glm::all(glm::greaterThanEqual(in, glm::ivec3(1))) && glm::all(glm::lessThanEqual(in, glm::ivec3(2)));
+        if (inner && chosen[size_t(mc.x + 12 * (mc.y + 12 * mc.z))]) m.fields[0].values[i] = 1.0f;
+    }
+    return scene::makeVolume(std::move(m));
+}
+
+scene::TransferFunction chosenOnlyTf() {  // 0 up to 0.5
+    return scene::TransferFunction({0.0f, 0.5f, 1.0f},
+                                   {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "chosen");
+}
+
 class TraversalGpu : public test::GpuTest {
 protected:
     // Segments of every ray (rays in local voxel space, t in [0, inf)); `steps`, when given, gets
@@ -98,6 +118,20 @@ protected:
             }
         }
         return result;
+    }
+
+    // grid-bvh at --grid 12 over a chosenMacrocells() volume under chosenOnlyTf(), querying after
+    // `after` culled macrocells in a row.
+    std::unique_ptr<render::Renderer> chosenGridBvh(const std::shared_ptr<const scene::Volume>& volume,
+                                                    scene::Backend backend, uint32_t after) {
+        scene::StructureConfig cfg;
+        cfg.traversal = scene::TraversalKind::GridBvh;
+        cfg.backend = backend;
+        cfg.grid = "12";
+        auto r = std::make_unique<render::Renderer>(ctx(), volume, cfg);
+        r->setTransferFunction(chosenOnlyTf());
+        r->setGridBvhQueryAfter(after);
+        return r;
     }
 
     // Values (value, weightSum, inside) of the renderer's sampler at local points.
@@ -156,6 +190,15 @@ size_t differingRays(const std::vector<std::vector<Segment>>& segs, const std::v
         if (!same && diffs++ < 3) ADD_FAILURE() << "ray " << i << ": sw and rq segments differ";
     }
     return diffs;
+}
+
+// The first back-end's segments become the reference; a later back-end's (rq after sw) must equal
+// them bit for bit.
+void expectSameAsFirstBackEnd(std::vector<std::vector<Segment>>& reference, std::vector<std::vector<Segment>> segs) {
+    if (reference.empty())
+        reference = std::move(segs);
+    else
+        EXPECT_EQ(differingRays(segs, reference), 0u);
 }
 
 // Checks one ray's segments against brute force; returns the number of faults reported.
@@ -261,12 +304,7 @@ TEST_F(TraversalGpu, SegmentsMatchBruteForceAndBothBackEnds) {
                 faults += checkRay(boxes, hi, rays[i], segs[i]);
             }
             EXPECT_GT(multi, rays.size() / 10) << "rays should cross several boxes";
-            if (reference.empty()) {
-                reference = segs;
-                continue;
-            }
-            // rq against sw: identical lists, bit for bit.
-            EXPECT_EQ(differingRays(segs, reference), 0u);
+            expectSameAsFirstBackEnd(reference, segs);
         }
     }
 }
@@ -353,25 +391,6 @@ TEST_F(TraversalGpu, GridBvhStepsLikeGridDdaWhereEveryMacrocellIsActive) {
     }
 }
 
-// 48^3 finest cells, macrocells of 4^3 (--grid 12); macrocell (x, y, z) is chosen when
-// chosen[x + 12 (y + 12 z)]. A chosen macrocell holds value 1 in its inner 2^3 cells, whose tent
-// supports stay inside it; every other value is 0. Under chosenOnlyTf() exactly the chosen
-// macrocells are active.
-std::shared_ptr<const scene::Volume> chosenMacrocells(const std::vector<char>& chosen) {
-    amr::Model m = test::makeUniformBox(glm::ivec3(48), 0, 0.0f);
-    for (size_t i = 0; i < m.cells.size(); ++i) {
-        const glm::ivec3 p = m.cells[i].lower, mc = p / 4, in = p % 4;
-        const bool inner = glm::all(glm::greaterThanEqual(in, glm::ivec3(1))) && glm::all(glm::lessThanEqual(in, glm::ivec3(2)));
-        if (inner && chosen[size_t(mc.x + 12 * (mc.y + 12 * mc.z))]) m.fields[0].values[i] = 1.0f;
-    }
-    return scene::makeVolume(std::move(m));
-}
-
-scene::TransferFunction chosenOnlyTf() {  // 0 up to 0.5
-    return scene::TransferFunction({0.0f, 0.5f, 1.0f},
-                                   {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 1)}, "chosen");
-}
-
 // Macrocells active or culled at random (half each), so rays alternate between runs of active
 // macrocells (stepped by the DDA) and runs of culled ones (stepped, or skipped by one box query
 // after gridBvhQueryAfter of them; 1: every run is queried): segments against brute force, and
@@ -388,14 +407,9 @@ TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
     for (uint32_t after : {1u, 4u, accel::kGridBvhQueryAfter}) {
         std::vector<std::vector<Segment>> reference;  // sw's segments
         for (scene::Backend b : test::availableBackends(ctx())) {
-            scene::StructureConfig cfg;
-            cfg.traversal = scene::TraversalKind::GridBvh;
-            cfg.backend = b;
-            cfg.grid = "12";
-            SCOPED_TRACE(cfg.label() + ", query after " + std::to_string(after));
-            render::Renderer r(ctx(), volume, cfg);
-            r.setTransferFunction(chosenOnlyTf());
-            r.setGridBvhQueryAfter(after);
+            SCOPED_TRACE(std::string(scene::backendName(b)) + ", query after " + std::to_string(after));
+            const std::unique_ptr<render::Renderer> rp = chosenGridBvh(volume, b, after);
+            render::Renderer& r = *rp;
             ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
             const BoxSet boxes = traversalBoxes(r);
             const auto segs = segments(r, b, rays);
@@ -415,11 +429,7 @@ TEST_F(TraversalGpu, GridBvhSkipsCulledMacrocellsBetweenActiveOnes) {
             }
             EXPECT_GT(skipping, rays.size() / 2) << "rays should skip culled macrocells";
             EXPECT_GT(stepping, rays.size() / 2) << "rays should step between active macrocells";
-            if (reference.empty()) {
-                reference = segs;
-                continue;
-            }
-            EXPECT_EQ(differingRays(segs, reference), 0u);
+            expectSameAsFirstBackEnd(reference, segs);
         }
     }
 }
@@ -475,14 +485,9 @@ TEST_F(TraversalGpu, GridBvhStepsShortCulledRunsAndQueriesLongOnes) {
     // 11: only the longest runs are queried; the default (32 > 11 macrocells) never queries here.
     for (scene::Backend b : test::availableBackends(ctx()))
         for (uint32_t after : {1u, 2u, 5u, 11u, accel::kGridBvhQueryAfter}) {
-            scene::StructureConfig cfg;
-            cfg.traversal = scene::TraversalKind::GridBvh;
-            cfg.backend = b;
-            cfg.grid = "12";
-            SCOPED_TRACE(cfg.label() + ", query after " + std::to_string(after));
-            render::Renderer r(ctx(), volume, cfg);
-            r.setTransferFunction(chosenOnlyTf());
-            r.setGridBvhQueryAfter(after);
+            SCOPED_TRACE(std::string(scene::backendName(b)) + ", query after " + std::to_string(after));
+            const std::unique_ptr<render::Renderer> rp = chosenGridBvh(volume, b, after);
+            render::Renderer& r = *rp;
             ASSERT_EQ(r.activeTraversalBoxes(), chosenCount);
             std::vector<uint32_t> steps;
             const auto segs = segments(r, b, rays, &steps);
