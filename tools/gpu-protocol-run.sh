@@ -330,8 +330,8 @@ renderRows() {  # renderRows TAG TF LABEL: sets speedRow and distRow from one re
   done
   distRow+=" |"
 }
-# kShaders K: OUT/shaders-kK, amrvk's shaders with grid-bvh's K (culled macrocells stepped before a
-# box query) a constant, for --shader-dir; prints the folder, or fails.
+# kShaders K: makes OUT/shaders-kK, amrvk's shaders with grid-bvh's K (culled macrocells stepped
+# before a box query) a constant, for --shader-dir; fails (leaving nothing) when it cannot.
 kShaders() {
   local d="$out/shaders-k$1" f
   f="$d/lib/traversal.glsl"
@@ -342,7 +342,6 @@ kShaders() {
       return 1
     fi
   fi
-  printf '%s' "$d"
 }
 stepD() {
   step=d
@@ -350,7 +349,7 @@ stepD() {
   end=$(( $(elapsed) + $(share 1 2) ))
   for c in "${combos[@]}"; do
     base=${c%~*} k=(); [[ $c == *~* ]] && k=(--shader-dir "$out/shaders-k${c#*~}")
-    if (( ${#k[@]} )) && ! kShaders "${c#*~}" >/dev/null; then
+    if (( ${#k[@]} )) && ! kShaders "${c#*~}"; then
       note+="- $c: \`amrvk shaders --export\` or its edit failed."$'\n'; continue
     fi
     for tf in spiky foggy; do

@@ -48,18 +48,20 @@ void ddaStart(vec3 o, vec3 d, ivec3 cell, float t, float tEnd, out DdaState s) {
     }
 }
 
+// o + d t in macrocell units from the grid's origin (unclamped).
+vec3 ddaGridPoint(vec3 o, vec3 d, float t) { return (o + d * t - P.scene.gridOrigin) / P.scene.gridCellSize; }
+
 // The macrocell holding o + d t, clamped into the grid (a point on a face may round to either
 // side: the DDA's first segment is then empty or a sliver).
 ivec3 ddaCellAt(vec3 o, vec3 d, float t) {
-    vec3 start = (o + d * t - P.scene.gridOrigin) / P.scene.gridCellSize;
-    return clamp(ivec3(floor(start)), ivec3(0), P.scene.gridDims - 1);
+    return clamp(ivec3(floor(ddaGridPoint(o, d, t))), ivec3(0), P.scene.gridDims - 1);
 }
 
 // The macrocell the ray enters at o + d t: ddaCellAt's, except that a point exactly on a face the
 // ray crosses in a negative direction belongs to the cell below the face, the one it enters
 // (grid-bvh resumes there after a box query: no empty first segment in the cell behind).
 ivec3 ddaCellEntered(vec3 o, vec3 d, float t) {
-    vec3 start = (o + d * t - P.scene.gridOrigin) / P.scene.gridCellSize;
+    vec3 start = ddaGridPoint(o, d, t);
     ivec3 cell = ivec3(floor(start));
     for (int a = 0; a < 3; ++a)
         if (d[a] < 0.0 && start[a] == float(cell[a])) cell[a] -= 1;

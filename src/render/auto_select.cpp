@@ -58,6 +58,7 @@ const AutoProbe* pickAmongTies(const std::vector<AutoProbe>& probes, double tieT
 
 int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureConfig& combination, int finest,
                   int maxGrid) {
+    const std::string finestGrid = std::to_string(finest);
     const AutoProbe* best = nullptr;
     const AutoProbe* atFinest = nullptr;
     for (const AutoProbe& p : probes) {
@@ -65,7 +66,7 @@ int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureCo
             p.config.sampler != combination.sampler || p.config.backend != combination.backend)
             continue;
         if (!best || p.efficiency > best->efficiency) best = &p;
-        if (p.config.grid == std::to_string(finest)) atFinest = &p;
+        if (p.config.grid == finestGrid) atFinest = &p;
     }
     const int next = std::min(2 * finest, maxGrid);
     if (finest <= 0 || !atFinest || atFinest != best || 2 * next < 3 * finest) return 0;  // not won, or hardly finer

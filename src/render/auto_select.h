@@ -12,9 +12,9 @@
 //    above the reference sampler's, (time(s) - time(ref)) / lookups.
 // Every other combination is predicted from its traversal's time and counts and the sampler's
 // unit cost (but abr/abr, which samples without a point query, is measured); a predicted best is
-// measured before it can win. Macrocell resolutions (32, 64, 256
-// besides auto = 128) are then measured for a grid winner and for the grid traversals within
-// slowFactor of the best. A probe far slower than the best so far is stopped after its first
+// measured before it can win. Macrocell resolutions (1/4, 1/2 and 2 times auto's, then finer
+// while the finest wins, up to 256) are then measured for a grid winner and for the grid
+// traversals within slowFactor of the best. A probe far slower than the best so far is stopped after its first
 // sample. The measured probes within contenderBand of the best are measured again and keep the
 // mean of both. Measured probes within tieTolerance of the best tie (two runs of one combination
 // on lavapipe differ by 10-40%): the one with the fewest structures wins, then the most efficient.
