@@ -52,4 +52,15 @@ scene::TfChannels refitTfRange(const scene::TfChannels& tf, float lo, float hi) 
     return out;
 }
 
+scene::TfChannels tfOnNewScale(const scene::TfChannels& tf, const scene::Volume& shown, const scene::Volume& next) {
+    if (scene::presetFollowsData(tf.name)) {
+        // Compared in the editor's form: the viewer's panels hold the TF that way.
+        const scene::TfChannels fitted =
+            scene::TfChannels::split(scene::makePreset(tf.name, shown.percentiles, shown.volumeHistogram));
+        if (TfEditor::editable(tf) == TfEditor::editable(fitted))
+            return scene::TfChannels::split(scene::makePreset(tf.name, next.percentiles, next.volumeHistogram));
+    }
+    return refitTfRange(tf, next.valueLo(), next.valueHi());
+}
+
 }  // namespace amrvk::session

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scene/transfer_function.h"
+#include "scene/volume.h"
 #include "session/session.h"
 
 namespace amrvk::session {
@@ -26,5 +27,14 @@ DataChangeCheck dataChange(const Session& shown, const Session& next);
 // `tf` with its value range moved onto [lo, hi] (the shape kept: every node at the same relative
 // position); lo == hi (a constant field) gives [lo, lo + 1]. Throws for non-finite or lo > hi.
 scene::TfChannels refitTfRange(const scene::TfChannels& tf, float lo, float hi);
+
+// `tf` for the same data read again on another scale (the viewer's log-scale checkbox, a script's
+// `scale` or `log-floor`): `shown` is the data as it was shown, `next` as read on the new scale.
+// A preset that follows the data (spiky, foggy, layers), exactly as it was fitted to `shown`, is
+// fitted again to `next` (scene::makePreset(name, percentiles, histogram)): spiky and foggy sit at
+// the same percentiles, so they mark the same cells on both scales, and layers are sized by the
+// new scale's histogram, as `amrvk render --scale ...` fits them. Any other TF (edited, from a file,
+// over a given range) keeps its shape over the new range (refitTfRange).
+scene::TfChannels tfOnNewScale(const scene::TfChannels& tf, const scene::Volume& shown, const scene::Volume& next);
 
 }  // namespace amrvk::session

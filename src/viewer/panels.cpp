@@ -215,7 +215,8 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
         ImGui::SetTooltip("on: the colour map's colours are display colours, as in ParaView and matplotlib "
                           "(decoded to linear albedo); off: linear albedo as given (--tf-colors linear)");
     ImGui::SameLine();
-    // The field's scale: the data is read again (docs/viewer.md), the TF refitted to the new range.
+    // The field's scale: the data is read again (docs/viewer.md), the TF fitted again or moved onto
+    // the new range (session::tfOnNewScale).
     bool logScale = p.edit.read.scale == amr::FieldScale::Log;
     if (ImGui::Checkbox("log scale", &logScale))
         p.edit.read.scale = logScale ? amr::FieldScale::Log : amr::FieldScale::Linear;

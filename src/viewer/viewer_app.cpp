@@ -120,8 +120,9 @@ private:
     // The renderer takes mState.tf (majorants), the histogram follows its range.
     void setTransferFunction();
     // The data read again with `next.read` (another scale or log floor) beside the event loop, and
-    // a renderer made for it with next's camera, settings, structure and TF (refitTf: the TF's
-    // shape moved onto the new field range). On an error nothing changes and it is thrown.
+    // a renderer made for it with next's camera, settings, structure and TF (refitTf: an unedited
+    // fitted preset fitted again, any other TF's shape moved onto the new field range:
+    // session::tfOnNewScale). On an error nothing changes and it is thrown.
     void reloadData(const session::Session& next, bool refitTf);
     // The field's scale and log floor of `read`: on another scale the data is read again (true, the
     // TF refitted), else the floor is only recorded (false).
@@ -275,7 +276,7 @@ void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
     Timer t;
     whileResponsive([&] {
         volume = session::loadVolume(d.session);
-        if (refitTf) d.session.tf = session::refitTfRange(d.session.tf, volume->valueLo(), volume->valueHi());
+        if (refitTf) d.session.tf = session::tfOnNewScale(d.session.tf, *mVolume, *volume);
         p = picture::makePicture(*mCtx, volume, d, pictureOptions());
     });
     // Frames in flight may still read the old accumulation: wait before it goes.

@@ -1,12 +1,18 @@
 // What a session change means for the viewer's data (session/data_change.*): only read.scale and
 // read.logFloor are a rescale (read again, camera kept); another input, field or read option is
 // refused with a reason naming it and both values; a TF refitted to the new field range keeps its
-// shape (every node at the same relative position, checked against the hand-computed positions).
+// shape (every node at the same relative position, checked against the hand-computed positions);
+// on a new scale an unedited fitted preset is fitted again (its nodes at the logs of the linear
+// ones: the same cells), every other TF keeps its shape.
 #include "session/data_change.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
+#include "model_fixtures.h"
 #include "session/tf_editor.h"
 
 using namespace amrvk;
@@ -100,4 +106,56 @@ TEST(DataChange, TheTfKeepsItsShapeOnTheNewRange) {
     EXPECT_FLOAT_EQ(flat.opacityPositions.back(), 4.0f);
     EXPECT_THROW(session::refitTfRange(tf, 2, 1), Error);
     EXPECT_THROW(session::refitTfRange(tf, 0, INFINITY), Error);
+}
+
+TEST(DataChange, AnUneditedFittedPresetIsFittedAgainOnTheNewScale) {
+    const std::shared_ptr<const scene::Volume> linear = scene::makeVolume(test::makeThreeLevelCloud());
+    amr::Model logModel = test::makeThreeLevelCloud();
+    amr::applyFieldScale(logModel, amr::FieldScale::Log);
+    const std::shared_ptr<const scene::Volume> log = scene::makeVolume(std::move(logModel));
+    ASSERT_GT(linear->valueLo(), 0.0f) << "no floor: every linear node has a log";
+    for (const char* name : {"spiky", "foggy", "layers"}) {
+        SCOPED_TRACE(name);
+        const scene::TfChannels tf =
+            scene::TfChannels::split(scene::makePreset(name, linear->percentiles, linear->volumeHistogram));
+        const scene::TfChannels onLog = session::tfOnNewScale(tf, *linear, *log);
+        EXPECT_EQ(onLog, scene::TfChannels::split(scene::makePreset(name, log->percentiles, log->volumeHistogram)));
+        // The old rule (the shape moved linearly onto the log range) puts the nodes elsewhere.
+        EXPECT_NE(onLog, session::refitTfRange(tf, log->valueLo(), log->valueHi()));
+        // Back on the linear scale: the TF it started from.
+        EXPECT_EQ(session::tfOnNewScale(onLog, *log, *linear), tf);
+        // The editor's form of the same TF (the viewer's panels hold it so) is the same preset.
+        EXPECT_EQ(session::tfOnNewScale(session::TfEditor::editable(tf), *linear, *log), onLog);
+        if (std::string(name) == "layers") continue;  // layers sit at fractions of the range, not percentiles
+        // spiky and foggy mark the same cells: every node at the log10 of its linear value
+        // (percentiles of the logs are the logs of the percentiles).
+        ASSERT_EQ(onLog.opacityPositions.size(), tf.opacityPositions.size());
+        for (size_t i = 0; i < tf.opacityPositions.size(); ++i) {
+            EXPECT_NEAR(onLog.opacityPositions[i], std::log10(double(tf.opacityPositions[i])), 1e-5) << "node " << i;
+            EXPECT_EQ(onLog.alphas[i], tf.alphas[i]) << "node " << i;
+        }
+    }
+}
+
+TEST(DataChange, AnyOtherTfKeepsItsShapeOnTheNewScale) {
+    const std::shared_ptr<const scene::Volume> linear = scene::makeVolume(test::makeThreeLevelCloud());
+    amr::Model logModel = test::makeThreeLevelCloud();
+    amr::applyFieldScale(logModel, amr::FieldScale::Log);
+    const std::shared_ptr<const scene::Volume> log = scene::makeVolume(std::move(logModel));
+    auto keepsShape = [&](const scene::TfChannels& tf, const char* what) {
+        EXPECT_EQ(session::tfOnNewScale(tf, *linear, *log), session::refitTfRange(tf, log->valueLo(), log->valueHi()))
+            << what;
+    };
+    scene::TfChannels edited =
+        scene::TfChannels::split(scene::makePreset("spiky", linear->percentiles, linear->volumeHistogram));
+    *std::max_element(edited.alphas.begin(), edited.alphas.end()) = 0.75f;  // a peak lowered
+    keepsShape(edited, "an edited spiky");
+    keepsShape(scene::TfChannels::split(scene::makePreset("spiky", linear->valueLo(), linear->valueHi())),
+               "spiky over a given range (--tf-range)");
+    keepsShape(scene::TfChannels::split(scene::makePreset("ramp", linear->percentiles, linear->volumeHistogram)),
+               "ramp, which follows the range only");
+    scene::TfChannels mine =
+        scene::TfChannels::split(scene::makePreset("foggy", linear->percentiles, linear->volumeHistogram));
+    mine.name = "mine";
+    keepsShape(mine, "foggy's nodes under another name (a file)");
 }

@@ -11,7 +11,8 @@
 // scripted toggle reads the data again, keeps the camera, refits the TF (shape kept) and the
 // histogram to log10 of the field's range (computed here from the file), the floor floors it,
 // sessions record it, loading a session on another scale reads again, one with another NaN policy
-// is refused with the reason, and a field with no positive value is refused with its reason.
+// is refused with the reason, and a field with no positive value is refused with its reason; an
+// unedited fitted spiky is fitted again on each scale (its peaks at the log's percentiles).
 // The window tests drive the viewer with xdotool and wait only on the state it reports
 // (--state-file, tests/viewer_drive.sh), never a fixed pause: they pass on a loaded machine.
 #include <gtest/gtest.h>
@@ -29,6 +30,7 @@
 #include "picture/picture.h"
 #include "render/renderer.h"
 #include "session/cut_handles.h"
+#include "session/data_change.h"
 #include "session/session.h"
 #include "test_data.h"
 
@@ -668,4 +670,45 @@ TEST_F(ViewerGpu, LogScaleReadsAgainKeepsTheCameraAndRefitsTheTf) {
     EXPECT_NE(why.find("nolog.txt:1: scale:"), std::string::npos) << why;
     EXPECT_NE(why.find("no positive value"), std::string::npos) << why;
     EXPECT_FALSE(fs::exists(dir / "never.json"));
+}
+
+TEST_F(ViewerGpu, LogScaleFitsAnUneditedPresetAgain) {
+    const fs::path dir = test::scratchDir() / "viewer-log-preset";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto at = [&](const char* name) { return (dir / name).string(); };
+    test::writeAll(dir / "script.txt",
+                   "1 save-session " + at("linear.json") + "\n"
+                   "2 scale log\n"
+                   "4 save-session " + at("log.json") + "\n"
+                   "5 scale linear\n"
+                   "7 save-session " + at("back.json") + "\n");
+    const int rc = run(amrvkBinary() + " view " + sample() +
+                           " --size 32x24 --scale linear --tf spiky --grid 16 --mode ae --backend sw --headless"
+                           " --frames 9 --script " + at("script.txt") + " --validation",
+                       dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    // spiky fitted to the field on each scale, independently of the viewer: the cells read here.
+    auto fitted = [](amr::FieldScale scale) {
+        amr::ReadOptions read;
+        read.scale = scale;
+        const std::shared_ptr<const scene::Volume> v = scene::makeVolume(amr::readModel(sample(), read));
+        return scene::TfChannels::split(scene::makePreset("spiky", v->percentiles, v->volumeHistogram));
+    };
+    auto expectTf = [](const scene::TfChannels& got, const scene::TfChannels& want, const char* what) {
+        ASSERT_EQ(got.opacityPositions.size(), want.opacityPositions.size()) << what;
+        const double span = want.opacityPositions.back() - want.opacityPositions.front();
+        for (size_t i = 0; i < want.opacityPositions.size(); ++i) {
+            EXPECT_NEAR(got.opacityPositions[i], want.opacityPositions[i], 1e-6 * span) << what << ", node " << i;
+            EXPECT_FLOAT_EQ(got.alphas[i], want.alphas[i]) << what << ", node " << i;
+        }
+    };
+    const scene::TfChannels linear = fitted(amr::FieldScale::Linear), log = fitted(amr::FieldScale::Log);
+    expectTf(session::loadSession(dir / "linear.json").tf, linear, "linear");
+    // The peaks sit at the log's percentiles (the same cells), not at the linear shape moved onto the log range.
+    expectTf(session::loadSession(dir / "log.json").tf, log, "log");
+    const scene::TfChannels moved = session::refitTfRange(linear, log.opacityPositions.front(), log.opacityPositions.back());
+    EXPECT_GT(std::abs(moved.opacityPositions[2] - log.opacityPositions[2]), 0.01 * (log.opacityPositions.back() - log.opacityPositions.front()))
+        << "the test has no power: moving the shape would put the first apex where fitting does";
+    expectTf(session::loadSession(dir / "back.json").tf, linear, "back on the linear scale");
 }
