@@ -129,4 +129,70 @@ Percentiles percentilesOf(std::span<const float> values) {
     return s.result();
 }
 
+namespace {
+
+// Part p's cumulative share at x (linear between its percentiles), from the right: every
+// percentile at or below x counts, so a run of equal ones is a jump at their value.
+double shareAtOrBelow(const Percentiles& p, double x) {
+    if (x < p.values[0]) return 0.0;
+    if (x >= p.values[100]) return 1.0;
+    // The last k with P_k <= x (k < 100 here, and P_k < P_k+1).
+    const auto it = std::upper_bound(p.values.begin(), p.values.end(), x, [](double v, float e) { return v < e; });
+    const size_t k = size_t(it - p.values.begin()) - 1;
+    const double a = p.values[k], b = p.values[k + 1];
+    return (double(k) + (x - a) / (b - a)) / 100.0;
+}
+
+// The same from the left (the limit as x is approached from below).
+double shareBelow(const Percentiles& p, double x) {
+    if (x <= p.values[0]) return 0.0;
+    if (x > p.values[100]) return 1.0;
+    // The last k with P_k < x (k < 100 here, and P_k+1 >= x).
+    const auto it = std::lower_bound(p.values.begin(), p.values.end(), x, [](float e, double v) { return e < v; });
+    const size_t k = size_t(it - p.values.begin()) - 1;
+    const double a = p.values[k], b = p.values[k + 1];
+    return (double(k) + (x - a) / (b - a)) / 100.0;
+}
+
+}  // namespace
+
+Percentiles pooledPercentiles(std::span<const Percentiles> parts) {
+    std::vector<Percentiles> used;
+    for (const Percentiles& p : parts)
+        if (p.count > 0) used.push_back(p);
+    if (used.size() <= 1) return used.empty() ? Percentiles{} : used.front();
+    Percentiles out;
+    for (const Percentiles& p : used) out.count += p.count;
+    auto share = [&](double x, bool below) {
+        double s = 0;
+        for (const Percentiles& p : used) s += double(p.count) * (below ? shareBelow(p, x) : shareAtOrBelow(p, x));
+        return s / double(out.count);
+    };
+    // Between two neighbouring values of any part's percentiles every part's share is linear.
+    std::vector<double> knots;
+    for (const Percentiles& p : used) knots.insert(knots.end(), p.values.begin(), p.values.end());
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+    std::vector<double> at(knots.size());  // the pooled share at or below each knot
+    for (size_t i = 0; i < knots.size(); ++i) at[i] = share(knots[i], false);
+    for (int k = 0; k <= 100; ++k) {
+        const double want = k / 100.0;
+        // The first knot whose share reaches k/100 (the last knot's share is 1).
+        const size_t m = size_t(std::lower_bound(at.begin(), at.end() - 1, want - 1e-12) - at.begin());
+        double x = knots[m];
+        if (m > 0 && k > 0) {
+            // Reached inside (knots[m-1], knots[m]) where the share is linear, or at knots[m] by a jump.
+            const double lo = at[m - 1], hiLeft = share(knots[m], true);
+            if (hiLeft >= want && hiLeft > lo)
+                x = knots[m - 1] + (want - lo) / (hiLeft - lo) * (knots[m] - knots[m - 1]);
+        }
+        out.values[size_t(k)] = float(x);
+    }
+    // Exact ends, and non-descending after the rounding to float.
+    out.values[0] = float(knots.front());
+    out.values[100] = float(knots.back());
+    for (size_t k = 1; k <= 100; ++k) out.values[k] = std::max(out.values[k], out.values[k - 1]);
+    return out;
+}
+
 }  // namespace amrvk::amr

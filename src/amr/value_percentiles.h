@@ -67,4 +67,14 @@ private:
 // One process: the selection over all of `values`.
 Percentiles percentilesOf(std::span<const float> values);
 
+// The percentiles of several data sets' values together (the outputs of a time series) from each
+// one's percentiles, without their values: each part's distribution is taken as linear between its
+// percentiles (its cumulative share rising by 1/100 from P_k to P_k+1; a jump where they are
+// equal), the parts are weighted by their counts, and P_k is the smallest value where the sum
+// reaches k/100. P0 and P100 are exact (the smallest and the largest value); in between, the
+// share of all values at or below P_k is within 1/100 (one percentile) of k/100 plus one value
+// per part, as each part's true share and its linear stand-in stay within the same percentile
+// bracket. One part is returned as it is; parts without values are skipped; none: count 0.
+Percentiles pooledPercentiles(std::span<const Percentiles> parts);
+
 }  // namespace amrvk::amr

@@ -1,12 +1,15 @@
 // amr::Percentiles (amr/value_percentiles.h): exact percentiles by cell count against known
 // distributions (integers, the exponential's order statistics and quantile function), against a
 // sort on values that stress the bit selection (negatives, both zeros, denormals, infinities,
-// duplicates, NaN); parts whose counts are summed (data-parallel MPI) give the whole's; the
-// volume's are of its field, also under --scale log.
+// duplicates, NaN); parts whose counts are summed (data-parallel MPI) give the whole's; pooled
+// from the parts' percentiles alone (a time series) they are within one percentile of the whole's
+// by rank, which a mean of the parts' percentiles is not; the volume's are of its field, also
+// under --scale log.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -133,6 +136,59 @@ TEST(ValuePercentiles, PartsWithSummedCountsGiveTheWhole) {
     expectSameBits(s.result(), bySorting(all));
     // One part's counts alone are another distribution's: not the whole's.
     EXPECT_NE(amr::percentilesOf(parts[2]), amr::percentilesOf(all));
+}
+
+TEST(ValuePercentiles, PooledFromThePartsPercentilesAreWithinOnePercentileOfTheWhole) {
+    // Outputs of a series: unlike distributions and sizes, one with a plateau (40% zeros), one
+    // empty; against the share of all the values at or below each pooled percentile, by counting.
+    std::mt19937 rng(11);
+    std::vector<std::vector<float>> outputs(5);
+    for (int i = 0; i < 20000; ++i) outputs[0].push_back(std::exponential_distribution<float>(1.0f)(rng));
+    for (int i = 0; i < 5000; ++i) outputs[1].push_back(std::normal_distribution<float>(50.0f, 5.0f)(rng));
+    for (int i = 0; i < 50000; ++i) outputs[2].push_back(std::lognormal_distribution<float>(1.0f, 2.0f)(rng));
+    for (int i = 0; i < 10000; ++i)
+        outputs[3].push_back(i < 4000 ? 0.0f : std::uniform_real_distribution<float>(-3.0f, 80.0f)(rng));
+    std::vector<amr::Percentiles> parts;
+    std::vector<float> all;
+    for (const std::vector<float>& o : outputs) {
+        parts.push_back(amr::percentilesOf(o));
+        all.insert(all.end(), o.begin(), o.end());
+    }
+    std::sort(all.begin(), all.end());
+    const double n = double(all.size());
+    // How far k/100 lies outside [share below v, share at or below v], in shares.
+    auto rankError = [&](float v, int k) {
+        const double below = double(std::lower_bound(all.begin(), all.end(), v) - all.begin()) / n;
+        const double atOrBelow = double(std::upper_bound(all.begin(), all.end(), v) - all.begin()) / n;
+        return std::max({0.0, below - k / 100.0, k / 100.0 - atOrBelow});
+    };
+    const amr::Percentiles pooled = amr::pooledPercentiles(parts);
+    EXPECT_EQ(pooled.count, all.size());
+    EXPECT_EQ(pooled.lo(), all.front());
+    EXPECT_EQ(pooled.hi(), all.back());
+    const double bound = 0.01 + double(parts.size()) / n;
+    double worst = 0;
+    for (int k = 0; k <= 100; ++k) {
+        if (k > 0) {
+            EXPECT_GE(pooled[k], pooled[k - 1]);
+        }
+        worst = std::max(worst, rankError(pooled[k], k));
+        EXPECT_LE(rankError(pooled[k], k), bound) << "P" << k << " = " << pooled[k];
+    }
+    std::printf("pooled percentiles: largest rank error %.4f (bound %.4f)\n", worst, bound);
+    // Power: the mean of the parts' percentiles, weighted by count, is far from the whole's.
+    double meanWorst = 0;
+    for (int k = 0; k <= 100; ++k) {
+        double v = 0;
+        for (const amr::Percentiles& p : parts) v += double(p.count) * p[k];
+        meanWorst = std::max(meanWorst, rankError(float(v / n), k));
+    }
+    EXPECT_GT(meanWorst, 5 * bound);
+    // One part is itself; no part, no values.
+    EXPECT_EQ(amr::pooledPercentiles(std::span(parts).subspan(2, 1)), parts[2]);
+    EXPECT_EQ(amr::pooledPercentiles(std::span(parts).subspan(4, 1)).count, 0u);
+    const std::vector<amr::Percentiles> withEmpty = {parts[4], parts[2], parts[4]};
+    EXPECT_EQ(amr::pooledPercentiles(withEmpty), parts[2]) << "the parts without values are skipped";
 }
 
 TEST(ValuePercentiles, CountsOfAnotherLengthAreRefused) {
