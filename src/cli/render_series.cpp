@@ -102,8 +102,9 @@ std::string recipeOf(const session::PictureDescription& base, const std::vector<
 // series' read options; `field` (empty: each output's default, then the first's for the rest) is
 // set to the field read.
 std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
-                                   std::string& field) {
+                                   std::string& field, amr::Percentiles& pooled) {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    std::vector<amr::Percentiles> parts;
     ProgressBar bar("series range", "outputs");
     for (size_t i = 0; i < inputs.size(); ++i) {
         amr::ReadOptions ro = read;
@@ -114,9 +115,11 @@ std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const
         const amr::FieldStats st = amr::computeFieldStats(model, f);
         lo = std::min(lo, st.minValue);
         hi = std::max(hi, st.maxValue);
+        parts.push_back(amr::percentilesOf(f.values));
         bar.update(i + 1, inputs.size(), inputs[i]);
     }
     bar.finish();
+    pooled = amr::pooledPercentiles(parts);
     return {lo, hi};
 }
 
@@ -145,6 +148,7 @@ struct Series {
     // What is rendered now (renderFrames).
     std::vector<uint32_t> todo;      // the frames not yet written, in order
     std::map<uint32_t, Json> stats;  // of the frames rendered now
+    std::optional<scene::TfChannels> tf;  // the TF of the frames rendered now (one for the series)
     std::string deviceName;          // empty: nothing rendered
 };
 
@@ -277,7 +281,9 @@ void resolveRange(Series& s) {
     s.rangeOfFirst = s.rangeFrom == RangeFrom::First || (s.rangeFrom == RangeFrom::Union && s.inputs.size() == 1);
     if (!s.resolved && s.rangeFrom == RangeFrom::Union && !s.rangeOfFirst) {
         std::string field = s.base.session.field;
-        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field);
+        amr::Percentiles pooled;
+        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field, pooled);
+        s.manifest.tfPercentiles = pooled;
         s.base.session.field = field;
     }
     if (!s.resolved && s.rangeFrom == RangeFrom::Given) s.manifest.tfRange = s.base.tfRange;
@@ -302,11 +308,21 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
     // the dense sampler rasterises them.
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(
         d.session, {.releaseCells = d.session.structure.sampler != scene::SamplerKind::Dense});
-    if (!s.resolved && s.rangeOfFirst) s.manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
-    // Several outputs: one TF over the series' range (a given --tf-range wins over it in
-    // resolvePicture), presets in their range-fixed shape. One output (a turntable): fitted to
-    // its data like a single picture, so a resumed run gets the same TF.
-    if (s.inputs.size() > 1) d.dataRange = s.manifest.tfRange;
+    if (!s.resolved && s.rangeOfFirst) {
+        s.manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
+        s.manifest.tfPercentiles = volume->percentiles;
+    }
+    // Several outputs: one TF for the series (a given --tf-range wins over it in resolvePicture):
+    // spiky and foggy fitted to the series' percentiles (the first output's, or all outputs'
+    // pooled), the other presets in their range-fixed shape over its range; a manifest of an older
+    // amrvk has the range only, and its frames had every preset range-fixed. One output (a
+    // turntable): fitted to its data like a single picture, so a resumed run gets the same TF.
+    if (s.inputs.size() > 1) {
+        if (s.manifest.tfPercentiles && (s.rangeFrom == RangeFrom::First || s.rangeFrom == RangeFrom::Union))
+            d.dataPercentiles = s.manifest.tfPercentiles;
+        else
+            d.dataRange = s.manifest.tfRange;
+    }
     // No frame is a file an output was read from; the outputs are fixed, so only new reads.
     const std::vector<NamedPath> filesRead = inputFilesRead();
     checkOutputs(s.outputs, {filesRead.begin() + std::ptrdiff_t(readsChecked), filesRead.end()});
@@ -314,6 +330,7 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
     picture::Picture picture = picture::makePicture(ctx, volume, d, {.shaders = shaders, .note = note});
     if (s.legendFont)  // before the render
         session::checkLegendFits(picture.session(), picture.volume->field().units, *s.legendFont);
+    s.tf = picture.described.tf;
     if (!s.resolved) {  // the first frame rendered is frame 0 (nothing is done yet)
         s.manifest.field = picture.described.field;
         s.manifest.camera = picture.renderer->settings().camera;
@@ -421,6 +438,10 @@ void writeSeriesJson(const std::string& file, const Series& s, const std::string
     j["tfRange"] =
         s.manifest.tfRange ? Json::array({s.manifest.tfRange->first, s.manifest.tfRange->second}) : Json(nullptr);
     j["rangeSource"] = rangeFromName(s.rangeFrom);
+    // The percentiles spiky and foggy were fitted to, and the TF itself (a ParaView preset, as
+    // --tf FILE takes it), when frames were rendered now.
+    j["tfPercentiles"] = s.manifest.tfPercentiles ? Json(s.manifest.tfPercentiles->values) : Json(nullptr);
+    j["transferFunction"] = s.tf ? Json::parse(scene::paraViewPresetJson(*s.tf)).at(0) : Json(nullptr);
     j["orbitDegrees"] = s.orbit;
     j["orbitCentre"] =
         s.resolved ? Json::array({s.manifest.centre.x, s.manifest.centre.y, s.manifest.centre.z}) : Json(nullptr);

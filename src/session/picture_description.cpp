@@ -23,8 +23,9 @@ std::shared_ptr<const scene::Volume> loadVolume(const Session& s, const scene::V
 }
 
 namespace {
-// What a fitted preset was laid over, one line.
-std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p, const scene::TransferFunction& tf) {
+// What a fitted preset was laid over, one line (`series`: a series' pooled or first percentiles).
+std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p, const scene::TransferFunction& tf,
+                             bool series) {
     auto formatNumber = [](float v) {
         char text[32];
         std::snprintf(text, sizeof text, "%.6g", double(v));
@@ -32,9 +33,10 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
     };
     if (!(p.lo() < p.hi())) return strCat("tf ", name, ": the field has one value (", formatNumber(p.lo()), ")");
     if (name == "spiky")
-        return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values (",
+        return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the ", series ? "series' " : "", "cell values (",
                       formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
-    return strCat("tf foggy: alpha 0 up to the median cell value (", formatNumber(p[50]), "), ",
+    return strCat("tf foggy: alpha 0 up to the median ", series ? "of the series' cell values" : "cell value", " (",
+                  formatNumber(p[50]), "), ",
                   formatNumber(tf.maxAlpha(p.lo(), p.hi())), " at the maximum (", formatNumber(p.hi()), ")");
 }
 }  // namespace
@@ -44,21 +46,26 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
     s.field = v.field().name;
     if (s.read.scale == amr::FieldScale::Auto) s.read.scale = amr::scaleOf(v.model);  // as the field decided
     if (d.tfSource || d.tfRange) {
-        const std::pair<float, float> range = d.tfRange     ? *d.tfRange
-                                              : d.dataRange ? *d.dataRange
-                                                            : std::make_pair(v.valueLo(), v.valueHi());
+        // A series' distribution stands for the volume's own; layers has no histogram of it.
+        const amr::Percentiles& data = d.dataPercentiles ? *d.dataPercentiles : v.percentiles;
+        const amr::VolumeHistogram noHistogram;
+        const amr::VolumeHistogram& volumes = d.dataPercentiles ? noHistogram : v.volumeHistogram;
+        const std::pair<float, float> range = d.tfRange           ? *d.tfRange
+                                              : d.dataRange       ? *d.dataRange
+                                              : d.dataPercentiles ? std::make_pair(data.lo(), data.hi())
+                                                                  : std::make_pair(v.valueLo(), v.valueHi());
         const float lo = range.first, hi = range.second;
         AMRVK_CHECK(!d.tfRange || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         // No range given: presets follow the data's distribution; a given range fixes them.
         const bool fitted = !d.tfRange && !d.dataRange;
         scene::TransferFunction tf =
             !d.tfSource ? s.tf.merged()
-            : fitted    ? scene::loadTransferFunction(d.tfSource->name, v.percentiles, v.volumeHistogram, d.tfSource->preset)
+            : fitted    ? scene::loadTransferFunction(d.tfSource->name, data, volumes, d.tfSource->preset)
                         : scene::loadTransferFunction(d.tfSource->name, lo, hi, d.tfSource->preset);
         if (d.tfRange) tf = tf.rescaled(lo, hi);
         // spiky and foggy say where they were laid; the default (layers) adds no line to every picture.
         if (fitted && d.tfSource && scene::presetFollowsData(d.tfSource->name) && d.tfSource->name != "layers" && notes)
-            notes->push_back(fittedPresetNote(d.tfSource->name, v.percentiles, tf));
+            notes->push_back(fittedPresetNote(d.tfSource->name, data, tf, d.dataPercentiles.has_value()));
         s.tf = scene::TfChannels::split(tf);
     }
     if (d.fitCamera)  // the whole data set, also where v is one MPI rank's part of it

@@ -42,6 +42,12 @@ struct PictureDescription {
     // own distribution (tfRange still wins): one TF for every output of a time series of several
     // outputs (render --series-range), whose percentiles differ from output to output.
     std::optional<std::pair<float, float>> dataRange;
+    // The distribution presets are fitted to instead of the volume's own (tfRange and dataRange
+    // still win): a time series' cells, all of its outputs' pooled (amr::pooledPercentiles) or the
+    // first output's, so that every frame gets one TF that follows the series' values. spiky and
+    // foggy are laid over these percentiles; layers, which needs a volume histogram, and the other
+    // presets take their range-fixed shape over [P0, P100], the series' range.
+    std::optional<amr::Percentiles> dataPercentiles;
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
     // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).

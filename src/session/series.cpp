@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -234,6 +235,22 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
         for (const Json& k : j.at("done")) m.done.insert(k.get<uint32_t>());
         if (!j.at("tfRange").is_null())
             m.tfRange = std::make_pair(j["tfRange"].at(0).get<float>(), j["tfRange"].at(1).get<float>());
+        if (j.contains("tfPercentiles") && !j["tfPercentiles"].is_null()) {
+            const Json& t = j["tfPercentiles"];
+            amr::Percentiles p;
+            p.count = t.at("count").get<uint64_t>();
+            const Json& v = t.at("values");
+            AMRVK_CHECK(v.is_array() && v.size() == p.values.size() && p.count > 0, where,
+                        ": malformed frame manifest (tfPercentiles: a count above 0 and 101 values); remove it to "
+                        "render every frame");
+            for (size_t k = 0; k < p.values.size(); ++k) {
+                p.values[k] = v[k].get<float>();
+                AMRVK_CHECK(std::isfinite(p.values[k]) && (k == 0 || p.values[k] >= p.values[k - 1]), where,
+                            ": malformed frame manifest (tfPercentiles: finite and non-descending); remove it to "
+                            "render every frame");
+            }
+            m.tfPercentiles = p;
+        }
         const Json& c = j.at("camera");
         m.camera.eye = vec3(c, "eye", where);
         m.camera.target = vec3(c, "target", where);
@@ -250,6 +267,8 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
 void saveFrameManifest(const fs::path& path, const FrameManifest& m) {
     Json j = {{"amrvk", "frames"}, {"version", 1}, {"recipe", m.recipe}, {"done", m.done}};
     j["tfRange"] = m.tfRange ? Json::array({m.tfRange->first, m.tfRange->second}) : Json(nullptr);
+    j["tfPercentiles"] = m.tfPercentiles ? Json{{"count", m.tfPercentiles->count}, {"values", m.tfPercentiles->values}}
+                                         : Json(nullptr);
     j["camera"] = {{"eye", vec3(m.camera.eye)},
                    {"target", vec3(m.camera.target)},
                    {"up", vec3(m.camera.up)},

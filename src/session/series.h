@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "amr/value_percentiles.h"
 #include "scene/camera.h"
 
 namespace amrvk::session {
@@ -29,7 +30,9 @@ std::vector<std::string> expandInputs(const std::vector<std::string>& args);
 bool isInputPattern(const std::string& arg);
 
 // The TF range of a series when --tf-range does not give it: the first output's field range, or
-// the union of every output's (a pass over the outputs first, one in memory at a time).
+// the union of every output's (a pass over the outputs first, one in memory at a time). spiky and
+// foggy are fitted to the first output's percentiles, or to every output's pooled
+// (amr::pooledPercentiles, from the same pass).
 enum class SeriesRange : uint8_t { First, Union };
 SeriesRange parseSeriesRange(std::string_view name);  // "first" | "union"
 
@@ -66,6 +69,9 @@ struct FrameManifest {
     std::set<uint32_t> done;  // frames written by this recipe
     // Resolved on the first run and reused when a run resumes, so every frame shares them:
     std::optional<std::pair<float, float>> tfRange;  // the range the TF was fitted to (none: fixed TF)
+    // The percentiles spiky and foggy were fitted to (none: a manifest of an older amrvk, whose
+    // frames had the presets' range-fixed shapes over tfRange, or a TF not fitted).
+    std::optional<amr::Percentiles> tfPercentiles;
     scene::Camera camera;                            // frame 0's camera (azimuth 0)
     glm::dvec3 centre{0.0};                          // the orbit's centre (the first output's world box centre)
     std::string field;                               // the field every output shows

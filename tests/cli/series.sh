@@ -4,8 +4,9 @@
 # union TF range equal to the min/max of every output's range as `amrvk info --json` reports it;
 # a re-run that skips every frame (mtimes unchanged) and a changed command that renders anew; the
 # turntable's cameras against rotations computed here and its frame 1 against a single render
-# with that camera (tile z-test, with the power shown on the wrong frame); spiky over a series in its
-# range-fixed shape and over a turntable fitted to the output's percentiles; a session over a series;
+# with that camera (tile z-test, with the power shown on the wrong frame); spiky over a series
+# fitted to the outputs' pooled percentiles (within one percentile of numpy's over all values) or
+# the first output's, over a turntable to the output's; a session over a series;
 # the memory peak of four outputs against one; SIGINT in the middle leaving only whole frames and
 # a run that resumes; one-line errors for bad series.
 set -u
@@ -138,35 +139,61 @@ assert z0 > 4.1, ("the test cannot tell frame 0 from frame 1", z0)
 print("ok: turntable frame 1 vs single render: worst |z| %.2f (frame 0: %.1f)" % (z1, z0))
 PY
 
-# ---- spiky over a series: one TF for every output, the range-fixed shape over the union range;
-# ---- a turntable of one output: fitted to its percentiles like a single picture ----
+# ---- spiky over a series: one TF for every output, fitted to the outputs' pooled percentiles
+# ---- (union) or the first output's; a turntable of one output: fitted like a single picture ----
 sp=(--size 32x24 --spp 4 --grid 8 --mode ae --tf spiky)
 "$amrvk" render 'out_*.cells' "${sp[@]}" -o 'sp/f_%d.pfm' --json sp.json >/dev/null 2>sp.err || { echo "FAIL: spiky series: $(cat sp.err)"; fail=1; }
+check grep -q "tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the series' cell values" sp.err
+# The series' TF (its --json) given as a file to a single render of the first output: frame 0.
+"$py" -c 'import json; json.dump([json.load(open("sp.json"))["transferFunction"]], open("sp_tf.json", "w"))' || fail=1
+"$amrvk" render out_1.cells "${sp[@]/spiky/sp_tf.json}" -o sp_series_tf.pfm >/dev/null 2>&1 || fail=1
+# The old rule, for power: spiky's range-fixed shape over the union range.
 range=$("$py" -c 'import json; print(*json.load(open("sp.json"))["tfRange"])')
 "$amrvk" render out_1.cells "${sp[@]}" --tf-range $range -o sp_fixed.pfm >/dev/null 2>&1 || fail=1
-# --series-range first: every frame (frame 0 too) over the first output's range.
-"$amrvk" render 'out_*.cells' "${sp[@]}" --series-range first -o 'sp_first/f_%d.pfm' >/dev/null 2>&1 || fail=1
-first=$("$py" -c 'import json; print(*json.load(open("info_1.json"))["valueRange"])')
-"$amrvk" render out_1.cells "${sp[@]}" --tf-range $first -o sp_fixed_first.pfm >/dev/null 2>&1 || fail=1
+# --series-range first: every frame (frame 0 too) fitted to the first output, as a single render is.
+"$amrvk" render 'out_*.cells' "${sp[@]}" --series-range first -o 'sp_first/f_%d.pfm' --json sp_first.json >/dev/null 2>&1 || fail=1
 "$amrvk" render out_1.cells "${sp[@]}" -o sp_fitted.pfm >/dev/null 2>sp_fitted.err || fail=1
 "$amrvk" render out_1.cells "${sp[@]}" --frames 2 --orbit 90 -o 'sp_tt/f_%d.pfm' >/dev/null 2>sp_tt.err || fail=1
-check grep -q "tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles" sp_fitted.err
+check grep -q "tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values" sp_fitted.err
 check grep -q "tf spiky: alpha-1 peaks" sp_tt.err
 check "$py" - <<'PY'
+import json
 import numpy as np
 def pfm(path):
     with open(path, "rb") as f:
         assert f.readline().strip() == b"PF"; w, h = map(int, f.readline().split()); scale = float(f.readline())
         return np.fromfile(f, "<f4" if scale < 0 else ">f4").reshape(h, w, 3)
-series0, fixed, fitted, turn0 = pfm("sp/f_0.pfm"), pfm("sp_fixed.pfm"), pfm("sp_fitted.pfm"), pfm("sp_tt/f_0.pfm")
-first0, fixedFirst = pfm("sp_first/f_0.pfm"), pfm("sp_fixed_first.pfm")
+series0, seriesTf, fixed, fitted, turn0 = (pfm(p) for p in ("sp/f_0.pfm", "sp_series_tf.pfm", "sp_fixed.pfm",
+                                                             "sp_fitted.pfm", "sp_tt/f_0.pfm"))
+first0 = pfm("sp_first/f_0.pfm")
+j, jf = json.load(open("sp.json")), json.load(open("sp_first.json"))
+# Union: the pooled percentiles against every output's values together (log10, the auto scale here),
+# by rank: each within one percentile of its k (plus one value per output).
+values = np.concatenate([np.log10(np.fromfile("out_%d.scalars" % n, "<f4").astype(np.float64)) for n in (1, 2, 10)])
+values.sort()
+n, p = len(values), np.array(j["tfPercentiles"])
+below = np.searchsorted(values, p, "left") / n - 1e-6
+atOrBelow = np.searchsorted(values, p, "right") / n + 1e-6
+k = np.arange(101) / 100
+err = np.maximum(0, np.maximum(below - k, k - atOrBelow))
+assert err.max() <= 0.01 + 3 / n, ("pooled percentiles off by more than one percentile", err.max(), np.argmax(err))
+assert abs(p[0] - values[0]) < 1e-5 and abs(p[100] - values[-1]) < 1e-5, (p[0], p[100], values[0], values[-1])
+# The TF's alpha-1 apexes sit at the pooled P75, P90 and P97.
+rgb = j["transferFunction"]["RGBPoints"]; op = j["transferFunction"]["Points"]
+apexes = [op[i] for i in range(0, len(op), 4) if op[i + 1] == 1.0]
+assert np.allclose(apexes, p[[75, 90, 97]], rtol=0, atol=1e-6), (apexes, p[[75, 90, 97]])
+# First: the first output's own percentiles (amrvk info), so frame 0 is the single render's fitted spiky.
+info1 = json.load(open("info_1.json"))
+assert np.allclose(jf["tfPercentiles"], info1["valuePercentiles"], rtol=0, atol=0), "first: not the first output's percentiles"
 # Same seed, camera and TF: the same samples.
-assert np.abs(series0 - fixed).max() <= 1e-6, ("series frame 0 is not spiky over the union range", np.abs(series0 - fixed).max())
-assert np.abs(first0 - fixedFirst).max() <= 1e-6, ("--series-range first: frame 0 is not spiky over its range",
-                                                   np.abs(first0 - fixedFirst).max())
+assert np.abs(series0 - seriesTf).max() <= 1e-6, ("series frame 0 is not the series' TF", np.abs(series0 - seriesTf).max())
+assert np.abs(first0 - fitted).max() <= 1e-6, ("--series-range first: frame 0 is not fitted to the first output",
+                                               np.abs(first0 - fitted).max())
 assert np.abs(turn0 - fitted).max() <= 1e-6, ("turntable frame 0 is not the fitted spiky", np.abs(turn0 - fitted).max())
-assert np.abs(fixed - fitted).mean() > 1e-4, "the fitted and the range-fixed spiky render alike: the test cannot tell them"
-print("ok: spiky over a series is range-fixed, over a turntable fitted (they differ by %.4f per pixel)" % np.abs(fixed - fitted).mean())
+assert np.abs(fixed - series0).mean() > 1e-4, "the pooled and the range-fixed spiky render alike: the test cannot tell them"
+assert np.abs(fitted - series0).mean() > 1e-4, "pooled and first-output spiky render alike: the test cannot tell them"
+print("ok: spiky over a series fitted to the pooled percentiles (largest rank error %.4f), differs from range-fixed by %.4f"
+      % (err.max(), np.abs(fixed - series0).mean()))
 PY
 
 # ---- a session (the viewer's) over the series, and over its own input as a turntable ----

@@ -150,9 +150,38 @@ TEST(Series, ManifestRoundTripAndDamage) {
     EXPECT_EQ(back->camera, m.camera);
     EXPECT_EQ(back->centre, m.centre);
     EXPECT_EQ(back->field, m.field);
+    EXPECT_FALSE(back->tfPercentiles.has_value());
+    // The percentiles the presets were fitted to, bit for bit.
+    amr::Percentiles p;
+    p.count = 12345;
+    for (size_t k = 0; k < p.values.size(); ++k) p.values[k] = -1.5f + 0.1f * float(k) + 1e-7f * float(k * k);
+    m.tfPercentiles = p;
+    saveFrameManifest(dir / "m.json", m);
+    EXPECT_EQ(loadFrameManifest(dir / "m.json")->tfPercentiles, p);
     m.tfRange.reset();
+    m.tfPercentiles.reset();
     saveFrameManifest(dir / "m.json", m);
     EXPECT_FALSE(loadFrameManifest(dir / "m.json")->tfRange.has_value());
+    // Percentiles that are not 101 finite non-descending values with a count: malformed.
+    const std::string head = "{\"amrvk\": \"frames\", \"recipe\": \"r\", \"done\": [], \"tfRange\": null, "
+                             "\"camera\": {\"eye\": [0,0,1], \"target\": [0,0,0], \"up\": [0,1,0], \"fovYDegrees\": 30}, "
+                             "\"centre\": [0,0,0], \"field\": \"f\", \"tfPercentiles\": ";
+    auto values = [](int n, float step) {
+        std::string t = "[";
+        for (int k = 0; k < n; ++k) t += (k ? ", " : "") + std::to_string(step * float(k));
+        return t + "]";
+    };
+    for (const std::string& bad : {"{\"count\": 5, \"values\": " + values(100, 1) + "}",
+                                   "{\"count\": 0, \"values\": " + values(101, 1) + "}",
+                                   "{\"count\": 5, \"values\": " + values(101, -1) + "}",
+                                   std::string("{\"count\": 5}")}) {
+        std::ofstream(dir / "bad.json") << head << bad << "}";
+        EXPECT_NE(test::errorOf([&] { loadFrameManifest(dir / "bad.json"); }).find("malformed frame manifest"),
+                  std::string::npos)
+            << bad;
+    }
+    std::ofstream(dir / "good.json") << head << "{\"count\": 5, \"values\": " << values(101, 1) << "}}";
+    EXPECT_EQ(loadFrameManifest(dir / "good.json")->tfPercentiles->count, 5u);
 
     EXPECT_FALSE(loadFrameManifest(dir / "absent.json").has_value());
     std::ofstream(dir / "other.json") << "{\"amrvk\": \"session\"}";
@@ -179,4 +208,33 @@ TEST(Series, PresetsSpanTheSeriesRangeAndTfRangeWins) {
     EXPECT_EQ(span(), std::make_pair(-3.0f, 7.0f));
     d.tfRange = std::make_pair(1.0f, 2.0f);
     EXPECT_EQ(span(), std::make_pair(1.0f, 2.0f));
+}
+
+// A series' percentiles (PictureDescription::dataPercentiles) stand for the volume's own: spiky and
+// foggy are fitted to them, layers and ramp span their range; dataRange and --tf-range still win.
+TEST(Series, PresetsFollowTheSeriesPercentiles) {
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(test::makeThreeLevelCloud());
+    amr::Percentiles series = v->percentiles;  // another distribution: shifted and stretched
+    for (float& x : series.values) x = 2.0f * x + 1.0f;
+    PictureDescription d;
+    auto tfOf = [&](const char* name) {
+        d.tfSource = TfSource{.name = name};
+        std::vector<std::string> notes;
+        const scene::TfChannels tf = resolvePicture(d, *v, &notes).tf;
+        return std::make_pair(tf, notes);
+    };
+    d.dataPercentiles = series;
+    for (const char* name : {"spiky", "foggy"}) {
+        const auto [tf, notes] = tfOf(name);
+        EXPECT_EQ(tf, scene::TfChannels::split(scene::makePreset(name, series))) << name;
+        EXPECT_NE(tf, scene::TfChannels::split(scene::makePreset(name, v->percentiles, v->volumeHistogram))) << name;
+        ASSERT_EQ(notes.size(), 1u) << name;
+        EXPECT_NE(notes[0].find("series' cell value"), std::string::npos) << notes[0];
+    }
+    for (const char* name : {"layers", "ramp"})
+        EXPECT_EQ(tfOf(name).first, scene::TfChannels::split(scene::makePreset(name, series.lo(), series.hi()))) << name;
+    d.dataRange = std::make_pair(-3.0f, 7.0f);
+    EXPECT_EQ(tfOf("spiky").first, scene::TfChannels::split(scene::makePreset("spiky", -3.0f, 7.0f)));
+    d.tfRange = std::make_pair(1.0f, 2.0f);
+    EXPECT_EQ(tfOf("spiky").first.opacityPositions.front(), 1.0f);
 }
