@@ -8,7 +8,9 @@ Renderer, all on one device.
 TF range (`tf_range`): ``"first"`` (the first data set's value range, the CLI's default),
 ``"union"`` (every data set's: a pass over them first, one in memory at a time) or ``(lo, hi)``.
 `tf`: None (the layers preset), a preset or colormap name, fitted over that range; or a
-TransferFunction, used as it is (its own range is the one range).
+TransferFunction, used as it is (its own range is the one range). As the CLI fits them: over
+several data sets, spiky and foggy follow the percentiles of the first one's cells ("first") or of
+all of them pooled ("union"); a turntable's preset is fitted to its data set like one picture.
 """
 import numbers
 import os
@@ -46,19 +48,23 @@ def _volume(source, from_yt, field, log):
 
 
 def _range(tf_range, volume_of, order):
-    """The one TF range of the series: over the data sets `order` names (indices into the inputs)."""
+    """The one TF range of the series over the data sets `order` names (indices into the inputs),
+    and the percentiles of each data set it was taken from (None for a given range)."""
     if isinstance(tf_range, str):
         if tf_range not in ("first", "union"):
             raise ValueError(f"tf_range: '{tf_range}' is not 'first', 'union' or (lo, hi)")
-        ranges = [volume_of(i).value_range for i in (order[:1] if tf_range == "first" else sorted(set(order)))]
-        return min(r[0] for r in ranges), max(r[1] for r in ranges)
+        ranges, parts = [], []
+        for i in order[:1] if tf_range == "first" else sorted(set(order)):
+            ranges.append(volume_of(i).value_range)
+            parts.append(_amrvk._percentiles(volume_of(i)))
+        return min(r[0] for r in ranges), max(r[1] for r in ranges), parts
     if (not isinstance(tf_range, (tuple, list)) or len(tf_range) != 2
             or not all(isinstance(x, numbers.Real) and not isinstance(x, bool) for x in tf_range)):
         raise TypeError(f"tf_range: expected 'first', 'union' or (lo, hi), got {_shown(tf_range)}")
     lo, hi = map(float, tf_range)
     if not lo < hi:
         raise ValueError(f"tf_range: {lo:g} is not below {hi:g}")
-    return lo, hi
+    return lo, hi, None
 
 
 def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range="first", spp=None, camera=None,
@@ -102,9 +108,15 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
                 cache[i] = _volume(sources[i], from_yt, field, log)
             return cache[i]
 
-        lo, hi = _range(tf_range, volume_of, order)
+        lo, hi, parts = _range(tf_range, volume_of, order)
         if tf is None or isinstance(tf, str):
-            tf = preset(tf or "layers", lo, hi)
+            name = tf or "layers"
+            if parts is not None and len(set(order)) == 1:
+                tf = preset(name, volume_of(order[0]))  # a turntable: fitted like one picture
+            elif parts is not None and name in ("spiky", "foggy"):
+                tf = _amrvk._series_preset(name, parts)
+            else:
+                tf = preset(name, lo, hi)
         elif not isinstance(tf, _amrvk.TransferFunction):
             raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {_shown(tf)}")
         first = camera if camera is not None else _amrvk.Camera.frame(volume_of(order[0]))

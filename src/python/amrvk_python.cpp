@@ -1281,6 +1281,29 @@ void bindSeries(py::module_& m) {
             encodeMp4(pattern, count, fps, output);
         },
         py::arg("pattern"), py::arg("count"), py::arg("fps"), py::arg("output"));
+    // The TF of a series as `amrvk render` fits it: spiky and foggy over the outputs' pooled
+    // percentiles (amr::pooledPercentiles; one output: its own), no histogram for layers.
+    m.def(
+        "_percentiles",
+        [](const PyVolume& v) {
+            return py::make_tuple(v.volume->percentiles.count, std::vector<float>(v.volume->percentiles.values.begin(),
+                                                                                  v.volume->percentiles.values.end()));
+        },
+        py::arg("volume"), "(count, the 101 percentiles) of a volume's field");
+    m.def(
+        "_series_preset",
+        [](const std::string& name, const std::vector<std::pair<uint64_t, std::vector<float>>>& parts) {
+            std::vector<amr::Percentiles> ps;
+            for (const auto& [count, values] : parts) {
+                if (values.size() != 101) throw py::value_error("a part needs 101 percentiles");
+                amr::Percentiles p;
+                p.count = count;
+                std::copy(values.begin(), values.end(), p.values.begin());
+                ps.push_back(p);
+            }
+            return PyTf{scene::TfChannels::split(scene::makePreset(name, amr::pooledPercentiles(ps)))};
+        },
+        py::arg("name"), py::arg("parts"));
 }
 
 }  // namespace

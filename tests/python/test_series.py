@@ -59,6 +59,45 @@ def test_frames_movies_and_turntables(amrvk, series, tmp_path):
     assert movie.read_bytes()[4:8] == b"ftyp"
 
 
+def test_spiky_follows_the_series_percentiles(amrvk, tmp_path):
+    """spiky over several data sets: fitted to their cells' pooled percentiles ("union") or to the
+    first's ("first"), as `amrvk render` fits it; over a turntable, to its data set like one picture."""
+    rng = np.random.default_rng(3)
+    values = {}
+    for name, scale in (("a", 1.0), ("b", 4.0)):
+        cells = [(x, y, z, 0) for x in range(6) for y in range(6) for z in range(6)]
+        values[name] = (scale * rng.exponential(size=len(cells))).astype(np.float32)
+        write_cells(tmp_path / name, cells, values[name].tolist())
+    paths = [str(tmp_path / f"{n}.cells") for n in ("a", "b")]
+    vols = [amrvk.Volume(p, scale="linear") for p in paths]
+    camera = amrvk.Camera.frame(vols[0])
+    options = dict(width=24, height=16, density_scale=0.3, grid="8", seed=5)
+    union = amrvk.render_series(paths, tf="spiky", tf_range="union", spp=2, **options)
+    first = amrvk.render_series(paths, tf="spiky", spp=2, **options)
+    # The union TF's alpha-1 apexes, against numpy's percentiles of every cell of both: each within
+    # one percentile by rank (the pooling's bound, plus one value per data set).
+    tf = amrvk._amrvk._series_preset("spiky", [amrvk._amrvk._percentiles(v) for v in vols])
+    positions, colors = tf.nodes
+    apexes = positions[colors[:, 3] == 1.0]
+    every = np.sort(np.concatenate(list(values.values())))
+    for apex, k in zip(apexes, (75, 90, 97)):
+        below, at = np.searchsorted(every, apex, "left") / every.size, np.searchsorted(every, apex, "right") / every.size
+        assert below - 0.01 - 2 / every.size <= k / 100 <= at + 0.01 + 2 / every.size, (k, apex, below, at)
+    # Frame 0 is the first data set under that TF; "first" is the first data set's own fitted spiky.
+    with amrvk.Renderer(vols[0], tf, camera, quiet=True, **options) as r:
+        np.testing.assert_allclose(union[0], r.render(spp=2), atol=1e-5)
+    fitted = amrvk.TransferFunction.preset("spiky", vols[0])
+    with amrvk.Renderer(vols[0], fitted, camera, quiet=True, **options) as r:
+        own = r.render(spp=2)
+    np.testing.assert_allclose(first[0], own, atol=1e-5)
+    assert np.abs(union[0] - own).mean() > 1e-4, "the pooled and the first data set's spiky render alike"
+    # A turntable: fitted to its data set (not the range-fixed shape over its range).
+    turn = amrvk.render_series(paths[1], frames=2, orbit=90, tf="spiky", spp=2, **options)
+    with amrvk.Renderer(vols[1], amrvk.TransferFunction.preset("spiky", vols[1]), amrvk.Camera.frame(vols[1]), quiet=True,
+                        **options) as r:
+        np.testing.assert_allclose(turn[0], r.render(spp=2), atol=1e-5)
+
+
 def test_bad_series_input_is_one_line_naming_the_keyword(amrvk, series):
     cases = [
         (dict(inputs=str(series / "none_*.cells")), ValueError, "no file or directory matches the pattern"),
