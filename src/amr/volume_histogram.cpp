@@ -55,4 +55,51 @@ VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float>
     return h;
 }
 
+VolumeHistogram pooledVolumeHistograms(std::span<const VolumeHistogram> parts) {
+    std::vector<const VolumeHistogram*> used;
+    for (const VolumeHistogram& p : parts)
+        if (!p.empty() && p.boundsVolume > 0) used.push_back(&p);
+    if (used.size() <= 1) return used.empty() ? VolumeHistogram{} : *used.front();
+    VolumeHistogram out;
+    out.lo = used.front()->lo;
+    out.hi = used.front()->hi;
+    for (const VolumeHistogram* p : used) {
+        out.lo = std::min(out.lo, p->lo);
+        out.hi = std::max(out.hi, p->hi);
+    }
+    out.boundsVolume = used.front()->boundsVolume;
+    out.volume.assign(VolumeHistogram::kBins, 0.0);
+    const int kBins = VolumeHistogram::kBins;
+    const double width = (double(out.hi) - out.lo) / kBins;  // of the union's bins
+    for (const VolumeHistogram* p : used) {
+        const double scale = out.boundsVolume / (p->boundsVolume * double(used.size()));
+        const double from = (double(p->hi) - p->lo) / kBins;  // of the part's bins
+        for (int b = 0; b < kBins; ++b) {
+            const double v = p->volume[size_t(b)] * scale;
+            if (v == 0) continue;
+            const double a0 = p->lo + b * from, a1 = a0 + from;
+            if (!(from > 0) || !(width > 0)) {  // one value: its bin
+                out.volume[size_t(out.binOf(float(a0)))] += v;
+                continue;
+            }
+            // The union's bins [a0, a1) overlaps, each getting its share of the overlap (shares of
+            // the overlaps found, so the part's volume is kept whatever the rounding at the ends).
+            const int first = std::clamp(int(std::floor((a0 - out.lo) / width)), 0, kBins - 1);
+            const int last = std::clamp(int(std::ceil((a1 - out.lo) / width)) - 1, first, kBins - 1);
+            auto overlap = [&](int t) {
+                const double t0 = out.lo + t * width, t1 = t0 + width;
+                return std::max(0.0, std::min(a1, t1) - std::max(a0, t0));
+            };
+            double total = 0;
+            for (int t = first; t <= last; ++t) total += overlap(t);
+            if (!(total > 0)) {
+                out.volume[size_t(out.binOf(float(a0)))] += v;
+                continue;
+            }
+            for (int t = first; t <= last; ++t) out.volume[size_t(t)] += v * overlap(t) / total;
+        }
+    }
+    return out;
+}
+
 }  // namespace amrvk::amr

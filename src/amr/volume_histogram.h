@@ -38,4 +38,13 @@ struct VolumeHistogram {
 VolumeHistogram volumeHistogramOf(const CellArray& cells, std::span<const float> values, float lo, float hi,
                                   int minLevel, double boundsVoxels);
 
+// The typical histogram of several data sets (the outputs of a time series, one in memory at a
+// time): over the union of their ranges, each bin the mean over the parts of the share of its
+// bounds that the part's volume there fills (a part's bin spread evenly over the bins of the union
+// range it overlaps; a part of one value puts it all in that value's bin), times the first part's
+// boundsVolume (the units of the series' first frame). Each output counts once, so the layers
+// preset over it gives a typical frame of the series the optical depth it gives one data set.
+// Parts not made (empty) are skipped; one part is returned as it is; none: not made.
+VolumeHistogram pooledVolumeHistograms(std::span<const VolumeHistogram> parts);
+
 }  // namespace amrvk::amr

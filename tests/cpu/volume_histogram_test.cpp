@@ -1,6 +1,7 @@
 // amr::VolumeHistogram (amr/volume_histogram.h) against volumes counted by hand (cells of three
 // levels, a finest level above 0, values at the range's ends and NaN), parts that sum to the
-// whole (data-parallel MPI), and the layers preset it sizes (scene/transfer_function.h): a layer
+// whole (data-parallel MPI), the typical histogram of a series (shares averaged over outputs on the
+// union range, by hand), and the layers preset it sizes (scene/transfer_function.h): a layer
 // gets alpha 0.15 / (share x chord), capped at 1, so a slab of one layer's apex value across the
 // data has optical depth 0.15 along a chord.
 #include <gtest/gtest.h>
@@ -79,6 +80,40 @@ TEST(VolumeHistogram, PartsSumToTheWhole) {
     const auto b = amr::volumeHistogramOf(second, std::span(values).subspan(half), lo, hi, 0, 1e6);
     for (size_t k = 0; k < a.volume.size(); ++k) a.volume[k] += b.volume[k];
     EXPECT_EQ(a, whole);  // volumes are integers in finest cells: the sums are exact
+}
+
+TEST(VolumeHistogram, PooledOverASeriesAveragesEachOutputsShares) {
+    // Output A: half of its box at value 1, half at 3 (range [1, 3]); output B: the same cells at
+    // 3 and 5 (range [3, 5]) in a box twice as large, so a quarter of it each. Each output counts
+    // once: on [1, 5] the shares are (1/2 + 0)/2 at 1, (1/2 + 1/4)/2 at 3 and (0 + 1/4)/2 at 5, in
+    // A's units.
+    const amr::Model m = twoLevelBox();
+    const amr::VolumeHistogram a = amr::volumeHistogramOf(m.cells, m.fields[0].values, 1.0f, 3.0f, 1, 512.0);
+    std::vector<float> shifted = m.fields[0].values;
+    for (float& v : shifted) v += 2.0f;
+    amr::VolumeHistogram b = amr::volumeHistogramOf(m.cells, shifted, 3.0f, 5.0f, 1, 512.0);
+    b.boundsVolume *= 2;  // B's cells fill half of its bounds
+    const std::vector<amr::VolumeHistogram> parts = {amr::VolumeHistogram{}, a, b};
+    const amr::VolumeHistogram pooled = amr::pooledVolumeHistograms(parts);
+    EXPECT_EQ(pooled.lo, 1.0f);
+    EXPECT_EQ(pooled.hi, 5.0f);
+    EXPECT_EQ(pooled.boundsVolume, a.boundsVolume) << "the first output's units";
+    auto shareIn = [&](double from, double to) {
+        double v = 0;
+        for (int k = 0; k < amr::VolumeHistogram::kBins; ++k)
+            if (pooled.binCentre(k) >= from && pooled.binCentre(k) < to) v += pooled.volume[size_t(k)];
+        return v / pooled.boundsVolume;
+    };
+    EXPECT_NEAR(shareIn(1, 2), 0.25, 1e-12);
+    EXPECT_NEAR(shareIn(2, 4), 0.5 * 0.5 + 0.5 * 0.25, 1e-12) << "A's upper half and B's lower quarter";
+    EXPECT_NEAR(shareIn(4, 5.01), 0.5 * 0.25, 1e-12);
+    // The union's bins are twice as wide as A's and B's: every part's volume lands, none lost.
+    EXPECT_NEAR(shareIn(0, 6), 0.5 + 0.25, 1e-12);
+    // One output (the empty ones skipped) is itself; the same output twice, itself again.
+    EXPECT_EQ(amr::pooledVolumeHistograms(std::span(parts).first(2)), a);
+    const amr::VolumeHistogram twice = amr::pooledVolumeHistograms(std::vector<amr::VolumeHistogram>{a, a});
+    for (size_t k = 0; k < a.volume.size(); ++k) EXPECT_NEAR(twice.volume[k], a.volume[k], 1e-12) << k;
+    EXPECT_TRUE(amr::pooledVolumeHistograms(std::span(parts).first(1)).empty());
 }
 
 TEST(VolumeHistogram, LayersGiveEachLayerItsOpticalDepthAlongAChord) {
