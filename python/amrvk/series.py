@@ -9,8 +9,9 @@ TF range (`tf_range`): ``"first"`` (the first data set's value range, the CLI's 
 ``"union"`` (every data set's: a pass over them first, one in memory at a time) or ``(lo, hi)``.
 `tf`: None (the layers preset), a preset or colormap name, fitted over that range; or a
 TransferFunction, used as it is (its own range is the one range). As the CLI fits them: over
-several data sets, spiky and foggy follow the percentiles of the first one's cells ("first") or of
-all of them pooled ("union"); a turntable's preset is fitted to its data set like one picture.
+several data sets, spiky, foggy and layers follow the percentiles and volume histogram of the
+first one ("first") or of all of them pooled ("union"); a turntable's preset is fitted to its data
+set like one picture.
 """
 import numbers
 import os
@@ -56,7 +57,7 @@ def _range(tf_range, volume_of, order):
         ranges, parts = [], []
         for i in order[:1] if tf_range == "first" else sorted(set(order)):
             ranges.append(volume_of(i).value_range)
-            parts.append(_amrvk._percentiles(volume_of(i)))
+            parts.append(_amrvk._distribution(volume_of(i)))
         return min(r[0] for r in ranges), max(r[1] for r in ranges), parts
     if (not isinstance(tf_range, (tuple, list)) or len(tf_range) != 2
             or not all(isinstance(x, numbers.Real) and not isinstance(x, bool) for x in tf_range)):
@@ -113,7 +114,7 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
             name = tf or "layers"
             if parts is not None and len(set(order)) == 1:
                 tf = preset(name, volume_of(order[0]))  # a turntable: fitted like one picture
-            elif parts is not None and name in ("spiky", "foggy"):
+            elif parts is not None and name in ("spiky", "foggy", "layers"):
                 tf = _amrvk._series_preset(name, parts)
             else:
                 tf = preset(name, lo, hi)

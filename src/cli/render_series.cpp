@@ -102,9 +102,11 @@ std::string recipeOf(const session::PictureDescription& base, const std::vector<
 // series' read options; `field` (empty: each output's default, then the first's for the rest) is
 // set to the field read.
 std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
-                                   std::string& field, amr::Percentiles& pooled) {
+                                   std::string& field, amr::Percentiles& pooled,
+                                   amr::VolumeHistogram& pooledVolumes) {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     std::vector<amr::Percentiles> parts;
+    std::vector<amr::VolumeHistogram> volumes;
     ProgressBar bar("series range", "outputs");
     for (size_t i = 0; i < inputs.size(); ++i) {
         amr::ReadOptions ro = read;
@@ -116,10 +118,16 @@ std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const
         lo = std::min(lo, st.minValue);
         hi = std::max(hi, st.maxValue);
         parts.push_back(amr::percentilesOf(f.values));
+        if (parts.back().count > 0) {  // as scene::makeVolume makes it
+            const amr::ModelSummary summary = amr::summarize(model);
+            volumes.push_back(amr::volumeHistogramOf(model.cells, f.values, st.minValue, st.maxValue,
+                                                     summary.minLevel, summary.bounds.volume()));
+        }
         bar.update(i + 1, inputs.size(), inputs[i]);
     }
     bar.finish();
     pooled = amr::pooledPercentiles(parts);
+    pooledVolumes = amr::pooledVolumeHistograms(volumes);
     return {lo, hi};
 }
 
@@ -282,8 +290,10 @@ void resolveRange(Series& s) {
     if (!s.resolved && s.rangeFrom == RangeFrom::Union && !s.rangeOfFirst) {
         std::string field = s.base.session.field;
         amr::Percentiles pooled;
-        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field, pooled);
+        amr::VolumeHistogram volumes;
+        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field, pooled, volumes);
         s.manifest.tfPercentiles = pooled;
+        if (!volumes.empty()) s.manifest.tfHistogram = volumes;
         s.base.session.field = field;
     }
     if (!s.resolved && s.rangeFrom == RangeFrom::Given) s.manifest.tfRange = s.base.tfRange;
@@ -311,17 +321,21 @@ picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLib
     if (!s.resolved && s.rangeOfFirst) {
         s.manifest.tfRange = std::make_pair(volume->valueLo(), volume->valueHi());
         s.manifest.tfPercentiles = volume->percentiles;
+        if (!volume->volumeHistogram.empty()) s.manifest.tfHistogram = volume->volumeHistogram;
     }
     // Several outputs: one TF for the series (a given --tf-range wins over it in resolvePicture):
-    // spiky and foggy fitted to the series' percentiles (the first output's, or all outputs'
-    // pooled), the other presets in their range-fixed shape over its range; a manifest of an older
-    // amrvk has the range only, and its frames had every preset range-fixed. One output (a
-    // turntable): fitted to its data like a single picture, so a resumed run gets the same TF.
+    // spiky and foggy fitted to the series' percentiles and layers to its volume histogram (the
+    // first output's, or all outputs' pooled), the other presets in their range-fixed shape over
+    // its range; a manifest of an older amrvk has the range only, and its frames had every preset
+    // range-fixed. One output (a turntable): fitted to its data like a single picture, so a
+    // resumed run gets the same TF.
     if (s.inputs.size() > 1) {
-        if (s.manifest.tfPercentiles && (s.rangeFrom == RangeFrom::First || s.rangeFrom == RangeFrom::Union))
+        if (s.manifest.tfPercentiles && (s.rangeFrom == RangeFrom::First || s.rangeFrom == RangeFrom::Union)) {
             d.dataPercentiles = s.manifest.tfPercentiles;
-        else
+            d.dataHistogram = s.manifest.tfHistogram;
+        } else {
             d.dataRange = s.manifest.tfRange;
+        }
     }
     // No frame is a file an output was read from; the outputs are fixed, so only new reads.
     const std::vector<NamedPath> filesRead = inputFilesRead();

@@ -1282,26 +1282,27 @@ void bindSeries(py::module_& m) {
         },
         py::arg("pattern"), py::arg("count"), py::arg("fps"), py::arg("output"));
     // The TF of a series as `amrvk render` fits it: spiky and foggy over the outputs' pooled
-    // percentiles (amr::pooledPercentiles; one output: its own), no histogram for layers.
+    // percentiles (amr::pooledPercentiles), layers over their pooled volume histograms
+    // (amr::pooledVolumeHistograms); one output: its own. A part is what _distribution returns.
+    struct Distribution {
+        amr::Percentiles percentiles;
+        amr::VolumeHistogram histogram;
+    };
+    py::class_<Distribution>(m, "_Distribution");
     m.def(
-        "_percentiles",
-        [](const PyVolume& v) {
-            return py::make_tuple(v.volume->percentiles.count, std::vector<float>(v.volume->percentiles.values.begin(),
-                                                                                  v.volume->percentiles.values.end()));
-        },
-        py::arg("volume"), "(count, the 101 percentiles) of a volume's field");
+        "_distribution", [](const PyVolume& v) { return Distribution{v.volume->percentiles, v.volume->volumeHistogram}; },
+        py::arg("volume"), "a volume's percentiles and volume histogram (what the fitted presets follow)");
     m.def(
         "_series_preset",
-        [](const std::string& name, const std::vector<std::pair<uint64_t, std::vector<float>>>& parts) {
+        [](const std::string& name, const std::vector<Distribution>& parts) {
             std::vector<amr::Percentiles> ps;
-            for (const auto& [count, values] : parts) {
-                if (values.size() != 101) throw py::value_error("a part needs 101 percentiles");
-                amr::Percentiles p;
-                p.count = count;
-                std::copy(values.begin(), values.end(), p.values.begin());
-                ps.push_back(p);
+            std::vector<amr::VolumeHistogram> hs;
+            for (const Distribution& d : parts) {
+                ps.push_back(d.percentiles);
+                hs.push_back(d.histogram);
             }
-            return PyTf{scene::TfChannels::split(scene::makePreset(name, amr::pooledPercentiles(ps)))};
+            return PyTf{scene::TfChannels::split(
+                scene::makePreset(name, amr::pooledPercentiles(ps), amr::pooledVolumeHistograms(hs)))};
         },
         py::arg("name"), py::arg("parts"));
 }

@@ -46,10 +46,12 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
     s.field = v.field().name;
     if (s.read.scale == amr::FieldScale::Auto) s.read.scale = amr::scaleOf(v.model);  // as the field decided
     if (d.tfSource || d.tfRange) {
-        // A series' distribution stands for the volume's own; layers has no histogram of it.
+        // A series' distribution stands for the volume's own.
         const amr::Percentiles& data = d.dataPercentiles ? *d.dataPercentiles : v.percentiles;
         const amr::VolumeHistogram noHistogram;
-        const amr::VolumeHistogram& volumes = d.dataPercentiles ? noHistogram : v.volumeHistogram;
+        const amr::VolumeHistogram& volumes = !d.dataPercentiles ? v.volumeHistogram
+                                              : d.dataHistogram  ? *d.dataHistogram
+                                                                 : noHistogram;
         const std::pair<float, float> range = d.tfRange           ? *d.tfRange
                                               : d.dataRange       ? *d.dataRange
                                               : d.dataPercentiles ? std::make_pair(data.lo(), data.hi())

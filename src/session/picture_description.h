@@ -43,11 +43,13 @@ struct PictureDescription {
     // outputs (render --series-range), whose percentiles differ from output to output.
     std::optional<std::pair<float, float>> dataRange;
     // The distribution presets are fitted to instead of the volume's own (tfRange and dataRange
-    // still win): a time series' cells, all of its outputs' pooled (amr::pooledPercentiles) or the
-    // first output's, so that every frame gets one TF that follows the series' values. spiky and
-    // foggy are laid over these percentiles; layers, which needs a volume histogram, and the other
-    // presets take their range-fixed shape over [P0, P100], the series' range.
+    // still win): a time series' cells, all of its outputs' pooled (amr::pooledPercentiles,
+    // amr::pooledVolumeHistograms) or the first output's, so that every frame gets one TF that
+    // follows the series' values. spiky and foggy are laid over these percentiles, layers over the
+    // histogram (none: its range-fixed shape over [P0, P100], the series' range, as for the other
+    // presets).
     std::optional<amr::Percentiles> dataPercentiles;
+    std::optional<amr::VolumeHistogram> dataHistogram;  // with dataPercentiles only
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
     // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).

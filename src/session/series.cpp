@@ -251,6 +251,22 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
             }
             m.tfPercentiles = p;
         }
+        if (j.contains("tfHistogram") && !j["tfHistogram"].is_null()) {
+            const Json& t = j["tfHistogram"];
+            amr::VolumeHistogram h;
+            h.lo = t.at("lo").get<float>();
+            h.hi = t.at("hi").get<float>();
+            h.boundsVolume = t.at("boundsVolume").get<double>();
+            h.volume = t.at("volume").get<std::vector<double>>();
+            bool valid = std::isfinite(h.lo) && std::isfinite(h.hi) && h.lo <= h.hi && std::isfinite(h.boundsVolume) &&
+                         h.boundsVolume > 0 && h.volume.size() == size_t(amr::VolumeHistogram::kBins) &&
+                         m.tfPercentiles.has_value();
+            for (double v : h.volume) valid = valid && std::isfinite(v) && v >= 0;
+            AMRVK_CHECK(valid, where,
+                        ": malformed frame manifest (tfHistogram: a finite range, boundsVolume above 0 and 1024 "
+                        "finite volumes >= 0, with tfPercentiles); remove it to render every frame");
+            m.tfHistogram = std::move(h);
+        }
         const Json& c = j.at("camera");
         m.camera.eye = vec3(c, "eye", where);
         m.camera.target = vec3(c, "target", where);
@@ -269,6 +285,11 @@ void saveFrameManifest(const fs::path& path, const FrameManifest& m) {
     j["tfRange"] = m.tfRange ? Json::array({m.tfRange->first, m.tfRange->second}) : Json(nullptr);
     j["tfPercentiles"] = m.tfPercentiles ? Json{{"count", m.tfPercentiles->count}, {"values", m.tfPercentiles->values}}
                                          : Json(nullptr);
+    j["tfHistogram"] = m.tfHistogram ? Json{{"lo", m.tfHistogram->lo},
+                                            {"hi", m.tfHistogram->hi},
+                                            {"boundsVolume", m.tfHistogram->boundsVolume},
+                                            {"volume", m.tfHistogram->volume}}
+                                     : Json(nullptr);
     j["camera"] = {{"eye", vec3(m.camera.eye)},
                    {"target", vec3(m.camera.target)},
                    {"up", vec3(m.camera.up)},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "amr/value_percentiles.h"
+#include "amr/volume_histogram.h"
 #include "scene/camera.h"
 
 namespace amrvk::session {
@@ -32,7 +33,8 @@ bool isInputPattern(const std::string& arg);
 // The TF range of a series when --tf-range does not give it: the first output's field range, or
 // the union of every output's (a pass over the outputs first, one in memory at a time). spiky and
 // foggy are fitted to the first output's percentiles, or to every output's pooled
-// (amr::pooledPercentiles, from the same pass).
+// (amr::pooledPercentiles, from the same pass), and layers to its volume histogram or their mean
+// (amr::pooledVolumeHistograms).
 enum class SeriesRange : uint8_t { First, Union };
 SeriesRange parseSeriesRange(std::string_view name);  // "first" | "union"
 
@@ -72,6 +74,7 @@ struct FrameManifest {
     // The percentiles spiky and foggy were fitted to (none: a manifest of an older amrvk, whose
     // frames had the presets' range-fixed shapes over tfRange, or a TF not fitted).
     std::optional<amr::Percentiles> tfPercentiles;
+    std::optional<amr::VolumeHistogram> tfHistogram;  // what layers was fitted to (with tfPercentiles)
     scene::Camera camera;                            // frame 0's camera (azimuth 0)
     glm::dvec3 centre{0.0};                          // the orbit's centre (the first output's world box centre)
     std::string field;                               // the field every output shows

@@ -153,6 +153,13 @@ range=$("$py" -c 'import json; print(*json.load(open("sp.json"))["tfRange"])')
 # --series-range first: every frame (frame 0 too) fitted to the first output, as a single render is.
 "$amrvk" render 'out_*.cells' "${sp[@]}" --series-range first -o 'sp_first/f_%d.pfm' --json sp_first.json >/dev/null 2>&1 || fail=1
 "$amrvk" render out_1.cells "${sp[@]}" -o sp_fitted.pfm >/dev/null 2>sp_fitted.err || fail=1
+# The default TF (layers, sized by the volume histogram) over first: frame 0 is the single picture;
+# layers' range-fixed shape over the same range (the old rule) is not.
+ly=(--size 32x24 --spp 4 --grid 8 --mode ae)
+"$amrvk" render 'out_*.cells' "${ly[@]}" --series-range first -o 'ly_first/f_%d.pfm' >/dev/null 2>&1 || fail=1
+"$amrvk" render out_1.cells "${ly[@]}" -o ly_single.pfm >/dev/null 2>&1 || fail=1
+first=$("$py" -c 'import json; print(*json.load(open("info_1.json"))["valueRange"])')
+"$amrvk" render out_1.cells "${ly[@]}" --tf layers --tf-range $first -o ly_fixed.pfm >/dev/null 2>&1 || fail=1
 "$amrvk" render out_1.cells "${sp[@]}" --frames 2 --orbit 90 -o 'sp_tt/f_%d.pfm' >/dev/null 2>sp_tt.err || fail=1
 check grep -q "tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell values" sp_fitted.err
 check grep -q "tf spiky: alpha-1 peaks" sp_tt.err
@@ -166,6 +173,10 @@ def pfm(path):
 series0, seriesTf, fixed, fitted, turn0 = (pfm(p) for p in ("sp/f_0.pfm", "sp_series_tf.pfm", "sp_fixed.pfm",
                                                              "sp_fitted.pfm", "sp_tt/f_0.pfm"))
 first0 = pfm("sp_first/f_0.pfm")
+layers0, layersSingle, layersFixed = pfm("ly_first/f_0.pfm"), pfm("ly_single.pfm"), pfm("ly_fixed.pfm")
+assert np.abs(layers0 - layersSingle).max() <= 1e-6, ("first: frame 0's layers are not the single picture's",
+                                                      np.abs(layers0 - layersSingle).max())
+assert np.abs(layersFixed - layersSingle).mean() > 1e-4, "fitted and range-fixed layers render alike: no power"
 j, jf = json.load(open("sp.json")), json.load(open("sp_first.json"))
 # Union: the pooled percentiles against every output's values together (log10, the auto scale here),
 # by rank: each within one percentile of its k (plus one value per output).

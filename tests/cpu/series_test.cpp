@@ -156,8 +156,17 @@ TEST(Series, ManifestRoundTripAndDamage) {
     p.count = 12345;
     for (size_t k = 0; k < p.values.size(); ++k) p.values[k] = -1.5f + 0.1f * float(k) + 1e-7f * float(k * k);
     m.tfPercentiles = p;
+    amr::VolumeHistogram h;
+    h.lo = -1.5f;
+    h.hi = 8.25f;
+    h.boundsVolume = 4096;
+    h.volume.assign(amr::VolumeHistogram::kBins, 0.0);
+    for (size_t k = 0; k < h.volume.size(); ++k) h.volume[k] = 1.0 / 3.0 * double(k % 7);
+    m.tfHistogram = h;
     saveFrameManifest(dir / "m.json", m);
     EXPECT_EQ(loadFrameManifest(dir / "m.json")->tfPercentiles, p);
+    EXPECT_EQ(loadFrameManifest(dir / "m.json")->tfHistogram, h) << "bit for bit";
+    m.tfHistogram.reset();
     m.tfRange.reset();
     m.tfPercentiles.reset();
     saveFrameManifest(dir / "m.json", m);
@@ -182,6 +191,21 @@ TEST(Series, ManifestRoundTripAndDamage) {
     }
     std::ofstream(dir / "good.json") << head << "{\"count\": 5, \"values\": " << values(101, 1) << "}}";
     EXPECT_EQ(loadFrameManifest(dir / "good.json")->tfPercentiles->count, 5u);
+    // A histogram that is not a finite range, boundsVolume above 0 and 1024 volumes >= 0: malformed.
+    const std::string goodPercentiles = "{\"count\": 5, \"values\": " + values(101, 1) + "}";
+    auto histogram = [&](const std::string& lo, const std::string& bounds, int n, float step) {
+        return goodPercentiles + ", \"tfHistogram\": {\"lo\": " + lo + ", \"hi\": 2, \"boundsVolume\": " + bounds +
+               ", \"volume\": " + values(n, step) + "}";
+    };
+    for (const std::string& bad : {histogram("0", "8", 1023, 1), histogram("3", "8", 1024, 1),
+                                   histogram("0", "0", 1024, 1), histogram("0", "8", 1024, -1)}) {
+        std::ofstream(dir / "bad.json") << head << bad << "}";
+        EXPECT_NE(test::errorOf([&] { loadFrameManifest(dir / "bad.json"); }).find("malformed frame manifest"),
+                  std::string::npos)
+            << bad;
+    }
+    std::ofstream(dir / "good.json") << head << histogram("0", "8", 1024, 1) << "}";
+    EXPECT_EQ(loadFrameManifest(dir / "good.json")->tfHistogram->boundsVolume, 8.0);
 
     EXPECT_FALSE(loadFrameManifest(dir / "absent.json").has_value());
     std::ofstream(dir / "other.json") << "{\"amrvk\": \"session\"}";
@@ -233,6 +257,13 @@ TEST(Series, PresetsFollowTheSeriesPercentiles) {
     }
     for (const char* name : {"layers", "ramp"})
         EXPECT_EQ(tfOf(name).first, scene::TfChannels::split(scene::makePreset(name, series.lo(), series.hi()))) << name;
+    // With the series' histogram, layers is sized by it (here the volume's own, half as deep).
+    amr::VolumeHistogram thin = v->volumeHistogram;
+    for (double& x : thin.volume) x *= 0.5;
+    d.dataHistogram = thin;
+    EXPECT_EQ(tfOf("layers").first, scene::TfChannels::split(scene::makePreset("layers", series, thin)));
+    EXPECT_NE(tfOf("layers").first, scene::TfChannels::split(scene::makePreset("layers", series.lo(), series.hi())));
+    EXPECT_EQ(tfOf("ramp").first, scene::TfChannels::split(scene::makePreset("ramp", series.lo(), series.hi())));
     d.dataRange = std::make_pair(-3.0f, 7.0f);
     EXPECT_EQ(tfOf("spiky").first, scene::TfChannels::split(scene::makePreset("spiky", -3.0f, 7.0f)));
     d.tfRange = std::make_pair(1.0f, 2.0f);

@@ -76,7 +76,7 @@ def test_spiky_follows_the_series_percentiles(amrvk, tmp_path):
     first = amrvk.render_series(paths, tf="spiky", spp=2, **options)
     # The union TF's alpha-1 apexes, against numpy's percentiles of every cell of both: each within
     # one percentile by rank (the pooling's bound, plus one value per data set).
-    tf = amrvk._amrvk._series_preset("spiky", [amrvk._amrvk._percentiles(v) for v in vols])
+    tf = amrvk._amrvk._series_preset("spiky", [amrvk._amrvk._distribution(v) for v in vols])
     positions, colors = tf.nodes
     apexes = positions[colors[:, 3] == 1.0]
     every = np.sort(np.concatenate(list(values.values())))
@@ -91,6 +91,10 @@ def test_spiky_follows_the_series_percentiles(amrvk, tmp_path):
         own = r.render(spp=2)
     np.testing.assert_allclose(first[0], own, atol=1e-5)
     assert np.abs(union[0] - own).mean() > 1e-4, "the pooled and the first data set's spiky render alike"
+    # The default (layers) over "first": the first data set's own picture, its histogram's layers.
+    layers = amrvk.render_series(paths, spp=2, **options)
+    with amrvk.Renderer(vols[0], amrvk.TransferFunction.preset("layers", vols[0]), camera, quiet=True, **options) as r:
+        np.testing.assert_allclose(layers[0], r.render(spp=2), atol=1e-5)
     # A turntable: fitted to its data set (not the range-fixed shape over its range).
     turn = amrvk.render_series(paths[1], frames=2, orbit=90, tf="spiky", spp=2, **options)
     with amrvk.Renderer(vols[1], amrvk.TransferFunction.preset("spiky", vols[1]), amrvk.Camera.frame(vols[1]), quiet=True,
