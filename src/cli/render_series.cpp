@@ -102,8 +102,7 @@ std::string recipeOf(const session::PictureDescription& base, const std::vector<
 // series' read options; `field` (empty: each output's default, then the first's for the rest) is
 // set to the field read.
 std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
-                                   std::string& field, amr::Percentiles& pooled,
-                                   amr::VolumeHistogram& pooledVolumes) {
+                                   std::string& field, amr::Percentiles& pooled, amr::VolumeHistogram& pooledVolumes) {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     std::vector<amr::Percentiles> parts;
     std::vector<amr::VolumeHistogram> volumes;
@@ -120,8 +119,8 @@ std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const
         parts.push_back(amr::percentilesOf(f.values));
         if (parts.back().count > 0) {  // as scene::makeVolume makes it
             const amr::ModelSummary summary = amr::summarize(model);
-            volumes.push_back(amr::volumeHistogramOf(model.cells, f.values, st.minValue, st.maxValue,
-                                                     summary.minLevel, summary.bounds.volume()));
+            volumes.push_back(amr::volumeHistogramOf(model.cells, f.values, st.minValue, st.maxValue, summary.minLevel,
+                                                     summary.bounds.volume()));
         }
         bar.update(i + 1, inputs.size(), inputs[i]);
     }

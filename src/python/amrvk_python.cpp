@@ -1290,7 +1290,10 @@ void bindSeries(py::module_& m) {
     };
     py::class_<Distribution>(m, "_Distribution");
     m.def(
-        "_distribution", [](const PyVolume& v) { return Distribution{v.volume->percentiles, v.volume->volumeHistogram}; },
+        "_distribution",
+        [](const PyVolume& v) {
+            return Distribution{v.volume->percentiles, v.volume->volumeHistogram};
+        },
         py::arg("volume"), "a volume's percentiles and volume histogram (what the fitted presets follow)");
     m.def(
         "_series_preset",

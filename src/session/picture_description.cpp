@@ -33,11 +33,12 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
     };
     if (!(p.lo() < p.hi())) return strCat("tf ", name, ": the field has one value (", formatNumber(p.lo()), ")");
     if (name == "spiky")
-        return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the ", series ? "series' " : "", "cell values (",
-                      formatNumber(p[75]), ", ", formatNumber(p[90]), ", ", formatNumber(p[97]), ")");
+        return strCat("tf spiky: alpha-1 peaks at the 75th, 90th and 97th percentiles of the ",
+                      series ? "series' " : "", "cell values (", formatNumber(p[75]), ", ", formatNumber(p[90]), ", ",
+                      formatNumber(p[97]), ")");
     return strCat("tf foggy: alpha 0 up to the median ", series ? "of the series' cell values" : "cell value", " (",
-                  formatNumber(p[50]), "), ",
-                  formatNumber(tf.maxAlpha(p.lo(), p.hi())), " at the maximum (", formatNumber(p.hi()), ")");
+                  formatNumber(p[50]), "), ", formatNumber(tf.maxAlpha(p.lo(), p.hi())), " at the maximum (",
+                  formatNumber(p.hi()), ")");
 }
 }  // namespace
 

@@ -283,8 +283,8 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
 void saveFrameManifest(const fs::path& path, const FrameManifest& m) {
     Json j = {{"amrvk", "frames"}, {"version", 1}, {"recipe", m.recipe}, {"done", m.done}};
     j["tfRange"] = m.tfRange ? Json::array({m.tfRange->first, m.tfRange->second}) : Json(nullptr);
-    j["tfPercentiles"] = m.tfPercentiles ? Json{{"count", m.tfPercentiles->count}, {"values", m.tfPercentiles->values}}
-                                         : Json(nullptr);
+    j["tfPercentiles"] =
+        m.tfPercentiles ? Json{{"count", m.tfPercentiles->count}, {"values", m.tfPercentiles->values}} : Json(nullptr);
     j["tfHistogram"] = m.tfHistogram ? Json{{"lo", m.tfHistogram->lo},
                                             {"hi", m.tfHistogram->hi},
                                             {"boundsVolume", m.tfHistogram->boundsVolume},

@@ -172,18 +172,18 @@ TEST(Series, ManifestRoundTripAndDamage) {
     saveFrameManifest(dir / "m.json", m);
     EXPECT_FALSE(loadFrameManifest(dir / "m.json")->tfRange.has_value());
     // Percentiles that are not 101 finite non-descending values with a count: malformed.
-    const std::string head = "{\"amrvk\": \"frames\", \"recipe\": \"r\", \"done\": [], \"tfRange\": null, "
-                             "\"camera\": {\"eye\": [0,0,1], \"target\": [0,0,0], \"up\": [0,1,0], \"fovYDegrees\": 30}, "
-                             "\"centre\": [0,0,0], \"field\": \"f\", \"tfPercentiles\": ";
+    const std::string head =
+        "{\"amrvk\": \"frames\", \"recipe\": \"r\", \"done\": [], \"tfRange\": null, "
+        "\"camera\": {\"eye\": [0,0,1], \"target\": [0,0,0], \"up\": [0,1,0], \"fovYDegrees\": 30}, "
+        "\"centre\": [0,0,0], \"field\": \"f\", \"tfPercentiles\": ";
     auto values = [](int n, float step) {
         std::string t = "[";
         for (int k = 0; k < n; ++k) t += (k ? ", " : "") + std::to_string(step * float(k));
         return t + "]";
     };
-    for (const std::string& bad : {"{\"count\": 5, \"values\": " + values(100, 1) + "}",
-                                   "{\"count\": 0, \"values\": " + values(101, 1) + "}",
-                                   "{\"count\": 5, \"values\": " + values(101, -1) + "}",
-                                   std::string("{\"count\": 5}")}) {
+    for (const std::string& bad :
+         {"{\"count\": 5, \"values\": " + values(100, 1) + "}", "{\"count\": 0, \"values\": " + values(101, 1) + "}",
+          "{\"count\": 5, \"values\": " + values(101, -1) + "}", std::string("{\"count\": 5}")}) {
         std::ofstream(dir / "bad.json") << head << bad << "}";
         EXPECT_NE(test::errorOf([&] { loadFrameManifest(dir / "bad.json"); }).find("malformed frame manifest"),
                   std::string::npos)
@@ -256,7 +256,8 @@ TEST(Series, PresetsFollowTheSeriesPercentiles) {
         EXPECT_NE(notes[0].find("series' cell value"), std::string::npos) << notes[0];
     }
     for (const char* name : {"layers", "ramp"})
-        EXPECT_EQ(tfOf(name).first, scene::TfChannels::split(scene::makePreset(name, series.lo(), series.hi()))) << name;
+        EXPECT_EQ(tfOf(name).first, scene::TfChannels::split(scene::makePreset(name, series.lo(), series.hi())))
+            << name;
     // With the series' histogram, layers is sized by it (here the volume's own, half as deep).
     amr::VolumeHistogram thin = v->volumeHistogram;
     for (double& x : thin.volume) x *= 0.5;

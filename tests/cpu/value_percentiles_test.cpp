@@ -5,6 +5,8 @@
 // from the parts' percentiles alone (a time series) they are within one percentile of the whole's
 // by rank, which a mean of the parts' percentiles is not; the volume's are of its field, also
 // under --scale log.
+#include "amr/value_percentiles.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <numeric>
 #include <random>
 
-#include "amr/value_percentiles.h"
 #include "model_fixtures.h"
 #include "scene/volume.h"
 #include "test_data.h"

@@ -677,15 +677,16 @@ TEST_F(ViewerGpu, LogScaleFitsAnUneditedPresetAgain) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     auto at = [&](const char* name) { return (dir / name).string(); };
-    test::writeAll(dir / "script.txt",
-                   "1 save-session " + at("linear.json") + "\n"
-                   "2 scale log\n"
-                   "4 save-session " + at("log.json") + "\n"
-                   "5 scale linear\n"
-                   "7 save-session " + at("back.json") + "\n");
+    std::string script = "1 save-session " + at("linear.json") + "\n";
+    script += "2 scale log\n";
+    script += "4 save-session " + at("log.json") + "\n";
+    script += "5 scale linear\n";
+    script += "7 save-session " + at("back.json") + "\n";
+    test::writeAll(dir / "script.txt", script);
     const int rc = run(amrvkBinary() + " view " + sample() +
                            " --size 32x24 --scale linear --tf spiky --grid 16 --mode ae --backend sw --headless"
-                           " --frames 9 --script " + at("script.txt") + " --validation",
+                           " --frames 9 --validation --script " +
+                           at("script.txt"),
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
     // spiky fitted to the field on each scale, independently of the viewer: the cells read here.
@@ -707,8 +708,10 @@ TEST_F(ViewerGpu, LogScaleFitsAnUneditedPresetAgain) {
     expectTf(session::loadSession(dir / "linear.json").tf, linear, "linear");
     // The peaks sit at the log's percentiles (the same cells), not at the linear shape moved onto the log range.
     expectTf(session::loadSession(dir / "log.json").tf, log, "log");
-    const scene::TfChannels moved = session::refitTfRange(linear, log.opacityPositions.front(), log.opacityPositions.back());
-    EXPECT_GT(std::abs(moved.opacityPositions[2] - log.opacityPositions[2]), 0.01 * (log.opacityPositions.back() - log.opacityPositions.front()))
+    const scene::TfChannels moved =
+        session::refitTfRange(linear, log.opacityPositions.front(), log.opacityPositions.back());
+    EXPECT_GT(std::abs(moved.opacityPositions[2] - log.opacityPositions[2]),
+              0.01 * (log.opacityPositions.back() - log.opacityPositions.front()))
         << "the test has no power: moving the shape would put the first apex where fitting does";
     expectTf(session::loadSession(dir / "back.json").tf, linear, "back on the linear scale");
 }
