@@ -414,9 +414,10 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
 
 void addSeriesOptions(CLI::App& app, SeriesArgs& a) {
     app.add_option("--series-range", a.range,
-                   "several inputs: the TF is laid over the first output's field range, or the union of every "
-                   "output's (a reading pass first), presets in their range-fixed shape as with --tf-range (one "
-                   "input: fitted to its data as a single picture); --tf-range overrides both")
+                   "several inputs: one TF over the first output's field range, or the union of every output's "
+                   "(a reading pass first); layers, spiky and foggy fitted to the first output's distribution or "
+                   "to all of them pooled, other presets in their range-fixed shape (one input: fitted to its data "
+                   "as a single picture); --tf-range overrides both")
         ->check(CLI::IsMember({"first", "union"}))
         ->capture_default_str()
         ->type_name("first|union");
