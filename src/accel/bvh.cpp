@@ -20,8 +20,15 @@ float roundUp(double v) {
 Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
     Bvh bvh;
     AMRVK_CHECK(!boxes.empty(), "cannot build a BVH over no boxes");
-    bvh.primIds.resize(boxes.size());
-    for (uint32_t i = 0; i < boxes.size(); ++i) bvh.primIds[i] = i;
+    // The boxes are partitioned as they are, not through their ids: a split's nth_element then
+    // reads contiguous memory (2M macrocells of grid-bvh: the partitions were most of a TF edit).
+    // The comparisons and their order are those on the ids, so the tree is the same.
+    struct Item {
+        BoxD box;
+        uint32_t id;
+    };
+    std::vector<Item> items(boxes.size());
+    for (uint32_t i = 0; i < boxes.size(); ++i) items[i] = {boxes[i], i};
     struct Task {
         uint32_t node, begin, end, depth;
     };
@@ -33,7 +40,7 @@ Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
         glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
         glm::dvec3 clo = lo, chi = hi;
         for (uint32_t i = t.begin; i < t.end; ++i) {
-            const BoxD& b = boxes[bvh.primIds[i]];
+            const BoxD& b = items[i].box;
             lo = glm::min(lo, b.lo);
             hi = glm::max(hi, b.hi);
             glm::dvec3 c = 0.5 * (b.lo + b.hi);
@@ -53,11 +60,9 @@ Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
             continue;
         }
         uint32_t mid = t.begin + n / 2;
-        auto first = bvh.primIds.begin() + t.begin;
-        std::nth_element(first, bvh.primIds.begin() + mid, bvh.primIds.begin() + t.end,
-                         [&](uint32_t a, uint32_t b) {
-                             return boxes[a].lo[axis] + boxes[a].hi[axis] <
-                                    boxes[b].lo[axis] + boxes[b].hi[axis];
+        std::nth_element(items.begin() + t.begin, items.begin() + mid, items.begin() + t.end,
+                         [axis](const Item& a, const Item& b) {
+                             return a.box.lo[axis] + a.box.hi[axis] < b.box.lo[axis] + b.box.hi[axis];
                          });
         uint32_t left = uint32_t(bvh.nodes.size());
         bvh.nodes[t.node].first = left;
@@ -67,6 +72,8 @@ Bvh buildBvh(std::span<const BoxD> boxes, uint32_t maxLeafSize) {
         stack.push_back({left + 1, mid, t.end, t.depth + 1});
         stack.push_back({left, t.begin, mid, t.depth + 1});
     }
+    bvh.primIds.resize(items.size());
+    for (size_t i = 0; i < items.size(); ++i) bvh.primIds[i] = items[i].id;
     return bvh;
 }
 
