@@ -70,9 +70,9 @@ bool traversalInit(StructureConfig cfg, vec3 o, vec3 d, float tMin, float tMax, 
 // query's slab test round apart at a face, so a query may find an active macrocell covering t:
 // its segment (exact ends) is yielded and the DDA resumes in that macrocell at the segment's end.
 // Every query moves t strictly forward and the DDA leaves the grid, so the walk ends. Empty DDA
-// segments (a start on a face, an edge crossing) are skipped. Segments stay contiguous within runs of active
-// macrocells and never skip an active macrocell; sw and rq make the same decisions from the same
-// (bit-identical) query answers, so their segments stay bit-identical.
+// segments (a start on a face, an edge crossing) are skipped. Segments stay contiguous within runs
+// of active macrocells and never skip an active macrocell; sw and rq make the same decisions from
+// the same (bit-identical) query answers, so their segments stay bit-identical.
 bool gridBvhNext(StructureConfig cfg, inout Traversal tr, inout uint steps, out uint id, out float majAlpha,
                  out float t0, out float t1) {
     uint culled = 0u;  // culled macrocells stepped in a row

@@ -78,21 +78,20 @@ VolumeHistogram pooledVolumeHistograms(std::span<const VolumeHistogram> parts) {
             const double v = p->volume[size_t(b)] * scale;
             if (v == 0) continue;
             const double a0 = p->lo + b * from, a1 = a0 + from;
-            if (!(from > 0) || !(width > 0)) {  // one value: its bin
-                out.volume[size_t(out.binOf(float(a0)))] += v;
-                continue;
-            }
             // The union's bins [a0, a1) overlaps, each getting its share of the overlap (shares of
             // the overlaps found, so the part's volume is kept whatever the rounding at the ends).
-            const int first = std::clamp(int(std::floor((a0 - out.lo) / width)), 0, kBins - 1);
-            const int last = std::clamp(int(std::ceil((a1 - out.lo) / width)) - 1, first, kBins - 1);
             auto overlap = [&](int t) {
                 const double t0 = out.lo + t * width, t1 = t0 + width;
                 return std::max(0.0, std::min(a1, t1) - std::max(a0, t0));
             };
+            int first = 0, last = -1;
             double total = 0;
-            for (int t = first; t <= last; ++t) total += overlap(t);
-            if (!(total > 0)) {
+            if (from > 0 && width > 0) {
+                first = std::clamp(int(std::floor((a0 - out.lo) / width)), 0, kBins - 1);
+                last = std::clamp(int(std::ceil((a1 - out.lo) / width)) - 1, first, kBins - 1);
+                for (int t = first; t <= last; ++t) total += overlap(t);
+            }
+            if (!(total > 0)) {  // one value (a part or the union of one value): its bin
                 out.volume[size_t(out.binOf(float(a0)))] += v;
                 continue;
             }
