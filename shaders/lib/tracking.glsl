@@ -19,9 +19,11 @@ const uint kEstimatorRatio = 1u;
 
 struct Counters {
     uint lookups, real, nulls, steps, violations, capped;
+    uint shadowLookups;  // of lookups, those of shadow rays (the pass counts them)
+    uint thinned;        // collisions decided by a sub-majorant without a lookup
 };
 
-Counters newCounters() { return Counters(0u, 0u, 0u, 0u, 0u, 0u); }
+Counters newCounters() { return Counters(0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u); }
 
 // Extinction per voxel unit of a TF alpha (or a majorant in alpha units).
 float extinctionOfAlpha(float alpha) { return alpha * P.shading.densityScale * P.scene.invFinestCellWidth; }
@@ -55,6 +57,21 @@ struct TrackState {
 
 TrackState newTrackState() { return TrackState(false, kInf, vec4(0.0), 1.0); }
 
+// Ratio tracking's weight at a collision against majorant maj (extinction sigma), with Russian
+// roulette below 0.05. Returns false to stop tracking.
+bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rng, inout Counters c) {
+    st.transmittance *= max(0.0, 1.0 - sigma / maj);
+    c.nulls++;
+    if (st.transmittance < 0.05) {
+        if (rand(rng) * 0.05 >= st.transmittance) {
+            st.transmittance = 0.0;
+            return false;
+        }
+        st.transmittance = 0.05;
+    }
+    return true;
+}
+
 // The estimator's decision at a tentative collision at t (extinction sigma, majorant maj, TF
 // colour tfc). Returns false to stop tracking.
 bool onCollision(uint estimator, float t, float sigma, float maj, vec4 tfc, inout TrackState st, inout uint rng,
@@ -70,22 +87,17 @@ bool onCollision(uint estimator, float t, float sigma, float maj, vec4 tfc, inou
         c.nulls++;
         return true;
     }
-    st.transmittance *= max(0.0, 1.0 - sigma / maj);
-    c.nulls++;
-    if (st.transmittance < 0.05) {
-        if (rand(rng) * 0.05 >= st.transmittance) {
-            st.transmittance = 0.0;
-            return false;
-        }
-        st.transmittance = 0.05;
-    }
-    return true;
+    return onRatioCollision(sigma, maj, st, rng, c);
 }
 
 // Tracks o + t d over t in [0, tMax] through the traversal's majorant segments. The ray is first
 // rebased where it enters the data (rebaseRay), so segments and sample positions are as accurate
 // as the data's own coordinates whatever the distance of the origin: every range covers its box
-// grown by 2^-18 of the extent (accel/majorant_bounds.h), far more than that rounding.
+// grown by 2^-18 of the extent (accel/majorant_bounds.h), far more than that rounding. In a
+// macrocell with sub-majorants (lib/sub_majorants.glsl) a collision that its sub-box's majorant
+// decides is not looked up: delta tracking draws its acceptance uniform u first and a u >= q / 255
+// is a null collision (the same decision as with the lookup: sigma <= M q / 255 <= u M); ratio
+// tracking keeps a collision with probability q / 255 and weights it against M q / 255.
 void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator, inout TrackState st, inout uint rng,
                 inout Counters c) {
     float tBase;
@@ -95,10 +107,14 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     uint seg;
     float majAlpha, t0, t1;
     uint stepsLeft = P.shading.maxTrackingSteps;
+    bool gridSegments = cfg.traversal == kTraversalGridDda || cfg.traversal == kTraversalGridBvh;
     while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
         float maj = extinctionOfAlpha(majAlpha);
         if (!(maj > 0.0)) continue;
         float meanStep = 1.0 / maj;
+        SubBoxes sub;
+        sub.word = kSubNotRefined;
+        if (gridSegments) sub = subBoxesOf(seg);
         float t = t0;
         for (;;) {
             // The cap, or a mean free path below float resolution at t (t would stall and burn the
@@ -112,10 +128,39 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             --stepsLeft;
             t -= log(1.0 - rand(rng)) * meanStep;
             if (t >= t1) break;
+            vec3 p = o + d * t;
             vec4 tfc;
-            float sigma = extinctionAt(o + d * t, cfg, seg, c, tfc);
-            if (sigma > maj * kViolationTolerance) c.violations++;
-            if (!onCollision(estimator, tBase + t, sigma, maj, tfc, st, rng, c)) return;
+            if (sub.word == kSubNotRefined) {
+                float sigma = extinctionAt(p, cfg, seg, c, tfc);
+                if (sigma > maj * kViolationTolerance) c.violations++;
+                if (!onCollision(estimator, tBase + t, sigma, maj, tfc, st, rng, c)) return;
+                continue;
+            }
+            float share = subMajorantShare(sub, p);
+            // Ratio tracking with a full share keeps every collision (no draw), as without sub-boxes.
+            float u = estimator == kEstimatorDelta || (share > 0.0 && share < 1.0) ? rand(rng) : 0.0;
+            if (u >= share) {  // decided by the sub-majorant: null (delta), weight 1 (ratio)
+                c.thinned++;
+                if (P.majorants.subMajorantCheck != 0u) {
+                    float sigma = extinctionAt(p, cfg, seg, c, tfc);
+                    if (sigma > maj * share * kViolationTolerance) c.violations++;
+                }
+                continue;
+            }
+            float sigma = extinctionAt(p, cfg, seg, c, tfc);
+            if (sigma > maj * share * kViolationTolerance) c.violations++;
+            if (estimator == kEstimatorDelta) {
+                if (u * maj < sigma) {
+                    c.real++;
+                    st.hit = true;
+                    st.tHit = tBase + t;
+                    st.tfHit = tfc;
+                    return;
+                }
+                c.nulls++;
+                continue;
+            }
+            if (!onRatioCollision(sigma, maj * share, st, rng, c)) return;
         }
     }
 }

@@ -22,6 +22,7 @@ layout(push_constant, scalar) uniform Push { DataParallelPush pc; };
 #include "lib/majorant_dda.glsl"
 #include "lib/domain_traversal.glsl"
 #include "lib/traversal.glsl"
+#include "lib/sub_majorants.glsl"
 #include "lib/tracking.glsl"
 #include "lib/phase.glsl"
 #include "lib/ray_box.glsl"
@@ -119,6 +120,8 @@ void main() {
     uint v0 = subgroupAdd(c.lookups), v1 = subgroupAdd(c.real), v2 = subgroupAdd(c.nulls);
     uint v3 = subgroupAdd(c.steps), v4 = subgroupAdd(c.violations), v5 = subgroupAdd(nanSamples);
     uint v6 = subgroupAdd(c.capped), v7 = subgroupAdd(bounceLimit), v8 = subgroupAdd(live);
+    uint v9 = pc.stage == kDpStageShadow ? v0 : 0u;  // every lookup of the shadow stage is a shadow ray's
+    uint v10 = subgroupAdd(c.thinned);
     if (subgroupElect()) {
         atomicAdd(counters.v[kCounterDensityLookups], v0);
         atomicAdd(counters.v[kCounterRealCollisions], v1);
@@ -128,6 +131,8 @@ void main() {
         atomicAdd(counters.v[kCounterNanSamples], v5);
         atomicAdd(counters.v[kCounterTrackingCapHits], v6);
         atomicAdd(counters.v[kCounterBounceLimitHits], v7);
+        atomicAdd(counters.v[kCounterShadowLookups], v9);
+        atomicAdd(counters.v[kCounterSubMajorantSkips], v10);
         atomicAdd(counters.v[kCounterCount], v8);
     }
 }

@@ -32,19 +32,26 @@ AMRVK_CONST uint kCounterTrackingCapHits = 7u;     // tracking stopped at the st
 // Lookup slots of the subgroups: per subgroup, its size x the most lookups one invocation made.
 // densityLookups / this = the SIMD lanes' share of useful lookup work (1: no divergence).
 AMRVK_CONST uint kCounterLookupLaneSlots = 8u;
-AMRVK_CONST uint kCounterCount = 9u;
+AMRVK_CONST uint kCounterShadowLookups = 9u;  // of densityLookups, those of shadow rays (transmittance)
+AMRVK_CONST uint kCounterSubMajorantSkips = 10u;  // collisions a sub-majorant decided without a lookup
+AMRVK_CONST uint kCounterCount = 11u;
 
-// Per-path statistics (single-process passes; RenderParams::pathStats, reset per dispatch): the
-// largest lookup and null-collision counts of one path (a sample: camera ray, bounces, shadow
-// rays) and histograms of both over kPathBins bins, 4 per octave: bin(n) = n for n < 8, else
-// 4 (e - 1) + ((n >> (e - 2)) & 3) with e = the highest set bit of n (scene/render_output.h
-// turns bins into percentiles).
+// Per-path statistics (single-process passes; RenderParams::pathStats, reset per dispatch): for
+// each quantity counted per path (a sample: camera ray, bounces, shadow rays), the largest count
+// of one path (uint[kPathQuantities] at kPathStatsMax) and a histogram over kPathBins bins, 4 per
+// octave: bin(n) = n for n < 8, else 4 (e - 1) + ((n >> (e - 2)) & 3) with e = the highest set bit
+// of n (uint[kPathQuantities][kPathBins] at kPathStatsBins; scene/render_output.h turns bins into
+// percentiles). Every path enters the lookup histogram; the others count only paths with a count
+// above 0 (their bin 0 is the rest, filled in on the host).
 AMRVK_CONST uint kPathBins = 128u;
-AMRVK_CONST uint kPathStatsMaxLookups = 0u;
-AMRVK_CONST uint kPathStatsMaxNulls = 1u;
-AMRVK_CONST uint kPathStatsLookupBins = 2u;
-AMRVK_CONST uint kPathStatsNullBins = 2u + kPathBins;
-AMRVK_CONST uint kPathStatsCount = 2u + 2u * kPathBins;
+AMRVK_CONST uint kPathLookups = 0u;  // density lookups
+AMRVK_CONST uint kPathNulls = 1u;    // null collisions
+AMRVK_CONST uint kPathReal = 2u;     // real collisions
+AMRVK_CONST uint kPathSteps = 3u;    // traversal steps (DDA steps plus box queries)
+AMRVK_CONST uint kPathQuantities = 4u;
+AMRVK_CONST uint kPathStatsMax = 0u;
+AMRVK_CONST uint kPathStatsBins = kPathQuantities;
+AMRVK_CONST uint kPathStatsCount = kPathQuantities * (1u + kPathBins);
 
 AMRVK_CONST uint kMaxBounces = 65536u;  // ms path length cap; paths reaching it are counted
 
@@ -131,8 +138,14 @@ struct MajorantsGpu {
     uint64_t domainAccel;      // TLAS over the boxes, culled ones collapsed to points (rq back-end)
     uint64_t tfAlphaTree;      // float[2 * L], L = the power of two >= tfNodeCount: max tree of node alphas
                                // (tree[L + i] = alpha_i, padding 0; tree[k] = max(tree[2k], tree[2k + 1]))
+    uint64_t subRefinement;    // grid traversals with sub-majorants (scene/sub_majorants.h): uint[] per
+                               // macrocell, 0xffffffff (not refined) or (byte offset / 8) << 2 | log2 n - 1
+    uint64_t subMajorants;     // their sub-boxes' q (0..255), four bytes to a uint: majorant M q / 255
+    uint subMajorantsOn;       // 1 when subRefinement and subMajorants hold a refinement
+    uint subMajorantCheck;     // 1: a collision skipped by its sub-majorant is looked up anyway and
+                               // counted as a majorant violation where sigma exceeds it (tests)
 };
-AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 96);
+AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 120);
 
 // One pixel of the accumulation buffer (path_trace.comp adds to it; display.comp and
 // PathTracePass::read() read it). Each sum is a double-float: value = hi + lo exactly, |lo| <=
@@ -239,6 +252,11 @@ AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainMajorants) == 56);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainNodes) == 64);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainPrims) == 72);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, domainAccel) == 80);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfAlphaTree) == 88);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subRefinement) == 96);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorants) == 104);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorantsOn) == 112);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorantCheck) == 116);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumHi) == 0);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumLo) == 16);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumSqHi) == 32);
@@ -247,11 +265,11 @@ AMRVK_STATIC_ASSERT(offsetof(RenderParams, view) == 0);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, shading) == 64);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, majorants) == 576);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 672);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 680);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, pathStats) == 688);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 696);
-AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 696 + sizeof(CutAwayGpu));
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 696);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 704);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, pathStats) == 712);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 720);
+AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 720 + sizeof(CutAwayGpu));
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);

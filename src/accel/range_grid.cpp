@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <optional>
 
 #include "accel/abrs.h"
 #include "accel/brick_grid.h"
@@ -325,7 +327,10 @@ void addBrickAtVertices(const Brick& b, std::span<const float> values, bool hole
 }
 
 
-// The ranges of one tile of macrocells on shared lattices (see kMaxExactVertices).
+// The ranges of one tile of macrocells on shared lattices (see kMaxExactVertices). The layout `g`
+// is the lists' own, or the sub-boxes of one macrocell of theirs (SubRangeMaker): then every
+// sub-box takes that macrocell's list (`everyList`), and reaches outwards only on the faces where
+// the macrocell is at the grid's edge (`openLo`, `openHi`).
 struct TileLattice {
     const MacrocellLayout& g;
     glm::dvec3 margin;
@@ -333,11 +338,16 @@ struct TileLattice {
     const BrickSet& bricks;
     std::span<const float> values;
     const std::vector<BrickSigns>& signs;
+    std::optional<std::span<const uint32_t>> everyList = std::nullopt;
+    glm::bvec3 openLo{true}, openHi{true};
 
+    std::span<const uint32_t> bricksOf(glm::ivec3 c) const { return everyList ? *everyList : lists.bricksOf(g.index(c)); }
     // A macrocell's box grown by the margin (the lists' box), per axis; edge macrocells reach outwards.
-    double boxLo(int a, int i) const { return i == 0 ? -INFINITY : g.origin[a] + g.cellSize[a] * double(i) - margin[a]; }
+    double boxLo(int a, int i) const {
+        return i == 0 && openLo[a] ? -INFINITY : g.origin[a] + g.cellSize[a] * double(i) - margin[a];
+    }
     double boxHi(int a, int i) const {
-        return i == g.dims[a] - 1 ? INFINITY : g.origin[a] + g.cellSize[a] * double(i + 1) + margin[a];
+        return i == g.dims[a] - 1 && openHi[a] ? INFINITY : g.origin[a] + g.cellSize[a] * double(i + 1) + margin[a];
     }
     static bool meets(const HalfBox& d, glm::dvec3 lo, glm::dvec3 hi) {
         const glm::dvec3 blo = glm::max(lo, d.lower()), bhi = glm::min(hi, d.upper());
@@ -353,12 +363,16 @@ struct TileLattice {
         s.exact.assign(count, 0);
         std::vector<uint32_t>& listed = s.bricks[0];
         listed.clear();
-        for (int z = c0.z; z < c1.z; ++z)
-            for (int y = c0.y; y < c1.y; ++y)
-                for (int x = c0.x; x < c1.x; ++x)
-                    for (uint32_t id : lists.bricksOf(g.index({x, y, z}))) listed.push_back(id);
-        std::sort(listed.begin(), listed.end());
-        listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+        if (everyList) {  // one list, ascending already
+            listed.assign(everyList->begin(), everyList->end());
+        } else {
+            for (int z = c0.z; z < c1.z; ++z)
+                for (int y = c0.y; y < c1.y; ++y)
+                    for (int x = c0.x; x < c1.x; ++x)
+                        for (uint32_t id : bricksOf({x, y, z})) listed.push_back(id);
+            std::sort(listed.begin(), listed.end());
+            listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+        }
         // Where every listed brick's values have one sign, so do the values any macrocell reads
         // (finish then skips its per-macrocell look at the bricks' signs: 4-5% of the build at 256).
         s.nonNegative = s.nonPositive = true;
@@ -566,7 +580,7 @@ struct TileLattice {
         double readLo = INFINITY, readHi = -INFINITY;
         bool nonNegative = true, nonPositive = true;
         auto touching = [&](auto&& visit) {
-            for (uint32_t id : lists.bricksOf(g.index(c))) {
+            for (uint32_t id : bricksOf(c)) {
                 const Brick& b = bricks.bricks[id];
                 const HalfBox d = brickDomain(b);
                 const glm::dvec3 blo = glm::max(mlo, d.lower()), bhi = glm::min(mhi, d.upper());
@@ -602,17 +616,8 @@ struct TileLattice {
     }
 };
 
-}  // namespace
-
-RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues) {
-    Timer timer;
-    RangeGrid g{static_cast<const MacrocellLayout&>(lists)};
-    const size_t total = g.cellCount();
-    checkAllocation(checkedProduct({total, sizeof(ValueRange)}, "--grid"),
-                    strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
-    g.ranges.resize(total);
-    const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
-    // Every brick's value range and holes, once (what the padding needs of most macrocells).
+// Every brick's value range and holes, once (what the padding needs of most macrocells).
+std::vector<BrickSigns> brickSigns(const BrickSet& bricks, std::span<const float> brickValues) {
     std::vector<BrickSigns> signs(bricks.bricks.size());
     parallelFor(0, signs.size(), [&](size_t i) {
         const Brick& b = bricks.bricks[i];
@@ -627,6 +632,20 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
         }
         signs[i] = {lo, hi, hole};
     }, 64);
+    return signs;
+}
+
+}  // namespace
+
+RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues) {
+    Timer timer;
+    RangeGrid g{static_cast<const MacrocellLayout&>(lists)};
+    const size_t total = g.cellCount();
+    checkAllocation(checkedProduct({total, sizeof(ValueRange)}, "--grid"),
+                    strCat("--grid ", g.dims.x, "x", g.dims.y, "x", g.dims.z, ": macrocell value ranges"));
+    g.ranges.resize(total);
+    const glm::dvec3 margin = brickGridMargin(g.cellSize, g.dims);
+    const std::vector<BrickSigns> signs = brickSigns(bricks, brickValues);
     TileLattice lattice{g, margin, lists, bricks, brickValues, signs};
     // In about a hundred batches of tiles, so that the bar moves.
     const glm::ivec3 tiles = (g.dims + kTile - 1) / kTile;
@@ -647,6 +666,60 @@ RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::sp
     bar.finish();
     g.buildSeconds = timer.seconds();
     return g;
+}
+
+struct SubRangeMaker::Signs {
+    std::vector<BrickSigns> v;
+};
+
+SubRangeMaker::SubRangeMaker(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues)
+    : mLists(lists), mBricks(bricks), mValues(brickValues),
+      mSigns(std::make_shared<const Signs>(Signs{brickSigns(bricks, brickValues)})) {}
+
+void SubRangeMaker::ranges(size_t cell, int n, std::vector<ValueRange>& out) const {
+    AMRVK_CHECK(cell < mLists.cellCount() && n >= 1 && n <= kMaxSubdivision, "internal: sub-ranges of macrocell ",
+                cell, " at ", n, "^3");
+    const glm::ivec3 c = mLists.coordOf(cell);
+    const MacrocellLayout sub{.dims = glm::ivec3(n),
+                              .origin = mLists.origin + glm::dvec3(c) * mLists.cellSize,
+                              .cellSize = mLists.cellSize / double(n)};
+    const TileLattice lattice{.g = sub,
+                              .margin = brickGridMargin(mLists.cellSize, mLists.dims),
+                              .lists = mLists,
+                              .bricks = mBricks,
+                              .values = mValues,
+                              .signs = mSigns->v,
+                              .everyList = mLists.bricksOf(cell),
+                              .openLo = glm::equal(c, glm::ivec3(0)),
+                              .openHi = glm::equal(c, mLists.dims - 1)};
+    thread_local TileScratch scratch;
+    out.assign(sub.cellCount(), ValueRange{});
+    // Where one brick's domain alone meets a grown sub-box, f there is that brick's t_b, whose range
+    // the per-brick evaluation makes exactly (finish, not exact: the union over the one brick), at
+    // a few lattice points per sub-box. Where several meet one, they blend: the shared lattice for
+    // the whole macrocell.
+    const std::span<const uint32_t> list = mLists.bricksOf(cell);
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::dvec3 lo(lattice.boxLo(0, x), lattice.boxLo(1, y), lattice.boxLo(2, z));
+                const glm::dvec3 hi(lattice.boxHi(0, x), lattice.boxHi(1, y), lattice.boxHi(2, z));
+                int meeting = 0;
+                for (uint32_t id : list) meeting += TileLattice::meets(brickDomain(mBricks.bricks[id]), lo, hi);
+                if (meeting > 1) {  // in tiles of kTile^3 sub-boxes, as buildRangeGrid's (the split depth)
+                    for (int tz = 0; tz < n; tz += kTile)
+                        for (int ty = 0; ty < n; ty += kTile)
+                            for (int tx = 0; tx < n; tx += kTile) {
+                                const glm::ivec3 t0(tx, ty, tz);
+                                lattice.tile(t0, glm::min(t0 + kTile, sub.dims), out, scratch);
+                            }
+                    return;
+                }
+            }
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                out[sub.index({x, y, z})] = lattice.finish({x, y, z}, false, INFINITY, -INFINITY, scratch);
 }
 
 }  // namespace amrvk::accel

@@ -11,6 +11,7 @@
 // lattice of every brick's breakpoints, shared by neighbouring macrocells (range_grid.cpp).
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -67,5 +68,28 @@ inline RangeGrid rangeGridLayout(const amr::Box3l& bounds, glm::ivec3 dims) { re
 // Empty slots (NaN) make a brick's bound the range of its non-empty cells near the macrocell.
 // Bounds are padded for the GPU's float sums (padForGpu, accel/majorant_bounds.h).
 RangeGrid buildRangeGrid(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues);
+
+// Value ranges of the n^3 equal sub-boxes of one macrocell of `lists`' layout, made as
+// buildRangeGrid makes a macrocell's: each sub-box grown by the grid's margin (on the grid's outer
+// faces it reaches outwards, as an edge macrocell does), exact on the lattice of breakpoints where
+// that is small, else the union of the per-brick ranges, padded for the GPU; the bricks are the
+// macrocell's list (every brick meeting a grown sub-box meets the grown macrocell). What
+// scene/sub_majorants refines a loose macrocell with. Holds what every call needs of the bricks
+// (their signs), made once; the three arguments must outlive it.
+inline constexpr int kMaxSubdivision = 16;
+class SubRangeMaker {
+public:
+    SubRangeMaker(const BrickGrid& lists, const BrickSet& bricks, std::span<const float> brickValues);
+    // Ranges of macrocell `cell`'s sub-boxes (1 <= n <= kMaxSubdivision per axis), x fastest, into
+    // `out`. Safe to call from several threads at once.
+    void ranges(size_t cell, int n, std::vector<ValueRange>& out) const;
+
+private:
+    struct Signs;
+    const BrickGrid& mLists;
+    const BrickSet& mBricks;
+    std::span<const float> mValues;
+    std::shared_ptr<const Signs> mSigns;
+};
 
 }  // namespace amrvk::accel

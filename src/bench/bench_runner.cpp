@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <sstream>
@@ -98,8 +99,24 @@ private:
     ReferenceImage mRef;
 };
 
+// The matrix's combinations: traversal x sampler x back-end, those with sub-majorants once per
+// BenchOptions::subMajorants entry.
+std::vector<StructureConfig> matrixOf(const BenchOptions& o, const std::vector<Backend>& backends) {
+    std::vector<StructureConfig> out;
+    for (TraversalKind t : o.traversals)
+        for (SamplerKind s : o.samplers)
+            for (Backend b : backends)
+                for (uint32_t sub : o.subMajorants) {
+                    StructureConfig c{.sampler = s, .traversal = t, .backend = b, .grid = o.grid, .kdLeaves = o.kdLeaves,
+                                      .subMajorants = sub};
+                    if (!c.hasSubMajorants()) c.subMajorants = 0;  // the structures of "off"
+                    if (std::ranges::count(out, c) == 0) out.push_back(c);
+                }
+    return out;
+}
+
 size_t Runner::countRuns() const {
-    size_t perGroup = mOpt.traversals.size() * mOpt.samplers.size() * mBackends.size() + (mOpt.dense ? 1 : 0);
+    size_t perGroup = matrixOf(mOpt, mBackends).size() + (mOpt.dense ? 1 : 0);
     size_t perTf = mOpt.modes.size() * perGroup;
     if (!mOpt.dvrSteps.empty()) perTf += mOpt.dvrSteps.size() + 1;
     size_t sweep = 0;
@@ -247,6 +264,14 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.nullPerReal = real > 0 ? double(c[shared::kCounterNullCollisions]) / real : 0;
         r.violations = c[shared::kCounterMajorantViolations];
         r.nanSamples = c[shared::kCounterNanSamples];
+        const uint32_t counterOf[shared::kPathQuantities] = {shared::kCounterDensityLookups, shared::kCounterNullCollisions,
+                                                            shared::kCounterRealCollisions, shared::kCounterTraversalSteps};
+        for (uint32_t q = 0; q < shared::kPathQuantities; ++q)
+            r.perPath[q] = scene::pathDistribution(out.stats.path, q, c[counterOf[q]]);
+        const double lookups = double(c[shared::kCounterDensityLookups]);
+        r.shadowLookupShare = lookups > 0 ? double(c[shared::kCounterShadowLookups]) / lookups : 0;
+        r.laneUse = c[shared::kCounterLookupLaneSlots] > 0 ? lookups / double(c[shared::kCounterLookupLaneSlots]) : 0;
+        r.subMajorantSkipsPerPath = double(c[shared::kCounterSubMajorantSkips]) / paths;
         std::vector<double> spp, rmse;
         for (const ErrorSample& e : r.curve) {
             spp.push_back(e.spp);
@@ -345,13 +370,7 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
 void Runner::measureMode(Mode mode) {
     mRef = reference(*mDs, mTfName, mode);
     const size_t first = mRes.runs.size();
-    for (TraversalKind t : mOpt.traversals)
-        for (SamplerKind s : mOpt.samplers)
-            for (Backend b : mBackends)
-                mRes.runs.push_back(measure("matrix", mode,
-                                            {.sampler = s, .traversal = t, .backend = b,
-                                             .grid = mOpt.grid, .kdLeaves = mOpt.kdLeaves},
-                                            0));
+    for (const StructureConfig& c : matrixOf(mOpt, mBackends)) mRes.runs.push_back(measure("matrix", mode, c, 0));
     if (mOpt.dense)
         mRes.runs.push_back(measure("dense", mode,
                                     {.sampler = SamplerKind::Dense, .backend = Backend::Sw,

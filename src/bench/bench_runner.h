@@ -8,6 +8,7 @@
 // to a target RMSE. Extras: the dense sampler (cost floor; every run reports its cost per path as
 // a ratio to it), the dvr baseline over step sizes, a macrocell grid sweep for grid-dda and
 // grid-bvh, and --auto's pick compared with the best measured combination.
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -42,6 +43,9 @@ struct BenchOptions {
     std::vector<scene::TraversalKind> traversals = scene::allTraversals();
     std::vector<scene::SamplerKind> samplers = scene::allSamplers();
     std::vector<scene::Backend> backends;  // empty: sw, and rq where the device has it
+    // Sub-majorant settings (StructureConfig::subMajorants) of the rows with a grid traversal and an
+    // AMR sampler: each such combination runs once per entry, the others once.
+    std::vector<uint32_t> subMajorants = {0, 8};
     int width = 0, height = 0;             // 0: 1024^2 on a GPU, 256^2 on a CPU device
     uint32_t frames = 100, warmup = 10;
     uint32_t referenceSpp = 0;              // 0: 4096 on a GPU, 512 on a CPU device
@@ -87,6 +91,12 @@ struct RunResult {
     uint32_t frames = 0;
     double gpuSeconds = 0, fps = 0, mPathsPerSecond = 0;
     double lookupsPerPath = 0, stepsPerPath = 0, realPerPath = 0, nullPerReal = 0;
+    // Where the time goes, per path (shared::kPath*: lookups, null and real collisions, traversal
+    // steps), the share of lookups made by shadow rays, and the SIMD lanes' share of useful lookup
+    // work (1: no divergence).
+    std::array<scene::PathDistribution, shared::kPathQuantities> perPath{};
+    double shadowLookupShare = 0, laneUse = 0;
+    double subMajorantSkipsPerPath = 0;  // collisions sub-majorants decided without a lookup
     uint64_t violations = 0, nanSamples = 0;
     double buildSeconds = 0;               // host build of the structures this combination uses (bricks incl.)
     double majorantSeconds = 0;            // GPU: majorant passes (+ BLAS) after a TF edit

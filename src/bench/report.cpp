@@ -23,7 +23,7 @@ std::string num(double v, int digits = 3) {
 }
 
 std::string runLabel(const RunResult& r) {
-    std::string s = r.config.label();
+    std::string s = r.config.labelWithSub();
     if (r.kind == "grid-sweep" || r.kind == "auto") s += " grid " + r.config.grid;
     if (r.kind == "dvr") s = "dvr dt " + num(r.dvrStep) + " (" + r.config.label() + ")";
     if (r.kind == "pt-ae") s = "ae tracking (" + r.config.label() + ")";
@@ -33,6 +33,10 @@ std::string runLabel(const RunResult& r) {
 double mib(uint64_t bytes) { return double(bytes) / double(1 << 20); }
 
 using Json = nlohmann::ordered_json;
+
+// The per-path quantities' names in results.json, as render --json's perPath names them.
+const char* const kPathQuantityNames[shared::kPathQuantities] = {"lookups", "nullCollisions", "realCollisions",
+                                                                "traversalSteps"};
 
 Json runJson(const RunResult& r) {
     Json j = {{"dataset", r.dataset}, {"tf", r.tf}, {"mode", r.mode}, {"kind", r.kind}, {"label", runLabel(r)},
@@ -68,6 +72,15 @@ Json runJson(const RunResult& r) {
         j["secondsToTarget"] = nullptr;
     }
     if (r.costRatioToDense > 0) j["costRatioToDense"] = r.costRatioToDense;
+    Json& perPath = j["perPath"] = Json::object();
+    for (uint32_t q = 0; q < shared::kPathQuantities; ++q) {
+        const scene::PathDistribution& d = r.perPath[q];
+        perPath[kPathQuantityNames[q]] = {{"mean", d.mean}, {"p50", d.p50}, {"p90", d.p90},
+                                          {"p99", d.p99},   {"p999", d.p999}, {"max", d.max}};
+    }
+    j["shadowLookupShare"] = r.shadowLookupShare;
+    j["lookupLaneUtilization"] = r.laneUse;
+    j["subMajorantSkipsPerPath"] = r.subMajorantSkipsPerPath;
     return j;
 }
 
@@ -81,7 +94,7 @@ Table matrixTable(const BenchResults& res, const std::string& mode) {
     Table t;
     for (const RunResult& r : res.runs) {
         if ((r.kind != "matrix" && r.kind != "dense") || r.mode != mode) continue;
-        const std::string row = r.config.label(), col = r.dataset + " " + r.tf;
+        const std::string row = r.config.labelWithSub(), col = r.dataset + " " + r.tf;
         if (std::find(t.rows.begin(), t.rows.end(), row) == t.rows.end()) t.rows.push_back(row);
         if (std::find(t.cols.begin(), t.cols.end(), col) == t.cols.end()) t.cols.push_back(col);
         t.cells[{row, col}] = &r;
@@ -180,7 +193,8 @@ std::string resultsCsv(const BenchResults& res) {
         "dataset,tf,mode,kind,traversal,sampler,backend,grid,grid_dims,dt,width,height,frames,fps,mpaths_per_s,"
         "lookups_per_path,steps_per_path,real_per_path,null_per_real,violations,build_s,majorant_update_s,"
         "tf_structure_s,device_mib_after_build,device_mib_peak,final_spp,final_rmse,final_relmse,slope,target_rmse,"
-        "seconds_to_target,extrapolated,cost_ratio_to_dense,error\n";
+        "seconds_to_target,extrapolated,cost_ratio_to_dense,lookups_p50,lookups_p90,lookups_p99,lookups_max,null_p99,"
+        "steps_p99,shadow_lookup_share,lane_use,error\n";
     for (const RunResult& r : res.runs) {
         std::string err = r.error;
         std::replace(err.begin(), err.end(), ',', ';');
@@ -199,9 +213,14 @@ std::string resultsCsv(const BenchResults& res) {
                    num(last.relMse, 6) + "," + (r.slope ? num(*r.slope, 4) : "") + "," + num(r.targetRmse, 6) + "," +
                    (r.toTarget ? num(r.toTarget->seconds, 6) : "") + "," +
                    (r.toTarget ? (r.toTarget->extrapolated ? "1" : "0") : "") + "," +
-                   (r.costRatioToDense > 0 ? num(r.costRatioToDense, 4) : "") + ",\n";
+                   (r.costRatioToDense > 0 ? num(r.costRatioToDense, 4) : "") + ",";
+            const scene::PathDistribution &lookups = r.perPath[shared::kPathLookups];
+            csv += std::to_string(lookups.p50) + "," + std::to_string(lookups.p90) + "," + std::to_string(lookups.p99) + "," +
+                   std::to_string(lookups.max) + "," + std::to_string(r.perPath[shared::kPathNulls].p99) + "," +
+                   std::to_string(r.perPath[shared::kPathSteps].p99) + "," + num(r.shadowLookupShare, 4) + "," +
+                   num(r.laneUse, 4) + ",\n";
         } else {
-            csv += ",,,,,,,,,,,,,,,,,,,,\"" + err + "\"\n";
+            csv += std::string(28, ',') + "\"" + err + "\"\n";
         }
     }
     return csv;
@@ -250,6 +269,21 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
                   " | " + (r.slope ? num(*r.slope, 3) : "") + " | " +
                   (r.costRatioToDense > 0 ? num(r.costRatioToDense, 3) : "") + " |\n";
         }
+        md += "\n## Where the time goes, per path, mode " + mode +
+              "\n\nDistributions over paths (mean, p50 / p90 / p99 / max; counts above 8 within 25%), the share of "
+              "lookups made by shadow rays and the SIMD lanes' share of useful lookup work.\n\n| data set | TF | "
+              "combination | lookups | null collisions | real collisions | traversal steps | shadow share | lane use "
+              "|\n|---|---|---|---|---|---|---|---:|---:|\n";
+        for (const RunResult& r : res.runs) {
+            if ((r.kind != "matrix" && r.kind != "auto") || r.mode != mode || !r.error.empty()) continue;
+            auto show = [](const scene::PathDistribution& d) {
+                return num(d.mean) + "; " + std::to_string(d.p50) + " / " + std::to_string(d.p90) + " / " +
+                       std::to_string(d.p99) + " / " + std::to_string(d.max);
+            };
+            md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | " + show(r.perPath[shared::kPathLookups]) +
+                  " | " + show(r.perPath[shared::kPathNulls]) + " | " + show(r.perPath[shared::kPathReal]) + " | " +
+                  show(r.perPath[shared::kPathSteps]) + " | " + num(r.shadowLookupShare) + " | " + num(r.laneUse) + " |\n";
+        }
         md += "\n";
     }
     if (std::ranges::any_of(res.runs, [](const RunResult& r) { return r.kind == "dvr"; })) {
@@ -285,7 +319,7 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
               "GPU seconds).\n\n| data set | TF | mode | pick | probe s | best measured | pick / best efficiency | pick / "
               "best frames/s |\n|---|---|---|---|---:|---|---:|---:|\n";
         for (const AutoResult& a : res.autos)
-            md += "| " + a.dataset + " | " + a.tf + " | " + a.mode + " | " + a.choice.config.label() + " grid " +
+            md += "| " + a.dataset + " | " + a.tf + " | " + a.mode + " | " + a.choice.config.labelWithSub() + " grid " +
                   a.choice.config.grid + " | " + num(a.choice.seconds) + " | " + a.bestLabel + " | " +
                   (a.bestEfficiency > 0 ? num(a.pickEfficiency / a.bestEfficiency) : "") + " | " +
                   (a.bestFps > 0 ? num(a.pickFps / a.bestFps) : "") + " |\n";

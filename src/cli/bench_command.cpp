@@ -68,6 +68,7 @@ namespace {
 struct BenchArgs {
     std::vector<std::string> inputs;
     std::string outDir, tfs = "spiky,foggy", tfColors = "srgb", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
+    std::string subMajorants = "off,8";
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
     bool noDense = false, autoSelect = false;
@@ -96,6 +97,11 @@ void addProtocolOptions(CLI::App& app, BenchArgs& a) {
         ->type_name("LIST");
     app.add_option("--samplers", a.samplers, "subset of ext-brick,abr,grid (default all three)")->type_name("LIST");
     app.add_option("--backends", a.backends, "subset of sw,rq (default sw, and rq where the device has ray queries)")
+        ->type_name("LIST");
+    app.add_option("--sub-majorants", a.subMajorants,
+                   "sub-majorant settings of the grid traversals' rows (as render's --sub-majorants: off, 2, 4, 8, "
+                   "16); every combination with a grid traversal and an AMR sampler runs once per entry")
+        ->capture_default_str()
         ->type_name("LIST");
     app.add_option("--frames", a.frames, "timed frames of 1 spp each")
         ->check(interval(2, 1 << 20))
@@ -183,6 +189,10 @@ void parseMatrix(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o
         AMRVK_CHECK(std::ranges::count(o.samplers, scene::SamplerKind::Dense) == 0,
                     "--samplers: dense runs by itself (see --no-dense)");
     }
+    o.subMajorants.clear();
+    for (uint32_t n : parseList<uint32_t>("--sub-majorants", a.subMajorants,
+                                          +[](const std::string& t) { return scene::parseSubMajorants(t); }))
+        if (std::ranges::count(o.subMajorants, n) == 0) o.subMajorants.push_back(n);
     if (app.count("--backends")) {
         o.backends = parseList("--backends", a.backends, scene::parseBackend);
         AMRVK_CHECK(std::ranges::count(o.backends, scene::Backend::Auto) == 0, "--backends: name sw and/or rq");

@@ -205,6 +205,10 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a) {
         ->check(interval(0, 64))
         ->capture_default_str()
         ->type_name("N");
+    app.add_flag("--path-regeneration", a.context.pathRegeneration,
+                 "path regeneration: a workgroup's samples are a pool its GPU threads take one at a time, so a "
+                 "thread whose path ended takes the next instead of waiting for the longest (the same image; on "
+                 "lavapipe the lanes' use rose, the paths per second did not: docs/benchmarks.md)");
 }
 
 namespace {
@@ -317,8 +321,9 @@ void addTfRangeOption(CLI::App& app, PictureArgs& a) {
         ->type_name("LO HI");
 }
 
-// The structures' sizes: macrocell grid, kd-tree leaves, dense grid.
-void addStructureOptions(CLI::App& app, PictureArgs& a) {
+// The structures' sizes: macrocell grid, kd-tree leaves, sub-majorants (not for bench, whose
+// --sub-majorants is a list of matrix rows), dense grid.
+void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
     app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis, fewer for small data: at most 2 macrocells per leaf cell)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
@@ -326,6 +331,15 @@ void addStructureOptions(CLI::App& app, PictureArgs& a) {
         ->check(interval(1, scene::kMaxKdLeaves))
         ->capture_default_str()
         ->type_name("N");
+    if (!subset)
+        app.add_option("--sub-majorants", a.subMajorants,
+                       "grid-dda, grid-bvh: split each macrocell that the TF makes loose (a narrow TF peak in its "
+                       "value range) into at most N^3 sub-boxes with majorants of their own, rebuilt per TF, so that "
+                       "collisions they decide skip their lookup (the same picture, fewer lookups; "
+                       "docs/benchmarks.md)")
+            ->check(CLI::IsMember({"off", "2", "4", "8", "16"}))
+            ->capture_default_str()
+            ->type_name("off|N");
     app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")
         ->check(interval(1, scene::kMaxDenseMiB))
         ->capture_default_str()
@@ -406,7 +420,7 @@ void addPictureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         addLegendOptions(app, a);
     }
     addTfRangeOption(app, a);
-    addStructureOptions(app, a);
+    addStructureOptions(app, a, subset);
     addViewOptions(app, a);
     addMediumOptions(app, a);
     addCutAwayOptions(app, a);
@@ -521,11 +535,13 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     d.samplerGiven = given(app, "--sampler");
     d.backendGiven = given(app, "--backend");
     d.gridGiven = given(app, "--grid");
+    d.subMajorantsGiven = given(app, "--sub-majorants");
     if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
     if (use("--grid")) s.structure.grid = a.grid;
     if (use("--kd-leaves")) s.structure.kdLeaves = uint32_t(a.kdLeaves);
+    if (use("--sub-majorants")) s.structure.subMajorants = scene::parseSubMajorants(a.subMajorants);
     if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
     if (!autoTraversal) s.structure.validate();
     if (use("--legend")) s.legend.show = a.legend;

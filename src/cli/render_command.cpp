@@ -274,7 +274,7 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
             noiseNote += ": grainy; more --spp, --until-error E, or --first-frame (ray-marched) for less";
     }
     std::printf("wrote %s (%dx%d, %u spp, %s, %s on %s) in %.2f s GPU, %.2f M paths/s%s\n", a.output.c_str(), rs.width,
-                rs.height, out.spp, scene::modeName(rs.mode), config.label().c_str(), ctx.deviceReport().name.c_str(),
+                rs.height, out.spp, scene::modeName(rs.mode), config.labelWithSub().c_str(), ctx.deviceReport().name.c_str(),
                 out.stats.gpuSeconds, out.stats.gpuSeconds > 0 ? paths / out.stats.gpuSeconds * 1e-6 : 0.0,
                 noiseNote.c_str());
     if (r.firstFrame)

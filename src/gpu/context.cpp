@@ -357,6 +357,7 @@ Context::Context(const ContextOptions& options) {
         mSamplesPerInvocation = options.samplesPerInvocation > 0 ? options.samplesPerInvocation
                                 : pick.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u
                                                                            : 1u;
+        mPathRegeneration = options.pathRegeneration;
         mQueueFamily = pick.queueFamily;
         mRayQuery = pick.report.rayQuery && !options.disableRayQuery;
         VkPhysicalDeviceProperties props{};

@@ -35,6 +35,11 @@ struct ContextOptions {
     // Samples per pixel one path-trace invocation takes in a whole-image dispatch; 0 = automatic
     // (8 on CPU devices, where it was measured to help; 1 on GPUs until measured there).
     uint32_t samplesPerInvocation = 0;
+    // Path regeneration in the path tracer's whole-image dispatches (passes/path_trace.comp): a
+    // workgroup's samples are a pool its invocations take from one at a time, so a lane whose path
+    // ended takes the next instead of idling. The same image; off by default (on lavapipe it raised
+    // the lanes' use but not the paths per second: docs/benchmarks.md section 27).
+    bool pathRegeneration = false;
     // How long one submission may run (seconds) before amrvk ends the process with one line naming
     // the work: a runaway loop in a --shader-dir shader cannot be cancelled on the device, and
     // waiting on, or destroying, a device that still runs it would hang. 0 = adaptive: path tracing,
@@ -144,6 +149,7 @@ public:
     bool hasRayQuery() const { return mRayQuery; }
     // ContextOptions::samplesPerInvocation resolved for this device (>= 1).
     uint32_t samplesPerInvocation() const { return mSamplesPerInvocation; }
+    bool pathRegeneration() const { return mPathRegeneration; }
     uint64_t validationErrors() const { return mValidationErrors; }
     const std::string& lastValidationMessage() const { return mLastValidationMessage; }
     MemoryTracker& memory() { return mMemory; }
@@ -190,6 +196,7 @@ private:
     DeviceReport mReport;
     bool mRayQuery = false;
     uint32_t mSamplesPerInvocation = 1;
+    bool mPathRegeneration = false;
     uint64_t mHostImportAlignment = 0;
     PFN_vkGetMemoryHostPointerPropertiesEXT mHostPointerProperties = nullptr;
     double mFixedTimeoutSeconds = 0;  // --gpu-timeout; 0 = adaptive

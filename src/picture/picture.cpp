@@ -84,6 +84,7 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         if (d.samplerGiven) constraints.sampler = given.sampler;
         if (d.backendGiven && given.backend != scene::Backend::Auto) constraints.backend = given.backend;
         if (d.gridGiven) constraints.grid = given.grid;
+        if (d.subMajorantsGiven) constraints.subMajorants = given.subMajorants;
         constraints.kdLeaves = given.kdLeaves;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");
@@ -148,13 +149,16 @@ nlohmann::ordered_json autoChoiceJson(const render::AutoChoice& c) {
     using Json = nlohmann::ordered_json;
     Json probes = Json::array();
     for (const render::AutoProbe& p : c.probes)
-        probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid}, {"secondsPerSpp", p.secondsPerSpp},
+        probes.push_back({{"config", p.config.label()}, {"grid", p.config.grid},
+                          {"subMajorants", scene::subMajorantsName(p.config.hasSubMajorants() ? p.config.subMajorants : 0)},
+                          {"secondsPerSpp", p.secondsPerSpp},
                           {"variance", p.variance}, {"efficiency", p.efficiency}, {"predicted", p.predicted},
                           {"lookupsPerPath", p.lookupsPerPath}, {"stepsPerPath", p.stepsPerPath},
                           {"nullsPerPath", p.nullsPerPath}, {"wallSeconds", p.wallSeconds}, {"note", p.note}});
     Json lookupNs = Json::object();
     for (const auto& [sampler, ns] : c.lookupNs) lookupNs[scene::samplerName(sampler)] = ns;
     return {{"pick", c.config.label()},         {"pickGrid", c.config.grid},
+            {"pickSubMajorants", scene::subMajorantsName(c.config.hasSubMajorants() ? c.config.subMajorants : 0)},
             {"probeSeconds", c.seconds},        {"probes", c.probes.size()},
             {"probeSize", c.probeSize},         {"lookupNsAboveReference", std::move(lookupNs)},
             {"probeDetails", std::move(probes)}};
@@ -187,6 +191,7 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["traversal"] = scene::traversalName(config.traversal);
     j["sampler"] = scene::samplerName(config.sampler);
     j["backend"] = scene::backendName(config.backend);
+    j["subMajorants"] = scene::subMajorantsName(config.hasSubMajorants() ? config.subMajorants : 0);
     j["backendRequested"] = scene::backendName(p.described.structure.backend);
     j["backendReason"] = p.report.backendReason;
     j["tf"] = p.described.tf.name;
@@ -202,19 +207,23 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["nanSamples"] = c[shared::kCounterNanSamples];
     j["bounceLimitHits"] = c[shared::kCounterBounceLimitHits];
     j["trackingCapHits"] = c[shared::kCounterTrackingCapHits];
+    j["subMajorantSkips"] = c[shared::kCounterSubMajorantSkips];  // collisions decided without a lookup
     // Where the time goes: per-path distributions (exact below 8, 4 bins per octave above), the
     // SIMD lanes' share of useful lookup work, and GPU time per lookup.
     const scene::PathStats& ps = out.stats.path;
     if (ps.paths() > 0) {
-        auto distribution = [&](const std::array<uint64_t, shared::kPathBins>& bins, uint64_t sum, uint64_t max) {
-            return Json{{"mean", double(sum) / double(ps.paths())}, {"p50", scene::pathQuantile(bins, 0.5)},
-                        {"p90", scene::pathQuantile(bins, 0.9)},    {"p99", scene::pathQuantile(bins, 0.99)},
-                        {"p999", scene::pathQuantile(bins, 0.999)}, {"max", max}};
+        auto distribution = [&](uint32_t q, uint64_t sum) {
+            const scene::PathDistribution d = scene::pathDistribution(ps, q, sum);
+            return Json{{"mean", d.mean}, {"p50", d.p50}, {"p90", d.p90}, {"p99", d.p99}, {"p999", d.p999}, {"max", d.max}};
         };
-        j["perPath"] = {
-            {"lookups", distribution(ps.lookupBins, c[shared::kCounterDensityLookups], ps.maxLookups)},
-            {"nullCollisions", distribution(ps.nullBins, c[shared::kCounterNullCollisions], ps.maxNulls)}};
+        j["perPath"] = {{"lookups", distribution(shared::kPathLookups, c[shared::kCounterDensityLookups])},
+                        {"nullCollisions", distribution(shared::kPathNulls, c[shared::kCounterNullCollisions])},
+                        {"realCollisions", distribution(shared::kPathReal, c[shared::kCounterRealCollisions])},
+                        {"traversalSteps", distribution(shared::kPathSteps, c[shared::kCounterTraversalSteps])}};
     }
+    j["shadowLookupShare"] = c[shared::kCounterDensityLookups] > 0
+                                 ? double(c[shared::kCounterShadowLookups]) / double(c[shared::kCounterDensityLookups])
+                                 : 0.0;
     const uint64_t slots = c[shared::kCounterLookupLaneSlots];
     j["lookupLaneUtilization"] = slots > 0 ? double(c[shared::kCounterDensityLookups]) / double(slots) : 0.0;
     j["gpuNanosecondsPerLookup"] =
@@ -222,6 +231,10 @@ nlohmann::ordered_json renderStats(const Picture& p, const scene::RenderOutput& 
     j["majorantSeconds"] = renderer.majorantSeconds();
     j["tfStructureUpdateSeconds"] = renderer.structureUpdateSeconds();
     j["activeTraversalBoxes"] = renderer.activeTraversalBoxes();
+    if (const scene::SubMajorantGrid& sub = renderer.majorantPass().subMajorants(); !sub.words.empty())
+        j["subMajorantGrid"] = {{"refinedMacrocells", sub.refined}, {"subBoxes", sub.subBoxes},
+                             {"bytes", sub.memoryBytes()}, {"bytesWanted", sub.wanted},
+                             {"buildSeconds", sub.buildSeconds}};
     if (const render::MajorantPass& m = renderer.majorantPass(); m.blockCount() > 0)  // grid-dda's blocks
         j["gridBlocks"] = {{"count", m.blockCount()}, {"empty", m.emptyBlocks()}, {"crossedInOneStep", m.gridBlocksUsed()}};
     j["readSeconds"] = p.report.readSeconds;           // read and per-cell validation

@@ -71,6 +71,21 @@ long long wholeArg(const py::handle& o, const char* name, long long lo, long lon
     return v;
 }
 
+// sub_majorants: 'off' or False (0), or 2, 4, 8, 16 (a number or its string), as --sub-majorants.
+uint32_t subMajorantsArg(const py::handle& o) {
+    if (py::isinstance<py::bool_>(o) && !o.cast<bool>()) return 0;
+    std::string text;
+    if (py::isinstance<py::str>(o)) text = o.cast<std::string>();
+    else if (py::isinstance<py::int_>(o) && !py::isinstance<py::bool_>(o)) text = std::to_string(wholeArg(o, "sub_majorants", 0, 16));
+    else throw py::type_error(strCat("sub_majorants: expected 'off', 2, 4, 8 or 16, got ", shortRepr(o)));
+    if (text == "0") return 0;
+    try {
+        return scene::parseSubMajorants(text, "sub_majorants");
+    } catch (const Error& e) {
+        throw py::value_error(e.what());
+    }
+}
+
 // A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range.
 uint32_t countArg(const py::handle& o, const char* name) { return uint32_t(wholeArg(o, name, 1, scene::kMaxSpp)); }
 
@@ -114,7 +129,7 @@ std::shared_ptr<gpu::Context> contextFor(const gpu::ContextOptions& o) {
     static std::mutex mutex;
     static std::map<std::string, std::weak_ptr<gpu::Context>> contexts;
     const std::string key = o.device + "|" + std::to_string(o.validation) + "|" + std::to_string(o.gpuTimeoutSeconds) +
-                            "|" + std::to_string(o.samplesPerInvocation);
+                            "|" + std::to_string(o.samplesPerInvocation) + "|" + std::to_string(o.pathRegeneration);
     std::lock_guard lock(mutex);
     if (auto ctx = contexts[key].lock()) return ctx;
     auto ctx = std::make_shared<gpu::Context>(o);
@@ -485,13 +500,14 @@ public:
     }
     void setStructure(const std::optional<std::string>& traversal, const std::optional<std::string>& sampler,
                       const std::optional<std::string>& backend, const std::optional<std::string>& grid,
-                      std::optional<uint32_t> kdLeaves) {
+                      std::optional<uint32_t> kdLeaves, const std::optional<std::string>& subMajorants) {
         scene::StructureConfig c = open().described.structure;
         if (traversal) c.traversal = scene::parseTraversal(*traversal);
         if (sampler) c.sampler = scene::parseSampler(*sampler);
         if (backend) c.backend = scene::parseBackend(*backend);
         if (grid) c.grid = *grid;
         if (kdLeaves) c.kdLeaves = *kdLeaves;
+        if (subMajorants) c.subMajorants = scene::parseSubMajorants(*subMajorants, "sub_majorants");
         scene::StructureConfig resolved = c;
         picture::resolveStructure(*mCtx, resolved);  // validated before anything is built
         locked([&] { mPicture.setStructure(c, resolved); });
@@ -505,6 +521,7 @@ public:
         d["backend_requested"] = scene::backendName(session().structure.backend);
         d["grid"] = c.grid;
         d["kd_leaves"] = c.kdLeaves;
+        d["sub_majorants"] = scene::subMajorantsName(c.subMajorants);
         return d;
     }
 
@@ -775,8 +792,8 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     };
     static const char* kKnown[] = {"width",    "height",  "mode",    "spp",     "seed",          "density_scale",
                                    "g",        "ambient", "background", "lights", "dt",          "dvr_shading",
-                                   "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib",
-                                   "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation",
+                                   "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib", "sub_majorants",
+                                   "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation", "path_regeneration",
                                    "quiet",    "fov",     "tf_range", "crop",    "clip",   "legend",
                                    "legend_place", "legend_title", "legend_units", "tf_colors"};
     for (const auto& item : kw) {
@@ -834,6 +851,10 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         d.gridGiven = true;
     }
     if (auto o = take("kd_leaves")) s.structure.kdLeaves = uint32_t(wholeArg(*o, "kd_leaves", 1, scene::kMaxKdLeaves));
+    if (auto o = take("sub_majorants")) {
+        s.structure.subMajorants = subMajorantsArg(*o);
+        d.subMajorantsGiven = true;
+    }
     if (auto o = take("dense_max_mib")) s.structure.denseMaxBytes = uint64_t(wholeArg(*o, "dense_max_mib", 1, scene::kMaxDenseMiB)) << 20;
     scene::validateSettings(rs);
     return d;
@@ -846,6 +867,8 @@ gpu::ContextOptions contextOptions(const py::kwargs& kw) {
     if (has("validation")) o.validation = keywordArg<bool>(kw["validation"], "validation", "True or False");
     if (has("gpu_timeout")) o.gpuTimeoutSeconds = keywordArg<double>(kw["gpu_timeout"], "gpu_timeout", kNumber);
     if (has("samples_per_invocation")) o.samplesPerInvocation = uint32_t(wholeArg(kw["samples_per_invocation"], "samples_per_invocation", 1, UINT32_MAX));
+    if (has("path_regeneration"))
+        o.pathRegeneration = keywordArg<bool>(kw["path_regeneration"], "path_regeneration", "True or False");
     return o;
 }
 
@@ -1087,18 +1110,20 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
         .def(
             "set_structure",
             [](PyRenderer& r, const py::object& traversal, const py::object& sampler, const py::object& backend,
-               const py::object& grid, const py::object& kdLeaves) {
+               const py::object& grid, const py::object& kdLeaves, const py::object& subMajorants) {
                 auto text = [](const py::object& o, const char* name) {
                     return o.is_none() ? std::nullopt : std::optional<std::string>(keywordArg<std::string>(o, name, kText));
                 };
                 r.setStructure(text(traversal, "traversal"), text(sampler, "sampler"), text(backend, "backend"),
                                text(grid, "grid"),
                                kdLeaves.is_none() ? std::nullopt
-                                                  : std::optional<uint32_t>(uint32_t(wholeArg(kdLeaves, "kd_leaves", 1, scene::kMaxKdLeaves))));
+                                                  : std::optional<uint32_t>(uint32_t(wholeArg(kdLeaves, "kd_leaves", 1, scene::kMaxKdLeaves))),
+                               subMajorants.is_none() ? std::nullopt
+                                                      : std::optional<std::string>(scene::subMajorantsName(subMajorantsArg(subMajorants))));
             },
             py::arg("traversal") = py::none(),
              py::arg("sampler") = py::none(), py::arg("backend") = py::none(), py::arg("grid") = py::none(),
-             py::arg("kd_leaves") = py::none())
+             py::arg("kd_leaves") = py::none(), py::arg("sub_majorants") = py::none())
         .def_property("camera", &PyRenderer::camera,
                       [](PyRenderer& r, const py::object& c) { r.setCamera(keywordArg<scene::Camera>(c, "camera", "an amrvk.Camera")); })
         .def_property("tf", &PyRenderer::tf, [](PyRenderer& r, const py::object& t) {

@@ -41,7 +41,7 @@ const AutoProbe* pickAmongTies(const std::vector<AutoProbe>& probes, double tieT
     auto structures = [](const scene::StructureConfig& c) {
         const scene::StructurePlan p = c.plan();
         return int(p.abrs) + int(p.samplerBvh) + int(p.samplerBoxes) + int(p.denseGrid) + int(p.boxMajorants) +
-               int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery);
+               int(p.boxesPerTf) + int(p.rayQueryCulling) + int(p.supportRangeQuery) + int(p.subMajorants);
     };
     double best = 0;
     for (const AutoProbe& p : probes)
@@ -63,7 +63,8 @@ int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureCo
     const AutoProbe* atFinest = nullptr;
     for (const AutoProbe& p : probes) {
         if (p.predicted || !(p.efficiency > 0) || p.config.traversal != combination.traversal ||
-            p.config.sampler != combination.sampler || p.config.backend != combination.backend)
+            p.config.sampler != combination.sampler || p.config.backend != combination.backend ||
+            p.config.subMajorants != combination.subMajorants)
             continue;
         if (!best || p.efficiency > best->efficiency) best = &p;
         if (p.config.grid == finestGrid) atFinest = &p;
@@ -177,6 +178,7 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
     scene::StructureConfig base;
     base.grid = constraints.grid.value_or("auto");
     base.kdLeaves = constraints.kdLeaves;
+    base.subMajorants = constraints.subMajorants.value_or(0);
     // 1. Every traversal (x back-end) with the reference sampler: time and counts per path.
     std::vector<AutoProbe> measured;
     for (scene::TraversalKind t : traversals)
@@ -292,6 +294,31 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 c.grid = std::to_string(finest);
                 consider(measure(c, true));
             }
+        }
+    }
+    // 4c. Sub-majorants for every grid candidate at its best measured grid: the same paths with
+    //     fewer lookups where the TF makes macrocells loose, for a build per TF edit.
+    if (!constraints.subMajorants) {
+        std::vector<scene::StructureConfig> withSub;
+        for (const AutoProbe& p : std::vector<AutoProbe>(choice.probes)) {
+            if (p.predicted || !(p.efficiency > 0) || !p.config.usesGrid()) continue;
+            scene::StructureConfig c = p.config;
+            c.subMajorants = kSubMajorantsProbed;
+            if (!c.hasSubMajorants() || p.efficiency * options.slowFactor < bestEfficiency) continue;
+            // The combination's best grid only.
+            const bool best = std::none_of(choice.probes.begin(), choice.probes.end(), [&](const AutoProbe& o) {
+                return !o.predicted && o.config.traversal == c.traversal && o.config.sampler == c.sampler &&
+                       o.config.backend == c.backend && o.config.subMajorants == 0 && o.efficiency > p.efficiency;
+            });
+            if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
+        }
+        for (const scene::StructureConfig& c : withSub) {
+            AutoProbe p = measure(c, true);
+            if (p.efficiency > 0 && renderer.majorantPass().subMajorants().refined == 0) {
+                p.efficiency = 0;  // the very paths and lookups of the probe without them: not a contender
+                p.note = "no macrocell is loose under this TF: no sub-majorants built";
+            }
+            consider(p);
         }
     }
     // 4b. The contenders measured again: a CPU device's probes of one combination vary by up to 40%

@@ -45,7 +45,7 @@ DeviceScene::DeviceScene(gpu::Context& ctx, const scene::VolumeScene& scene) : m
         mParams.denseOrigin = glm::vec3(v.toLocal(glm::dvec3(d.origin)));
         mParams.denseSpacing = float(amr::cellWidth(d.level));
     }
-    if (plan.brickGrid) {
+    if (plan.lookup == scene::Lookup::BrickGrid) {
         AMRVK_CHECK(scene.brickGrid.has_value(), "internal: grid sampler without a brick grid");
         const accel::BrickGrid& g = *scene.brickGrid;
         mGridBrickLists = gpu::makeBuffer<uint32_t>(ctx, g.lists, "gridSamplerBrickLists");

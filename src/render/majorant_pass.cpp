@@ -43,6 +43,10 @@ MajorantPass::MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, c
         mDomainMajorants = floatBuffer(ctx, mParams.domainCount, traversalResourceName(t, "Majorants"));
         mParams.domainMajorants = mDomainMajorants.address();
     }
+    if (plan.subMajorants) {
+        AMRVK_CHECK(scene.brickGrid.has_value(), "internal: sub-majorants without the brick grid");
+        mSubRanges.emplace(*scene.brickGrid, scene.volume().bricks, scene.volume().brickValues());
+    }
     if (plan.rayQueryCulling && !plan.boxesPerTf) {  // kdtree: made with its boxes, per TF
         mDomainAabbs = gpu::Buffer(ctx, std::max<uint64_t>(24, uint64_t(mParams.domainCount) * sizeof(shared::AabbGpu)),
                                    gpu::MemoryKind::Device, traversalResourceName(t, "Aabbs"), kAsInput);
@@ -85,6 +89,31 @@ void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
         mParams.domainAccel = mDomainAccel.tlasAddress();
     }
     mBvhMask.clear();  // new boxes: the culling BVH must be rebuilt
+}
+
+// The loose macrocells' sub-boxes under `tf`, on the GPU (scene/sub_majorants.h).
+void MajorantPass::buildSubMajorants(const scene::TransferFunction& tf) {
+    const accel::RangeGrid& grid = *mScene.grid;
+    mSub = scene::buildSubMajorants(grid, *mSubRanges, tf,
+                                    {.maxDivision = int(mScene.config().subMajorants),
+                                     .budgetBytes = scene::defaultSubMajorantBudget(grid.cellCount()),
+                                     .chordInFinestCells = scene::chordOf(grid, double(amr::cellWidth(mScene.volume().minLevel())))});
+    mSubWords = gpu::Buffer();
+    mSubBytes = gpu::Buffer();
+    mParams.subMajorantsOn = mSub.refined > 0 ? 1u : 0u;
+    mParams.subRefinement = mParams.subMajorants = 0;
+    if (mSub.refined == 0) return;
+    mSubWords = gpu::makeBuffer<uint32_t>(mCtx, mSub.words, "subMajorantWords");
+    mSubBytes = gpu::makeBuffer<uint32_t>(mCtx, mSub.bytes, "subMajorants");
+    mParams.subRefinement = mSubWords.address();
+    mParams.subMajorants = mSubBytes.address();
+}
+
+void MajorantPass::overrideSubMajorants(uint32_t q) {
+    AMRVK_CHECK(mSub.refined > 0, "overrideSubMajorants: no sub-majorants under the last TF");
+    const uint32_t b = std::min(q, 255u);
+    std::vector<uint32_t> bytes(mSub.bytes.size(), b | b << 8 | b << 16 | b << 24);
+    mSubBytes.upload(bytes.data(), bytes.size() * sizeof(uint32_t));
 }
 
 const std::vector<shared::AabbGpu>& MajorantPass::traversalBoxes() const {
@@ -143,6 +172,7 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     mParams.tfAlphaTree = mTfAlphaTree.address();
     mParams.tfNodeCount = uint32_t(positions.size());
     if (plan.boxesPerTf) buildKdTree(tf);
+    if (plan.subMajorants) buildSubMajorants(tf);
     if (plan.boxMajorants) {
         // The host holds every value range: the boxes that can have a majorant > 0 are known
         // without reading the GPU's majorants back.
@@ -273,6 +303,7 @@ void MajorantPass::setGridBlockUse(GridBlockUse use) {
 std::vector<std::pair<std::string, uint64_t>> MajorantPass::hostBytes() const {
     std::vector<std::pair<std::string, uint64_t>> out;
     if (mKdTree) out.emplace_back("kdTree", mKdTree->memoryBytes());
+    if (mSub.refined > 0) out.emplace_back("subMajorants", mSub.memoryBytes());
     return out;
 }
 

@@ -4,7 +4,8 @@
 // (majorants.comp: exact TF alpha maximum over the value range); the culled traversal hierarchy
 // over the boxes whose majorant can be > 0 (sw: a BVH built on the host from the value ranges it
 // already holds; rq: domain_aabbs.comp collapses culled boxes, then a BLAS rebuild); and, for the
-// kdtree traversal, the TF-specific kd-tree itself. Fills shared::MajorantsGpu. Never touches the
+// kdtree traversal, the TF-specific kd-tree itself; for grid traversals with sub-majorants, the
+// sub-boxes of the loose macrocells (scene/sub_majorants.h). Fills shared::MajorantsGpu. Never touches the
 // TF-independent structures (VolumeScene, DeviceScene), which it only reads.
 #include <cstdint>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "gpu/context.h"
 #include "gpu/shader_library.h"
 #include "render/device_scene.h"
+#include "scene/sub_majorants.h"
 #include "scene/transfer_function.h"
 #include "scene/volume_scene.h"
 
@@ -70,9 +72,17 @@ public:
     // Overwrites the macrocell majorants, then the blocks' (grid-dda only; after a dispatch;
     // tests: deliberate overestimates).
     void overrideGridMajorants(const std::vector<float>& majorants);
+    // The sub-majorants of the last TF (empty without them: plan().subMajorants off).
+    const scene::SubMajorantGrid& subMajorants() const { return mSub; }
+    // Tests: look up every collision a sub-majorant decides too and count it as a violation where
+    // the extinction exceeds the sub-majorant (MajorantsGpu::subMajorantCheck).
+    void setSubMajorantCheck(bool on) { mParams.subMajorantCheck = on ? 1u : 0u; }
+    // Overwrites every sub-box's q (0..255) of the last TF (tests: deliberate underestimates).
+    void overrideSubMajorants(uint32_t q);
 
 private:
     void buildKdTree(const scene::TransferFunction& tf);
+    void buildSubMajorants(const scene::TransferFunction& tf);
     void updateSwCulling();
     gpu::ComputePipeline structurePipeline(const std::string& name) const;
     double dispatchBlockMajorants(gpu::GpuTimer* timer);
@@ -100,6 +110,9 @@ private:
     GpuDeadline mMajorantDeadline, mAabbDeadline, mBlockDeadline;
     size_t mTfNodesMeasured = 0;
     std::optional<accel::KdTree> mKdTree;
+    std::optional<accel::SubRangeMaker> mSubRanges;  // sub-majorants: the sub-boxes' ranges, from the brick grid
+    scene::SubMajorantGrid mSub;
+    gpu::Buffer mSubWords, mSubBytes;
     std::vector<shared::AabbGpu> mKdBoxesHost;     // local voxel space
     std::vector<uint8_t> mActive;                  // boxes whose range can reach alpha > 0
     std::vector<uint8_t> mBvhMask;                 // the boxes in the current sw BVH

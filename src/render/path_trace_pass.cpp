@@ -26,7 +26,8 @@ gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& ent
                                 {{0, uint32_t(mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
-                                 {3, uint32_t(config.backend)}});
+                                 {3, uint32_t(config.backend)},
+                                 {4, ctx.pathRegeneration() ? 1u : 0u}});
 }
 
 PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
@@ -174,10 +175,11 @@ gpu::AdaptiveWait PathTracePass::adaptiveWait(uint64_t paths) const {
     // Paths finished so far: every path adds one to a lookup-count bin (path_trace.comp).
     if (mPathStats.mapped())
         wait.progress = [this] {
-            std::array<uint32_t, shared::kPathStatsLookupBins + shared::kPathBins> bins{};
+            constexpr uint32_t kLookupBins = shared::kPathStatsBins + shared::kPathLookups * shared::kPathBins;
+            std::array<uint32_t, kLookupBins + shared::kPathBins> bins{};
             mPathStats.download(bins.data(), sizeof bins);
             uint64_t finished = 0;
-            for (uint32_t k = 0; k < shared::kPathBins; ++k) finished += bins[shared::kPathStatsLookupBins + k];
+            for (uint32_t k = 0; k < shared::kPathBins; ++k) finished += bins[kLookupBins + k];
             return finished;
         };
     return wait;

@@ -38,6 +38,7 @@ void Renderer::buildDeviceScene() {
     mDevice = std::make_unique<DeviceScene>(mCtx, mScene);
     mMajorants = std::make_unique<MajorantPass>(mCtx, mScene, *mDevice, mShaders);
     mMajorants->setGridBlockUse(mGridBlockUse);
+    mMajorants->setSubMajorantCheck(mSubMajorantCheck);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
     if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0)  // grid-bvh, K set by a test
@@ -298,6 +299,17 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
 void Renderer::overrideMajorants(const std::vector<float>& majorants) {
     mMajorants->overrideGridMajorants(majorants);
     takeMajorantParams();
+    resetAccumulation();
+}
+
+void Renderer::setSubMajorantCheck(bool on) {
+    mSubMajorantCheck = on;
+    mMajorants->setSubMajorantCheck(on);
+    takeMajorantParams();
+}
+
+void Renderer::overrideSubMajorants(uint32_t q) {
+    mMajorants->overrideSubMajorants(q);
     resetAccumulation();
 }
 

@@ -151,6 +151,11 @@ public:
     void setGridBvhQueryAfter(uint32_t culledSteps);
     // Overwrites the macrocell majorants (grid-dda only; tests: deliberate overestimates).
     void overrideMajorants(const std::vector<float>& majorants);
+    // Tests: every collision a sub-majorant decides is looked up too, and an extinction above the
+    // sub-majorant counted as a majorant violation (kept across structure changes).
+    void setSubMajorantCheck(bool on);
+    // Overwrites every sub-box's q (0..255) under the current TF (tests: deliberate underestimates).
+    void overrideSubMajorants(uint32_t q);
     // Device address of the RenderParams buffer (current after any edit), for test kernels.
     uint64_t paramsAddress();
 
@@ -176,6 +181,7 @@ private:
     bool mParamsDirty = true;
     MajorantPass::GridBlockUse mGridBlockUse = MajorantPass::GridBlockUse::Auto;
     uint32_t mGridBvhQueryAfter = 0;  // 0: the device scene's default
+    bool mSubMajorantCheck = false;
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;
     bool mHasSettings = false;

@@ -59,6 +59,7 @@ std::string structureOptions(const StructureConfig& c) {
                     " --backend " + backendName(c.backend);
     if (c.usesGrid() || c.grid != d.grid) o += " --grid " + shellQuote(c.grid);
     if (c.kdLeaves != d.kdLeaves) o += " --kd-leaves " + std::to_string(c.kdLeaves);
+    if (c.subMajorants != d.subMajorants) o += " --sub-majorants " + subMajorantsName(c.subMajorants);
     if (c.denseMaxBytes != d.denseMaxBytes) o += " --dense-max-mib " + std::to_string(c.denseMaxBytes >> 20);
     return o;
 }

@@ -7,18 +7,38 @@
 namespace amrvk::scene {
 
 void PathStats::add(const std::array<uint32_t, shared::kPathStatsCount>& gpu) {
-    for (uint32_t b = 0; b < shared::kPathBins; ++b) {
-        lookupBins[b] += gpu[shared::kPathStatsLookupBins + b];
-        nullBins[b] += gpu[shared::kPathStatsNullBins + b];
+    // The GPU counts a path of count 0 in the lookup histogram only: the other quantities' bin 0
+    // is every path less those counted above 0.
+    std::array<uint64_t, shared::kPathQuantities> counted{};
+    for (uint32_t q = 0; q < shared::kPathQuantities; ++q) {
+        for (uint32_t b = 0; b < shared::kPathBins; ++b) {
+            const uint32_t n = gpu[shared::kPathStatsBins + q * shared::kPathBins + b];
+            bins[q][b] += n;
+            counted[q] += n;
+        }
+        max[q] = std::max<uint64_t>(max[q], gpu[shared::kPathStatsMax + q]);
     }
-    maxLookups = std::max<uint64_t>(maxLookups, gpu[shared::kPathStatsMaxLookups]);
-    maxNulls = std::max<uint64_t>(maxNulls, gpu[shared::kPathStatsMaxNulls]);
+    for (uint32_t q = 0; q < shared::kPathQuantities; ++q)
+        if (q != shared::kPathLookups && counted[q] <= counted[shared::kPathLookups])
+            bins[q][0] += counted[shared::kPathLookups] - counted[q];
 }
 
 uint64_t PathStats::paths() const {
     uint64_t n = 0;
-    for (uint64_t c : lookupBins) n += c;
+    for (uint64_t c : bins[shared::kPathLookups]) n += c;
     return n;
+}
+
+PathDistribution pathDistribution(const PathStats& stats, uint32_t q, uint64_t sum) {
+    const uint64_t paths = stats.paths();
+    if (paths == 0) return {};
+    const PathHistogram& h = stats.bins[q];
+    return {.mean = double(sum) / double(paths),
+            .p50 = pathQuantile(h, 0.5),
+            .p90 = pathQuantile(h, 0.9),
+            .p99 = pathQuantile(h, 0.99),
+            .p999 = pathQuantile(h, 0.999),
+            .max = stats.max[q]};
 }
 
 uint64_t pathBinLow(uint32_t b) {
@@ -29,7 +49,7 @@ uint64_t pathBinLow(uint32_t b) {
 
 uint64_t pathBinHigh(uint32_t b) { return b + 1 < shared::kPathBins ? pathBinLow(b + 1) - 1 : UINT32_MAX; }
 
-uint64_t pathQuantile(const std::array<uint64_t, shared::kPathBins>& bins, double q) {
+uint64_t pathQuantile(const PathHistogram& bins, double q) {
     uint64_t total = 0;
     for (uint64_t c : bins) total += c;
     if (total == 0) return 0;

@@ -12,22 +12,36 @@
 
 namespace amrvk::scene {
 
-// How the work spreads over paths (one path = one sample: camera ray, bounces, shadow rays):
-// histograms of lookups and null collisions per path (shared/render_params.h: kPathBins, 4 bins
-// per octave, exact below 8) and the largest counts, summed over dispatches.
+// How the work spreads over paths (one path = one sample: camera ray, bounces, shadow rays): per
+// quantity (shared::kPath*: lookups, null and real collisions, traversal steps) a histogram over
+// paths (shared/render_params.h: kPathBins, 4 bins per octave, exact below 8) and the largest
+// count, summed over dispatches.
+using PathHistogram = std::array<uint64_t, shared::kPathBins>;
 struct PathStats {
-    std::array<uint64_t, shared::kPathBins> lookupBins{}, nullBins{};
-    uint64_t maxLookups = 0, maxNulls = 0;
-    // Adds one dispatch's GPU block (uint[kPathStatsCount]).
+    std::array<PathHistogram, shared::kPathQuantities> bins{};
+    std::array<uint64_t, shared::kPathQuantities> max{};
+    const PathHistogram& lookupBins() const { return bins[shared::kPathLookups]; }
+    const PathHistogram& nullBins() const { return bins[shared::kPathNulls]; }
+    uint64_t maxLookups() const { return max[shared::kPathLookups]; }
+    uint64_t maxNulls() const { return max[shared::kPathNulls]; }
+    // Adds one dispatch's GPU block (uint[kPathStatsCount]); a quantity's paths of count 0 are the
+    // lookup histogram's paths less its own (the GPU does not count them).
     void add(const std::array<uint32_t, shared::kPathStatsCount>& gpu);
     uint64_t paths() const;  // paths recorded (0 where the pass keeps no path statistics)
 };
+// A quantity's distribution over paths: the mean (sum / paths) and quantiles of its histogram.
+struct PathDistribution {
+    double mean = 0;
+    uint64_t p50 = 0, p90 = 0, p99 = 0, p999 = 0, max = 0;
+};
+// Quantity q of `stats` whose total over all paths is `sum` (a counter); zeros without paths.
+PathDistribution pathDistribution(const PathStats& stats, uint32_t q, uint64_t sum);
 // The smallest and largest count of histogram bin b.
 uint64_t pathBinLow(uint32_t b);
 uint64_t pathBinHigh(uint32_t b);
 // The q-quantile (0 < q <= 1) of a per-path histogram as the largest count of the bin holding it
 // (exact below 8, within 25% above); 0 for an empty histogram.
-uint64_t pathQuantile(const std::array<uint64_t, shared::kPathBins>& bins, double q);
+uint64_t pathQuantile(const PathHistogram& bins, double q);
 
 struct RenderStats {
     uint64_t paths = 0;

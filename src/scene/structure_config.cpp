@@ -38,6 +38,19 @@ std::vector<SamplerKind> allSamplers() {
     return out;
 }
 
+uint32_t parseSubMajorants(const std::string& text, const char* option) {
+    for (uint32_t n : {0u, 2u, 4u, 8u, 16u})
+        if (text == subMajorantsName(n)) return n;
+    AMRVK_CHECK(false, option, " '", text, "': expected off, 2, 4, 8 or 16");
+    return 0;
+}
+
+std::string subMajorantsName(uint32_t subMajorants) { return subMajorants == 0 ? "off" : std::to_string(subMajorants); }
+
+bool StructureConfig::hasSubMajorants() const {
+    return subMajorants > 0 && traitsOf(traversal).macrocellRanges && traitsOf(sampler).amr;
+}
+
 bool StructureConfig::usesGrid() const {
     return traitsOf(traversal).macrocellRanges || traitsOf(sampler).lookup == Lookup::BrickGrid;
 }
@@ -46,13 +59,20 @@ void StructureConfig::validate() const {
     AMRVK_CHECK(traitsOf(sampler).amr || traitsOf(traversal).macrocellRanges, "--sampler ", samplerName(sampler),
                 " needs --traversal grid-dda or grid-bvh (its majorants come from the dense samples), not ",
                 traversalName(traversal));
+    (void)parseSubMajorants(subMajorantsName(subMajorants));  // off, 2, 4, 8 or 16
 }
 
 std::string StructureConfig::label() const {
     return std::string(traversalName(traversal)) + "/" + samplerName(sampler) + "/" + backendName(backend);
 }
 
-std::string StructureConfig::labelWithGrid() const { return label() + (usesGrid() ? " grid " + grid : ""); }
+std::string StructureConfig::labelWithSub() const {
+    return label() + (hasSubMajorants() ? " sub " + std::to_string(subMajorants) : "");
+}
+
+std::string StructureConfig::labelWithGrid() const {
+    return label() + (usesGrid() ? " grid " + grid : "") + (hasSubMajorants() ? " sub " + std::to_string(subMajorants) : "");
+}
 
 TraversalKind fittingTraversal(double leafVolume, double boundsVolume, std::string* why) {
     const double coverage = boundsVolume > 0 ? leafVolume / boundsVolume : 1.0;
@@ -69,7 +89,7 @@ BackendChoice resolveBackend(const StructureConfig& config, const DeviceTraits& 
                     "' has no VK_KHR_ray_query (use --backend sw or auto)");
         return {config.backend, ""};
     }
-    const StructurePlan sw = planOf(config.traversal, config.sampler, Backend::Sw);
+    const StructurePlan sw = planOf(config.traversal, config.sampler, Backend::Sw, false);
     if (!sw.boxMajorants && !sw.samplerBvh)
         return {Backend::Sw, "--backend auto: sw (" + config.label() + " uses no box hierarchy)"};
     if (device.cpu)

@@ -20,6 +20,9 @@ const char* traversalName(TraversalKind kind);
 Backend parseBackend(const std::string& name);
 const char* backendName(Backend backend);
 std::vector<TraversalKind> allTraversals();
+// StructureConfig::subMajorants from its spelling: "off" (0) or 2, 4, 8, 16; errors name `option`.
+uint32_t parseSubMajorants(const std::string& text, const char* option = "--sub-majorants");
+std::string subMajorantsName(uint32_t subMajorants);  // "off" or the number
 std::vector<SamplerKind> allSamplers();  // the AMR samplers: the paper's two and grid (not dense)
 
 struct StructureConfig {
@@ -28,17 +31,24 @@ struct StructureConfig {
     Backend backend = Backend::Sw;  // resolved (Sw or Rq) before a scene is configured
     std::string grid = "auto";      // macrocells (grid-dda, grid-bvh, grid sampler): auto | N | NxMxK
     uint32_t kdLeaves = 4096;       // kdtree leaves
+    // Grid traversals: split each macrocell that the TF makes loose into at most N^3 sub-boxes with
+    // majorants of their own (N = 2, 4, 8 or 16), rebuilt per TF (scene/sub_majorants.h); 0: off.
+    uint32_t subMajorants = 0;
     uint64_t denseMaxBytes = uint64_t(2) << 30;  // dense sampler: refuse larger grids
     // Every field takes part: two configs are equal when they build the same structures.
     bool operator==(const StructureConfig&) const = default;
     // What this combination builds (backend must be resolved).
-    StructurePlan plan() const { return planOf(traversal, sampler, backend); }
+    StructurePlan plan() const { return planOf(traversal, sampler, backend, subMajorants > 0); }
     // Whether a macrocell grid (--grid) is part of the combination: grid traversals, grid sampler.
     bool usesGrid() const;
+    // Whether the combination has sub-majorants: asked for, a grid traversal, an AMR sampler.
+    bool hasSubMajorants() const;
     // Throws a one-line error for a combination that cannot run (dense without a grid traversal).
     void validate() const;
     std::string label() const;          // e.g. "grid-dda/ext-brick/sw"
-    std::string labelWithGrid() const;  // and " grid <grid>" where a grid is used: "grid-dda/grid/sw grid 64"
+    std::string labelWithSub() const;   // and " sub N" with sub-majorants: "grid-dda/grid/sw sub 8"
+    // and " grid <grid>" where a grid is used, then " sub N": "grid-dda/grid/sw grid 64 sub 8"
+    std::string labelWithGrid() const;
 };
 
 // Which traversal fits the data when none is asked for: grid-dda (the paper's default) where the

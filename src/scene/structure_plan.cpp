@@ -18,7 +18,7 @@ const SamplerTraits& traitsOf(SamplerKind kind) {
     return kSamplerTraits[0];
 }
 
-StructurePlan planOf(TraversalKind traversal, SamplerKind sampler, Backend backend) {
+StructurePlan planOf(TraversalKind traversal, SamplerKind sampler, Backend backend, bool subMajorants) {
     AMRVK_CHECK(backend != Backend::Auto, "internal: a structure plan needs a resolved back-end");
     const TraversalTraits& t = traitsOf(traversal);
     const SamplerTraits& s = traitsOf(sampler);
@@ -32,9 +32,10 @@ StructurePlan planOf(TraversalKind traversal, SamplerKind sampler, Backend backe
     p.abrs = s.lookup == Lookup::AbrBvh || t.boxes == BoxSet::Abrs;
     p.samplerBvh = bvhLookup && backend == Backend::Sw;
     p.samplerBoxes = bvhLookup && backend == Backend::Rq;
-    p.brickGrid = s.lookup == Lookup::BrickGrid;
     p.denseGrid = s.lookup == Lookup::Dense;
     p.macrocellRanges = t.macrocellRanges;
+    p.subMajorants = subMajorants && p.macrocellRanges && s.amr;
+    p.brickGrid = s.lookup == Lookup::BrickGrid || p.subMajorants;
     p.rangesFromDense = p.denseGrid && p.macrocellRanges;
     p.staticBoxes = t.boxes == BoxSet::Abrs || t.boxes == BoxSet::BrickBounds || t.boxes == BoxSet::BrickDomains;
     p.supportRangeQuery = t.boxes == BoxSet::KdLeaves;

@@ -75,7 +75,7 @@ struct StructurePlan {
     bool abrs = false;              // abr sampler or abr traversal
     bool samplerBvh = false;        // BVH over the lookup's boxes (sw back-end)
     bool samplerBoxes = false;      // the same boxes as BLAS input (rq back-end)
-    bool brickGrid = false;         // grid sampler
+    bool brickGrid = false;         // grid sampler; kept on the host only for sub-majorants
     bool denseGrid = false;         // dense sampler
     bool macrocellRanges = false;   // grid traversals
     bool rangesFromDense = false;   // dense sampler: macrocell ranges from the dense samples
@@ -86,7 +86,11 @@ struct StructurePlan {
     bool boxMajorants = false;      // a majorant per traversal box and a culled hierarchy over them
     bool boxesPerTf = false;        // the boxes themselves change with the TF (kdtree)
     bool rayQueryCulling = false;   // rq: the culled boxes as a BLAS rebuilt per TF
+    bool subMajorants = false;      // grid traversals over AMR samplers, where asked for: sub-boxes of the
+                                    // loose macrocells per TF (scene/sub_majorants.h), from the brick grid
 };
-StructurePlan planOf(TraversalKind traversal, SamplerKind sampler, Backend backend);
+// `subMajorants`: asked for (StructureConfig::subMajorants > 0); only grid traversals over the
+// AMR samplers have them (the dense sampler's ranges come from its samples, not the cells).
+StructurePlan planOf(TraversalKind traversal, SamplerKind sampler, Backend backend, bool subMajorants);
 
 }  // namespace amrvk::scene

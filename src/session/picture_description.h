@@ -53,7 +53,7 @@ struct PictureDescription {
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
     // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).
-    bool samplerGiven = false, backendGiven = false, gridGiven = false;
+    bool samplerGiven = false, backendGiven = false, gridGiven = false, subMajorantsGiven = false;
 };
 
 // Reads the data a session names (its input, read options and field; only that field is loaded

@@ -292,6 +292,12 @@ const std::vector<Section>& sections() {
           enumKey("backend", AT(structure.backend), scene::parseBackend, scene::backendName, Write::Always, "auto"),
           textKey("grid", AT(structure.grid)),
           integerKey("kdLeaves", AT(structure.kdLeaves), 1, scene::kMaxKdLeaves),
+          {"subMajorants",  // "off", or the largest division "2", "4", "8" or "16" (scene/sub_majorants.h)
+           [](const Session& s, Json& j) { j["subMajorants"] = scene::subMajorantsName(s.structure.subMajorants); },
+           [](const Reader& r, Session& s) {
+               s.structure.subMajorants = r.named("subMajorants", scene::subMajorantsName(s.structure.subMajorants),
+                                                  [](const std::string& v) { return scene::parseSubMajorants(v, "value"); });
+           }},
           {"denseMaxMiB", [](const Session& s, Json& j) { j["denseMaxMiB"] = s.structure.denseMaxBytes >> 20; },
            [](const Reader& r, Session& s) {
                if (r.has("denseMaxMiB"))

@@ -347,6 +347,8 @@ void structurePanel(PanelState& p, PanelRequests& r) {
     int leaves = int(c.kdLeaves);
     if (ImGui::InputInt("kd leaves", &leaves, 256, 1024, ImGuiInputTextFlags_EnterReturnsTrue))
         c.kdLeaves = uint32_t(std::clamp(leaves, 1, int(scene::kMaxKdLeaves)));
+    std::string sub = scene::subMajorantsName(c.subMajorants);
+    if (namedCombo("sub-majorants", sub, {"off", "2", "4", "8", "16"})) c.subMajorants = scene::parseSubMajorants(sub);
     if (!p.structureError.empty()) wrapped(&kRed, "not applied: " + p.structureError);
 }
 

@@ -30,7 +30,10 @@ import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["width"] == 16 and j["frames"] == 8 and j["referenceSpp"] == 32, j
 kinds = sorted(r["kind"] for r in j["runs"])
-assert kinds == ["dense", "dvr", "grid-sweep", "matrix", "matrix", "pt-ae"], kinds
+# grid-dda without and with sub-majorants (the default --sub-majorants off,8), abr once.
+assert kinds == ["dense", "dvr", "grid-sweep", "matrix", "matrix", "matrix", "pt-ae"], kinds
+labels = sorted(r["label"] for r in j["runs"] if r["kind"] == "matrix")
+assert labels == ["abr/ext-brick/sw", "grid-dda/ext-brick/sw", "grid-dda/ext-brick/sw sub 8"], labels
 for r in j["runs"]:
     assert "error" in r and isinstance(r["error"], list) and len(r["error"]) == 4, r   # 1, 2, 4, 8 spp
     assert r["majorantViolations"] == 0, r
@@ -77,6 +80,7 @@ expect "--frames: '1' is outside [2, 1048576]" -- bench "$sample" -o "$dir/x" --
 expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"
 expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
 expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr
+expect "--sub-majorants '3': expected off, 2, 4, 8 or 16" -- bench "$sample" -o "$dir/x" --sub-majorants off,3
 expect "--dvr-steps: '0' is not in (0, 64]" -- bench "$sample" -o "$dir/x" --dvr-steps 0
 expect "--traversals: empty list" -- bench "$sample" -o "$dir/x" --traversals ''
 expect "--tf-colors: gamma not in {srgb,linear}" -- bench "$sample" -o "$dir/x" --tf-colors gamma

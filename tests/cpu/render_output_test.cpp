@@ -47,14 +47,26 @@ TEST(PathStats, QuantileIsTheUpperEndOfTheBinHoldingIt) {
     EXPECT_EQ(scene::pathQuantile({}, 0.5), 0u);
     scene::PathStats p;
     std::array<uint32_t, shared::kPathStatsCount> gpu{};
-    gpu[shared::kPathStatsLookupBins + 3] = 5;
-    gpu[shared::kPathStatsNullBins + 0] = 5;
-    gpu[shared::kPathStatsMaxLookups] = 3;
+    const uint32_t lookupBins = shared::kPathStatsBins + shared::kPathLookups * shared::kPathBins;
+    const uint32_t stepBins = shared::kPathStatsBins + shared::kPathSteps * shared::kPathBins;
+    gpu[lookupBins + 3] = 5;
+    gpu[shared::kPathStatsBins + shared::kPathNulls * shared::kPathBins + 0] = 5;
+    gpu[stepBins + 9] = 5;
+    gpu[shared::kPathStatsMax + shared::kPathLookups] = 3;
+    gpu[shared::kPathStatsMax + shared::kPathSteps] = 9;
     p.add(gpu);
-    gpu[shared::kPathStatsMaxLookups] = 2;
+    gpu[shared::kPathStatsMax + shared::kPathLookups] = 2;
     p.add(gpu);
     EXPECT_EQ(p.paths(), 10u);
-    EXPECT_EQ(p.maxLookups, 3u);  // the largest over dispatches, not a sum
+    EXPECT_EQ(p.maxLookups(), 3u);  // the largest over dispatches, not a sum
+    EXPECT_EQ(p.max[shared::kPathSteps], 9u);
+    EXPECT_EQ(p.bins[shared::kPathSteps][9], 10u);  // each quantity in its own histogram
+    EXPECT_EQ(p.bins[shared::kPathReal][0], 10u);   // paths of no real collision: every path, not counted
+    EXPECT_EQ(p.bins[shared::kPathSteps][0], 0u);   // every path was counted with its steps
+    const scene::PathDistribution d = scene::pathDistribution(p, shared::kPathSteps, 90);
+    EXPECT_DOUBLE_EQ(d.mean, 9.0);
+    EXPECT_EQ(d.max, 9u);
+    EXPECT_EQ(d.p50, scene::pathBinHigh(9));
 }
 
 

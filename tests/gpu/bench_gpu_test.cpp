@@ -45,6 +45,7 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
     o.traversals = {scene::TraversalKind::GridDda, scene::TraversalKind::Abr};
     o.samplers = {scene::SamplerKind::ExtBrick};
     o.backends = {scene::Backend::Sw};
+    o.subMajorants = {0, 8};  // grid-dda twice: without and with sub-majorants; abr once
     o.width = o.height = 32;
     o.frames = 64;
     o.warmup = 2;
@@ -67,14 +68,18 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
         EXPECT_TRUE(j.contains(k)) << k;
     ASSERT_EQ(j["references"].size(), 3u);  // ae, ms and the ae reference of dvr (cached: same file)
     for (const auto& r : j["references"]) EXPECT_NE(r["command"].get<std::string>().find(" render "), std::string::npos);
-    size_t matrix = 0, dense = 0, dvr = 0, sweep = 0;
+    size_t matrix = 0, dense = 0, dvr = 0, sweep = 0, withSub = 0;
     for (const auto& r : j["runs"]) {
         ASSERT_FALSE(r.contains("error") && r["error"].is_string()) << r.dump();
         for (const char* k : {"fps", "mPathsPerSecond", "lookupsPerPath", "stepsPerPath", "nullPerRealCollision",
                               "majorantUpdateSeconds", "tfStructureUpdateSeconds", "structureBuildSeconds",
                               "deviceBytesAfterBuild", "deviceBytesPeak", "deviceBytesPerResource", "error", "slope",
-                              "targetRmse", "secondsToTarget"})
+                              "targetRmse", "secondsToTarget", "perPath", "shadowLookupShare",
+                              "lookupLaneUtilization", "subMajorantSkipsPerPath"})
             EXPECT_TRUE(r.contains(k)) << k << " in " << r["kind"];
+        for (const char* q : {"lookups", "nullCollisions", "realCollisions", "traversalSteps"})
+            for (const char* k : {"mean", "p50", "p90", "p99", "p999", "max"})
+                EXPECT_TRUE(r["perPath"][q].contains(k)) << q << "." << k << " in " << r["kind"];
         EXPECT_EQ(r["majorantViolations"].get<uint64_t>(), 0u);
         EXPECT_GT(r["deviceBytesPeak"].get<uint64_t>(), 0u);
         EXPECT_GE(r["deviceBytesPeak"].get<uint64_t>(), r["deviceBytesAfterBuild"].get<uint64_t>());
@@ -85,9 +90,11 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
         sweep += kind == "grid-sweep";
         if (kind == "matrix") {
             EXPECT_TRUE(r.contains("costRatioToDense"));
+            withSub += r["label"].get<std::string>().find(" sub 8") != std::string::npos;
         }
     }
-    EXPECT_EQ(matrix, 4u);  // 2 traversals x 2 modes
+    EXPECT_EQ(matrix, 6u);  // (grid-dda, grid-dda with sub-majorants, abr) x 2 modes
+    EXPECT_EQ(withSub, 2u);
     EXPECT_EQ(dense, 2u);
     EXPECT_EQ(dvr, 2u);
     EXPECT_EQ(sweep, 2u);  // grid-dda only (grid-bvh not selected)

@@ -330,15 +330,18 @@ TEST_F(RendererGpu, TrackingCapIsCountedNotSilent) {
 
 // Samples per invocation only regroups the same samples (each is seeded by its own number): 1 and
 // 8 per invocation give the same counters and the same means up to float rounding, at 13 spp (not
-// a multiple of 8, so the last dispatch takes 5); another seed does not (the check has power).
+// a multiple of 8, so the last dispatch takes 5); so does path regeneration (the workgroup's
+// samples taken from a pool, at 8 per invocation: pools of 8, then of 5), whose sums are added in
+// the same order; another seed does not (the check has power).
 TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
     const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
     scene::StructureConfig cfg;
     cfg.grid = "8";
-    auto renderOn = [&](uint32_t perInvocation, uint32_t seed) {
+    auto renderOn = [&](uint32_t perInvocation, uint32_t seed, bool regeneration = false) {
         gpu::ContextOptions o;
         o.validation = true;
         o.samplesPerInvocation = perInvocation;
+        o.pathRegeneration = regeneration;
         gpu::Context c(o);
         EXPECT_EQ(c.samplesPerInvocation(), perInvocation);
         scene::RenderOutput out;
@@ -353,6 +356,7 @@ TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
         return out;
     };
     const scene::RenderOutput one = renderOn(1, 3), eight = renderOn(8, 3), other = renderOn(8, 4);
+    const scene::RenderOutput pooled = renderOn(8, 3, true);
     EXPECT_EQ(eight.spp, 13u);
     // The same samples: the same counters and per-path statistics; only the lane slots (the SIMD
     // occupancy of invocations, which now hold 8 samples each) change.
@@ -361,55 +365,72 @@ TEST_F(RendererGpu, SamplesPerInvocationRegroupTheSameSamples) {
             EXPECT_EQ(one.stats.counters[k], eight.stats.counters[k]) << k;
         }
     }
-    EXPECT_EQ(one.stats.path.lookupBins, eight.stats.path.lookupBins);
-    EXPECT_EQ(one.stats.path.nullBins, eight.stats.path.nullBins);
-    EXPECT_EQ(one.stats.path.maxLookups, eight.stats.path.maxLookups);
+    EXPECT_EQ(one.stats.path.bins, eight.stats.path.bins);
+    EXPECT_EQ(one.stats.path.max, eight.stats.path.max);
+    for (uint32_t k = 0; k < shared::kCounterCount; ++k) {
+        if (k != shared::kCounterLookupLaneSlots) {
+            EXPECT_EQ(eight.stats.counters[k], pooled.stats.counters[k]) << k;
+        }
+    }
+    EXPECT_EQ(eight.stats.path.bins, pooled.stats.path.bins);
+    EXPECT_LT(maxRelativeDifference(eight.mean, pooled.mean), 1e-6) << "the same sums in the same order";
     EXPECT_GT(one.stats.counters[shared::kCounterRealCollisions], 1000u);
     EXPECT_LT(maxRelativeDifference(one.mean, eight.mean), 1e-5);
     EXPECT_GT(maxRelativeDifference(one.mean, other.mean), 1e-2);
     EXPECT_NE(one.stats.counters[shared::kCounterDensityLookups], other.stats.counters[shared::kCounterDensityLookups]);
 }
 
-// Per-path statistics (render --json's perPath): one histogram entry per path, the histogram's bins
-// bracket the counters' totals (each path's count lies between its bin's ends), the percentiles
-// are ordered and reach the maximum, and the lane utilisation is a share of the lookup slots.
+// Per-path statistics (render --json's perPath): one histogram entry per path and quantity, each
+// quantity's bins bracket its counter's total (each path's count lies between its bin's ends), the
+// percentiles are ordered and reach the maximum, the lane utilisation is a share of the lookup
+// slots, and shadow rays' lookups are a part of all lookups (none without lights in ms).
 TEST_F(RendererGpu, PathStatisticsAddUpToTheCounters) {
     const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(test::makeThreeLevelCloud());
     scene::StructureConfig cfg;
     cfg.grid = "8";
     render::Renderer r(ctx(), volume, cfg);
     r.setTransferFunction(rampOver(*volume));
-    const scene::RenderSettings s = smallSettings(volume->model);
+    scene::RenderSettings s = smallSettings(volume->model);
     const scene::RenderOutput out = r.render(s, 9);
     const scene::PathStats& p = out.stats.path;
     ASSERT_EQ(p.paths(), out.stats.paths);
-    uint64_t nullPaths = 0;
-    for (uint64_t c : p.nullBins) nullPaths += c;
-    EXPECT_EQ(nullPaths, out.stats.paths);
-    auto bracket = [](const std::array<uint64_t, shared::kPathBins>& bins, uint64_t total, uint64_t max) {
-        uint64_t lo = 0, hi = 0;
+    const auto& c = out.stats.counters;
+    const uint32_t counterOf[shared::kPathQuantities] = {shared::kCounterDensityLookups, shared::kCounterNullCollisions,
+                                                        shared::kCounterRealCollisions, shared::kCounterTraversalSteps};
+    for (uint32_t q = 0; q < shared::kPathQuantities; ++q) {
+        SCOPED_TRACE(q);
+        uint64_t paths = 0, lo = 0, hi = 0;
         uint32_t top = 0;
         for (uint32_t b = 0; b < shared::kPathBins; ++b) {
-            lo += bins[b] * scene::pathBinLow(b);
-            hi += bins[b] * scene::pathBinHigh(b);
-            if (bins[b] > 0) top = b;
+            paths += p.bins[q][b];
+            lo += p.bins[q][b] * scene::pathBinLow(b);
+            hi += p.bins[q][b] * scene::pathBinHigh(b);
+            if (p.bins[q][b] > 0) top = b;
         }
-        EXPECT_LE(lo, total);
-        EXPECT_GE(hi, total);
-        EXPECT_GE(max, scene::pathBinLow(top));
-        EXPECT_LE(max, scene::pathBinHigh(top));
-    };
-    const auto& c = out.stats.counters;
-    bracket(p.lookupBins, c[shared::kCounterDensityLookups], p.maxLookups);
-    bracket(p.nullBins, c[shared::kCounterNullCollisions], p.maxNulls);
-    const uint64_t p50 = scene::pathQuantile(p.lookupBins, 0.5), p99 = scene::pathQuantile(p.lookupBins, 0.99);
-    EXPECT_LE(p50, p99);
-    EXPECT_LE(p99, scene::pathBinHigh(shared::kPathBins - 1));
-    EXPECT_GE(scene::pathQuantile(p.lookupBins, 1.0), p.maxLookups);
-    EXPECT_GT(p.maxLookups, 8u);  // paths that scatter take many lookups: the bins above 8 are used
+        EXPECT_EQ(paths, out.stats.paths);
+        EXPECT_LE(lo, c[counterOf[q]]);
+        EXPECT_GE(hi, c[counterOf[q]]);
+        EXPECT_GE(p.max[q], scene::pathBinLow(top));
+        EXPECT_LE(p.max[q], scene::pathBinHigh(top));
+        const scene::PathDistribution d = scene::pathDistribution(p, q, c[counterOf[q]]);
+        EXPECT_LE(d.p50, d.p90);
+        EXPECT_LE(d.p90, d.p99);
+        EXPECT_LE(d.p99, d.p999);
+        EXPECT_GE(scene::pathQuantile(p.bins[q], 1.0), d.max);
+        EXPECT_DOUBLE_EQ(d.mean, double(c[counterOf[q]]) / double(out.stats.paths));
+    }
+    EXPECT_GT(p.maxLookups(), 8u);  // paths that scatter take many lookups: the bins above 8 are used
+    EXPECT_GT(p.max[shared::kPathReal], 1u);  // and collide more than once
     const uint64_t slots = c[shared::kCounterLookupLaneSlots];
     EXPECT_GE(slots, c[shared::kCounterDensityLookups]);
     EXPECT_GT(c[shared::kCounterDensityLookups], 0u);
+    // The light's shadow rays take some of the lookups, free flight the others.
+    EXPECT_GT(c[shared::kCounterShadowLookups], 0u);
+    EXPECT_LT(c[shared::kCounterShadowLookups], c[shared::kCounterDensityLookups]);
+    s.lights.clear();
+    const scene::RenderOutput unlit = r.render(s, 2);
+    EXPECT_EQ(unlit.stats.counter(shared::kCounterShadowLookups), 0u);
+    EXPECT_GT(unlit.stats.counter(shared::kCounterDensityLookups), 0u);
 }
 
 // grid-dda's walk across empty blocks renders what the macrocell walk renders (tile z-test, two

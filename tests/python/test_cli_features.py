@@ -125,8 +125,12 @@ def test_the_widget_refines_and_orbits(amrvk):
     w = amrvk.Widget(r, spp=8, batch=2)
     try:
         # At once, before any path-traced sample: the renderer's dvr first frame (the thread
-        # replaces it from its first batch on).
-        assert w.first_frame == dvr
+        # replaces it from its first batch on). Its step is refined while a 1 s GPU budget allows,
+        # so under load it may stop a refinement earlier than the other renderer's: the same
+        # picture up to the step's aliasing, not byte for byte.
+        assert w.first_frame is not None and w.status.value.startswith("first frame (dvr")
+        shown, alone = png_pixels(w.first_frame), png_pixels(dvr)
+        assert shown.shape == alone.shape and np.abs(shown - alone).mean() < 0.005, np.abs(shown - alone).mean()
         assert w.wait(120), "the widget reaches its sample count"
         assert w.image.value != dvr
         assert r.spp == 8 and w.image.value == r.png() and w.status.value.startswith("8/8 spp, mean standard error")

@@ -57,6 +57,8 @@ void main() {
     u64(P.majorants.gridMajorants); u64(P.majorants.domainBoxes); u64(P.majorants.domainRanges);
     u64(P.majorants.domainMajorants); u64(P.majorants.domainNodes); u64(P.majorants.domainPrims);
     u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
+    u64(P.majorants.subRefinement); u64(P.majorants.subMajorants);
+    u(P.majorants.subMajorantsOn); u(P.majorants.subMajorantCheck);
     // RenderParams tail
     u64(P.accum); u64(P.counters); u64(P.pathStats);
     f3(P.cut.cropLo); u(P.cut.flags); f3(P.cut.cropHi); u(P.cut.planeCount);

@@ -1,7 +1,8 @@
 #version 460
-// One tracking estimate per invocation along the ray (origin, direction) over [0, tMax], four
+// One tracking estimate per invocation along the ray (origin, direction) over [0, tMax], eight
 // floats per invocation: 1 if delta tracking escapes (else 0), the ratio-tracking transmittance,
-// delta tracking's collision distance (tMax when it escapes), and the calls stopped at the step cap.
+// delta tracking's collision distance (tMax when it escapes), the calls stopped at the step cap,
+// then the two calls' lookups, collisions decided by sub-majorants, majorant violations and 0.
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/tf.glsl"
@@ -9,6 +10,7 @@
 #include "lib/majorant_dda.glsl"
 #include "lib/domain_traversal.glsl"
 #include "lib/traversal.glsl"
+#include "lib/sub_majorants.glsl"
 #include "lib/tracking.glsl"
 #include "shared/test_push.h"
 layout(push_constant, scalar) uniform Push { TestTrackingPush tp; };
@@ -25,8 +27,12 @@ void main() {
     bool hit = deltaTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c, tHit, tf);
     float tr = ratioTrack(tp.origin.xyz, tp.dir.xyz, tp.dir.w, StructureConfig(tp.samplerKind, tp.traversal, kBackendSw), rng, c);
     FloatRW o = FloatRW(tp.results);
-    o.v[4u * i] = hit ? 0.0 : 1.0;
-    o.v[4u * i + 1u] = tr;
-    o.v[4u * i + 2u] = tHit;
-    o.v[4u * i + 3u] = float(c.capped);
+    o.v[8u * i] = hit ? 0.0 : 1.0;
+    o.v[8u * i + 1u] = tr;
+    o.v[8u * i + 2u] = tHit;
+    o.v[8u * i + 3u] = float(c.capped);
+    o.v[8u * i + 4u] = float(c.lookups);
+    o.v[8u * i + 5u] = float(c.thinned);
+    o.v[8u * i + 6u] = float(c.violations);
+    o.v[8u * i + 7u] = 0.0;
 }
