@@ -37,7 +37,8 @@ const char* kInfoHelp =
 
 // --check-majorants: every traversal's boxes against the exact reconstruction, for every TF.
 int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const std::string& gridSpec,
-                     uint32_t kdLeaves, const std::string& tfList, const std::vector<double>& tfRange, bool json) {
+                     uint32_t kdLeaves, uint32_t subMajorants, const std::string& tfList, const std::vector<double>& tfRange,
+                     bool json) {
     amr::Model model;
     {
         ProgressStage stage("reading " + input);
@@ -55,6 +56,7 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
     options.grid = gridSpec;
     accel::parseGridDims(gridSpec, volume->bounds());  // a bad --grid is an error before any work
     options.kdLeaves = kdLeaves;
+    options.subMajorants = subMajorants;
     const std::vector<std::string> specs = tfList.empty() ? scene::presetNames() : splitList(tfList);
     for (const std::string& spec : specs) {
         // As render fits them: presets follow the data unless --tf-range fixes them.
@@ -77,7 +79,8 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
             for (const auto& t : c.tfs)
                 tfs.push_back({{"tf", t.tf}, {"failures", t.failures}, {"worstRatio", t.worstRatio}});
             sets.push_back({{"boxes", c.boxes}, {"traversals", c.traversals}, {"builtForTf", c.tf}, {"count", c.count},
-                            {"withData", c.withData}, {"vertices", c.vertices}, {"rangeFailures", c.rangeFailures},
+                            {"withData", c.withData}, {"sampledEvery", c.sampledEvery}, {"vertices", c.vertices},
+                            {"rangeFailures", c.rangeFailures},
                             {"worstExcess", c.worstExcess}, {"worst", c.worst}, {"tfs", tfs}, {"seconds", c.seconds},
                             {"ok", c.ok()}});
         }
@@ -93,9 +96,10 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
                     (unsigned long long)volume->model.cellCount(), double(lo), double(hi),
                     accel::positionMargin(volume->bounds()));
         for (const scene::BoxSetCheck& c : checks) {
-            std::printf("  %-22s %-18s %9llu boxes (%llu with data), %llu values, %.2f s: %s\n",
+            std::printf("  %-22s %-18s %9llu boxes (%llu with data%s), %llu values, %.2f s: %s\n",
                         oneLineMessage(c.boxes + (c.tf.empty() ? "" : " (" + c.tf + ")")).c_str(), c.traversals.c_str(),
                         (unsigned long long)c.count, (unsigned long long)c.withData,
+                        c.sampledEvery > 1 ? strCat("; of 1 in ", c.sampledEvery, " refined macrocells").c_str() : "",
                         (unsigned long long)c.vertices, c.seconds, c.ok() ? "ok" : "FAILED");
             if (c.rangeFailures > 0)
                 std::printf("    %llu ranges too narrow; worst by %.3g of the largest |value|: %s\n",
@@ -374,9 +378,11 @@ int runInfo(const std::vector<std::string>& argv) {
     std::vector<double> tfRange;
     int64_t kdLeaves = 4096;
     app.add_flag("--check-majorants", checkMajorants,
-                 "check every traversal's boxes (macrocells, ABRs, brick bounds and domains, kd leaves per TF): the "
-                 "exact range of the reconstruction over each box, grown by the position margin, must fit its stored "
-                 "range with room for the GPU's float error, and its alpha maximum under every TF its majorant");
+                 "check every traversal's boxes (macrocells, ABRs, brick bounds and domains, kd leaves per TF, the "
+                 "sub-boxes of the macrocells each TF makes loose): the exact range of the reconstruction over each "
+                 "box, grown by the position margin, must fit its stored range with room for the GPU's float error, "
+                 "and its alpha maximum under every TF its majorant (sub-boxes: of at most 2^18 per TF, those of every "
+                 "k-th refined macrocell)");
     app.add_option("--tfs", tfList, "--check-majorants: TF presets or files, comma-separated (default: every preset)")
         ->type_name("LIST");
     app.add_option("--tf-range", tfRange,
@@ -388,15 +394,22 @@ int runInfo(const std::vector<std::string>& argv) {
         ->check(interval(1, scene::kMaxKdLeaves))
         ->capture_default_str()
         ->type_name("N");
+    std::string subMajorants = "8";
+    app.add_option("--sub-majorants", subMajorants,
+                   "--check-majorants: the largest division of the sub-boxes checked (off: none)")
+        ->check(CLI::IsMember({"off", "2", "4", "8", "16"}))
+        ->capture_default_str()
+        ->type_name("off|N");
     if (!parseCommandLine(app, argv)) return 0;
     const amr::ReadOptions ro = readOptions(read);
     if (checkMajorants) {
         AMRVK_CHECK(bricksFile.empty(), "--check-majorants builds its own bricks (drop --bricks)");
         for (const char* name : {"--traversal", "--sampler"})
             AMRVK_CHECK(app.count(name) == 0, name, " does not apply with --check-majorants (it checks every traversal)");
-        return checkMajorantsOf(input, ro, gridSpec, uint32_t(kdLeaves), tfList, tfRange, json);
+        return checkMajorantsOf(input, ro, gridSpec, uint32_t(kdLeaves), scene::parseSubMajorants(subMajorants), tfList,
+                                tfRange, json);
     }
-    for (const char* name : {"--tfs", "--tf-range", "--kd-leaves"})
+    for (const char* name : {"--tfs", "--tf-range", "--kd-leaves", "--sub-majorants"})
         AMRVK_CHECK(app.count(name) == 0, name, " applies only with --check-majorants");
     const InfoData d = gatherInfo(input, ro, bricksFile, infoConfigs(traversals, sampler, gridSpec));
     if (json)

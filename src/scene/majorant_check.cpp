@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/stats.h"
+#include "scene/sub_majorants.h"
 #include "scene/volume_scene.h"
 
 namespace amrvk::scene {
@@ -207,6 +208,47 @@ std::vector<BoxSetCheck> checkMajorants(const std::shared_ptr<const Volume>& vol
             check.boxes = "kd leaves";
             check.traversals = "kdtree";
             check.tf = tf.name();
+            checkBoxSet(exact, s, margin, {&tf}, options, check);
+            out.push_back(std::move(check));
+        }
+    }
+    if (options.subMajorants > 0) {  // sub-boxes: built per TF for the macrocells it makes loose
+        StructureConfig c = configFor(TraversalKind::GridDda, options);
+        c.subMajorants = options.subMajorants;
+        VolumeScene scene(volume, c);
+        const accel::RangeGrid& g = *scene.grid;
+        const accel::SubRangeMaker maker(*scene.brickGrid, v.bricks, v.brickValues());
+        for (const TransferFunction& tf : options.tfs) {
+            const SubMajorantGrid sub =
+                buildSubMajorants(g, maker, tf,
+                                  {.maxDivision = int(options.subMajorants),
+                                   .budgetBytes = defaultSubMajorantBudget(g.cellCount()),
+                                   .chordInFinestCells = chordOf(g, double(amr::cellWidth(v.minLevel())))});
+            if (sub.refined == 0) continue;  // a smooth TF: nothing built, nothing to check
+            BoxSetCheck check;
+            check.boxes = "sub-boxes";
+            check.traversals = "grid-dda, grid-bvh";
+            check.tf = tf.name();
+            check.sampledEvery = (sub.subBoxes + options.maxSubBoxes - 1) / std::max<uint64_t>(options.maxSubBoxes, 1);
+            StoredBoxes s;
+            std::vector<accel::ValueRange> ranges;
+            uint64_t refinedSeen = 0;
+            for (size_t cell = 0; cell < g.cellCount(); ++cell) {
+                const auto [n, offset] = sub.refinementOf(cell);
+                if (n == 1 || refinedSeen++ % check.sampledEvery != 0) continue;
+                maker.ranges(cell, n, ranges);
+                // The majorant the GPU derives: the macrocell's, times q / 255, in float.
+                const float M = tf.maxAlpha(g.ranges[cell].lo, g.ranges[cell].hi);
+                const glm::dvec3 size = g.cellSize / double(n);
+                const glm::dvec3 corner = g.origin + g.cellSize * glm::dvec3(g.coordOf(cell));
+                for (size_t k = 0; k < ranges.size(); ++k) {
+                    const glm::dvec3 lo = corner + size * glm::dvec3(double(k % size_t(n)), double(k / size_t(n) % size_t(n)),
+                                                                    double(k / (size_t(n) * size_t(n))));
+                    s.boxes.push_back({lo, lo + size});
+                    s.ranges.push_back(ranges[k]);
+                    s.majorants.push_back(M * (float(sub.q(cell, k)) * (1.0f / 255.0f)));
+                }
+            }
             checkBoxSet(exact, s, margin, {&tf}, options, check);
             out.push_back(std::move(check));
         }

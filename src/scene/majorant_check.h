@@ -27,14 +27,19 @@ struct MajorantCheckOptions {
     std::vector<TransferFunction> tfs;  // already mapped over the field's range
     std::string grid = "auto";          // macrocells (--grid)
     uint32_t kdLeaves = 4096;           // kd leaves (--kd-leaves)
+    uint32_t subMajorants = 8;          // the largest division of a loose macrocell (--sub-majorants; 0: none)
+    // Sub-boxes checked per TF at most: of the refined macrocells, every k-th with all its
+    // sub-boxes, k the smallest that keeps the count within this (1: every one).
+    uint64_t maxSubBoxes = uint64_t(1) << 18;
     // Called between batches: (box set, boxes done, boxes in the set). Optional.
     std::function<void(const std::string&, uint64_t, uint64_t)> onProgress;
 };
 
 struct BoxSetCheck {
-    std::string boxes;       // "macrocells", "abrs", "brick bounds", "brick domains", "kd leaves"
+    std::string boxes;       // "macrocells", "abrs", "brick bounds", "brick domains", "kd leaves", "sub-boxes"
     std::string traversals;  // the --traversal values that step them
-    std::string tf;          // kd leaves: the TF they were built for (only that TF is checked)
+    std::string tf;          // kd leaves, sub-boxes: the TF they were built for (only that TF is checked)
+    uint64_t sampledEvery = 1;  // sub-boxes: those of every k-th refined macrocell were checked
     uint64_t count = 0;      // boxes
     uint64_t withData = 0;   // boxes some cell support reaches
     uint64_t vertices = 0;   // reconstruction values evaluated
