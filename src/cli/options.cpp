@@ -335,8 +335,8 @@ void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
         app.add_option("--sub-majorants", a.subMajorants,
                        "grid-dda, grid-bvh: split each macrocell that the TF makes loose (a narrow TF peak in its "
                        "value range) into at most N^3 sub-boxes with majorants of their own, rebuilt per TF, so that "
-                       "collisions they decide skip their lookup (the same picture, fewer lookups; "
-                       "docs/benchmarks.md)")
+                       "collisions they decide skip their lookup (the same picture, fewer lookups; nothing is "
+                       "built where the TF has no narrow peak; docs/benchmarks.md)")
             ->check(CLI::IsMember({"off", "2", "4", "8", "16"}))
             ->capture_default_str()
             ->type_name("off|N");

@@ -91,13 +91,34 @@ void MajorantPass::buildKdTree(const scene::TransferFunction& tf) {
     mBvhMask.clear();  // new boxes: the culling BVH must be rebuilt
 }
 
-// The loose macrocells' sub-boxes under `tf`, on the GPU (scene/sub_majorants.h).
-void MajorantPass::buildSubMajorants(const scene::TransferFunction& tf) {
+MajorantPass::~MajorantPass() { cancelSubMajorants(); }
+
+scene::SubMajorantOptions MajorantPass::subMajorantOptions() const {
     const accel::RangeGrid& grid = *mScene.grid;
-    mSub = scene::buildSubMajorants(grid, *mSubRanges, tf,
-                                    {.maxDivision = int(mScene.config().subMajorants),
-                                     .budgetBytes = scene::defaultSubMajorantBudget(grid.cellCount()),
-                                     .chordInFinestCells = scene::chordOf(grid, double(amr::cellWidth(mScene.volume().minLevel())))});
+    return {.maxDivision = int(mScene.config().subMajorants),
+            .cancel = mSubCancel.get(),
+            .budgetBytes = scene::defaultSubMajorantBudget(grid.cellCount()),
+            .chordInFinestCells = scene::chordOf(grid, double(amr::cellWidth(mScene.volume().minLevel())))};
+}
+
+// The loose macrocells' sub-boxes under `tf` (scene/sub_majorants.h): at once, or on another
+// thread (setSubMajorantsInBackground) with the macrocell majorants alone until adopted.
+void MajorantPass::buildSubMajorants(const scene::TransferFunction& tf) {
+    cancelSubMajorants();
+    uploadSubMajorants({});
+    if (!mSubInBackground) {
+        uploadSubMajorants(scene::buildSubMajorants(*mScene.grid, *mSubRanges, tf, subMajorantOptions()));
+        return;
+    }
+    // The build reads the scene's grid and brick lists, which stay until the scene is configured
+    // again: Renderer::setStructure cancels it first.
+    mSubPending = std::async(std::launch::async, [this, tf, options = subMajorantOptions()] {
+        return scene::buildSubMajorants(*mScene.grid, *mSubRanges, tf, options);
+    });
+}
+
+void MajorantPass::uploadSubMajorants(scene::SubMajorantGrid grid) {
+    mSub = std::move(grid);
     mSubWords = gpu::Buffer();
     mSubBytes = gpu::Buffer();
     mParams.subMajorantsOn = mSub.refined > 0 ? 1u : 0u;
@@ -107,6 +128,27 @@ void MajorantPass::buildSubMajorants(const scene::TransferFunction& tf) {
     mSubBytes = gpu::makeBuffer<uint32_t>(mCtx, mSub.bytes, "subMajorants");
     mParams.subRefinement = mSubWords.address();
     mParams.subMajorants = mSubBytes.address();
+}
+
+bool MajorantPass::adoptSubMajorants() {
+    if (!mSubPending.valid() || mSubPending.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    scene::SubMajorantGrid grid = mSubPending.get();
+    if (grid.cancelled) return false;
+    uploadSubMajorants(std::move(grid));
+    return mSub.refined > 0;
+}
+
+bool MajorantPass::waitForSubMajorants() {
+    if (mSubPending.valid()) mSubPending.wait();
+    return adoptSubMajorants();
+}
+
+void MajorantPass::cancelSubMajorants() {
+    if (!mSubPending.valid()) return;
+    mSubCancel->store(true);
+    mSubPending.wait();
+    mSubPending = {};
+    mSubCancel->store(false);
 }
 
 void MajorantPass::overrideSubMajorants(uint32_t q) {

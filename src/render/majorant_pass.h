@@ -7,7 +7,10 @@
 // kdtree traversal, the TF-specific kd-tree itself; for grid traversals with sub-majorants, the
 // sub-boxes of the loose macrocells (scene/sub_majorants.h). Fills shared::MajorantsGpu. Never touches the
 // TF-independent structures (VolumeScene, DeviceScene), which it only reads.
+#include <atomic>
 #include <cstdint>
+#include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,6 +36,9 @@ public:
     // the pass's pipelines come from `shaders`.
     MajorantPass(gpu::Context& ctx, const scene::VolumeScene& scene, const DeviceScene& device,
                  const gpu::ShaderLibrary& shaders);
+    ~MajorantPass();  // stops a sub-majorant build in the background (cancelSubMajorants)
+    MajorantPass(const MajorantPass&) = delete;
+    MajorantPass& operator=(const MajorantPass&) = delete;
 
     // Host part of a TF change: TF nodes, the kd-tree and its boxes (kdtree traversal), and the set
     // of traversal boxes whose value range can reach alpha > 0 (TransferFunction::maxAlpha, the
@@ -72,8 +78,20 @@ public:
     // Overwrites the macrocell majorants, then the blocks' (grid-dda only; after a dispatch;
     // tests: deliberate overestimates).
     void overrideGridMajorants(const std::vector<float>& majorants);
-    // The sub-majorants of the last TF (empty without them: plan().subMajorants off).
+    // The sub-majorants of the last TF (empty without them: plan().subMajorants off, or still
+    // building in the background).
     const scene::SubMajorantGrid& subMajorants() const { return mSub; }
+    // Where set, prepare() builds the sub-majorants on another thread and the pass renders with the
+    // macrocell majorants alone until adoptSubMajorants() takes them: a TF edit in the viewer does
+    // not wait for them. They change no expectation (delta tracking decides as without them), so
+    // the accumulation goes on across the adoption. Off: prepare() builds them at once.
+    void setSubMajorantsInBackground(bool on) { mSubInBackground = on; }
+    // A finished background build: its buffers uploaded and params() pointing at them; true when
+    // params() changed. waitForSubMajorants() waits for it first.
+    bool adoptSubMajorants();
+    bool waitForSubMajorants();
+    // Stops a background build and waits for it (before the scene's structures change).
+    void cancelSubMajorants();
     // Tests: look up every collision a sub-majorant decides too and count it as a violation where
     // the extinction exceeds the sub-majorant (MajorantsGpu::subMajorantCheck).
     void setSubMajorantCheck(bool on) { mParams.subMajorantCheck = on ? 1u : 0u; }
@@ -83,6 +101,8 @@ public:
 private:
     void buildKdTree(const scene::TransferFunction& tf);
     void buildSubMajorants(const scene::TransferFunction& tf);
+    scene::SubMajorantOptions subMajorantOptions() const;
+    void uploadSubMajorants(scene::SubMajorantGrid grid);
     void updateSwCulling();
     gpu::ComputePipeline structurePipeline(const std::string& name) const;
     double dispatchBlockMajorants(gpu::GpuTimer* timer);
@@ -113,6 +133,9 @@ private:
     std::optional<accel::SubRangeMaker> mSubRanges;  // sub-majorants: the sub-boxes' ranges, from the brick grid
     scene::SubMajorantGrid mSub;
     gpu::Buffer mSubWords, mSubBytes;
+    bool mSubInBackground = false;
+    std::future<scene::SubMajorantGrid> mSubPending;  // a background build
+    std::unique_ptr<std::atomic<bool>> mSubCancel = std::make_unique<std::atomic<bool>>(false);
     std::vector<shared::AabbGpu> mKdBoxesHost;     // local voxel space
     std::vector<uint8_t> mActive;                  // boxes whose range can reach alpha > 0
     std::vector<uint8_t> mBvhMask;                 // the boxes in the current sw BVH

@@ -39,6 +39,7 @@ void Renderer::buildDeviceScene() {
     mMajorants = std::make_unique<MajorantPass>(mCtx, mScene, *mDevice, mShaders);
     mMajorants->setGridBlockUse(mGridBlockUse);
     mMajorants->setSubMajorantCheck(mSubMajorantCheck);
+    mMajorants->setSubMajorantsInBackground(mSubInBackground);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
     if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0)  // grid-bvh, K set by a test
@@ -100,6 +101,7 @@ uint64_t Renderer::paramsAddress() {
 void Renderer::setStructure(const scene::StructureConfig& config) {
     if (config == mScene.config() && mBroken.empty()) return;
     const scene::StructureConfig previous = mScene.config();
+    mMajorants->cancelSubMajorants();  // a background build reads the structures configure frees
     try {
         mScene.configure(config);
     } catch (...) {
@@ -246,12 +248,29 @@ const gpu::ComputePipeline& Renderer::currentPipeline() {
     return pipeline;
 }
 
+void Renderer::adoptSubMajorants() {
+    if (mMajorants->adoptSubMajorants()) takeMajorantParams();
+}
+
+bool Renderer::waitForSubMajorants() {
+    const bool came = mMajorants->waitForSubMajorants();
+    if (came) takeMajorantParams();
+    return came;
+}
+
+void Renderer::setSubMajorantsInBackground(bool on) {
+    mSubInBackground = on;
+    mMajorants->setSubMajorantsInBackground(on);
+}
+
 double Renderer::accumulateRows(uint32_t rows) {
+    adoptSubMajorants();
     const gpu::ComputePipeline& pipeline = currentPipeline();
     return mPathTrace.rows(pipeline, mParamsBuffer.address(), rows);
 }
 
 void Renderer::accumulate(uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress, uint32_t maxBatch) {
+    adoptSubMajorants();
     const gpu::ComputePipeline& pipeline = currentPipeline();
     const uint32_t start = mPathTrace.spp();
     mPathTrace.accumulate(pipeline, mParamsBuffer.address(), spp, [&](uint32_t total) {
@@ -262,6 +281,7 @@ void Renderer::accumulate(uint32_t spp, const std::function<void(uint32_t, uint3
 StagedReport Renderer::accumulateStaged(const StagedRender& staged, uint32_t spp,
                                         const std::function<void(uint32_t, uint32_t)>& progress) {
     requireRenderable();
+    waitForSubMajorants();  // every rank renders with the same structures
     AMRVK_CHECK(mSettings.mode != scene::Mode::Dvr, "staged rendering: mode dvr is not supported (use ae, ss or ms)");
     AMRVK_CHECK(mPathTrace.rowsDone() == 0, "internal: a staged render while a sample is half traced");
     uploadParams();
@@ -280,6 +300,7 @@ scene::RenderOutput Renderer::render(const scene::RenderSettings& settings, uint
                                      const std::vector<uint32_t>& snapshotSpp,
                                      const std::function<void(const scene::RenderOutput&)>& snapshot) {
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
+    waitForSubMajorants();  // one image from scratch: the same structures for every sample
     setSettings(settings);
     if (accumulatedSpp() > 0) resetAccumulation();
     auto onBatch = [&](uint32_t, uint32_t) {

@@ -156,6 +156,12 @@ public:
     void setSubMajorantCheck(bool on);
     // Overwrites every sub-box's q (0..255) under the current TF (tests: deliberate underestimates).
     void overrideSubMajorants(uint32_t q);
+    // Sub-majorants built on another thread after a TF edit (the viewer: an edit does not wait for
+    // them); the accumulation calls take them when ready, without a reset (they change no
+    // expectation). Off (the default): built within setTransferFunction. render() waits for them.
+    void setSubMajorantsInBackground(bool on);
+    // Takes a background build's sub-majorants once it finished (true when they came in).
+    bool waitForSubMajorants();
     // Device address of the RenderParams buffer (current after any edit), for test kernels.
     uint64_t paramsAddress();
 
@@ -182,6 +188,8 @@ private:
     MajorantPass::GridBlockUse mGridBlockUse = MajorantPass::GridBlockUse::Auto;
     uint32_t mGridBvhQueryAfter = 0;  // 0: the device scene's default
     bool mSubMajorantCheck = false;
+    bool mSubInBackground = false;
+    void adoptSubMajorants();  // a finished background build into the params
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;
     bool mHasSettings = false;

@@ -177,9 +177,10 @@ SubMajorantGrid buildSubMajorants(const accel::RangeGrid& grid, const accel::Sub
     }
     out.refined = chosen.size();
     // Each macrocell's sub-boxes write their own bytes (offsets are multiples of 8: whole words).
+    auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
     parallelForRanges(0, chosen.size(), 1, [&](size_t begin, size_t end) {
         std::vector<accel::ValueRange> sub;
-        for (size_t k = begin; k < end; ++k) {
+        for (size_t k = begin; k < end && !cancelled(); ++k) {
             const auto& [c, offset] = chosen[k];
             maker.ranges(c.cell, c.n, sub);
             const accel::ValueRange& r = grid.ranges[c.cell];
@@ -191,6 +192,11 @@ SubMajorantGrid buildSubMajorants(const accel::RangeGrid& grid, const accel::Sub
             }
         }
     });
+    if (cancelled()) {
+        SubMajorantGrid none;
+        none.cancelled = true;
+        return none;
+    }
     out.buildSeconds = timer.seconds();
     return out;
 }

@@ -21,6 +21,7 @@
 // kNotRefined or (byte offset / 8) << 2 | (log2 n - 1); per refined macrocell n^3 bytes (x fastest)
 // q = ceil(255 (1 + kHeadroom) a / M) clamped to [0, 255], a = the sub-box's alpha maximum:
 // m = M q / 255 >= a, with room for the GPU's float rounding of M and of q / 255.
+#include <atomic>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -40,6 +41,7 @@ struct SubMajorantGrid {
     uint64_t refined = 0;         // macrocells refined
     uint64_t subBoxes = 0;        // their sub-boxes
     uint64_t wanted = 0;          // bytes the looseness asked for before the budget
+    bool cancelled = false;       // SubMajorantOptions::cancel stopped the build (nothing refined)
     double buildSeconds = 0;
     uint64_t memoryBytes() const { return (words.size() + bytes.size()) * sizeof(uint32_t); }
     // The refinement (n, 1 <= n <= 16; 1: not refined) and byte offset of macrocell `cell`.
@@ -63,6 +65,8 @@ private:
 
 struct SubMajorantOptions {
     int maxDivision = 8;       // largest n (2, 4, 8 or 16)
+    // Checked between macrocells: once set, the build stops and returns what has no refinement.
+    const std::atomic<bool>* cancel = nullptr;
     uint64_t budgetBytes = 0;  // the sub-boxes' bytes at most
     double chordInFinestCells = 1;  // a macrocell's mean chord in finest cell widths (chordOf)
 };

@@ -248,6 +248,7 @@ picture::Options ViewerApp::pictureOptions() const {
 void ViewerApp::adoptPicture(picture::Picture&& p) {
     mState = p.session();
     mRenderer = std::move(p.renderer);
+    mRenderer->setSubMajorantsInBackground(true);  // a TF edit does not wait for them
     // The editor's form of the TF: the same function, with both channels spanning its range.
     mState.tf = session::TfEditor::editable(mState.tf);
     if (!(mState.tf == p.described.tf))

@@ -30,6 +30,11 @@ TEST(VolumeScene, BuildsOnlyWhatTheConfigurationUsesAndFreesTheRest) {
 
     c.sampler = scene::SamplerKind::ExtBrick;
     s.configure(c);
+    // The brick grid stays on the host for the sub-majorants (not on the device: the ext-brick sampler).
+    EXPECT_TRUE(holds(s, "bricks") && holds(s, "samplerBvh") && holds(s, "macrocells") && holds(s, "brickGrid"));
+    EXPECT_FALSE(holds(s, "abrs") || holds(s, "traversalBoxes"));
+    c.subMajorants = 0;
+    s.configure(c);
     EXPECT_TRUE(holds(s, "bricks") && holds(s, "samplerBvh") && holds(s, "macrocells"));
     EXPECT_FALSE(holds(s, "brickGrid") || holds(s, "abrs") || holds(s, "traversalBoxes"));
 

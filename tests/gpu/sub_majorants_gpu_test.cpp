@@ -53,6 +53,7 @@ TEST_F(SubMajorantsGpu, TheSameCollisionsWithFewerLookups) {
         SCOPED_TRACE(scene::traversalName(t));
         scene::StructureConfig off;
         off.traversal = t;
+        off.subMajorants = 0;
         scene::StructureConfig sub = off;
         sub.subMajorants = 8;
         auto render = [&](const scene::StructureConfig& c, bool check) {
@@ -156,4 +157,49 @@ TEST_F(SubMajorantsGpu, ShadowsMatchTheReferenceIntegrator) {
             r.setTransferFunction(tf);  // sub-majorants built again
         }
     }
+}
+
+// The viewer's way (Renderer::setSubMajorantsInBackground): a TF edit returns before the
+// sub-majorants are built, the accumulation goes on with the macrocell majorants, takes them when
+// the build has finished, without a reset, and makes the very picture the synchronous renderer
+// makes (delta tracking decides alike with and without them). A structure change or another TF
+// edit while a build runs stops it first (nothing read after the scene changed).
+TEST_F(SubMajorantsGpu, ABackgroundBuildIsTakenWithoutAReset) {
+    const std::shared_ptr<const scene::Volume> volume = enzoOrCloud();
+    const scene::TransferFunction spiky = scene::makePreset("spiky", volume->percentiles);
+    const scene::TransferFunction foggy = scene::makePreset("foggy", volume->percentiles);
+    scene::RenderSettings s = settingsFor(*volume, 24);
+    render::Renderer sync(ctx(), volume, scene::StructureConfig{});
+    sync.setTransferFunction(spiky);
+    const scene::RenderOutput expected = sync.render(s, 4);
+
+    render::Renderer r(ctx(), volume, scene::StructureConfig{});
+    r.setSubMajorantsInBackground(true);
+    r.setTransferFunction(foggy);
+    r.setTransferFunction(spiky);  // stops foggy's build (none: foggy refines nothing) and starts spiky's
+    r.setSettings(s);
+    EXPECT_EQ(r.majorantPass().subMajorants().refined, 0u) << "not waited for";
+    r.accumulate(1);
+    const uint64_t resets = r.updateCounts().accumulationResets;
+    r.waitForSubMajorants();
+    EXPECT_GT(r.majorantPass().subMajorants().refined, 100u);
+    r.accumulate(3);
+    EXPECT_EQ(r.updateCounts().accumulationResets, resets) << "taken without a reset";
+    const scene::RenderOutput out = r.output();
+    EXPECT_EQ(out.spp, 4u);
+    EXPECT_LT(test::maxRelativeDifference(out.mean, expected.mean), 1e-6);
+    EXPECT_GT(out.stats.counter(shared::kCounterSubMajorantSkips), 0u);
+    EXPECT_EQ(out.stats.counter(shared::kCounterMajorantViolations), 0u);
+
+    // A structure change and a TF edit in the middle of builds: each stops the one running.
+    for (int k = 0; k < 3; ++k) {
+        r.setTransferFunction(k % 2 ? spiky : foggy);
+        r.setTransferFunction(spiky);
+        scene::StructureConfig c;
+        c.traversal = k % 2 ? scene::TraversalKind::GridBvh : scene::TraversalKind::GridDda;
+        r.setStructure(c);
+    }
+    r.waitForSubMajorants();
+    EXPECT_GT(r.majorantPass().subMajorants().refined, 100u);
+    EXPECT_EQ(r.render(s, 2).stats.counter(shared::kCounterMajorantViolations), 0u);
 }
