@@ -51,9 +51,7 @@ double chordOf(const accel::RangeGrid& grid, double finestCellWidth) {
     return 2.0 / 3.0 * std::cbrt(s.x * s.y * s.z) / finestCellWidth;
 }
 
-uint64_t defaultSubMajorantBudget(uint64_t macrocells) {
-    return std::max<uint64_t>(uint64_t(4) << 20, 16 * macrocells);
-}
+uint64_t defaultSubMajorantBudget(uint64_t) { return uint64_t(16) << 20; }
 
 namespace {
 

@@ -78,7 +78,9 @@ double chordOf(const accel::RangeGrid& grid, double finestCellWidth);
 SubMajorantGrid buildSubMajorants(const accel::RangeGrid& grid, const accel::SubRangeMaker& maker,
                                   const TransferFunction& tf, const SubMajorantOptions& options);
 
-// The default budget for a grid of `macrocells`: 16 bytes per macrocell, at least 4 MiB.
+// The default budget: 16 MiB of sub-boxes whatever the grid, which bounds a TF edit's host work
+// (about 0.2 us a sub-box on two cores: 3 s at most; docs/benchmarks.md section 27). A finer grid
+// has tighter macrocells, so it needs the bytes less.
 uint64_t defaultSubMajorantBudget(uint64_t macrocells);
 
 }  // namespace amrvk::scene
