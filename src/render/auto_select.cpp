@@ -296,8 +296,9 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             }
         }
     }
-    // 4c. Sub-majorants for every grid candidate at its best measured grid: the same paths with
-    //     fewer lookups where the TF makes macrocells loose, for a build per TF edit.
+    // 4c. Sub-majorants for every grid candidate at its best measured grid and at the default
+    //     grid: the same paths with fewer lookups where the TF makes macrocells loose, for a
+    //     build per TF edit.
     if (!constraints.subMajorants) {
         std::vector<scene::StructureConfig> withSub;
         for (const AutoProbe& p : std::vector<AutoProbe>(choice.probes)) {
@@ -310,6 +311,10 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
                 return !o.predicted && o.config.traversal == c.traversal && o.config.sampler == c.sampler &&
                        o.config.backend == c.backend && o.config.subMajorants == 0 && o.efficiency > p.efficiency;
             });
+            if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
+            // And at the default grid: sub-majorants tighten its macrocells where they are loose,
+            // so it can beat the finer grid that won without them (and builds less).
+            c.grid = base.grid;
             if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
         }
         for (const scene::StructureConfig& c : withSub) {
