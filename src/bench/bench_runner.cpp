@@ -341,10 +341,8 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     a.choice = render::autoSelect(rendererFor(start), *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
     const StructureConfig& c = a.choice.config;
     auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
-    auto sameAsPick = [&](const RunResult& r) {
-        return r.config.traversal == c.traversal && r.config.sampler == c.sampler && r.config.backend == c.backend &&
-               (!r.config.usesGrid() || r.config.grid == c.grid);
-    };
+    // The same structures: traversal, sampler, back-end, and the grid and sub-majorants where used.
+    auto sameAsPick = [&](const RunResult& r) { return r.config.labelWithGrid() == c.labelWithGrid(); };
     size_t pick = mRes.runs.size();
     for (size_t i = first; i < mRes.runs.size() && pick == mRes.runs.size(); ++i)
         if (comparable(mRes.runs[i]) && sameAsPick(mRes.runs[i])) pick = i;

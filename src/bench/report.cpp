@@ -173,7 +173,8 @@ std::string resultsJson(const BenchResults& res) {
     for (const AutoResult& a : res.autos) {
         Json choice = picture::autoChoiceJson(a.choice);
         Json entry = {{"dataset", a.dataset}, {"tf", a.tf}, {"mode", a.mode}};
-        for (const char* k : {"pick", "pickGrid", "probeSeconds", "probes", "probeSize", "lookupNsAboveReference"})
+        for (const char* k :
+             {"pick", "pickGrid", "pickSubMajorants", "probeSeconds", "probes", "probeSize", "lookupNsAboveReference"})
             entry[k] = choice[k];
         entry["pickEfficiency"] = a.pickEfficiency;
         entry["bestEfficiency"] = a.bestEfficiency;

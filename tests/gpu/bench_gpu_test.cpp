@@ -152,8 +152,11 @@ TEST_F(BenchGpu, ProtocolReportsEveryFigureAndErrorConverges) {
                 bestLabel = r.config.labelWithGrid();
             }
             const scene::StructureConfig& c = a.choice.config;
+            const bool sameGrid = !r.config.usesGrid() || r.config.grid == c.grid;
+            const bool sameSub = r.config.hasSubMajorants() == c.hasSubMajorants() &&
+                                 (!c.hasSubMajorants() || r.config.subMajorants == c.subMajorants);
             if (r.config.traversal == c.traversal && r.config.sampler == c.sampler && r.config.backend == c.backend &&
-                (!r.config.usesGrid() || r.config.grid == c.grid) && picks++ == 0)
+                sameGrid && sameSub && picks++ == 0)
                 pick = efficiency(r);
         }
         ASSERT_GT(candidates, 2u);
