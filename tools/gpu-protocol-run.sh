@@ -309,12 +309,15 @@ $rows"
 
 # ---- d. speed on the big cloud (points 2 and 5)
 declare -A best bestLabel
-# traversal/sampler[@grid][~K]: grid-dda crosses empty blocks of macrocells in one step, so a finer
-# grid's tighter majorants can pay for its steps (benchmarks section 23); ~K: grid-bvh querying after
-# K culled macrocells in a row instead of 32, the device's best K being unknown (section 26). Last,
-# so they are the first skipped for time.
-combos=(grid-dda/grid grid-dda/grid@256 grid-bvh/grid abr/abr brick/grid kdtree/grid abr/ext-brick
-  grid-bvh/grid~8 grid-bvh/grid~128)
+# traversal/sampler[@grid][!off][%regen][~K]: grid-dda crosses empty blocks of macrocells in one
+# step, so a finer grid's tighter majorants can pay for its steps (benchmarks section 23); !off:
+# without sub-majorants (the default builds them where the TF makes macrocells loose: the paper's
+# macrocell majorants beside them, section 27); %regen: --path-regeneration, which raised the
+# lanes' use but not the paths/s on lavapipe (section 27); ~K: grid-bvh querying after K culled
+# macrocells in a row instead of 32, the device's best K being unknown (section 26). Last, so they
+# are the first skipped for time.
+combos=(grid-dda/grid grid-dda/grid!off grid-dda/grid%regen grid-dda/ext-brick!off grid-dda/grid@256
+  grid-bvh/grid abr/abr brick/grid kdtree/grid abr/ext-brick grid-bvh/grid~8 grid-bvh/grid~128)
 common=(--size "$size" --spp "$spp" --samples-per-invocation 1 --mode ms --ambient 1 1 1 --backend sw)
 renderRows() {  # renderRows TAG TF LABEL: sets speedRow and distRow from one render's JSON
   local t=$1 p k q
@@ -349,22 +352,26 @@ stepD() {
   end=$(( $(elapsed) + $(share 1 2) ))
   for c in "${combos[@]}"; do
     base=${c%~*} k=(); [[ $c == *~* ]] && k=(--shader-dir "$out/shaders-k${c#*~}")
+    local extra=() suffix=""
+    if [[ $base == *%regen ]]; then base=${base%\%regen} extra+=(--path-regeneration) suffix+="-regen"; fi
+    if [[ $base == *!off ]]; then base=${base%!off} extra+=(--sub-majorants off) suffix+="-nosub"; fi
     if (( ${#k[@]} )) && ! kShaders "${c#*~}"; then
       note+="- $c: \`amrvk shaders --export\` or its edit failed."$'\n'; continue
     fi
     for tf in spiky foggy; do
       grid=(); [[ $base == *@* ]] && grid=(--grid "${base#*@}")
       trav=${base%%/*} samp=${base#*/} samp=${samp%@*} tag="d-$tf-${base/\//-}" tag=${tag/@/-grid}
+      tag+="$suffix"
       (( ${#k[@]} )) && tag+="-k${c#*~}"
       lim=$(upTo "$end")
       if (( lim < 3 || lim < last )); then
         why="$lim s left for step d$( (( last > 0 )) && echo ", the last render took $last s")"
-        skip "\`amrvk render cloud$big.cells --tf $tf --traversal $trav --sampler $samp ${grid[*]} ${k[*]//"$out"/OUT} ...\`" "$why"
+        skip "\`amrvk render cloud$big.cells --tf $tf --traversal $trav --sampler $samp ${grid[*]} ${extra[*]} ${k[*]//"$out"/OUT} ...\`" "$why"
         skipped+="${skipped:+, }$c $tf"
         continue
       fi
       run "$lim" "$tag" "$amrvk" render "$bigData.cells" "${common[@]}" --tf "$tf" --traversal "$trav" \
-        --sampler "$samp" "${grid[@]}" "${k[@]}" --json "$out/raw/$tag.json" -o "$out/images/$tag.png"
+        --sampler "$samp" "${grid[@]}" "${extra[@]}" "${k[@]}" --json "$out/raw/$tag.json" -o "$out/images/$tag.png"
       last=$(( us / 1000000 + 1 ))
       if [ "$rc" != 0 ] || ! jsonLoad "$tag" "$out/raw/$tag.json"; then
         note+="- $c $tf: $status."$'\n'; continue
@@ -373,6 +380,7 @@ stepD() {
       renderRows "$tag" "$tf" "$c"; speed+="$speedRow"$'\n'; dist+="$distRow"$'\n'
       p=$(get "$tag:pathsPerSecond")
       (( ${#k[@]} )) && continue  # a shader experiment: not a configuration amrvk ships
+      [ -n "$suffix" ] && continue  # an A/B row: the configuration amrvk renders by default is the other
       if isNum "$p" && { [ -z "${best[$tf]-}" ] || [ "$(calc '%d' 'X > Y' "$p" "${best[$tf]}")" = 1 ]; }; then
         best[$tf]=$p bestLabel[$tf]=$c
       fi
