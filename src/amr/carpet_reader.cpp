@@ -15,10 +15,10 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <map>
-#include <regex>
+#include <string_view>
 #include <utility>
 
 #include "amr/block_structured.h"
@@ -49,14 +49,34 @@ bool parseNumber(const std::string& s, int64_t& out) {
     return ec == std::errc() && p == s.data() + s.size() && out >= 0 && out <= kMaxIndex;
 }
 
+// Parsed by hand from the end (a regex recursed per character and overflowed the stack on a
+// name of 30,000 characters): the var is everything before the last " it=".
 bool parseDatasetKey(const std::string& name, DatasetKey& key) {
-    static const std::regex re(R"(^(.+) it=(\d+) tl=(\d+)(?: m=(\d+))?(?: rl=(\d+))?(?: c=(\d+))?$)");
-    std::smatch m;
-    if (!std::regex_match(name, m, re)) return false;
+    const size_t at = name.rfind(" it=");
+    if (at == std::string::npos || at == 0) return false;
+    // The fields after the var, in their fixed order; it and tl required.
+    static constexpr std::string_view kFields[] = {"it", "tl", "m", "rl", "c"};
     int64_t v[5] = {0, 0, 0, 0, 0};
-    for (int i = 0; i < 5; ++i)
-        if (m[i + 2].matched && !parseNumber(m[i + 2].str(), v[i])) return false;
-    key = {m[1].str(), v[0], int(v[1]), int(v[2]), int(v[3]), int(v[4])};
+    std::string_view rest = std::string_view(name).substr(at + 1);
+    size_t field = 0;
+    while (!rest.empty()) {
+        const size_t end = std::min(rest.find(' '), rest.size());
+        const std::string_view token = rest.substr(0, end);
+        const size_t eq = token.find('=');
+        if (eq == std::string_view::npos) return false;
+        const std::string_view k = token.substr(0, eq);
+        while (field < 5 && kFields[field] != k) {
+            if (field < 2) return false;  // it and tl come first
+            ++field;
+        }
+        if (field == 5 || !parseNumber(std::string(token.substr(eq + 1)), v[field])) return false;
+        ++field;
+        if (end == rest.size()) break;
+        rest = rest.substr(end + 1);
+        if (rest.empty()) return false;  // a trailing space
+    }
+    if (field < 2) return false;
+    key = {name.substr(0, at), v[0], int(v[1]), int(v[2]), int(v[3]), int(v[4])};
     return true;
 }
 
@@ -152,21 +172,50 @@ struct Patch {
 int64_t parseIndex(const std::string& s, const std::string& what) {
     int64_t v = 0;
     const bool neg = !s.empty() && s[0] == '-';
-    AMRVK_CHECK(parseNumber(neg ? s.substr(1) : s, v), what, ": '", s, "' is not an index in [-", kMaxIndex, ", ",
-                kMaxIndex, "]");
+    AMRVK_CHECK(parseNumber(neg ? s.substr(1) : s, v), what, ": '", elide(s), "' is not an index in [-", kMaxIndex,
+                ", ", kMaxIndex, "]");
     return neg ? -v : v;
 }
 
 // The boxes of an "active" bboxset "bboxset<...>(set<bbox>:{([lo]:[hi]:[stride]/...),...},...)",
 // in the level's own index (global index / stride); `stride` is the level's spacing.
+// "[a,b,c]" at text[at] with integers (optionally negative): their texts, and `at` moved past it.
+bool scanTriple(std::string_view text, size_t& at, bool allowNegative, std::string_view (&out)[3]) {
+    size_t i = at;
+    if (i >= text.size() || text[i++] != '[') return false;
+    for (int k = 0; k < 3; ++k) {
+        const size_t start = i;
+        if (allowNegative && i < text.size() && text[i] == '-') ++i;
+        const size_t digits = i;
+        while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+        if (i == digits || i >= text.size() || text[i] != (k < 2 ? ',' : ']')) return false;
+        out[k] = text.substr(start, i - start);
+        ++i;
+    }
+    at = i;
+    return true;
+}
+
+// The boxes of an "active" bboxset "bboxset<...>(set<bbox>:{([lo]:[hi]:[stride]/...),...},...)",
+// in the level's own index (global index / stride); `stride` is the level's spacing. Scanned by
+// hand, in one pass (a regex recursed per character and overflowed the stack on long numbers).
 std::vector<VertexBox> parseActive(const std::string& text, int& stride, const std::string& what) {
-    static const std::regex box(R"(\(\[(-?\d+),(-?\d+),(-?\d+)\]:\[(-?\d+),(-?\d+),(-?\d+)\]:\[(\d+),(\d+),(\d+)\])");
     AMRVK_CHECK(text.rfind("bboxset<", 0) == 0 && text.size() < (size_t(1) << 20), what, ": '",
                 text.substr(0, 60), "' is not a Carpet bboxset");
     std::vector<VertexBox> out;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), box); it != std::sregex_iterator(); ++it) {
+    const std::string_view all(text);
+    for (size_t from = all.find("(["); from != std::string_view::npos; from = all.find("([", from + 1)) {
+        std::string_view lo[3], hi[3], step[3];
+        size_t at = from + 1;
+        if (!scanTriple(all, at, true, lo) || at >= all.size() || all[at++] != ':' || !scanTriple(all, at, true, hi) ||
+            at >= all.size() || all[at++] != ':' || !scanTriple(all, at, false, step))
+            continue;
         int64_t v[9];
-        for (int i = 0; i < 9; ++i) v[i] = parseIndex((*it)[i + 1].str(), what);
+        for (int i = 0; i < 3; ++i) {
+            v[i] = parseIndex(std::string(lo[i]), what);
+            v[i + 3] = parseIndex(std::string(hi[i]), what);
+            v[i + 6] = parseIndex(std::string(step[i]), what);
+        }
         AMRVK_CHECK(v[6] > 0 && v[6] == v[7] && v[6] == v[8] && std::has_single_bit(uint64_t(v[6])), what,
                     ": stride [", v[6], ",", v[7], ",", v[8], "] is not one power of two on every axis");
         AMRVK_CHECK(stride == 0 || stride == v[6], what, ": boxes of strides ", stride, " and ", v[6]);

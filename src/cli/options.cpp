@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <regex>
 #include <sstream>
 
 #include "core/checked_size.h"
 #include "core/error.h"
+#include "core/strings.h"
 #include "scene/limits.h"
 
 namespace amrvk::cli {
@@ -588,26 +588,51 @@ bool parseCommandLine(CLI::App& app, const std::vector<std::string>& argv) {
 
 namespace {
 
-// CLI11's messages in amrvk's form: one line naming the option and the value.
+// CLI11's messages in amrvk's form: one line naming the option and the value (the argument
+// elided: searched without std::regex, which recursed per character and overflowed the stack on
+// an argument of 40,000 characters).
 std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
     std::string m = e.what();
-    std::smatch match;
+    const std::string help = " (see amrvk " + command + " --help)";
+    // The text after `prefix` up to the first of `stops` (or the end); empty without the prefix.
+    auto after = [&](std::string_view prefix, std::string_view stops) -> std::string {
+        const size_t at = m.find(prefix);
+        if (at == std::string::npos) return {};
+        const size_t start = at + prefix.size();
+        return m.substr(start, m.find_first_of(stops, start) - start);
+    };
     if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-        static const std::regex first(R"(expected: ?\[?\s*([^,\]\s]+))");
-        const std::string arg = std::regex_search(m, match, first) ? match[1].str() : m;
-        return arg.rfind("-", 0) == 0
-                   ? "unknown option '" + arg + "' for 'amrvk " + command + "' (see amrvk " + command + " --help)"
-                   : "unexpected argument '" + arg + "' (see amrvk " + command + " --help)";
+        // "The following argument was not expected: X" or "...arguments were not expected: [X, Y]".
+        std::string arg;
+        if (const size_t at = m.find("expected:"); at != std::string::npos) {
+            size_t start = m.find_first_not_of(" [", at + 9);
+            if (start != std::string::npos) arg = m.substr(start, m.find_first_of(",] \t\n", start) - start);
+        }
+        if (arg.empty()) arg = m;
+        return arg.rfind("-", 0) == 0 ? "unknown option '" + elide(arg) + "' for 'amrvk " + command + "'" + help
+                                      : "unexpected argument '" + elide(arg) + "'" + help;
     }
-    static const std::regex missing(R"(^(\S+): (\d+) required ([^:\s]+).* missing)");
-    if (std::regex_search(m, match, missing))
-        return match[1].str() + ": expects " + (match[2].str() == "1" ? "a value" : match[2].str() + " values") + " (" +
-               match[3].str() + ") (see amrvk " + command + " --help)";
-    static const std::regex conversion(R"(Could not convert: (\S+) = (.*))");
-    if (std::regex_search(m, match, conversion)) return match[1].str() + ": '" + match[2].str() + "' is not a number";
+    // "OPT: N required TYPE ... missing"
+    if (m.find(" missing") != std::string::npos) {
+        const size_t colon = m.find(": ");
+        const size_t req = m.find(" required ");
+        if (colon != std::string::npos && req != std::string::npos && colon < req &&
+            m.find_first_of(" \t", 0) == colon + 1 && req > colon + 2 &&
+            m.find_first_not_of("0123456789", colon + 2) == req) {
+            const std::string n = m.substr(colon + 2, req - colon - 2);
+            const size_t typeStart = req + 10;
+            const std::string type = m.substr(typeStart, m.find_first_of(": \t", typeStart) - typeStart);
+            return elide(m.substr(0, colon)) + ": expects " + (n == "1" ? "a value" : n + " values") + " (" + type +
+                   ")" + help;
+        }
+    }
+    if (const std::string opt = after("Could not convert: ", " "); !opt.empty()) {
+        const size_t eq = m.find(" = ", m.find("Could not convert: "));
+        if (eq != std::string::npos) return elide(opt) + ": '" + elide(m.substr(eq + 3)) + "' is not a number";
+    }
     for (char& c : m)
         if (c == '\n' || c == '\r') c = ' ';
-    return m + " (see amrvk " + command + " --help)";
+    return elide(m, 300) + help;
 }
 }  // namespace
 

@@ -18,7 +18,8 @@ std::string strCat(Args&&... args) {
 }
 
 // The message is kept on one line: control bytes from the input (line breaks, NUL, escapes) are
-// shown as \n, \r, \t or \xHH, so a hostile file can neither split nor cut an error.
+// shown as \n, \r, \t or \xHH, so a hostile file can neither split nor cut an error; one over
+// 1 KiB keeps its first 768 and last 256 bytes around the count of those left out.
 std::string oneLineMessage(std::string_view message);
 
 class Error : public std::runtime_error {

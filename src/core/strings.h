@@ -19,6 +19,12 @@ inline std::string formatDouble(double v) {
     return ec == std::errc() ? std::string(buf, end) : strCat(v);
 }
 
+// `s` for a message: at most `max` bytes of it, the rest counted ("1234567... (60000 bytes)").
+inline std::string elide(std::string_view s, size_t max = 40) {
+    if (s.size() <= max) return std::string(s);
+    return strCat(s.substr(0, max), "... (", s.size(), " bytes)");
+}
+
 // The streamed values joined by `separator`: join({1, 2, 3}) == "1 2 3".
 template <typename T>
 std::string join(const std::vector<T>& values, std::string_view separator = " ") {

@@ -186,6 +186,25 @@ TEST(CarpetHostile, MalformedActiveIsRejected) {
     }
 }
 
+// Long text (issue 52, point 1): a 30,000-character dataset name and a 60,000-digit number in
+// `active` crashed the reader (std::regex recursed per character). Now each gives one short line.
+TEST(CarpetHostile, LongNamesAndNumbersGiveOneShortLine) {
+    AMRVK_REQUIRE_DATA(kWaveToy);
+    const std::string longName = std::string(30000, 'X') + " it=64 tl=0 rl=0";
+    fs::path copy = editedCopy([&](hid_t f) {
+        EXPECT_GE(H5Lmove(f, "WAVETOY::phi it=64 tl=0 rl=0", f, longName.c_str(), H5P_DEFAULT, H5P_DEFAULT), 0);
+    });
+    std::string msg = errorOf([&] { readCarpet(copy, {}); });
+    expectContains(msg, "'WAVETOY::phi' has no dataset of timelevel 0 on refinement level 0");
+    EXPECT_LT(msg.size(), 300u);
+    copy = editedCopy([](hid_t f) {
+        writeActive(f, kRl2, rl2Active("([" + std::string(60000, '1') + ",56,56]:[96,96,96]:[2,2,2]/x)"));
+    });
+    msg = errorOf([&] { readCarpet(copy, {}); });
+    expectContains(msg, "'" + std::string(40, '1') + "... (60000 bytes)' is not an index in");
+    EXPECT_LT(msg.size(), 300u);
+}
+
 TEST(CarpetHostile, GeometryThatDisagreesWithTheIndicesIsRejected) {
     AMRVK_REQUIRE_DATA(kWaveToy);
     fs::path copy = editedCopy([](hid_t f) { writeNumbers<double>(f, kRl2, "delta", {0.05, 0.05, 0.05}); });

@@ -13,6 +13,7 @@
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/stats.h"
+#include "core/strings.h"
 #include "scene/structure_config.h"
 #include "scene/volume.h"
 #include "test_data.h"
@@ -101,6 +102,21 @@ TEST(HostileInput, ErrorMessagesEscapeControlBytes) {
     const std::string msg = Error(raw).what();
     EXPECT_EQ(msg, "name\\nwith\\x00nul\\x1b[2J\\r\\t\\x7f end");
     EXPECT_EQ(Error("plain text: 1 < 2").what(), std::string("plain text: 1 < 2"));
+}
+
+// A message quoting a huge name or value stays short: its start and end kept around the count
+// (issue 52, point 1: a 20,000-digit number made a 20 KB "one-line" error).
+TEST(HostileInput, ErrorMessagesAreBounded) {
+    const std::string huge = "file.h5: '" + std::string(100000, '7') + "' is not an index in [-9, 9]";
+    const std::string msg = Error(huge).what();
+    EXPECT_LE(msg.size(), 1100u);
+    EXPECT_EQ(msg.rfind("file.h5: '777", 0), 0u);
+    EXPECT_NE(msg.find("is not an index in [-9, 9]"), std::string::npos);
+    EXPECT_NE(msg.find("[... " + std::to_string(huge.size() - 1024) + " bytes ...]"), std::string::npos);
+    const std::string exact(1024, 'a');
+    EXPECT_EQ(Error(exact).what(), exact);  // up to 1 KiB as given
+    EXPECT_EQ(elide("short"), "short");
+    EXPECT_EQ(elide(std::string(50, 'x'), 4), "xxxx... (50 bytes)");
 }
 
 TEST(HostileInput, SparseDataGetsATraversalThatFitsIt) {
