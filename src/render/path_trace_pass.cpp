@@ -123,7 +123,7 @@ void PathTracePass::probedSample(const gpu::ComputePipeline& pipeline, uint64_t 
         if (r + 1 < std::min(r + stride, height)) bands.emplace_back(r + 1, std::min(r + stride, height));
     size_t next = 0, perSubmit = 1;
     while (next < bands.size()) {
-        const size_t count = std::min({perSubmit, bands.size() - next, size_t(64)});
+        const size_t count = std::min(perSubmit, bands.size() - next);
         std::vector<shared::PushConstants> dispatches;
         uint64_t paths = 0;
         for (size_t k = next; k < next + count; ++k) {
@@ -132,7 +132,7 @@ void PathTracePass::probedSample(const gpu::ComputePipeline& pipeline, uint64_t 
         }
         submit(pipeline, dispatches, paths);
         next += count;
-        perSubmit *= 4;
+        perSubmit = std::min<size_t>(perSubmit * 4, 64);  // unbounded, it wrapped to 0 after 32 rounds: a hang
     }
     ++mSpp;
 }
