@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "scene/render_output.h"
 
@@ -13,6 +14,21 @@ FirstFrame renderFirstFrame(render::Renderer& renderer, AfterFirstFrame after) {
     dvr.mode = scene::Mode::Dvr;
     FirstFrame f;
     double lastSeconds = 0;
+    // A frame that throws (Ctrl-C, a device error) still leaves the renderer in its own settings
+    // when they are to be restored: a caller must never be left in dvr unawares.
+    struct RestoreOnThrow {
+        render::Renderer& r;
+        const scene::RenderSettings& given;
+        bool armed;
+        ~RestoreOnThrow() {
+            if (!armed || std::uncaught_exceptions() == 0) return;
+            try {
+                r.setSettings(given);
+                r.resetAccumulation();
+            } catch (...) {  // the first error is the one reported
+            }
+        }
+    } guard{renderer, asGiven, after == AfterFirstFrame::Restore};
     for (;;) {
         renderer.setSettings(dvr);
         renderer.resetAccumulation();

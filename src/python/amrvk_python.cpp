@@ -493,7 +493,9 @@ public:
     // invalidation rule says); an invalid value changes nothing.
     template <typename Edit>
     void editSettings(Edit edit) {
-        scene::RenderSettings s = open().renderer->settings();
+        // Read under the lock: a first frame being made in another thread (the widget's) holds it
+        // while the renderer is switched to dvr; a copy read then wrote dvr back for good.
+        scene::RenderSettings s = onDevice([](render::Renderer& r) { return r.settings(); });
         edit(s);
         scene::validateSettings(s);
         locked([&] { mPicture.renderer->setSettings(s); });
@@ -589,11 +591,7 @@ public:
         return out.spp < 2 ? py::object(py::none()) : py::object(py::float_(scene::meanRelativeError(out)));
     }
     scene::RenderOutput output() const {
-        const PyRenderer& self = *this;
-        self.open();
-        py::gil_scoped_release release;
-        std::lock_guard lock(mMutex);
-        return mPicture.renderer->output();
+        return onDevice([](render::Renderer& r) { return r.output(); });
     }
     // ---- the colour legend (session/legend_image.h: the CLI's --legend drawing) ----
     // `legend` True/False, or None for the session's setting (Renderer(legend=True), .legend).
@@ -713,14 +711,14 @@ public:
         return mFirstFrame && mFirstFrame->resets == mPicture.renderer->updateCounts().accumulationResets;
     }
     const picture::FirstFrame& firstFrame() const {
-        render::Renderer& r = *open().renderer;
+        open();
         if (firstFrameCurrent()) return mFirstFrame->frame;
-        py::gil_scoped_release release;
-        std::lock_guard lock(mMutex);
-        ShownFirstFrame shown{picture::renderFirstFrame(r)};
-        requireNoValidationErrors();
-        shown.resets = r.updateCounts().accumulationResets;
-        mFirstFrame = std::move(shown);
+        onDevice([&](render::Renderer& r) {
+            ShownFirstFrame shown{picture::renderFirstFrame(r)};
+            requireNoValidationErrors();
+            shown.resets = r.updateCounts().accumulationResets;
+            mFirstFrame = std::move(shown);
+        });
         return mFirstFrame->frame;
     }
     // The first frame shown while the renderer holds no sample: {"mode", "spp", "dt", "noise",
@@ -759,10 +757,18 @@ private:
     }
     template <typename F>
     void locked(F f) {
+        onDevice([&](render::Renderer&) { f(); });
+    }
+    // f(renderer) with the GIL released and the device lock held, the renderer checked open under
+    // the lock: close() from another thread takes the same lock, so it cannot free the renderer
+    // between the check and the call (it did: SIGSEGV in PathTracePass::read).
+    template <typename F>
+    std::invoke_result_t<F, render::Renderer&> onDevice(F f) const {
         open();
         py::gil_scoped_release release;
         std::lock_guard lock(mMutex);
-        f();
+        if (mClosed || !mPicture.renderer) throw py::value_error("the renderer is closed");
+        return f(*mPicture.renderer);
     }
 
     std::shared_ptr<gpu::Context> mCtx;  // outlives the picture (declared first)

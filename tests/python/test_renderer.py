@@ -242,6 +242,63 @@ def test_a_closed_renderer_refuses_every_call(amrvk):
             call()
 
 
+def test_close_from_another_thread_raises_instead_of_crashing(amrvk, tmp_path):
+    # Issue 52, point 2: threads looping png(), image(), save() or variance() while another calls
+    # close() killed the interpreter (SIGSEGV in PathTracePass::read: a thread that had passed the
+    # closed check waited for the device lock while close() freed the renderer). Three threads a
+    # call, so that some wait on the lock when it closes; each must end with ValueError.
+    calls = {"png": lambda r, k: r.png(), "image": lambda r, k: r.image(), "variance": lambda r, k: r.variance(),
+             "save": lambda r, k: r.save(str(tmp_path / f"x{k}.pfm"))}
+    for name, call in calls.items():
+        for _ in range(2):
+            r = picture(amrvk, width=16, height=16)
+            r.render(spp=2)
+            outcomes, running = [], threading.Barrier(4)
+
+            def loop(k):
+                running.wait(30)
+                try:
+                    while True:
+                        call(r, k)
+                except ValueError as e:
+                    outcomes.append(str(e))
+
+            threads = [threading.Thread(target=loop, args=(k,)) for k in range(3)]
+            for t in threads:
+                t.start()
+            running.wait(30)
+            time.sleep(0.05)
+            r.close()
+            for t in threads:
+                t.join(30)
+            assert not any(t.is_alive() for t in threads), name
+            assert outcomes == ["the renderer is closed"] * 3, (name, outcomes)
+
+
+def test_settings_edited_while_a_first_frame_is_made_keep_the_mode(amrvk):
+    # Issue 52, point 11: png() before any sample makes the ray-marched first frame, switching the
+    # renderer to dvr while it runs; an edit from another thread then copied dvr into the settings
+    # for good. Edits now read the settings under the device lock.
+    r = picture(amrvk, width=24, height=16, mode="ms")
+    stop = threading.Event()
+
+    def shows():
+        while not stop.is_set():
+            r.png()  # each edit resets the image: every call makes a first frame
+
+    t = threading.Thread(target=shows)
+    t.start()
+    try:
+        for k in range(40):
+            r.density_scale = 2.0 + 0.01 * k
+            time.sleep(0.005)
+    finally:
+        stop.set()
+        t.join(60)
+    assert r.mode == "ms" and r.stats["mode"] != "dvr"
+    r.close()
+
+
 def test_the_gil_is_released_while_the_device_works(amrvk):
     # A thread that sleeps 1 ms per tick needs the GIL once a tick: while C code holds the GIL it
     # counts about one tick per chunk (a quarter second), and about 1,800 a second when the device
