@@ -539,6 +539,23 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 12
 check1 test -s slow.png
 no_temporaries
 
+# ---- 11. Round 4 (issue 52, points 1 and 3): long text, narrow images --------------------------
+section "round 4: long text and narrow images"
+# A 40,000-character argument crashed the parser's message (std::regex recursed per character):
+# one short line naming it, elided.
+long=$(head -c 40000 /dev/zero | tr '\0' x)
+"$amrvk" info good.cells "--$long" 2>long.err; rc=$?
+check1 test "$rc" = 1 -a "$(wc -l <long.err)" = 1 -a "$(wc -c <long.err)" -lt 200
+check1 grep -qF "unknown option '--xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx... (40002 bytes)' for 'amrvk info'" long.err
+"$amrvk" info good.cells "$long" 2>long.err; rc=$?
+check1 test "$rc" = 1 -a "$(wc -l <long.err)" = 1
+check1 grep -qF "unexpected argument 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx... (40000 bytes)'" long.err
+# An image 1 or 2 pixels wide with >= 8192 pixels hung in the first sample's probe (its count of
+# bands per submission grew by 4x until it wrapped to 0); `timeout` ends the landed code's run.
+check1 timeout 120 "$amrvk" render good.cells --size 1x8192 --spp 1 --mode ae --grid 4 -o tall.png
+check1 test -s tall.png
+check1 timeout 120 "$amrvk" render good.cells --size 2x4096 --spp 1 --mode ae --grid 4 -o tall2.png
+
 section ""
 echo "hostile.sh: $cases cases"
 test "$cases" -ge 150 || { echo "FAIL: only $cases cases"; fail=1; }
