@@ -255,6 +255,16 @@ void loadManifest(Series& s, const std::string& recipe, const std::string& outpu
                   const std::function<void(const std::string&)>& note) {
     s.previous = session::loadFrameManifest(s.frames.manifest);
     s.resume = s.previous && s.previous->recipe == recipe;
+    if (s.resume && !s.previous->inputsRead) {
+        // An older amrvk's record does not say which files its frames were read from: without
+        // that, no output can be checked against them, so nothing is skipped.
+        note(s.frames.manifest.string() +
+             " does not list the files its frames were read from (an older amrvk): "
+             "rendering all " +
+             std::to_string(s.n) + " frames anew");
+        s.resume = false;
+        s.previous.reset();
+    }
     if (s.movie) clearMovieFrames(s, output);
     if (s.resume) {
         s.manifest = *s.previous;
@@ -262,6 +272,11 @@ void loadManifest(Series& s, const std::string& recipe, const std::string& outpu
         for (auto it = s.manifest.done.begin(); it != s.manifest.done.end();)
             it =
                 (*it < s.n && fs::is_regular_file(s.frames.frame(*it), ec)) ? std::next(it) : s.manifest.done.erase(it);
+        // Frames skipped now read no file in this run: the outputs are checked against what they
+        // were read from (a re-run with --json onto an input's .scalars replaced it).
+        std::vector<NamedPath> reads;
+        for (const std::string& f : *s.manifest.inputsRead) reads.push_back({"input", f});
+        checkOutputs(s.outputs, reads);
     } else {
         if (s.previous) {
             note(s.frames.manifest.string() + " records another command: rendering all " + std::to_string(s.n) +
@@ -393,6 +408,9 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
         session::writePicture(s.frames.frame(k), out.mean, picture->session(), picture->volume->field().units,
                               s.legendFont.get());
         s.manifest.done.insert(k);
+        if (!s.manifest.inputsRead) s.manifest.inputsRead.emplace();
+        for (const NamedPath& f : inputFilesRead())
+            s.manifest.inputsRead->insert(fs::absolute(f.path).lexically_normal().string());
         saveFrameManifest(s.frames.manifest, s.manifest);
         s.stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});
     }
@@ -499,7 +517,17 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     resolveRange(s);
     for (uint32_t k = 0; k < s.n; ++k)
         if (!s.manifest.done.count(k)) s.todo.push_back(k);
-    if (!s.todo.empty()) renderFrames(s, dev, note);
+    if (!s.todo.empty()) {
+        try {
+            renderFrames(s, dev, note);
+        } catch (...) {
+            // A run that wrote no frame leaves no record of one in a directory it made (the
+            // directory itself is removed once empty).
+            std::error_code ec;
+            if (directory.made() && s.manifest.done.empty()) fs::remove(s.frames.manifest, ec);
+            throw;
+        }
+    }
     directory.dismiss();
     Json reports = frameReports(s);
     if (s.movie) finishMovie(s, request.output, series, directory.made());

@@ -274,6 +274,7 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
         m.camera.fovYDegrees = c.at("fovYDegrees").get<double>();
         m.centre = vec3(j, "centre", where);
         m.field = j.at("field").get<std::string>();
+        if (j.contains("inputsRead")) m.inputsRead = j["inputsRead"].get<std::set<std::string>>();
     } catch (const nlohmann::json::exception& e) {
         throw Error(strCat(where, ": malformed frame manifest (", e.what(), "); remove it to render every frame"));
     }
@@ -296,6 +297,7 @@ void saveFrameManifest(const fs::path& path, const FrameManifest& m) {
                    {"fovYDegrees", m.camera.fovYDegrees}};
     j["centre"] = vec3(m.centre);
     j["field"] = m.field;
+    if (m.inputsRead) j["inputsRead"] = *m.inputsRead;
     writeFileAtomic(path, j.dump(2) + "\n");
 }
 

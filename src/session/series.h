@@ -78,6 +78,9 @@ struct FrameManifest {
     scene::Camera camera;                            // frame 0's camera (azimuth 0)
     glm::dvec3 centre{0.0};                          // the orbit's centre (the first output's world box centre)
     std::string field;                               // the field every output shows
+    // Every file the done frames were read from (absolute paths), so that a re-run that renders
+    // nothing still refuses an output that would replace one; none in an older amrvk's manifest.
+    std::optional<std::set<std::string>> inputsRead;
 };
 // nullopt when the file does not exist; a one-line error naming it when it is not a manifest.
 std::optional<FrameManifest> loadFrameManifest(const std::filesystem::path& path);

@@ -539,7 +539,7 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 12
 check1 test -s slow.png
 no_temporaries
 
-# ---- 11. Round 4 (issue 52, points 1 and 3): long text, narrow images --------------------------
+# ---- 11. Round 4 (issue 52, points 1, 3 and 4): long text, narrow images, series re-runs ------
 section "round 4: long text and narrow images"
 # A 40,000-character argument crashed the parser's message (std::regex recursed per character):
 # one short line naming it, elided.
@@ -555,6 +555,20 @@ check1 grep -qF "unexpected argument 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx..
 check1 timeout 120 "$amrvk" render good.cells --size 1x8192 --spp 1 --mode ae --grid 4 -o tall.png
 check1 test -s tall.png
 check1 timeout 120 "$amrvk" render good.cells --size 2x4096 --spp 1 --mode ae --grid 4 -o tall2.png
+# A series re-run whose frames are done read no input, and wrote --json over an input's .scalars
+# (point 4): its manifest now lists the files its frames were read from. A fresh run that refuses
+# leaves no manifest in a directory it made; an older manifest (no list) renders anew.
+cp good.cells good2.cells; cp good.scalars good2.scalars; cp good.rho.scalars good2.rho.scalars; cp good2.rho.scalars good2.orig
+ok render good.cells good2.cells "${pic[@]}" -o fr/
+expect1 "--json good2.rho.scalars is the input $dir/good2.rho.scalars (refused: it would be overwritten)" -- \
+  render good.cells good2.cells "${pic[@]}" -o fr/ --json good2.rho.scalars
+check1 cmp -s good2.rho.scalars good2.orig
+expect1 "--json good2.rho.scalars is the input (read)" -- render good.cells good2.cells "${pic[@]}" -o fr2/ --json good2.rho.scalars
+check1 test ! -e fr2
+python3 -c "import json; m = json.load(open('fr/frame_manifest.json')); del m['inputsRead']; json.dump(m, open('fr/frame_manifest.json', 'w'))"
+ok render good.cells good2.cells "${pic[@]}" -o fr/ --json fr.json
+check1 grep -q "2 frames: 2 rendered" "$dir/ok.out"
+check1 grep -q "does not list the files its frames were read from" "$dir/ok.err"
 
 section ""
 echo "hostile.sh: $cases cases"
