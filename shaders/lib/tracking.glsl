@@ -108,6 +108,11 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     float majAlpha, t0, t1;
     uint stepsLeft = P.shading.maxTrackingSteps;
     bool gridSegments = cfg.traversal == kTraversalGridDda || cfg.traversal == kTraversalGridBvh;
+    // The least step that still moves the position in float: an ulp of o's largest coordinate
+    // along d's largest component. A mean free path below it makes no progress, also from t = 0
+    // (a ray that starts at a collision in a medium of --density-scale 1e30 burned the step cap).
+    float dMax = max(max(abs(d.x), abs(d.y)), abs(d.z));
+    float stallStep = max(max(abs(o.x), abs(o.y)), abs(o.z)) * 1.2e-7 / max(dMax, 1e-30);
     while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
         float maj = extinctionOfAlpha(majAlpha);
         if (!(maj > 0.0)) continue;
@@ -117,9 +122,10 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
         if (gridSegments) sub = subBoxesOf(seg);
         float t = t0;
         for (;;) {
-            // The cap, or a mean free path below float resolution at t (t would stall and burn the
-            // cap in place, e.g. --density-scale 1e30): both end the call, counted, at once.
-            if (stepsLeft == 0u || t + meanStep == t) {
+            // The cap, or a mean free path below float resolution at t or at the position (t
+            // would stall and burn the cap in place, e.g. --density-scale 1e30): both end the
+            // call, counted, at once.
+            if (stepsLeft == 0u || t + meanStep == t || meanStep < stallStep) {
                 c.capped++;
                 st.hit = false;
                 st.transmittance = 0.0;

@@ -539,7 +539,7 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 12
 check1 test -s slow.png
 no_temporaries
 
-# ---- 11. Round 4 (issue 52, points 1, 3 and 4): long text, narrow images, series re-runs ------
+# ---- 11. Round 4 (issue 52, points 1, 3, 4 and 6): long text, narrow images, series re-runs --
 section "round 4: long text and narrow images"
 # A 40,000-character argument crashed the parser's message (std::regex recursed per character):
 # one short line naming it, elided.
@@ -569,6 +569,11 @@ python3 -c "import json; m = json.load(open('fr/frame_manifest.json')); del m['i
 ok render good.cells good2.cells "${pic[@]}" -o fr/ --json fr.json
 check1 grep -q "2 frames: 2 rendered" "$dir/ok.out"
 check1 grep -q "does not list the files its frames were read from" "$dir/ok.err"
+# A medium so dense that its free paths are below float resolution ends each tracking call at
+# once, also for rays that start at a collision (t = 0), where each burned the step cap: ms at
+# --density-scale 1e30 took 42 s of GPU for 256 paths (point 6; ae was fixed in round 3).
+check1 timeout 30 "$amrvk" render good.cells --size 16x16 --spp 1 --mode ms --grid 4 --density-scale 1e30 -o dense.png --json dense.json
+check1 python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["trackingCapHits"] > 0 and j["majorantViolations"] == 0, j' dense.json
 
 section ""
 echo "hostile.sh: $cases cases"
