@@ -7,7 +7,8 @@
 # ICD needs libGLdispatch) in DIR/lib; libstdc++ and libgcc_s in DIR/lib/compat, used there only
 # where the machine's lack a symbol version they need; DIR/run.sh (tools/gpu-protocol-run.sh) and a
 # README. DIR stays under 40 MiB. Written into DIR.tmp-XXXXXX and renamed, so a failure leaves no
-# half-written DIR; a non-empty DIR that this script did not make is refused.
+# half-written DIR; a non-empty DIR that this script did not make, or one holding anything it did
+# not write (results put there since), is refused.
 # Usage: tools/gpu-protocol.sh prepare DIR   then on the GPU machine: bash DIR/run.sh [OUT]
 # Environment: AMRVK_PROTOCOL_BUILD, another build folder (default build-protocol/ in the checkout);
 # AMRVK_PROTOCOL_BIN, an amrvk to carry instead of building one (the test's, with MPI);
@@ -21,13 +22,22 @@ marker=".amrvk-gpu-protocol"
 maxMib="${AMRVK_PROTOCOL_MAX_MIB:-40}"
 [[ "$maxMib" =~ ^[0-9]+$ ]] || die "AMRVK_PROTOCOL_MAX_MIB: '$maxMib' is not a whole number"
 
-# DIR: new, empty, or made by this script; never a symlink. Its parent must exist.
-dir="${dir%/}"
+# DIR: new, empty, or made by this script and holding only what it wrote (results written into it
+# since are never deleted); never a symlink, also when named with trailing slashes. Its parent must
+# exist.
 [ -n "$dir" ] || die "DIR: empty name"
+[[ "$dir" == -* ]] && die "DIR '$dir': looks like an option (for a folder of that name: ./$dir)"
+while [[ "$dir" == */ && "$dir" != / ]]; do dir="${dir%/}"; done
+[ "$dir" = / ] && die "DIR /: the root folder, not a folder for the protocol"
 [ -L "$dir" ] && die "$dir: is a symlink"
 if [ -e "$dir" ]; then
   [ -d "$dir" ] || die "$dir: exists and is not a directory"
   [ -z "$(ls -A "$dir")" ] || [ -f "$dir/$marker" ] || die "$dir: not empty and not made by gpu-protocol.sh prepare"
+  extra=()
+  while IFS= read -r -d '' entry; do
+    case "${entry##*/}" in amrvk | run.sh | README.md | BUILD | lib | "$marker") ;; *) extra+=("${entry##*/}") ;; esac
+  done < <(find "$dir" -mindepth 1 -maxdepth 1 -print0)
+  ((${#extra[@]} == 0)) || die "$dir: holds ${extra[*]:0:3}$( ((${#extra[@]} > 3)) && echo " ...") that prepare did not write: refused, it would be deleted (move it, or name another folder)"
 fi
 parent="$(dirname "$dir")"
 [ -d "$parent" ] || die "$parent: no such directory"

@@ -29,6 +29,9 @@ mkdir "$dir/foreign"; touch "$dir/foreign/keep"
 expectFail "not made by gpu-protocol.sh prepare" prepare "$dir/foreign"
 ln -s "$dir/foreign" "$dir/link"
 expectFail "is a symlink" prepare "$dir/link"
+expectFail "is a symlink" prepare "$dir/link//"  # trailing slashes do not hide it (issue 52, point 5)
+expectFail "looks like an option" prepare -n
+expectFail "the root folder" prepare /
 expectFail "no such directory" prepare "$dir/nothere/p"
 expectFail "over the 1 MiB limit" env AMRVK_PROTOCOL_BIN="$amrvk" \
   AMRVK_PROTOCOL_MAX_MIB=1 "$src/tools/gpu-protocol.sh" prepare "$dir/p"
@@ -39,6 +42,11 @@ check [ "$(ls -A "$dir/foreign")" = keep ]
 # prepare writes the folder, and again over its own.
 check prepare "$dir/p"
 check prepare "$dir/p"
+# Results written into the folder since are never deleted by a new prepare (issue 52, point 5).
+mkdir "$dir/p/results"; echo mine >"$dir/p/results/results.md"
+expectFail "holds results that prepare did not write: refused" prepare "$dir/p/"
+check grep -q mine "$dir/p/results/results.md"
+rm -r "$dir/p/results"
 for f in amrvk run.sh README.md BUILD lib/libvulkan.so.1 lib/libGLdispatch.so.0 lib/compat/NEEDS; do
   check [ -s "$dir/p/$f" ]
 done
