@@ -31,7 +31,9 @@ inline constexpr double kTfColorTolerance = 0.25 / 255.0;
 // decoded to linear albedo, where the colour between two nodes is decode(mix(c0, c1, t)) (the
 // map is interpolated as given, in display space, as ParaView does for RGB colour maps) within
 // kTfColorTolerance: a segment gets the fewest uniformly spaced extra nodes (at most 63) that
-// keep linear interpolation of the decoded colours that close at 3 points inside each piece.
+// keep linear interpolation of the decoded colours that close at 3 points inside each piece. A TF
+// of over 2^14 segments gets fewer (2^20 extra nodes in all at most, none past 2^20 segments):
+// its segments are too narrow for the curve to show, and the work stays bounded by the input.
 // Alpha is linear in the value as before (extra nodes carry mix(a0, a1, t)), so maxAlpha is
 // unchanged up to float rounding. Steps (nodes sharing a position) stay steps.
 TransferFunction albedoOf(const TransferFunction& tf, TfColors colors);
