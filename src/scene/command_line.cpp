@@ -43,7 +43,9 @@ std::string settingsOptions(const RenderSettings& s, bool withCamera) {
     if (s.densityScale != d.densityScale) o += " --density-scale " + formatNumber(s.densityScale);
     if (s.g != d.g) o += " --g " + formatNumber(s.g);
     if (s.ambient != d.ambient) o += " --ambient " + vec(s.ambient);
-    if (s.background) o += " --background " + vec(*s.background);
+    // Always stated: render's own default (black) is not RenderSettings' (the ambient's), so a
+    // command without it renders another picture (bench's references did).
+    o += " --background " + vec(s.background ? *s.background : s.ambient);
     for (const Light& L : s.lights)
         o += std::string(L.point ? " --light-point " : " --light-dir ") + vec(L.posOrDir) + " " + vec(L.radiance);
     if (s.dvrStep != d.dvrStep) o += " --dt " + formatNumber(s.dvrStep);

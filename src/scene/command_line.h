@@ -12,8 +12,9 @@ namespace amrvk::scene {
 std::string shellQuote(const std::string& text);
 std::string formatNumber(double v);
 
-// " --mode M --size WxH --seed S [--camera ... --fov F] [--density-scale ...] ..." for every
-// setting that differs from the default (the camera and fov always when withCamera).
+// " --mode M --size WxH --seed S [--camera ... --fov F] [--density-scale ...] --background ..." for
+// every setting that differs from the default (the camera and fov always when withCamera; the
+// background always, since render's default is not RenderSettings').
 std::string settingsOptions(const RenderSettings& settings, bool withCamera);
 // " --traversal T --sampler S --backend B [--grid G] [--kd-leaves N] [--dense-max-mib M]".
 std::string structureOptions(const StructureConfig& config);

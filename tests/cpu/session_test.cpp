@@ -177,7 +177,9 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"eye\": [", "\"eye\": [\"x\", "), {"camera.eye"}},
         {badCrop, {"/tmp/s.json", ".cut", "--crop", "axis x"}},
         {badClip, {".cut", "--clip", "normal 0 0 0"}},
-        {with("\"clip\": [", "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
+        {with("\"clip\": [",
+              "\"clip\": [{\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, "
+              "0]}, {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]},"),
          {".cut.clip", "at most 4 planes (got 5)"}},
         {with("\"format\": \"enzo\"", "\"format\": \"enzo\", \"dims\": [4, 1048577, 4]"),
          {"read.dims[1]", "1048577 is not an integer in [1, 1048576]"}},
@@ -190,6 +192,8 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"transferFunction\"", "\"legend\": [], \"transferFunction\""), {"legend", "expected an object"}},
         {with("\"sampler\": \"abr\"", "\"sampler\": \"dense\""), {"/tmp/s.json.structure", "dense"}},
         {noPoint, {".cut.clip[0]", "missing \"point\""}},
+        // A cut that is not an object was read as no cut-away (issue 52, point 9).
+        {with("\"transferFunction\"", "\"cut\": 5, \"transferFunction\""), {"/tmp/s.json.cut: expected an object"}},
         // A key this amrvk does not know (a typo, a newer amrvk's setting) is named, not dropped.
         {with("\"point\": [", "\"pont\": ["), {".cut.clip[0].pont: unknown key", "keys here: point, normal"}},
         {with("\"densityScale\"", "\"densityscale\""), {"/tmp/s.json.render.densityscale: unknown key"}},
@@ -223,6 +227,10 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
         EXPECT_NE(c.find(part), std::string::npos) << part << " missing from: " << c;
     s.spp = 0;  // the viewer's "run on"
     EXPECT_NE(session::renderCommandLine(s, "t.json", "o.png").find(" --spp 64"), std::string::npos);
+    // A background that is the ambient's is stated too: render's own default is black (issue 52,
+    // point 8: bench's recorded reference commands left it out and rendered another picture).
+    s.settings.background.reset();
+    EXPECT_NE(session::renderCommandLine(s, "t.json", "o.png").find(" --background 0.1 0.2 0.3"), std::string::npos);
 }
 
 // Issue 35: a version 1 session (before "tfColors") meant its TF colours as linear albedo and loads
