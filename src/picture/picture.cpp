@@ -72,6 +72,12 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     }
     // The renderer is linear inside: the TF's colours as albedo (scene/tf_colors.h).
     const scene::TransferFunction tf = scene::albedoOf(fittedSession.tf.merged(), fittedSession.tfColors);
+    // A TF transparent over every value of the data shows nothing: said, not a silent black
+    // picture (issue 52, point 7: a constant field or a one-cell data set under the fitted layers).
+    if (!(tf.maxAlpha(volume->valueLo(), volume->valueHi()) > 0.0f))
+        note(strCat("the TF '", fittedSession.tf.name, "' is transparent (alpha 0) over every value of the data [",
+                    volume->valueLo(), ", ", volume->valueHi(),
+                    "]: the picture shows only the background (try --tf ramp, or --tf-range LO HI)"));
     if (d.fit == session::StructureFit::Probe) {
         // Probes start from the default combination; everything the user gave stays fixed.
         scene::StructureConfig start;
