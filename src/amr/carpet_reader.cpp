@@ -51,7 +51,9 @@ bool parseNumber(const std::string& s, int64_t& out) {
 
 // Parsed by hand from the end (a regex recursed per character and overflowed the stack on a
 // name of 30,000 characters): the var is everything before the last " it=".
-bool parseDatasetKey(const std::string& name, DatasetKey& key) {
+// With `file`, a name of this form whose number is beyond kMaxIndex is an error naming it (it was
+// skipped: a level of rl=2147483648 was left out, and iterations above 2^30 - 1 ignored).
+bool parseDatasetKey(const std::string& name, DatasetKey& key, const std::string* file = nullptr) {
     const size_t at = name.rfind(" it=");
     if (at == std::string::npos || at == 0) return false;
     // The fields after the var, in their fixed order; it and tl required.
@@ -69,7 +71,14 @@ bool parseDatasetKey(const std::string& name, DatasetKey& key) {
             if (field < 2) return false;  // it and tl come first
             ++field;
         }
-        if (field == 5 || !parseNumber(std::string(token.substr(eq + 1)), v[field])) return false;
+        if (field == 5) return false;
+        const std::string digits(token.substr(eq + 1));
+        if (!parseNumber(digits, v[field])) {
+            AMRVK_CHECK(!file || digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos, *file,
+                        ": '", elide(name, 120), "': ", k, "=", elide(digits), " is beyond this reader's limit of ",
+                        kMaxIndex);
+            return false;
+        }
         ++field;
         if (end == rest.size()) break;
         rest = rest.substr(end + 1);
@@ -290,7 +299,7 @@ std::map<std::string, std::vector<std::pair<DatasetKey, std::string>>> gridDatas
     std::map<std::string, std::vector<std::pair<DatasetKey, std::string>>> out;
     for (const std::string& name : file.rootNames()) {
         DatasetKey key;
-        if (!parseDatasetKey(name, key)) continue;
+        if (!parseDatasetKey(name, key, &file.name())) continue;
         H5Id d(H5Dopen2(file.root(), name.c_str(), H5P_DEFAULT), H5Dclose);
         if (!d.valid() || file.dims(d.get()).size() != 3) continue;  // groups, grid scalars and arrays
         AMRVK_CHECK(key.m == 0, file.name(), ": '", name, "' is on map ", key.m,

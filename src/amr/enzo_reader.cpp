@@ -86,6 +86,10 @@ CodeUnits enzoCodeUnits(const std::map<std::string, std::string>& values, const 
         u.density = number("DensityUnits");
         if (length > 0 && time > 0) u.velocity = length / time;
     }
+    // A scale that is not a normal positive number (inf from 1e120 cubed, 1e308 / 1e-308, or an
+    // underflow) is unknown, as the units line then says (it printed "DensityUnits inf").
+    for (double* v : {&u.density, &u.velocity})
+        if (!(std::isnormal(*v) && *v > 0)) *v = 0;
     return u;
 }
 

@@ -58,6 +58,7 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
     options.kdLeaves = kdLeaves;
     options.subMajorants = subMajorants;
     const std::vector<std::string> specs = tfList.empty() ? scene::presetNames() : splitList(tfList);
+    AMRVK_CHECK(!specs.empty(), "--tfs '", elide(tfList), "': names no TF (presets or files, comma-separated)");
     for (const std::string& spec : specs) {
         // As render fits them: presets follow the data unless --tf-range fixes them.
         scene::TransferFunction tf = tfRange.size() == 2 ? scene::loadTransferFunction(trim(spec), lo, hi).rescaled(lo, hi)

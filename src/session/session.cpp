@@ -432,6 +432,8 @@ std::vector<scene::Light> readLights(const Json& lights, const std::string& wher
 
 // "cut": the crop box and clip planes, validated as the CLI validates them.
 scene::CutAway readCut(const Reader& cut) {
+    // Not an object (5, [], "x"): refused, not read as no cut-away (issue 52, point 9).
+    AMRVK_CHECK(cut.json().is_object(), cut.where(), ": expected an object with \"crop\" and/or \"clip\"");
     cut.onlyKeys({"crop", "clip"});
     scene::CutAway c;
     if (cut.has("crop")) {

@@ -205,6 +205,20 @@ TEST(CarpetHostile, LongNamesAndNumbersGiveOneShortLine) {
     EXPECT_LT(msg.size(), 300u);
 }
 
+// A level or iteration beyond the reader's limit was skipped (3 levels read of 4; issue 52,
+// point 9): now an error naming the dataset.
+TEST(CarpetHostile, NumbersBeyondTheLimitAreNamedNotSkipped) {
+    AMRVK_REQUIRE_DATA(kWaveToy);
+    const fs::path copy = editedCopy([](hid_t f) {
+        EXPECT_GE(H5Lmove(f, "WAVETOY::phi it=64 tl=0 rl=3", f, "WAVETOY::phi it=64 tl=0 rl=2147483648", H5P_DEFAULT,
+                          H5P_DEFAULT),
+                  0);
+    });
+    expectError(
+        [&] { readCarpet(copy, {}); },
+        {copy.string(), "'WAVETOY::phi it=64 tl=0 rl=2147483648': rl=2147483648 is beyond this reader's limit"});
+}
+
 TEST(CarpetHostile, GeometryThatDisagreesWithTheIndicesIsRejected) {
     AMRVK_REQUIRE_DATA(kWaveToy);
     fs::path copy = editedCopy([](hid_t f) { writeNumbers<double>(f, kRl2, "delta", {0.05, 0.05, 0.05}); });

@@ -146,6 +146,18 @@ TEST(EnzoReader, UnitLinesGiveTheUnitsOfARunWithoutCosmology) {
     EXPECT_EQ(m.field("Density").units, "code units (1 = 1.5e-24 g/cm^3)");
     EXPECT_EQ(m.field("x-velocity").units, "code units (1 = 3e+08 cm/s)");
 
+    // Scales that are not normal numbers are not known either (issue 52, point 9: "DensityUnits inf"
+    // beside units "not known"): inf, a velocity of 1e308 / 1e-308, one of 1e-308 / 1e300.
+    for (const char* lines : {"DensityUnits = inf\nLengthUnits = 1e308\nTimeUnits = 1e-308\n",
+                              "DensityUnits = 1e-320\nLengthUnits = 1e-308\nTimeUnits = 1e300\n"}) {
+        writeAll(param, text + lines);
+        m = readEnzo(param, o);
+        EXPECT_EQ(m.field("Density").units, "") << lines;
+        EXPECT_EQ(m.field("x-velocity").units, "") << lines;
+        for (const auto& [k, v] : m.attributes)
+            EXPECT_TRUE(k != "DensityUnits" && k != "VelocityUnits") << k << " " << v;
+    }
+
     writeAll(param, text + "DensityUnits = lots\n");
     const std::string msg = errorOf([&] { readEnzo(param, o); });
     expectContains(msg, param.string() + ": DensityUnits: 'lots' is not a list of numbers");
