@@ -539,7 +539,7 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 12
 check1 test -s slow.png
 no_temporaries
 
-# ---- 11. Round 4 (issue 52, points 1, 3, 4 and 6): long text, narrow images, series re-runs --
+# ---- 11. Round 4 (issue 52, points 1, 3, 4, 6, 7 and 9): long text, narrow images, re-runs -----
 section "round 4: long text and narrow images"
 # A 40,000-character argument crashed the parser's message (std::regex recursed per character):
 # one short line naming it, elided.
@@ -574,6 +574,12 @@ check1 grep -q "does not list the files its frames were read from" "$dir/ok.err"
 # --density-scale 1e30 took 42 s of GPU for 256 paths (point 6; ae was fixed in round 3).
 check1 timeout 30 "$amrvk" render good.cells --size 16x16 --spp 1 --mode ms --grid 4 --density-scale 1e30 -o dense.png --json dense.json
 check1 python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["trackingCapHits"] > 0 and j["majorantViolations"] == 0, j' dense.json
+# A TF transparent over every value of the data says so in one line, not a silent black picture
+# (point 7): a constant field under the fitted default TF.
+python3 -c "import struct; open('const.cells','wb').write(b''.join(struct.pack('<4i', x, 0, 0, 0) for x in range(4))); open('const.scalars','wb').write(struct.pack('<4f', 2, 2, 2, 2))"
+ok render const.cells "${pic[@]}" -o const.png
+check1 grep -q "is transparent (alpha 0) over every value of the data \[2, 2\]: the picture shows only the background" "$dir/ok.err"
+expect1 "--tfs ',,': names no TF" -- info good.cells --check-majorants --tfs ,,
 
 section ""
 echo "hostile.sh: $cases cases"
