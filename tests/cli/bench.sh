@@ -9,6 +9,21 @@ sample="$src/assets/samples/cloud.cells"
 fail=0
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
+# The float values of a PFM, for the checks below (no numpy: python3 on PATH may lack it).
+cat >"$dir/pfm.py" <<'PY'
+import array, sys
+def pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() in (b"PF", b"Pf")
+        f.readline()
+        scale = float(f.readline())
+        a = array.array("f", f.read())
+        if (scale < 0) != (sys.byteorder == "little"):
+            a.byteswap()
+        return a
+PY
+export PYTHONPATH="$dir${PYTHONPATH:+:$PYTHONPATH}"
+
 tiny=(--size 16x16 --frames 8 --warmup 1 --reference-spp 32 --tfs foggy --samplers ext-brick --backends sw --modes ae)
 "$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda,abr --dvr-steps 1 --grid-sweep 8 \
   >"$dir/stdout.txt" 2>"$dir/stderr.txt" || fail=1
@@ -47,16 +62,8 @@ cmd=$(python3 -c 'import json,sys; c = json.load(open(sys.argv[1]))["references"
 ref0=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["references"][0]["file"])' "$dir/out/results.json")
 check eval "$cmd -o '$dir/rerun.pfm'" ">/dev/null"
 check python3 - "$ref0" "$dir/rerun.pfm" <<'PY'
-import array, sys
-def pfm(path):
-    with open(path, "rb") as f:
-        assert f.readline().strip() in (b"PF", b"Pf")
-        f.readline()
-        scale = float(f.readline())
-        a = array.array("f", f.read())
-        if (scale < 0) != (sys.byteorder == "little"):
-            a.byteswap()
-        return a
+import sys
+from pfm import pfm
 a, b = pfm(sys.argv[1]), pfm(sys.argv[2])
 assert len(a) == len(b), (len(a), len(b))
 worst = max(abs(x - y) for x, y in zip(a, b))
@@ -74,20 +81,12 @@ cp "$ref" "$dir/srgb.pfm"
 "$amrvk" bench "$sample" -o "$dir/out" "${tiny[@]}" --traversals grid-dda --no-dense --dvr-steps none \
   --grid-sweep none --tf-colors linear >/dev/null || fail=1
 check python3 - "$dir/out/results.json" "$dir/srgb.pfm" "$ref" <<'PY'
-import array, json, sys
+import json, sys
+from pfm import pfm
 j = json.load(open(sys.argv[1]))
 assert j["tfColors"] == "linear", j["tfColors"]
 ref = j["references"][0]
 assert not ref["cached"] and "--tf-colors linear" in ref["command"], ref
-def pfm(path):  # the float values of a PFM (no numpy: python3 on PATH may lack it)
-    with open(path, "rb") as f:
-        assert f.readline().strip() in (b"PF", b"Pf")
-        f.readline()
-        scale = float(f.readline())
-        a = array.array("f", f.read())
-        if (scale < 0) != (sys.byteorder == "little"):
-            a.byteswap()
-        return a
 srgb, linear = pfm(sys.argv[2]), pfm(sys.argv[3])
 # The same paths (ae: the colour does not steer them; the same seed), each ending in the TF's colour
 # or the background: decoding darkens every channel below 1, so no value grows and some shrink
