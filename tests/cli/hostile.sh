@@ -540,7 +540,7 @@ check1 test -s slow.png
 no_temporaries
 
 # ---- 11. Round 4 (issue 52, points 1, 3, 4, 6, 7 and 9): long text, narrow images, re-runs -----
-section "round 4: long text and narrow images"
+section "round 4"
 # A 40,000-character argument crashed the parser's message (std::regex recursed per character):
 # one short line naming it, elided.
 long=$(head -c 40000 /dev/zero | tr '\0' x)
