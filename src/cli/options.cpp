@@ -594,13 +594,6 @@ namespace {
 std::string parseErrorLine(const CLI::ParseError& e, const std::string& command) {
     std::string m = e.what();
     const std::string help = " (see amrvk " + command + " --help)";
-    // The text after `prefix` up to the first of `stops` (or the end); empty without the prefix.
-    auto after = [&](std::string_view prefix, std::string_view stops) -> std::string {
-        const size_t at = m.find(prefix);
-        if (at == std::string::npos) return {};
-        const size_t start = at + prefix.size();
-        return m.substr(start, m.find_first_of(stops, start) - start);
-    };
     if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
         // "The following argument was not expected: X" or "...arguments were not expected: [X, Y]".
         std::string arg;
@@ -626,9 +619,11 @@ std::string parseErrorLine(const CLI::ParseError& e, const std::string& command)
                    ")" + help;
         }
     }
-    if (const std::string opt = after("Could not convert: ", " "); !opt.empty()) {
-        const size_t eq = m.find(" = ", m.find("Could not convert: "));
-        if (eq != std::string::npos) return elide(opt) + ": '" + elide(m.substr(eq + 3)) + "' is not a number";
+    // "Could not convert: OPT = VALUE"
+    if (const size_t at = m.find("Could not convert: "); at != std::string::npos) {
+        const size_t start = at + 19, space = m.find(' ', start);
+        if (space != std::string::npos && space > start && m.compare(space, 3, " = ") == 0)
+            return elide(m.substr(start, space - start)) + ": '" + elide(m.substr(space + 3)) + "' is not a number";
     }
     for (char& c : m)
         if (c == '\n' || c == '\r') c = ' ';

@@ -54,7 +54,7 @@ struct PictureArgs {
     bool dvrShading = false;
     std::string traversal = "grid-dda", sampler = "grid", backend = "auto", grid = "auto";
     int64_t kdLeaves = 4096, denseMaxMib = 2048;
-    std::string subMajorants = "8";  // off | 2 | 4 | 8 | 16
+    std::string subMajorants = scene::subMajorantsName(scene::StructureConfig{}.subMajorants);  // off | 2 | 4 | 8 | 16
     int64_t spp = 64;
     std::string size = "512x512";
     std::vector<double> camera;

@@ -14,12 +14,12 @@
 // unit cost (but abr/abr, which samples without a point query, is measured); a predicted best is
 // measured before it can win. Macrocell resolutions (1/4, 1/2 and 2 times auto's, then finer
 // while the finest wins, up to 256) are then measured for a grid winner and for the grid
-// traversals within slowFactor of the best; each of those at its best grid and at the default grid is then measured with
-// sub-majorants (scene/sub_majorants.h: the same paths, fewer lookups where the TF makes macrocells
-// loose, a per-TF build). A probe far slower than the best so far is stopped after its first
-// sample. The measured probes within contenderBand of the best are measured again and keep the
-// mean of both. Measured probes within tieTolerance of the best tie (two runs of one combination
-// on lavapipe differ by 10-40%): the one with the fewest structures wins, then the most efficient.
+// traversals within slowFactor of the best; each of those at its best grid and at the default
+// grid is then measured with sub-majorants (scene/sub_majorants.h: the same paths, fewer lookups
+// where the TF makes macrocells loose, a per-TF build). A probe far slower than the best so far is stopped after its
+// first sample. The measured probes within contenderBand of the best are measured again and keep the mean of both.
+// Measured probes within tieTolerance of the best tie (two runs of one combination on lavapipe differ by 10-40%): the
+// one with the fewest structures wins, then the most efficient.
 #include <functional>
 #include <optional>
 #include <string>

@@ -97,7 +97,7 @@ scene::SubMajorantOptions MajorantPass::subMajorantOptions() const {
     const accel::RangeGrid& grid = *mScene.grid;
     return {.maxDivision = int(mScene.config().subMajorants),
             .cancel = mSubCancel.get(),
-            .budgetBytes = scene::defaultSubMajorantBudget(grid.cellCount()),
+            .budgetBytes = scene::kDefaultSubMajorantBudget,
             .chordInFinestCells = scene::chordOf(grid, double(amr::cellWidth(mScene.volume().minLevel())))};
 }
 

@@ -222,7 +222,7 @@ std::vector<BoxSetCheck> checkMajorants(const std::shared_ptr<const Volume>& vol
             const SubMajorantGrid sub =
                 buildSubMajorants(g, maker, tf,
                                   {.maxDivision = int(options.subMajorants),
-                                   .budgetBytes = defaultSubMajorantBudget(g.cellCount()),
+                                   .budgetBytes = kDefaultSubMajorantBudget,
                                    .chordInFinestCells = chordOf(g, double(amr::cellWidth(v.minLevel())))});
             if (sub.refined == 0) continue;  // a smooth TF: nothing built, nothing to check
             BoxSetCheck check;

@@ -33,7 +33,7 @@ struct StructureConfig {
     uint32_t kdLeaves = 4096;       // kdtree leaves
     // Grid traversals: split each macrocell that the TF makes loose into at most N^3 sub-boxes with
     // majorants of their own (N = 2, 4, 8 or 16), rebuilt per TF (scene/sub_majorants.h); 0: off.
-    // The same picture with fewer lookups where a TF has narrow peaks (1.6-2.7x on spiky,
+    // The same picture with fewer lookups where a TF has narrow peaks (1.6-2.5x on spiky,
     // docs/benchmarks.md section 27), nothing built where it has none.
     uint32_t subMajorants = 8;
     uint64_t denseMaxBytes = uint64_t(2) << 30;  // dense sampler: refuse larger grids

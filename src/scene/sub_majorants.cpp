@@ -51,8 +51,6 @@ double chordOf(const accel::RangeGrid& grid, double finestCellWidth) {
     return 2.0 / 3.0 * std::cbrt(s.x * s.y * s.z) / finestCellWidth;
 }
 
-uint64_t defaultSubMajorantBudget(uint64_t) { return uint64_t(16) << 20; }
-
 namespace {
 
 // Where the TF's alpha can be above 0: the closed value intervals between nodes with an end of

@@ -81,6 +81,6 @@ SubMajorantGrid buildSubMajorants(const accel::RangeGrid& grid, const accel::Sub
 // The default budget: 16 MiB of sub-boxes whatever the grid, which bounds a TF edit's host work
 // (about 0.2 us a sub-box on two cores: 3 s at most; docs/benchmarks.md section 27). A finer grid
 // has tighter macrocells, so it needs the bytes less.
-uint64_t defaultSubMajorantBudget(uint64_t macrocells);
+inline constexpr uint64_t kDefaultSubMajorantBudget = uint64_t(16) << 20;
 
 }  // namespace amrvk::scene
