@@ -4,7 +4,8 @@
 # depfiles) and embeds the SPIR-V in a static library `target` that defines
 #   std::span<const amrvk::gpu::EmbeddedShader> amrvk::shaders::<cppFunctionName>();
 # Shader names are the file names without extension; a variant compiles `source` again with
-# -DDEFINE under its own name (e.g. a ray-query build that needs a device feature). Each entry
+# -DDEFINE (or DEFINE,DEFINE,...) under its own name (e.g. a ray-query build that needs a device
+# feature, or the unbiased ray-marching shadow estimator). Each entry
 # records its source name and define, so --shader-dir can rebuild variants from the source.
 find_program(GLSLC glslc REQUIRED)
 
@@ -30,9 +31,10 @@ function(amrvk_embed_shaders)
     list(GET parts 1 src)
     list(GET parts 2 define)
     set(defs)
-    if(define)
-      set(defs -D${define})
-    endif()
+    string(REPLACE "," ";" deflist "${define}")
+    foreach(def ${deflist})
+      list(APPEND defs -D${def})
+    endforeach()
     set(opt)
     if(AMRVK_SPIRV_OPT)
       set(opt -O)

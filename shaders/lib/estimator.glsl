@@ -7,7 +7,8 @@
 // order in both, so a data-parallel rank holds the same paths as every other. Shadow rays are
 // next-event estimation: p.pending waits for the transmittance along (p.o, p.shadowDir,
 // p.shadowDist), then resolveShadow adds it. Independent oracle: scene/reference_integrator.cpp.
-// Needs kMode, lib/rng.glsl, lib/phase.glsl and shared/path_state_gpu.h.
+// Needs kMode, lib/rng.glsl, lib/phase.glsl, shared/path_state_gpu.h, and with AMRVK_UBRM
+// lib/unbiased_march.glsl.
 #ifndef AMRVK_ESTIMATOR_GLSL
 #define AMRVK_ESTIMATOR_GLSL
 
@@ -29,6 +30,16 @@ PathStateGpu startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     p.shadowDir = vec3(0.0);
     p.pad = 0u;
     return p;
+}
+
+// The transmittance estimate of a shadow ray: unbiased ray marching in the shaders built with
+// AMRVK_UBRM (--transmittance ubrm), ratio tracking otherwise.
+float shadowTransmittance(vec3 o, vec3 d, float tMax, StructureConfig cfg, inout uint rng, inout Counters c) {
+#ifdef AMRVK_UBRM
+    return ubrmTransmittance(o, d, tMax, cfg, rng, c);
+#else
+    return ratioTrack(o, d, tMax, cfg, rng, c);
+#endif
 }
 
 // Next-event estimation from p.o: one of n lights chosen uniformly (with ambientCounts, k = the

@@ -24,6 +24,9 @@ layout(push_constant, scalar) uniform Push { PushConstants pc; };
 #include "lib/traversal.glsl"
 #include "lib/sub_majorants.glsl"
 #include "lib/tracking.glsl"
+#ifdef AMRVK_UBRM
+#include "lib/unbiased_march.glsl"  // --transmittance ubrm (the _ubrm variants)
+#endif
 #include "lib/phase.glsl"
 #include "lib/ray_march.glsl"
 #include "lib/double_float.glsl"
@@ -51,7 +54,7 @@ vec3 radiance(inout PathStateGpu p, inout Counters c) {
         if (shadeCollision(p, hit, tHit, tf.rgb)) atomicAdd(UintRW(P.counters).v[kCounterBounceLimitHits], 1u);
         if ((p.flags & kPathShadow) != 0u) {
             uint lookups0 = c.lookups;
-            resolveShadow(p, ratioTrack(p.o, p.shadowDir, p.shadowDist, cfg(), p.rng, c));
+            resolveShadow(p, shadowTransmittance(p.o, p.shadowDir, p.shadowDist, cfg(), p.rng, c));
             c.shadowLookups += c.lookups - lookups0;
         }
         scatterPath(p);

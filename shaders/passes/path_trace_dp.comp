@@ -24,6 +24,9 @@ layout(push_constant, scalar) uniform Push { DataParallelPush pc; };
 #include "lib/traversal.glsl"
 #include "lib/sub_majorants.glsl"
 #include "lib/tracking.glsl"
+#ifdef AMRVK_UBRM
+#include "lib/unbiased_march.glsl"  // --transmittance ubrm (the _ubrm variants)
+#endif
 #include "lib/phase.glsl"
 #include "lib/ray_box.glsl"
 #include "lib/double_float.glsl"
@@ -94,7 +97,7 @@ void main() {
                 float t0, t1;
                 if (ownedInterval(p.o, p.shadowDir, p.shadowDist, t0, t1)) {
                     uint rng = localRng(i, p, 1u);
-                    transmittance = ratioTrack(p.o + p.shadowDir * t0, p.shadowDir, t1 - t0, cfg(), rng, c);
+                    transmittance = shadowTransmittance(p.o + p.shadowDir * t0, p.shadowDir, t1 - t0, cfg(), rng, c);
                 }
             }
             FloatRW(pc.shadow).v[i] = transmittance;

@@ -45,6 +45,14 @@ AMRVK_ENUM_VALUE(Backend, Rq, 1u)
 AMRVK_ENUM_VALUE(Backend, Auto, 2u)
 AMRVK_ENUM_END()
 
+// Shadow-ray transmittance estimators (RenderSettings::transmittance; ubrm: the path tracers'
+// _ubrm shader variants, lib/unbiased_march.glsl): ratio tracking, or unbiased ray marching
+// (Kettunen et al. 2021).
+AMRVK_ENUM_BEGIN(Transmittance)
+AMRVK_ENUM_VALUE(Transmittance, Ratio, 0u)
+AMRVK_ENUM_VALUE(Transmittance, Ubrm, 1u)
+AMRVK_ENUM_END()
+
 AMRVK_ENUM_BEGIN(LightType)
 AMRVK_ENUM_VALUE(Light, Directional, 0u)
 AMRVK_ENUM_VALUE(Light, Point, 1u)

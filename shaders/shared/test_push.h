@@ -59,7 +59,7 @@ struct TestTrackingPush {
     uint count;
     uint samplerKind;  // SamplerKind
     uint traversal;  // TraversalKind
-    uint pad;
+    uint withUbrm;   // 1: also the unbiased ray-marching estimate (else 0 in its slot)
 };
 AMRVK_STATIC_ASSERT(sizeof(TestTrackingPush) == 64);
 

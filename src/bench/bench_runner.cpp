@@ -69,7 +69,8 @@ private:
         if (mProgress) mProgress(mDone, mTotal, what);
     }
     ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, Mode mode);
-    RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep);
+    RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
+                      scene::Transmittance transmittance = scene::Transmittance::Ratio);
     void finishGroup(size_t first, double target);
     AutoResult autoGroup(size_t first, Mode mode);
     void measureMode(Mode mode);  // the reference, every combination, the grid sweep and auto of one mode
@@ -116,8 +117,10 @@ std::vector<StructureConfig> matrixOf(const BenchOptions& o, const std::vector<B
 }
 
 size_t Runner::countRuns() const {
-    size_t perGroup = matrixOf(mOpt, mBackends).size() + (mOpt.dense ? 1 : 0);
-    size_t perTf = mOpt.modes.size() * perGroup;
+    const size_t matrix = matrixOf(mOpt, mBackends).size(), extra = mOpt.dense ? 1 : 0;
+    size_t perTf = 0;
+    for (Mode m : mOpt.modes)
+        perTf += matrix * (m == Mode::Ss || m == Mode::Ms ? mOpt.transmittances.size() : 1) + extra;
     if (!mOpt.dvrSteps.empty()) perTf += mOpt.dvrSteps.size() + 1;
     size_t sweep = 0;
     for (TraversalKind t : mOpt.traversals)
@@ -200,11 +203,23 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     return ref;
 }
 
-RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep) {
-    RunResult r{.dataset = mDs->tag, .tf = mTfName, .mode = scene::modeName(mode), .kind = kind, .config = config,
-                .dvrStep = dvrStep, .width = mSettings.width, .height = mSettings.height, .frames = mOpt.frames};
-    std::string what = r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
-                       (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "");
+RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
+                          scene::Transmittance transmittance) {
+    RunResult r{.dataset = mDs->tag,
+                .tf = mTfName,
+                .mode = scene::modeName(mode),
+                .kind = kind,
+                .config = config,
+                .transmittance = transmittance,
+                .dvrStep = dvrStep,
+                .width = mSettings.width,
+                .height = mSettings.height,
+                .frames = mOpt.frames};
+    std::string what =
+        r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
+        (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "") +
+        (transmittance != scene::Transmittance::Ratio ? std::string(" ") + scene::transmittanceName(transmittance)
+                                                      : "");
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
     render::Renderer* rendererOf = nullptr;
@@ -241,6 +256,7 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         scene::RenderSettings rs = mSettings;
         rs.mode = mode;
         rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
+        rs.transmittance = transmittance;
         if (mOpt.warmup > 0) {
             tick(what + " (warm-up)");
             renderer.render(rs, mOpt.warmup);
@@ -341,8 +357,11 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     a.choice = render::autoSelect(rendererFor(start), *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
     const StructureConfig& c = a.choice.config;
     auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
-    // The same structures: traversal, sampler, back-end, and the grid and sub-majorants where used.
-    auto sameAsPick = [&](const RunResult& r) { return r.config.labelWithGrid() == c.labelWithGrid(); };
+    // The same structures: traversal, sampler, back-end, and the grid and sub-majorants where used,
+    // with the settings' shadow estimator (auto picks structures only).
+    auto sameAsPick = [&](const RunResult& r) {
+        return r.config.labelWithGrid() == c.labelWithGrid() && r.transmittance == rs.transmittance;
+    };
     size_t pick = mRes.runs.size();
     for (size_t i = first; i < mRes.runs.size() && pick == mRes.runs.size(); ++i)
         if (comparable(mRes.runs[i]) && sameAsPick(mRes.runs[i])) pick = i;
@@ -368,7 +387,14 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
 void Runner::measureMode(Mode mode) {
     mRef = reference(*mDs, mTfName, mode);
     const size_t first = mRes.runs.size();
-    for (const StructureConfig& c : matrixOf(mOpt, mBackends)) mRes.runs.push_back(measure("matrix", mode, c, 0));
+    const bool shadows = mode == Mode::Ss || mode == Mode::Ms;
+    for (const StructureConfig& c : matrixOf(mOpt, mBackends)) {
+        if (!shadows) {
+            mRes.runs.push_back(measure("matrix", mode, c, 0));
+            continue;
+        }
+        for (scene::Transmittance t : mOpt.transmittances) mRes.runs.push_back(measure("matrix", mode, c, 0, t));
+    }
     if (mOpt.dense)
         mRes.runs.push_back(measure("dense", mode,
                                     {.sampler = SamplerKind::Dense, .backend = Backend::Sw,

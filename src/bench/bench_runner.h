@@ -46,6 +46,9 @@ struct BenchOptions {
     // Sub-majorant settings (StructureConfig::subMajorants) of the rows with a grid traversal and an
     // AMR sampler: each such combination runs once per entry, the others once.
     std::vector<uint32_t> subMajorants = {0, 8};
+    // Shadow-ray estimators (RenderSettings::transmittance): in ss and ms every combination of the
+    // matrix runs once per entry; ae and dvr, which cast no shadow rays, once.
+    std::vector<scene::Transmittance> transmittances = {scene::Transmittance::Ratio};
     int width = 0, height = 0;             // 0: 1024^2 on a GPU, 256^2 on a CPU device
     uint32_t frames = 100, warmup = 10;
     uint32_t referenceSpp = 0;              // 0: 4096 on a GPU, 512 on a CPU device
@@ -85,6 +88,7 @@ struct BenchOptions {
 struct RunResult {
     std::string dataset, tf, mode, kind;  // kind: matrix | dense | dvr | grid-sweep
     scene::StructureConfig config;
+    scene::Transmittance transmittance = scene::Transmittance::Ratio;  // ss and ms shadow rays
     std::string gridDims;                 // e.g. "128x128x64" for grid traversals
     double dvrStep = 0;                   // dvr only
     int width = 0, height = 0;

@@ -24,6 +24,8 @@ std::string num(double v, int digits = 3) {
 
 std::string runLabel(const RunResult& r) {
     std::string s = r.config.labelWithSub();
+    if (r.transmittance != scene::Transmittance::Ratio)
+        s += std::string(" ") + scene::transmittanceName(r.transmittance);
     if (r.kind == "grid-sweep" || r.kind == "auto") s += " grid " + r.config.grid;
     if (r.kind == "dvr") s = "dvr dt " + num(r.dvrStep) + " (" + r.config.label() + ")";
     if (r.kind == "pt-ae") s = "ae tracking (" + r.config.label() + ")";
@@ -43,6 +45,7 @@ Json runJson(const RunResult& r) {
               {"traversal", scene::traversalName(r.config.traversal)}, {"sampler", scene::samplerName(r.config.sampler)},
               {"backend", scene::backendName(r.config.backend)}, {"grid", r.config.grid}, {"gridDims", r.gridDims},
               {"kdLeaves", r.config.kdLeaves}};
+    if (r.mode == "ss" || r.mode == "ms") j["transmittance"] = scene::transmittanceName(r.transmittance);
     if (r.kind == "dvr") j["dt"] = r.dvrStep;
     j.update({{"width", r.width}, {"height", r.height}, {"frames", r.frames}});
     if (!r.error.empty()) {

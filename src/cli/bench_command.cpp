@@ -68,7 +68,7 @@ namespace {
 struct BenchArgs {
     std::vector<std::string> inputs;
     std::string outDir, tfs = "spiky,foggy", tfColors = "srgb", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
-    std::string subMajorants = "off,8";
+    std::string subMajorants = "off,8", transmittances = "ratio";
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
     bool noDense = false, autoSelect = false;
@@ -101,6 +101,11 @@ void addProtocolOptions(CLI::App& app, BenchArgs& a) {
     app.add_option("--sub-majorants", a.subMajorants,
                    "sub-majorant settings of the grid traversals' rows (as render's --sub-majorants: off, 2, 4, 8, "
                    "16); every combination with a grid traversal and an AMR sampler runs once per entry")
+        ->capture_default_str()
+        ->type_name("LIST");
+    app.add_option("--transmittances", a.transmittances,
+                   "shadow-ray estimators of the ss and ms rows (as render's --transmittance: ratio, ubrm); every "
+                   "combination runs once per entry")
         ->capture_default_str()
         ->type_name("LIST");
     app.add_option("--frames", a.frames, "timed frames of 1 spp each")
@@ -193,6 +198,9 @@ void parseMatrix(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o
     for (uint32_t n : parseList<uint32_t>("--sub-majorants", a.subMajorants,
                                           +[](const std::string& t) { return scene::parseSubMajorants(t); }))
         if (std::ranges::count(o.subMajorants, n) == 0) o.subMajorants.push_back(n);
+    o.transmittances.clear();
+    for (scene::Transmittance t : parseList("--transmittances", a.transmittances, scene::parseTransmittance))
+        if (std::ranges::count(o.transmittances, t) == 0) o.transmittances.push_back(t);
     if (app.count("--backends")) {
         o.backends = parseList("--backends", a.backends, scene::parseBackend);
         AMRVK_CHECK(std::ranges::count(o.backends, scene::Backend::Auto) == 0, "--backends: name sw and/or rq");

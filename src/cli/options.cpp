@@ -258,6 +258,12 @@ void addMethodOptions(CLI::App& app, PictureArgs& a) {
         ->type_name("F");
     app.add_flag("--dvr-shading", a.dvrShading,
                  "dvr: gradient shading by the first --light-dir (else a headlight)");
+    app.add_option("--transmittance", a.transmittance,
+                   "ss and ms: the shadow rays' transmittance estimator, ratio tracking or unbiased ray "
+                   "marching (Kettunen et al. 2021); both unbiased (docs/benchmarks.md)")
+        ->check(CLI::IsMember({"ratio", "ubrm"}))
+        ->capture_default_str()
+        ->type_name("ratio|ubrm");
     app.add_option("--traversal", a.traversal,
                    "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
                    "brick bounds, brick "
@@ -472,6 +478,7 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
     if (use("--mode")) s.mode = scene::parseMode(a.mode);
     if (use("--dt")) s.dvrStep = a.dt;
     if (use("--dvr-shading")) s.dvrShading = a.dvrShading;
+    if (use("--transmittance")) s.transmittance = scene::parseTransmittance(a.transmittance);
     if (use("--size")) parseSize("--size", a.size, s.width, s.height);
     if (use("--seed")) s.seed = uint32_t(a.seed);
     if (use("--density-scale")) s.densityScale = a.densityScale;

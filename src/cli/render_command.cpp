@@ -337,7 +337,9 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
              if (speaks) std::fprintf(stderr, "amrvk: %s\n", oneLineMessage(line).c_str());
          },
          // The first frame is dvr; else the estimator's mode (the session's, as fitted).
-         .warmMode = a.firstFrame || a.firstFrameByDefault ? scene::Mode::Dvr : plan.description.session.settings.mode});
+         .warmTracer = a.firstFrame || a.firstFrameByDefault
+                           ? render::TracerVariant{scene::Mode::Dvr}
+                           : render::TracerVariant::of(plan.description.session.settings)});
     picture.report.readSeconds = data.readSeconds;
     if (plan.legendFont)  // before the render
         session::checkLegendFits(picture.session(), picture.volume->field().units, *plan.legendFont);

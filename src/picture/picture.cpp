@@ -113,12 +113,12 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         const scene::StructurePlan plan = config.plan();
         if (!backend.why.empty() && (plan.boxMajorants || plan.samplerBvh || plan.samplerBoxes)) note(backend.why);
         std::future<gpu::ComputePipeline> warm;
-        if (options.warmMode) warm = render::warmPathTracer(ctx, *options.warmMode, config, options.shaders);
+        if (options.warmTracer) warm = render::warmPathTracer(ctx, *options.warmTracer, config, options.shaders);
         {
             ProgressStage stage("structures for " + config.label());
             p.renderer = std::make_unique<render::Renderer>(ctx, volume, config, options.shaders);
         }
-        if (options.warmMode) p.renderer->adoptPathTracer(*options.warmMode, warm);
+        if (options.warmTracer) p.renderer->adoptPathTracer(*options.warmTracer, warm);
         p.renderer->setTransferFunction(tf);
     }
     p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();

@@ -26,9 +26,10 @@ struct Options {
     gpu::ShaderLibrary shaders;                                // --shader-dir (default: embedded)
     std::function<void(const std::string&)> note;              // each fitted choice, one line, as it is made
     std::function<void(const std::string&)> probe;             // --traversal auto: each probe as it starts
-    // The mode of the first accumulation, whose path tracer compiles on another thread while the
-    // structures are built (render::warmPathTracer); none: compiled at the first accumulate.
-    std::optional<scene::Mode> warmMode;
+    // The mode and shadow estimator of the first accumulation, whose path tracer compiles on
+    // another thread while the structures are built (render::warmPathTracer); none: compiled at
+    // the first accumulate.
+    std::optional<render::TracerVariant> warmTracer;
 };
 
 struct Report {

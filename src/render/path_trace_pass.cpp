@@ -9,21 +9,32 @@ namespace amrvk::render {
 
 namespace {
 
-std::string pipelineKey(scene::Mode mode, const scene::StructureConfig& config) {
-    return std::string("path_trace.") + scene::modeName(mode) + "." + config.label();
+// "MODE[.ubrm]": the variant's part of a pipeline's key and name.
+std::string variantName(TracerVariant v) {
+    std::string s = scene::modeName(v.mode);
+    if (v.transmittance != scene::Transmittance::Ratio)
+        s += std::string(".") + scene::transmittanceName(v.transmittance);
+    return s;
+}
+
+std::string pipelineKey(TracerVariant variant, const scene::StructureConfig& config) {
+    return "path_trace." + variantName(variant) + "." + config.label();
 }
 
 }  // namespace
 
 gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& entry, uint32_t pushBytes,
-                                       scene::Mode mode, const scene::StructureConfig& config,
+                                       TracerVariant variant, const scene::StructureConfig& config,
                                        const gpu::ShaderLibrary& shaders) {
-    // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature.
-    const std::string shader = config.backend == scene::Backend::Rq ? entry + "_rq" : entry;
+    // The ray-query variant is compiled only for rq: its SPIR-V needs the rayQuery feature. The
+    // unbiased ray-marching shadows are a variant of their own: in the default one, their code
+    // cost lavapipe 0.5 s a pipeline even where a specialization constant turned it off.
+    const std::string shader = entry + (config.backend == scene::Backend::Rq ? "_rq" : "") +
+                               (variant.transmittance == scene::Transmittance::Ubrm ? "_ubrm" : "");
     // Named with where its source came from: the name a runaway or crashing dispatch is reported by.
     return gpu::ComputePipeline(ctx, shaders.load(shader),
-                                entry + "." + scene::modeName(mode) + "." + config.label() + shaders.origin(), pushBytes,
-                                {{0, uint32_t(mode)},
+                                entry + "." + variantName(variant) + "." + config.label() + shaders.origin(), pushBytes,
+                                {{0, uint32_t(variant.mode)},
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
                                  {3, uint32_t(config.backend)},
@@ -35,21 +46,24 @@ PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {
     mPathStats = gpu::Buffer(ctx, shared::kPathStatsCount * sizeof(uint32_t), gpu::MemoryKind::HostRead, "pathStats");
 }
 
-const gpu::ComputePipeline& PathTracePass::pipeline(scene::Mode mode, const scene::StructureConfig& config,
+const gpu::ComputePipeline& PathTracePass::pipeline(TracerVariant variant, const scene::StructureConfig& config,
                                                     const gpu::ShaderLibrary& shaders) {
     AMRVK_CHECK(config.backend != scene::Backend::Auto, "internal: pipeline needs a resolved back-end");
-    const std::string key = pipelineKey(mode, config);
+    const std::string key = pipelineKey(variant, config);
     auto it = mPipelines.find(key);
     if (it == mPipelines.end()) {
-        it = mPipelines.emplace(key, compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders)).first;
+        it = mPipelines
+                 .emplace(key, compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), variant, config,
+                                                 shaders))
+                 .first;
         ++mCompiled;
     }
     return it->second;
 }
 
-void PathTracePass::adopt(scene::Mode mode, const scene::StructureConfig& config, gpu::ComputePipeline compiled) {
+void PathTracePass::adopt(TracerVariant variant, const scene::StructureConfig& config, gpu::ComputePipeline compiled) {
     AMRVK_CHECK(compiled.valid(), "internal: adopting an empty pipeline");
-    if (mPipelines.try_emplace(pipelineKey(mode, config), std::move(compiled)).second) ++mCompiled;
+    if (mPipelines.try_emplace(pipelineKey(variant, config), std::move(compiled)).second) ++mCompiled;
 }
 
 void PathTracePass::dropPipelines() {
@@ -57,12 +71,13 @@ void PathTracePass::dropPipelines() {
     mDeadline.reset();
 }
 
-void PathTracePass::recompile(scene::Mode mode, const scene::StructureConfig& config,
+void PathTracePass::recompile(TracerVariant variant, const scene::StructureConfig& config,
                               const gpu::ShaderLibrary& shaders) {
-    gpu::ComputePipeline fresh = compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders);  // throws before anything is replaced
+    gpu::ComputePipeline fresh = compilePathTracer(mCtx, "path_trace", sizeof(shared::PushConstants), variant, config,
+                                                   shaders);  // throws before anything is replaced
     ++mCompiled;
     mPipelines.clear();
-    mPipelines.emplace(pipelineKey(mode, config), std::move(fresh));
+    mPipelines.emplace(pipelineKey(variant, config), std::move(fresh));
     mDeadline.reset();  // new shaders: their pace is not known
 }
 

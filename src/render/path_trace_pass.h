@@ -22,30 +22,40 @@
 
 namespace amrvk::render {
 
-// A path tracer's pipeline: shader `entry` (entry + "_rq" for the ray-query back-end) from `shaders`,
-// specialised for (mode, config) by constants 0-3, pushing `pushBytes`; named
-// "ENTRY.MODE.LABEL" (plus where --shader-dir took it from). path_trace and path_trace_dp.
+// What a path tracer is specialised for besides the structures: the mode (constant kMode) and the
+// shadow rays' estimator (the shader variant ENTRY_ubrm: the default one holds no comb code).
+struct TracerVariant {
+    scene::Mode mode = scene::Mode::Ms;
+    scene::Transmittance transmittance = scene::Transmittance::Ratio;  // ss and ms only
+    static TracerVariant of(const scene::RenderSettings& s) { return {s.mode, s.transmittance}; }
+    bool operator==(const TracerVariant&) const = default;
+};
+
+// A path tracer's pipeline: shader `entry` (+ "_rq" for the ray-query back-end, + "_ubrm" for
+// unbiased ray-marching shadows) from `shaders`, specialised for (variant, config) by constants
+// 0-3, pushing `pushBytes`; named
+// "ENTRY.MODE[.ubrm].LABEL" (plus where --shader-dir took it from). path_trace and path_trace_dp.
 gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& entry, uint32_t pushBytes,
-                                       scene::Mode mode, const scene::StructureConfig& config,
+                                       TracerVariant variant, const scene::StructureConfig& config,
                                        const gpu::ShaderLibrary& shaders);
 
 class PathTracePass {
 public:
     explicit PathTracePass(gpu::Context& ctx);
 
-    // The pipeline for (mode, config), compiled from `shaders` on first use and kept until
+    // The pipeline for (variant, config), compiled from `shaders` on first use and kept until
     // dropPipelines().
-    const gpu::ComputePipeline& pipeline(scene::Mode mode, const scene::StructureConfig& config,
+    const gpu::ComputePipeline& pipeline(TracerVariant variant, const scene::StructureConfig& config,
                                          const gpu::ShaderLibrary& shaders);
-    // Keeps `compiled` (compilePathTracer of the same mode, config and shaders, made elsewhere, e.g.
-    // on another thread while the structures were built) as the pipeline for (mode, config), unless
-    // one is already there.
-    void adopt(scene::Mode mode, const scene::StructureConfig& config, gpu::ComputePipeline compiled);
+    // Keeps `compiled` (compilePathTracer of the same variant, config and shaders, made elsewhere,
+    // e.g. on another thread while the structures were built) as the pipeline for (variant,
+    // config), unless one is already there.
+    void adopt(TracerVariant variant, const scene::StructureConfig& config, gpu::ComputePipeline compiled);
     // Forgets every pipeline (structure or shader change); the next pipeline() compiles again.
     void dropPipelines();
-    // Compiles the pipeline for (mode, config) from `shaders` and only then replaces every old
+    // Compiles the pipeline for (variant, config) from `shaders` and only then replaces every old
     // one: on a compile error it throws and the previous pipelines keep running.
-    void recompile(scene::Mode mode, const scene::StructureConfig& config, const gpu::ShaderLibrary& shaders);
+    void recompile(TracerVariant variant, const scene::StructureConfig& config, const gpu::ShaderLibrary& shaders);
     uint64_t pipelinesCompiled() const { return mCompiled; }
 
     // (Re)allocates the accumulation buffer for width x height pixels when the size changes;

@@ -193,18 +193,19 @@ void Renderer::setCamera(const scene::Camera& camera) {
     setSettings(s);
 }
 
-std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
+std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, TracerVariant variant,
+                                                 const scene::StructureConfig& config,
                                                  const gpu::ShaderLibrary& shaders) {
     gpu::registerShaders(shaders::passShaders());  // here, before the other thread looks them up
-    return std::async(std::launch::async, [&ctx, mode, config, shaders] {
+    return std::async(std::launch::async, [&ctx, variant, config, shaders] {
         // At the lowest priority: it takes a core when one idles (the serial stretches of the
         // build), and runs alone once the renderer waits for it.
         setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 19);
-        return compilePathTracer(ctx, "path_trace", sizeof(shared::PushConstants), mode, config, shaders);
+        return compilePathTracer(ctx, "path_trace", sizeof(shared::PushConstants), variant, config, shaders);
     });
 }
 
-void Renderer::adoptPathTracer(scene::Mode mode, std::future<gpu::ComputePipeline>& warm) {
+void Renderer::adoptPathTracer(TracerVariant variant, std::future<gpu::ComputePipeline>& warm) {
     if (!warm.valid()) return;
     gpu::ComputePipeline compiled;
     try {
@@ -212,12 +213,12 @@ void Renderer::adoptPathTracer(scene::Mode mode, std::future<gpu::ComputePipelin
     } catch (...) {  // compiled again at the first accumulate, which reports the error
         return;
     }
-    mPathTrace.adopt(mode, mScene.config(), std::move(compiled));
+    mPathTrace.adopt(variant, mScene.config(), std::move(compiled));
 }
 
 void Renderer::setShaders(gpu::ShaderLibrary shaders) {
     // Compile first (throws before anything is replaced), then drop the rest and reset.
-    if (mHasSettings) mPathTrace.recompile(mSettings.mode, mScene.config(), shaders);
+    if (mHasSettings) mPathTrace.recompile(TracerVariant::of(mSettings), mScene.config(), shaders);
     mShaders = std::move(shaders);
     const scene::Invalidation inv = scene::invalidatedBy(scene::Change::Shaders);
     if (mHasSettings) {
@@ -243,7 +244,7 @@ void Renderer::requireRenderable() const {
 
 const gpu::ComputePipeline& Renderer::currentPipeline() {
     requireRenderable();
-    const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(mSettings.mode, mScene.config(), mShaders);
+    const gpu::ComputePipeline& pipeline = mPathTrace.pipeline(TracerVariant::of(mSettings), mScene.config(), mShaders);
     uploadParams();
     return pipeline;
 }
@@ -286,8 +287,8 @@ StagedReport Renderer::accumulateStaged(const StagedRender& staged, uint32_t spp
     AMRVK_CHECK(mPathTrace.rowsDone() == 0, "internal: a staged render while a sample is half traced");
     uploadParams();
     StagedPass pass(mCtx,
-                    compilePathTracer(mCtx, "path_trace_dp", sizeof(shared::DataParallelPush), mSettings.mode,
-                                      mScene.config(), mShaders),
+                    compilePathTracer(mCtx, "path_trace_dp", sizeof(shared::DataParallelPush),
+                                      TracerVariant::of(mSettings), mScene.config(), mShaders),
                     uint32_t(mSettings.width) * uint32_t(mSettings.height));
     StagedReport report =
         pass.run(mParamsBuffer.address(), mPathTrace.firstSample() + mPathTrace.spp(), spp, staged, progress);

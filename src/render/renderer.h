@@ -77,7 +77,7 @@ public:
     // Takes the path tracer of `mode` for the current structures, compiled by warmPathTracer while
     // they were built; a pipeline that failed to compile is left for the first accumulate to
     // compile again (and report).
-    void adoptPathTracer(scene::Mode mode, std::future<gpu::ComputePipeline>& warm);
+    void adoptPathTracer(TracerVariant variant, std::future<gpu::ComputePipeline>& warm);
     void reloadShaders() { setShaders(mShaders); }
     void resetAccumulation();
     // Numbers (and seeds) the samples of the next accumulation from `first` on: a sample-parallel
@@ -201,7 +201,8 @@ private:
 // when the structures of config are (Renderer::adoptPathTracer): on a JIT driver (lavapipe) the
 // compile is about 0.5 s of one core, the first sample's last serial stretch. config's back-end is
 // resolved.
-std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, scene::Mode mode, const scene::StructureConfig& config,
+std::future<gpu::ComputePipeline> warmPathTracer(gpu::Context& ctx, TracerVariant variant,
+                                                 const scene::StructureConfig& config,
                                                  const gpu::ShaderLibrary& shaders);
 
 }  // namespace amrvk::render

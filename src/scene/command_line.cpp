@@ -50,6 +50,7 @@ std::string settingsOptions(const RenderSettings& s, bool withCamera) {
         o += std::string(L.point ? " --light-point " : " --light-dir ") + vec(L.posOrDir) + " " + vec(L.radiance);
     if (s.dvrStep != d.dvrStep) o += " --dt " + formatNumber(s.dvrStep);
     if (s.dvrShading) o += " --dvr-shading";
+    if (s.transmittance != d.transmittance) o += std::string(" --transmittance ") + transmittanceName(s.transmittance);
     if (s.cut.crop) o += " --crop " + vec(s.cut.crop->lo) + " " + vec(s.cut.crop->hi);
     for (const ClipPlane& c : s.cut.clips) o += " --clip " + vec(c.point) + " " + vec(c.normal);
     return o;

@@ -26,7 +26,7 @@ ChangeSet settingsChanges(const RenderSettings& a, const RenderSettings& b) {
     if (a.ambient != b.ambient || a.background != b.background || a.lights != b.lights)
         c |= Change::Lighting;
     if (a.densityScale != b.densityScale || a.g != b.g || a.maxTrackingSteps != b.maxTrackingSteps ||
-        a.cut != b.cut)
+        a.transmittance != b.transmittance || a.cut != b.cut)
         c |= Change::Medium;
     if (a.dvrStep != b.dvrStep || a.dvrShading != b.dvrShading) c |= Change::DvrOptions;
     return c;

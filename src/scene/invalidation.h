@@ -21,7 +21,7 @@ enum class Change : uint32_t {
     Seed = 1u << 2,
     Mode = 1u << 3,              // ae | ss | ms | dvr
     Lighting = 1u << 4,          // ambient, background, lights
-    Medium = 1u << 5,            // density scale, phase g, tracking step cap, cut-away
+    Medium = 1u << 5,            // density scale, phase g, tracking step cap, shadow estimator, cut-away
     DvrOptions = 1u << 6,        // dvr step and shading
     TransferFunction = 1u << 7,
     Structure = 1u << 8,         // traversal, sampler, back-end, grid, kd leaves

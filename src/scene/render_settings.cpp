@@ -17,6 +17,15 @@ Mode parseMode(const std::string& name) { return parseNamed(kModes, name, "--mod
 const char* modeName(Mode mode) { return nameOf(kModes, mode); }
 
 namespace {
+constexpr Named<Transmittance> kTransmittances[] = {{"ratio", Transmittance::Ratio}, {"ubrm", Transmittance::Ubrm}};
+}
+
+Transmittance parseTransmittance(const std::string& name) {
+    return parseNamed(kTransmittances, name, "--transmittance");
+}
+const char* transmittanceName(Transmittance t) { return nameOf(kTransmittances, t); }
+
+namespace {
 bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 

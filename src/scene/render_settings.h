@@ -22,6 +22,12 @@ using shared::Mode;
 Mode parseMode(const std::string& name);
 const char* modeName(Mode mode);
 
+// Shadow rays' transmittance estimator (lib/unbiased_march.glsl): ratio (ratio tracking, the
+// default) | ubrm (unbiased ray marching). Both are unbiased; they differ in cost and variance.
+using shared::Transmittance;
+Transmittance parseTransmittance(const std::string& name);
+const char* transmittanceName(Transmittance t);
+
 struct Light {
     bool point = false;
     glm::dvec3 posOrDir{0.0, 0.0, 1.0};  // world position, or world direction towards the light
@@ -48,6 +54,7 @@ struct RenderSettings {
     std::optional<glm::dvec3> background;  // seen by escaping primary rays; default = ambient
     std::vector<Light> lights;           // at most shared::kMaxLights
     uint32_t maxTrackingSteps = 1u << 22;  // per tracking call; paths reaching it are counted (biased)
+    Transmittance transmittance = Transmittance::Ratio;  // ss and ms shadow rays
     double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
     bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
     CutAway cut;                         // crop box and clip planes (world); the medium beyond is empty

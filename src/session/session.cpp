@@ -283,7 +283,8 @@ const std::vector<Section>& sections() {
                else s.settings.background = readVector(r, "background", true);
            }},
           numberKey("dvrStep", AT(settings.dvrStep), {0, 64, true}),
-          flagKey("dvrShading", AT(settings.dvrShading))}},
+          flagKey("dvrShading", AT(settings.dvrShading)),
+          enumKey("transmittance", AT(settings.transmittance), scene::parseTransmittance, scene::transmittanceName)}},
         {"structure",
          false,
          {enumKey("traversal", AT(structure.traversal), scene::parseTraversal, scene::traversalName),

@@ -85,7 +85,8 @@ TEST(DeviceSelection, ReportsTheRoundingModeOfEveryDevice) {
 
 TEST(DeviceSelection, ThePathTracersDeclareRoundingModeRte) {
     gpu::registerShaders(shaders::passShaders());
-    for (const char* name : {"path_trace", "path_trace_rq", "path_trace_dp", "path_trace_dp_rq"})
+    for (const char* name : {"path_trace", "path_trace_rq", "path_trace_dp", "path_trace_dp_rq", "path_trace_ubrm",
+                             "path_trace_rq_ubrm", "path_trace_dp_ubrm", "path_trace_dp_rq_ubrm"})
         EXPECT_TRUE(declaresRte(gpu::loadShader(name))) << name << " (embedded)";
     // The same from source, as a --shader-dir compiles it at run time (shaderc).
     const std::filesystem::path shaders = std::filesystem::path(AMRVK_SOURCE_DIR) / "shaders";

@@ -67,7 +67,7 @@ TEST_F(PictureGpu, CellsFromMemoryRenderWhatTheSameCellsFromAFileRender) {
               std::string::npos);
 }
 
-// The path tracer warmed on another thread while the structures are built (Options::warmMode) is
+// The path tracer warmed on another thread while the structures are built (Options::warmTracer) is
 // the one the render uses: one pipeline compiled in all, there before the first sample, and the
 // same picture as without the warm-up. A warm-up of another mode is not used, and costs no second
 // compile of the mode rendered.
@@ -77,14 +77,16 @@ TEST_F(PictureGpu, APathTracerWarmedWhileTheStructuresBuildIsTheOneUsed) {
     const session::PictureDescription d = cloudDescription(dir / "cloud.cells");
     picture::Picture cold = picture::makePicture(ctx(), session::loadVolume(d.session), d);
     EXPECT_EQ(cold.renderer->updateCounts().pipelinesCompiled, 0u);
-    picture::Picture warm = picture::makePicture(ctx(), session::loadVolume(d.session), d, {.warmMode = scene::Mode::Ss});
+    picture::Picture warm = picture::makePicture(ctx(), session::loadVolume(d.session), d,
+                                                 {.warmTracer = render::TracerVariant{scene::Mode::Ss}});
     EXPECT_EQ(warm.renderer->updateCounts().pipelinesCompiled, 1u);  // adopted before the first sample
     const scene::RenderOutput a = cold.render(), b = warm.render();
     EXPECT_EQ(cold.renderer->updateCounts().pipelinesCompiled, 1u);
     EXPECT_EQ(warm.renderer->updateCounts().pipelinesCompiled, 1u);  // not compiled again
     EXPECT_EQ(a.stats.counter(shared::kCounterDensityLookups), b.stats.counter(shared::kCounterDensityLookups));
     EXPECT_EQ(maxRelativeDifference(a.mean, b.mean), 0.0);
-    picture::Picture other = picture::makePicture(ctx(), session::loadVolume(d.session), d, {.warmMode = scene::Mode::Dvr});
+    picture::Picture other = picture::makePicture(ctx(), session::loadVolume(d.session), d,
+                                                  {.warmTracer = render::TracerVariant{scene::Mode::Dvr}});
     other.render();
     EXPECT_EQ(other.renderer->updateCounts().pipelinesCompiled, 2u);  // the dvr one, then ss's own
 }

@@ -64,6 +64,10 @@ TEST_F(ShaderLibraryGpu, CompilesInProcessWhateverTheFolderIsCalled) {
         const std::vector<uint32_t> sw = use.load("path_trace");
         EXPECT_NE(rq, sw) << "the variant must differ from the plain build";
     }
+    // A variant of two defines (ray queries and unbiased ray-marching shadows) gets both.
+    const std::vector<uint32_t> ubrm = use.load("path_trace_ubrm"), both = use.load("path_trace_rq_ubrm");
+    EXPECT_NE(both, ubrm) << "path_trace_rq_ubrm needs AMRVK_RAY_QUERY as well";
+    EXPECT_NE(both, use.load("path_trace_rq")) << "path_trace_rq_ubrm needs AMRVK_UBRM as well";
 }
 
 TEST_F(ShaderLibraryGpu, ACompileErrorNamesTheFileAndLineInOneLine) {

@@ -1,11 +1,13 @@
 // Delta and ratio tracking in a homogeneous medium against closed forms, for majorant
 // overestimates 1, 4 and 32 and optical depths up to 50: the escape probability and the ratio
 // estimate have mean exp(-tau), and delta tracking's first collision lies at an exponential
-// distance (rate sigma) truncated to the chord. Every two-sided check states its power: its
-// tolerance is below half the value (an estimator returning 0 fails) or below 10% of it. Where
-// exp(-tau) is too small for 2^16 samples to see (tau 20 and 50: about 1e-4 escapes expected), the
-// transmittance checks are one-sided (too much light fails) and the collision distance, which the
-// same free-flight loop produces, carries the power.
+// distance (rate sigma) truncated to the chord. Unbiased ray marching (lib/unbiased_march.glsl)
+// has zero variance there: every estimate is exp(-tau) to float rounding, and past its roulette's
+// depth (tau 20 and 50) either 0 or exp(-tau) / q, the latter for a share q of the rays. Every two-sided check states
+// its power: its tolerance is below half the value (an estimator returning 0 fails) or below 10% of it. Where exp(-tau)
+// is too small for 2^16 samples to see (tau 20 and 50: about 1e-4 escapes expected), the transmittance checks are
+// one-sided (too much light fails) and the collision distance, which the same free-flight loop produces, carries the
+// power.
 #include <cmath>
 
 #include "gpu/buffer.h"
@@ -36,16 +38,31 @@ TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
         renderer->setTransferFunction(test::constantTf(glm::vec3(1.0f), alpha));
         for (float over : {1.0f, 4.0f, 32.0f}) {
             SCOPED_TRACE(testing::Message() << "tau " << tau << " majorant x" << over);
+            // Unbiased ray marching at the exact majorant, and below its roulette at the loosest.
+            const bool withUbrm = over == 1.0f || (over == 32.0f && tau < 10);
             renderer->overrideMajorants(std::vector<float>(renderer->scene().grid->ranges.size(), alpha * over));
-            shared::TestTrackingPush push{renderer->paramsAddress(), out.address(), {-3.0f, 8.3f, 7.6f, 0.0f},
-                                          {1.0f, 0.0f, 0.0f, INFINITY}, n, uint32_t(scene::SamplerKind::ExtBrick),
-                                          uint32_t(scene::TraversalKind::GridDda), 0};
+            shared::TestTrackingPush push{renderer->paramsAddress(),
+                                          out.address(),
+                                          {-3.0f, 8.3f, 7.6f, 0.0f},
+                                          {1.0f, 0.0f, 0.0f, INFINITY},
+                                          n,
+                                          uint32_t(scene::SamplerKind::ExtBrick),
+                                          uint32_t(scene::TraversalKind::GridDda),
+                                          withUbrm ? 1u : 0u};
             ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
             auto v = out.download<float>();
-            double escapes = 0, ratioSum = 0, ratioSq = 0, capped = 0, hits = 0, dSum = 0, dSq = 0;
+            // Past the roulette's depth a ray is kept with probability q, weighted 1 / q.
+            const double kept = tau > 8.0 ? 0.1 : 1.0;
+            double escapes = 0, ratioSum = 0, ratioSq = 0, capped = 0, hits = 0, dSum = 0, dSq = 0, ubrmErr = 0,
+                   ubrmKept = 0;
             for (uint32_t i = 0; i < n; ++i) {
                 const float r = v[8 * i + 1];
                 ASSERT_TRUE(std::isfinite(r) && r >= 0.0f) << "ratio estimate " << r;
+                const double u = v[8 * i + 7];
+                if (withUbrm && (u != 0.0 || kept == 1.0)) {
+                    ubrmErr = std::max(ubrmErr, std::abs(u * kept / std::exp(-tau) - 1.0));
+                    ++ubrmKept;
+                }
                 escapes += v[8 * i];
                 ratioSum += r;
                 ratioSq += double(r) * r;
@@ -60,6 +77,10 @@ TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
             }
             EXPECT_EQ(capped, 0.0) << "no tracking call may reach the step cap";
             const double T = std::exp(-tau);
+            EXPECT_LT(ubrmErr, 1e-3) << "unbiased ray marching is exact in a constant medium";
+            if (withUbrm) {
+                EXPECT_NEAR(ubrmKept / n, kept, 4.5 * std::sqrt(kept * (1 - kept) / n));
+            }
 
             // Delta tracking: escapes ~ Binomial(n, T), 4.5 sigma from the binomial variance.
             const double tolEscape = 4.5 * std::sqrt(T * (1 - T) / n);
@@ -119,7 +140,8 @@ double rampSigma(const scene::TransferFunction& tf, double x) { return tf.evalua
 // delta tracking takes exactly the decisions it takes without them (the same collision, or escape,
 // for every random sequence) with far fewer lookups; ratio tracking, which thins its collisions
 // with them, has mean exp(-tau); the escape probability is exp(-tau) and the mean collision depth
-// that of the density sigma(x) e^(-tau(x)). 2^19 estimates: each check's tolerance (4.5 standard
+// that of the density sigma(x) e^(-tau(x)); unbiased ray marching, whose combs skip the sub-boxes
+// of majorant 0, has mean exp(-tau) too. 2^19 estimates: each check's tolerance (4.5 standard
 // errors) is below 2% of its answer, so a 2% error in the extinction or the transmittance fails.
 TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     amr::Model m = test::makeUniformBox({64, 4, 4}, 0, 0.0f);
@@ -138,18 +160,23 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     const uint32_t n = 1u << 19;
     gpu::Buffer out(ctx(), uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking");
     gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking", sizeof(shared::TestTrackingPush));
-    auto run = [&] {
-        shared::TestTrackingPush push{renderer->paramsAddress(), out.address(), {-3.0f, 2.1f, 1.9f, 0.0f},
-                                      {1.0f, 0.0f, 0.0f, INFINITY}, n, uint32_t(scene::SamplerKind::Grid),
-                                      uint32_t(scene::TraversalKind::GridDda), 0};
+    auto run = [&](bool withUbrm) {
+        shared::TestTrackingPush push{renderer->paramsAddress(),
+                                      out.address(),
+                                      {-3.0f, 2.1f, 1.9f, 0.0f},
+                                      {1.0f, 0.0f, 0.0f, INFINITY},
+                                      n,
+                                      uint32_t(scene::SamplerKind::Grid),
+                                      uint32_t(scene::TraversalKind::GridDda),
+                                      withUbrm ? 1u : 0u};
         ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
         return out.download<float>();
     };
-    const std::vector<float> plain = run();
+    const std::vector<float> plain = run(false);  // (UnbiasedRayMarchingMatchesASmoothFieldsDepth: without sub-boxes)
     renderer->setStructure(sub);
     renderer->setSubMajorantCheck(true);
     ASSERT_GT(renderer->majorantPass().subMajorants().refined, 0u);
-    const std::vector<float> v = run();
+    const std::vector<float> v = run(true);
 
     // The answers: tau = the two triangles' areas (1 x 0.75 + 0.8 x 0.4); the mean collision depth
     // from the density sigma(x) e^(-tau(x)) over the hits (midpoint rule at 2^20 steps).
@@ -165,7 +192,7 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     depth /= 1.0 - T;
 
     double escapes = 0, ratio = 0, ratioSq = 0, hits = 0, dSum = 0, dSq = 0, lookups = 0, lookupsPlain = 0, skips = 0,
-           violations = 0, same = 0, capped = 0;
+           violations = 0, same = 0, capped = 0, ubrm = 0, ubrmSq = 0;
     for (uint32_t i = 0; i < n; ++i) {
         const float* r = &v[8 * size_t(i)];
         const float* p = &plain[8 * size_t(i)];
@@ -173,6 +200,8 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
         escapes += r[0];
         ratio += r[1];
         ratioSq += double(r[1]) * r[1];
+        ubrm += r[7];
+        ubrmSq += double(r[7]) * r[7];
         capped += r[3] + p[3];
         lookups += r[4];
         lookupsPlain += p[4];
@@ -197,6 +226,9 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     const double mean = ratio / n, tolRatio = 4.5 * std::sqrt(std::max(0.0, ratioSq / n - mean * mean) / n);
     ASSERT_LT(tolRatio, 0.02 * T);
     EXPECT_NEAR(mean, T, tolRatio);
+    const double ubrmMean = ubrm / n, tolUbrm = 4.5 * std::sqrt(std::max(0.0, ubrmSq / n - ubrmMean * ubrmMean) / n);
+    ASSERT_LT(tolUbrm, 0.02 * T);
+    EXPECT_NEAR(ubrmMean, T, tolUbrm);
     const double dMean = dSum / hits, tolDepth = 4.5 * std::sqrt(std::max(0.0, dSq / hits - dMean * dMean) / hits);
     ASSERT_LT(tolDepth, 0.02 * depth);
     EXPECT_NEAR(dMean, depth, tolDepth);
@@ -204,7 +236,7 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     // The check's own power: sub-majorants far too low (q = 1 of 255) are caught as violations,
     // and the transmittance they give is then wrong (too much light).
     renderer->overrideSubMajorants(1);
-    const std::vector<float> low = run();
+    const std::vector<float> low = run(false);
     double lowViolations = 0, lowEscapes = 0;
     for (uint32_t i = 0; i < n; ++i) {
         lowViolations += low[8 * size_t(i) + 6];
@@ -212,4 +244,62 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     }
     EXPECT_GT(lowViolations, 1000.0);
     EXPECT_GT(lowEscapes / n, T + tolEscape);
+}
+
+// Unbiased ray marching (lib/unbiased_march.glsl) on a field whose optical depth is known and
+// varies along the ray: level-0 cells 64 x 4 x 4 with value x and a TF whose alpha rises linearly
+// from 0 to 0.06 over the values, then falls to 0.02, on a grid of 16 macrocells (their majorants
+// differ, so the comb's density does too). tau is the integral of the TF's alpha along x (2^20
+// midpoint steps). 2^19 estimates of each estimator along x: unbiased ray marching has mean
+// exp(-tau) within 4.5 standard errors, a tolerance below 2% of the answer (a 2% error fails), and
+// a lower variance than ratio tracking on this smooth field; a transmittance of exp(-1.02 tau),
+// the answer with 2% more extinction, is rejected.
+TEST_F(TrackingGpu, UnbiasedRayMarchingMatchesASmoothFieldsDepth) {
+    amr::Model m = test::makeUniformBox({64, 4, 4}, 0, 0.0f);
+    for (size_t i = 0; i < m.cells.size(); ++i) m.fields[0].values[i] = float(m.cells[i].lower.x) + 0.5f;
+    const scene::TransferFunction tf({0.0f, 40.0f, 64.0f},
+                                     {glm::vec4(1, 1, 1, 0), glm::vec4(1, 1, 1, 0.06f), glm::vec4(1, 1, 1, 0.02f)},
+                                     "rise and fall");
+    auto renderer = test::makeRenderer(ctx(), std::move(m), test::gridDda(scene::SamplerKind::Grid, "16"));
+    renderer->setTransferFunction(tf);
+    const uint32_t n = 1u << 19;
+    gpu::Buffer out(ctx(), uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking");
+    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking",
+                              sizeof(shared::TestTrackingPush));
+    shared::TestTrackingPush push{renderer->paramsAddress(),
+                                  out.address(),
+                                  {-3.0f, 2.1f, 1.9f, 0.0f},
+                                  {1.0f, 0.0f, 0.0f, INFINITY},
+                                  n,
+                                  uint32_t(scene::SamplerKind::Grid),
+                                  uint32_t(scene::TraversalKind::GridDda),
+                                  1};
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
+    const std::vector<float> v = out.download<float>();
+    double tau = 0;
+    const int steps = 1 << 20;
+    for (int k = 0; k < steps; ++k) tau += rampSigma(tf, 64.0 * (k + 0.5) / steps) * (64.0 / steps);
+    const double T = std::exp(-tau);
+    double ubrm = 0, ubrmSq = 0, ratio = 0, ratioSq = 0, capped = 0, violations = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const float* r = &v[8 * size_t(i)];
+        ASSERT_TRUE(std::isfinite(r[7])) << "estimate " << i;
+        ubrm += r[7];
+        ubrmSq += double(r[7]) * r[7];
+        ratio += r[1];
+        ratioSq += double(r[1]) * r[1];
+        capped += r[3];
+        violations += r[6];
+    }
+    EXPECT_EQ(capped, 0.0);
+    EXPECT_EQ(violations, 0.0);
+    const double mean = ubrm / n, var = std::max(0.0, ubrmSq / n - mean * mean), tol = 4.5 * std::sqrt(var / n);
+    const double ratioMean = ratio / n, ratioVar = std::max(0.0, ratioSq / n - ratioMean * ratioMean);
+    SCOPED_TRACE(testing::Message() << "tau " << tau << " ubrm " << mean << " +- " << tol << " (variance " << var
+                                    << ") ratio " << ratioMean << " (variance " << ratioVar << ")");
+    ASSERT_GT(tau, 1.0);
+    ASSERT_LT(tol, 0.02 * T) << "power: a 2% error in the transmittance is caught";
+    EXPECT_NEAR(mean, T, tol);
+    EXPECT_GT(std::abs(mean - std::exp(-1.02 * tau)), tol) << "2% more extinction is rejected";
+    EXPECT_LT(var, ratioVar) << "on a smooth field the comb's variance is below ratio tracking's";
 }
