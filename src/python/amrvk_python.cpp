@@ -1157,9 +1157,8 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
             "transmittance",
             [](const PyRenderer& r) { return std::string(scene::transmittanceName(r.settings().transmittance)); },
             [](PyRenderer& r, const py::object& o) {
-                const scene::Transmittance t =
-                    scene::parseTransmittance(keywordArg<std::string>(o, "transmittance", kTransmittances));
-                r.editSettings([&](auto& s) { s.transmittance = t; });
+                const std::string name = keywordArg<std::string>(o, "transmittance", kTransmittances);
+                r.editSettings([&](auto& s) { s.transmittance = scene::parseTransmittance(name); });
             })
         .def_property(
             "density_scale", [](const PyRenderer& r) { return r.settings().densityScale; },

@@ -26,6 +26,7 @@ constexpr Rename kRenames[] = {
     {"--density-scale", "density_scale"},
     {"--size", "size (width, height)"},
     {"--mode", "mode"},
+    {"--transmittance", "transmittance"},
     {"--spp", "spp"},
     {"--seed", "seed"},
     {"--dt", "dt"},
