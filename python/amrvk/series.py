@@ -5,8 +5,9 @@ image files, or an MP4 (Debian's ffmpeg). The planning is the command line's (se
 natural order of a glob's matches, a turntable's azimuths, the frame files); each frame is one
 Renderer, all on one device.
 
-TF range (`tf_range`): ``"first"`` (the first data set's value range, the CLI's default),
-``"union"`` (every data set's: a pass over them first, one in memory at a time) or ``(lo, hi)``.
+TF range (`tf_range`): ``"first"`` (the first data set's value range, this function's default),
+``"union"`` (every data set's: a pass over them first, one in memory at a time; the CLI's default,
+``--series-range union``) or ``(lo, hi)``.
 `tf`: None (the layers preset), a preset or colormap name, fitted over that range; or a
 TransferFunction, used as it is (its own range is the one range). As the CLI fits them: over
 several data sets, spiky, foggy and layers follow the percentiles and volume histogram of the
@@ -87,20 +88,26 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
         raise TypeError(f"orbit: expected degrees (a number), got {_shown(orbit)}")
     if frames is not None and (isinstance(frames, bool) or not isinstance(frames, int)):
         raise TypeError(f"frames: expected a whole number, got {_shown(frames)}")
+    movie = out is not None and os.fspath(out).lower().endswith(".mp4")
+    if movie:  # before any frame is rendered (issue 52, point 17: refused after all of them)
+        if isinstance(fps, bool) or not isinstance(fps, numbers.Real):
+            raise TypeError(f"fps: expected frames per second (a number), got {_shown(fps)}")
+        if not 0 < fps <= 1000:
+            raise ValueError(f"fps: {fps:g} is outside (0, 1000]")
     sources, from_yt = _sources(inputs)
     # A DatasetSeries is indexed (ts[i] loads data set i when asked), never loaded whole.
     names = [str(i) for i in range(len(sources))] if from_yt else sources
     plan = _amrvk._plan_frames(names, frames, orbit is not None)  # the CLI's checks and turntables
     order = [names.index(p) for p in plan]  # the input of each frame
     count = len(order)
-    movie = out is not None and os.fspath(out).lower().endswith(".mp4")
     scratch = tempfile.TemporaryDirectory(prefix="amrvk-movie-") if movie else None
+    created, written, done = [], [], False
     try:
         pattern, files = (None, None)
         if out is not None:
             target = os.path.join(scratch.name, "f_%06d.png") if movie else os.fspath(out)
             pattern, files = _amrvk._frame_files(target, count)
-            os.makedirs(os.path.dirname(files[0]) or ".", exist_ok=True)
+            created = _make_dirs(os.path.dirname(files[0]) or ".")
         cache = {}
 
         def volume_of(i):
@@ -130,14 +137,45 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
                     images.append(image)
                 else:
                     r.save(files[k])
+                    written.append(files[k])
             if progress is not None:
                 progress(k + 1, count)
         if files is None:
+            done = True
             return images
         if movie:
             _amrvk._encode_mp4(pattern, count, float(fps), os.fspath(out))
+            done = True
             return [os.fspath(out)]
+        done = True
         return files
     finally:
         if scratch is not None:
             scratch.cleanup()
+        if not done and not movie:  # a failed series leaves nothing it made (issue 52, point 9)
+            for f in written:
+                try:
+                    os.remove(f)
+                except OSError:
+                    pass
+            for d in reversed(created):
+                try:
+                    os.rmdir(d)  # only where empty: never what the user put there
+                except OSError:
+                    pass
+
+
+def _make_dirs(path):
+    """os.makedirs(path, exist_ok=True), returning the directories it created, outermost first."""
+    missing = []
+    path = os.path.abspath(path)
+    while not os.path.isdir(path):
+        missing.append(path)
+        parent = os.path.dirname(path)
+        if parent == path:
+            break
+        path = parent
+    missing.reverse()
+    for d in missing:
+        os.makedirs(d, exist_ok=True)
+    return missing

@@ -41,11 +41,13 @@ class Widget:
         self.batch = batch
         self.base = renderer.camera
         w = ipywidgets
-        self.image = w.Image(format="png")
+        # At the image's own size, not stretched to the cell's width (issue 52, point 13).
+        width, height = renderer.size
+        self.image = w.Image(format="png", layout=w.Layout(width=f"{width}px", height=f"{height}px"))
         self.azimuth = w.FloatSlider(value=0.0, min=-180.0, max=180.0, step=1.0, description="azimuth")
         self.elevation = w.FloatSlider(value=0.0, min=-80.0, max=80.0, step=1.0, description="elevation")
         self.zoom = w.FloatSlider(value=1.0, min=0.25, max=4.0, step=0.05, description="zoom")
-        self.status = w.Label()
+        self.status = w.Label(layout=w.Layout(width="auto"))  # the whole line, not cut to 72 px
         for slider in (self.azimuth, self.elevation, self.zoom):
             slider.observe(self._moved, names="value")
         self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
@@ -54,6 +56,8 @@ class Widget:
             self.first_frame = self.image.value = renderer.png()
             f = renderer.first_frame
             self.status.value = f"first frame (dvr, {f['spp']} spp, dt {f['dt']:g}, noise {f['noise']:.3g}); path tracing"
+        else:  # the samples it has, shown at once (issue 52, point 12: with spp already reached it stayed blank)
+            self._show()
         self._wake = threading.Event()
         self._idle = threading.Event()
         self._stop = False

@@ -177,6 +177,10 @@ PicturePlan planPicture(const CLI::App& app, const RenderArgs& a, bool speaks) {
     p.description = describePicture(app, p.input, a.read, a.pic);
     AMRVK_CHECK(a.varianceFile.empty() || p.description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
                 p.description.session.spp, ")");
+    // The legend's own options draw nothing without a legend (issue 52, point 9: they were ignored).
+    if (!p.description.session.legend.show)
+        for (const char* name : {"--legend-place", "--legend-title", "--legend-units", "--legend-font"})
+            AMRVK_CHECK(app.count(name) == 0, name, " applies only with --legend (or a session whose legend is on)");
     // The legend's font is read before any work (a missing font is one line, not a lost render).
     if (p.description.session.legend.show) {
         AMRVK_CHECK(p.ext == ".png" || app.count("--legend") == 0, "--legend: only PNG images get a legend (-o ",

@@ -64,11 +64,14 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     for (const std::string& line : fitted) note(line);
     for (const auto& [key, value] : volume->model.attributes)
         if (key == "logFloored") note("log scale: " + value + " (values <= 0, or below --log-floor, have no logarithm)");
-    if (const auto& crop = fittedSession.settings.cut.crop) {
+    if (const scene::CutAway& cut = fittedSession.settings.cut; !cut.empty()) {
         const glm::dvec3 lo = volume->worldMin(), hi = volume->worldMax();
-        if (glm::any(glm::lessThan(crop->hi, lo)) || glm::any(glm::greaterThan(crop->lo, hi)))
-            note(strCat("--crop keeps nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ",
-                        hi.y, " ", hi.z, "): the picture shows only the background"));
+        if (scene::keepsNothingOf(cut, lo, hi))
+            note(strCat(cut.clips.empty() ? "--crop keeps"
+                        : cut.crop        ? "--crop and --clip keep"
+                                          : "the --clip planes keep",
+                        " nothing of the data (world bounds ", lo.x, " ", lo.y, " ", lo.z, " .. ", hi.x, " ", hi.y, " ",
+                        hi.z, "): the picture shows only the background"));
     }
     // The renderer is linear inside: the TF's colours as albedo (scene/tf_colors.h).
     const scene::TransferFunction tf = scene::albedoOf(fittedSession.tf.merged(), fittedSession.tfColors);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "accel/ray_box.h"
 #include "core/error.h"
@@ -38,6 +40,43 @@ bool keeps(const CutAway& cut, glm::dvec3 p) {
         return false;
     for (const ClipPlane& c : cut.clips)
         if (glm::dot(unitNormal(c.normal), p - c.point) > 0) return false;
+    return true;
+}
+
+bool keepsNothingOf(const CutAway& cut, glm::dvec3 lo, glm::dvec3 hi) {
+    if (cut.crop) {
+        lo = glm::max(lo, cut.crop->lo);
+        hi = glm::min(hi, cut.crop->hi);
+    }
+    if (glm::any(glm::greaterThanEqual(lo, hi))) return true;
+    // The region { p : n_i . p <= b_i }: the box's six faces and the planes, each narrowed by the
+    // margin, so a region of no volume (a sheet between two opposite planes) has no point left.
+    const double margin = 1e-9 * glm::length(hi - lo);
+    std::vector<std::pair<glm::dvec3, double>> halfSpaces;
+    for (int a = 0; a < 3; ++a) {
+        glm::dvec3 e(0.0);
+        e[a] = 1.0;
+        halfSpaces.push_back({e, hi[a] - margin});
+        halfSpaces.push_back({-e, -lo[a] - margin});
+    }
+    for (const ClipPlane& c : cut.clips) {
+        const glm::dvec3 n = unitNormal(c.normal);
+        halfSpaces.push_back({n, glm::dot(n, c.point) - margin});
+    }
+    const size_t m = halfSpaces.size();
+    for (size_t i = 0; i < m; ++i)
+        for (size_t j = i + 1; j < m; ++j)
+            for (size_t k = j + 1; k < m; ++k) {
+                const glm::dmat3 rows =
+                    glm::transpose(glm::dmat3(halfSpaces[i].first, halfSpaces[j].first, halfSpaces[k].first));
+                const double det = glm::determinant(rows);
+                if (!(std::abs(det) > 1e-12)) continue;  // (nearly) parallel planes: no vertex
+                const glm::dvec3 p =
+                    glm::inverse(rows) * glm::dvec3(halfSpaces[i].second, halfSpaces[j].second, halfSpaces[k].second);
+                bool kept = true;
+                for (const auto& [n, b] : halfSpaces) kept = kept && glm::dot(n, p) <= b + 0.5 * margin;
+                if (kept) return false;
+            }
     return true;
 }
 

@@ -46,6 +46,13 @@ void validateCutAway(const CutAway& cut);
 // True when world point p is kept (inside the crop box and behind every plane).
 bool keeps(const CutAway& cut, glm::dvec3 p);
 
+// True when the cut keeps no volume of the box [lo, hi] (world): the crop box misses it, or the
+// planes and the crop leave nothing, or only a sheet, of it (issue 52, point 7: two opposite clip
+// planes gave a black picture without a word). Exact up to 1e-9 of the box's diagonal: every
+// vertex of a kept region lies on three of its at most 10 bounding planes, so one of the 120
+// triples' intersections is kept by the region narrowed by that margin.
+bool keepsNothingOf(const CutAway& cut, glm::dvec3 lo, glm::dvec3 hi);
+
 // The kept part [tMin, tMax] of the ray o + t d (world), narrowed from the given interval; false
 // when nothing of it is kept. CPU twin of clipToCutAway (lib/cut_away.glsl), in double.
 bool keptInterval(const CutAway& cut, glm::dvec3 o, glm::dvec3 d, double& tMin, double& tMax);

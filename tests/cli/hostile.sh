@@ -539,7 +539,7 @@ AMRVK_TEST_GPU_TIMEOUT_FLOOR=4 ok render slowcloud.cells --size 160x120 --spp 12
 check1 test -s slow.png
 no_temporaries
 
-# ---- 11. Round 4 (issue 52, points 1, 3, 4, 6, 7 and 9): long text, narrow images, re-runs -----
+# ---- 11. Round 4 (issue 52, points 1, 3, 4, 6, 7 and 9): long text, narrow images, re-runs, cuts -
 section "round 4"
 # A 40,000-character argument crashed the parser's message (std::regex recursed per character):
 # one short line naming it, elided.
@@ -580,6 +580,14 @@ python3 -c "import struct; open('const.cells','wb').write(b''.join(struct.pack('
 ok render const.cells "${pic[@]}" -o const.png
 check1 grep -q "is transparent (alpha 0) over every value of the data \[2, 2\]: the picture shows only the background" "$dir/ok.err"
 expect1 "--tfs ',,': names no TF" -- info good.cells --check-majorants --tfs ,,
+# Two opposite clip planes keep nothing (point 7): said in one line, as a crop beside the data is.
+ok render good.cells "${pic[@]}" --clip 1 1 1 1 0 0 --clip 3 1 1 -1 0 0 -o clip-none.png
+check1 grep -q "the --clip planes keep nothing of the data (world bounds .*): the picture shows only the background" "$dir/ok.err"
+ok render good.cells "${pic[@]}" --clip 3 1 1 1 0 0 --clip 1 1 1 -1 0 0 -o clip-some.png
+check1 test ! -s "$dir/ok.err"
+# The legend's own options without a legend drew nothing and said nothing (point 9).
+expect1 "--legend-units applies only with --legend" -- render good.cells "${pic[@]}" --legend-units g/cm^3 -o lu.png
+check1 test ! -e lu.png
 
 section ""
 echo "hostile.sh: $cases cases"

@@ -205,3 +205,68 @@ TEST(CutAway, UnitNormalNeitherOverflowsNorUnderflows) {
     EXPECT_EQ(scene::unitNormal({0.0, 0.0, -1e-320}), glm::dvec3(0.0, 0.0, -1.0));
     EXPECT_EQ(scene::unitNormal({0.0, -0.0, 0.0}), glm::dvec3(0.0));
 }
+
+// keepsNothingOf (issue 52, point 7: two opposite clip planes gave a black picture without a
+// word): known answers, then random cuts of the box [-1, 1]^3 against brute force over a 24^3
+// lattice of points. A lattice point kept with room to spare proves the region is not empty; a
+// region the function calls non-empty must hold a kept point near the lattice's resolution (its
+// vertex is kept, checked by keptByDefinition). Both answers occur, so neither is assumed.
+TEST(CutAway, KeepsNothingOfMatchesKnownRegionsAndBruteForce) {
+    const glm::dvec3 lo(-1.0), hi(1.0);
+    auto clip = [](glm::dvec3 p, glm::dvec3 n) { return ClipPlane{p, n}; };
+    CutAway gap;  // x <= -0.2 and x >= 0.2: nothing
+    gap.clips = {clip({-0.2, 0, 0}, {1, 0, 0}), clip({0.2, 0, 0}, {-1, 0, 0})};
+    EXPECT_TRUE(scene::keepsNothingOf(gap, lo, hi));
+    CutAway sheet;  // x <= 0.5 and x >= 0.5: a sheet of no volume
+    sheet.clips = {clip({0.5, 0, 0}, {1, 0, 0}), clip({0.5, 0, 0}, {-1, 0, 0})};
+    EXPECT_TRUE(scene::keepsNothingOf(sheet, lo, hi));
+    CutAway slab = sheet;  // a slab 1e-6 thick is kept
+    slab.clips[0].point.x += 1e-6;
+    EXPECT_FALSE(scene::keepsNothingOf(slab, lo, hi));
+    CutAway corner;  // x + y + z >= 2.9: a small corner near (1, 1, 1)
+    corner.clips = {clip({0.97, 0.97, 0.97}, {-1, -1, -1})};
+    EXPECT_FALSE(scene::keepsNothingOf(corner, lo, hi));
+    corner.clips[0].point = glm::dvec3(1.01);  // x + y + z >= 3.03: beyond the corner
+    EXPECT_TRUE(scene::keepsNothingOf(corner, lo, hi));
+    CutAway outside;
+    outside.crop = CropBox{{2, 2, 2}, {3, 3, 3}};
+    EXPECT_TRUE(scene::keepsNothingOf(outside, lo, hi));
+    EXPECT_FALSE(scene::keepsNothingOf(CutAway{}, lo, hi));
+
+    std::mt19937 rng(11);
+    int empty = 0, kept = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const CutAway c = randomCut(rng);
+        bool found = false;
+        const int n = 24;
+        for (int i = 0; i < n && !found; ++i)
+            for (int j = 0; j < n && !found; ++j)
+                for (int k = 0; k < n && !found; ++k) {
+                    const glm::dvec3 p = lo + (glm::dvec3(i, j, k) + 0.5) * (hi - lo) / double(n);
+                    found = keptByDefinition(c, p);
+                }
+        const bool nothing = scene::keepsNothingOf(c, lo, hi);
+        if (found) {
+            EXPECT_FALSE(nothing) << "trial " << trial << ": a lattice point is kept";
+        }
+        if (!nothing && !found) {
+            // Thinner than the lattice: its kept volume is real but small; the region grown by a
+            // lattice step must hold a lattice point.
+            CutAway grown = c;
+            if (grown.crop) {
+                grown.crop->lo -= 0.1;
+                grown.crop->hi += 0.1;
+            }
+            for (ClipPlane& q : grown.clips) q.point += 0.1 * scene::unitNormal(q.normal);
+            bool near = false;
+            for (int i = 0; i < n && !near; ++i)
+                for (int j = 0; j < n && !near; ++j)
+                    for (int k = 0; k < n && !near; ++k)
+                        near = keptByDefinition(grown, lo + (glm::dvec3(i, j, k) + 0.5) * (hi - lo) / double(n));
+            EXPECT_TRUE(near) << "trial " << trial << ": called non-empty, nothing kept near";
+        }
+        nothing ? ++empty : ++kept;
+    }
+    EXPECT_GT(empty, 20);
+    EXPECT_GT(kept, 20);
+}

@@ -155,6 +155,14 @@ def test_the_widget_refines_and_orbits(amrvk):
     finally:
         w.close()
     assert not r.closed
+    # A widget on a renderer that already has its samples shows them at once (it stayed blank), at
+    # the image's own size with the whole status line.
+    again = amrvk.Widget(r, spp=8)
+    try:
+        assert again.image.value == r.png() and again.status.value.startswith("8/8 spp, mean standard error")
+        assert again.image.layout.width == f"{r.size[0]}px" and again.status.layout.width == "auto"
+    finally:
+        again.close()
     with pytest.raises(TypeError, match="^renderer: expected an amrvk.Renderer, got NoneType$"):
         amrvk.Widget(None)
     with pytest.raises(ValueError, match=r"^spp: 0 is outside \[1, 16777216\]$"):

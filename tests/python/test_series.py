@@ -120,6 +120,27 @@ def test_bad_series_input_is_one_line_naming_the_keyword(amrvk, series):
         assert "\n" not in str(e.value)
 
 
+def test_a_failed_series_leaves_nothing_behind(amrvk, series, tmp_path):
+    """Issue 52, points 9 and 17: the folders it made and the frames it wrote go when it fails; a
+    bad fps is refused before any frame is rendered."""
+    (series / "s_2.cells").write_bytes(b"not cells")  # the second frame's input fails to read
+    out = tmp_path / "a" / "b" / "c"
+    with pytest.raises(ValueError, match="s_2.cells"):
+        amrvk.render_series(str(series / "s_*.cells"), out=str(out / "f_%04d.png"), tf="ramp", spp=1, **SMALL)
+    assert not (tmp_path / "a").exists(), list((tmp_path / "a").rglob("*"))
+    keep = tmp_path / "mine"
+    keep.mkdir()  # a folder the user made stays, and is left as it was
+    with pytest.raises(ValueError, match="s_2.cells"):
+        amrvk.render_series(str(series / "s_*.cells"), out=str(keep), tf="ramp", spp=1, **SMALL)
+    assert keep.is_dir() and not any(keep.iterdir())
+    rendered = []
+    for fps, kind in ((0, ValueError), ("abc", TypeError)):
+        with pytest.raises(kind, match="^fps"):
+            amrvk.render_series(str(series / "s_1.cells"), out=str(tmp_path / "m.mp4"), fps=fps, spp=1,
+                                progress=lambda k, n: rendered.append(k), **SMALL)
+    assert rendered == [] and not (tmp_path / "m.mp4").exists()
+
+
 def test_a_yt_dataset_series(amrvk, yt):
     ts = yt.DatasetSeries([str(need(ENZO))])
     with pytest.raises(TypeError, match="^data: a yt DatasetSeries is a series: amrvk.render_series"):
