@@ -22,14 +22,38 @@ using namespace amrvk;
 
 class TrackingGpu : public test::GpuTest {};
 
+namespace {
+
+// test_tracking (tests/shaders/test_tracking.comp): n estimates along +x from `origin` (local
+// voxel) to infinity through grid-dda, eight floats each.
+struct TrackingKernel {
+    gpu::Context& ctx;
+    uint32_t n;
+    gpu::Buffer out{ctx, uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking"};
+    gpu::ComputePipeline pipe{ctx, gpu::loadShader("test_tracking"), "test_tracking", sizeof(shared::TestTrackingPush)};
+
+    std::vector<float> run(render::Renderer& r, glm::vec3 origin, scene::SamplerKind sampler, bool withUbrm) {
+        shared::TestTrackingPush push{r.paramsAddress(),
+                                      out.address(),
+                                      glm::vec4(origin, 0.0f),
+                                      {1.0f, 0.0f, 0.0f, INFINITY},
+                                      n,
+                                      uint32_t(sampler),
+                                      uint32_t(scene::TraversalKind::GridDda),
+                                      withUbrm ? 1u : 0u};
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
+        return out.download<float>();
+    }
+};
+
+}  // namespace
+
 TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
     // 16^3 level-0 cells, value 1; TF alpha a, density scale 1: sigma = a per voxel unit.
     auto renderer = test::makeRenderer(ctx(), test::makeUniformBox({16, 16, 16}, 0, 1.0f),
                                        test::gridDda(scene::SamplerKind::ExtBrick, "4"));
     const uint32_t n = 1u << 16;
-    gpu::Buffer out(ctx(), uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking");
-    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking",
-                              sizeof(shared::TestTrackingPush));
+    TrackingKernel kernel{ctx(), n};
     const double length = 16.0, entry = 3.0;  // along x through the box, from x = -3
     size_t powered = 0, oneSided = 0;
     for (double tau : {0.1, 1.0, 5.0, 20.0, 50.0}) {
@@ -41,16 +65,8 @@ TEST_F(TrackingGpu, HomogeneousTransmittanceIsExponential) {
             // Unbiased ray marching at the exact majorant, and below its roulette at the loosest.
             const bool withUbrm = over == 1.0f || (over == 32.0f && tau < 10);
             renderer->overrideMajorants(std::vector<float>(renderer->scene().grid->ranges.size(), alpha * over));
-            shared::TestTrackingPush push{renderer->paramsAddress(),
-                                          out.address(),
-                                          {-3.0f, 8.3f, 7.6f, 0.0f},
-                                          {1.0f, 0.0f, 0.0f, INFINITY},
-                                          n,
-                                          uint32_t(scene::SamplerKind::ExtBrick),
-                                          uint32_t(scene::TraversalKind::GridDda),
-                                          withUbrm ? 1u : 0u};
-            ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
-            auto v = out.download<float>();
+            const std::vector<float> v =
+                kernel.run(*renderer, {-3.0f, 8.3f, 7.6f}, scene::SamplerKind::ExtBrick, withUbrm);
             // Past the roulette's depth a ray is kept with probability q, weighted 1 / q.
             const double kept = tau > 8.0 ? 0.1 : 1.0;
             double escapes = 0, ratioSum = 0, ratioSq = 0, capped = 0, hits = 0, dSum = 0, dSq = 0, ubrmErr = 0,
@@ -158,19 +174,9 @@ TEST_F(TrackingGpu, SubMajorantsTrackARampExactly) {
     auto renderer = test::makeRenderer(ctx(), std::move(m), off);
     renderer->setTransferFunction(tf);
     const uint32_t n = 1u << 19;
-    gpu::Buffer out(ctx(), uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking");
-    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking", sizeof(shared::TestTrackingPush));
+    TrackingKernel kernel{ctx(), n};
     auto run = [&](bool withUbrm) {
-        shared::TestTrackingPush push{renderer->paramsAddress(),
-                                      out.address(),
-                                      {-3.0f, 2.1f, 1.9f, 0.0f},
-                                      {1.0f, 0.0f, 0.0f, INFINITY},
-                                      n,
-                                      uint32_t(scene::SamplerKind::Grid),
-                                      uint32_t(scene::TraversalKind::GridDda),
-                                      withUbrm ? 1u : 0u};
-        ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
-        return out.download<float>();
+        return kernel.run(*renderer, {-3.0f, 2.1f, 1.9f}, scene::SamplerKind::Grid, withUbrm);
     };
     const std::vector<float> plain = run(false);  // (UnbiasedRayMarchingMatchesASmoothFieldsDepth: without sub-boxes)
     renderer->setStructure(sub);
@@ -263,19 +269,8 @@ TEST_F(TrackingGpu, UnbiasedRayMarchingMatchesASmoothFieldsDepth) {
     auto renderer = test::makeRenderer(ctx(), std::move(m), test::gridDda(scene::SamplerKind::Grid, "16"));
     renderer->setTransferFunction(tf);
     const uint32_t n = 1u << 19;
-    gpu::Buffer out(ctx(), uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking");
-    gpu::ComputePipeline pipe(ctx(), gpu::loadShader("test_tracking"), "test_tracking",
-                              sizeof(shared::TestTrackingPush));
-    shared::TestTrackingPush push{renderer->paramsAddress(),
-                                  out.address(),
-                                  {-3.0f, 2.1f, 1.9f, 0.0f},
-                                  {1.0f, 0.0f, 0.0f, INFINITY},
-                                  n,
-                                  uint32_t(scene::SamplerKind::Grid),
-                                  uint32_t(scene::TraversalKind::GridDda),
-                                  1};
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { pipe.dispatch(cmd, &push, n / 64); });
-    const std::vector<float> v = out.download<float>();
+    const std::vector<float> v =
+        TrackingKernel{ctx(), n}.run(*renderer, {-3.0f, 2.1f, 1.9f}, scene::SamplerKind::Grid, true);
     double tau = 0;
     const int steps = 1 << 20;
     for (int k = 0; k < steps; ++k) tau += rampSigma(tf, 64.0 * (k + 0.5) / steps) * (64.0 / steps);
