@@ -1,8 +1,8 @@
-// Shadow-ray transmittance estimators (shared::Transmittance; the shader variants built with AMRVK_UBRM):
-//   kTransmittanceRatio  ratio tracking (lib/tracking.glsl ratioTrack), the default
-//   kTransmittanceUbrm   unbiased ray marching (Kettunen et al. 2021, in the form below)
-// Unbiased ray marching writes T = exp(-tau) = exp(-c) sum_k (c - tau)^k / k! around a control c and
-// estimates it with independent combs X_1, X_2, ... (E[X_j] = tau):
+// Unbiased ray marching (Kettunen et al. 2021, in the form below): the shadow rays' estimator of
+// the path tracers built with AMRVK_UBRM (--transmittance ubrm; lib/estimator.glsl
+// shadowTransmittance; ratio tracking, lib/tracking.glsl ratioTrack, otherwise). It writes
+// T = exp(-tau) = exp(-c) sum_k (c - tau)^k / k! around a control c and estimates it with
+// independent combs X_1, X_2, ... (E[X_j] = tau):
 //   T^ = exp(-c) [1 + sum_{k=1..K} prod_{j<=k} (c - X_j) / (j p_j)],
 // where term k is reached with probability p_1 ... p_k and p_j = min(1, lambda / j). The control
 // and lambda come from two half-density combs A and B drawn first (c = (A + B) / 2, lambda =

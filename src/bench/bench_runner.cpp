@@ -119,8 +119,7 @@ std::vector<StructureConfig> matrixOf(const BenchOptions& o, const std::vector<B
 size_t Runner::countRuns() const {
     const size_t matrix = matrixOf(mOpt, mBackends).size(), extra = mOpt.dense ? 1 : 0;
     size_t perTf = 0;
-    for (Mode m : mOpt.modes)
-        perTf += matrix * (m == Mode::Ss || m == Mode::Ms ? mOpt.transmittances.size() : 1) + extra;
+    for (Mode m : mOpt.modes) perTf += matrix * (scene::castsShadowRays(m) ? mOpt.transmittances.size() : 1) + extra;
     if (!mOpt.dvrSteps.empty()) perTf += mOpt.dvrSteps.size() + 1;
     size_t sweep = 0;
     for (TraversalKind t : mOpt.traversals)
@@ -387,9 +386,8 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
 void Runner::measureMode(Mode mode) {
     mRef = reference(*mDs, mTfName, mode);
     const size_t first = mRes.runs.size();
-    const bool shadows = mode == Mode::Ss || mode == Mode::Ms;
     for (const StructureConfig& c : matrixOf(mOpt, mBackends)) {
-        if (!shadows) {
+        if (!scene::castsShadowRays(mode)) {
             mRes.runs.push_back(measure("matrix", mode, c, 0));
             continue;
         }

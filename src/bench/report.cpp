@@ -45,7 +45,8 @@ Json runJson(const RunResult& r) {
               {"traversal", scene::traversalName(r.config.traversal)}, {"sampler", scene::samplerName(r.config.sampler)},
               {"backend", scene::backendName(r.config.backend)}, {"grid", r.config.grid}, {"gridDims", r.gridDims},
               {"kdLeaves", r.config.kdLeaves}};
-    if (r.mode == "ss" || r.mode == "ms") j["transmittance"] = scene::transmittanceName(r.transmittance);
+    if (scene::castsShadowRays(scene::parseMode(r.mode)))
+        j["transmittance"] = scene::transmittanceName(r.transmittance);
     if (r.kind == "dvr") j["dt"] = r.dvrStep;
     j.update({{"width", r.width}, {"height", r.height}, {"frames", r.frames}});
     if (!r.error.empty()) {

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/strings.h"
 #include "gpu/shader_compiler.h"
 
 namespace fs = std::filesystem;
@@ -60,13 +61,8 @@ std::vector<uint32_t> ShaderLibrary::load(const std::string& name) const {
         const fs::path spv = passes / (name + ".spv"), comp = passes / (source + ".comp");
         if (fs::exists(spv)) return readSpirv(spv);
         if (fs::exists(comp)) {
-            std::vector<std::string> defines;  // a variant's DEFINE or DEFINE,DEFINE,...
-            for (size_t at = 0; at < define.size();) {
-                const size_t comma = std::min(define.find(',', at), define.size());
-                defines.push_back(define.substr(at, comma - at));
-                at = comma + 1;
-            }
-            return compileComputeShader(comp, defines, {root, passes});
+            // A variant's DEFINE or DEFINE,DEFINE,...
+            return compileComputeShader(comp, splitList(define), {root, passes});
         }
     }
     AMRVK_CHECK(embedded, "shader '", name, "' not found",

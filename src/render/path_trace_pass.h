@@ -27,7 +27,10 @@ namespace amrvk::render {
 struct TracerVariant {
     scene::Mode mode = scene::Mode::Ms;
     scene::Transmittance transmittance = scene::Transmittance::Ratio;  // ss and ms only
-    static TracerVariant of(const scene::RenderSettings& s) { return {s.mode, s.transmittance}; }
+    // The settings' variant; ae and dvr, which cast no shadow rays, always take the plain shader.
+    static TracerVariant of(const scene::RenderSettings& s) {
+        return {s.mode, scene::castsShadowRays(s.mode) ? s.transmittance : scene::Transmittance::Ratio};
+    }
     bool operator==(const TracerVariant&) const = default;
 };
 

@@ -27,6 +27,8 @@ const char* modeName(Mode mode);
 using shared::Transmittance;
 Transmittance parseTransmittance(const std::string& name);
 const char* transmittanceName(Transmittance t);
+// The modes whose paths cast shadow rays (the only ones the shadow estimator changes).
+inline bool castsShadowRays(Mode mode) { return mode == Mode::Ss || mode == Mode::Ms; }
 
 struct Light {
     bool point = false;

@@ -269,7 +269,7 @@ void renderPanel(PanelState& p) {
         if (ImGui::SliderFloat("dvr step", &dt, 0.05f, 4.0f, "%.3g", ImGuiSliderFlags_Logarithmic)) s.dvrStep = dt;
         ImGui::Checkbox("gradient shading", &s.dvrShading);
     }
-    if (s.mode == scene::Mode::Ss || s.mode == scene::Mode::Ms)
+    if (scene::castsShadowRays(s.mode))
         enumCombo("shadow estimator", s.transmittance, {"ratio", "ubrm"}, scene::parseTransmittance,
                   scene::transmittanceName);
     int spp = int(p.edit.spp);
