@@ -316,11 +316,12 @@ declare -A best bestLabel
 # lanes' use but not the paths/s on lavapipe (section 27); +sun: a directional light as well
 # (--light-dir 1 0.5 2 2 2 2), so paths cast shadow rays; ^ubrm: those by unbiased ray marching
 # (--transmittance ubrm), lower error at equal samples and 1.5-3.5x the time on lavapipe (section
-# 28); ~K: grid-bvh querying after K culled macrocells in a row instead of 32, the device's best K
+# 28); :min: --control-extinction minorant (decomposition tracking, and residual ratio tracking for
+# the shadow rays: fewer lookups where a macrocell is dense throughout, section 29); ~K: grid-bvh querying after K culled macrocells in a row instead of 32, the device's best K
 # being unknown (section 26). Last, so they are the first skipped for time.
 combos=(grid-dda/grid grid-dda/grid!off grid-dda/grid%regen grid-dda/ext-brick!off grid-dda/grid@256
   grid-bvh/grid abr/abr brick/grid kdtree/grid abr/ext-brick grid-dda/grid+sun grid-dda/grid+sun^ubrm
-  grid-bvh/grid~8 grid-bvh/grid~128)
+  grid-dda/grid:min grid-dda/grid+sun:min grid-bvh/grid~8 grid-bvh/grid~128)
 common=(--size "$size" --spp "$spp" --samples-per-invocation 1 --mode ms --ambient 1 1 1 --backend sw)
 renderRows() {  # renderRows TAG TF LABEL: sets speedRow and distRow from one render's JSON
   local t=$1 p k q
@@ -358,6 +359,7 @@ stepD() {
     local extra=() suffix=""
     if [[ $base == *%regen ]]; then base=${base%\%regen} extra+=(--path-regeneration) suffix+="-regen"; fi
     if [[ $base == *!off ]]; then base=${base%!off} extra+=(--sub-majorants off) suffix+="-nosub"; fi
+    if [[ $base == *:min ]]; then base=${base%:min} extra+=(--control-extinction minorant) suffix+="-min"; fi
     if [[ $base == *^ubrm ]]; then base=${base%^ubrm} extra+=(--transmittance ubrm) suffix+="-ubrm"; fi
     if [[ $base == *+sun ]]; then base=${base%+sun} extra+=(--light-dir 1 0.5 2 2 2 2) suffix="-sun$suffix"; fi
     if (( ${#k[@]} )) && ! kShaders "${c#*~}"; then

@@ -3,7 +3,8 @@
 // same function over [lo, hi] (both ends interpolated, every node in [lo, hi] included, so a
 // step exactly on an end counts), so majorants and lookups agree. Both cost O(log nodes): binary
 // searches and a max tree over the node alphas, so a TF of 10^6 nodes costs what one of 20 does
-// per macrocell. CPU twin: scene/transfer_function.* (evaluate, maxAlpha).
+// per macrocell. tfMinAlpha is the same for the minimum (minorants). CPU twin:
+// scene/transfer_function.* (evaluate, maxAlpha, minAlpha).
 #ifndef AMRVK_TF_GLSL
 #define AMRVK_TF_GLSL
 
@@ -37,27 +38,51 @@ float tfNodesMaxAlpha(int a, int b) {
     return m;
 }
 
-float tfMaxAlpha(float lo, float hi) {
-    if (lo > hi) return 0.0;  // empty range
+// Nodes with lo <= position <= hi as [first, last), found as std::lower_bound(lo) and
+// std::upper_bound(hi) find them (the same predicates, so a NaN end gives the same nodes as on the CPU).
+void tfNodesIn(float lo, float hi, out int first, out int last) {
     FloatRef pos = FloatRef(P.majorants.tfPositions);
     int n = int(P.majorants.tfNodeCount);
-    float m = max(evalTf(lo).a, evalTf(hi).a);
-    // Nodes with lo <= position <= hi, found as std::lower_bound(lo) and std::upper_bound(hi)
-    // find them (the same predicates, so a NaN end gives the same nodes as on the CPU).
-    int first = 0, end = n;
+    first = 0;
+    int end = n;
     while (first < end) {
         int mid = (first + end) >> 1;
         if (pos.v[mid] < lo) first = mid + 1;
         else end = mid;
     }
-    int last = first;
+    last = first;
     end = n;
     while (last < end) {
         int mid = (last + end) >> 1;
         if (!(hi < pos.v[mid])) last = mid + 1;
         else end = mid;
     }
+}
+
+float tfMaxAlpha(float lo, float hi) {
+    if (lo > hi) return 0.0;  // empty range
+    float m = max(evalTf(lo).a, evalTf(hi).a);
+    int first, last;
+    tfNodesIn(lo, hi, first, last);
     if (first < last) m = max(m, tfNodesMaxAlpha(first, last - 1));
+    return m;
+}
+
+// The least alpha over [lo, hi] (TransferFunction::minAlpha), from MajorantsGpu::tfAlphaMinTree;
+// +inf for an empty range.
+float tfMinAlpha(float lo, float hi) {
+    if (lo > hi) return kInf;
+    float m = min(evalTf(lo).a, evalTf(hi).a);
+    int first, last;
+    tfNodesIn(lo, hi, first, last);
+    if (first >= last) return m;
+    FloatRef tree = FloatRef(P.majorants.tfAlphaMinTree);
+    int n = int(P.majorants.tfNodeCount);
+    int leaves = n <= 1 ? 1 : 1 << (findMSB(n - 1) + 1);
+    for (int l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
+        if ((l & 1) != 0) m = min(m, tree.v[l++]);
+        if ((r & 1) != 0) m = min(m, tree.v[--r]);
+    }
     return m;
 }
 

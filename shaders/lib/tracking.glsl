@@ -5,6 +5,17 @@
 //   kEstimatorRatio  ratio tracking (Novak et al. 2014): transmittance *= 1 - sigma / majorant,
 //                    Russian roulette below 0.05
 // Restarting at each segment boundary is valid because exponential free flights are memoryless.
+// With a control extinction (--control-extinction minorant: MajorantsGpu::gridMinorants, a
+// minorant m <= sigma of each macrocell) the medium splits into m and the residual sigma - m in
+// [0, M - m], and only the residual is tracked, with majorant M - m:
+//   delta: decomposition tracking (Kutz et al. 2017): the first collision is the nearer of the
+//          control's (an exponential distance of rate m, always real) and the residual's
+//          (accepted with probability (sigma - m) / (M - m)).
+//   ratio: residual ratio tracking (Novak et al. 2014): exp(-m * length) exactly per macrocell
+//          (then the same roulette as after a weight), times the residual's ratio-tracking weights
+//          1 - (sigma - m) / (M - m).
+// Both are unbiased; a control collision needs a lookup for its colour only. Where m = 0 they are
+// delta and ratio tracking step for step.
 // Majorant and acceptance test are in the same units (extinction per voxel unit), unlike upstream
 // ExaBrick. A call takes at most P.shading.maxTrackingSteps steps; reaching that cap, or a mean
 // free path too short to advance t in float, ends it (delta: no collision, ratio: transmittance 0
@@ -59,9 +70,8 @@ TrackState newTrackState() { return TrackState(false, kInf, vec4(0.0), 1.0); }
 
 // Ratio tracking's weight at a collision against majorant maj (extinction sigma), with Russian
 // roulette below 0.05. Returns false to stop tracking.
-bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rng, inout Counters c) {
-    st.transmittance *= max(0.0, 1.0 - sigma / maj);
-    c.nulls++;
+// Russian roulette below 0.05: returns false (transmittance 0) to stop tracking.
+bool ratioRoulette(inout TrackState st, inout uint rng) {
     if (st.transmittance < 0.05) {
         if (rand(rng) * 0.05 >= st.transmittance) {
             st.transmittance = 0.0;
@@ -70,6 +80,12 @@ bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rn
         st.transmittance = 0.05;
     }
     return true;
+}
+
+bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rng, inout Counters c) {
+    st.transmittance *= max(0.0, 1.0 - sigma / maj);
+    c.nulls++;
+    return ratioRoulette(st, rng);
 }
 
 // The estimator's decision at a tentative collision at t (extinction sigma, majorant maj, TF
@@ -108,6 +124,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     float majAlpha, t0, t1;
     uint stepsLeft = P.shading.maxTrackingSteps;
     bool gridSegments = cfg.traversal == kTraversalGridDda || cfg.traversal == kTraversalGridBvh;
+    bool control = gridSegments && P.majorants.gridMinorants != 0ul;
     // The least step that still moves the position in float: an ulp of o's largest coordinate
     // along d's largest component. A mean free path below it makes no progress, also from t = 0
     // (a ray that starts at a collision in a medium of --density-scale 1e30 burned the step cap).
@@ -116,12 +133,30 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     while (traversalNext(cfg, s, c.steps, seg, majAlpha, t0, t1)) {
         float maj = extinctionOfAlpha(majAlpha);
         if (!(maj > 0.0)) continue;
-        float meanStep = 1.0 / maj;
+        // The control extinction m of this macrocell (0 without one) and the residual's majorant.
+        float m = control ? min(extinctionOfAlpha(FloatRef(P.majorants.gridMinorants).v[seg]), maj) : 0.0;
+        float resMaj = maj - m;
+        // The control's share: exactly for ratio tracking; for delta its collision distance.
+        float tControl = kInf;
+        if (m > 0.0) {
+            if (estimator == kEstimatorDelta) {
+                tControl = t0 - log(1.0 - rand(rng)) / m;
+            } else {
+                // The control's exact share, with the same Russian roulette as a collision's weight
+                // (a path whose estimate the control alone makes small is not tracked on).
+                st.transmittance *= exp(-m * (t1 - t0));
+                if (!ratioRoulette(st, rng)) return;
+            }
+        }
+        float meanStep = 1.0 / resMaj;
         SubBoxes sub;
         sub.word = kSubNotRefined;
         if (gridSegments) sub = subBoxesOf(seg);
+        float tEnd = min(t1, tControl);
         float t = t0;
-        for (;;) {
+        // A residual of 0 is not tracked: only the control's collision, if any, is left.
+        bool track = resMaj > 0.0;
+        while (track) {
             // The cap, or a mean free path below float resolution at t or at the position (t
             // would stall and burn the cap in place, e.g. --density-scale 1e30): both end the
             // call, counted, at once.
@@ -133,30 +168,32 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             }
             --stepsLeft;
             t -= log(1.0 - rand(rng)) * meanStep;
-            if (t >= t1) break;
+            if (t >= tEnd) break;
             vec3 p = o + d * t;
             vec4 tfc;
             if (sub.word == kSubNotRefined) {
                 float sigma = extinctionAt(p, cfg, seg, c, tfc);
-                if (sigma > maj * kViolationTolerance) c.violations++;
-                if (!onCollision(estimator, tBase + t, sigma, maj, tfc, st, rng, c)) return;
+                if (sigma > maj * kViolationTolerance || sigma < m) c.violations++;
+                if (!onCollision(estimator, tBase + t, sigma - m, resMaj, tfc, st, rng, c)) return;
                 continue;
             }
-            float share = subMajorantShare(sub, p);
+            // The sub-box's majorant M q / 255 bounds the residual by M q / 255 - m: its share of resMaj.
+            float subMaj = maj * subMajorantShare(sub, p);
+            float share = clamp((subMaj - m) / resMaj, 0.0, 1.0);
             // Ratio tracking with a full share keeps every collision (no draw), as without sub-boxes.
             float u = estimator == kEstimatorDelta || (share > 0.0 && share < 1.0) ? rand(rng) : 0.0;
             if (u >= share) {  // decided by the sub-majorant: null (delta), weight 1 (ratio)
                 c.thinned++;
                 if (P.majorants.subMajorantCheck != 0u) {
                     float sigma = extinctionAt(p, cfg, seg, c, tfc);
-                    if (sigma > maj * share * kViolationTolerance) c.violations++;
+                    if (sigma > subMaj * kViolationTolerance || sigma < m) c.violations++;
                 }
                 continue;
             }
             float sigma = extinctionAt(p, cfg, seg, c, tfc);
-            if (sigma > maj * share * kViolationTolerance) c.violations++;
+            if (sigma > subMaj * kViolationTolerance || sigma < m) c.violations++;
             if (estimator == kEstimatorDelta) {
-                if (u * maj < sigma) {
+                if (u * resMaj < sigma - m) {
                     c.real++;
                     st.hit = true;
                     st.tHit = tBase + t;
@@ -166,7 +203,19 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
                 c.nulls++;
                 continue;
             }
-            if (!onRatioCollision(sigma, maj * share, st, rng, c)) return;
+            if (!onRatioCollision(sigma - m, resMaj * share, st, rng, c)) return;
+        }
+        // Delta: the control's collision comes first (no residual collision before it in this
+        // macrocell): real, looked up for its colour.
+        if (tControl < t1) {
+            vec4 tfc;
+            float sigma = extinctionAt(o + d * tControl, cfg, seg, c, tfc);
+            if (sigma < m) c.violations++;
+            c.real++;
+            st.hit = true;
+            st.tHit = tBase + tControl;
+            st.tfHit = tfc;
+            return;
         }
     }
 }

@@ -53,6 +53,15 @@ AMRVK_ENUM_VALUE(Transmittance, Ratio, 0u)
 AMRVK_ENUM_VALUE(Transmittance, Ubrm, 1u)
 AMRVK_ENUM_END()
 
+// Control extinction of the trackers (RenderSettings::controlExtinction): none, or the exact
+// minimum of the TF's extinction over each macrocell's value range (grid traversals; a minorant),
+// with which free flight is decomposition tracking (Kutz et al. 2017) and ratio-tracked shadow rays
+// residual ratio tracking (Novak et al. 2014). lib/tracking.glsl.
+AMRVK_ENUM_BEGIN(ControlExtinction)
+AMRVK_ENUM_VALUE(ControlExtinction, None, 0u)
+AMRVK_ENUM_VALUE(ControlExtinction, Minorant, 1u)
+AMRVK_ENUM_END()
+
 AMRVK_ENUM_BEGIN(LightType)
 AMRVK_ENUM_VALUE(Light, Directional, 0u)
 AMRVK_ENUM_VALUE(Light, Point, 1u)

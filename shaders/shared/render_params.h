@@ -144,8 +144,17 @@ struct MajorantsGpu {
     uint subMajorantsOn;       // 1 when subRefinement and subMajorants hold a refinement
     uint subMajorantCheck;     // 1: a collision skipped by its sub-majorant is looked up anyway and
                                // counted as a majorant violation where sigma exceeds it (tests)
+    uint64_t gridMinorants;    // --control-extinction minorant (grid traversals): float[] per macrocell, the
+                               // least TF alpha over its value range less kMinorantMargin times the greatest
+                               // (lib/tracking.glsl's control extinction); 0 when off
+    uint64_t tfAlphaMinTree;   // with gridMinorants: tfAlphaTree's layout as a min tree (padding +inf)
 };
-AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 120);
+AMRVK_STATIC_ASSERT(sizeof(MajorantsGpu) == 136);
+
+// A minorant is the exact minimum of the TF's alpha over a range less this share of the maximum
+// (at least 0), so that the rounding of evalTf's mix (a few ulps of the larger node alpha) never
+// puts an extinction below it.
+AMRVK_CONST float kMinorantMargin = 1e-6f;
 
 // One pixel of the accumulation buffer (path_trace.comp adds to it; display.comp and
 // PathTracePass::read() read it). Each sum is a double-float: value = hi + lo exactly, |lo| <=
@@ -192,8 +201,9 @@ struct StructurePush {
     uint64_t target;     // float[] majorants or AabbGpu[]
     uint count;
     uint traversal;      // domain_aabbs.comp: TraversalKind (grid-bvh computes its boxes)
+    uint64_t minorants;  // majorants.comp: 0, or float[] of the minorants of the same ranges
 };
-AMRVK_STATIC_ASSERT(sizeof(StructurePush) == 32);
+AMRVK_STATIC_ASSERT(sizeof(StructurePush) == 40);
 
 #ifdef __cplusplus
 AMRVK_STATIC_ASSERT(offsetof(LightGpu, posOrDir) == 0);
@@ -257,6 +267,9 @@ AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subRefinement) == 96);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorants) == 104);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorantsOn) == 112);
 AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, subMajorantCheck) == 116);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, gridMinorants) == 120);
+AMRVK_STATIC_ASSERT(offsetof(MajorantsGpu, tfAlphaMinTree) == 128);
+AMRVK_STATIC_ASSERT(offsetof(StructurePush, minorants) == 32);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumHi) == 0);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumLo) == 16);
 AMRVK_STATIC_ASSERT(offsetof(AccumPixelGpu, sumSqHi) == 32);
@@ -265,11 +278,11 @@ AMRVK_STATIC_ASSERT(offsetof(RenderParams, view) == 0);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, shading) == 64);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, scene) == 400);
 AMRVK_STATIC_ASSERT(offsetof(RenderParams, majorants) == 576);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 696);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 704);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, pathStats) == 712);
-AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 720);
-AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 720 + sizeof(CutAwayGpu));
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, accum) == 712);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, counters) == 720);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, pathStats) == 728);
+AMRVK_STATIC_ASSERT(offsetof(RenderParams, cut) == 736);
+AMRVK_STATIC_ASSERT(sizeof(RenderParams) == 736 + sizeof(CutAwayGpu));
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, params) == 0);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, frameIndex) == 8);
 AMRVK_STATIC_ASSERT(offsetof(PushConstants, rowOffset) == 12);

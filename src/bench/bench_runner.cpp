@@ -70,7 +70,10 @@ private:
     }
     ReferenceImage reference(const BenchDataset& ds, const std::string& tfName, Mode mode);
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
-                      scene::Transmittance transmittance = scene::Transmittance::Ratio);
+                      scene::Transmittance transmittance = scene::Transmittance::Ratio,
+                      scene::ControlExtinction control = scene::ControlExtinction::None);
+    // The control extinctions that combination `c` runs with (minorants: grid traversals only).
+    std::vector<scene::ControlExtinction> controlsOf(const StructureConfig& c) const;
     void finishGroup(size_t first, double target);
     AutoResult autoGroup(size_t first, Mode mode);
     void measureMode(Mode mode);  // the reference, every combination, the grid sweep and auto of one mode
@@ -116,10 +119,23 @@ std::vector<StructureConfig> matrixOf(const BenchOptions& o, const std::vector<B
     return out;
 }
 
+std::vector<scene::ControlExtinction> Runner::controlsOf(const StructureConfig& c) const {
+    const bool grid = c.traversal == TraversalKind::GridDda || c.traversal == TraversalKind::GridBvh;
+    std::vector<scene::ControlExtinction> out;
+    for (scene::ControlExtinction k : mOpt.controls)
+        if (grid || k == scene::ControlExtinction::None) out.push_back(k);
+    if (out.empty()) out.push_back(scene::ControlExtinction::None);
+    return out;
+}
+
 size_t Runner::countRuns() const {
-    const size_t matrix = matrixOf(mOpt, mBackends).size(), extra = mOpt.dense ? 1 : 0;
+    const size_t extra = mOpt.dense ? 1 : 0;
     size_t perTf = 0;
-    for (Mode m : mOpt.modes) perTf += matrix * (scene::castsShadowRays(m) ? mOpt.transmittances.size() : 1) + extra;
+    for (Mode m : mOpt.modes) {
+        for (const StructureConfig& c : matrixOf(mOpt, mBackends))
+            perTf += controlsOf(c).size() * (scene::castsShadowRays(m) ? mOpt.transmittances.size() : 1);
+        perTf += extra;
+    }
     if (!mOpt.dvrSteps.empty()) perTf += mOpt.dvrSteps.size() + 1;
     size_t sweep = 0;
     for (TraversalKind t : mOpt.traversals)
@@ -203,13 +219,14 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
 }
 
 RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
-                          scene::Transmittance transmittance) {
+                          scene::Transmittance transmittance, scene::ControlExtinction control) {
     RunResult r{.dataset = mDs->tag,
                 .tf = mTfName,
                 .mode = scene::modeName(mode),
                 .kind = kind,
                 .config = config,
                 .transmittance = transmittance,
+                .control = control,
                 .dvrStep = dvrStep,
                 .width = mSettings.width,
                 .height = mSettings.height,
@@ -218,10 +235,16 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
         (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "") +
         (transmittance != scene::Transmittance::Ratio ? std::string(" ") + scene::transmittanceName(transmittance)
-                                                      : "");
+                                                      : "") +
+        (control != scene::ControlExtinction::None ? std::string(" ") + scene::controlExtinctionName(control) : "");
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
     render::Renderer* rendererOf = nullptr;
+    scene::RenderSettings rs = mSettings;
+    rs.mode = mode;
+    rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
+    rs.transmittance = transmittance;
+    rs.controlExtinction = control;
     try {
         StructureConfig resolved = config;
         picture::resolveStructure(mCtx, resolved);
@@ -235,6 +258,10 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
             r.gridDims = std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
         }
         for (const auto& hb : renderer.scene().hostBytes()) r.hostBytes.push_back(hb);
+        // The settings first: the minorants of a control extinction are made with the TF's majorants.
+        renderer.setSettings(rs);
+        AMRVK_CHECK(renderer.controlExtinctionOff().empty(), "--control-extinction minorant is off: ",
+                    renderer.controlExtinctionOff());
         renderer.setTransferFunction(*mOtherTf);
         Timer tfTimer;
         renderer.setTransferFunction(*mTf);  // the TF edit that is timed
@@ -252,10 +279,6 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     if (mOpt.agree) r.error = mOpt.agree(r.error);  // every rank renders, or none does
     if (r.error.empty()) try {
         render::Renderer& renderer = *rendererOf;
-        scene::RenderSettings rs = mSettings;
-        rs.mode = mode;
-        rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
-        rs.transmittance = transmittance;
         if (mOpt.warmup > 0) {
             tick(what + " (warm-up)");
             renderer.render(rs, mOpt.warmup);
@@ -359,7 +382,8 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     // The same structures: traversal, sampler, back-end, and the grid and sub-majorants where used,
     // with the settings' shadow estimator (auto picks structures only).
     auto sameAsPick = [&](const RunResult& r) {
-        return r.config.labelWithGrid() == c.labelWithGrid() && r.transmittance == rs.transmittance;
+        return r.config.labelWithGrid() == c.labelWithGrid() && r.transmittance == rs.transmittance &&
+               r.control == rs.controlExtinction;
     };
     size_t pick = mRes.runs.size();
     for (size_t i = first; i < mRes.runs.size() && pick == mRes.runs.size(); ++i)
@@ -386,13 +410,15 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
 void Runner::measureMode(Mode mode) {
     mRef = reference(*mDs, mTfName, mode);
     const size_t first = mRes.runs.size();
-    for (const StructureConfig& c : matrixOf(mOpt, mBackends)) {
-        if (!scene::castsShadowRays(mode)) {
-            mRes.runs.push_back(measure("matrix", mode, c, 0));
-            continue;
+    for (const StructureConfig& c : matrixOf(mOpt, mBackends))
+        for (scene::ControlExtinction k : controlsOf(c)) {
+            if (!scene::castsShadowRays(mode)) {
+                mRes.runs.push_back(measure("matrix", mode, c, 0, scene::Transmittance::Ratio, k));
+                continue;
+            }
+            for (scene::Transmittance t : mOpt.transmittances)
+                mRes.runs.push_back(measure("matrix", mode, c, 0, t, k));
         }
-        for (scene::Transmittance t : mOpt.transmittances) mRes.runs.push_back(measure("matrix", mode, c, 0, t));
-    }
     if (mOpt.dense)
         mRes.runs.push_back(measure("dense", mode,
                                     {.sampler = SamplerKind::Dense, .backend = Backend::Sw,

@@ -49,6 +49,9 @@ struct BenchOptions {
     // Shadow-ray estimators (RenderSettings::transmittance): in ss and ms every combination of the
     // matrix runs once per entry; ae and dvr, which cast no shadow rays, once.
     std::vector<scene::Transmittance> transmittances = {scene::Transmittance::Ratio};
+    // Control extinctions (RenderSettings::controlExtinction): in ae, ss and ms the grid-dda and
+    // grid-bvh combinations run once per entry (minorant is theirs alone), the others with none.
+    std::vector<scene::ControlExtinction> controls = {scene::ControlExtinction::None};
     int width = 0, height = 0;             // 0: 1024^2 on a GPU, 256^2 on a CPU device
     uint32_t frames = 100, warmup = 10;
     uint32_t referenceSpp = 0;              // 0: 4096 on a GPU, 512 on a CPU device
@@ -89,6 +92,7 @@ struct RunResult {
     std::string dataset, tf, mode, kind;  // kind: matrix | dense | dvr | grid-sweep
     scene::StructureConfig config;
     scene::Transmittance transmittance = scene::Transmittance::Ratio;  // ss and ms shadow rays
+    scene::ControlExtinction control = scene::ControlExtinction::None;  // ae, ss, ms trackers
     std::string gridDims;                 // e.g. "128x128x64" for grid traversals
     double dvrStep = 0;                   // dvr only
     int width = 0, height = 0;

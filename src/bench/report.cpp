@@ -26,6 +26,7 @@ std::string runLabel(const RunResult& r) {
     std::string s = r.config.labelWithSub();
     if (r.transmittance != scene::Transmittance::Ratio)
         s += std::string(" ") + scene::transmittanceName(r.transmittance);
+    if (r.control != scene::ControlExtinction::None) s += std::string(" ") + scene::controlExtinctionName(r.control);
     if (r.kind == "grid-sweep" || r.kind == "auto") s += " grid " + r.config.grid;
     if (r.kind == "dvr") s = "dvr dt " + num(r.dvrStep) + " (" + r.config.label() + ")";
     if (r.kind == "pt-ae") s = "ae tracking (" + r.config.label() + ")";
@@ -47,6 +48,7 @@ Json runJson(const RunResult& r) {
               {"kdLeaves", r.config.kdLeaves}};
     if (scene::castsShadowRays(scene::parseMode(r.mode)))
         j["transmittance"] = scene::transmittanceName(r.transmittance);
+    if (r.kind != "dvr") j["controlExtinction"] = scene::controlExtinctionName(r.control);
     if (r.kind == "dvr") j["dt"] = r.dvrStep;
     j.update({{"width", r.width}, {"height", r.height}, {"frames", r.frames}});
     if (!r.error.empty()) {

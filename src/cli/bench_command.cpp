@@ -68,7 +68,7 @@ namespace {
 struct BenchArgs {
     std::vector<std::string> inputs;
     std::string outDir, tfs = "spiky,foggy", tfColors = "srgb", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
-    std::string subMajorants = "off,8", transmittances = "ratio";
+    std::string subMajorants = "off,8", transmittances = "ratio", controls = "none";
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
     bool noDense = false, autoSelect = false;
@@ -106,6 +106,11 @@ void addProtocolOptions(CLI::App& app, BenchArgs& a) {
     app.add_option("--transmittances", a.transmittances,
                    "shadow-ray estimators of the ss and ms rows (as render's --transmittance: ratio, ubrm); every "
                    "combination runs once per entry")
+        ->capture_default_str()
+        ->type_name("LIST");
+    app.add_option("--control-extinctions", a.controls,
+                   "control extinctions of the ae, ss and ms rows (as render's --control-extinction: none, "
+                   "minorant); every grid-dda and grid-bvh combination runs once per entry, the others with none")
         ->capture_default_str()
         ->type_name("LIST");
     app.add_option("--frames", a.frames, "timed frames of 1 spp each")
@@ -201,6 +206,9 @@ void parseMatrix(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o
     o.transmittances.clear();
     for (scene::Transmittance t : parseList("--transmittances", a.transmittances, scene::parseTransmittance))
         if (std::ranges::count(o.transmittances, t) == 0) o.transmittances.push_back(t);
+    o.controls.clear();
+    for (scene::ControlExtinction k : parseList("--control-extinctions", a.controls, scene::parseControlExtinction))
+        if (std::ranges::count(o.controls, k) == 0) o.controls.push_back(k);
     if (app.count("--backends")) {
         o.backends = parseList("--backends", a.backends, scene::parseBackend);
         AMRVK_CHECK(std::ranges::count(o.backends, scene::Backend::Auto) == 0, "--backends: name sw and/or rq");

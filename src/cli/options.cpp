@@ -264,6 +264,13 @@ void addMethodOptions(CLI::App& app, PictureArgs& a) {
         ->check(CLI::IsMember({"ratio", "ubrm"}))
         ->capture_default_str()
         ->type_name("ratio|ubrm");
+    app.add_option("--control-extinction", a.controlExtinction,
+                   "ae, ss and ms: none, or track only the extinction above each macrocell's least "
+                   "(minorant): free flight by decomposition tracking, ratio-tracked shadows by residual "
+                   "ratio tracking; unbiased, grid-dda and grid-bvh over data whose cells fill their bounds")
+        ->check(CLI::IsMember({"none", "minorant"}))
+        ->capture_default_str()
+        ->type_name("none|minorant");
     app.add_option("--traversal", a.traversal,
                    "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
                    "brick bounds, brick "
@@ -479,6 +486,7 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
     if (use("--dt")) s.dvrStep = a.dt;
     if (use("--dvr-shading")) s.dvrShading = a.dvrShading;
     if (use("--transmittance")) s.transmittance = scene::parseTransmittance(a.transmittance);
+    if (use("--control-extinction")) s.controlExtinction = scene::parseControlExtinction(a.controlExtinction);
     if (use("--size")) parseSize("--size", a.size, s.width, s.height);
     if (use("--seed")) s.seed = uint32_t(a.seed);
     if (use("--density-scale")) s.densityScale = a.densityScale;

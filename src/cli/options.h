@@ -53,6 +53,7 @@ struct PictureArgs {
     double dt = 0.5;
     bool dvrShading = false;
     std::string transmittance = "ratio";
+    std::string controlExtinction = "none";
     std::string traversal = "grid-dda", sampler = "grid", backend = "auto", grid = "auto";
     int64_t kdLeaves = 4096, denseMaxMib = 2048;
     std::string subMajorants = scene::subMajorantsName(scene::StructureConfig{}.subMajorants);  // off | 2 | 4 | 8 | 16

@@ -126,6 +126,9 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
     }
     p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();
     p.renderer->setSettings(fittedSession.settings);
+    if (!p.renderer->controlExtinctionOff().empty())
+        note("--control-extinction minorant is off: " + p.renderer->controlExtinctionOff() +
+             "; the trackers run without a control");
     fittedSession.settings = {};  // held by the renderer from now on
     p.described = std::move(fittedSession);
     p.volume = std::move(volume);

@@ -95,6 +95,7 @@ constexpr const char* kThree = "3 numbers";
 constexpr const char* kLights = "a list of amrvk.Light";
 constexpr const char* kModes = "one of 'ae', 'ss', 'ms', 'dvr'";
 constexpr const char* kTransmittances = "'ratio' or 'ubrm'";
+constexpr const char* kControls = "'none' or 'minorant'";
 
 // A keyword's value as T; a value of another type is one TypeError naming the keyword, what it
 // takes and what it got.
@@ -798,7 +799,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         return o.is_none() ? std::nullopt : std::optional<py::object>(o);
     };
     static const char* kKnown[] = {"width",    "height",  "mode",    "spp",     "seed",          "density_scale",
-                                   "g",        "ambient", "background", "lights", "dt",          "dvr_shading", "transmittance",
+                                   "g",        "ambient", "background", "lights", "dt",          "dvr_shading", "transmittance", "control_extinction",
                                    "traversal", "sampler", "backend", "grid",    "kd_leaves",     "dense_max_mib", "sub_majorants",
                                    "device",   "validation", "shader_dir", "gpu_timeout", "samples_per_invocation", "path_regeneration",
                                    "quiet",    "fov",     "tf_range", "crop",    "clip",   "legend",
@@ -822,6 +823,9 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     if (auto o = take("dvr_shading")) rs.dvrShading = keywordArg<bool>(*o, "dvr_shading", "True or False");
     if (auto o = take("transmittance"))
         rs.transmittance = scene::parseTransmittance(keywordArg<std::string>(*o, "transmittance", kTransmittances));
+    if (auto o = take("control_extinction"))
+        rs.controlExtinction =
+            scene::parseControlExtinction(keywordArg<std::string>(*o, "control_extinction", kControls));
     if (auto o = take("fov")) rs.camera.fovYDegrees = keywordArg<double>(*o, "fov", kNumber);
     if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
     if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
@@ -1159,6 +1163,13 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
             [](PyRenderer& r, const py::object& o) {
                 const std::string name = keywordArg<std::string>(o, "transmittance", kTransmittances);
                 r.editSettings([&](auto& s) { s.transmittance = scene::parseTransmittance(name); });
+            })
+        .def_property(
+            "control_extinction",
+            [](const PyRenderer& r) { return std::string(scene::controlExtinctionName(r.settings().controlExtinction)); },
+            [](PyRenderer& r, const py::object& o) {
+                const std::string name = keywordArg<std::string>(o, "control_extinction", kControls);
+                r.editSettings([&](auto& s) { s.controlExtinction = scene::parseControlExtinction(name); });
             })
         .def_property(
             "density_scale", [](const PyRenderer& r) { return r.settings().densityScale; },

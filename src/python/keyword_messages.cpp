@@ -27,6 +27,7 @@ constexpr Rename kRenames[] = {
     {"--size", "size (width, height)"},
     {"--mode", "mode"},
     {"--transmittance", "transmittance"},
+    {"--control-extinction", "control_extinction"},
     {"--spp", "spp"},
     {"--seed", "seed"},
     {"--dt", "dt"},

@@ -209,6 +209,10 @@ void MajorantPass::prepare(const scene::TransferFunction& tf) {
     mTfPositions = gpu::makeBuffer<float>(mCtx, positions, "tfPositions");
     mTfColors = gpu::makeBuffer<glm::vec4>(mCtx, colors, "tfColors");
     mTfAlphaTree = gpu::makeBuffer<float>(mCtx, tf.alphaTree(), "tfAlphaTree");
+    if (mMinorantsOn) {
+        mTfAlphaMinTree = gpu::makeBuffer<float>(mCtx, tf.alphaMinTree(), "tfAlphaMinTree");
+        mParams.tfAlphaMinTree = mTfAlphaMinTree.address();
+    }
     mParams.tfPositions = mTfPositions.address();
     mParams.tfColors = mTfColors.address();
     mParams.tfAlphaTree = mTfAlphaTree.address();
@@ -252,8 +256,8 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
     const uint32_t boxesOwn = mDomainMajorants.valid() ? boxCount : 0;
     const uint32_t gridGroups = (gridCount + 63) / 64, boxGroups = (boxesOwn + 63) / 64;
     const shared::StructurePush gridPush{paramsAddress, mDevice.gridRanges().address(), mGridMajorants.address(),
-                                         gridCount, 0};
-    const shared::StructurePush boxPush{paramsAddress, mParams.domainRanges, mDomainMajorants.address(), boxesOwn, 0};
+                                         gridCount, 0, mMinorantsOn ? mGridMinorants.address() : 0};
+    const shared::StructurePush boxPush{paramsAddress, mParams.domainRanges, mDomainMajorants.address(), boxesOwn, 0, 0};
     if (gridGroups + boxGroups > 0)
         mGpuSeconds += gpu::submitPaced(mCtx, mMajorantDeadline,
                                         {.groups = uint64_t(gridGroups) + boxGroups,
@@ -280,7 +284,7 @@ void MajorantPass::dispatch(uint64_t paramsAddress) {
     // Ray-query culling: the BLAS input (a shader, paced like the majorants), then the BLAS build
     // (the driver's work, no --shader-dir code: the default limit).
     const shared::StructurePush aabbPush{paramsAddress, mParams.domainMajorants, mDomainAabbs.address(), boxCount,
-                                         uint32_t(plan.traversal)};
+                                         uint32_t(plan.traversal), 0};
     mGpuSeconds += gpu::submitPaced(mCtx, mAabbDeadline,
                                     {.groups = (uint64_t(boxCount) + 63) / 64,
                                      .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool) {
@@ -310,7 +314,7 @@ double MajorantPass::dispatchBlockMajorants(gpu::GpuTimer* timer) {
     }
     const uint64_t cells = mScene.grid->ranges.size();
     const shared::StructurePush push{mParamsAddress, mGridMajorants.address(),
-                                     mGridMajorants.address() + cells * sizeof(float), mBlockCount, 0};
+                                     mGridMajorants.address() + cells * sizeof(float), mBlockCount, 0, 0};
     return gpu::submitPaced(mCtx, mBlockDeadline,
                             {.groups = (uint64_t(mBlockCount) + 63) / 64,
                              .record = [&](VkCommandBuffer cmd, uint32_t first, uint32_t count, bool) {
@@ -353,6 +357,33 @@ std::vector<float> MajorantPass::downloadGridMajorants() const {
     AMRVK_CHECK(mGridMajorants.valid(), "downloadGridMajorants: no macrocell grid in this configuration");
     std::vector<float> out(mScene.grid->ranges.size());
     mGridMajorants.download(out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+std::string MajorantPass::setMinorants(bool on) {
+    mMinorantsOn = false;
+    mGridMinorants = gpu::Buffer();
+    mTfAlphaMinTree = gpu::Buffer();
+    mParams.gridMinorants = mParams.tfAlphaMinTree = 0;
+    if (!on) return "";
+    const TraversalKind t = mScene.plan().traversal;
+    if (!mScene.grid || (t != TraversalKind::GridDda && t != TraversalKind::GridBvh))
+        return std::string("the traversal is ") + scene::traversalName(t) + " (minorants need grid-dda or grid-bvh)";
+    // A point with no cell has no extinction: a minorant > 0 would be wrong there. Leaf cells do not
+    // overlap (amr::validateCells), so they fill their bounds exactly when their volumes add up to it.
+    const amr::ModelSummary& m = mScene.volume().summary;
+    if (m.leafVolume != m.bounds.volume())
+        return "the leaf cells do not fill their bounds (a minorant needs a value everywhere)";
+    mGridMinorants = floatBuffer(mCtx, mScene.grid->ranges.size(), "macrocellMinorants");
+    mParams.gridMinorants = mGridMinorants.address();
+    mMinorantsOn = true;
+    return "";
+}
+
+std::vector<float> MajorantPass::downloadGridMinorants() const {
+    AMRVK_CHECK(minorantsOn(), "downloadGridMinorants: minorants are off");
+    std::vector<float> out(mScene.grid->ranges.size());
+    mGridMinorants.download(out.data(), out.size() * sizeof(float));
     return out;
 }
 

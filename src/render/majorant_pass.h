@@ -98,6 +98,16 @@ public:
     // Overwrites every sub-box's q (0..255) of the last TF (tests: deliberate underestimates).
     void overrideSubMajorants(uint32_t q);
 
+    // --control-extinction minorant: per macrocell the least TF alpha over its value range (less
+    // kMinorantMargin of the greatest), made by every prepare() and dispatch() from now on, which the trackers take
+    // as their control extinction (MajorantsGpu::gridMinorants). A minorant holds only where every
+    // point of a macrocell has a value: on grid traversals (segments are macrocells) over data whose
+    // leaf cells fill their bounds. Returns "" when they are made, else why not (one phrase); off
+    // frees them.
+    std::string setMinorants(bool on);
+    bool minorantsOn() const { return mGridMinorants.valid() && mMinorantsOn; }
+    std::vector<float> downloadGridMinorants() const;  // after a dispatch with minorants on
+
 private:
     void buildKdTree(const scene::TransferFunction& tf);
     void buildSubMajorants(const scene::TransferFunction& tf);
@@ -133,6 +143,8 @@ private:
     std::optional<accel::SubRangeMaker> mSubRanges;  // sub-majorants: the sub-boxes' ranges, from the brick grid
     scene::SubMajorantGrid mSub;
     gpu::Buffer mSubWords, mSubBytes;
+    bool mMinorantsOn = false;
+    gpu::Buffer mGridMinorants, mTfAlphaMinTree;  // --control-extinction minorant
     bool mSubInBackground = false;
     std::future<scene::SubMajorantGrid> mSubPending;  // a background build
     std::unique_ptr<std::atomic<bool>> mSubCancel = std::make_unique<std::atomic<bool>>(false);

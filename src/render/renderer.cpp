@@ -40,6 +40,7 @@ void Renderer::buildDeviceScene() {
     mMajorants->setGridBlockUse(mGridBlockUse);
     mMajorants->setSubMajorantCheck(mSubMajorantCheck);
     mMajorants->setSubMajorantsInBackground(mSubInBackground);
+    mMinorantsOff = mMajorants->setMinorants(mMinorantsWanted);
     ++mCounts.deviceScenes;
     mParams.scene = mDevice->params();
     if (mGridBvhQueryAfter > 0 && mParams.scene.gridBvhQueryAfter > 0)  // grid-bvh, K set by a test
@@ -71,7 +72,13 @@ void Renderer::redo(const scene::Invalidation& inv, const scene::RenderSettings*
         mPathTrace.dropPipelines();
         ++mCounts.pipelineDrops;
     }
+    if (inv.minorants) {
+        mMinorantsWanted = s->controlExtinction == scene::ControlExtinction::Minorant;
+        mMinorantsOff = mMajorants->setMinorants(mMinorantsWanted);
+        takeMajorantParams();
+    }
     // Majorants, culling and the kd-tree go together (invalidatedBy sets all three); they need a TF.
+    // The minorants are made by the same pass.
     if ((inv.majorants || inv.culling || inv.kdTree) && mTf) {
         mMajorants->prepare(*mTf);
         takeMajorantParams();
@@ -169,9 +176,10 @@ void Renderer::writeShading(const scene::RenderSettings& s) {
 }
 
 void Renderer::setSettings(const scene::RenderSettings& s) {
-    const scene::ChangeSet changes =
+    scene::ChangeSet changes =
         mHasSettings ? scene::settingsChanges(mSettings, s)
                      : scene::ChangeSet(scene::Change::Camera) | scene::Change::ImageSize | scene::Change::Lighting;
+    if (!mHasSettings && s.controlExtinction != scene::ControlExtinction::None) changes |= scene::Change::Control;
     if (changes.empty()) return;
     scene::validateSettings(s);
     const shared::RenderParams saved = mParams;  // an invalid camera or light changes nothing

@@ -143,6 +143,10 @@ public:
     // grid-dda's block majorants (empty without blocks), blocks of 2^gridBlockShift macrocells.
     std::vector<float> downloadBlockMajorants() const { return mMajorants->downloadBlockMajorants(); }
     const MajorantPass& majorantPass() const { return *mMajorants; }
+    // With settings().controlExtinction minorant: "" when the trackers use the minorants, else why
+    // not (MajorantPass::setMinorants; they then track without a control, as with none).
+    const std::string& controlExtinctionOff() const { return mMinorantsOff; }
+    std::vector<float> downloadMinorants() const { return mMajorants->downloadGridMinorants(); }
     // Whether grid-dda crosses empty blocks (default Auto: where enough are empty under the TF);
     // kept across structure changes. The walk changes no expectation: accumulation goes on.
     void setGridBlockUse(MajorantPass::GridBlockUse use);
@@ -189,6 +193,8 @@ private:
     uint32_t mGridBvhQueryAfter = 0;  // 0: the device scene's default
     bool mSubMajorantCheck = false;
     bool mSubInBackground = false;
+    bool mMinorantsWanted = false;  // settings' controlExtinction is minorant (kept across structure changes)
+    std::string mMinorantsOff;      // why they are not made though wanted
     void adoptSubMajorants();  // a finished background build into the params
     std::optional<scene::TransferFunction> mTf;
     scene::RenderSettings mSettings;

@@ -51,6 +51,8 @@ std::string settingsOptions(const RenderSettings& s, bool withCamera) {
     if (s.dvrStep != d.dvrStep) o += " --dt " + formatNumber(s.dvrStep);
     if (s.dvrShading) o += " --dvr-shading";
     if (s.transmittance != d.transmittance) o += std::string(" --transmittance ") + transmittanceName(s.transmittance);
+    if (s.controlExtinction != d.controlExtinction)
+        o += std::string(" --control-extinction ") + controlExtinctionName(s.controlExtinction);
     if (s.cut.crop) o += " --crop " + vec(s.cut.crop->lo) + " " + vec(s.cut.crop->hi);
     for (const ClipPlane& c : s.cut.clips) o += " --clip " + vec(c.point) + " " + vec(c.normal);
     return o;

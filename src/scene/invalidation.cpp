@@ -10,7 +10,8 @@ Invalidation invalidatedBy(ChangeSet c) {
     v.shadingParams = c.has(Change::Lighting) || c.has(Change::Medium) || c.has(Change::DvrOptions) ||
                       c.has(Change::Camera);  // dvr's headlight follows the camera
     v.pipelines = c.has(Change::Structure) || c.has(Change::Shaders);
-    v.majorants = c.has(Change::TransferFunction) || c.has(Change::Structure);
+    v.majorants = c.has(Change::TransferFunction) || c.has(Change::Structure) || c.has(Change::Control);
+    v.minorants = c.has(Change::Control);
     v.culling = v.majorants;
     v.kdTree = v.majorants;
     v.deviceScene = c.has(Change::Structure);
@@ -28,6 +29,7 @@ ChangeSet settingsChanges(const RenderSettings& a, const RenderSettings& b) {
     if (a.densityScale != b.densityScale || a.g != b.g || a.maxTrackingSteps != b.maxTrackingSteps ||
         a.transmittance != b.transmittance || a.cut != b.cut)
         c |= Change::Medium;
+    if (a.controlExtinction != b.controlExtinction) c |= Change::Control;
     if (a.dvrStep != b.dvrStep || a.dvrShading != b.dvrShading) c |= Change::DvrOptions;
     return c;
 }
@@ -37,7 +39,7 @@ std::string describe(ChangeSet c) {
         {Change::Camera, "camera"},         {Change::ImageSize, "image size"}, {Change::Seed, "seed"},
         {Change::Mode, "mode"},             {Change::Lighting, "lighting"},    {Change::Medium, "medium"},
         {Change::DvrOptions, "dvr options"}, {Change::TransferFunction, "transfer function"},
-        {Change::Structure, "structure"},   {Change::Shaders, "shaders"}};
+        {Change::Structure, "structure"},   {Change::Shaders, "shaders"},          {Change::Control, "control extinction"}};
     std::string out;
     for (const auto& [change, name] : kNames) {
         if (!c.has(change)) continue;

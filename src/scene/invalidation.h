@@ -7,6 +7,8 @@
 //   transfer function             -> majorants, culled traversal hierarchy, kd-tree, accumulation
 //   structure combination         -> device copy, majorants, culling, kd-tree, pipelines, accumulation
 //   shader sources                -> pipelines, accumulation
+//   control extinction            -> minorants made or dropped, majorants (which write them), culling,
+//                                    kd-tree, accumulation
 // Every change resets the accumulation: the image it held no longer estimates the new picture.
 #include <cstdint>
 #include <string>
@@ -26,6 +28,7 @@ enum class Change : uint32_t {
     TransferFunction = 1u << 7,
     Structure = 1u << 8,         // traversal, sampler, back-end, grid, kd leaves
     Shaders = 1u << 9,
+    Control = 1u << 10,          // the trackers' control extinction (minorants or none)
 };
 
 // A set of changes (bit mask of Change).
@@ -50,6 +53,7 @@ struct Invalidation {
     bool shadingParams = false;       // ShadingGpu
     bool pipelines = false;           // drop compiled pipelines (structure, shaders)
     bool majorants = false;           // majorant pass over every structure
+    bool minorants = false;           // the macrocells' control extinction made or dropped (before the majorants)
     bool culling = false;             // culled traversal hierarchy (sw BVH / rq BLAS)
     bool kdTree = false;              // the TF-specific kd-tree (kdtree traversal)
     bool deviceScene = false;         // the device copy of the TF-independent structures

@@ -26,6 +26,16 @@ Transmittance parseTransmittance(const std::string& name) {
 const char* transmittanceName(Transmittance t) { return nameOf(kTransmittances, t); }
 
 namespace {
+constexpr Named<ControlExtinction> kControls[] = {{"none", ControlExtinction::None},
+                                                  {"minorant", ControlExtinction::Minorant}};
+}
+
+ControlExtinction parseControlExtinction(const std::string& name) {
+    return parseNamed(kControls, name, "--control-extinction");
+}
+const char* controlExtinctionName(ControlExtinction c) { return nameOf(kControls, c); }
+
+namespace {
 bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 

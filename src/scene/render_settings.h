@@ -27,6 +27,13 @@ const char* modeName(Mode mode);
 using shared::Transmittance;
 Transmittance parseTransmittance(const std::string& name);
 const char* transmittanceName(Transmittance t);
+// The trackers' control extinction (lib/tracking.glsl): none (the default) | minorant (the least
+// TF extinction over each macrocell's value range, on grid traversals over data whose leaf cells
+// tile their bounds): free flight by decomposition tracking, ratio-tracked shadows by residual ratio
+// tracking. Unbiased either way; fewer lookups where the medium is dense throughout a macrocell.
+using shared::ControlExtinction;
+ControlExtinction parseControlExtinction(const std::string& name);
+const char* controlExtinctionName(ControlExtinction c);
 // The modes whose paths cast shadow rays (the only ones the shadow estimator changes).
 inline bool castsShadowRays(Mode mode) { return mode == Mode::Ss || mode == Mode::Ms; }
 
@@ -57,6 +64,7 @@ struct RenderSettings {
     std::vector<Light> lights;           // at most shared::kMaxLights
     uint32_t maxTrackingSteps = 1u << 22;  // per tracking call; paths reaching it are counted (biased)
     Transmittance transmittance = Transmittance::Ratio;  // ss and ms shadow rays
+    ControlExtinction controlExtinction = ControlExtinction::None;  // ae, ss, ms trackers
     double dvrStep = 0.5;                // dvr: step / finest cell width at the sample (ExaBrick's dt)
     bool dvrShading = false;             // dvr: gradient shading by the first directional light (else a headlight)
     CutAway cut;                         // crop box and clip planes (world); the medium beyond is empty

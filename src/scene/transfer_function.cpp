@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 
 #include "core/error.h"
@@ -283,19 +284,25 @@ const std::vector<PresetNodes>& presetTable() {
 }  // namespace
 
 namespace {
-// The max tree over node alphas (TransferFunction::alphaTree).
-std::vector<float> alphaMaxTree(const std::vector<glm::vec4>& colors) {
+// The max tree over node alphas (TransferFunction::alphaTree), or with `min` the min tree
+// (alphaMinTree): padding that neither picks.
+std::vector<float> nodeAlphaTree(const std::vector<glm::vec4>& colors, bool min) {
     size_t leaves = 1;
     while (leaves < colors.size()) leaves *= 2;
-    std::vector<float> tree(2 * leaves, 0.0f);
+    std::vector<float> tree(2 * leaves, min ? std::numeric_limits<float>::infinity() : 0.0f);
     for (size_t i = 0; i < colors.size(); ++i) tree[leaves + i] = colors[i].a;
-    for (size_t k = leaves - 1; k >= 1; --k) tree[k] = std::max(tree[2 * k], tree[2 * k + 1]);
+    for (size_t k = leaves - 1; k >= 1; --k)
+        tree[k] = min ? std::min(tree[2 * k], tree[2 * k + 1]) : std::max(tree[2 * k], tree[2 * k + 1]);
     return tree;
 }
 }  // namespace
 
 TransferFunction::TransferFunction()
-    : mPositions{0.0f}, mColors{glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)}, mAlphaTree(alphaMaxTree(mColors)), mName("empty") {}
+    : mPositions{0.0f},
+      mColors{glm::vec4(1.0f, 1.0f, 1.0f, 0.0f)},
+      mAlphaTree(nodeAlphaTree(mColors, false)),
+      mAlphaMinTree(nodeAlphaTree(mColors, true)),
+      mName("empty") {}
 
 TransferFunction::TransferFunction(const std::vector<float>& positions,
                                    const std::vector<glm::vec4>& colors, std::string name)
@@ -310,7 +317,8 @@ TransferFunction::TransferFunction(const std::vector<float>& positions,
         mPositions.push_back(positions[i]);
         mColors.push_back(colors[i]);
     }
-    mAlphaTree = alphaMaxTree(mColors);
+    mAlphaTree = nodeAlphaTree(mColors, false);
+    mAlphaMinTree = nodeAlphaTree(mColors, true);
 }
 
 glm::vec4 TransferFunction::evaluate(float v) const {
@@ -340,6 +348,19 @@ float TransferFunction::maxAlpha(float lo, float hi) const {
     for (size_t l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
         if (l & 1) m = std::max(m, mAlphaTree[l++]);
         if (r & 1) m = std::max(m, mAlphaTree[--r]);
+    }
+    return m;
+}
+
+float TransferFunction::minAlpha(float lo, float hi) const {
+    if (lo > hi) return std::numeric_limits<float>::infinity();
+    float m = std::min(evaluate(lo).a, evaluate(hi).a);
+    const size_t first = size_t(std::lower_bound(mPositions.begin(), mPositions.end(), lo) - mPositions.begin());
+    const size_t last = size_t(std::upper_bound(mPositions.begin(), mPositions.end(), hi) - mPositions.begin());
+    const size_t leaves = mAlphaMinTree.size() / 2;
+    for (size_t l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
+        if (l & 1) m = std::min(m, mAlphaMinTree[l++]);
+        if (r & 1) m = std::min(m, mAlphaMinTree[--r]);
     }
     return m;
 }

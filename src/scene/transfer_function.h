@@ -42,6 +42,12 @@ public:
     // left limit at hi and values that round one ulp past an end. evaluate(v).a for v in
     // [lo, hi] exceeds it at most by the float rounding of mix (a few ulps). O(log nodes).
     float maxAlpha(float lo, float hi) const;
+    // Minorant of alpha over [lo, hi]: min(alpha(lo), alpha(hi), alpha of every node with lo <=
+    // position <= hi), the exact minimum of the piecewise-linear alpha there; +inf for an empty
+    // range, the least node alpha for a NaN end. evaluate(v).a for v in [lo, hi] may fall below it
+    // by the float rounding of mix (a few ulps of the larger alpha): a control extinction built on
+    // it keeps a margin (kMinorantMargin). O(log nodes).
+    float minAlpha(float lo, float hi) const;
 
     // The same nodes with positions mapped linearly from [firstPosition, lastPosition] onto
     // [lo, hi] (the ends exactly); with all nodes at one position they move to (lo + hi) / 2.
@@ -53,6 +59,8 @@ public:
     // 2 L floats, L the power of two >= nodeCount(); [L + i] = alpha_i (padding 0), [k] =
     // max([2k], [2k + 1]); [0] unused.
     const std::vector<float>& alphaTree() const { return mAlphaTree; }
+    // The same layout as a min tree (padding +inf): what minAlpha reads (MajorantsGpu::tfAlphaMinTree).
+    const std::vector<float>& alphaMinTree() const { return mAlphaMinTree; }
     size_t nodeCount() const { return mPositions.size(); }
     float firstPosition() const { return mPositions.front(); }
     float lastPosition() const { return mPositions.back(); }
@@ -62,6 +70,7 @@ private:
     std::vector<float> mPositions;    // field units, non-descending
     std::vector<glm::vec4> mColors;   // rgb albedo, a = alpha per finest cell width
     std::vector<float> mAlphaTree;    // see alphaTree()
+    std::vector<float> mAlphaMinTree;  // see alphaMinTree()
     std::string mName;
 };
 

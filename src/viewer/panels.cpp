@@ -272,6 +272,9 @@ void renderPanel(PanelState& p) {
     if (scene::castsShadowRays(s.mode))
         enumCombo("shadow estimator", s.transmittance, {"ratio", "ubrm"}, scene::parseTransmittance,
                   scene::transmittanceName);
+    if (s.mode != scene::Mode::Dvr)
+        enumCombo("control extinction", s.controlExtinction, {"none", "minorant"}, scene::parseControlExtinction,
+                  scene::controlExtinctionName);
     int spp = int(p.edit.spp);
     if (ImGui::InputInt("stop at spp (0: never)", &spp)) p.edit.spp = uint32_t(std::max(0, spp));
     colorEdit("ambient", s.ambient);

@@ -109,6 +109,15 @@ TEST(Invalidation, OnlyWhatDependsOnAChangeIsRedone) {
     EXPECT_TRUE(shaders.accumulation && shaders.pipelines);
     EXPECT_FALSE(shaders.majorants || shaders.deviceScene);
 
+    // The control extinction makes or drops the minorants and redoes the majorant pass that writes
+    // them, and nothing else of the structures.
+    const scene::Invalidation control = scene::invalidatedBy(Change::Control);
+    EXPECT_TRUE(control.accumulation && control.minorants && control.majorants);
+    EXPECT_FALSE(control.deviceScene || control.pipelines || control.viewParams);
+    scene::RenderSettings a, b;
+    b.controlExtinction = scene::ControlExtinction::Minorant;
+    EXPECT_EQ(scene::describe(scene::settingsChanges(a, b)), "control extinction");
+
     const scene::Invalidation both = scene::invalidatedBy(ChangeSet(Change::Camera) | Change::TransferFunction);
     EXPECT_TRUE(both.viewParams && both.majorants);
     EXPECT_EQ(scene::describe(ChangeSet(Change::Camera) | Change::TransferFunction), "camera|transfer function");

@@ -38,6 +38,7 @@ Session fullSession() {
     r.dvrStep = 0.25;
     r.dvrShading = true;
     r.transmittance = scene::Transmittance::Ubrm;
+    r.controlExtinction = scene::ControlExtinction::Minorant;
     r.lights.push_back({false, {1.0, -1.0, 2.0}, {3.0, 3.0, 2.5}});
     r.lights.push_back({true, {0.2, 0.3, 4.0}, {10.0, 9.0, 8.0}});
     r.cut.crop = scene::CropBox{{0.0, 0.125, 0.25}, {1.0, 0.75, 0.5}};
@@ -222,7 +223,7 @@ TEST(Session, RenderCommandLineCarriesEverySetting) {
          {" --field Density", " --format enzo", " --nan drop", " --scale log", " --log-floor 0.001", " --tf '/tmp/a tf.json'", " --tf-colors linear", " --mode ss", " --size 320x200",
           " --seed 77", " --camera 1.5 -2.25 3 0.5 0.5 0.5 0 0 1", " --fov 33", " --density-scale 0.05", " --g -0.3",
           " --ambient 0.1 0.2 0.3", " --background 0 0 0.01", " --light-dir 1 -1 2 3 3 2.5",
-          " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --transmittance ubrm", " --spp 128", " --traversal kdtree",
+          " --light-point 0.2 0.3 4 10 9 8", " --dt 0.25", " --dvr-shading", " --transmittance ubrm", " --control-extinction minorant", " --spp 128", " --traversal kdtree",
           " --sampler abr", " --backend auto", " --grid 64", " --kd-leaves 512", " --dense-max-mib 300", " -o out.png",
           " --crop 0 0.125 0.25 1 0.75 0.5", " --clip 0.5 0.5 0.5 1 1 0 --clip 0.25 0.5 0.5 0 0 -1"})
         EXPECT_NE(c.find(part), std::string::npos) << part << " missing from: " << c;

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/strings.h"
 #include "model_fixtures.h"
+#include "shared/render_params.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
 #include "test_data.h"
@@ -231,6 +232,60 @@ TEST(TransferFunction, MaxAlphaMatchesBruteForce) {
         }
     }
     EXPECT_GT(withNodes, 2000);
+}
+
+// minAlpha (the control extinction's minorant, lib/tracking.glsl) against brute force over the same
+// random TFs and ranges as maxAlpha: every value in [lo, hi] has alpha >= the minorant the
+// renderer makes of it (minAlpha less kMinorantMargin of maxAlpha, at least 0), and minAlpha is
+// the least alpha there (both sides of a step on an end count, as for maxAlpha).
+TEST(TransferFunction, MinAlphaMatchesBruteForce) {
+    std::mt19937 rng(54321);
+    std::uniform_int_distribution<int> nodeCount(1, 10), grid(0, 16), pick(0, 5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int positive = 0;
+    for (int t = 0; t < 400; ++t) {
+        std::vector<float> pos;
+        std::vector<glm::vec4> col;
+        for (int i = nodeCount(rng); i > 0; --i) pos.push_back(float(grid(rng)) / 4.0f);
+        std::sort(pos.begin(), pos.end());
+        for (size_t i = 0; i < pos.size(); ++i) col.emplace_back(0.5f, 0.5f, 0.5f, pick(rng) == 0 ? 0.0f : u(rng));
+        TransferFunction tf(pos, col);
+        auto endpoint = [&]() {
+            switch (pick(rng)) {
+                case 0: return pos[size_t(grid(rng)) % pos.size()];
+                case 1: return std::nextafter(pos[size_t(grid(rng)) % pos.size()], -1.0f);
+                default: return -0.5f + 5.0f * u(rng);
+            }
+        };
+        for (int r = 0; r < 25; ++r) {
+            float lo = endpoint(), hi = endpoint();
+            if (lo > hi) {
+                EXPECT_EQ(tf.minAlpha(lo, hi), std::numeric_limits<float>::infinity());
+                std::swap(lo, hi);
+            }
+            const float m = tf.minAlpha(lo, hi);
+            const float minorant = std::max(0.0f, m - shared::kMinorantMargin * tf.maxAlpha(lo, hi));
+            std::vector<float> inside = {lo, hi};
+            for (int k = 1; k < 256; ++k) inside.push_back(std::min(hi, lo + (hi - lo) * float(k) / 256.0f));
+            for (float p : pos)
+                for (float q : {p, std::nextafter(p, -1e9f), std::nextafter(p, 1e9f)})
+                    if (q >= lo && q <= hi) inside.push_back(q);
+            float brute = std::numeric_limits<float>::infinity();
+            for (float p : pos) {
+                if (p == lo) brute = std::min(brute, tf.evaluate(std::nextafter(p, -1e9f)).a);
+                if (p == hi) brute = std::min(brute, tf.evaluate(std::nextafter(p, 1e9f)).a);
+            }
+            for (float v : inside) {
+                const float a = tf.evaluate(v).a;
+                brute = std::min(brute, a);
+                EXPECT_GE(a, minorant) << "v " << v << " in [" << lo << ", " << hi << "]";
+            }
+            const float ulp = std::nextafter(4.5f, 9.0f) - 4.5f;
+            EXPECT_NEAR(m, brute, 1e-6f + 8.0f * ulp) << "[" << lo << ", " << hi << "]";
+            positive += minorant > 0.0f;
+        }
+    }
+    EXPECT_GT(positive, 2000) << "most ranges have a minorant above 0";
 }
 
 TEST(TransferFunction, MaxAlphaOfAMillionNodesEqualsTheLinearScan) {

@@ -72,6 +72,7 @@ std::vector<Field> renderParamsFields() {
         AMRVK_FIELD(m, MajorantsGpu, domainAccel, 2),   AMRVK_FIELD(m, MajorantsGpu, tfAlphaTree, 2),
         AMRVK_FIELD(m, MajorantsGpu, subRefinement, 2), AMRVK_FIELD(m, MajorantsGpu, subMajorants, 2),
         AMRVK_FIELD(m, MajorantsGpu, subMajorantsOn, 1), AMRVK_FIELD(m, MajorantsGpu, subMajorantCheck, 1),
+        AMRVK_FIELD(m, MajorantsGpu, gridMinorants, 2), AMRVK_FIELD(m, MajorantsGpu, tfAlphaMinTree, 2),
         AMRVK_FIELD(0, RenderParams, accum, 2),         AMRVK_FIELD(0, RenderParams, counters, 2),
         AMRVK_FIELD(0, RenderParams, pathStats, 2),
     });

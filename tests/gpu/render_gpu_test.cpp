@@ -307,6 +307,11 @@ TEST_F(RenderGpu, MatchesTheCpuReferenceIntegratorOnEnzo) {
         scene::RenderOutput gpu = renderGpu(m, tf, s, 2048);
         scene::RenderOutput ref = cpu.render(s, 768);
         test::expectSameImage(gpu, ref, 8, std::string("enzo-") + scene::modeName(mode));
+        // With a control extinction (decomposition tracking, and residual ratio tracking for the
+        // shadow rays): the same picture as the reference's delta and ratio tracking.
+        s.controlExtinction = scene::ControlExtinction::Minorant;
+        test::expectSameImage(renderGpu(m, tf, s, 512), ref, 8, std::string("enzo-minorant-") + scene::modeName(mode));
+        s.controlExtinction = scene::ControlExtinction::None;
         if (mode == scene::Mode::Ae) continue;
         // The shadow rays by unbiased ray marching: the same picture as the reference's ratio
         // tracking (512 spp: the z-tests take each image's own variance).
@@ -326,7 +331,7 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
         const char* field;
     };
     const std::filesystem::path cloud = std::filesystem::path(AMRVK_SOURCE_DIR) / "assets/samples/cloud.cells";
-    size_t sets = 0;
+    size_t sets = 0, withMinorants = 0;
     for (Set set : {Set{test::dataDir() / test::kEnzoDataSet, "Density"},
                     Set{test::dataDir() / "amrex_pelelm_3d/example_plt_3d", "temp"},
                     Set{test::dataDir() / "chombo_mushy_layer_2d/plt025000.2d.hdf5", "Temperature"},
@@ -344,6 +349,9 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
         s.mode = scene::Mode::Ss;
         s.width = s.height = 32;
         s.densityScale = 20.0;
+        // The control extinction's minorants are checked at every lookup too (an extinction below
+        // one is counted as a violation), through decomposition and residual ratio tracking.
+        s.controlExtinction = scene::ControlExtinction::Minorant;
         s.camera = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                          m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
         const std::shared_ptr<const scene::Volume> volume = scene::makeVolume(m);
@@ -354,6 +362,10 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
                 SCOPED_TRACE(preset + " " + scene::samplerName(sampler) + " grid " + grid);
                 r.setTransferFunction(scene::makePreset(preset, st.minValue, st.maxValue));
                 scene::RenderOutput o = r.render(s, 2);
+                // Minorants where the leaf cells fill their bounds (not the 2-D Chombo sets, whose
+                // finer cells are thinner than the coarse ones around them).
+                EXPECT_EQ(r.controlExtinctionOff().empty(), sum.leafVolume == sum.bounds.volume());
+                withMinorants += r.controlExtinctionOff().empty();
                 EXPECT_EQ(o.stats.counter(shared::kCounterMajorantViolations), 0u);
                 EXPECT_EQ(o.stats.counter(shared::kCounterNanSamples), 0u);
                 EXPECT_GT(o.stats.counter(shared::kCounterDensityLookups), 0u);
@@ -378,4 +390,5 @@ TEST_F(RenderGpu, NoMajorantViolationsOnEveryDataSetAndPreset) {
         }
     }
     EXPECT_GE(sets, 1u);
+    EXPECT_GE(withMinorants, 1u);
 }

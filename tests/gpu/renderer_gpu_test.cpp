@@ -99,6 +99,7 @@ TEST_F(RendererGpu, EveryEditRedoesExactlyWhatTheInvalidationRuleSays) {
         {scene::Change::DvrOptions, [&] { s.dvrStep = 0.25; r->setSettings(s); }},
         {scene::Change::TransferFunction, [&] { r->setTransferFunction(scene::makePreset("foggy", v.valueLo(), v.valueHi())); }},
         {scene::Change::Shaders, [&] { r->reloadShaders(); }},
+        {scene::Change::Control, [&] { s.controlExtinction = scene::ControlExtinction::Minorant; r->setSettings(s); }},
         {scene::Change::Structure, [&] {
              cfg.traversal = scene::TraversalKind::Abr;
              cfg.sampler = scene::SamplerKind::Abr;

@@ -59,6 +59,7 @@ void main() {
     u64(P.majorants.domainAccel); u64(P.majorants.tfAlphaTree);
     u64(P.majorants.subRefinement); u64(P.majorants.subMajorants);
     u(P.majorants.subMajorantsOn); u(P.majorants.subMajorantCheck);
+    u64(P.majorants.gridMinorants); u64(P.majorants.tfAlphaMinTree);
     // RenderParams tail
     u64(P.accum); u64(P.counters); u64(P.pathStats);
     f3(P.cut.cropLo); u(P.cut.flags); f3(P.cut.cropHi); u(P.cut.planeCount);
