@@ -9,10 +9,11 @@
 // minorant m <= sigma of each macrocell) the medium splits into m and the residual sigma - m in
 // [0, M - m], and only the residual is tracked, with majorant M - m:
 //   delta: decomposition tracking (Kutz et al. 2017): the first collision is the nearer of the
-//          control's (an exponential distance of rate m, always real) and the residual's
-//          (accepted with probability (sigma - m) / (M - m)).
-//   ratio: residual ratio tracking (Novak et al. 2014): exp(-m * length) exactly per macrocell
-//          (then the same roulette as after a weight), times the residual's ratio-tracking weights
+//          control's (where the control's optical depth reaches an Exp(1) draw, always real) and
+//          the residual's (accepted with probability (sigma - m) / (M - m)).
+//   ratio: residual ratio tracking (Novak et al. 2014): exp(-sum of m * length) exactly (applied at
+//          each residual collision, before its weight and roulette, once it exceeds e^-1, then
+//          with the roulette, and at the end), times the residual's ratio-tracking weights
 //          1 - (sigma - m) / (M - m).
 // Both are unbiased; a control collision needs a lookup for its colour only. Where m = 0 they are
 // delta and ratio tracking step for step.
@@ -88,6 +89,14 @@ bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rn
     return ratioRoulette(st, rng);
 }
 
+// Ratio tracking with a control: the control's optical depth passed so far applied exactly.
+void foldControl(inout float depth, inout TrackState st) {
+    if (depth > 0.0) {
+        st.transmittance *= exp(-depth);
+        depth = 0.0;
+    }
+}
+
 // The estimator's decision at a tentative collision at t (extinction sigma, majorant maj, TF
 // colour tfc). Returns false to stop tracking.
 bool onCollision(uint estimator, float t, float sigma, float maj, vec4 tfc, inout TrackState st, inout uint rng,
@@ -125,6 +134,10 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     uint stepsLeft = P.shading.maxTrackingSteps;
     bool gridSegments = cfg.traversal == kTraversalGridDda || cfg.traversal == kTraversalGridBvh;
     bool control = gridSegments && P.majorants.gridMinorants != 0ul;
+    // The control's optical depth: ratio, passed but not yet applied (exp(-depth) is applied at
+    // the next residual collision, once it exceeds 1, and at the end); delta, left before its
+    // collision (one exponential draw per call, at the first macrocell with a control).
+    float controlDepth = 0.0, controlLeft = -1.0;
     // The least step that still moves the position in float: an ulp of o's largest coordinate
     // along d's largest component. A mean free path below it makes no progress, also from t = 0
     // (a ray that starts at a collision in a medium of --density-scale 1e30 burned the step cap).
@@ -139,13 +152,19 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
         // The control's share: exactly for ratio tracking; for delta its collision distance.
         float tControl = kInf;
         if (m > 0.0) {
-            if (estimator == kEstimatorDelta) {
-                tControl = t0 - log(1.0 - rand(rng)) / m;
+            float depth = m * (t1 - t0);
+            if (estimator != kEstimatorDelta) {
+                // Applied once it is a factor e^-1 or less, then the roulette, so a ray whose
+                // estimate the control alone makes small stops as ratio tracking's would.
+                controlDepth += depth;
+                if (controlDepth > 1.0) {
+                    foldControl(controlDepth, st);
+                    if (!ratioRoulette(st, rng)) return;
+                }
             } else {
-                // The control's exact share, with the same Russian roulette as a collision's weight
-                // (a path whose estimate the control alone makes small is not tracked on).
-                st.transmittance *= exp(-m * (t1 - t0));
-                if (!ratioRoulette(st, rng)) return;
+                if (controlLeft < 0.0) controlLeft = -log(1.0 - rand(rng));
+                if (depth > controlLeft) tControl = t0 + controlLeft / m;
+                controlLeft -= depth;  // a collision in this macrocell ends the call
             }
         }
         float meanStep = 1.0 / resMaj;
@@ -174,6 +193,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             if (sub.word == kSubNotRefined) {
                 float sigma = extinctionAt(p, cfg, seg, c, tfc);
                 if (sigma > maj * kViolationTolerance || sigma < m) c.violations++;
+                foldControl(controlDepth, st);
                 if (!onCollision(estimator, tBase + t, sigma - m, resMaj, tfc, st, rng, c)) return;
                 continue;
             }
@@ -203,6 +223,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
                 c.nulls++;
                 continue;
             }
+            foldControl(controlDepth, st);
             if (!onRatioCollision(sigma - m, resMaj * share, st, rng, c)) return;
         }
         // Delta: the control's collision comes first (no residual collision before it in this
@@ -218,6 +239,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             return;
         }
     }
+    foldControl(controlDepth, st);
 }
 
 // Samples a real collision along o + t d, t in [0, tMax]. Returns true with its distance and TF colour.

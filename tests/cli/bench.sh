@@ -98,15 +98,22 @@ assert len(srgb) == len(linear), (len(srgb), len(linear))
 diff = [b - a for a, b in zip(srgb, linear)]
 assert min(diff) >= -1e-6 and max(diff) > 0.01, (min(diff), max(diff))
 PY
-# --transmittances: in ss every combination runs with each shadow estimator, labelled and stated.
+# --transmittances and --control-extinctions: in ss every grid combination runs with each shadow
+# estimator and each control, labelled and stated (the minorants' device memory among its parts).
 "$amrvk" bench "$sample" -o "$dir/ss" "${tiny[@]/ae/ss}" --traversals grid-dda --no-dense --dvr-steps none \
-  --grid-sweep none --sub-majorants 8 --transmittances ratio,ubrm --light-dir 1 1 1 2 2 2 >/dev/null || fail=1
+  --grid-sweep none --sub-majorants 8 --transmittances ratio,ubrm --control-extinctions none,minorant \
+  --light-dir 1 1 1 2 2 2 >/dev/null || fail=1
 check python3 - "$dir/ss/results.json" <<'PY'
 import json, sys
 runs = json.load(open(sys.argv[1]))["runs"]
-got = sorted((r["label"], r["transmittance"]) for r in runs)
-assert got == [("grid-dda/ext-brick/sw sub 8", "ratio"), ("grid-dda/ext-brick/sw sub 8 ubrm", "ubrm")], got
+got = sorted((r["label"], r["transmittance"], r["controlExtinction"]) for r in runs)
+sub = "grid-dda/ext-brick/sw sub 8"
+assert got == [(sub, "ratio", "none"), (sub + " minorant", "ratio", "minorant"), (sub + " ubrm", "ubrm", "none"),
+               (sub + " ubrm minorant", "ubrm", "minorant")], got
 assert all(r["majorantViolations"] == 0 and r["shadowLookupShare"] > 0 for r in runs), runs
+for r in runs:
+    parts = r["deviceBytesPerResource"]
+    assert ("macrocellMinorants" in parts) == (r["controlExtinction"] == "minorant"), (r["label"], sorted(parts))
 PY
 
 expect "--output is required" -- bench "$sample"
@@ -115,6 +122,7 @@ expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"
 expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
 expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr
 expect "--transmittance 'delta': expected ratio|ubrm" -- bench "$sample" -o "$dir/x" --transmittances ratio,delta
+expect "--control-extinction 'mean': expected none|minorant" -- bench "$sample" -o "$dir/x" --control-extinctions mean
 expect "--sub-majorants '3': expected off, 2, 4, 8 or 16" -- bench "$sample" -o "$dir/x" --sub-majorants off,3
 expect "--dvr-steps: '0' is not in (0, 64]" -- bench "$sample" -o "$dir/x" --dvr-steps 0
 expect "--traversals: empty list" -- bench "$sample" -o "$dir/x" --traversals ''

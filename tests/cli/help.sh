@@ -12,12 +12,12 @@ declare -A options=(
   [info]="--format --field --nan --dims --type --threshold --grid --bricks --traversal --sampler --json"
   [gen]="--cells --seed -o,--output --block --levels --field --time"
   [convert]="--format --field --nan --dims --type --threshold -o,--output"
-  [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --transmittance --size --seed --spp --tf --tf-colors
+  [render]="--format --field --nan --dims --type --threshold --mode --dt --dvr-shading --transmittance --control-extinction --size --seed --spp --tf --tf-colors
             --tf-preset --tf-range --traversal --sampler --backend --grid --kd-leaves --dense-max-mib
             --density-scale --g --ambient --background --light-dir --light-point --camera --fov -o,--output
             --json --first-frame --device --shader-dir --validation --series-range --orbit --frames --fps --frames-dir
             --legend --legend-place --legend-title --legend-units --legend-font"
-  [bench]="--field -o,--output --tfs --tf-colors --tf-range --modes --traversals --samplers --backends --transmittances --size --seed --frames
+  [bench]="--field -o,--output --tfs --tf-colors --tf-range --modes --traversals --samplers --backends --transmittances --control-extinctions --size --seed --frames
            --warmup --reference-spp --target-rmse --dvr-steps --grid-sweep --no-dense --auto --grid --kd-leaves
            --dense-max-mib --density-scale --g --ambient --background --light-dir --light-point --camera --fov
            --device --shader-dir --validation"

@@ -26,9 +26,11 @@ assert len(j["meanRGB"]) == 3 and all(0 <= v < 10 for v in j["meanRGB"]), j
 assert j["deviceMemoryPeakBytes"] >= j["deviceMemoryBytes"] > 0, j
 assert j["backend"] in ("sw", "rq") and "hostMemoryPerStructure" in j, j
 PY
-# A box traversal with the kd-tree: its build time and per-structure bytes are reported.
+# A box traversal with the kd-tree: its build time and per-structure bytes are reported, and a
+# control extinction it cannot use (minorants are the macrocells') is said to be off, in one line.
 "$amrvk" render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 64 --backend sw -o "$dir/k.png" \
-  --json "$dir/k.json" >/dev/null || fail=1
+  --json "$dir/k.json" --control-extinction minorant >/dev/null 2>"$dir/k.err" || fail=1
+check grep -q "^amrvk: --control-extinction minorant is off: the traversal is kdtree (minorants need grid-dda or grid-bvh)" "$dir/k.err"
 check python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["traversal"] == "kdtree" and j["activeTraversalBoxes"] > 0 and j["structureBuildSecondsPer"]["kdTree"] > 0 and j["hostMemoryPerStructure"]["kdTree"] > 0 and j["majorantViolations"] == 0, j' "$dir/k.json"
 for ext in exr pfm; do
   "$amrvk" render "$sample" "${common[@]}" --mode ae --sampler abr -o "$dir/a.$ext" >/dev/null || fail=1

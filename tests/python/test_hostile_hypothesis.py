@@ -234,7 +234,7 @@ def test_the_renderer_still_renders_after_the_random_edits(amrvk, five):
 
 
 KEYWORDS = ["width", "height", "mode", "spp", "seed", "density_scale", "g", "ambient", "background", "lights", "dt",
-            "dvr_shading", "transmittance", "fov", "tf_range", "crop", "clip", "traversal", "sampler", "backend", "grid", "kd_leaves",
+            "dvr_shading", "transmittance", "control_extinction", "fov", "tf_range", "crop", "clip", "traversal", "sampler", "backend", "grid", "kd_leaves",
             "dense_max_mib", "device", "validation", "gpu_timeout", "samples_per_invocation", "shader_dir", "quiet",
             "spp_", "Width", ""]
 

@@ -104,7 +104,9 @@ def test_every_edit_follows_the_session(amrvk, tmp_path):
     r.background = [0.1, 0.2, 0.3]
     r.g = 0.4
     r.transmittance = "ubrm"
+    r.control_extinction = "minorant"
     assert r.background == [0.1, 0.2, 0.3] and r.g == 0.4 and r.transmittance == "ubrm"
+    assert r.control_extinction == "minorant"
     r.set_structure(traversal="abr", sampler="abr", backend="sw")
     assert r.structure["traversal"] == "abr" and r.structure["sampler"] == "abr"
     edited = r.render(spp=4)
@@ -114,7 +116,7 @@ def test_every_edit_follows_the_session(amrvk, tmp_path):
     assert s["render"]["mode"] == "ae" and s["render"]["densityScale"] == 6.0 and s["image"]["width"] == 16
     assert s["structure"]["traversal"] == "abr" and s["transferFunction"]["Name"] == "foggy"
     assert s["render"]["background"] == [0.1, 0.2, 0.3] and s["render"]["g"] == 0.4
-    assert s["render"]["transmittance"] == "ubrm"
+    assert s["render"]["transmittance"] == "ubrm" and s["render"]["controlExtinction"] == "minorant"
     # The command line renders the saved session as this renderer does (same seed: same samples).
     run_cli("render", "--session", tmp_path / "s.json", "--spp", "4", "-o", tmp_path / "s.pfm")
     assert np.max(np.abs(read_pfm(tmp_path / "s.pfm") - edited[..., :3])) < 1e-4
@@ -135,6 +137,9 @@ def test_every_edit_follows_the_session(amrvk, tmp_path):
     with pytest.raises(ValueError, match="^transmittance 'delta'"):
         r.transmittance = "delta"
     assert r.transmittance == "ubrm"
+    with pytest.raises(ValueError, match="^control_extinction 'mean'"):
+        r.control_extinction = "mean"
+    assert r.control_extinction == "minorant"
 
 
 def test_a_renderer_with_no_sample_shows_its_dvr_first_frame(amrvk):
