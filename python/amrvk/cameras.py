@@ -27,8 +27,11 @@ def orbit(camera, degrees, axis=None):
     import numpy as np
 
     angle = math.radians(_number(degrees, "degrees"))
-    k = np.asarray(camera.up if axis is None else axis, dtype=np.float64)
-    if k.shape != (3,) or not np.all(np.isfinite(k)) or not np.linalg.norm(k) > 0:
+    try:
+        k = np.asarray(camera.up if axis is None else axis, dtype=np.float64)
+    except (TypeError, ValueError):
+        k = None  # not numbers: 'z', [1, 'a', 0]
+    if k is None or k.shape != (3,) or not np.all(np.isfinite(k)) or not np.linalg.norm(k) > 0:
         raise ValueError(f"axis: expected 3 finite numbers, not all 0, got {_shown(axis)}")
     k = k / np.linalg.norm(k)
     target = np.asarray(camera.target)
@@ -61,6 +64,8 @@ def from_yt(yt_camera):
     distance = float(np.linalg.norm(eye - target))
     if not distance > 0:
         raise ValueError("yt_camera: its position and focus coincide")
+    if not (math.isfinite(height) and height > 0):
+        raise ValueError(f"yt_camera: its width's height {height:g} must be finite and > 0")
     fov = math.degrees(2 * math.atan(0.5 * height / distance))
     return Camera(eye.tolist(), target.tolist(), up.tolist(), fov)
 

@@ -9,6 +9,8 @@ evenly spaced nodes over [lo, hi]; the opacity is that of the ``ramp`` preset ov
 (transparent at lo, rising towards hi), so the colormap changes colours only.
 """
 
+import math
+
 from . import _amrvk
 from .one_line_errors import _shown  # a value in a message: one short line
 
@@ -69,6 +71,8 @@ def _check_over(lo, hi):
     for name, value in (("lo", lo), ("hi", hi)):
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
             raise TypeError(f"{name}: expected a number, got {_shown(value)}")
+        if not math.isfinite(value):
+            raise ValueError(f"{name}: expected a finite number, got {_shown(value)}")
 
 
 def preset(name, volume_or_lo=None, hi=None, **kwargs):

@@ -82,6 +82,9 @@ def _one_line(qualname, message, args, kwargs):
     given = list(zip([n for n, _ in parameters], args)) + [(k, v) for k, v in kwargs.items()]
     kinds = dict(parameters)
     for name, value in given:
+        # A path or name with a NUL character: no file system or C string takes one.
+        if name in kinds and isinstance(value, str) and "\0" in value:
+            return f"{name}: contains a NUL character (at {value.index(chr(0))}) in {_shown(value)}"
         if name in kinds and not _fits(value, kinds[name]):
             return f"{name}: expected {_expected(kinds[name])}, got {_shown(value)}"
     names = ", ".join(n for n, _ in parameters)

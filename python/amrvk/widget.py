@@ -13,6 +13,7 @@ sliders: orbiting by mouse drag needs a browser-side event widget (ipyevents) th
 ``close()`` stops the thread (the renderer stays open); the renderer serves one call at a time, so
 using it from the notebook while the widget refines is safe (calls queue).
 """
+import math
 import threading
 import time
 
@@ -117,6 +118,9 @@ class Widget:
 
     def wait(self, timeout=None):
         """Blocks until the image has `spp` samples per pixel (True), or `timeout` seconds passed (False)."""
+        if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+                                    or math.isnan(timeout)):
+            raise TypeError(f"timeout: expected a number of seconds or None, got {type(timeout).__name__}")
         deadline = None if timeout is None else time.monotonic() + timeout
         while True:
             left = 0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))

@@ -294,6 +294,10 @@ std::string cellProblem(const Cell& c) {
 
 void validateCells(const Model& model) {
     const std::string& src = model.source;
+    if (model.cells.empty())
+        for (const auto& [key, value] : model.attributes)
+            AMRVK_CHECK(key != "droppedNonFiniteCells", src, ": every one of its ", value,
+                        " cells has a non-finite value, and --nan drop dropped them all");
     AMRVK_CHECK(!model.cells.empty(), src, ": no cells");
     for (const Field& f : model.fields)
         AMRVK_CHECK(f.values.size() == model.cells.size(), src, ": field '", f.name, "' has ",

@@ -131,13 +131,22 @@ void visitCells(const fs::path& path, const ReadOptions& given, const std::funct
     if (format == "exabrick") {
         options.scale = resolvedScale(path, given);  // chunks need it before the first (readModel decides alone)
         const double floor = logFloorOf(path, options);
-        visitExaBrick(path, options, uint64_t(1) << 20, [&](Model& chunk) {
-            applyNanPolicy(chunk, options.nanPolicy);
-            if (chunk.cells.empty()) return;  // every cell of it dropped
-            validateCells(chunk);
-            applyFieldScale(chunk, options.scale, floor);
-            visit(chunk);
-        }, head);
+        uint64_t kept = 0, dropped = 0;
+        visitExaBrick(
+            path, options, uint64_t(1) << 20,
+            [&](Model& chunk) {
+                const size_t read = chunk.cells.size();
+                applyNanPolicy(chunk, options.nanPolicy);
+                dropped += read - chunk.cells.size();
+                kept += chunk.cells.size();
+                if (chunk.cells.empty()) return;  // every cell of it dropped
+                validateCells(chunk);
+                applyFieldScale(chunk, options.scale, floor);
+                visit(chunk);
+            },
+            head);
+        AMRVK_CHECK(kept > 0 || dropped == 0, path.string(), ": every one of its ", dropped,
+                    " cells has a non-finite value, and --nan drop dropped them all");
         return;
     }
     Model model = readModel(path, options);

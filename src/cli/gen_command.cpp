@@ -97,7 +97,7 @@ int runGen(const std::vector<std::string>& argv) {
     app.add_option("kind", kind, "cloud, shells or teapot")->required();
     app.add_option("--cells", cells, "target leaf-cell count, e.g. 1e6 (the result is within a factor 1.4)")
         ->required()
-        ->check(interval(1, 1e15))
+        ->check(interval(1, 1e11))  // amr::generateSynthetic's own limit
         ->type_name("N");
     app.add_option("--seed", seed, "random seed; the same seed gives identical files")
         ->check(interval(0, 4.6e18))
@@ -148,8 +148,8 @@ int runGen(const std::vector<std::string>& argv) {
         "%.1f MB in %s.cells + %s%s, %.2f s\n",
         kindName.c_str(), static_cast<unsigned long long>(st.cells), st.minLevel, st.maxLevel,
         st.maxLevel - st.minLevel + 1, static_cast<unsigned long long>(st.cells / blockVolume), st.blockCells,
-        reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6, base.c_str(), base.c_str(), scalars.c_str(),
-        st.seconds);
+        reduced.c_str(), st.rootLevel, static_cast<double>(st.bytes) / 1e6, oneLineMessage(base).c_str(),
+        oneLineMessage(base).c_str(), oneLineMessage(scalars).c_str(), st.seconds);
     if (!st.targetReached)
         std::fprintf(stderr, "amrvk gen: warning: only %llu of %llu cells fit in a 2^%d domain (raise --levels)\n",
                      static_cast<unsigned long long>(st.cells), static_cast<unsigned long long>(params.cells),

@@ -50,6 +50,7 @@ int checkMajorantsOf(const std::string& input, const amr::ReadOptions& ro, const
     if (tfRange.size() == 2) {
         lo = float(tfRange[0]);
         hi = float(tfRange[1]);
+        AMRVK_CHECK(std::isfinite(lo) && std::isfinite(hi), "--tf-range ", lo, " ", hi, ": LO and HI must be finite");
         AMRVK_CHECK(lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
     }
     scene::MajorantCheckOptions options;
@@ -451,7 +452,8 @@ int runConvert(const std::vector<std::string>& argv) {
                                                amr::scalarsName(f.name), ".scalars (its name is not a file name)"))
                              .c_str());
     amr::writeExaBrick(model, base);
-    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", base.c_str(),
+    // The name as typed, but on one line with control characters escaped (issue 52, point 16).
+    std::printf("wrote %s.cells with %llu cells and %zu field(s)\n", oneLineMessage(base).c_str(),
                 static_cast<unsigned long long>(model.cellCount()), model.fields.size());
     return 0;
 }

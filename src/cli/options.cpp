@@ -564,6 +564,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (given(app, "--legend-title")) s.legend.title = a.legendTitle;
     if (given(app, "--legend-units")) s.legend.units = a.legendUnits;
     if (given(app, "--legend-font")) s.legend.font = a.legendFont;
+    session::checkLegendText(s.legend);
     return d;
 }
 

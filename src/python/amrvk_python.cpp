@@ -487,8 +487,9 @@ public:
         locked([&] { mPicture.setTransferFunction(tf.channels); });
     }
     std::string tfColors() const { return scene::tfColorsName(session().tfColors); }
-    void setTfColors(const std::string& name) {
-        const scene::TfColors c = scene::parseTfColors(name, "tf_colors");
+    void setTfColors(const py::object& o) {
+        const scene::TfColors c =
+            scene::parseTfColors(keywordArg<std::string>(o, "tf_colors", "'srgb' or 'linear'"), "tf_colors");
         locked([&] { mPicture.setTfColors(c); });
     }
     // Settings edited by `edit` on a copy, validated, then applied (the renderer redoes what the
@@ -620,6 +621,7 @@ public:
     void editLegend(Edit edit) {
         session::Legend l = legend();
         edit(l);
+        session::checkLegendText(l);
         locked([&] { mPicture.described.legend = l; });
     }
 
@@ -836,6 +838,7 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
         });
     if (auto o = take("legend_title")) s.legend.title = keywordArg<std::string>(*o, "legend_title", kText);
     if (auto o = take("legend_units")) s.legend.units = keywordArg<std::string>(*o, "legend_units", kText);
+    session::checkLegendText(s.legend);
     if (camera) rs.camera = *camera;
     d.fitCamera = !camera;
     if (tf) s.tf = tf->channels;

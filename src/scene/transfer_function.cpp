@@ -67,8 +67,8 @@ void validateNodes(const std::vector<float>& positions, const std::vector<glm::v
             AMRVK_CHECK(std::isfinite(c[k]), where, ": node ", i, " colour ", "rgba"[k],
                         " is not finite (", c[k], ")");
         for (int k = 0; k < 3; ++k)
-            AMRVK_CHECK(c[k] >= 0.0f && c[k] <= 1.0f, where, ": node ", i, " colour ", "rgb"[k],
-                        " = ", c[k], " is outside [0, 1]");
+            AMRVK_CHECK(c[k] >= 0.0f && c[k] <= 1.0f, where, ": node ", i, " colour ", "rgb"[k], " = ",
+                        formatDouble(c[k]), " is outside [0, 1]");
         AMRVK_CHECK(c.a >= 0.0f, where, ": node ", i, " alpha ", c.a, " is negative");
     }
 }
@@ -193,8 +193,8 @@ TfChannels channelsFromJson(const nlohmann::json& preset, const std::string& whe
         out.colorPositions.push_back(presetPosition(rgbPoints[4 * i], i, "RGBPoints", where, out.colorPositions));
         glm::dvec3 c(rgbPoints[4 * i + 1], rgbPoints[4 * i + 2], rgbPoints[4 * i + 3]);
         for (int k = 0; k < 3; ++k)
-            AMRVK_CHECK(c[k] >= 0.0 && c[k] <= 1.0, where, ": RGBPoints node ", i, " colour ",
-                        "rgb"[k], " = ", c[k], " is outside [0, 1]");
+            AMRVK_CHECK(c[k] >= 0.0 && c[k] <= 1.0, where, ": RGBPoints node ", i, " colour ", "rgb"[k], " = ",
+                        formatDouble(c[k]), " is outside [0, 1]");
         out.colors.emplace_back(c);
     }
     if (preset.contains("Points")) {

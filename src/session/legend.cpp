@@ -176,4 +176,11 @@ std::string legendUnits(const Legend& legend, const std::string& fieldUnits) {
     return legend.units.empty() ? fieldUnits : legend.units;
 }
 
+void checkLegendText(const Legend& legend) {
+    for (const auto& [text, option] :
+         {std::pair{&legend.title, "--legend-title"}, std::pair{&legend.units, "--legend-units"}})
+        AMRVK_CHECK(text->size() <= kMaxLegendTextBytes, option, ": ", text->size(), " bytes (at most ",
+                    kMaxLegendTextBytes, ")");
+}
+
 }  // namespace amrvk::session

@@ -50,6 +50,12 @@ double niceStep(double span, int maxTicks);
 // step >= 1e-4, else scientific ("1.5e7", "2.50e-9"); 0 is "0".
 std::string tickLabel(double value, double step, double magnitude = 0);
 
+// The longest title or units text a legend takes, in bytes.
+inline constexpr size_t kMaxLegendTextBytes = 256;
+// Throws one line naming --legend-title or --legend-units (Python: legend_title, legend_units) when
+// either is longer than kMaxLegendTextBytes: said where it is set, not when a picture is drawn.
+void checkLegendText(const Legend& legend);
+
 // The legend's title: the settings' title or the field's name, with " (log10 scale)" for a log scale.
 std::string legendTitle(const Legend& legend, const std::string& field, bool logScale);
 // The legend's units line: the settings' units (--legend-units) or else the field's own

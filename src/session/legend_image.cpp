@@ -10,7 +10,6 @@ namespace amrvk::session {
 namespace {
 
 constexpr int kMinBarRows = 16;
-constexpr size_t kMaxTextBytes = 256;  // title, units
 constexpr int kMaxWidthEm = 40;        // the legend block's width, in font sizes
 constexpr float kOverlayOpacity = 0.8f;
 
@@ -78,8 +77,8 @@ LegendLayout legendLayout(int pictureWidth, int pictureHeight, const LegendConte
                           const Font& font) {
     AMRVK_CHECK(pictureWidth > 0 && pictureHeight > 0, "legend: empty picture ", pictureWidth, "x", pictureHeight);
     for (const std::string* text : {&c.title, &c.units})
-        AMRVK_CHECK(text->size() <= kMaxTextBytes, "legend: the ", text == &c.title ? "title" : "units", " text has ",
-                    text->size(), " bytes (at most ", kMaxTextBytes, ")");
+        AMRVK_CHECK(text->size() <= kMaxLegendTextBytes, "legend: the ", text == &c.title ? "title" : "units",
+                    " text has ", text->size(), " bytes (at most ", kMaxLegendTextBytes, ")");
     const Metrics m = metrics(pictureHeight, font);
     LegendLayout L;
     L.fontPx = m.fontPx;

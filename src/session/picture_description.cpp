@@ -1,5 +1,6 @@
 #include "session/picture_description.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -58,6 +59,8 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
                                               : d.dataPercentiles ? std::make_pair(data.lo(), data.hi())
                                                                   : std::make_pair(v.valueLo(), v.valueHi());
         const float lo = range.first, hi = range.second;
+        AMRVK_CHECK(!d.tfRange || (std::isfinite(lo) && std::isfinite(hi)), "--tf-range ", lo, " ", hi,
+                    ": LO and HI must be finite");
         AMRVK_CHECK(!d.tfRange || lo < hi, "--tf-range ", lo, " ", hi, ": LO must be below HI");
         // No range given: presets follow the data's distribution; a given range fixes them.
         const bool fitted = !d.tfRange && !d.dataRange;

@@ -588,6 +588,25 @@ check1 test ! -s "$dir/ok.err"
 # The legend's own options without a legend drew nothing and said nothing (point 9).
 expect1 "--legend-units applies only with --legend" -- render good.cells "${pic[@]}" --legend-units g/cm^3 -o lu.png
 check1 test ! -e lu.png
+expect1 "--legend-title: 300 bytes (at most 256)" -- render good.cells "${pic[@]}" --legend --legend-title "$(head -c 300 /dev/zero | tr '\0' t)" -o lt.png
+check1 test ! -e lt.png
+# Misleading messages (point 16): a colour a rounding above 1 printed as 1; a NaN range called
+# unordered; gen's limit unlike its --help; control characters of a name printed raw by gen and
+# convert; an all-NaN field under --nan drop called "no cells".
+echo '[{"Name":"x","ColorSpace":"RGB","RGBPoints":[0,1.0000001,0,0,1,1,1,1]}]' >over1.json
+expect1 "RGBPoints node 0 colour r = 1.0000001 is outside [0, 1]" -- render good.cells "${pic[@]}" --tf over1.json -o o1.png
+expect1 "--tf-range nan 1: LO and HI must be finite" -- info good.cells --check-majorants --tf-range nan 1
+expect1 "--cells: '1099511627776' is outside [1, 1e+11]" -- gen cloud --cells 1099511627776 -o big
+"$amrvk" gen cloud --cells 200 -o $'esc\x1bname' >gen.out 2>&1
+check1 grep -qF 'esc\x1bname.cells' gen.out
+check1 test -z "$(tr -d '\n' <gen.out | tr -d '[:print:]')"
+"$amrvk" convert $'esc\x1bname.cells' -o $'conv\x1bname' >conv.out 2>&1
+check1 grep -qF 'wrote conv\x1bname.cells' conv.out
+check1 test -z "$(tr -d '\n' <conv.out | tr -d '[:print:]')"
+python3 -c "import struct; open('allnan.cells','wb').write(b''.join(struct.pack('<4i', x, 0, 0, 0) for x in range(4))); open('allnan.scalars','wb').write(struct.pack('<4f', *[float('nan')] * 4))"
+expect1 "allnan.cells: every one of its 4 cells has a non-finite value, and --nan drop dropped them all" -- \
+  render allnan.cells --nan drop "${pic[@]}" -o allnan.png
+check1 test ! -e allnan.png
 
 section ""
 echo "hostile.sh: $cases cases"

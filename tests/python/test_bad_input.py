@@ -190,3 +190,39 @@ def test_an_object_never_initialised_is_refused_not_a_crash(amrvk):
         empty = cls.__new__(cls)
         for call in calls:
             one_line(TypeError, "never initialised", lambda: call(empty))
+
+
+def test_round_4_messages_name_the_argument(amrvk, volume):
+    """Issue 52, point 17: each of these named the wrong thing, spanned lines, or was taken and
+    failed later; now one line naming the argument, at the call."""
+    r = amrvk.Renderer(volume, **SMALL)
+    one_line(TypeError, r"^tf_colors: expected 'srgb' or 'linear', got 5$", lambda: setattr(r, "tf_colors", 5))
+    one_line(ValueError, r"^legend_title: 10000 bytes \(at most 256\)$", lambda: setattr(r, "legend_title", "x" * 10000))
+    one_line(ValueError, r"^legend_units: 300 bytes \(at most 256\)$",
+             lambda: amrvk.Renderer(volume, legend_units="u" * 300, **SMALL))
+    assert r.legend_title == ""
+    one_line(TypeError, r"^degrees: expected a finite number, got inf$", lambda: r.camera.orbit(float("inf")))
+    one_line(ValueError, r"^hi: expected a finite number, got nan$",
+             lambda: amrvk.TransferFunction.from_colormap("viridis", 0, float("nan")))
+    one_line(ValueError, r"^axis: expected 3 finite numbers, not all 0, got 'z'$", lambda: r.camera.orbit(10, axis="z"))
+    one_line(TypeError, r"^path: contains a NUL character \(at 1\)", lambda: amrvk.Volume("a\0b"))
+
+    class Length:  # yt's unyt quantities, as from_yt reads them
+        def __init__(self, v):
+            self.d = v
+
+        def to(self, unit):
+            return self
+
+    class YtCamera:
+        position, focus, north_vector = Length([0.0, 0.0, 2.0]), Length([0.0, 0.0, 0.0]), [0.0, 1.0, 0.0]
+        width = [Length(1.0), Length(0.0), Length(1.0)]
+
+    one_line(ValueError, r"^yt_camera: its width's height 0 must be finite and > 0$",
+             lambda: amrvk.Camera.from_yt(YtCamera()))
+    pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
+    w = amrvk.Widget(r, spp=1)
+    try:
+        one_line(TypeError, r"^timeout: expected a number of seconds or None, got str$", lambda: w.wait("x"))
+    finally:
+        w.close()
