@@ -29,7 +29,8 @@ std::vector<std::pair<std::string, fs::path>> findScalarFiles(const fs::path& ce
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
         const std::string name = entry.path().filename().string();
         const fs::path path = given / entry.path().filename();
-        if (!entry.is_regular_file() || name.size() <= stem.size() + 8) {
+        std::error_code statusError;  // a link loop or a dangling link beside the data is not a scalar file
+        if (!entry.is_regular_file(statusError) || name.size() <= stem.size() + 8) {
             if (name == stem + ".scalars") out.emplace_back("scalars", path);
             continue;
         }

@@ -259,10 +259,23 @@ Rendered renderImage(picture::Picture& picture, [[maybe_unused]] const LoadedDat
     return r;
 }
 
-// The summary on stdout, a warning on stderr when the image may be biased, and --json's statistics.
+// --json's statistics, the summary on stdout, and a warning on stderr when the image may be biased.
 void reportRender(const RenderArgs& a, const picture::Picture& picture, const gpu::Context& ctx, const Rendered& r,
                   const picture::RenderTimes& times) {
     const scene::RenderOutput& out = r.out;
+    // The statistics first: a --json that cannot be written ends the command before the summary
+    // says "wrote" (the outputs are committed together after this).
+    if (!a.jsonFile.empty()) {
+        Json j = picture::renderStats(picture, out, times);
+        if (!r.mpiReport.is_null()) j["mpi"] = r.mpiReport;
+        if (r.firstFrame)  // how the first frame was made; "seconds" is its last frame's GPU time
+            j["firstFrame"] = {{"dt", r.firstFrame->dt},
+                               {"frames", r.firstFrame->frames},
+                               {"gpuSeconds", r.firstFrame->gpuSeconds},
+                               {"noiseTarget", picture::kFirstFrameNoise},
+                               {"byDefault", a.firstFrameByDefault}};
+        writeFileAtomic(a.jsonFile, j.dump(2) + "\n");
+    }
     const scene::StructureConfig& config = picture.renderer->config();
     const scene::RenderSettings& rs = picture.renderer->settings();
     const auto& c = out.stats.counters;
@@ -310,17 +323,6 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
                      (unsigned long long)c[shared::kCounterNanSamples],
                      (unsigned long long)c[shared::kCounterBounceLimitHits],
                      (unsigned long long)c[shared::kCounterTrackingCapHits]);
-    if (!a.jsonFile.empty()) {
-        Json j = picture::renderStats(picture, out, times);
-        if (!r.mpiReport.is_null()) j["mpi"] = r.mpiReport;
-        if (r.firstFrame)  // how the first frame was made; "seconds" is its last frame's GPU time
-            j["firstFrame"] = {{"dt", r.firstFrame->dt},
-                               {"frames", r.firstFrame->frames},
-                               {"gpuSeconds", r.firstFrame->gpuSeconds},
-                               {"noiseTarget", picture::kFirstFrameNoise},
-                               {"byDefault", a.firstFrameByDefault}};
-        writeFileAtomic(a.jsonFile, j.dump(2) + "\n");
-    }
 }
 
 // One picture (not a series): planned, read, built on the device, rendered, written and reported.
@@ -361,12 +363,14 @@ int renderPicture(const CLI::App& app, const RenderArgs& a, mpi::World* world, b
     AMRVK_CHECK(ctx.validationErrors() == 0, "Vulkan validation reported ", ctx.validationErrors(),
                 " error(s); last: ", ctx.lastValidationMessage());
     if (!speaks) return 0;  // rank 0 writes the outputs of the job
+    OutputTransaction outputs;  // -o, --variance and --json: all of them or none (issue 52, point 18)
     session::writePicture(a.output, r.out.mean, picture.session(), picture.volume->field().units,
                           plan.legendFont.get());
     if (!a.varianceFile.empty())
         writeImage(a.varianceFile,
                    scene::varianceImage(scene::varianceOfMean(r.out), r.out.mean.width, r.out.mean.height));
     reportRender(a, picture, ctx, r, {.wallSeconds = wallSeconds, .firstSampleSeconds = firstSampleSeconds});
+    outputs.commit();
     return 0;
 }
 

@@ -85,7 +85,22 @@ int runView(const std::vector<std::string>& argv) {
     // Every output checked before any work: writable, distinct, none of them an input.
     const std::vector<NamedPath> outputs = {
         {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}, {"--state-file", state}};
-    checkOutputs(outputs, pictureInputs(app, input, pic, {{"--script", script}}));
+    std::vector<NamedPath> inputs = pictureInputs(app, input, pic, {{"--script", script}});
+    // Saving the session back where it came from is the ordinary Save (it was read whole before the
+    // window opens and is written atomically): --save-session may name the --session file, which
+    // every other output is still checked against.
+    std::error_code same;
+    const bool saveBack =
+        !saveSession.empty() && app.count("--session") && std::filesystem::equivalent(saveSession, pic.session, same);
+    const std::vector<NamedPath> others = {outputs[0], outputs[2], outputs[3]};
+    auto checkAgainst = [&](std::vector<NamedPath> sources) {
+        if (!saveBack) return checkOutputs(outputs, sources);
+        checkOutputs(others, sources);
+        std::erase_if(sources,
+                      [&](const NamedPath& in) { return std::filesystem::equivalent(in.path, pic.session, same); });
+        checkOutputs(outputs, sources);
+    };
+    checkAgainst(inputs);
     vo.start = describePicture(app, input, read, pic);
     // A PNG screenshot with the legend needs its font: checked before anything is read.
     if (vo.start.session.legend.show && std::filesystem::path(screenshot).extension() == ".png")
@@ -98,7 +113,7 @@ int runView(const std::vector<std::string>& argv) {
     if (!script.empty()) session::loadScript(script);
     // Read before a window opens: a bad data set is one line, not a window that closes.
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
-    checkOutputs(outputs, inputFilesRead());  // and none is a file the data set was read from
+    checkAgainst(inputFilesRead());  // and none is a file the data set was read from
     vo.frames = uint64_t(frames);
     vo.screenshot = screenshot;
     vo.script = script;

@@ -137,6 +137,16 @@ void BinaryReader::read(void* dst, uint64_t bytes) {
 
 namespace {
 
+// A temporary beside `target`: its name + ".tmp-" + suffix, the name cut so that the whole fits in
+// NAME_MAX (255 bytes): a valid 250-byte output name is not refused for its temporary's sake.
+std::string temporarySibling(const fs::path& target, const std::string& suffix) {
+    constexpr size_t kNameMax = 255;
+    const std::string tail = ".tmp-" + suffix;
+    std::string name = target.filename().string();
+    if (name.size() + tail.size() > kNameMax) name.resize(kNameMax - tail.size());
+    return (target.parent_path() / (name + tail)).string();
+}
+
 // Temporary files being written, for the signal handler: fixed slots of NUL-terminated paths
 // that the handler reads without locks or allocation (unlink is async-signal-safe). BSS: pages
 // are touched only when used.
@@ -306,7 +316,7 @@ AtomicFileWriter::AtomicFileWriter(fs::path path) : mPath(std::move(path)) {
     int fd = -1;
     for (int attempt = 0; fd < 0; ++attempt) {
         AMRVK_CHECK(attempt < 100, mPath.string(), ": cannot write (no free temporary file name)");
-        const std::string name = mTarget.string() + ".tmp-" + randomSuffix();
+        const std::string name = temporarySibling(mTarget, randomSuffix());
         struct stat taken {};
         if (::lstat(name.c_str(), &taken) == 0) continue;
         mSlot = registerTemporary(name);
@@ -354,9 +364,45 @@ void AtomicFileWriter::finish() {
     mFinished = true;
 }
 
+namespace {
+thread_local OutputTransaction* tTransaction = nullptr;  // the thread's open OutputTransaction
+}
+
+OutputTransaction::OutputTransaction() {
+    AMRVK_CHECK(tTransaction == nullptr, "internal: nested output transactions");
+    tTransaction = this;
+}
+
+OutputTransaction::~OutputTransaction() {
+    tTransaction = nullptr;
+    if (mCommitted) return;
+    for (Pending& p : mPending) {
+        ::unlink(p.tmp.c_str());
+        unregisterTemporary(p.slot);
+    }
+}
+
+void OutputTransaction::commit() {
+    tTransaction = nullptr;
+    mCommitted = true;
+    for (Pending& p : mPending) {
+        const bool renamed = ::rename(p.tmp.c_str(), p.target.c_str()) == 0;
+        const int error = errno;
+        if (!renamed) ::unlink(p.tmp.c_str());
+        unregisterTemporary(p.slot);
+        AMRVK_CHECK(renamed, p.path.string(), ": cannot rename temporary file into place (", std::strerror(error), ")");
+    }
+}
+
 void AtomicFileWriter::commit() {
     AMRVK_CHECK(!mCommitted, mPath.string(), ": committed twice");
     finish();
+    if (tTransaction && !mTmpPath.empty()) {  // renamed with the transaction's other outputs
+        tTransaction->mPending.push_back({mPath, mTmpPath, mTarget, mSlot});
+        mSlot = -1;
+        mCommitted = true;
+        return;
+    }
     if (!mTmpPath.empty()) {
         AMRVK_CHECK(::rename(mTmpPath.c_str(), mTarget.c_str()) == 0, mPath.string(),
                     ": cannot rename temporary file into place (", std::strerror(errno), ")");
@@ -427,7 +473,7 @@ void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers) {
 }
 
 fs::path makeTemporaryDirectory(const fs::path& path) {
-    std::string name = path.string() + ".tmp-XXXXXX";
+    std::string name = temporarySibling(path, "XXXXXX");
     AMRVK_CHECK(::mkdtemp(name.data()), path.string(), ": cannot write (", std::strerror(errno), ")");
     ::chmod(name.c_str(), 0777 & ~processUmask());
     return name;

@@ -157,6 +157,29 @@ private:
 // error leaves none of them under its final name.
 void commitAll(const std::vector<std::unique_ptr<AtomicFileWriter>>& writers);
 
+// A command's outputs as one: while one lives (at most one per thread), AtomicFileWriter::commit()
+// finishes its file (where a full disk shows up) but keeps it as a temporary; commit() renames them
+// all into place, and the destructor without commit() removes them. So `render -o a.png --json X`
+// leaves no a.png when X cannot be written (a file written through, such as /dev/full, is written
+// at its finish and cannot be taken back: it is the one output that may be left).
+class OutputTransaction {
+public:
+    OutputTransaction();
+    ~OutputTransaction();
+    OutputTransaction(const OutputTransaction&) = delete;
+    OutputTransaction& operator=(const OutputTransaction&) = delete;
+    void commit();
+
+private:
+    friend class AtomicFileWriter;
+    struct Pending {
+        std::filesystem::path path, tmp, target;
+        int slot;
+    };
+    std::vector<Pending> mPending;
+    bool mCommitted = false;
+};
+
 // Removes every open AtomicFileWriter temporary now; async-signal-safe (for a process that must end
 // at once: a signal, a runaway GPU dispatch).
 void removeTemporariesNow();

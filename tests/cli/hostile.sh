@@ -73,8 +73,7 @@ expect1 "good.scalars" -- render good.cells "${pic[@]}" -o a2.png --json good.sc
 expect1 "are the same file" -- render good.cells "${pic[@]}" -o a2.pfm --json a2.pfm
 echo old > a3.pfm; ln -s a3.pfm alias.pfm
 expect1 "are the same file" -- render good.cells "${pic[@]}" -o a3.pfm --json alias.pfm
-expect1 "--save-session s.json is the input --session s.json" -- view --session s.json --headless --frames 1 --save-session s.json
-same s.json s.orig
+# (--save-session back to the --session file is the viewer's ordinary Save: round 4, point 18.)
 printf '0 quit\n' > quit.txt
 expect1 "--stats quit.txt is the input --script quit.txt" -- view good.cells "${pic[@]}" --headless --script quit.txt --stats quit.txt
 expect1 "are the same file" -- view good.cells "${pic[@]}" --headless --frames 1 --screenshot v.png --stats v.png
@@ -607,6 +606,27 @@ python3 -c "import struct; open('allnan.cells','wb').write(b''.join(struct.pack(
 expect1 "allnan.cells: every one of its 4 cells has a non-finite value, and --nan drop dropped them all" -- \
   render allnan.cells --nan drop "${pic[@]}" -o allnan.png
 check1 test ! -e allnan.png
+# Older cases that no longer held (point 18): a valid 250-byte output name was refused because its
+# temporary's name passed NAME_MAX; a symlink loop beside the data failed the read; saving a
+# session back to the file it came from (the viewer's ordinary Save) was refused as an overwrite.
+# An output that cannot be written (--json /dev/full) left the picture behind: one run's outputs
+# are now all written or none.
+expect1 "/dev/full: write failed (No space left on device)" -- render good.cells --size 8x8 --spp 2 --grid 4 --mode ae -o allor.png --variance allor.pfm --json /dev/full
+check1 test ! -e allor.png -a ! -e allor.pfm
+no_temporaries
+long250=$(head -c 246 /dev/zero | tr '\0' n).png
+ok render good.cells "${pic[@]}" -o "$long250"
+check1 test -s "$long250"
+no_temporaries
+mkdir -p looped && cp good.cells good.scalars looped/ && ln -sfn loop1 looped/loop2 && ln -sfn loop2 looped/loop1
+ok render looped/good.cells "${pic[@]}" -o looped.png
+printf '0 quit\n' >quit.txt
+ok view good.cells "${pic[@]}" --headless --script quit.txt --save-session back.json
+cp back.json back.orig
+ok view --session back.json --headless --script quit.txt --save-session back.json
+check1 python3 -c 'import json,sys; assert json.load(open(sys.argv[1])) == json.load(open(sys.argv[2]))' back.json back.orig
+expect1 "--stats back.json is the input --session back.json (refused: it would be overwritten)" -- \
+  view --session back.json --headless --script quit.txt --save-session back.json --stats back.json
 
 section ""
 echo "hostile.sh: $cases cases"
