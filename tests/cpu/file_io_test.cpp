@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/file_io.h"
@@ -43,4 +45,52 @@ TEST(FileIo, LargeArraysAreReadInChunksAndTheOffsetFollows) {
     test::expectError([&] { again.readArray(whole, written.size() + 1); }, {"large.bin: truncated at byte"});
     again.readArray(whole, written.size());
     EXPECT_EQ(whole, written);
+}
+
+// OutputTransaction (issue 52, point 18): inside one, a committed AtomicFileWriter stays a
+// temporary until the transaction commits, then every output appears at once; a transaction left
+// without commit (an exception on the way) leaves neither the outputs nor a temporary, and a file
+// that was there before keeps its old contents.
+TEST(FileIo, AnOutputTransactionWritesEveryOutputOrNone) {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::scratchDir() / "transaction";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto contents = [](const fs::path& p) {
+        std::FILE* f = std::fopen(p.c_str(), "rb");
+        std::string s(64, '\0');
+        s.resize(f ? std::fread(s.data(), 1, s.size(), f) : 0);
+        if (f) std::fclose(f);
+        return s;
+    };
+    auto entries = [&] {
+        size_t n = 0;
+        for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++n;
+        return n;
+    };
+    writeFileAtomic(dir / "old.txt", "before");
+    {
+        OutputTransaction t;
+        writeFileAtomic(dir / "a.txt", "a");
+        writeFileAtomic(dir / "old.txt", "after");
+        EXPECT_FALSE(fs::exists(dir / "a.txt")) << "not in place before the transaction commits";
+        EXPECT_EQ(contents(dir / "old.txt"), "before");
+        EXPECT_EQ(entries(), 3u) << "old.txt and two temporaries";
+        // dropped without commit: what an exception between the outputs does
+    }
+    EXPECT_FALSE(fs::exists(dir / "a.txt"));
+    EXPECT_EQ(contents(dir / "old.txt"), "before");
+    EXPECT_EQ(entries(), 1u) << "no temporary left";
+    {
+        OutputTransaction t;
+        writeFileAtomic(dir / "a.txt", "a");
+        writeFileAtomic(dir / "old.txt", "after");
+        t.commit();
+    }
+    EXPECT_EQ(contents(dir / "a.txt"), "a");
+    EXPECT_EQ(contents(dir / "old.txt"), "after");
+    EXPECT_EQ(entries(), 2u);
+    // Outside a transaction a writer commits on its own, as before.
+    writeFileAtomic(dir / "b.txt", "b");
+    EXPECT_EQ(contents(dir / "b.txt"), "b");
 }
