@@ -337,32 +337,33 @@ glm::vec4 TransferFunction::evaluate(float v) const {
     return glm::mix(mColors[size_t(lo)], mColors[size_t(hi)], f);
 }
 
-float TransferFunction::maxAlpha(float lo, float hi) const {
-    if (lo > hi) return 0.0f;
-    float m = std::max(evaluate(lo).a, evaluate(hi).a);
-    // Nodes with lo <= position <= hi (a NaN end includes every node: conservative), their
-    // largest alpha from the max tree (tf.glsl's tfNodesMaxAlpha).
-    const size_t first = size_t(std::lower_bound(mPositions.begin(), mPositions.end(), lo) - mPositions.begin());
-    const size_t last = size_t(std::upper_bound(mPositions.begin(), mPositions.end(), hi) - mPositions.begin());
-    const size_t leaves = mAlphaTree.size() / 2;
+namespace {
+// `pick` (std::max or std::min) of alpha(lo), alpha(hi) and the alphas of every node with lo <=
+// position <= hi (a NaN end includes every node: conservative), the nodes' from `tree`, the max or
+// min tree over them (tf.glsl's tfNodesMaxAlpha and tfMinAlpha). O(log nodes).
+template <typename Pick>
+float foldAlpha(const TransferFunction& tf, const std::vector<float>& tree, float lo, float hi, Pick pick) {
+    const std::vector<float>& pos = tf.positions();
+    float m = pick(tf.evaluate(lo).a, tf.evaluate(hi).a);
+    const size_t first = size_t(std::lower_bound(pos.begin(), pos.end(), lo) - pos.begin());
+    const size_t last = size_t(std::upper_bound(pos.begin(), pos.end(), hi) - pos.begin());
+    const size_t leaves = tree.size() / 2;
     for (size_t l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
-        if (l & 1) m = std::max(m, mAlphaTree[l++]);
-        if (r & 1) m = std::max(m, mAlphaTree[--r]);
+        if (l & 1) m = pick(m, tree[l++]);
+        if (r & 1) m = pick(m, tree[--r]);
     }
     return m;
+}
+}  // namespace
+
+float TransferFunction::maxAlpha(float lo, float hi) const {
+    if (lo > hi) return 0.0f;
+    return foldAlpha(*this, mAlphaTree, lo, hi, [](float a, float b) { return std::max(a, b); });
 }
 
 float TransferFunction::minAlpha(float lo, float hi) const {
     if (lo > hi) return std::numeric_limits<float>::infinity();
-    float m = std::min(evaluate(lo).a, evaluate(hi).a);
-    const size_t first = size_t(std::lower_bound(mPositions.begin(), mPositions.end(), lo) - mPositions.begin());
-    const size_t last = size_t(std::upper_bound(mPositions.begin(), mPositions.end(), hi) - mPositions.begin());
-    const size_t leaves = mAlphaMinTree.size() / 2;
-    for (size_t l = first + leaves, r = last + leaves; l < r; l >>= 1, r >>= 1) {
-        if (l & 1) m = std::min(m, mAlphaMinTree[l++]);
-        if (r & 1) m = std::min(m, mAlphaMinTree[--r]);
-    }
-    return m;
+    return foldAlpha(*this, mAlphaMinTree, lo, hi, [](float a, float b) { return std::min(a, b); });
 }
 
 TransferFunction TransferFunction::rescaled(float lo, float hi) const {
