@@ -25,6 +25,12 @@
 #ifndef AMRVK_TRACKING_GLSL
 #define AMRVK_TRACKING_GLSL
 
+// --control-extinction minorant (render::TracerVariant::control): a specialization constant, so a
+// pipeline without it runs none of the control's code. On, the control is used where
+// MajorantsGpu::gridMinorants is set. (Its code still costs lavapipe about 0.45 s of cold compile a
+// path tracer, specialised off or not: a shader variant, as ubrm's, would take that away.)
+layout(constant_id = 5) const bool kControlExtinction = false;
+
 const float kViolationTolerance = 1.0 + 1e-6;
 const uint kEstimatorDelta = 0u;
 const uint kEstimatorRatio = 1u;
@@ -133,7 +139,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
     float majAlpha, t0, t1;
     uint stepsLeft = P.shading.maxTrackingSteps;
     bool gridSegments = cfg.traversal == kTraversalGridDda || cfg.traversal == kTraversalGridBvh;
-    bool control = gridSegments && P.majorants.gridMinorants != 0ul;
+    bool control = kControlExtinction && gridSegments && P.majorants.gridMinorants != 0ul;
     // The control's optical depth: ratio, passed but not yet applied (exp(-depth) is applied at
     // the next residual collision, once it exceeds 1, and at the end); delta, left before its
     // collision (one exponential draw per call, at the first macrocell with a control).

@@ -9,11 +9,12 @@ namespace amrvk::render {
 
 namespace {
 
-// "MODE[.ubrm]": the variant's part of a pipeline's key and name.
+// "MODE[.ubrm][.minorant]": the variant's part of a pipeline's key and name.
 std::string variantName(TracerVariant v) {
     std::string s = scene::modeName(v.mode);
     if (v.transmittance != scene::Transmittance::Ratio)
         s += std::string(".") + scene::transmittanceName(v.transmittance);
+    if (v.control) s += ".minorant";
     return s;
 }
 
@@ -38,7 +39,8 @@ gpu::ComputePipeline compilePathTracer(gpu::Context& ctx, const std::string& ent
                                  {1, uint32_t(config.sampler)},
                                  {2, uint32_t(config.traversal)},
                                  {3, uint32_t(config.backend)},
-                                 {4, ctx.pathRegeneration() ? 1u : 0u}});
+                                 {4, ctx.pathRegeneration() ? 1u : 0u},
+                                 {5, variant.control ? 1u : 0u}});
 }
 
 PathTracePass::PathTracePass(gpu::Context& ctx) : mCtx(ctx) {

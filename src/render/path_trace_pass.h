@@ -22,14 +22,17 @@
 
 namespace amrvk::render {
 
-// What a path tracer is specialised for besides the structures: the mode (constant kMode) and the
-// shadow rays' estimator (the shader variant ENTRY_ubrm: the default one holds no comb code).
+// What a path tracer is specialised for besides the structures: the mode (constant kMode), the
+// shadow rays' estimator (the shader variant ENTRY_ubrm: the default one holds no comb code) and
+// the control extinction (constant kControlExtinction).
 struct TracerVariant {
     scene::Mode mode = scene::Mode::Ms;
     scene::Transmittance transmittance = scene::Transmittance::Ratio;  // ss and ms only
+    bool control = false;  // --control-extinction minorant (constant kControlExtinction); not dvr
     // The settings' variant; ae and dvr, which cast no shadow rays, always take the plain shader.
     static TracerVariant of(const scene::RenderSettings& s) {
-        return {s.mode, scene::castsShadowRays(s.mode) ? s.transmittance : scene::Transmittance::Ratio};
+        return {s.mode, scene::castsShadowRays(s.mode) ? s.transmittance : scene::Transmittance::Ratio,
+                s.mode != scene::Mode::Dvr && s.controlExtinction == scene::ControlExtinction::Minorant};
     }
     bool operator==(const TracerVariant&) const = default;
 };

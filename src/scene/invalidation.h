@@ -8,7 +8,7 @@
 //   structure combination         -> device copy, majorants, culling, kd-tree, pipelines, accumulation
 //   shader sources                -> pipelines, accumulation
 //   control extinction            -> minorants made or dropped, majorants (which write them), culling,
-//                                    kd-tree, accumulation
+//                                    kd-tree, pipeline selection (a specialization), accumulation
 // Every change resets the accumulation: the image it held no longer estimates the new picture.
 #include <cstdint>
 #include <string>

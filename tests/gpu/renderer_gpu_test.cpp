@@ -119,8 +119,9 @@ TEST_F(RendererGpu, EveryEditRedoesExactlyWhatTheInvalidationRuleSays) {
         r->accumulate(1);
         const uint64_t compiled = r->updateCounts().pipelinesCompiled - after.pipelinesCompiled;
         // A pipeline is compiled after a drop (structure, shaders: reloadShaders compiles at once)
-        // and for a mode not used before; never otherwise.
-        const bool expectCompile = (e.change == scene::Change::Structure) || (e.change == scene::Change::Mode);
+        // and for a mode or control extinction not used before; never otherwise.
+        const bool expectCompile = (e.change == scene::Change::Structure) || (e.change == scene::Change::Mode) ||
+                                   (e.change == scene::Change::Control);  // its own specialization
         EXPECT_EQ(compiled, expectCompile ? 1u : 0u);
     }
     EXPECT_TRUE(holdsDeviceBuffer(ctx(), "abrs"));

@@ -30,7 +30,9 @@ struct TrackingKernel {
     gpu::Context& ctx;
     uint32_t n;
     gpu::Buffer out{ctx, uint64_t(n) * 32, gpu::MemoryKind::HostRead, "tracking"};
-    gpu::ComputePipeline pipe{ctx, gpu::loadShader("test_tracking"), "test_tracking", sizeof(shared::TestTrackingPush)};
+    // With the control extinction's code (constant 5): it runs where the renderer made minorants.
+    gpu::ComputePipeline pipe{
+        ctx, gpu::loadShader("test_tracking"), "test_tracking", sizeof(shared::TestTrackingPush), {{5, 1u}}};
 
     std::vector<float> run(render::Renderer& r, glm::vec3 origin, scene::SamplerKind sampler, bool withUbrm) {
         shared::TestTrackingPush push{r.paramsAddress(),
