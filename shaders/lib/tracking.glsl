@@ -75,8 +75,6 @@ struct TrackState {
 
 TrackState newTrackState() { return TrackState(false, kInf, vec4(0.0), 1.0); }
 
-// Ratio tracking's weight at a collision against majorant maj (extinction sigma), with Russian
-// roulette below 0.05. Returns false to stop tracking.
 // Russian roulette below 0.05: returns false (transmittance 0) to stop tracking.
 bool ratioRoulette(inout TrackState st, inout uint rng) {
     if (st.transmittance < 0.05) {
@@ -89,6 +87,8 @@ bool ratioRoulette(inout TrackState st, inout uint rng) {
     return true;
 }
 
+// Ratio tracking's weight at a collision against majorant maj (extinction sigma), then the
+// roulette. Returns false to stop tracking.
 bool onRatioCollision(float sigma, float maj, inout TrackState st, inout uint rng, inout Counters c) {
     st.transmittance *= max(0.0, 1.0 - sigma / maj);
     c.nulls++;
@@ -101,6 +101,37 @@ void foldControl(inout float depth, inout TrackState st) {
         st.transmittance *= exp(-depth);
         depth = 0.0;
     }
+}
+
+// The control's share of macrocell [t0, t1] (control extinction m > 0). Ratio: its optical depth is
+// added to `depth` and applied once past e^-1, then the roulette (false stops the call). Delta:
+// tControl is where its collision falls (kInf: beyond t1), from `left`, the control's optical depth
+// left before that collision (drawn at the first macrocell, where left < 0).
+bool controlSegment(uint estimator, float m, float t0, float t1, inout float depth, inout float left,
+                    inout TrackState st, inout uint rng, out float tControl) {
+    tControl = kInf;
+    float here = m * (t1 - t0);
+    if (estimator != kEstimatorDelta) {
+        depth += here;
+        if (!(depth > 1.0)) return true;
+        foldControl(depth, st);
+        return ratioRoulette(st, rng);
+    }
+    if (left < 0.0) left = -log(1.0 - rand(rng));
+    if (here > left) tControl = t0 + left / m;
+    left -= here;  // a collision in this macrocell ends the call
+    return true;
+}
+
+// Delta: the control's collision at t (always real), looked up for its colour.
+void controlCollision(vec3 o, vec3 d, float t, float tBase, float m, StructureConfig cfg, uint seg,
+                      inout TrackState st, inout Counters c) {
+    vec4 tfc;
+    if (extinctionAt(o + d * t, cfg, seg, c, tfc) < m) c.violations++;
+    c.real++;
+    st.hit = true;
+    st.tHit = tBase + t;
+    st.tfHit = tfc;
 }
 
 // The estimator's decision at a tentative collision at t (extinction sigma, majorant maj, TF
@@ -157,22 +188,7 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
         float resMaj = maj - m;
         // The control's share: exactly for ratio tracking; for delta its collision distance.
         float tControl = kInf;
-        if (m > 0.0) {
-            float depth = m * (t1 - t0);
-            if (estimator != kEstimatorDelta) {
-                // Applied once it is a factor e^-1 or less, then the roulette, so a ray whose
-                // estimate the control alone makes small stops as ratio tracking's would.
-                controlDepth += depth;
-                if (controlDepth > 1.0) {
-                    foldControl(controlDepth, st);
-                    if (!ratioRoulette(st, rng)) return;
-                }
-            } else {
-                if (controlLeft < 0.0) controlLeft = -log(1.0 - rand(rng));
-                if (depth > controlLeft) tControl = t0 + controlLeft / m;
-                controlLeft -= depth;  // a collision in this macrocell ends the call
-            }
-        }
+        if (m > 0.0 && !controlSegment(estimator, m, t0, t1, controlDepth, controlLeft, st, rng, tControl)) return;
         float meanStep = 1.0 / resMaj;
         SubBoxes sub;
         sub.word = kSubNotRefined;
@@ -233,15 +249,9 @@ void sampleTmaj(vec3 o, vec3 d, float tMax, StructureConfig cfg, uint estimator,
             if (!onRatioCollision(sigma - m, resMaj * share, st, rng, c)) return;
         }
         // Delta: the control's collision comes first (no residual collision before it in this
-        // macrocell): real, looked up for its colour.
+        // macrocell).
         if (tControl < t1) {
-            vec4 tfc;
-            float sigma = extinctionAt(o + d * tControl, cfg, seg, c, tfc);
-            if (sigma < m) c.violations++;
-            c.real++;
-            st.hit = true;
-            st.tHit = tBase + tControl;
-            st.tfHit = tfc;
+            controlCollision(o, d, tControl, tBase, m, cfg, seg, st, c);
             return;
         }
     }
