@@ -18,6 +18,13 @@
 
 namespace amrvk::bench {
 
+std::string estimatorLabel(scene::Transmittance transmittance, scene::ControlExtinction control) {
+    std::string s;
+    if (transmittance != scene::Transmittance::Ratio) s += std::string(" ") + scene::transmittanceName(transmittance);
+    if (control != scene::ControlExtinction::None) s += std::string(" ") + scene::controlExtinctionName(control);
+    return s;
+}
+
 namespace {
 
 // `s` with every character but letters, digits, '-' and '_' replaced by '_' (file names).
@@ -72,6 +79,9 @@ private:
     RunResult measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
                       scene::Transmittance transmittance = scene::Transmittance::Ratio,
                       scene::ControlExtinction control = scene::ControlExtinction::None);
+    // The timed runs' settings: the resolved ones with this run's mode, step and estimators.
+    scene::RenderSettings settingsFor(Mode mode, double dvrStep, scene::Transmittance transmittance,
+                                      scene::ControlExtinction control) const;
     // The control extinctions that combination `c` runs with (minorants: grid traversals only).
     std::vector<scene::ControlExtinction> controlsOf(const StructureConfig& c) const;
     void finishGroup(size_t first, double target);
@@ -218,6 +228,16 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     return ref;
 }
 
+scene::RenderSettings Runner::settingsFor(Mode mode, double dvrStep, scene::Transmittance transmittance,
+                                          scene::ControlExtinction control) const {
+    scene::RenderSettings rs = mSettings;
+    rs.mode = mode;
+    rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
+    rs.transmittance = transmittance;
+    rs.controlExtinction = control;
+    return rs;
+}
+
 RunResult Runner::measure(const std::string& kind, Mode mode, const StructureConfig& config, double dvrStep,
                           scene::Transmittance transmittance, scene::ControlExtinction control) {
     RunResult r{.dataset = mDs->tag,
@@ -231,20 +251,12 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
                 .width = mSettings.width,
                 .height = mSettings.height,
                 .frames = mOpt.frames};
-    std::string what =
-        r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
-        (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "") +
-        (transmittance != scene::Transmittance::Ratio ? std::string(" ") + scene::transmittanceName(transmittance)
-                                                      : "") +
-        (control != scene::ControlExtinction::None ? std::string(" ") + scene::controlExtinctionName(control) : "");
+    std::string what = r.dataset + " " + r.tf + " " + r.mode + " " + config.labelWithGrid() +
+                       (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "") + estimatorLabel(transmittance, control);
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
     render::Renderer* rendererOf = nullptr;
-    scene::RenderSettings rs = mSettings;
-    rs.mode = mode;
-    rs.dvrStep = dvrStep > 0 ? dvrStep : rs.dvrStep;
-    rs.transmittance = transmittance;
-    rs.controlExtinction = control;
+    const scene::RenderSettings rs = settingsFor(mode, dvrStep, transmittance, control);
     try {
         StructureConfig resolved = config;
         picture::resolveStructure(mCtx, resolved);

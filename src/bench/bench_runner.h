@@ -87,6 +87,10 @@ struct BenchOptions {
     bool writesFiles = true;
 };
 
+// " ubrm", " minorant", " ubrm minorant" or "": the estimators of a run that are not the default,
+// as its label and its progress line name them.
+std::string estimatorLabel(scene::Transmittance transmittance, scene::ControlExtinction control);
+
 // One timed configuration.
 struct RunResult {
     std::string dataset, tf, mode, kind;  // kind: matrix | dense | dvr | grid-sweep

@@ -24,9 +24,7 @@ std::string num(double v, int digits = 3) {
 
 std::string runLabel(const RunResult& r) {
     std::string s = r.config.labelWithSub();
-    if (r.transmittance != scene::Transmittance::Ratio)
-        s += std::string(" ") + scene::transmittanceName(r.transmittance);
-    if (r.control != scene::ControlExtinction::None) s += std::string(" ") + scene::controlExtinctionName(r.control);
+    s += estimatorLabel(r.transmittance, r.control);
     if (r.kind == "grid-sweep" || r.kind == "auto") s += " grid " + r.config.grid;
     if (r.kind == "dvr") s = "dvr dt " + num(r.dvrStep) + " (" + r.config.label() + ")";
     if (r.kind == "pt-ae") s = "ae tracking (" + r.config.label() + ")";
