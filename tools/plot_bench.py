@@ -111,6 +111,8 @@ def save(fig, directory, stem, written):
         try:
             fig.savefig(temporary, format=fmt, dpi=110, metadata={METADATA_KEY[fmt]: "amrvk tools/plot_bench.py"})
             os.replace(temporary, directory / name)
+        except OSError as e:  # named as the plot, not results.json (a full disk blamed the input)
+            raise OSError(e.errno, "cannot write {}: {}".format(directory / name, e.strerror or e)) from e
         finally:
             if temporary.exists():
                 temporary.unlink()
@@ -280,7 +282,11 @@ def main(argv):
     directory = Path(argv[1])
     try:
         written = plot_all(directory)
-    except (OSError, ValueError) as e:
+    except OSError as e:  # what could not be read or written, by its own name
+        what = e.strerror if e.filename is None else "{}: {}".format(e.filename, e.strerror)
+        print("plot_bench.py: error: {}".format(what or e), file=sys.stderr)
+        return 1
+    except ValueError as e:
         print("plot_bench.py: error: {}: {}".format(directory / "results.json", e), file=sys.stderr)
         return 1
     for name in written:

@@ -10,8 +10,12 @@ camera from the camera it had when the widget was made: turned by `azimuth` degr
 target around the up vector, then by `elevation` degrees over the view's right vector, then
 `zoom` times closer (Camera.orbit, Camera.zoom); the estimate restarts and refines again. Only
 sliders: orbiting by mouse drag needs a browser-side event widget (ipyevents) that Debian lacks.
-``close()`` stops the thread (the renderer stays open); the renderer serves one call at a time, so
-using it from the notebook while the widget refines is safe (calls queue).
+``close()`` stops the thread (the renderer stays open); the renderer serves one call at a time, in
+the order they come, so using it from the notebook while the widget refines is safe: a long
+``r.render(spp=4096)`` yields to the widget between its quarter-second chunks, and a slider moved
+meanwhile restarts that call's count (it returns the samples it was asked for, of the new view).
+Works with ipywidgets 6 (Debian 12), 7 and 8: it uses Image, FloatSlider, Label, Layout, HBox and
+VBox and ``observe(names="value")``, which all three have.
 """
 import math
 import threading
@@ -53,6 +57,7 @@ class Widget:
             slider.observe(self._moved, names="value")
         self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
         self.first_frame = None  # the PNG shown before any sample: the renderer's dvr first frame
+        self._shown_spp = 0  # the samples of the image shown
         if renderer.spp == 0:  # shown at once, while the first batch runs
             self.first_frame = self.image.value = renderer.png()
             f = renderer.first_frame
@@ -88,6 +93,8 @@ class Widget:
                     r.accumulate(min(self.batch, self.spp - r.spp))
                     self._show()
                 else:
+                    if r.spp != self._shown_spp:  # another call (a long render) changed the image
+                        self._show()
                     self._idle.set()
                     self._wake.wait(0.25)
                     self._wake.clear()
@@ -98,26 +105,27 @@ class Widget:
             self._idle.set()
 
     def _show(self):
-        # The renderer serves one call at a time, not a snapshot of several: a slider moved between
-        # these calls restarts the estimate (spp drops), and what was read is then not shown.
+        # One call reads the count, the image and its error together (issue 52, point 15: a long
+        # render() on the same renderer added samples between three calls, "16/64" over 72).
         r = self.renderer
-        spp = r.spp
-        if r.closed or spp == 0:
+        if r.closed or r.spp == 0:
             return
         try:
-            png = r.png()
-            noise = f", mean standard error {float(np.sqrt(r.variance()).mean()):.4g}" if spp >= 2 else ""
+            spp, png, error = r._snapshot()
         except ValueError:
-            if r.closed or r.spp < spp:
+            if r.closed:
                 return
             raise
-        if r.spp < spp:
+        if spp == 0:  # a slider restarted the estimate meanwhile
             return
+        self._shown_spp = spp
         self.image.value = png
+        noise = f", mean standard error {error:.4g}" if error is not None else ""
         self.status.value = f"{spp}/{self.spp} spp{noise}"
 
     def wait(self, timeout=None):
-        """Blocks until the image has `spp` samples per pixel (True), or `timeout` seconds passed (False)."""
+        """Blocks until the image has `spp` samples per pixel and is shown (True), or `timeout` seconds
+        passed (False)."""
         if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
                                     or math.isnan(timeout)):
             raise TypeError(f"timeout: expected a number of seconds or None, got {type(timeout).__name__}")
@@ -128,7 +136,9 @@ class Widget:
             if self._error is not None:
                 raise self._error
             # Idle with fewer samples: a slider has just restarted the estimate; the thread goes on.
-            if idle and (self.renderer.closed or self.renderer.spp >= self.spp):
+            # Idle with another image than shown: another call changed it; the thread shows it next.
+            r = self.renderer
+            if idle and (r.closed or (r.spp >= self.spp and r.spp == self._shown_spp)):
                 return True
             if deadline is not None and time.monotonic() >= deadline:
                 return False

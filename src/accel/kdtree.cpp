@@ -129,7 +129,7 @@ KdTree buildKdTree(const SupportRangeQuery& ranges, const amr::Box3l& bounds,
     Timer timer;
     KdBuilder builder(ranges, maxAlpha, positionMargin(bounds));
     std::vector<Leaf> leaves;
-    leaves.reserve(params.maxLeaves);
+    leaves.reserve(std::min<uint32_t>(params.maxLeaves, 1u << 16));  // grows past that as it splits
     leaves.push_back(
         builder.makeLeaf(bounds.lower, bounds.upper, builder.rangeOf(bounds.lower, bounds.upper)));
     // Costliest first; equal costs pop the newer leaf first (deterministic either way).

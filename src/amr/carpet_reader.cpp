@@ -17,6 +17,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <string_view>
 #include <utility>
@@ -297,15 +298,25 @@ std::vector<double> readValues(const CarpetFile& file, const Patch& p) {
 // The 3-D datasets of the file by variable: key and name, for every iteration and timelevel.
 std::map<std::string, std::vector<std::pair<DatasetKey, std::string>>> gridDatasets(const CarpetFile& file) {
     std::map<std::string, std::vector<std::pair<DatasetKey, std::string>>> out;
+    std::map<std::string, std::pair<std::string, size_t>> flat;  // var -> a dataset of other than 3 axes
     for (const std::string& name : file.rootNames()) {
         DatasetKey key;
         if (!parseDatasetKey(name, key, &file.name())) continue;
         H5Id d(H5Dopen2(file.root(), name.c_str(), H5P_DEFAULT), H5Dclose);
-        if (!d.valid() || file.dims(d.get()).size() != 3) continue;  // groups, grid scalars and arrays
+        if (!d.valid()) continue;  // groups
+        const size_t axes = file.dims(d.get()).size();
+        if (axes != 3) {  // grid scalars and arrays
+            flat.emplace(key.var, std::make_pair(name, axes));
+            continue;
+        }
         AMRVK_CHECK(key.m == 0, file.name(), ": '", name, "' is on map ", key.m,
                     " (multi-patch Carpet files are not supported)");
         out[key.var].emplace_back(key, name);
     }
+    // A variable of 3-D levels with a level of other rank (a 2-D rl=2 was called a gap).
+    for (const auto& [var, dataset] : flat)
+        AMRVK_CHECK(!out.count(var), file.name(), ": '", elide(dataset.first, 120), "' has ", dataset.second,
+                    " axes where the other datasets of '", elide(var, 120), "' have 3 (amrvk reads 3-D Carpet grids)");
     return out;
 }
 
@@ -478,14 +489,19 @@ std::vector<float> leafValues(const CarpetFile& file, const LevelGrid& g, const 
     std::vector<float> out;
     forCells(g, [&](glm::i64vec3 c) {
         if (g.state[g.cell(c)] != kLeaf) return;
-        double sum = 0;
+        double mean = 0;  // a sum of eighths: the same as the sum / 8, without overflowing near 1e308
         for (int k = 0; k < 8; ++k) {
             const glm::i64vec3 v = c + glm::i64vec3(k & 1, k >> 1 & 1, k >> 2);
             const size_t pi = size_t(g.owner[g.vertex(v)] - 1);
             const glm::i64vec3 d = v - glm::i64vec3(own[pi].iorigin);  // inside: active lies in the data
-            sum += values[pi][size_t((d.z * own[pi].shape.y + d.y) * own[pi].shape.x + d.x)];
+            mean += values[pi][size_t((d.z * own[pi].shape.y + d.y) * own[pi].shape.x + d.x)] / 8;
         }
-        out.push_back(static_cast<float>(sum / 8));
+        // A finite mean beyond float's range was read as inf and called non-finite.
+        AMRVK_CHECK(!std::isfinite(mean) || std::abs(mean) <= double(std::numeric_limits<float>::max()), file.name(),
+                    ": '", elide(own[0].dataset, 120), "' has a cell whose corners' mean is ", formatDouble(mean),
+                    ", beyond the 32-bit floats amrvk holds values in (at most ",
+                    formatDouble(std::numeric_limits<float>::max()), " in magnitude)");
+        out.push_back(static_cast<float>(mean));
     });
     return out;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -26,7 +27,18 @@ const Field& Model::field(std::string_view name) const {
 
 const Field& Model::defaultField() const {
     AMRVK_CHECK(!fields.empty(), source, ": no field loaded");
-    return fields.front();
+    std::vector<std::string> names;
+    for (const Field& f : fields) names.push_back(f.name);
+    return fields[defaultFieldIndex(names)];
+}
+
+size_t defaultFieldIndex(const std::vector<std::string>& names) {
+    for (size_t i = 0; i < names.size(); ++i) {
+        std::string lower = names[i];
+        for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (lower == "density" || lower == "dens" || lower == "rho" || lower == "gas_density") return i;
+    }
+    return 0;
 }
 
 namespace {
@@ -299,6 +311,15 @@ void validateCells(const Model& model) {
             AMRVK_CHECK(key != "droppedNonFiniteCells", src, ": every one of its ", value,
                         " cells has a non-finite value, and --nan drop dropped them all");
     AMRVK_CHECK(!model.cells.empty(), src, ": no cells");
+    for (int a = 0; a < 3; ++a) {
+        const double size = model.voxelToWorld.scale[a], origin = model.voxelToWorld.origin[a];
+        AMRVK_CHECK(size >= kMinCellSize && size <= kMaxWorldCoordinate, src, ": a finest cell is ", formatDouble(size),
+                    " wide on axis ", a, " (amrvk's world coordinates hold cell sizes in [", formatDouble(kMinCellSize),
+                    ", ", formatDouble(kMaxWorldCoordinate), "])");
+        AMRVK_CHECK(std::abs(origin) <= kMaxWorldCoordinate, src, ": the origin is ", formatDouble(origin), " on axis ",
+                    a, " (amrvk's world coordinates hold at most ", formatDouble(kMaxWorldCoordinate),
+                    " in magnitude)");
+    }
     for (const Field& f : model.fields)
         AMRVK_CHECK(f.values.size() == model.cells.size(), src, ": field '", f.name, "' has ",
                     f.values.size(), " values but there are ", model.cells.size(), " cells");

@@ -87,9 +87,14 @@ struct Model {
     uint64_t cellCount() const { return cells.size(); }
     // Returns the loaded field `name`; throws "unknown field 'X' in SOURCE (available: ...)".
     const Field& field(std::string_view name) const;
-    // The field an operation uses when the user named none: the first loaded one.
+    // The field an operation uses when the user named none: defaultFieldIndex of the loaded ones.
     const Field& defaultField() const;
 };
+
+// The field a picture shows when none is named, as yt shows a density: the first of `names` that
+// is density-like (density, dens, rho or gas_density, in any case), else the first. An AMReX
+// plotfile lists x_velocity first; its density is the field a user expects. 0 for no names.
+size_t defaultFieldIndex(const std::vector<std::string>& names);
 
 struct ModelSummary {
     Box3l bounds;                          // union of leaf-cell boxes, voxel space
@@ -153,8 +158,15 @@ FieldScale scaleOf(const Model& model);
 // positive value: log scale needs one (or --log-floor)".
 ScaleReport applyFieldScale(Model& model, FieldScale scale, double floor = 0);
 
+// World coordinates amrvk holds: a finest cell's size in [kMinCellSize, kMaxWorldCoordinate] and
+// an origin within +-kMaxWorldCoordinate on every axis (the camera and the legend's world
+// lengths work in them; a size of 1e-300 or 1e300 made the default camera's eye and target one).
+inline constexpr double kMinCellSize = 1e-30;
+inline constexpr double kMaxWorldCoordinate = 1e30;
+
 // Throws amrvk::Error on: a field whose length differs from the cell count, a level outside
-// [0, kMaxLevel], a cell not aligned to its width or reaching past 2^31-1, an empty model.
+// [0, kMaxLevel], a cell not aligned to its width or reaching past 2^31-1, an empty model, a
+// world transform outside the limits above.
 // Checks every cell on its own (in parallel, no extra memory); readModel runs it.
 void validateCells(const Model& model);
 // validateCells, and two overlapping cells (a hash of every cell: about 12 bytes per cell).

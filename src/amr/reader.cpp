@@ -150,7 +150,10 @@ void visitCells(const fs::path& path, const ReadOptions& given, const std::funct
         return;
     }
     Model model = readModel(path, options);
-    if (model.fields.size() > 1) model.fields.resize(1);  // the default field
+    if (model.fields.size() > 1) {  // the default field only
+        Field kept = std::move(model.fields[size_t(&model.defaultField() - model.fields.data())]);
+        model.fields.assign(1, std::move(kept));
+    }
     if (head) {
         *head = model;
         head->cells.clear();

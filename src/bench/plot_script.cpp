@@ -1,5 +1,6 @@
 #include "bench/plot_script.h"
 
+#include <cstdio>
 #include <sstream>
 
 #include "core/process.h"
@@ -37,15 +38,25 @@ PlotOutcome drawPlots(const fs::path& dir) {
                        "install python3-matplotlib, then run: " + byHand;
         return outcome;
     }
-    const ProcessResult run = runProcess({*python, script.string(), dir.string()}, ProcessOutput::Capture);
+    // Its stdout names the files written; anything else (its error, matplotlib's warnings) is kept
+    // apart: the last such line is the reason when it fails, and the others pass through.
+    const ProcessResult run = runProcess({*python, script.string(), dir.string()}, ProcessOutput::CaptureAll);
+    std::vector<std::string> messages;
+    std::istringstream lines(run.out);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        const bool file = line.find('/') == std::string::npos && (line.ends_with(".png") || line.ends_with(".pdf")) &&
+                          fs::is_regular_file(dir / line, ec);
+        (file ? outcome.files : messages).push_back(line);
+    }
     if (run.status != 0) {
-        outcome.note = "plots not drawn: " + *python + " " + script.string() + " ended with status " +
-                       std::to_string(run.status) + " (see its messages above); to retry: " + byHand;
+        outcome.failed = true;
+        outcome.note = "plots not drawn: " + script.filename().string() + " ended with status " +
+                       std::to_string(run.status) + (messages.empty() ? "" : " (" + messages.back() + ")") +
+                       "; to retry: " + byHand;
         return outcome;
     }
-    std::istringstream lines(run.out);
-    for (std::string line; std::getline(lines, line);)
-        if (!line.empty()) outcome.files.push_back(line);
+    for (const std::string& m : messages) std::fprintf(stderr, "%s\n", m.c_str());
     return outcome;
 }
 

@@ -14,6 +14,7 @@ struct PlotOutcome {
     std::vector<std::string> files;  // written by the script, relative to the directory (PNG and PDF)
     std::string note;                // empty when the script ran; else one line: why not, and how to
                                      // draw the plots by hand
+    bool failed = false;             // the script ran and failed (a plot not written): bench's error
 };
 
 // plot_bench.py in the directory of the running executable (it may not exist).
@@ -22,8 +23,9 @@ std::filesystem::path plotScriptPath();
 // The first of `python3` on PATH and /usr/bin/python3 that runs `import matplotlib`; nullopt if none.
 std::optional<std::string> findMatplotlibPython();
 
-// Runs the script on dir/results.json and returns the files it reports. Never throws for a
-// missing script or interpreter or a failing script: that is a note (the reports stay valid).
+// Runs the script on dir/results.json and returns the files it reports. Never throws: a missing
+// script or interpreter is a note; a script that ran and failed (a full disk) sets `failed`, with
+// its last message in the note, for the caller to end with an error once the reports are written.
 PlotOutcome drawPlots(const std::filesystem::path& dir);
 
 }  // namespace amrvk::bench

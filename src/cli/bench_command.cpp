@@ -227,6 +227,8 @@ void parseSweeps(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o
                 AMRVK_CHECK(end && *end == '\0' && dt > 0 && dt <= 64, "--dvr-steps: '", t, "' is not in (0, 64]");
                 o.dvrSteps.push_back(dt);
             }
+        // "," named no step: an empty list, not "none" said by mistake.
+        AMRVK_CHECK(a.dvrSteps == "none" || !o.dvrSteps.empty(), "--dvr-steps: empty list (give steps, or none)");
     }
     if (app.count("--grid-sweep")) {
         o.gridSweep.clear();
@@ -237,6 +239,7 @@ void parseSweeps(const CLI::App& app, const BenchArgs& a, bench::BenchOptions& o
                 AMRVK_CHECK(end && *end == '\0' && n >= 1 && n <= 4096, "--grid-sweep: '", g, "' is not in [1, 4096]");
                 o.gridSweep.push_back(g);
             }
+        AMRVK_CHECK(a.gridSweep == "none" || !o.gridSweep.empty(), "--grid-sweep: empty list (give sizes, or none)");
     }
 }
 
@@ -324,6 +327,8 @@ void writeBenchReports(const bench::BenchResults& results, const bench::BenchOpt
         "wrote %s/results.{json,csv,md} and %zu plot files (PNG, PDF): %zu runs (%zu failed) on "
         "%s\n",
         o.outDir.string().c_str(), plots.files.size(), results.runs.size(), failed, results.device.c_str());
+    // A plot that could not be written (a full disk) fails the command; the reports stay.
+    AMRVK_CHECK(!plots.failed, plots.note);
     if (!plots.note.empty()) std::fprintf(stderr, "amrvk bench: %s\n", plots.note.c_str());
 }
 

@@ -130,10 +130,12 @@ void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
     app.add_option("--format", a.format, "input format (default: detected from names and magic bytes)")
         ->check(CLI::IsMember({"auto", "exabrick", "amrex", "enzo", "chombo", "carpet", "ramses", "raw"}))
         ->type_name("auto|exabrick|amrex|enzo|chombo|carpet|ramses|raw");
-    CLI::Option* field = app.add_option("--field", a.fields,
-                                        multiField ? "field to load (repeatable; default: every field)"
-                                                   : "field to use (default: the first)")
-                             ->type_name("NAME");
+    CLI::Option* field =
+        app.add_option("--field", a.fields,
+                       multiField ? "field to load (repeatable; default: every field)"
+                                  : "field to use (default: the density-like one, density, dens, rho or gas_density in "
+                                    "any case, else the first)")
+            ->type_name("NAME");
     if (multiField)
         field->take_all();
     else
@@ -340,7 +342,7 @@ void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
     app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis, fewer for small data: at most 2 macrocells per leaf cell)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
-    app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF")
+    app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF (at most one per cell)")
         ->check(interval(1, scene::kMaxKdLeaves))
         ->capture_default_str()
         ->type_name("N");

@@ -300,10 +300,12 @@ void reportRender(const RenderArgs& a, const picture::Picture& picture, const gp
                     r.firstFrame->dt, r.firstFrame->frames, r.firstFrame->frames == 1 ? "" : "s",
                     r.firstFrame->gpuSeconds, picture::kFirstFrameNoise);
     if (r.firstFrame && r.firstFrame->noise > picture::kFirstFrameNoise)
-        std::printf("first frame: stopped at noise %.2g, above %g, by its %g s GPU budget or its finest step %g; "
-                    "--mode dvr --dt %g --spp 8 is finer and less noisy\n",
-                    r.firstFrame->noise, picture::kFirstFrameNoise, picture::kFirstFrameGpuSeconds,
-                    picture::kFirstFrameMinDt, r.firstFrame->dt / 2);
+        std::printf(
+            "first frame: stopped at noise %.2g, above %g, by its GPU budget (%g times its first frame, "
+            "%g-%g s) or its finest step %g; --mode dvr --dt %g --spp 8 is finer and less noisy\n",
+            r.firstFrame->noise, picture::kFirstFrameNoise, picture::kFirstFrameBudgetFactor,
+            picture::kFirstFrameGpuSeconds, picture::kFirstFrameMaxGpuSeconds, picture::kFirstFrameMinDt,
+            r.firstFrame->dt / 2);
     if (a.firstFrameByDefault)
         std::printf("the default picture is this first frame; path-trace it with --mode ms (or ae, ss), --spp N or "
                     "--until-error E\n");
@@ -396,6 +398,10 @@ int renderOn(const std::vector<std::string>& argv, mpi::World* world) {
     // it is made (no --mode, --spp, --dt, --until-error or --session), is its first frame, the clean
     // picture Python and the viewer show first; any of those asks for the estimator as before.
     const bool series = isSeries(app, a.inputs, a.output);
+    if (!series && app.count("--series-range") > 0 && speaks)
+        std::fprintf(stderr,
+                     "amrvk: --series-range: one input has one range; the option fixes a series' range "
+                     "(several inputs, a pattern, --frames or --orbit) and changes nothing here\n");
     a.firstFrameByDefault = !a.firstFrame && !world && !series && app.count("--session") == 0 &&
                             std::none_of(kEstimatorOptions.begin(), kEstimatorOptions.end(),
                                          [&](const char* o) { return app.count(o) > 0; });

@@ -265,6 +265,19 @@ void loadManifest(Series& s, const std::string& recipe, const std::string& outpu
         s.resume = false;
         s.previous.reset();
     }
+    bool changed = false;
+    if (s.resume) {
+        // The frames are as old as the files they were read from: one changed (or gone) makes
+        // every frame anew (a union range, and so every frame's TF, may depend on it).
+        for (const auto& [file, stamp] : *s.previous->inputsRead) {
+            if (session::fileStamp(file) == stamp) continue;
+            note(file + " changed since the frames in " + s.frames.manifest.string() +
+                 " were rendered: rendering all " + std::to_string(s.n) + " frames anew");
+            changed = true;
+            s.resume = false;
+            break;
+        }
+    }
     if (s.movie) clearMovieFrames(s, output);
     if (s.resume) {
         s.manifest = *s.previous;
@@ -275,12 +288,13 @@ void loadManifest(Series& s, const std::string& recipe, const std::string& outpu
         // Frames skipped now read no file in this run: the outputs are checked against what they
         // were read from (a re-run with --json onto an input's .scalars replaced it).
         std::vector<NamedPath> reads;
-        for (const std::string& f : *s.manifest.inputsRead) reads.push_back({"input", f});
+        for (const auto& [file, stamp] : *s.manifest.inputsRead) reads.push_back({"input", file});
         checkOutputs(s.outputs, reads);
     } else {
         if (s.previous) {
-            note(s.frames.manifest.string() + " records another command: rendering all " + std::to_string(s.n) +
-                 " frames anew");
+            if (!changed)
+                note(s.frames.manifest.string() + " records another command: rendering all " + std::to_string(s.n) +
+                     " frames anew");
         } else {
             uint32_t existing = 0;
             std::error_code ec;
@@ -409,8 +423,11 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
                               s.legendFont.get());
         s.manifest.done.insert(k);
         if (!s.manifest.inputsRead) s.manifest.inputsRead.emplace();
-        for (const NamedPath& f : inputFilesRead())
-            s.manifest.inputsRead->insert(fs::absolute(f.path).lexically_normal().string());
+        for (const NamedPath& f : inputFilesRead()) {
+            const std::string file = fs::absolute(f.path).lexically_normal().string();
+            if (!s.manifest.inputsRead->count(file))
+                (*s.manifest.inputsRead)[file] = session::fileStamp(file).value_or(session::FileStamp{});
+        }
         saveFrameManifest(s.frames.manifest, s.manifest);
         s.stats[k] = picture::renderStats(*picture, out, {.wallSeconds = frameTimer.seconds()});
     }
@@ -487,7 +504,8 @@ void writeSeriesJson(const std::string& file, const Series& s, const std::string
 
 bool isSeries(const CLI::App& app, const std::vector<std::string>& inputs, const std::string& output) {
     if (inputs.size() > 1) return true;
-    for (const char* o : {"--frames", "--orbit", "--series-range", "--fps", "--frames-dir"})
+    // --series-range alone does not make one input a series (one input has one range).
+    for (const char* o : {"--frames", "--orbit", "--fps", "--frames-dir"})
         if (given(app, o)) return true;
     if (!inputs.empty() && session::isInputPattern(inputs.front())) return true;
     return fs::path(output).extension() == ".mp4" || session::hasFrameNumber(output) ||

@@ -8,12 +8,16 @@
 
 namespace amrvk::picture {
 
+double firstFrameBudgetSeconds(double firstFrameSeconds) {
+    return std::clamp(kFirstFrameBudgetFactor * firstFrameSeconds, kFirstFrameGpuSeconds, kFirstFrameMaxGpuSeconds);
+}
+
 FirstFrame renderFirstFrame(render::Renderer& renderer, AfterFirstFrame after) {
     const scene::RenderSettings asGiven = renderer.settings();
     scene::RenderSettings dvr = asGiven;
     dvr.mode = scene::Mode::Dvr;
     FirstFrame f;
-    double lastSeconds = 0;
+    double lastSeconds = 0, budget = 0;
     // A frame that throws (Ctrl-C, a device error) still leaves the renderer in its own settings
     // when they are to be restored: a caller must never be left in dvr unawares.
     struct RestoreOnThrow {
@@ -39,14 +43,14 @@ FirstFrame renderFirstFrame(render::Renderer& renderer, AfterFirstFrame after) {
         f.noise = scene::meanRelativeError(out);
         lastSeconds = renderer.stats().gpuSeconds;
         f.gpuSeconds += lastSeconds;
-        ++f.frames;
+        if (f.frames++ == 0) budget = firstFrameBudgetSeconds(lastSeconds);
         if (!(f.noise > kFirstFrameNoise)) break;
         // Aliasing noise falls about 2x per halving of the step (PeleLM: 0.22, 0.078, 0.034), so
         // jump by the halvings that bring it to the target, fewer where they do not fit the time
         // left (a frame at dt / 2^k costs about 2^k times this one) or the finest step.
         int halvings = std::max(1, int(std::lround(std::log2(f.noise / kFirstFrameNoise))));
         auto fits = [&](int k) {
-            return f.gpuSeconds + lastSeconds * std::ldexp(1.0, k) <= kFirstFrameGpuSeconds &&
+            return f.gpuSeconds + lastSeconds * std::ldexp(1.0, k) <= budget &&
                    std::ldexp(dvr.dvrStep, -k) >= kFirstFrameMinDt;
         };
         while (halvings > 1 && !fits(halvings)) --halvings;

@@ -18,8 +18,14 @@ namespace amrvk::picture {
 
 inline constexpr uint32_t kFirstFrameSpp = 2;         // samples per pixel: two, so its noise is known
 inline constexpr double kFirstFrameNoise = 0.05;      // mean relative standard error: no visible grain
-inline constexpr double kFirstFrameGpuSeconds = 1.0;  // every frame's GPU time together (dt / 2^k
-                                                      // is predicted at 2^k the last frame's time)
+// Every frame's GPU time together (dt / 2^k is predicted at 2^k the last frame's time) may reach
+// kFirstFrameBudgetFactor times the first frame's, within [kFirstFrameGpuSeconds,
+// kFirstFrameMaxGpuSeconds]: the budget follows the data and the image size through that first
+// frame's cost. A fixed second stopped Enzo and AMReX at 256^2 at noise 0.07-0.09 on lavapipe,
+// where 8 times the first frame allows the three halvings that take the noise down about 8x.
+inline constexpr double kFirstFrameGpuSeconds = 1.0;
+inline constexpr double kFirstFrameBudgetFactor = 8.0;
+inline constexpr double kFirstFrameMaxGpuSeconds = 8.0;
 inline constexpr double kFirstFrameMinDt = 1.0 / 16;  // finest step tried, in finest-cell widths
 
 struct FirstFrame {
@@ -29,6 +35,9 @@ struct FirstFrame {
     double gpuSeconds = 0;  // every frame made for it, together
     uint32_t frames = 0;    // frames rendered (1 + the refinements)
 };
+
+// The GPU seconds every frame may take together, given the first frame's.
+double firstFrameBudgetSeconds(double firstFrameSeconds);
 
 // What the renderer holds after the first frame.
 enum class AfterFirstFrame {

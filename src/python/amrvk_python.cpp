@@ -37,6 +37,7 @@
 #include "gpu/shader_compiler.h"
 #include "picture/first_frame.h"
 #include "picture/picture.h"
+#include "python/fair_mutex.h"
 #include "python/keyword_messages.h"
 #include "scene/camera.h"
 #include "scene/limits.h"
@@ -534,53 +535,74 @@ public:
     void reset() { locked([&] { mPicture.renderer->resetAccumulation(); }); }
     uint32_t spp() const { return open().renderer->accumulatedSpp(); }
     // Adds n samples per pixel to the current estimate in chunks of about a quarter second, serving
-    // signals (Ctrl-C) and `progress(done, n)` between chunks with the GIL held.
+    // signals (Ctrl-C) and `progress(done, n)` between chunks with the GIL held, and other threads'
+    // calls in turn (FairMutex: a widget on the same renderer goes on refreshing).
     void accumulate(const py::object& count, const py::object& progress) {
-        const uint32_t n = countArg(count, "n");
+        accumulateChunks(countArg(count, "n"), progress, false);
+    }
+    // The chunks of accumulate(), and of render() (`restart`: the estimate reset under the first
+    // chunk's lock, so that it ends with exactly n samples). The call counts the image's samples, not
+    // its own: samples another thread adds meanwhile count, and an edit from another thread that
+    // restarts the estimate restarts the count, so the call ends with the image at n samples of the
+    // picture as it then is (issue 52, point 15).
+    void accumulateChunks(uint32_t n, const py::object& progress, bool restart) {
         open();
-        uint32_t done = 0;
-        while (done < n) {
-            uint32_t completed = 0;
+        uint32_t target = 0;             // the image's samples when this call is done
+        std::optional<uint64_t> resets;  // the estimate's resets when this call last worked on it
+        for (uint32_t done = 0; done < n;) {
+            uint32_t spp = 0;
             {
                 py::gil_scoped_release release;
                 std::lock_guard lock(mMutex);
                 if (mClosed) break;  // closed by another thread between chunks
                 render::Renderer& r = *mPicture.renderer;
-                const uint32_t height = uint32_t(r.settings().height), before = r.accumulatedSpp();
-                uint32_t rows = 0;
-                Timer t;
-                const double perSample = mSecondsPerRow * double(height);
-                if (mSecondsPerRow > 0 && perSample < kChunkSeconds && r.rowsDone() == 0) {
-                    // Whole samples, as many as fit a chunk.
-                    const uint32_t k = std::min(n - done, uint32_t(std::clamp(kChunkSeconds / perSample, 1.0, 64.0)));
-                    r.accumulate(k, {}, k);
-                    rows = k * height;
-                } else {
-                    // Tiles of rows: the first sample (its cost unknown), and samples slower than a chunk.
-                    rows = mSecondsPerRow > 0 ? uint32_t(std::clamp(kChunkSeconds / mSecondsPerRow, 1.0, double(height)))
-                                              : std::min(height, 8u);
-                    rows = std::min(rows, height - r.rowsDone());
-                    r.accumulateRows(rows);
+                if (restart && !resets) r.resetAccumulation();
+                if (!resets) {
+                    target = restart ? n : r.accumulatedSpp() + n;
+                } else if (*resets != r.updateCounts().accumulationResets) {
+                    target = n;  // restarted meanwhile
                 }
-                const double perRow = t.seconds() / double(std::max(rows, 1u));
-                mSecondsPerRow = mSecondsPerRow > 0 ? 0.5 * (mSecondsPerRow + perRow) : perRow;
-                completed = r.accumulatedSpp() - before;
+                if (r.accumulatedSpp() < target) accumulateChunk(r, target - r.accumulatedSpp());
+                resets = r.updateCounts().accumulationResets;
+                spp = r.accumulatedSpp();
             }
-            done += completed;
+            const uint32_t was = done;
+            done = n - (target - std::min(spp, target));
             requireNoValidationErrors();
             if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (!progress.is_none() && completed > 0) progress(done, n);
+            if (!progress.is_none() && done > was) progress(done, n);
         }
+    }
+    // One chunk of at most `most` samples per pixel (the device lock held): whole samples where
+    // they fit about a quarter second, else tiles of rows.
+    void accumulateChunk(render::Renderer& r, uint32_t most) {
+        const uint32_t height = uint32_t(r.settings().height);
+        uint32_t rows = 0;
+        Timer t;
+        const double perSample = mSecondsPerRow * double(height);
+        if (mSecondsPerRow > 0 && perSample < kChunkSeconds && r.rowsDone() == 0) {
+            const uint32_t k = std::min(most, uint32_t(std::clamp(kChunkSeconds / perSample, 1.0, 64.0)));
+            r.accumulate(k, {}, k);
+            rows = k * height;
+        } else {
+            // Tiles of rows: the first sample (its cost unknown), and samples slower than a chunk.
+            rows = mSecondsPerRow > 0 ? uint32_t(std::clamp(kChunkSeconds / mSecondsPerRow, 1.0, double(height)))
+                                      : std::min(height, 8u);
+            rows = std::min(rows, height - r.rowsDone());
+            r.accumulateRows(rows);
+        }
+        const double perRow = t.seconds() / double(std::max(rows, 1u));
+        mSecondsPerRow = mSecondsPerRow > 0 ? 0.5 * (mSecondsPerRow + perRow) : perRow;
     }
     py::array_t<float> render(const py::object& spp, const py::object& progress, const py::object& legend,
                               const py::object& until) {
         const bool withLegend = !legend.is_none() && keywordArg<bool>(legend, "legend", "True, False or None");
         const uint32_t n = spp.is_none() ? (session().spp > 0 ? session().spp : 64) : countArg(spp, "spp");
-        reset();
         if (until.is_none()) {
-            accumulate(py::int_(n), progress);
+            accumulateChunks(n, progress, true);
             return imageArray(picture(withLegend));
         }
+        reset();
         // As render --until-error: checks at scene::kFirstNoiseCheckSpp and at each doubling, spp the cap.
         const double target = keywordArg<double>(until, "until", "a number in (0, 1]");
         if (!(target > 0 && target <= 1)) throw py::value_error(strCat("until: ", formatDouble(target), " is outside (0, 1]"));
@@ -603,8 +625,8 @@ public:
     }
     // The picture so far, with the legend drawn at its side or over it when `withLegend`. Before
     // any sample it is the first frame (firstFrame), not a black image.
-    Image picture(bool withLegend) const {
-        const scene::RenderOutput out = output();
+    Image picture(bool withLegend) const { return pictureOf(output(), withLegend); }
+    Image pictureOf(const scene::RenderOutput& out, bool withLegend) const {
         Image mean = out.spp > 0 ? out.mean : firstFrame().image;  // before any sample: the first frame
         if (!withLegend) return mean;
         const session::Session s = session();
@@ -655,6 +677,16 @@ public:
             throw py::value_error("legend: only PNG images get a legend (save to a .png, or legend=False)");
         writeImage(path, picture(legendWanted(legend) && ext == ".png"));
     }
+    // One state of the image, read together (the widget's status counted samples in one call and
+    // showed the image of another: "16/64" over 72): (spp, PNG bytes, mean standard error or None);
+    // (0, None, None) while the image has no sample (no first frame is made for it).
+    py::tuple snapshot(const py::object& legend) const {
+        const scene::RenderOutput out = output();
+        if (out.spp == 0) return py::make_tuple(0, py::none(), py::none());
+        const std::vector<uint8_t> bytes = pngBytes(pictureOf(out, legendWanted(legend)));
+        return py::make_tuple(out.spp, py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                              out.spp >= 2 ? py::object(py::float_(meanStandardError(out))) : py::object(py::none()));
+    }
     py::bytes png(const py::object& legend) const {
         const std::vector<uint8_t> bytes = pngBytes(picture(legendWanted(legend)));
         return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -683,12 +715,7 @@ public:
         const scene::StructureConfig& c = mPicture.renderer->config();
         std::string noise;
         const scene::RenderOutput out = output();
-        if (out.spp >= 2) {
-            const std::vector<float> var = scene::varianceOfMean(out);
-            double sum = 0;
-            for (float x : var) sum += std::sqrt(std::max(x, 0.0f));
-            noise = ", mean standard error " + g4(sum / double(std::max<size_t>(var.size(), 1)));
-        }
+        if (out.spp >= 2) noise = ", mean standard error " + g4(meanStandardError(out));
         const picture::FirstFrame* f = shownFirstFrame();
         const std::string first = f ? strCat(" (shown: the dvr first frame, ", picture::kFirstFrameSpp, " spp, dt ",
                                              g4(f->dt), ", noise ", g4(f->noise), ")")
@@ -748,6 +775,14 @@ public:
 private:
     static constexpr double kChunkSeconds = 0.25;
 
+    // The mean over pixels and channels of the standard error of the mean (out.spp >= 2).
+    static double meanStandardError(const scene::RenderOutput& out) {
+        const std::vector<float> var = scene::varianceOfMean(out);
+        double sum = 0;
+        for (float x : var) sum += std::sqrt(std::max(x, 0.0f));
+        return sum / double(std::max<size_t>(var.size(), 1));
+    }
+
     // As the CLI: with validation on, any validation error fails the call (its message went to
     // stderr when it happened).
     void requireNoValidationErrors() const {
@@ -778,7 +813,8 @@ private:
     std::shared_ptr<gpu::Context> mCtx;  // outlives the picture (declared first)
     std::vector<NamedPath> mDataFiles;   // outputs refuse these
     picture::Picture mPicture;
-    mutable std::mutex mMutex;  // one device call at a time (the GIL is released around them)
+    mutable python::FairMutex mMutex;     // one device call at a time, in the order they came (the GIL is
+                                          // released around them)
     mutable std::unique_ptr<Font> mFont;  // the legend's, opened when first drawn
     mutable std::string mFontFor;         // the legend.font it was opened for
     double mSecondsPerRow = 0;  // measured, for chunk sizes
@@ -1242,6 +1278,9 @@ void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c
              "the image so far: .png (sRGB), .exr or .pfm (linear); the legend in PNGs (legend None: the renderer's)")
         .def("save_session", &PyRenderer::saveSession, py::arg("path"),
              "the picture as a session file (amrvk view --session, amrvk render --session)")
+        .def("_snapshot", &PyRenderer::snapshot, py::arg("legend") = py::none(),
+             "(spp, png bytes, mean standard error or None) of one state of the image (the widget's status); "
+             "(0, None, None) without a sample")
         .def("png", &PyRenderer::png, py::arg("legend") = py::none(),
              "the image so far as PNG bytes (what save writes to a .png)")
         .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")

@@ -143,7 +143,9 @@ void VolumeScene::buildStaticBoxes() {
 accel::KdTree VolumeScene::kdTreeFor(const TransferFunction& tf) const {
     AMRVK_CHECK(supportRanges.has_value(), "internal: a kd-tree needs the kdtree traversal's support ranges");
     accel::KdTreeParams params;
-    params.maxLeaves = mConfig.kdLeaves;
+    // Never more leaves than cells: a leaf finer than the cells tightens little, and --kd-leaves
+    // 16777215 on 32,768 cells reserved a 1 GB tree.
+    params.maxLeaves = uint32_t(std::max<uint64_t>(1, std::min<uint64_t>(mConfig.kdLeaves, mVolume->cellCount)));
     // Rebuilt at every TF change (the viewer's edits): a line only where the data makes it long.
     std::optional<ProgressStage> stage;
     if (mVolume->bricks.bricks.size() >= (size_t(1) << 16))

@@ -46,6 +46,11 @@ std::string fittedPresetNote(const std::string& name, const amr::Percentiles& p,
 Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std::vector<std::string>* notes) {
     Session s = d.session;
     s.field = v.field().name;
+    // The density-like default (amr::defaultFieldIndex) said where it is not the first field listed.
+    const std::vector<std::string>& listed = v.model.availableFields;
+    if (d.session.field.empty() && notes && !listed.empty() && listed.front() != s.field)
+        notes->push_back(strCat("field '", s.field, "' shown: the density-like one of ", listed.size(),
+                                " (the first listed is '", listed.front(), "'; --field NAME shows another)"));
     if (s.read.scale == amr::FieldScale::Auto) s.read.scale = amr::scaleOf(v.model);  // as the field decided
     if (d.tfSource || d.tfRange) {
         // A series' distribution stands for the volume's own.

@@ -215,6 +215,15 @@ glm::dvec3 vec3(const Json& j, const char* key, const std::string& where) {
 }
 }  // namespace
 
+std::optional<FileStamp> fileStamp(const fs::path& path) {
+    std::error_code ec;
+    const uint64_t bytes = fs::file_size(path, ec);
+    if (ec) return std::nullopt;
+    const auto modified = fs::last_write_time(path, ec);
+    if (ec) return std::nullopt;
+    return FileStamp{bytes, int64_t(modified.time_since_epoch().count())};
+}
+
 std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return std::nullopt;
@@ -274,7 +283,12 @@ std::optional<FrameManifest> loadFrameManifest(const fs::path& path) {
         m.camera.fovYDegrees = c.at("fovYDegrees").get<double>();
         m.centre = vec3(j, "centre", where);
         m.field = j.at("field").get<std::string>();
-        if (j.contains("inputsRead")) m.inputsRead = j["inputsRead"].get<std::set<std::string>>();
+        // An older amrvk listed the files without their stamps (an array): read as not listed.
+        if (j.contains("inputsRead") && j["inputsRead"].is_object()) {
+            m.inputsRead.emplace();
+            for (const auto& [file, stamp] : j["inputsRead"].items())
+                (*m.inputsRead)[file] = {stamp.at(0).get<uint64_t>(), stamp.at(1).get<int64_t>()};
+        }
     } catch (const nlohmann::json::exception& e) {
         throw Error(strCat(where, ": malformed frame manifest (", e.what(), "); remove it to render every frame"));
     }
@@ -297,7 +311,10 @@ void saveFrameManifest(const fs::path& path, const FrameManifest& m) {
                    {"fovYDegrees", m.camera.fovYDegrees}};
     j["centre"] = vec3(m.centre);
     j["field"] = m.field;
-    if (m.inputsRead) j["inputsRead"] = *m.inputsRead;
+    if (m.inputsRead) {
+        j["inputsRead"] = Json::object();
+        for (const auto& [file, stamp] : *m.inputsRead) j["inputsRead"][file] = {stamp.bytes, stamp.modified};
+    }
     writeFileAtomic(path, j.dump(2) + "\n");
 }
 

@@ -5,6 +5,7 @@
 // of the same command skip the frames it already wrote.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -65,6 +66,15 @@ bool hasFrameNumber(std::string_view text);
 // are DIR/frame_%04d.png. A plain file name is an error when frameCount > 1.
 FrameOutput frameOutput(const std::string& option, const std::string& text, uint32_t frameCount);
 
+// A file's size and modification time, to tell whether it changed since it was read.
+struct FileStamp {
+    uint64_t bytes = 0;
+    int64_t modified = 0;  // std::filesystem::file_time_type ticks
+    bool operator==(const FileStamp&) const = default;
+};
+// `path`'s stamp now; nullopt when it cannot be read (removed, or not a file).
+std::optional<FileStamp> fileStamp(const std::filesystem::path& path);
+
 // What the manifest beside the frames records: the command that made them and which are done.
 struct FrameManifest {
     std::string recipe;       // what makes the frames (the caller's canonical text of the command)
@@ -78,9 +88,11 @@ struct FrameManifest {
     scene::Camera camera;                            // frame 0's camera (azimuth 0)
     glm::dvec3 centre{0.0};                          // the orbit's centre (the first output's world box centre)
     std::string field;                               // the field every output shows
-    // Every file the done frames were read from (absolute paths), so that a re-run that renders
-    // nothing still refuses an output that would replace one; none in an older amrvk's manifest.
-    std::optional<std::set<std::string>> inputsRead;
+    // Every file the done frames were read from (absolute paths), with its size in bytes and its
+    // modification time (the file clock's ticks) then: a re-run that renders nothing still refuses
+    // an output that would replace one, and renders anew when any of them changed. None in an
+    // older amrvk's manifest.
+    std::optional<std::map<std::string, FileStamp>> inputsRead;
 };
 // nullopt when the file does not exist; a one-line error naming it when it is not a manifest.
 std::optional<FrameManifest> loadFrameManifest(const std::filesystem::path& path);

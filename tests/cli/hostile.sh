@@ -450,6 +450,17 @@ check1 ls sigd.cells.tmp-*
 kill -INT $pid; wait $pid; rc=$?
 check1 test "$rc" -gt 128
 check1 test -z "$(ls | grep '^sigd' || true)"
+# SIGINT while convert holds 101 temporaries at once (100 fields) left some behind in a round-4
+# report (point 18; not reproduced at today's main, whose handler has 1024 slots): the signal
+# comes once more than 64 exist, and none may stay.
+mkdir -p many; "$amrvk" gen cloud --cells 500 --seed 1 -o many/w >/dev/null 2>&1
+for i in $(seq -w 0 99); do cp many/w.scalars many/w.f0$i.scalars; done
+AMRVK_TEST_TEMPORARY_DELAY_MS=30 "$amrvk" convert many/w.cells -o many/out >/dev/null 2>&1 & pid=$!
+for _ in $(seq 1000); do [ "$(ls many | grep -c '\.tmp-')" -gt 80 ] && break; sleep 0.02; done
+check1 test "$(ls many | grep -c '\.tmp-')" -gt 64
+kill -INT $pid; wait $pid; rc=$?
+check1 test "$rc" -gt 128
+check1 test -z "$(ls many | grep -e '\.tmp-' -e '^out' || true)"
 # A clip plane's normal is normalised without overflow or underflow: 1e308 (and 1e154) and 1e-200
 # per component cut as 1 1 1 does; only an exact zero is refused.
 clip=(--clip 2 1 1)
@@ -568,6 +579,20 @@ python3 -c "import json; m = json.load(open('fr/frame_manifest.json')); del m['i
 ok render good.cells good2.cells "${pic[@]}" -o fr/ --json fr.json
 check1 grep -q "2 frames: 2 rendered" "$dir/ok.out"
 check1 grep -q "does not list the files its frames were read from" "$dir/ok.err"
+# A re-run after an input changed rendered nothing and kept the stale frames (point 9): the
+# manifest stamps each file read (size, modification time), and a changed one renders anew.
+ok render good.cells good2.cells "${pic[@]}" -o fr/
+check1 grep -q "2 frames: 0 rendered" "$dir/ok.out"
+python3 -c "import struct; open('good2.rho.scalars','r+b').write(struct.pack('<f', 7.5))"
+ok render good.cells good2.cells "${pic[@]}" -o fr/
+check1 grep -q "2 frames: 2 rendered" "$dir/ok.out"
+check1 grep -q "good2.rho.scalars changed since the frames in fr/frame_manifest.json were rendered: rendering all 2 frames anew" "$dir/ok.err"
+cp good2.orig good2.rho.scalars
+# --series-range of one input into one picture wrote a_manifest.json beside it and then kept a
+# stale picture (point 9): one input is one picture, with a note that the option changes nothing.
+ok render good.cells "${pic[@]}" --series-range first -o sr.png
+check1 test -s sr.png -a ! -e sr_manifest.json
+check1 grep -q "^amrvk: --series-range: one input has one range" "$dir/ok.err"
 # A medium so dense that its free paths are below float resolution ends each tracking call at
 # once, also for rays that start at a collision (t = 0), where each burned the step cap: ms at
 # --density-scale 1e30 took 42 s of GPU for 256 paths (point 6; ae was fixed in round 3).
@@ -589,6 +614,10 @@ expect1 "--legend-units applies only with --legend" -- render good.cells "${pic[
 check1 test ! -e lu.png
 expect1 "--legend-title: 300 bytes (at most 256)" -- render good.cells "${pic[@]}" --legend --legend-title "$(head -c 300 /dev/zero | tr '\0' t)" -o lt.png
 check1 test ! -e lt.png
+# --kd-leaves 16777215 on a small data set reserved a 1 GB tree and ended in "out of memory"
+# (point 18): the leaves are bounded by the cells (about 60 bytes each on the host).
+ok render good.cells "${pic[@]}" --traversal kdtree --kd-leaves 16777215 -o kbig.png --json kbig.json
+check1 python3 -c 'import json,os,sys; j=json.load(open(sys.argv[1])); n=os.path.getsize("good.cells")//16; b=j["hostMemoryPerStructure"]["kdTree"]; assert 0 < b <= 64*n, (n, b)' kbig.json
 # Misleading messages (point 16): a colour a rounding above 1 printed as 1; a NaN range called
 # unordered; gen's limit unlike its --help; control characters of a name printed raw by gen and
 # convert; an all-NaN field under --nan drop called "no cells".

@@ -64,4 +64,12 @@ echo "plots: $(tr '\n' ' ' <"$dir/stdout.txt")"
 check test "$rc" = 1
 check test "$(wc -l <"$dir/missing.err")" = 1
 check grep -q "results.json" "$dir/missing.err"
+# A plot that cannot be written (a full disk; here its name is a directory) is named, not
+# results.json, and no temporary stays.
+mkdir -p "$dir/blocked"; cp "$dir/out/results.json" "$dir/blocked/"; mkdir "$dir/blocked/memory_cloud_cells.png"
+"$python" "$script" "$dir/blocked" >/dev/null 2>"$dir/blocked.err"; rc=$?
+check test "$rc" = 1
+check test "$(wc -l <"$dir/blocked.err")" = 1
+check grep -q "^plot_bench.py: error: cannot write $dir/blocked/memory_cloud_cells.png: Is a directory$" "$dir/blocked.err"
+check test -z "$(ls "$dir/blocked" | grep tmp-)"
 exit $fail

@@ -154,6 +154,18 @@ TEST(AmrexReader, HeaderPathAndAllFields) {
     EXPECT_FLOAT_EQ(m.field("density").values[i], static_cast<float>(0.21436366927536127));
 }
 
+// Its first field is x_velocity; the picture's default is its density (issue 52, point 10).
+TEST(AmrexReader, TheDefaultFieldIsTheDensity) {
+    AMRVK_REQUIRE_DATA(kPlotfile);
+    const Model m = readModel(test::dataDir() / kPlotfile, ReadOptions{});
+    EXPECT_EQ(m.availableFields.front(), "x_velocity");
+    EXPECT_EQ(m.defaultField().name, "density");
+    Model chunkField;
+    visitCells(test::dataDir() / kPlotfile, ReadOptions{}, [&](const Model& chunk) { chunkField = chunk; });
+    ASSERT_EQ(chunkField.fields.size(), 1u);
+    EXPECT_EQ(chunkField.fields[0].name, "density");
+}
+
 TEST(AmrexReader, UnknownFieldListsAvailable) {
     AMRVK_REQUIRE_DATA(kPlotfile);
     ReadOptions o;

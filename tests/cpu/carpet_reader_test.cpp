@@ -219,6 +219,67 @@ TEST(CarpetHostile, NumbersBeyondTheLimitAreNamedNotSkipped) {
         {copy.string(), "'WAVETOY::phi it=64 tl=0 rl=2147483648': rl=2147483648 is beyond this reader's limit"});
 }
 
+// Misleading messages (issue 52, point 16): cells of 1e-300 or 1e300 were reported as a camera
+// whose eye and target coincide, or that is not finite; a finite 1e300 as "non-finite (inf)"; a
+// 2-D dataset among 3-D levels as a gap in the levels; an iteration of 2^32 as a missing
+// timelevel. Each now names what is wrong.
+TEST(CarpetHostile, Round4MessagesNameWhatIsWrong) {
+    AMRVK_REQUIRE_DATA(kWaveToy);
+    // Scaled by 1e-20 the file stays inside the limits: the check rejects only what it names.
+    for (const double factor : {1e-20, 1e-300, 1e300}) {
+        SCOPED_TRACE(factor);
+        const fs::path copy = editedCopy([&](hid_t f) {
+            for (int rl = 0; rl < 4; ++rl) {
+                const std::string name = "WAVETOY::phi it=64 tl=0 rl=" + std::to_string(rl);
+                for (const char* attr : {"delta", "origin"}) {
+                    const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+                    const hid_t a = H5Aopen(d, attr, H5P_DEFAULT);
+                    std::vector<double> v(3);
+                    EXPECT_GE(H5Aread(a, H5T_NATIVE_DOUBLE, v.data()), 0);
+                    H5Aclose(a);
+                    H5Dclose(d);
+                    for (double& x : v) x *= factor;
+                    writeNumbers<double>(f, name.c_str(), attr, v);
+                }
+            }
+        });
+        if (factor == 1e-20) {
+            EXPECT_NEAR(readModel(copy, {}).voxelToWorld.scale.x, 0.1052631578947368 / 8 * 1e-20, 1e-30);
+            continue;
+        }
+        expectError([&] { readModel(copy, {}); }, {copy.string(), ": a finest cell is", "wide on axis 0",
+                                                   "amrvk's world coordinates hold cell sizes in [1e-30, 1e+30]"});
+    }
+    fs::path copy = editedCopy([](hid_t f) {
+        const hid_t d = H5Dopen2(f, "WAVETOY::phi it=64 tl=0 rl=0", H5P_DEFAULT);
+        std::vector<double> v(20 * 20 * 20, 1e300);
+        EXPECT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+        H5Dclose(d);
+    });
+    expectError([&] { readModel(copy, {}); },
+                {copy.string(), "'WAVETOY::phi it=64 tl=0 rl=0' has a cell whose corners' mean is 1e+300",
+                 "beyond the 32-bit floats"});
+    copy = editedCopy([](hid_t f) {
+        EXPECT_GE(H5Ldelete(f, kRl2, H5P_DEFAULT), 0);
+        const hsize_t dims[2] = {25, 25};
+        const hid_t space = H5Screate_simple(2, dims, nullptr);
+        const hid_t d = H5Dcreate2(f, kRl2, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        EXPECT_GE(d, 0);
+        H5Dclose(d);
+        H5Sclose(space);
+    });
+    expectError([&] { readModel(copy, {}); },
+                {copy.string(),
+                 "'WAVETOY::phi it=64 tl=0 rl=2' has 2 axes where the other datasets of 'WAVETOY::phi' "
+                 "have 3 (amrvk reads 3-D Carpet grids)"});
+    copy = editedCopy([](hid_t f) {
+        EXPECT_GE(H5Lmove(f, "WAVETOY::phi it=64 tl=0 rl=0", f, "WAVETOY::phi it=4294967296 tl=0 rl=0", H5P_DEFAULT,
+                          H5P_DEFAULT),
+                  0);
+    });
+    expectError([&] { readModel(copy, {}); }, {copy.string(), "it=4294967296 is beyond this reader's limit"});
+}
+
 TEST(CarpetHostile, GeometryThatDisagreesWithTheIndicesIsRejected) {
     AMRVK_REQUIRE_DATA(kWaveToy);
     fs::path copy = editedCopy([](hid_t f) { writeNumbers<double>(f, kRl2, "delta", {0.05, 0.05, 0.05}); });

@@ -1,6 +1,10 @@
+#include "amr/model.h"
+
 #include <gtest/gtest.h>
 
-#include "amr/model.h"
+#include <cmath>
+#include <tuple>
+
 #include "core/error.h"
 
 using namespace amrvk;
@@ -31,6 +35,45 @@ TEST(Model, ValidModelPasses) {
     EXPECT_EQ(s.bounds.lower, glm::i64vec3(0));
     EXPECT_EQ(s.bounds.upper, glm::i64vec3(4, 2, 2));
     EXPECT_DOUBLE_EQ(s.leafVolume, 16.0);
+}
+
+// The field a picture shows when none is named (issue 52, point 10): the density-like one, as yt
+// shows, else the first (an AMReX plotfile lists x_velocity first).
+TEST(Model, TheDefaultFieldIsTheDensityLikeOneElseTheFirst) {
+    EXPECT_EQ(defaultFieldIndex({"x_velocity", "y_velocity", "density", "rhoh"}), 2u);
+    EXPECT_EQ(defaultFieldIndex({"Density", "Dark_Matter_Density"}), 0u);
+    EXPECT_EQ(defaultFieldIndex({"velx", "RHO"}), 1u);
+    EXPECT_EQ(defaultFieldIndex({"velx", "dens", "rho"}), 1u);
+    EXPECT_EQ(defaultFieldIndex({"Enthalpy", "Dark_Matter_Density", "densityish"}), 0u);
+    EXPECT_EQ(defaultFieldIndex({}), 0u);
+    Model m = twoLevelModel();
+    m.fields.insert(m.fields.begin(), {"x_velocity", m.fields[0].values});
+    m.fields.push_back({"gas_density", m.fields[0].values});
+    EXPECT_EQ(m.defaultField().name, "gas_density");
+}
+
+// World coordinates beyond what amrvk holds are named (issue 52, point 16: Carpet cells of
+// 1e-300 were reported as a camera whose eye and target coincide).
+TEST(Model, ATransformBeyondTheWorldLimitsIsRejected) {
+    Model m = twoLevelModel();
+    EXPECT_NO_THROW(validateCells(m));
+    m.voxelToWorld.scale = glm::dvec3(1e-30);
+    EXPECT_NO_THROW(validateCells(m));
+    for (const auto& [scale, origin, fragment] :
+         std::vector<std::tuple<double, double, std::string>>{{1e-31, 0, "test: a finest cell is 1e-31 wide on axis 0"},
+                                                              {1e31, 0, "test: a finest cell is 1e+31 wide on axis 0"},
+                                                              {std::nan(""), 0, "a finest cell is nan wide"},
+                                                              {1, -2e30, "test: the origin is -2e+30 on axis 0"},
+                                                              {1, INFINITY, "the origin is inf on axis 0"}}) {
+        m.voxelToWorld.scale = glm::dvec3(scale);
+        m.voxelToWorld.origin = glm::dvec3(origin);
+        try {
+            validateCells(m);
+            ADD_FAILURE() << "accepted " << fragment;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(Model, MisalignedCellIsRejected) {

@@ -154,3 +154,26 @@ TEST(PictureDescription, ASavedSessionKeepsItsFittedTf) {
     for (float& x : other.fields[0].values) x *= 3.0f;
     expectSameTf(resolvedTf(again, *scene::makeVolume(std::move(other))), fitted.tf.merged());
 }
+
+// With no field named, the density-like field is shown, and a note says so where it is not the
+// first listed (issue 52, point 10: an AMReX plotfile showed x_velocity, its first field).
+TEST(PictureDescription, TheDefaultFieldIsSaidWhereItIsNotTheFirst) {
+    amr::Model m = test::makeThreeLevelCloud();
+    m.fields[0].name = "density";
+    m.fields.insert(m.fields.begin(), {"x_velocity", m.fields[0].values});
+    m.availableFields = {"x_velocity", "density"};
+    const std::shared_ptr<const scene::Volume> v = scene::makeVolume(std::move(m));
+    PictureDescription d;
+    d.session.input = "plt";
+    std::vector<std::string> notes;
+    EXPECT_EQ(resolvePicture(d, *v, &notes).field, "density");
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0],
+              "field 'density' shown: the density-like one of 2 (the first listed is 'x_velocity'; "
+              "--field NAME shows another)");
+    // Named, or the first listed: no note.
+    notes.clear();
+    d.session.field = "density";
+    resolvePicture(d, *v, &notes);
+    EXPECT_TRUE(notes.empty());
+}

@@ -184,6 +184,10 @@ TEST_F(PictureGpu, TheFirstFrameHalvesTheStepWhileItIsNoisyAndLeavesTheRendererA
     EXPECT_DOUBLE_EQ(f.dt, std::ldexp(given.dvrStep, -halvings));
     EXPECT_GE(halvings, int(f.frames) - 1);
     EXPECT_GE(f.dt, picture::kFirstFrameMinDt);
+    // The budget follows the first frame's cost: 8x it, within [1 s, 8 s].
+    EXPECT_DOUBLE_EQ(picture::firstFrameBudgetSeconds(0.01), picture::kFirstFrameGpuSeconds);
+    EXPECT_DOUBLE_EQ(picture::firstFrameBudgetSeconds(0.5), 4.0);
+    EXPECT_DOUBLE_EQ(picture::firstFrameBudgetSeconds(3.0), picture::kFirstFrameMaxGpuSeconds);
     const bool budgetLeft = f.gpuSeconds * 1.5 < picture::kFirstFrameGpuSeconds;  // this machine: far under
     EXPECT_TRUE(f.noise <= picture::kFirstFrameNoise || f.dt / 2 < picture::kFirstFrameMinDt || !budgetLeft)
         << "stopped early: noise " << f.noise << " at dt " << f.dt;

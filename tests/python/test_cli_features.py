@@ -2,6 +2,7 @@
 (_repr_png_) and render, drawn by the CLI's own code; matplotlib colormaps by name; camera orbit,
 zoom and conversion from and to yt's camera; and the Jupyter widget that refines and orbits."""
 import math
+import threading
 import time
 
 import numpy as np
@@ -125,7 +126,7 @@ def test_the_widget_refines_and_orbits(amrvk):
     w = amrvk.Widget(r, spp=8, batch=2)
     try:
         # At once, before any path-traced sample: the renderer's dvr first frame (the thread
-        # replaces it from its first batch on). Its step is refined while a 1 s GPU budget allows,
+        # replaces it from its first batch on). Its step is refined while its GPU budget allows,
         # so under load it may stop a refinement earlier than the other renderer's: the same
         # picture up to the step's aliasing, not byte for byte.
         assert w.first_frame is not None and w.status.value.startswith("first frame (dvr")
@@ -167,3 +168,40 @@ def test_the_widget_refines_and_orbits(amrvk):
         amrvk.Widget(None)
     with pytest.raises(ValueError, match=r"^spp: 0 is outside \[1, 16777216\]$"):
         amrvk.Widget(r, spp=0)
+
+
+def test_a_long_call_yields_to_the_widget_and_the_count_is_the_images(amrvk):
+    # Issue 52, point 15: r.render(spp=1024) held the renderer for the whole call (the widget and
+    # its sliders froze), and the status counted samples in one call and showed another's image.
+    # Now the long call yields between its quarter-second chunks in turn (a fair lock): a slider
+    # moved while it runs is served while it still runs, and restarts its count, so it returns the
+    # samples it was asked for, of the new view.
+    pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), **SMALL)
+    first = r.camera
+    w = amrvk.Widget(r, spp=4, batch=2)
+    try:
+        assert w.wait(120)
+        long_spp, images = 512, []
+        t = threading.Thread(target=lambda: images.append(r.render(spp=long_spp)))
+        t.start()
+        deadline = time.monotonic() + 120
+        while r.spp < 8 and t.is_alive() and time.monotonic() < deadline:  # under way, past the widget's 4
+            time.sleep(0.01)
+        w.azimuth.value = 45  # sets r.camera from this thread: waits its turn, one chunk at most
+        moved_while_running = t.is_alive()
+        t.join(300)
+        assert not t.is_alive() and moved_while_running, "the slider waited for the whole call"
+        assert r.spp == long_spp, r.spp
+        np.testing.assert_allclose(r.camera.eye, first.orbit(45).eye, rtol=1e-12)
+        assert images[0].shape[:2] == (64, 96)
+        spp, png, error = r._snapshot()
+        assert spp == long_spp and png == r.png() and error is not None
+        assert w.wait(120)
+        assert w.image.value == png and w.status.value == f"{long_spp}/4 spp, mean standard error {error:.4g}", \
+            w.status.value
+    finally:
+        w.close()
+    assert r._snapshot()[0] == long_spp
+    r.reset()
+    assert r._snapshot() == (0, None, None)
