@@ -439,24 +439,7 @@ struct TileLattice {
         if (macrocells > 1 && counted > double(kSharedVertices * macrocells)) return split();
         // One macrocell across many cells: the per-brick ranges (finish); up to 4 counted per plane.
         if (macrocells == 1 && counted > 64.0 * double(kMaxExactVertices)) return;
-        for (int a = 0; a < 3; ++a) {
-            std::vector<double>& pl = s.planes[a];
-            pl.clear();
-            for (int i = c0[a]; i < c1[a]; ++i)
-                for (double f : {boxLo(a, i), boxHi(a, i)})
-                    if (faceInside(a, f)) pl.push_back(f);
-            for (uint32_t id : own) {
-                const AxisBreakpoints p = breakpoints(bricks.bricks[id], a, lo[a], hi[a]);
-                for (double e : p.ends)
-                    if (e >= lo[a] && e <= hi[a]) pl.push_back(e);
-                for (double k = p.k0; k <= p.k1; k += 1.0) {
-                    const double c = p.centre(k);
-                    if (c >= lo[a] && c <= hi[a]) pl.push_back(c);
-                }
-            }
-            std::sort(pl.begin(), pl.end());
-            pl.erase(std::unique(pl.begin(), pl.end()), pl.end());
-        }
+        gatherPlanes(c0, c1, lo, hi, own, faceInside, s);
         if (macrocells == 1 && s.planes[0].size() * s.planes[1].size() * s.planes[2].size() > kMaxExactVertices) return;
         for (int a = 0; a < 3; ++a) {
             const std::vector<double>& pl = s.planes[a];
@@ -486,7 +469,40 @@ struct TileLattice {
                 for (int x = 0; x < m.x; ++x)
                     if (exactAt(x, y, z)) s.exact[local(x, y, z)] = any = true;
         if (!any) return;  // one macrocell across many cells: the per-brick ranges (finish)
-        // N and D at the lattice's vertices, chunk by chunk, and the macrocells' ranges over them.
+        rangesAtVertices(m, own, exactAt, local, s);
+    }
+
+    // The sorted, distinct planes of box()'s lattice on each axis into s.planes: the macrocells'
+    // faces inside the bricks' hull (faceInside), and each brick's breakpoints within [lo, hi].
+    template <typename FaceInside>
+    void gatherPlanes(glm::ivec3 c0, glm::ivec3 c1, glm::dvec3 lo, glm::dvec3 hi, const std::vector<uint32_t>& own,
+                      const FaceInside& faceInside, TileScratch& s) const {
+        for (int a = 0; a < 3; ++a) {
+            std::vector<double>& pl = s.planes[a];
+            pl.clear();
+            for (int i = c0[a]; i < c1[a]; ++i)
+                for (double f : {boxLo(a, i), boxHi(a, i)})
+                    if (faceInside(a, f)) pl.push_back(f);
+            for (uint32_t id : own) {
+                const AxisBreakpoints p = breakpoints(bricks.bricks[id], a, lo[a], hi[a]);
+                for (double e : p.ends)
+                    if (e >= lo[a] && e <= hi[a]) pl.push_back(e);
+                for (double k = p.k0; k <= p.k1; k += 1.0) {
+                    const double c = p.centre(k);
+                    if (c >= lo[a] && c <= hi[a]) pl.push_back(c);
+                }
+            }
+            std::sort(pl.begin(), pl.end());
+            pl.erase(std::unique(pl.begin(), pl.end()), pl.end());
+        }
+    }
+
+    // N and D at the lattice's vertices (s.planes), chunk by chunk, and the ranges of f = N / D
+    // over them into s.lo and s.hi of each macrocell of the box (m per axis) that is exact
+    // (exactAt); local(x, y, z) is the macrocell's index in the tile.
+    template <typename ExactAt, typename Local>
+    void rangesAtVertices(glm::ivec3 m, const std::vector<uint32_t>& own, const ExactAt& exactAt, const Local& local,
+                          TileScratch& s) const {
         const size_t np[3] = {s.planes[0].size(), s.planes[1].size(), s.planes[2].size()};
         for (size_t z0 = 0; z0 < np[2]; z0 += kChunkPlanes)
             for (size_t y0 = 0; y0 < np[1]; y0 += kChunkPlanes)

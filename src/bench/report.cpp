@@ -231,6 +231,59 @@ std::string resultsCsv(const BenchResults& res) {
     return csv;
 }
 
+// The sections of one mode: frames/s, seconds to the target RMSE, per-path figures and where
+// the time goes.
+std::string modeMarkdown(const BenchResults& res, const std::string& mode) {
+    std::string md;
+    Table t = matrixTable(res, mode);
+    md +=
+        "## Frames/s, mode " + mode + "\n\nBest three in bold with their rank, the worst in italics (per column).\n\n";
+    md += markdownTable(
+        t, [](const RunResult& r) { return r.fps; }, true, [](double v) { return num(v, 3); });
+    md += "\n## Seconds to the target RMSE, mode " + mode +
+          "\n\nGPU seconds until the RMSE against the reference falls below the group's target (`~`: "
+          "extrapolated along the measured slope; n/a: not reached).\n\n";
+    md += markdownTable(
+        t, [](const RunResult& r) { return r.toTarget ? r.toTarget->seconds : 0.0; }, false,
+        [](double v) { return num(v, 3); });
+    md += "\n## Per-path figures, mode " + mode + "\n\n";
+    md +=
+        "| data set | TF | combination | M paths/s | lookups/path | steps/path | null/real | violations | build s | "
+        "TF edit s (GPU + host) | MiB after build / peak | final RMSE | slope | x dense cost |\n";
+    md += "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const RunResult& r : res.runs) {
+        if ((r.kind != "matrix" && r.kind != "dense" && r.kind != "auto") || r.mode != mode) continue;
+        md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | ";
+        if (!r.error.empty()) {
+            md += "failed: " + r.error + " |||||||||||\n";
+            continue;
+        }
+        md += num(r.mPathsPerSecond) + " | " + num(r.lookupsPerPath) + " | " + num(r.stepsPerPath) + " | " +
+              num(r.nullPerReal) + " | " + std::to_string(r.violations) + " | " + num(r.buildSeconds) + " | " +
+              num(r.majorantSeconds) + " + " + num(r.tfStructureSeconds) + " | " + num(mib(r.deviceBytesAfterBuild)) +
+              " / " + num(mib(r.deviceBytesPeak)) + " | " + (r.curve.empty() ? "" : num(r.curve.back().rmse)) + " | " +
+              (r.slope ? num(*r.slope, 3) : "") + " | " + (r.costRatioToDense > 0 ? num(r.costRatioToDense, 3) : "") +
+              " |\n";
+    }
+    md += "\n## Where the time goes, per path, mode " + mode +
+          "\n\nDistributions over paths (mean, p50 / p90 / p99 / max; counts above 8 within 25%), the share of "
+          "lookups made by shadow rays and the SIMD lanes' share of useful lookup work.\n\n| data set | TF | "
+          "combination | lookups | null collisions | real collisions | traversal steps | shadow share | lane use "
+          "|\n|---|---|---|---|---|---|---|---:|---:|\n";
+    for (const RunResult& r : res.runs) {
+        if ((r.kind != "matrix" && r.kind != "auto") || r.mode != mode || !r.error.empty()) continue;
+        auto show = [](const scene::PathDistribution& d) {
+            return num(d.mean) + "; " + std::to_string(d.p50) + " / " + std::to_string(d.p90) + " / " +
+                   std::to_string(d.p99) + " / " + std::to_string(d.max);
+        };
+        md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | " + show(r.perPath[shared::kPathLookups]) +
+              " | " + show(r.perPath[shared::kPathNulls]) + " | " + show(r.perPath[shared::kPathReal]) + " | " +
+              show(r.perPath[shared::kPathSteps]) + " | " + num(r.shadowLookupShare) + " | " + num(r.laneUse) + " |\n";
+    }
+    md += "\n";
+    return md;
+}
+
 // Links the PNG plots (relative names), or says why there are none.
 std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
     std::string md = "# amrvk bench results\n\n";
@@ -247,50 +300,7 @@ std::string resultsMarkdown(const BenchResults& res, const PlotOutcome& plots) {
         md += " " + d.tag + " (" + d.input + ", field " + d.field + ", " + std::to_string(d.cells) + " cells, " +
               std::to_string(d.levels) + " levels, " + d.bounds + ");";
     md += "\n\n";
-    for (const std::string& mode : modesOf(res)) {
-        Table t = matrixTable(res, mode);
-        md += "## Frames/s, mode " + mode + "\n\nBest three in bold with their rank, the worst in italics (per column).\n\n";
-        md += markdownTable(t, [](const RunResult& r) { return r.fps; }, true, [](double v) { return num(v, 3); });
-        md += "\n## Seconds to the target RMSE, mode " + mode +
-              "\n\nGPU seconds until the RMSE against the reference falls below the group's target (`~`: "
-              "extrapolated along the measured slope; n/a: not reached).\n\n";
-        md += markdownTable(
-            t, [](const RunResult& r) { return r.toTarget ? r.toTarget->seconds : 0.0; }, false, [](double v) { return num(v, 3); });
-        md += "\n## Per-path figures, mode " + mode + "\n\n";
-        md += "| data set | TF | combination | M paths/s | lookups/path | steps/path | null/real | violations | build s | "
-              "TF edit s (GPU + host) | MiB after build / peak | final RMSE | slope | x dense cost |\n";
-        md += "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-        for (const RunResult& r : res.runs) {
-            if ((r.kind != "matrix" && r.kind != "dense" && r.kind != "auto") || r.mode != mode) continue;
-            md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | ";
-            if (!r.error.empty()) {
-                md += "failed: " + r.error + " |||||||||||\n";
-                continue;
-            }
-            md += num(r.mPathsPerSecond) + " | " + num(r.lookupsPerPath) + " | " + num(r.stepsPerPath) + " | " +
-                  num(r.nullPerReal) + " | " + std::to_string(r.violations) + " | " + num(r.buildSeconds) + " | " +
-                  num(r.majorantSeconds) + " + " + num(r.tfStructureSeconds) + " | " + num(mib(r.deviceBytesAfterBuild)) +
-                  " / " + num(mib(r.deviceBytesPeak)) + " | " + (r.curve.empty() ? "" : num(r.curve.back().rmse)) +
-                  " | " + (r.slope ? num(*r.slope, 3) : "") + " | " +
-                  (r.costRatioToDense > 0 ? num(r.costRatioToDense, 3) : "") + " |\n";
-        }
-        md += "\n## Where the time goes, per path, mode " + mode +
-              "\n\nDistributions over paths (mean, p50 / p90 / p99 / max; counts above 8 within 25%), the share of "
-              "lookups made by shadow rays and the SIMD lanes' share of useful lookup work.\n\n| data set | TF | "
-              "combination | lookups | null collisions | real collisions | traversal steps | shadow share | lane use "
-              "|\n|---|---|---|---|---|---|---|---:|---:|\n";
-        for (const RunResult& r : res.runs) {
-            if ((r.kind != "matrix" && r.kind != "auto") || r.mode != mode || !r.error.empty()) continue;
-            auto show = [](const scene::PathDistribution& d) {
-                return num(d.mean) + "; " + std::to_string(d.p50) + " / " + std::to_string(d.p90) + " / " +
-                       std::to_string(d.p99) + " / " + std::to_string(d.max);
-            };
-            md += "| " + r.dataset + " | " + r.tf + " | " + runLabel(r) + " | " + show(r.perPath[shared::kPathLookups]) +
-                  " | " + show(r.perPath[shared::kPathNulls]) + " | " + show(r.perPath[shared::kPathReal]) + " | " +
-                  show(r.perPath[shared::kPathSteps]) + " | " + num(r.shadowLookupShare) + " | " + num(r.laneUse) + " |\n";
-        }
-        md += "\n";
-    }
+    for (const std::string& mode : modesOf(res)) md += modeMarkdown(res, mode);
     if (std::ranges::any_of(res.runs, [](const RunResult& r) { return r.kind == "dvr"; })) {
         md += "## Ray marching (dvr) against unbiased ae tracking\n\nRMSE against the ae reference; dvr's error stops "
               "falling at its step-size bias.\n\n| data set | TF | run | frames/s | lookups/path | final RMSE | slope | "

@@ -327,20 +327,7 @@ Context::Context(const ContextOptions& options) {
     mDebugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     mInstance = createInstance(validation, mDebugUtils, options.instanceExtensions);
     try {
-        if (validation && mDebugUtils) {
-            VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-            mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
-            mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-            mci.pfnUserCallback = &Context::onValidationMessage;
-            mci.pUserData = this;
-            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-                vkGetInstanceProcAddr(mInstance, "vkCreateDebugUtilsMessengerEXT"));
-            AMRVK_CHECK(create, "vkCreateDebugUtilsMessengerEXT is not available");
-            AMRVK_VK_CHECK(create(mInstance, &mci, nullptr, &mMessenger));
-        }
+        if (validation && mDebugUtils) createMessenger();
 
         if (options.createSurface) {
             mSurface = options.createSurface(mInstance);
@@ -403,16 +390,7 @@ Context::Context(const ContextOptions& options) {
             AMRVK_VK_CHECK(vkCreateDevice(mPhysical, &dci, nullptr, &mDevice));
         }
         vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
-        if (hostImport) {
-            VkPhysicalDeviceExternalMemoryHostPropertiesEXT hp{
-                VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
-            VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &hp};
-            vkGetPhysicalDeviceProperties2(mPhysical, &p2);
-            mHostPointerProperties = reinterpret_cast<PFN_vkGetMemoryHostPointerPropertiesEXT>(
-                vkGetDeviceProcAddr(mDevice, "vkGetMemoryHostPointerPropertiesEXT"));
-            if (mHostPointerProperties && hp.minImportedHostPointerAlignment > 0)
-                mHostImportAlignment = hp.minImportedHostPointerAlignment;
-        }
+        if (hostImport) queryHostImport();
 
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -424,6 +402,31 @@ Context::Context(const ContextOptions& options) {
         release();
         throw;
     }
+}
+
+void Context::createMessenger() {
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mci.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mci.pfnUserCallback = &Context::onValidationMessage;
+    mci.pUserData = this;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(mInstance, "vkCreateDebugUtilsMessengerEXT"));
+    AMRVK_CHECK(create, "vkCreateDebugUtilsMessengerEXT is not available");
+    AMRVK_VK_CHECK(create(mInstance, &mci, nullptr, &mMessenger));
+}
+
+void Context::queryHostImport() {
+    VkPhysicalDeviceExternalMemoryHostPropertiesEXT hp{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &hp};
+    vkGetPhysicalDeviceProperties2(mPhysical, &p2);
+    mHostPointerProperties = reinterpret_cast<PFN_vkGetMemoryHostPointerPropertiesEXT>(
+        vkGetDeviceProcAddr(mDevice, "vkGetMemoryHostPointerPropertiesEXT"));
+    if (mHostPointerProperties && hp.minImportedHostPointerAlignment > 0)
+        mHostImportAlignment = hp.minImportedHostPointerAlignment;
 }
 
 Context::~Context() { release(); }

@@ -177,6 +177,8 @@ public:
 
 private:
     void release();
+    void createMessenger();  // the validation messages' callback (onValidationMessage)
+    void queryHostImport();  // vkGetMemoryHostPointerPropertiesEXT and the import alignment
     VkResult waitAdaptive(const AdaptiveWait& wait, const std::string& what);
     static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,

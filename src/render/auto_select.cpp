@@ -74,163 +74,207 @@ int nextFinerGrid(const std::vector<AutoProbe>& probes, const scene::StructureCo
     return next;
 }
 
-AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
-                      const scene::RenderSettings& settings, const AutoConstraints& constraints,
-                      const AutoOptions& options, const std::function<void(const std::string&)>& onProbe) {
-    const bool cpu = renderer.context().deviceReport().type == "CPU";
-    const int size = options.probeSize > 0 ? options.probeSize : cpu ? 96 : 1024;
-    // A CPU device's probe is small, so it takes more samples: its time is less noisy.
-    const uint32_t probeSpp = options.probeSpp > 0 ? options.probeSpp : cpu ? 16 : 2;
-    AMRVK_CHECK(size >= 8 && probeSpp >= 2, "internal: probe too small");
-    Timer total;
-    scene::RenderSettings rs = settings;
-    rs.width = rs.height = size;
-    rs.seed = settings.seed + 7919u;
-    const double pathsPerSpp = double(size) * double(size);
+namespace {
 
-    std::vector<scene::TraversalKind> traversals =
-        constraints.traversal ? std::vector{*constraints.traversal} : scene::allTraversals();
+// One --traversal auto search: the probe settings, the candidates the constraints and the data
+// leave, and the probes so far with the best among them. autoSelect runs its steps in order.
+class AutoSearch {
+public:
+    AutoSearch(Renderer& renderer, const scene::RenderSettings& settings, const AutoConstraints& constraints,
+               const AutoOptions& options, const std::function<void(const std::string&)>& onProbe)
+        : mRenderer(renderer), mConstraints(constraints), mOptions(options), mOnProbe(onProbe) {
+        mCpu = renderer.context().deviceReport().type == "CPU";
+        const int size = options.probeSize > 0 ? options.probeSize : mCpu ? 96 : 1024;
+        // A CPU device's probe is small, so it takes more samples: its time is less noisy.
+        mProbeSpp = options.probeSpp > 0 ? options.probeSpp : mCpu ? 16 : 2;
+        AMRVK_CHECK(size >= 8 && mProbeSpp >= 2, "internal: probe too small");
+        mSettings = settings;
+        mSettings.width = mSettings.height = size;
+        mSettings.seed = settings.seed + 7919u;
+        mPathsPerSpp = double(size) * double(size);
+        mChoice.probeSize = size;
+        chooseCandidates();
+        mBase.grid = constraints.grid.value_or("auto");
+        mBase.kdLeaves = constraints.kdLeaves;
+        mBase.subMajorants = constraints.subMajorants.value_or(0);
+    }
+
+    AutoChoice& choice() { return mChoice; }
+    double bestEfficiency() const { return mBestEfficiency; }
+
+    void measureTraversals();
+    void measureAbrPairs();
+    void predictSamplers();
+    void measurePredictedBest();
+    void measureGrids();
+    void measureSubMajorants();
+    void measureContendersAgain();
+
+private:
+    void chooseCandidates();
+    void takeIfBest(const AutoProbe& p) {
+        if (p.efficiency > mBestEfficiency) {
+            mBestEfficiency = p.efficiency;
+            mBestSecondsPerSpp = p.secondsPerSpp;
+            mChoice.config = p.config;
+        }
+    }
+    void consider(const AutoProbe& p) {
+        takeIfBest(p);
+        mChoice.probes.push_back(p);
+    }
+    // The best again, from the probes made so far (after some were superseded or averaged).
+    void rescan(bool measuredOnly) {
+        mBestEfficiency = -1;
+        for (const AutoProbe& p : mChoice.probes)
+            if (!(measuredOnly && p.predicted)) takeIfBest(p);
+    }
+    AutoProbe measure(const scene::StructureConfig& config, bool mayStop);
+
+    Renderer& mRenderer;
+    const AutoConstraints& mConstraints;
+    const AutoOptions& mOptions;
+    const std::function<void(const std::string&)>& mOnProbe;
+    bool mCpu = false;
+    uint32_t mProbeSpp = 0;
+    scene::RenderSettings mSettings;  // the probes' (their size and seed)
+    double mPathsPerSpp = 0;
+    std::vector<scene::TraversalKind> mTraversals;
+    std::vector<scene::SamplerKind> mSamplers;
+    std::vector<scene::Backend> mBackends;
+    scene::SamplerKind mReference = scene::SamplerKind::Grid;  // every traversal is measured with it
+    scene::StructureConfig mBase;
+    AutoChoice mChoice;
+    double mBestEfficiency = -1, mBestSecondsPerSpp = 0;
+    std::vector<AutoProbe> mMeasured;             // step 1's
+    std::vector<scene::StructureConfig> mPaired;  // step 1b's
+    AutoProbe mAnchor;                            // step 2's traversal: the most efficient of step 1
+    std::vector<std::pair<scene::SamplerKind, double>> mExtraSecondsPerLookup;  // step 2's unit costs
+};
+
+void AutoSearch::chooseCandidates() {
+    mTraversals = mConstraints.traversal ? std::vector{*mConstraints.traversal} : scene::allTraversals();
     // Grid traversals and the grid sampler do not fit sparse data (scene::fittingTraversal): their
     // macrocells are mostly empty space. Not worth their probes.
-    const amr::ModelSummary& summary = renderer.volume().summary;
+    const amr::ModelSummary& summary = mRenderer.volume().summary;
     const bool sparse =
         scene::fittingTraversal(summary.leafVolume, summary.bounds.volume()) != scene::TraversalKind::GridDda;
-    if (!constraints.traversal && sparse)
-        std::erase_if(traversals, [](scene::TraversalKind t) {
+    if (!mConstraints.traversal && sparse)
+        std::erase_if(mTraversals, [](scene::TraversalKind t) {
             return t == scene::TraversalKind::GridDda || t == scene::TraversalKind::GridBvh;
         });
-    std::vector<scene::SamplerKind> samplers =
-        constraints.sampler ? std::vector{*constraints.sampler} : scene::allSamplers();
-    if (!constraints.sampler && sparse)
-        std::erase_if(samplers, [](scene::SamplerKind s) { return s == scene::SamplerKind::Grid; });
-    std::vector<scene::Backend> backends;
-    if (constraints.backend) backends = {*constraints.backend};
-    else {
+    mSamplers = mConstraints.sampler ? std::vector{*mConstraints.sampler} : scene::allSamplers();
+    if (!mConstraints.sampler && sparse)
+        std::erase_if(mSamplers, [](scene::SamplerKind s) { return s == scene::SamplerKind::Grid; });
+    if (mConstraints.backend) {
+        mBackends = {*mConstraints.backend};
+    } else {
         // On CPU devices ray queries were measured 3-4x slower than the software BVH, which is
         // why --backend auto takes sw there (scene::resolveBackend); their probes would only cost
         // time (on lavapipe 10 s of Enzo's, 5.5 s for kdtree's one frame). --backend rq measures them.
-        backends = {scene::Backend::Sw};
-        if (renderer.context().hasRayQuery() && !cpu) backends.push_back(scene::Backend::Rq);
+        mBackends = {scene::Backend::Sw};
+        if (mRenderer.context().hasRayQuery() && !mCpu) mBackends.push_back(scene::Backend::Rq);
     }
     // The reference sampler every traversal is measured with: the grid's where allowed.
-    const scene::SamplerKind reference =
-        std::find(samplers.begin(), samplers.end(), scene::SamplerKind::Grid) != samplers.end() ? scene::SamplerKind::Grid
-                                                                                                  : samplers.front();
+    mReference = std::find(mSamplers.begin(), mSamplers.end(), scene::SamplerKind::Grid) != mSamplers.end()
+                     ? scene::SamplerKind::Grid
+                     : mSamplers.front();
+}
 
-    renderer.setTransferFunction(tf);
-    AutoChoice choice;
-    choice.probeSize = size;
-    double bestEfficiency = -1, bestSecondsPerSpp = 0;
-    auto takeIfBest = [&](const AutoProbe& p) {
-        if (p.efficiency > bestEfficiency) {
-            bestEfficiency = p.efficiency;
-            bestSecondsPerSpp = p.secondsPerSpp;
-            choice.config = p.config;
+AutoProbe AutoSearch::measure(const scene::StructureConfig& config, bool mayStop) {
+    AutoProbe p;
+    p.config = config;
+    if (mOnProbe) mOnProbe(config.labelWithGrid());
+    Timer wall;
+    try {
+        mRenderer.setStructure(config);
+        scene::RenderOutput warm = mRenderer.render(mSettings, 1);
+        if (mayStop && mBestSecondsPerSpp > 0 && warm.stats.gpuSeconds > mOptions.slowFactor * mBestSecondsPerSpp) {
+            p.secondsPerSpp = warm.stats.gpuSeconds;
+            p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / mBestSecondsPerSpp) +
+                     "x slower than the best";
+        } else {
+            // At least probeSpp samples, and enough to time minProbeSeconds: a fast combination's
+            // few milliseconds are mostly noise (on lavapipe one combination measured 2.3-3.8 M
+            // paths/s in runs of 0.1 s).
+            const double minSeconds = mOptions.minProbeSeconds >= 0 ? mOptions.minProbeSeconds : mCpu ? 0.25 : 0.05;
+            const double perSpp = std::max(warm.stats.gpuSeconds, 1e-6);
+            const uint32_t spp = uint32_t(std::clamp(std::ceil(minSeconds / perSpp), double(mProbeSpp), 256.0));
+            scene::RenderOutput out = mRenderer.render(mSettings, spp);
+            const double paths = double(out.stats.paths);
+            p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
+            p.variance = meanSampleVariance(out);
+            p.lookupsPerPath = double(out.stats.counter(shared::kCounterDensityLookups)) / paths;
+            p.stepsPerPath = double(out.stats.counter(shared::kCounterTraversalSteps)) / paths;
+            p.nullsPerPath = double(out.stats.counter(shared::kCounterNullCollisions)) / paths;
+            // A black image (variance 0) is scored by speed alone.
+            const double v = p.variance > 0 ? p.variance : 1e-30;
+            p.efficiency = p.secondsPerSpp > 0 ? 1.0 / (v * p.secondsPerSpp) : 0.0;
         }
-    };
-    auto consider = [&](const AutoProbe& p) {
-        takeIfBest(p);
-        choice.probes.push_back(p);
-    };
-    // The best again, from the probes made so far (after some were superseded or averaged).
-    auto rescan = [&](bool measuredOnly) {
-        bestEfficiency = -1;
-        for (const AutoProbe& p : choice.probes)
-            if (!(measuredOnly && p.predicted)) takeIfBest(p);
-    };
-    auto measure = [&](const scene::StructureConfig& config, bool mayStop) {
-        AutoProbe p;
-        p.config = config;
-        if (onProbe) onProbe(config.labelWithGrid());
-        Timer wall;
-        try {
-            renderer.setStructure(config);
-            scene::RenderOutput warm = renderer.render(rs, 1);
-            if (mayStop && bestSecondsPerSpp > 0 && warm.stats.gpuSeconds > options.slowFactor * bestSecondsPerSpp) {
-                p.secondsPerSpp = warm.stats.gpuSeconds;
-                p.note = "stopped: first frame " + std::to_string(warm.stats.gpuSeconds / bestSecondsPerSpp) +
-                         "x slower than the best";
-            } else {
-                // At least probeSpp samples, and enough to time minProbeSeconds: a fast combination's
-                // few milliseconds are mostly noise (on lavapipe one combination measured 2.3-3.8 M
-                // paths/s in runs of 0.1 s).
-                const double minSeconds = options.minProbeSeconds >= 0 ? options.minProbeSeconds : cpu ? 0.25 : 0.05;
-                const double perSpp = std::max(warm.stats.gpuSeconds, 1e-6);
-                const uint32_t spp = uint32_t(std::clamp(std::ceil(minSeconds / perSpp), double(probeSpp), 256.0));
-                scene::RenderOutput out = renderer.render(rs, spp);
-                const double paths = double(out.stats.paths);
-                p.secondsPerSpp = out.stats.gpuSeconds / double(out.spp);
-                p.variance = meanSampleVariance(out);
-                p.lookupsPerPath = double(out.stats.counter(shared::kCounterDensityLookups)) / paths;
-                p.stepsPerPath = double(out.stats.counter(shared::kCounterTraversalSteps)) / paths;
-                p.nullsPerPath = double(out.stats.counter(shared::kCounterNullCollisions)) / paths;
-                // A black image (variance 0) is scored by speed alone.
-                const double v = p.variance > 0 ? p.variance : 1e-30;
-                p.efficiency = p.secondsPerSpp > 0 ? 1.0 / (v * p.secondsPerSpp) : 0.0;
-            }
-        } catch (const Error& e) {
-            p.note = e.what();
-        }
-        p.wallSeconds = wall.seconds();
-        return p;
-    };
+    } catch (const Error& e) {
+        p.note = e.what();
+    }
+    p.wallSeconds = wall.seconds();
+    return p;
+}
 
-    scene::StructureConfig base;
-    base.grid = constraints.grid.value_or("auto");
-    base.kdLeaves = constraints.kdLeaves;
-    base.subMajorants = constraints.subMajorants.value_or(0);
-    // 1. Every traversal (x back-end) with the reference sampler: time and counts per path.
-    std::vector<AutoProbe> measured;
-    for (scene::TraversalKind t : traversals)
-        for (scene::Backend b : backends) {
-            scene::StructureConfig c = base;
+// 1. Every traversal (x back-end) with the reference sampler: time and counts per path.
+void AutoSearch::measureTraversals() {
+    for (scene::TraversalKind t : mTraversals)
+        for (scene::Backend b : mBackends) {
+            scene::StructureConfig c = mBase;
             c.traversal = t;
-            c.sampler = reference;
+            c.sampler = mReference;
             c.backend = b;
             // Without a box hierarchy (grid-dda with the grid sampler) both back-ends do the same work.
             const scene::StructurePlan plan = c.plan();
             if (b == scene::Backend::Rq && !plan.boxMajorants && !plan.samplerBvh && !plan.samplerBoxes) continue;
-            measured.push_back(measure(c, true));
-            consider(measured.back());
+            mMeasured.push_back(measure(c, true));
+            consider(mMeasured.back());
         }
-    // 1b. abr traversal with the abr sampler samples in the ABR the traversal is in, with no point
-    //     query (tracking.glsl): not the abr sampler's cost under another traversal, so measured.
-    std::vector<scene::StructureConfig> paired;
-    const bool abrSampler = std::find(samplers.begin(), samplers.end(), scene::SamplerKind::Abr) != samplers.end();
-    if (abrSampler && reference != scene::SamplerKind::Abr)
-        for (const AutoProbe& t : std::vector<AutoProbe>(measured))
+}
+
+// 1b. abr traversal with the abr sampler samples in the ABR the traversal is in, with no point
+//     query (tracking.glsl): not the abr sampler's cost under another traversal, so measured.
+void AutoSearch::measureAbrPairs() {
+    const bool abrSampler = std::find(mSamplers.begin(), mSamplers.end(), scene::SamplerKind::Abr) != mSamplers.end();
+    if (abrSampler && mReference != scene::SamplerKind::Abr)
+        for (const AutoProbe& t : std::vector<AutoProbe>(mMeasured))
             if (t.config.traversal == scene::TraversalKind::Abr && t.efficiency > 0) {
                 scene::StructureConfig c = t.config;
                 c.sampler = scene::SamplerKind::Abr;
-                paired.push_back(c);
+                mPaired.push_back(c);
                 consider(measure(c, true));
             }
-    AMRVK_CHECK(bestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
-                choice.probes.empty() ? std::string("none tried") : choice.probes.front().note, ")");
-    // 2. The other samplers' unit costs, under the most efficient traversal measured (its paths, so
-    //    its lookups, are the same whatever the sampler).
-    const AutoProbe anchor = *std::max_element(measured.begin(), measured.end(),
-                                               [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
-    std::vector<std::pair<scene::SamplerKind, double>> extraSecondsPerLookup;
-    for (scene::SamplerKind s : samplers) {
-        if (s == reference) continue;
-        scene::StructureConfig c = anchor.config;
+    AMRVK_CHECK(mBestEfficiency > 0, "--traversal auto: no structure combination could render (first failure: ",
+                mChoice.probes.empty() ? std::string("none tried") : mChoice.probes.front().note, ")");
+}
+
+// 2. The other samplers' unit costs, under the most efficient traversal measured (its paths, so
+//    its lookups, are the same whatever the sampler). 3. Every other combination, predicted: its
+//    traversal's time plus its lookups at the sampler's unit cost; the variance is the
+//    traversal's (the same paths).
+void AutoSearch::predictSamplers() {
+    mAnchor = *std::max_element(mMeasured.begin(), mMeasured.end(),
+                                [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+    for (scene::SamplerKind s : mSamplers) {
+        if (s == mReference) continue;
+        scene::StructureConfig c = mAnchor.config;
         c.sampler = s;
         const AutoProbe p = measure(c, false);
         consider(p);
-        if (p.efficiency > 0 && anchor.lookupsPerPath > 0) {
-            const double perLookup = (p.secondsPerSpp - anchor.secondsPerSpp) / (anchor.lookupsPerPath * pathsPerSpp);
-            extraSecondsPerLookup.emplace_back(s, perLookup);
-            choice.lookupNs.emplace_back(s, 1e9 * perLookup);
+        if (p.efficiency > 0 && mAnchor.lookupsPerPath > 0) {
+            const double perLookup =
+                (p.secondsPerSpp - mAnchor.secondsPerSpp) / (mAnchor.lookupsPerPath * mPathsPerSpp);
+            mExtraSecondsPerLookup.emplace_back(s, perLookup);
+            mChoice.lookupNs.emplace_back(s, 1e9 * perLookup);
         }
     }
-    // 3. Every other combination, predicted: its traversal's time plus its lookups at the sampler's
-    //    unit cost; the variance is the traversal's (the same paths).
-    for (const AutoProbe& t : measured) {
+    for (const AutoProbe& t : mMeasured) {
         if (!(t.efficiency > 0)) continue;
-        for (const auto& [s, perLookup] : extraSecondsPerLookup) {
-            if (t.config.traversal == anchor.config.traversal && t.config.backend == anchor.config.backend) continue;
-            if (std::any_of(paired.begin(), paired.end(), [&](const scene::StructureConfig& c) {
+        for (const auto& [s, perLookup] : mExtraSecondsPerLookup) {
+            if (t.config.traversal == mAnchor.config.traversal && t.config.backend == mAnchor.config.backend) continue;
+            if (std::any_of(mPaired.begin(), mPaired.end(), [&](const scene::StructureConfig& c) {
                     return c.traversal == t.config.traversal && c.backend == t.config.backend && c.sampler == s;
                 }))
                 continue;  // measured in 1b
@@ -240,17 +284,22 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
             p.wallSeconds = 0;
             // A sampler cheaper than the reference (perLookup < 0, or noise on few lookups) saves at
             // most half the traversal's time; a prediction is measured before it can win (below).
-            p.secondsPerSpp = std::max(t.secondsPerSpp + t.lookupsPerPath * pathsPerSpp * perLookup, 0.5 * t.secondsPerSpp);
+            p.secondsPerSpp =
+                std::max(t.secondsPerSpp + t.lookupsPerPath * mPathsPerSpp * perLookup, 0.5 * t.secondsPerSpp);
             const double v = p.variance > 0 ? p.variance : 1e-30;
             p.efficiency = 1.0 / (v * p.secondsPerSpp);
             consider(p);
         }
     }
-    // 3b. A predicted winner is measured: the unit costs come from few lookups where the anchor
-    //     makes few, and their noise must not pick. Repeated while the best is a prediction.
+}
+
+// 3b. A predicted winner is measured: the unit costs come from few lookups where the anchor makes
+//     few, and their noise must not pick. Repeated while the best is a prediction.
+void AutoSearch::measurePredictedBest() {
     for (int round = 0; round < 4; ++round) {
-        const auto best = std::max_element(choice.probes.begin(), choice.probes.end(),
-                                           [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+        const auto best =
+            std::max_element(mChoice.probes.begin(), mChoice.probes.end(),
+                             [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
         if (!best->predicted) break;
         const scene::StructureConfig config = best->config;
         best->efficiency = 0;  // superseded by its measurement
@@ -258,108 +307,131 @@ AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf,
         rescan(false);
         consider(measure(config, true));
     }
-    // 4. Macrocell resolutions, measured: the winner's when it uses the grid, and those of the grid
-    //    traversals of step 1 that came within slowFactor of the best (the resolution can reorder
-    //    them: on a thin medium a coarse grid halves grid-dda's steps, not grid-bvh's). Ordered by
-    //    resolution, so each grid is built once.
-    if (!constraints.grid) {
-        std::vector<scene::StructureConfig> candidates;
-        auto add = [&](const scene::StructureConfig& c) {
-            if (!c.usesGrid()) return;
-            for (const scene::StructureConfig& o : candidates)
-                if (o.traversal == c.traversal && o.sampler == c.sampler && o.backend == c.backend) return;
-            candidates.push_back(c);
-        };
-        add(choice.config);
-        for (const AutoProbe& t : measured)
-            if (t.efficiency > 0 && t.efficiency * options.slowFactor >= bestEfficiency &&
-                (t.config.traversal == scene::TraversalKind::GridDda || t.config.traversal == scene::TraversalKind::GridBvh))
-                add(t.config);
-        const std::vector<std::string> grids = gridChoices(renderer.volume(), options.gridFactors);
-        for (const std::string& g : grids)
-            for (scene::StructureConfig c : candidates) {
-                c.grid = g;
-                consider(measure(c, true));
-            }
-        // 4a. Finer still where the finest grid probed is a combination's best: a TF with narrow
-        //     peaks gains from tight majorants (Enzo DD0018 under spiky: 256 macrocells 1.26x the
-        //     default 65, benchmarks section 25). Doubling while the finest wins, up to
-        //     options.maxExtendedGrid macrocells on the longest axis (a step of less than 1.5x is
-        //     not taken).
-        int finestProbed = 0;
-        for (const std::string& g : grids) finestProbed = std::max(finestProbed, std::stoi(g));
+}
+
+// 4. Macrocell resolutions, measured: the winner's when it uses the grid, and those of the grid
+//    traversals of step 1 that came within slowFactor of the best (the resolution can reorder
+//    them: on a thin medium a coarse grid halves grid-dda's steps, not grid-bvh's). Ordered by
+//    resolution, so each grid is built once.
+void AutoSearch::measureGrids() {
+    if (mConstraints.grid) return;
+    std::vector<scene::StructureConfig> candidates;
+    auto add = [&](const scene::StructureConfig& c) {
+        if (!c.usesGrid()) return;
+        for (const scene::StructureConfig& o : candidates)
+            if (o.traversal == c.traversal && o.sampler == c.sampler && o.backend == c.backend) return;
+        candidates.push_back(c);
+    };
+    add(mChoice.config);
+    for (const AutoProbe& t : mMeasured)
+        if (t.efficiency > 0 && t.efficiency * mOptions.slowFactor >= mBestEfficiency &&
+            (t.config.traversal == scene::TraversalKind::GridDda ||
+             t.config.traversal == scene::TraversalKind::GridBvh))
+            add(t.config);
+    const std::vector<std::string> grids = gridChoices(mRenderer.volume(), mOptions.gridFactors);
+    for (const std::string& g : grids)
         for (scene::StructureConfig c : candidates) {
-            int finest = finestProbed;
-            while ((finest = nextFinerGrid(choice.probes, c, finest, options.maxExtendedGrid)) > 0) {
-                c.grid = std::to_string(finest);
-                consider(measure(c, true));
-            }
+            c.grid = g;
+            consider(measure(c, true));
+        }
+    // 4a. Finer still where the finest grid probed is a combination's best: a TF with narrow
+    //     peaks gains from tight majorants (Enzo DD0018 under spiky: 256 macrocells 1.26x the
+    //     default 65, benchmarks section 25). Doubling while the finest wins, up to
+    //     options.maxExtendedGrid macrocells on the longest axis (a step of less than 1.5x is
+    //     not taken).
+    int finestProbed = 0;
+    for (const std::string& g : grids) finestProbed = std::max(finestProbed, std::stoi(g));
+    for (scene::StructureConfig c : candidates) {
+        int finest = finestProbed;
+        while ((finest = nextFinerGrid(mChoice.probes, c, finest, mOptions.maxExtendedGrid)) > 0) {
+            c.grid = std::to_string(finest);
+            consider(measure(c, true));
         }
     }
-    // 4c. Sub-majorants for every grid candidate at its best measured grid and at the default
-    //     grid: the same paths with fewer lookups where the TF makes macrocells loose, for a
-    //     build per TF edit.
-    if (!constraints.subMajorants) {
-        std::vector<scene::StructureConfig> withSub;
-        for (const AutoProbe& p : std::vector<AutoProbe>(choice.probes)) {
-            if (p.predicted || !(p.efficiency > 0) || !p.config.usesGrid()) continue;
-            scene::StructureConfig c = p.config;
-            c.subMajorants = kSubMajorantsProbed;
-            if (!c.hasSubMajorants() || p.efficiency * options.slowFactor < bestEfficiency) continue;
-            // The combination's best grid only.
-            const bool best = std::none_of(choice.probes.begin(), choice.probes.end(), [&](const AutoProbe& o) {
-                return !o.predicted && o.config.traversal == c.traversal && o.config.sampler == c.sampler &&
-                       o.config.backend == c.backend && o.config.subMajorants == 0 && o.efficiency > p.efficiency;
-            });
-            if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
-            // And at the default grid: sub-majorants tighten its macrocells where they are loose,
-            // so it can beat the finer grid that won without them (and builds less).
-            c.grid = base.grid;
-            if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
-        }
-        for (const scene::StructureConfig& c : withSub) {
-            AutoProbe p = measure(c, true);
-            if (p.efficiency > 0 && renderer.majorantPass().subMajorants().refined == 0) {
-                p.efficiency = 0;  // the very paths and lookups of the probe without them: not a contender
-                p.note = "no macrocell is loose under this TF: no sub-majorants built";
-            }
-            consider(p);
-        }
+}
+
+// 4c. Sub-majorants for every grid candidate at its best measured grid and at the default grid:
+//     the same paths with fewer lookups where the TF makes macrocells loose, for a build per TF
+//     edit.
+void AutoSearch::measureSubMajorants() {
+    if (mConstraints.subMajorants) return;
+    std::vector<scene::StructureConfig> withSub;
+    for (const AutoProbe& p : std::vector<AutoProbe>(mChoice.probes)) {
+        if (p.predicted || !(p.efficiency > 0) || !p.config.usesGrid()) continue;
+        scene::StructureConfig c = p.config;
+        c.subMajorants = kSubMajorantsProbed;
+        if (!c.hasSubMajorants() || p.efficiency * mOptions.slowFactor < mBestEfficiency) continue;
+        // The combination's best grid only.
+        const bool best = std::none_of(mChoice.probes.begin(), mChoice.probes.end(), [&](const AutoProbe& o) {
+            return !o.predicted && o.config.traversal == c.traversal && o.config.sampler == c.sampler &&
+                   o.config.backend == c.backend && o.config.subMajorants == 0 && o.efficiency > p.efficiency;
+        });
+        if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
+        // And at the default grid: sub-majorants tighten its macrocells where they are loose,
+        // so it can beat the finer grid that won without them (and builds less).
+        c.grid = mBase.grid;
+        if (best && std::count(withSub.begin(), withSub.end(), c) == 0) withSub.push_back(c);
     }
-    // 4b. The contenders measured again: a CPU device's probes of one combination vary by up to 40%
-    //     from run to run (benchmarks section 25), enough to put a slower one first. Every measured
-    //     probe within contenderBand of the best (at most `contenders`, best first; none where one
-    //     is alone) is measured a second time, later, and keeps the mean of both GPU times and
-    //     variances. The best is then the best of these means.
-    {
-        std::vector<size_t> rivals;
-        for (size_t i = 0; i < choice.probes.size(); ++i)
-            if (!choice.probes[i].predicted && choice.probes[i].efficiency >= options.contenderBand * bestEfficiency)
-                rivals.push_back(i);
-        std::sort(rivals.begin(), rivals.end(),
-                  [&](size_t a, size_t b) { return choice.probes[a].efficiency > choice.probes[b].efficiency; });
-        rivals.resize(std::min(rivals.size(), size_t(std::max(options.contenders, 0))));
-        if (rivals.size() >= 2) {
-            for (size_t i : rivals) {
-                const AutoProbe again = measure(choice.probes[i].config, false);
-                AutoProbe& first = choice.probes[i];
-                first.wallSeconds += again.wallSeconds;
-                if (!(again.efficiency > 0)) continue;
-                first.secondsPerSpp = 0.5 * (first.secondsPerSpp + again.secondsPerSpp);
-                first.variance = 0.5 * (first.variance + again.variance);
-                first.efficiency = 1.0 / ((first.variance > 0 ? first.variance : 1e-30) * first.secondsPerSpp);
-                first.note = "measured twice: the mean of both";
-            }
-            rescan(true);
+    for (const scene::StructureConfig& c : withSub) {
+        AutoProbe p = measure(c, true);
+        if (p.efficiency > 0 && mRenderer.majorantPass().subMajorants().refined == 0) {
+            p.efficiency = 0;  // the very paths and lookups of the probe without them: not a contender
+            p.note = "no macrocell is loose under this TF: no sub-majorants built";
         }
+        consider(p);
     }
+}
+
+// 4b. The contenders measured again: a CPU device's probes of one combination vary by up to 40%
+//     from run to run (benchmarks section 25), enough to put a slower one first. Every measured
+//     probe within contenderBand of the best (at most `contenders`, best first; none where one
+//     is alone) is measured a second time, later, and keeps the mean of both GPU times and
+//     variances. The best is then the best of these means.
+void AutoSearch::measureContendersAgain() {
+    std::vector<size_t> rivals;
+    for (size_t i = 0; i < mChoice.probes.size(); ++i)
+        if (!mChoice.probes[i].predicted && mChoice.probes[i].efficiency >= mOptions.contenderBand * mBestEfficiency)
+            rivals.push_back(i);
+    std::sort(rivals.begin(), rivals.end(),
+              [&](size_t a, size_t b) { return mChoice.probes[a].efficiency > mChoice.probes[b].efficiency; });
+    rivals.resize(std::min(rivals.size(), size_t(std::max(mOptions.contenders, 0))));
+    if (rivals.size() < 2) return;
+    for (size_t i : rivals) {
+        const AutoProbe again = measure(mChoice.probes[i].config, false);
+        AutoProbe& first = mChoice.probes[i];
+        first.wallSeconds += again.wallSeconds;
+        if (!(again.efficiency > 0)) continue;
+        first.secondsPerSpp = 0.5 * (first.secondsPerSpp + again.secondsPerSpp);
+        first.variance = 0.5 * (first.variance + again.variance);
+        first.efficiency = 1.0 / ((first.variance > 0 ? first.variance : 1e-30) * first.secondsPerSpp);
+        first.note = "measured twice: the mean of both";
+    }
+    rescan(true);
+}
+
+}  // namespace
+
+AutoChoice autoSelect(Renderer& renderer, const scene::TransferFunction& tf, const scene::RenderSettings& settings,
+                      const AutoConstraints& constraints, const AutoOptions& options,
+                      const std::function<void(const std::string&)>& onProbe) {
+    Timer total;
+    AutoSearch search(renderer, settings, constraints, options, onProbe);
+    renderer.setTransferFunction(tf);
+    search.measureTraversals();
+    search.measureAbrPairs();
+    search.predictSamplers();
+    search.measurePredictedBest();
+    search.measureGrids();
+    search.measureSubMajorants();
+    search.measureContendersAgain();
+    AutoChoice& choice = search.choice();
     // 5. Ties within the probes' noise go to the combination that builds less.
     if (const AutoProbe* pick = pickAmongTies(choice.probes, options.tieTolerance)) choice.config = pick->config;
     choice.seconds = total.seconds();
     Timer configure;
     renderer.setStructure(choice.config);
     choice.configureSeconds = configure.seconds();
-    return choice;
+    return std::move(choice);
 }
 
 }  // namespace amrvk::render
