@@ -128,6 +128,15 @@ install_python_path() {
   fi
 }
 
+# seed_test_costs BUILD_DIR: a fresh build has no test times, so ctest starts the tests in the order
+# they are declared and a long one started last runs alone at the end; seeded with the times of a
+# full run on the 2-core machine (tests/ctest_costs.txt), it starts the longest first. A build that
+# has run its tests keeps its own times.
+seed_test_costs() {
+  local costs="$1/Testing/Temporary/CTestCostData.txt"
+  [ -f "$costs" ] || { mkdir -p "$(dirname "$costs")" && cp tests/ctest_costs.txt "$costs"; }
+}
+
 # ASan + UBSan build of everything the CPU tests run (amrvk_tests_cpu and the amrvk binary the CLI
 # tests call); GPU tests stay on the normal build. Leak checking stays on: the CPU tests create no
 # Vulkan instance, and tools/lsan.supp names what the system libraries keep (none so far).
@@ -150,7 +159,9 @@ sanitize() {
   local skip=()
   local exclude=(); [ "${#skip[@]}" -gt 0 ] && exclude=(-E "$(IFS='|'; echo "${skip[*]}")")
   # cli.check_majorants checks the bundled sample and Enzo only here (its memory safety; Release
-  # checks every data set).
+  # checks every data set). Longest first, as in `test` (seed_test_costs): unseeded, it started
+  # last and ran alone for over two minutes of the 311 s.
+  seed_test_costs build-asan
   AMRVK_SANITIZER_RUN=1 ctest --test-dir build-asan --output-on-failure -j "$jobs" -L cpu "${exclude[@]}"
   sanitize_python
   say "sanitize: build and tests took $((SECONDS - t0)) s"
@@ -349,11 +360,7 @@ case "$cmd" in
   test)
     deps; build
     jobs=$(nproc 2>/dev/null || echo 2)
-    # A fresh build has no test times, so ctest starts the tests in the order they are declared and
-    # a long one started last runs alone at the end; seeded with the times of a full run on the
-    # 2-core machine (tests/ctest_costs.txt), it starts the longest first. Later runs keep their own.
-    costs=build/Testing/Temporary/CTestCostData.txt
-    [ -f "$costs" ] || { mkdir -p "$(dirname "$costs")" && cp tests/ctest_costs.txt "$costs"; }
+    seed_test_costs build
     # CPU tests first (no Vulkan), then the GPU tests on lavapipe or any Vulkan device.
     ctest --test-dir build --output-on-failure -j "$jobs" -L cpu
     ctest --test-dir build --output-on-failure -j "$jobs" -LE cpu

@@ -171,7 +171,7 @@ def test_the_widget_refines_and_orbits(amrvk):
 
 
 def test_a_long_call_yields_to_the_widget_and_the_count_is_the_images(amrvk):
-    # Issue 52, point 15: r.render(spp=1024) held the renderer for the whole call (the widget and
+    # Issue 52, point 15: r.render(spp=4096) held the renderer for the whole call (the widget and
     # its sliders froze), and the status counted samples in one call and showed another's image.
     # Now the long call yields between its quarter-second chunks in turn (a fair lock): a slider
     # moved while it runs is served while it still runs, and restarts its count, so it returns the
@@ -182,7 +182,7 @@ def test_a_long_call_yields_to_the_widget_and_the_count_is_the_images(amrvk):
     w = amrvk.Widget(r, spp=4, batch=2)
     try:
         assert w.wait(120)
-        long_spp, images = 512, []
+        long_spp, images = 256, []
         t = threading.Thread(target=lambda: images.append(r.render(spp=long_spp)))
         t.start()
         deadline = time.monotonic() + 120
