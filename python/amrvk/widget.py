@@ -108,15 +108,15 @@ class Widget:
         # One call reads the count, the image and its error together (issue 52, point 15: a long
         # render() on the same renderer added samples between three calls, "16/64" over 72).
         r = self.renderer
-        if r.closed or r.spp == 0:
+        if r.closed:
             return
         try:
-            spp, png, error = r._snapshot()
+            spp, png, error = r._snapshot()  # (0, None, None) without a sample, no first frame made
         except ValueError:
             if r.closed:
                 return
             raise
-        if spp == 0:  # a slider restarted the estimate meanwhile
+        if spp == 0:  # no sample yet, or a slider restarted the estimate meanwhile
             return
         self._shown_spp = spp
         self.image.value = png

@@ -100,7 +100,6 @@ public:
     }
 
     AutoChoice& choice() { return mChoice; }
-    double bestEfficiency() const { return mBestEfficiency; }
 
     void measureTraversals();
     void measureAbrPairs();
@@ -148,8 +147,6 @@ private:
     double mBestEfficiency = -1, mBestSecondsPerSpp = 0;
     std::vector<AutoProbe> mMeasured;             // step 1's
     std::vector<scene::StructureConfig> mPaired;  // step 1b's
-    AutoProbe mAnchor;                            // step 2's traversal: the most efficient of step 1
-    std::vector<std::pair<scene::SamplerKind, double>> mExtraSecondsPerLookup;  // step 2's unit costs
 };
 
 void AutoSearch::chooseCandidates() {
@@ -255,25 +252,26 @@ void AutoSearch::measureAbrPairs() {
 //    traversal's time plus its lookups at the sampler's unit cost; the variance is the
 //    traversal's (the same paths).
 void AutoSearch::predictSamplers() {
-    mAnchor = *std::max_element(mMeasured.begin(), mMeasured.end(),
+    const AutoProbe anchor = *std::max_element(mMeasured.begin(), mMeasured.end(),
                                 [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+    std::vector<std::pair<scene::SamplerKind, double>> extraSecondsPerLookup;  // the unit costs
     for (scene::SamplerKind s : mSamplers) {
         if (s == mReference) continue;
-        scene::StructureConfig c = mAnchor.config;
+        scene::StructureConfig c = anchor.config;
         c.sampler = s;
         const AutoProbe p = measure(c, false);
         consider(p);
-        if (p.efficiency > 0 && mAnchor.lookupsPerPath > 0) {
+        if (p.efficiency > 0 && anchor.lookupsPerPath > 0) {
             const double perLookup =
-                (p.secondsPerSpp - mAnchor.secondsPerSpp) / (mAnchor.lookupsPerPath * mPathsPerSpp);
-            mExtraSecondsPerLookup.emplace_back(s, perLookup);
+                (p.secondsPerSpp - anchor.secondsPerSpp) / (anchor.lookupsPerPath * mPathsPerSpp);
+            extraSecondsPerLookup.emplace_back(s, perLookup);
             mChoice.lookupNs.emplace_back(s, 1e9 * perLookup);
         }
     }
     for (const AutoProbe& t : mMeasured) {
         if (!(t.efficiency > 0)) continue;
-        for (const auto& [s, perLookup] : mExtraSecondsPerLookup) {
-            if (t.config.traversal == mAnchor.config.traversal && t.config.backend == mAnchor.config.backend) continue;
+        for (const auto& [s, perLookup] : extraSecondsPerLookup) {
+            if (t.config.traversal == anchor.config.traversal && t.config.backend == anchor.config.backend) continue;
             if (std::any_of(mPaired.begin(), mPaired.end(), [&](const scene::StructureConfig& c) {
                     return c.traversal == t.config.traversal && c.backend == t.config.backend && c.sampler == s;
                 }))
