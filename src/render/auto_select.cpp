@@ -252,8 +252,9 @@ void AutoSearch::measureAbrPairs() {
 //    traversal's time plus its lookups at the sampler's unit cost; the variance is the
 //    traversal's (the same paths).
 void AutoSearch::predictSamplers() {
-    const AutoProbe anchor = *std::max_element(mMeasured.begin(), mMeasured.end(),
-                                [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
+    const AutoProbe anchor =
+        *std::max_element(mMeasured.begin(), mMeasured.end(),
+                          [](const AutoProbe& a, const AutoProbe& b) { return a.efficiency < b.efficiency; });
     std::vector<std::pair<scene::SamplerKind, double>> extraSecondsPerLookup;  // the unit costs
     for (scene::SamplerKind s : mSamplers) {
         if (s == mReference) continue;
@@ -262,8 +263,7 @@ void AutoSearch::predictSamplers() {
         const AutoProbe p = measure(c, false);
         consider(p);
         if (p.efficiency > 0 && anchor.lookupsPerPath > 0) {
-            const double perLookup =
-                (p.secondsPerSpp - anchor.secondsPerSpp) / (anchor.lookupsPerPath * mPathsPerSpp);
+            const double perLookup = (p.secondsPerSpp - anchor.secondsPerSpp) / (anchor.lookupsPerPath * mPathsPerSpp);
             extraSecondsPerLookup.emplace_back(s, perLookup);
             mChoice.lookupNs.emplace_back(s, 1e9 * perLookup);
         }
