@@ -23,6 +23,7 @@ base_pkgs=(cmake g++ make pkg-config libvulkan-dev vulkan-tools vulkan-validatio
            libimgui-dev xvfb xauth xdotool libfreetype-dev fonts-dejavu-core
            python3-dev pybind11-dev python3-numpy python3-pytest python3-hypothesis python3-yt python3-tqdm
            python3-nbformat python3-nbconvert python3-ipykernel python3-ipywidgets  # docs/python.md as a notebook
+           python3-build python3-pybind11 python3-venv  # the wheel (pyproject.toml) and its venv test
            openmpi-bin libopenmpi-dev
            ffmpeg)  # render -o movie.mp4 runs it; its tests skip without it
 # What `demo` needs, a subset of the above: the compiler, CMake and the libraries the amrvk binary
@@ -35,8 +36,10 @@ demo_pkgs=(cmake g++ make pkg-config libvulkan-dev glslc glslang-tools spirv-too
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes (libclang_rt.fuzzer-x86_64.a
 # is in libclang-rt-14-dev).
 fuzz_pkgs=(clang-14 libclang-rt-14-dev)
-# Packages taken from bookworm-backports (lavapipe with VK_KHR_ray_query).
+# Packages taken from bookworm-backports: lavapipe with VK_KHR_ray_query, and (not for `demo`)
+# scikit-build-core, pyproject.toml's build back-end (bookworm has none).
 backports_pkgs=(mesa-vulkan-drivers)
+backports_test_pkgs=(python3-scikit-build-core)
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 
@@ -92,12 +95,15 @@ deps() {
     apt_update
     as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}"
   fi
-  if ! mesa_version_ok; then
+  local from_backports=()
+  mesa_version_ok || from_backports+=("${backports_pkgs[@]}")
+  [ "${1:-}" = demo ] || mapfile -t -O "${#from_backports[@]}" from_backports < <(missing_pkgs "${backports_test_pkgs[@]}")
+  if [ "${#from_backports[@]}" -gt 0 ]; then
     add_backports
     apt_update
-    say "installing Mesa lavapipe from bookworm-backports"
+    say "installing ${from_backports[*]} from bookworm-backports"
     as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-      -t bookworm-backports "${backports_pkgs[@]}"
+      -t bookworm-backports "${from_backports[@]}"
   fi
 }
 
