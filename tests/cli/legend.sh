@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Usage: legend.sh AMRVK SOURCE_DIR SCRATCH. Colour legends end to end (README "Colour legends"): render
+# Usage: legend.sh AMRVK SOURCE_DIR SCRATCH. Colour legends end to end (docs/cli.md "Colour legends"): render
 # --legend beside and over the picture, the viewer's screenshot with the same legend, the legend
 # kept in a session, and one-line errors (missing font, non-PNG output, a picture too small) that
 # leave no output behind. The pixels themselves are checked by cpu/legend_image_test.
