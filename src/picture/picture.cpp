@@ -74,7 +74,7 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
                         hi.z, "): the picture shows only the background"));
     }
     // The renderer is linear inside: the TF's colours as albedo (scene/tf_colors.h).
-    const scene::TransferFunction tf = scene::albedoOf(fittedSession.tf.merged(), fittedSession.tfColors);
+    const scene::TransferFunction tf = asRendered(fittedSession.tf, fittedSession.tfColors);
     // A TF transparent over every value of the data shows nothing: said, not a silent black
     // picture (issue 52, point 7: a constant field or a one-cell data set under the fitted layers).
     if (!(tf.maxAlpha(volume->valueLo(), volume->valueHi()) > 0.0f))
@@ -122,10 +122,13 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
             p.renderer = std::make_unique<render::Renderer>(ctx, volume, config, options.shaders);
         }
         if (options.warmTracer) p.renderer->adoptPathTracer(*options.warmTracer, warm);
-        p.renderer->setTransferFunction(tf);
     }
     p.report.buildSeconds = p.renderer->scene().combinationBuildSeconds();
-    p.renderer->setSettings(fittedSession.settings);
+    // The TF (auto's probes set it already) and the settings at once: one majorant pass, also
+    // where the settings ask for minorants.
+    render::Edit first{.settings = fittedSession.settings};
+    if (d.fit != session::StructureFit::Probe) first.tf = tf;
+    p.renderer->commit(first);
     if (!p.renderer->controlExtinctionOff().empty())
         note("--control-extinction minorant is off: " + p.renderer->controlExtinctionOff() +
              "; the trackers run without a control");
@@ -141,16 +144,28 @@ session::Session Picture::session() const {
     return s;
 }
 
-void Picture::setTransferFunction(const scene::TfChannels& tf) {
-    renderer->setTransferFunction(scene::albedoOf(tf.merged(), described.tfColors));
-    described.tf = tf;
+scene::TransferFunction asRendered(const scene::TfChannels& tf, scene::TfColors colors) {
+    return scene::albedoOf(tf.merged(), colors);
 }
 
-void Picture::setTfColors(scene::TfColors colors) {
-    if (colors == described.tfColors) return;
-    renderer->setTransferFunction(scene::albedoOf(described.tf.merged(), colors));
+void Picture::commit(const PictureEdit& e) {
+    render::Edit r{.settings = e.settings};
+    const scene::TfChannels& tf = e.tf ? *e.tf : described.tf;
+    const scene::TfColors colors = e.tfColors.value_or(described.tfColors);
+    if (e.tf || colors != described.tfColors) r.tf = asRendered(tf, colors);
+    if (e.structure) {
+        r.structure = *e.structure;
+        resolveStructure(renderer->context(), *r.structure);  // refused before anything changes
+    }
+    renderer->commit(r);
+    described.tf = tf;
     described.tfColors = colors;
+    if (e.structure) described.structure = *e.structure;
 }
+
+void Picture::setTransferFunction(const scene::TfChannels& tf) { commit({.tf = tf}); }
+
+void Picture::setTfColors(scene::TfColors colors) { commit({.tfColors = colors}); }
 
 void Picture::setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved) {
     renderer->setStructure(resolved);

@@ -40,6 +40,15 @@ struct Report {
     double buildSeconds = 0;              // bricks and the structures of the combination (host)
 };
 
+// Edits of a picture gathered to be committed at once (Picture::commit; the renderer redoes the
+// union of what they invalidate once). Every part given is taken.
+struct PictureEdit {
+    std::optional<scene::TfChannels> tf;              // the TF's colours as given
+    std::optional<scene::TfColors> tfColors;          // what they mean (--tf-colors)
+    std::optional<scene::StructureConfig> structure;  // as requested: commit resolves it for the device
+    std::optional<scene::RenderSettings> settings;
+};
+
 struct Picture {
     std::shared_ptr<const scene::Volume> volume;
     std::unique_ptr<render::Renderer> renderer;  // structures built, TF and settings applied
@@ -50,9 +59,12 @@ struct Picture {
     // their merged function) and the structure as requested (the back-end unresolved; the renderer
     // holds the resolved combination).
     session::Session session() const;
-    // Edits of what the renderer does not hold as given: applied to the renderer first, so a
-    // refused one changes nothing. Settings are edited on the renderer itself.
-    // The TF's colours as given; the renderer gets scene::albedoOf(tf, session's tfColors).
+    // The one way a picture changes: the parts of `e` applied to the renderer at once (a refused
+    // edit changes nothing: validated and resolved first; a structure that fails to build is thrown
+    // with the previous one kept), then recorded in `described`. The renderer gets the TF as
+    // rendered (asRendered: its colours under the session's tfColors).
+    void commit(const PictureEdit& e);
+    // Commits of one part.
     void setTransferFunction(const scene::TfChannels& tf);
     // What the TF's colours mean (`--tf-colors`): the renderer's TF redone, the channels kept.
     void setTfColors(scene::TfColors colors);
@@ -69,6 +81,10 @@ struct Picture {
     // makePicture, changed only by the edits above.
     session::Session described;
 };
+
+// The TF the renderer takes for channels `tf` whose colours mean `colors` (linear albedo,
+// scene/tf_colors.h).
+scene::TransferFunction asRendered(const scene::TfChannels& tf, scene::TfColors colors);
 
 // The picture `d` describes over `volume`: the one door every front end opens a picture through.
 // The volume is the front end's to make, as only it knows when and from what: session::loadVolume

@@ -105,8 +105,47 @@ uint64_t Renderer::paramsAddress() {
     return mParamsBuffer.address();
 }
 
-void Renderer::setStructure(const scene::StructureConfig& config) {
-    if (config == mScene.config() && mBroken.empty()) return;
+void Renderer::commit(const Edit& e) {
+    if (e.tf)
+        AMRVK_CHECK(!e.tf->positions().empty() && e.tf->positions().size() == e.tf->colors().size(),
+                    "transfer function has no nodes");
+    scene::ChangeSet changes;
+    if (e.settings) {
+        changes = mHasSettings
+                      ? scene::settingsChanges(mSettings, *e.settings)
+                      : scene::ChangeSet(scene::Change::Camera) | scene::Change::ImageSize | scene::Change::Lighting;
+        if (!mHasSettings && e.settings->controlExtinction != scene::ControlExtinction::None)
+            changes |= scene::Change::Control;
+        if (!changes.empty()) scene::validateSettings(*e.settings);
+    }
+    if (e.tf) changes |= scene::Change::TransferFunction;
+    const bool newStructure = e.structure && !(*e.structure == mScene.config() && mBroken.empty());
+    if (changes.empty() && !newStructure) return;
+    if (newStructure) {
+        configure(*e.structure);
+        changes |= scene::Change::Structure;
+    }
+    const shared::RenderParams saved = mParams;  // an invalid camera or light changes nothing
+    const UpdateCounts counts = mCounts;
+    const std::optional<scene::TransferFunction> tf = mTf;
+    if (e.tf) mTf = *e.tf;
+    try {
+        redo(scene::invalidatedBy(changes), e.settings ? &*e.settings : &mSettings);
+    } catch (...) {
+        if (!newStructure) {  // a new structure's device copy is made: it stays, with the old TF's majorants to come
+            mParams = saved;
+            mCounts = counts;
+            mTf = tf;
+        }
+        throw;
+    }
+    if (e.settings) {
+        mSettings = *e.settings;
+        mHasSettings = true;
+    }
+}
+
+void Renderer::configure(const scene::StructureConfig& config) {
     const scene::StructureConfig previous = mScene.config();
     mMajorants->cancelSubMajorants();  // a background build reads the structures configure frees
     try {
@@ -122,14 +161,11 @@ void Renderer::setStructure(const scene::StructureConfig& config) {
         throw;
     }
     mBroken.clear();
-    redo(scene::invalidatedBy(scene::Change::Structure));
 }
 
-void Renderer::setTransferFunction(const scene::TransferFunction& tf) {
-    AMRVK_CHECK(!tf.positions().empty() && tf.positions().size() == tf.colors().size(), "transfer function has no nodes");
-    mTf = tf;
-    redo(scene::invalidatedBy(scene::Change::TransferFunction));
-}
+void Renderer::setStructure(const scene::StructureConfig& config) { commit({.structure = config}); }
+
+void Renderer::setTransferFunction(const scene::TransferFunction& tf) { commit({.tf = tf}); }
 
 void Renderer::writeView(const scene::RenderSettings& s) {
     const scene::RayBasis rb = scene::makeRayBasis(s.camera, s.width, s.height, mScene.volume().model.voxelToWorld);
@@ -175,25 +211,7 @@ void Renderer::writeShading(const scene::RenderSettings& s) {
     mParams.cut = scene::cutAwayGpu(s.cut, mScene.volume().model.voxelToWorld, -mScene.volume().toLocal(glm::dvec3(0.0)));
 }
 
-void Renderer::setSettings(const scene::RenderSettings& s) {
-    scene::ChangeSet changes =
-        mHasSettings ? scene::settingsChanges(mSettings, s)
-                     : scene::ChangeSet(scene::Change::Camera) | scene::Change::ImageSize | scene::Change::Lighting;
-    if (!mHasSettings && s.controlExtinction != scene::ControlExtinction::None) changes |= scene::Change::Control;
-    if (changes.empty()) return;
-    scene::validateSettings(s);
-    const shared::RenderParams saved = mParams;  // an invalid camera or light changes nothing
-    const UpdateCounts counts = mCounts;
-    try {
-        redo(scene::invalidatedBy(changes), &s);
-    } catch (...) {
-        mParams = saved;
-        mCounts = counts;
-        throw;
-    }
-    mSettings = s;
-    mHasSettings = true;
-}
+void Renderer::setSettings(const scene::RenderSettings& s) { commit({.settings = s}); }
 
 void Renderer::setCamera(const scene::Camera& camera) {
     scene::RenderSettings s = mSettings;

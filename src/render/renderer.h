@@ -47,6 +47,15 @@ struct UpdateCounts {
     uint64_t pipelinesCompiled = 0;    // path-trace pipelines created
 };
 
+// Edits gathered to be committed at once (as Open VKL commits an object): every part given is
+// taken, and what their union invalidates (scene/invalidation.h) is redone once, so a session's
+// structure, TF and settings cost one device copy and one majorant pass.
+struct Edit {
+    std::optional<scene::StructureConfig> structure;  // back-end resolved
+    std::optional<scene::TransferFunction> tf;        // linear colours, as rendered
+    std::optional<scene::RenderSettings> settings;
+};
+
 class Renderer {
 public:
     // Builds the structures of `config` (back-end resolved: Sw or Rq) over `volume` and uploads
@@ -58,6 +67,11 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     // ---- Edits (each resets the accumulation; what else it redoes is in scene/invalidation.h) ----
+    // The parts of `e`, committed at once: checked first (a TF with no nodes, invalid settings:
+    // nothing changes); the structure built next (on a failure its error is thrown, the previous
+    // combination rebuilt and nothing of `e` taken); then the union of what they invalidate redone
+    // once. The setters below are commits of one part.
+    void commit(const Edit& e);
     // Another combination (back-end resolved): host structures built or freed, a new device copy
     // (the old one freed first), the majorants of the current TF, new pipelines. Equal configs
     // change nothing. When a build fails (e.g. the dense grid over its limit) the error is thrown
@@ -172,6 +186,9 @@ public:
 private:
     // Redoes what `inv` lists (the only place an edit takes effect).
     void redo(const scene::Invalidation& inv, const scene::RenderSettings* settings = nullptr);
+    // The scene's host structures for `config`; on a failure the previous ones are built again
+    // (or mBroken says why not) and the error is thrown.
+    void configure(const scene::StructureConfig& config);
     void buildDeviceScene();
     void takeMajorantParams();  // the majorant pass's params into RenderParams, to upload
     void requireRenderable() const;  // structures, a TF and settings exist

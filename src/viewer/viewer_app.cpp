@@ -114,11 +114,15 @@ private:
     void recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D extent);
     void saveCapture(VkExtent2D extent);
     void updateStatistics(double frameSeconds);
+    // The one way the viewer changes the picture: the parts of `e` committed at once beside the
+    // event loop (mPicture.commit: one majorant pass and at most one build, however many parts),
+    // then taken into the state; on an error nothing changes and it is thrown.
+    void commit(const picture::PictureEdit& e);
     // Validates `next` (back-end resolved for the device) and builds it; on an error nothing
     // changes (the renderer keeps the previous structures) and the error is thrown.
-    void setStructure(const scene::StructureConfig& next);
+    void setStructure(const scene::StructureConfig& next) { commit({.structure = next}); }
     // The renderer takes mState.tf (majorants), the histogram follows its range.
-    void setTransferFunction();
+    void setTransferFunction() { commit({.tf = mState.tf, .tfColors = mState.tfColors}); }
     // The data read again with `next.read` (another scale or log floor) beside the event loop, and
     // a renderer made for it with next's camera, settings, structure and TF (refitTf: an unedited
     // fitted preset fitted again, any other TF's shape moved onto the new field range:
@@ -166,7 +170,9 @@ private:
     session::ViewerLayout mLayout;    // this frame's panel and picture rectangles
 
     std::shared_ptr<const scene::Volume> mVolume;
-    std::unique_ptr<render::Renderer> mRenderer;
+    // The picture: its renderer and its description, edited only through mPicture.commit (one
+    // commit per edit, however many parts it changes).
+    picture::Picture mPicture;
 
     // The picture: the one copy of every setting (full resolution), the camera and the TF; the
     // camera control and the TF editor edit it in place, the panels edit a copy that is validated.
@@ -246,15 +252,14 @@ picture::Options ViewerApp::pictureOptions() const {
 }
 
 void ViewerApp::adoptPicture(picture::Picture&& p) {
-    mState = p.session();
-    mRenderer = std::move(p.renderer);
-    mRenderer->setSubMajorantsInBackground(true);  // a TF edit does not wait for them
+    mPicture = std::move(p);
+    mPicture.renderer->setSubMajorantsInBackground(true);  // a TF edit does not wait for them
     // The editor's form of the TF: the same function, with both channels spanning its range.
-    mState.tf = session::TfEditor::editable(mState.tf);
-    if (!(mState.tf == p.described.tf))
-        mRenderer->setTransferFunction(scene::albedoOf(mState.tf.merged(), mState.tfColors));
+    const scene::TfChannels editable = session::TfEditor::editable(mPicture.described.tf);
+    if (!(editable == mPicture.described.tf)) mPicture.commit({.tf = editable});
+    mState = mPicture.session();
     mTfHistory = session::TfHistory(mState.tf);
-    mStats.combination = mRenderer->config().labelWithGrid();
+    mStats.combination = mPicture.renderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
     mHistogram.reset();  // the data may be new
     updateHistogram();
@@ -321,25 +326,41 @@ void ViewerApp::createWindowResources() {
                                           mSwapchain->minImageCount(), mSwapchain->imageCount());
 }
 
-void ViewerApp::setStructure(const scene::StructureConfig& requested) {
-    scene::StructureConfig next = requested;
-    picture::resolveStructure(*mCtx, next);  // validated before anything changes
+void ViewerApp::commit(const picture::PictureEdit& e) {
+    std::string stageName;
+    if (e.structure) {
+        scene::StructureConfig next = *e.structure;
+        picture::resolveStructure(*mCtx, next);  // validated before anything changes
+        stageName = "structures for " + next.label();
+    }
     Timer t;
     whileResponsive([&] {
-        ProgressStage stage("structures for " + next.label());
-        mRenderer->setStructure(next);
+        std::optional<ProgressStage> stage;
+        if (e.structure) stage.emplace(stageName);
+        mPicture.commit(e);
     });
-    mStats.structureSeconds = t.seconds();
-    mStats.combination = next.labelWithGrid();
-    mState.structure = requested;
-    mPanel.gridText = requested.grid;
-    mPanel.structureError.clear();
-    noteReset("structure");
+    if (e.tf) mState.tf = *e.tf;
+    if (e.tfColors) mState.tfColors = *e.tfColors;
+    if (e.settings) mState.settings = *e.settings;
+    if (e.structure) {
+        mStats.structureSeconds = t.seconds();
+        mStats.combination = mPicture.renderer->config().labelWithGrid();
+        mState.structure = *e.structure;
+        mPanel.gridText = e.structure->grid;
+        mPanel.structureError.clear();
+        noteReset("structure");
+    }
+    if (e.tf || e.tfColors) {
+        if (!e.structure) mStats.tfEditSeconds = t.seconds();
+        updateHistogram();
+        noteReset("transfer function");
+    }
 }
 
 void ViewerApp::noteReset(const std::string& what) {
     // The renderer must have dropped every sample of the old picture.
-    mResets.push_back({mFrame, what, mRenderer ? mRenderer->accumulatedSpp() + mRenderer->rowsDone() : 0});
+    mResets.push_back(
+        {mFrame, what, mPicture.renderer ? mPicture.renderer->accumulatedSpp() + mPicture.renderer->rowsDone() : 0});
     mNeedPreview = true;
     mChangedAt = Clock::now();
 }
@@ -364,15 +385,6 @@ void ViewerApp::whileResponsive(const std::function<void()>& work) {
     }
     mBuilding = false;
     job.get();  // rethrows the build's error
-}
-
-void ViewerApp::setTransferFunction() {
-    Timer t;
-    const scene::TransferFunction tf = scene::albedoOf(mState.tf.merged(), mState.tfColors);  // linear, as rendered
-    whileResponsive([&] { mRenderer->setTransferFunction(tf); });
-    mStats.tfEditSeconds = t.seconds();
-    updateHistogram();
-    noteReset("transfer function");
 }
 
 int ViewerApp::run() {
@@ -523,21 +535,25 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         }
     }
 
-    // Structure first: validated and built, or rejected with its reason shown and nothing changed.
-    if (!(e.structure == mState.structure)) {
+    // This frame's structure and TF edits in one commit. A structure that is refused or fails to
+    // build shows its reason and changes nothing; the TF edit is then committed alone.
+    picture::PictureEdit pe;
+    if (!(e.structure == mState.structure)) pe.structure = e.structure;
+    if (!(e.tf == mState.tf) || e.tfColors != mState.tfColors) {
+        pe.tf = e.tf;
+        pe.tfColors = e.tfColors;
+    }
+    if (pe.structure || pe.tf) {
         try {
-            setStructure(e.structure);
+            commit(pe);
         } catch (const Error& err) {
+            if (!pe.structure) throw;
             mPanel.structureError = err.what();
             mPanel.gridText = mState.structure.grid;
             mPanel.message = std::string("structure not applied: ") + err.what();
+            pe.structure.reset();
+            if (pe.tf) commit(pe);
         }
-        mInteracting = true;
-    }
-    if (!(e.tf == mState.tf) || e.tfColors != mState.tfColors) {
-        mState.tf = e.tf;
-        mState.tfColors = e.tfColors;
-        setTransferFunction();
         mInteracting = true;
     }
     if (req.tfCommitted) mTfHistory.push(mState.tf);
@@ -778,7 +794,7 @@ void ViewerApp::pollShaders() {
 
 void ViewerApp::reloadShaders() {
     try {
-        mRenderer->reloadShaders();
+        mPicture.renderer->reloadShaders();
         noteReset("shaders");
         mPanel.shaderError.clear();
         mPanel.message = "shaders reloaded";
@@ -805,47 +821,47 @@ void ViewerApp::applyEdits() {
     // TF ray-marched: clean in one sample where path tracing a haze is grainy for many; the path
     // tracer then refines the still picture at full resolution.
     if (mPreviewing) s.mode = scene::Mode::Dvr;
-    mRenderer->setSettings(s);
+    mPicture.commit({.settings = s});
     if (!changes.empty() && mFrame > 0) noteReset(scene::describe(changes));
     if (mInteracting) mChangedAt = Clock::now();
     mApplied = full;
 }
 
 void ViewerApp::trace() {
-    const scene::RenderSettings& s = mRenderer->settings();
+    const scene::RenderSettings& s = mPicture.renderer->settings();
     const uint32_t limit = mState.spp;
-    const bool done = !mPreviewing && limit > 0 && mRenderer->accumulatedSpp() >= limit;
+    const bool done = !mPreviewing && limit > 0 && mPicture.renderer->accumulatedSpp() >= limit;
     if (done) {
         if (mWindow) mWindow->waitEvents(0.03);  // converged: wait for the user instead of spinning
         return;
     }
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
-    const double gpuBefore = mRenderer->stats().gpuSeconds;
+    const double gpuBefore = mPicture.renderer->stats().gpuSeconds;
     if (mPreviewing) {
         ++mPreviewFrames[scene::modeName(s.mode)];
-        mRenderer->accumulate(1);
-        mBudget.record(mRenderer->stats().gpuSeconds - gpuBefore, pixels);
+        mPicture.renderer->accumulate(1);
+        mBudget.record(mPicture.renderer->stats().gpuSeconds - gpuBefore, pixels);
         mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
     } else {
-        const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mRenderer->rowsDone());
-        if (rows >= uint32_t(s.height) && mRenderer->rowsDone() == 0) {
+        const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mPicture.renderer->rowsDone());
+        if (rows >= uint32_t(s.height) && mPicture.renderer->rowsDone() == 0) {
             // Fast device: whole samples, as many as fit.
             const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
             uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
-            if (limit > 0) n = std::min(n, limit - mRenderer->accumulatedSpp());
-            mRenderer->accumulate(n);
-            mBudget.record(mRenderer->stats().gpuSeconds - gpuBefore, pixels * n);
+            if (limit > 0) n = std::min(n, limit - mPicture.renderer->accumulatedSpp());
+            mPicture.renderer->accumulate(n);
+            mBudget.record(mPicture.renderer->stats().gpuSeconds - gpuBefore, pixels * n);
         } else {
-            const uint32_t before = mRenderer->rowsDone();
-            const double gpu = mRenderer->accumulateRows(rows);
+            const uint32_t before = mPicture.renderer->rowsDone();
+            const double gpu = mPicture.renderer->accumulateRows(rows);
             mBudget.recordRows(gpu, before, std::min(rows, uint32_t(s.height) - before), s.width, s.height);
         }
-        if (mChangedAt && mRenderer->accumulatedSpp() >= 1) {
+        if (mChangedAt && mPicture.renderer->accumulatedSpp() >= 1) {
             mTimings.toFirstFullSample.push_back(secondsSince(*mChangedAt));
             mChangedAt.reset();
         }
     }
-    mDisplayFresh = mPreviewing || mRenderer->accumulatedSpp() >= 1;
+    mDisplayFresh = mPreviewing || mPicture.renderer->accumulatedSpp() >= 1;
 }
 
 void ViewerApp::present() {
@@ -861,18 +877,18 @@ void ViewerApp::present() {
         }
         mDisplay.fillZero();
         mDisplayRect = picture;
-        mDisplayFresh = mPreviewing || mRenderer->accumulatedSpp() >= 1;
+        mDisplayFresh = mPreviewing || mPicture.renderer->accumulatedSpp() >= 1;
     }
     // The swapchain can lag the layout by a frame while the window is resized: draw only a
     // rectangle that lies in it.
     const bool drawable = !picture.empty() && picture.right() <= mDisplayWidth && picture.bottom() <= mDisplayHeight;
-    const scene::RenderSettings& s = mRenderer->settings();
+    const scene::RenderSettings& s = mPicture.renderer->settings();
     const bool ok = mSwapchain->frame([&](VkCommandBuffer cmd, VkImage image, VkFramebuffer framebuffer) {
         // Until the first full-resolution sample is complete the last picture stays on screen.
         if (mDisplayFresh && drawable)
-            mDisplayPass->record(cmd, mRenderer->accumulationAddress(), s.width, s.height, mDisplay,
-                                 {mDisplayWidth, mDisplayHeight, picture.x, picture.y, picture.width, picture.height,
-                                  kLetterboxColor});
+            mDisplayPass->record(
+                cmd, mPicture.renderer->accumulationAddress(), s.width, s.height, mDisplay,
+                {mDisplayWidth, mDisplayHeight, picture.x, picture.y, picture.width, picture.height, kLetterboxColor});
         // display pass (compute) -> copy into the swapchain image -> the UI's render pass.
         const gpu::ImageUse copyDst{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
@@ -940,7 +956,7 @@ void ViewerApp::updateStatistics(double frameSeconds) {
     st.frameMilliseconds =
         st.frameMilliseconds > 0 ? 0.9 * st.frameMilliseconds + 0.1 * frameSeconds * 1e3 : frameSeconds * 1e3;
     st.framesPerSecond = st.frameMilliseconds > 0 ? 1e3 / st.frameMilliseconds : 0;
-    const scene::RenderStats& stats = mRenderer->stats();
+    const scene::RenderStats& stats = mPicture.renderer->stats();
     const double paths = double(stats.paths);
     const auto& c = stats.counters;
     st.mPathsPerSecond = stats.gpuSeconds > 0 ? paths / stats.gpuSeconds * 1e-6 : 0;
@@ -950,10 +966,10 @@ void ViewerApp::updateStatistics(double frameSeconds) {
     st.violations = c[shared::kCounterMajorantViolations];
     st.trackingCapHits = c[shared::kCounterTrackingCapHits];
     st.nanSamples = c[shared::kCounterNanSamples];
-    st.spp = mRenderer->accumulatedSpp();
+    st.spp = mPicture.renderer->accumulatedSpp();
     st.sppLimit = mState.spp;
-    st.rowsDone = mRenderer->rowsDone();
-    st.height = uint32_t(mRenderer->settings().height);
+    st.rowsDone = mPicture.renderer->rowsDone();
+    st.height = uint32_t(mPicture.renderer->settings().height);
     st.previewScale = mPreviewScale;
     st.deviceBytes = mCtx->memory().currentBytes();
 }
@@ -961,11 +977,11 @@ void ViewerApp::updateStatistics(double frameSeconds) {
 void ViewerApp::finishSample() {
     // The full-resolution picture with at least one complete sample (no half-traced rows).
     const scene::RenderSettings& s = mState.settings;
-    mRenderer->setSettings(s);
+    mPicture.commit({.settings = s});
     mPreviewScale = 1;
     mPreviewing = false;
-    if (mRenderer->accumulatedSpp() == 0 || mRenderer->rowsDone() > 0)
-        mRenderer->accumulateRows(uint32_t(s.height) - mRenderer->rowsDone());
+    if (mPicture.renderer->accumulatedSpp() == 0 || mPicture.renderer->rowsDone() > 0)
+        mPicture.renderer->accumulateRows(uint32_t(s.height) - mPicture.renderer->rowsDone());
 }
 
 void ViewerApp::screenshot(const fs::path& file) {
@@ -976,11 +992,12 @@ void ViewerApp::screenshot(const fs::path& file) {
             mLegendFontFile = mState.legend.font;
         }
         const session::LegendContent legend = session::legendContent(mState, mVolume->field().units);
-        writeImage(file, session::drawLegend(mRenderer->output().mean, legend, mState.legend.place, *mLegendFont));
+        writeImage(file,
+                   session::drawLegend(mPicture.renderer->output().mean, legend, mState.legend.place, *mLegendFont));
     } else {
-        writeImage(file, mRenderer->output().mean);
+        writeImage(file, mPicture.renderer->output().mean);
     }
-    mPanel.message = "saved " + file.string() + " (" + std::to_string(mRenderer->accumulatedSpp()) + " spp)";
+    mPanel.message = "saved " + file.string() + " (" + std::to_string(mPicture.renderer->accumulatedSpp()) + " spp)";
     std::fprintf(stderr, "amrvk view: %s\n", oneLineMessage(mPanel.message).c_str());
 }
 
@@ -1007,14 +1024,13 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
         // units) at once: when anything fails nothing of the session is taken.
         reloadData(s, false);
     } else {
-        // The structure first: when it cannot be built nothing of the session is taken.
-        if (!(s.structure == mState.structure)) setStructure(s.structure);
-        mState.settings = s.settings;
+        // Structure, TF (with the meaning its colours were saved with) and settings in one commit:
+        // one build and one majorant pass; when the structure cannot be built nothing is taken.
+        picture::PictureEdit e{.tf = session::TfEditor::editable(s.tf), .tfColors = s.tfColors, .settings = s.settings};
+        if (!(s.structure == mState.structure)) e.structure = s.structure;
+        commit(e);
         mState.spp = s.spp;
-        mState.tf = session::TfEditor::editable(s.tf);
-        mState.tfColors = s.tfColors;  // the meaning it was saved with
         mTfHistory.push(mState.tf);
-        setTransferFunction();
     }
     mPanel.message = "loaded " + file.string();
 }
@@ -1046,11 +1062,14 @@ void ViewerApp::writeStats() const {
     j["idleFrames"] = summary(mTimings.idleFrames);
     j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
     j["previewFrames"] = mPreviewFrames;  // by mode: dvr (the preview is always ray-marched)
-    j["spp"] = mRenderer->accumulatedSpp();
+    j["spp"] = mPicture.renderer->accumulatedSpp();
     j["resets"] = nlohmann::ordered_json::array();
     for (const Reset& r : mResets)
         j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
     j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
+    // What the edits cost the renderer (render::UpdateCounts): device copies and majorant passes.
+    const render::UpdateCounts u = mPicture.renderer->updateCounts();
+    j["updates"] = {{"deviceScenes", u.deviceScenes}, {"majorantPasses", u.majorantDispatches}};
     // The field's scale and the histogram under the TF editor (the range it spans, cells counted).
     j["scale"] = amr::fieldScaleName(mState.read.scale);
     if (mHistogram) {
@@ -1073,7 +1092,7 @@ void ViewerApp::writeState() const {
     nlohmann::ordered_json j;
     j["frame"] = mFrame;  // frames completed (input, trace, present)
     j["building"] = mBuilding;
-    j["spp"] = mRenderer ? mRenderer->accumulatedSpp() : 0u;  // complete full-resolution samples
+    j["spp"] = mPicture.renderer ? mPicture.renderer->accumulatedSpp() : 0u;  // complete full-resolution samples
     j["previewScale"] = mPreviewScale;                         // > 1: the last frame showed a preview
     j["image"] = {{"width", mState.settings.width}, {"height", mState.settings.height}};  // pixels
     j["imageFollowsPicture"] = mPanel.imageFollowsWindow;

@@ -197,3 +197,61 @@ TEST_F(PictureGpu, TheFirstFrameHalvesTheStepWhileItIsNoisyAndLeavesTheRendererA
     EXPECT_NEAR(f.noise, scene::meanRelativeError(same), 1e-9);
     EXPECT_GT(maxRelativeDifference(f.image, coarse.mean), 1e-3) << "a finer step is another picture";
 }
+
+// Issue 54, point 2: edits are committed once. A session's structure, TF, colour meaning and
+// settings (with minorants) committed together cost one device copy and one majorant pass (one at a
+// time they cost three passes), and the edited picture renders what a fresh picture of the same
+// description renders; a refused part leaves the whole picture as it was.
+TEST_F(PictureGpu, ASessionsEditsAreCommittedOnceAndRenderWhatAFreshPictureRenders) {
+    const fs::path dir = test::scratchDir();
+    amr::writeExaBrick(test::makeThreeLevelCloud(), dir / "cloud", true);
+    const session::PictureDescription d = cloudDescription(dir / "cloud.cells");
+    picture::Picture p = picture::makePicture(ctx(), session::loadVolume(d.session), d);
+
+    session::PictureDescription loaded = d;  // the session a user loads: another structure, TF and estimator
+    loaded.session.structure = {
+        .sampler = scene::SamplerKind::Grid, .traversal = scene::TraversalKind::GridBvh, .grid = "4"};
+    loaded.tfSource = session::TfSource{.name = "spiky"};
+    loaded.session.tfColors = scene::TfColors::Linear;
+    loaded.session.settings.controlExtinction = scene::ControlExtinction::Minorant;
+    loaded.session.settings.seed = 11;
+    picture::Picture fresh = picture::makePicture(ctx(), session::loadVolume(loaded.session), loaded);
+    const session::Session target = fresh.session();
+
+    const scene::TfChannels original = p.session().tf;
+    const render::UpdateCounts before = p.renderer->updateCounts();
+    p.commit(
+        {.tf = target.tf, .tfColors = target.tfColors, .structure = target.structure, .settings = target.settings});
+    const render::UpdateCounts after = p.renderer->updateCounts();
+    EXPECT_EQ(after.deviceScenes - before.deviceScenes, 1u);
+    EXPECT_EQ(after.majorantDispatches - before.majorantDispatches, 1u);
+    EXPECT_EQ(after.accumulationResets - before.accumulationResets, 1u);
+    EXPECT_TRUE(p.session().settings == target.settings);
+    EXPECT_TRUE(p.session().tf == target.tf);
+    EXPECT_EQ(p.session().tfColors, scene::TfColors::Linear);
+    EXPECT_EQ(p.renderer->config().label(), fresh.renderer->config().label());
+    const scene::RenderOutput edited = p.render(), made = fresh.render();
+    EXPECT_GT(made.stats.counter(shared::kCounterRealCollisions), 0u);
+    EXPECT_EQ(edited.stats.counter(shared::kCounterDensityLookups), made.stats.counter(shared::kCounterDensityLookups));
+    EXPECT_LT(maxRelativeDifference(edited.mean, made.mean), 1e-6);
+
+    // The same parts one at a time: a pass each for the structure, the TF and the minorants.
+    picture::Picture apart = picture::makePicture(ctx(), session::loadVolume(d.session), d);
+    const render::UpdateCounts b2 = apart.renderer->updateCounts();
+    apart.commit({.structure = target.structure});
+    apart.commit({.tf = target.tf, .tfColors = target.tfColors});
+    apart.commit({.settings = target.settings});
+    EXPECT_EQ(apart.renderer->updateCounts().majorantDispatches - b2.majorantDispatches, 3u);
+
+    // A refused part (a grid that is not one) refuses the commit: nothing of it is taken.
+    const render::UpdateCounts c0 = p.renderer->updateCounts();
+    scene::StructureConfig bad = target.structure;
+    bad.grid = "0x0x0";
+    scene::RenderSettings moved = target.settings;
+    moved.seed = 12;
+    EXPECT_THROW(p.commit({.tf = original, .structure = bad, .settings = moved}), Error);
+    EXPECT_EQ(p.renderer->updateCounts().majorantDispatches, c0.majorantDispatches);
+    EXPECT_EQ(p.renderer->settings().seed, 11u);
+    EXPECT_TRUE(p.session().tf == target.tf);
+    EXPECT_EQ(p.session().structure.grid, "4");
+}

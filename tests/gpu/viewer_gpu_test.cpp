@@ -715,3 +715,37 @@ TEST_F(ViewerGpu, LogScaleFitsAnUneditedPresetAgain) {
         << "the test has no power: moving the shape would put the first apex where fitting does";
     expectTf(session::loadSession(dir / "back.json").tf, linear, "back on the linear scale");
 }
+
+// Issue 54, point 2: a session load is one commit. A session with another structure, TF and
+// control extinction costs the viewer one device copy and one majorant pass more than the same run
+// without the load (three passes when structure, TF and settings were applied one after another).
+TEST_F(ViewerGpu, ASessionLoadBuildsOnceAndRunsOneMajorantPass) {
+    const fs::path dir = test::scratchDir() / "viewer-session-commit";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto at = [&](const char* name) { return (dir / name).string(); };
+    test::writeAll(dir / "save.txt", "1 save-session " + at("saved.json") + "\n");
+    ASSERT_EQ(run(amrvkBinary() + " view " + sample() + kPicture + " --headless --frames 3 --script " + at("save.txt"),
+                  dir, "save"),
+              0)
+        << test::readAll(dir / "save.err");
+    session::Session s = session::loadSession(dir / "saved.json");
+    s.structure.traversal = scene::TraversalKind::GridBvh;
+    s.structure.grid = "8";
+    s.tf = session::refitTfRange(s.tf, 0.2f, 1.0f);
+    s.settings.controlExtinction = scene::ControlExtinction::Minorant;
+    session::saveSession(dir / "other.json", s);
+
+    auto updates = [&](const std::string& script, const char* tag) {
+        test::writeAll(dir / (std::string(tag) + ".txt"), script);
+        const int rc = run(amrvkBinary() + " view " + sample() + kPicture + " --headless --frames 6 --script " +
+                               at(tag) + ".txt --stats " + at(tag) + ".json --validation",
+                           dir, tag);
+        EXPECT_EQ(rc, 0) << test::readAll(dir / (std::string(tag) + ".err"));
+        return readJson(dir / (std::string(tag) + ".json"))["updates"];
+    };
+    const nlohmann::json plain = updates("5 density 1\n", "plain");
+    const nlohmann::json loaded = updates("2 load-session " + at("other.json") + "\n", "loaded");
+    EXPECT_EQ(loaded["deviceScenes"].get<int>() - plain["deviceScenes"].get<int>(), 1) << loaded.dump();
+    EXPECT_EQ(loaded["majorantPasses"].get<int>() - plain["majorantPasses"].get<int>(), 1) << loaded.dump();
+}
