@@ -56,7 +56,7 @@ def from_colormap(name, lo, hi=None, *, nodes=16):
     return _amrvk.TransferFunction.from_nodes(positions, colors, name=name)
 
 
-# The built-in presets (scene/transfer_function.cpp's makePreset); other names are colormaps.
+# The built-in presets (scene/tf_presets.cpp's makePreset); other names are colormaps.
 BUILT_IN = ("ramp", "grey", "spiky", "foggy", "constant", "empty", "layers")
 
 

@@ -1,7 +1,7 @@
 #pragma once
 // The distribution of a field's cell values by cell count: its percentiles, exact order
 // statistics, which the spiky and foggy transfer-function presets are laid over
-// (scene/transfer_function.h). Every cell counts once, whatever its level: AMR codes refine where
+// (scene/tf_presets.h). Every cell counts once, whatever its level: AMR codes refine where
 // the field has structure, so the cells follow the features, while a volume-weighted distribution
 // is the coarse background's (the 10^6-cell synthetic cloud: volume-weighted median 0.0053, in
 // the empty space around the cloud; cell median 2.65, inside it).

@@ -2,7 +2,7 @@
 // How much of space holds each value of a field: its cells' volumes summed per value bin. Where
 // the percentiles (value_percentiles.h) count cells, this weighs them by the space they fill, so
 // it tells how far a ray through the data travels at each value: the layers preset
-// (scene/transfer_function.h) gives each value band the opacity that makes its expected optical
+// (scene/tf_presets.h) gives each value band the opacity that makes its expected optical
 // depth along a chord a fixed share, whatever the resolution or how much of space the band fills.
 // Volumes are in finest cells (cells of the data's finest level present, the unit of the TF's
 // alpha), as doubles: a part of a data set held apart (an MPI rank's cells) bins its own cells

@@ -1,10 +1,9 @@
 #include "bench/bench_runner.h"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "amr/readers.h"
@@ -13,6 +12,7 @@
 #include "core/json_text.h"
 #include "core/stats.h"
 #include "picture/picture.h"
+#include "scene/tf_files.h"
 #include "scene/transfer_function.h"
 #include "session/picture_description.h"
 
@@ -107,7 +107,8 @@ private:
     std::shared_ptr<const scene::Volume> mVolume;
     session::PictureDescription mDesc;  // the data set's picture under the current TF (mode, structure per run)
     std::unique_ptr<render::Renderer> mRenderer;  // one per data set, switched from run to run
-    std::optional<scene::TransferFunction> mTf, mOtherTf;  // the albedo the renderer gets (scene::albedoOf)
+    std::optional<scene::TransferFunction> mTf,
+        mOtherTf;  // the albedo the renderer gets (scene::albedoOf of the channels)
     std::string mTfName;
     scene::RenderSettings mSettings;  // resolved: the camera framed
     ReferenceImage mRef;
@@ -506,12 +507,12 @@ BenchResults Runner::run() {
             const session::Session resolved = session::resolvePicture(mDesc, volume, nullptr);
             mSettings = resolved.settings;
             mDesc.session.settings.camera = mSettings.camera;  // framed once: runs and references agree
-            mTf = scene::albedoOf(resolved.tf.merged(), resolved.tfColors);  // as the references render it
+            mTf = scene::albedoOf(resolved.tf, resolved.tfColors);  // as the references render it
             // The timed TF edit comes from another preset, so every majorant really changes.
             session::PictureDescription other = mDesc;
             other.tfSource = session::TfSource{.name = tfName == "foggy" ? "spiky" : "foggy"};
             const session::Session o = session::resolvePicture(other, volume, nullptr);
-            mOtherTf = scene::albedoOf(o.tf.merged(), o.tfColors);
+            mOtherTf = scene::albedoOf(o.tf, o.tfColors);
             mTfName = tfName;
             for (Mode mode : mOpt.modes) measureMode(mode);
             if (!mOpt.dvrSteps.empty()) {

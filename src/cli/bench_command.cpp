@@ -258,14 +258,16 @@ bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::v
     o.referenceSpp = uint32_t(a.refSpp);
     o.targetRmse = a.targetRmse;
     parseSweeps(app, a, o);
+    session::Session given;  // the table's settings bench takes (session/setting_table.h)
+    applySettingTable(app, a.pic, given, true);
     o.grid = a.pic.grid;
-    o.kdLeaves = uint32_t(a.pic.kdLeaves);
+    o.kdLeaves = given.structure.kdLeaves;
     o.dense = !a.noDense;
-    o.denseMaxBytes = uint64_t(a.pic.denseMaxMib) << 20;
+    o.denseMaxBytes = given.structure.denseMaxBytes;
     o.autoSelect = a.autoSelect;
     AMRVK_CHECK(!world || !a.autoSelect, "--auto: not under mpirun (its timed pick can differ between ranks)");
     o.base = pictureSettings(app, a.pic, scene::RenderSettings{});
-    o.fovDegrees = a.pic.fov;
+    o.fovDegrees = o.base.camera.fovYDegrees;
     if (app.count("--camera")) o.camera = o.base.camera;
     o.commandLine = "amrvk bench";
     for (const auto& arg : argv) o.commandLine += " " + arg;

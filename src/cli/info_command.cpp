@@ -2,9 +2,9 @@
 // from (bricks, ABRs with value ranges, macrocell value ranges), with sizes and build times.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "accel/abrs.h"
 #include "accel/bricks.h"
@@ -19,6 +19,8 @@
 #include "scene/limits.h"
 #include "scene/majorant_check.h"
 #include "scene/structure_config.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "scene/volume.h"
 #include "scene/volume_scene.h"
 

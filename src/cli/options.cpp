@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/strings.h"
 #include "scene/limits.h"
+#include "session/setting_table.h"
 
 namespace amrvk::cli {
 
@@ -28,7 +29,7 @@ CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
             if (s.empty() || !end || *end != '\0') return "'" + s + "' is not a number";
             if (!std::isfinite(v)) return "'" + s + "' is not a finite number";
             const bool inside = (openLo ? v > lo : v >= lo) && (openHi ? v < hi : v <= hi);
-            return inside ? std::string() : "'" + s + "' is outside " + text;
+            return inside ? std::string() : s + " is outside " + text;  // as session::settingRangeError words it
         },
         text);
 }
@@ -124,7 +125,46 @@ void addLights(std::vector<scene::Light>& out, const std::vector<double>& values
     }
 }
 
+// A setting of session::settingTable(), registered from its row: help, limits, choices, the
+// Session's default; kept as text (or a flag) in `a` until applySettingTable.
+void addSetting(CLI::App& app, PictureArgs& a, std::string_view option) {
+    const session::Setting& st = session::settingForOption(option);
+    const std::string name(option);
+    if (st.kind == session::SettingKind::Flag) {
+        app.add_flag(name, a.flags[name], std::string(st.help));
+        return;
+    }
+    std::string& value = a.settings[name] = session::settingDefault(st);
+    CLI::Option* o = app.add_option(name, value, std::string(st.help))->capture_default_str();
+    if (st.kind == session::SettingKind::Choice) {
+        o->check(CLI::Validator([&st](std::string& text) { return session::settingChoiceError(st, text); },
+                                "{" + std::string(st.choices) + "}"))
+            ->type_name(std::string(st.choices));
+        return;
+    }
+    o->check(CLI::Validator(
+                 [&st](std::string& text) -> std::string {
+                     char* end = nullptr;
+                     const double v = std::strtod(text.c_str(), &end);
+                     if (text.empty() || !end || *end != '\0') return "'" + text + "' is not a number";
+                     return session::settingRangeError(st, v);
+                 },
+                 session::settingLimits(st)))
+        ->type_name(std::string(st.valueName));
+}
+
 }  // namespace
+
+void applySettingTable(const CLI::App& app, const PictureArgs& a, session::Session& s, bool all) {
+    for (const session::Setting& st : session::settingTable()) {
+        const std::string name(st.option);
+        if (!app.get_option_no_throw(name) || !(all || given(app, name))) continue;
+        if (st.kind == session::SettingKind::Flag)
+            st.setNumber(s, a.flags.at(name) ? 1 : 0);
+        else
+            session::setSettingFromText(st, s, a.settings.at(name), st.option);
+    }
+}
 
 void addReadOptions(CLI::App& app, ReadArgs& a, bool multiField) {
     app.add_option("--format", a.format, "input format (default: detected from names and magic bytes)")
@@ -247,32 +287,8 @@ void addStartOptions(CLI::App& app, PictureArgs& a) {
 // How the picture is made: the estimator, its majorant traversal, sampler and back-end, and the
 // samples per pixel.
 void addMethodOptions(CLI::App& app, PictureArgs& a) {
-    app.add_option("--mode", a.mode,
-                   "absorption+emission, single or multiple scattering, or the ray-marching "
-                   "baseline (biased "
-                   "by --dt)")
-        ->check(CLI::IsMember({"ae", "ss", "ms", "dvr"}))
-        ->capture_default_str()
-        ->type_name("ae|ss|ms|dvr");
-    app.add_option("--dt", a.dt, "dvr: step as a fraction of the finest cell width at the sample")
-        ->check(interval(0, 64, true))
-        ->capture_default_str()
-        ->type_name("F");
-    app.add_flag("--dvr-shading", a.dvrShading,
-                 "dvr: gradient shading by the first --light-dir (else a headlight)");
-    app.add_option("--transmittance", a.transmittance,
-                   "ss and ms: the shadow rays' transmittance estimator, ratio tracking or unbiased ray "
-                   "marching (Kettunen et al. 2021); both unbiased (docs/benchmarks.md)")
-        ->check(CLI::IsMember({"ratio", "ubrm"}))
-        ->capture_default_str()
-        ->type_name("ratio|ubrm");
-    app.add_option("--control-extinction", a.controlExtinction,
-                   "ae, ss and ms: none, or track only the extinction above each macrocell's least "
-                   "(minorant): free flight by decomposition tracking, ratio-tracked shadows by residual "
-                   "ratio tracking; unbiased, grid-dda and grid-bvh over data whose cells fill their bounds")
-        ->check(CLI::IsMember({"none", "minorant"}))
-        ->capture_default_str()
-        ->type_name("none|minorant");
+    for (const char* option : {"--mode", "--dt", "--dvr-shading", "--transmittance", "--control-extinction"})
+        addSetting(app, a, option);
     app.add_option("--traversal", a.traversal,
                    "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
                    "brick bounds, brick "
@@ -342,10 +358,7 @@ void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
     app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis, fewer for small data: at most 2 macrocells per leaf cell)")
         ->capture_default_str()
         ->type_name("auto|N|NxMxK");
-    app.add_option("--kd-leaves", a.kdLeaves, "kdtree: leaves of the kd-tree, rebuilt per TF (at most one per cell)")
-        ->check(interval(1, scene::kMaxKdLeaves))
-        ->capture_default_str()
-        ->type_name("N");
+    addSetting(app, a, "--kd-leaves");
     if (!subset)
         app.add_option("--sub-majorants", a.subMajorants,
                        "grid-dda, grid-bvh: split each macrocell that the TF makes loose (a narrow TF peak in its "
@@ -355,10 +368,7 @@ void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
             ->check(CLI::IsMember({"off", "2", "4", "8", "16"}))
             ->capture_default_str()
             ->type_name("off|N");
-    app.add_option("--dense-max-mib", a.denseMaxMib, "dense sampler: largest dense grid to build")
-        ->check(interval(1, scene::kMaxDenseMiB))
-        ->capture_default_str()
-        ->type_name("MIB");
+    addSetting(app, a, "--dense-max-mib");
 }
 
 // The image and its camera, and the random seed.
@@ -368,26 +378,14 @@ void addViewOptions(CLI::App& app, PictureArgs& a) {
         ->expected(9)
         ->check(kFinite)
         ->type_name("EX EY EZ TX TY TZ UX UY UZ");
-    app.add_option("--fov", a.fov, "vertical field of view in degrees")
-        ->check(interval(0, scene::kMaxFovDegrees, true, true))
-        ->capture_default_str()
-        ->type_name("DEG");
-    app.add_option("--seed", a.seed, "random seed")
-        ->check(interval(0, UINT32_MAX))
-        ->capture_default_str()
-        ->type_name("S");
+    addSetting(app, a, "--fov");
+    addSetting(app, a, "--seed");
 }
 
 // The medium's scale and phase function, and its lighting.
 void addMediumOptions(CLI::App& app, PictureArgs& a) {
-    app.add_option("--density-scale", a.densityScale, "multiplies extinction")
-        ->check(interval(0, INFINITY, false, true))
-        ->capture_default_str()
-        ->type_name("S");
-    app.add_option("--g", a.g, "Henyey-Greenstein asymmetry, clamped to +-0.999")
-        ->check(interval(-1, 1))
-        ->capture_default_str()
-        ->type_name("G");
+    addSetting(app, a, "--density-scale");
+    addSetting(app, a, "--g");
     app.add_option("--ambient", a.ambient, "uniform environment radiance (default 1 1 1)")
         ->expected(3)
         ->check(interval(0, INFINITY, false, true))
@@ -484,15 +482,13 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings s) {
     const bool all = !given(app, "--session");
     auto use = [&](const char* name) { return (all && app.get_option_no_throw(name)) || given(app, name); };
-    if (use("--mode")) s.mode = scene::parseMode(a.mode);
-    if (use("--dt")) s.dvrStep = a.dt;
-    if (use("--dvr-shading")) s.dvrShading = a.dvrShading;
-    if (use("--transmittance")) s.transmittance = scene::parseTransmittance(a.transmittance);
-    if (use("--control-extinction")) s.controlExtinction = scene::parseControlExtinction(a.controlExtinction);
+    {  // the table's settings (the structure's are taken by describePicture)
+        session::Session withSettings;
+        withSettings.settings = s;
+        applySettingTable(app, a, withSettings, all);
+        s = withSettings.settings;
+    }
     if (use("--size")) parseSize("--size", a.size, s.width, s.height);
-    if (use("--seed")) s.seed = uint32_t(a.seed);
-    if (use("--density-scale")) s.densityScale = a.densityScale;
-    if (use("--g")) s.g = a.g;
     if (given(app, "--ambient")) s.ambient = vec3At(a.ambient, 0);
     if (given(app, "--background")) s.background = vec3At(a.background, 0);
     if (given(app, "--light-dir") || given(app, "--light-point")) {
@@ -509,7 +505,6 @@ scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a,
         AMRVK_CHECK(glm::length(glm::cross(s.camera.target - s.camera.eye, s.camera.up)) > 0,
                     "--camera: the up vector is parallel to the view direction");
     }
-    if (use("--fov")) s.camera.fovYDegrees = a.fov;
     if (given(app, "--crop")) s.cut.crop = scene::CropBox{vec3At(a.crop, 0), vec3At(a.crop, 3)};
     if (given(app, "--clip")) {
         s.cut.clips.clear();
@@ -538,6 +533,12 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (use("--threshold")) s.read.rawThreshold = read.threshold;
     if (given(app, "--field")) s.field = read.fields.front();
     s.settings = pictureSettings(app, a, fromSession ? s.settings : session::Session{}.settings);
+    {  // the table's structure settings (pictureSettings took the rest)
+        session::Session withStructure;
+        withStructure.structure = s.structure;
+        applySettingTable(app, a, withStructure, all);
+        s.structure = withStructure.structure;
+    }
     if (use("--spp")) s.spp = uint32_t(a.spp);
     // The TF: the session's unless --tf or --tf-preset is given; --tf-range maps either.
     if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))
@@ -557,9 +558,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
     if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
     if (use("--grid")) s.structure.grid = a.grid;
-    if (use("--kd-leaves")) s.structure.kdLeaves = uint32_t(a.kdLeaves);
     if (use("--sub-majorants")) s.structure.subMajorants = scene::parseSubMajorants(a.subMajorants);
-    if (use("--dense-max-mib")) s.structure.denseMaxBytes = uint64_t(a.denseMaxMib) << 20;
     if (!autoTraversal) s.structure.validate();
     if (use("--legend")) s.legend.show = a.legend;
     if (use("--legend-place")) s.legend.place = session::parseLegendPlace(a.legendPlace);

@@ -6,6 +6,7 @@
 // in the same one line.
 #include <CLI/CLI.hpp>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,8 @@
 namespace amrvk::cli {
 
 // A finite number in [lo, hi] (open ends where asked); the message names the value and the
-// interval, e.g. "'0' is outside [1, 16777216]" or "'x' is not a number". CLI11 reads "nan" and
-// "inf" as numbers; these checks do not let them through.
+// interval, e.g. "0 is outside [1, 16777216]" (session::settingRangeError's words) or "'x' is not a
+// number". CLI11 reads "nan" and "inf" as numbers; these checks do not let them through.
 CLI::Validator interval(double lo, double hi, bool openLo = false, bool openHi = false);
 
 struct ReadArgs {
@@ -49,20 +50,15 @@ struct PictureArgs {
     std::string tf = "layers", tfPreset;
     std::string tfColors = "srgb";  // scene/tf_colors.h
     std::vector<double> tfRange;
-    std::string mode = "ms";
-    double dt = 0.5;
-    bool dvrShading = false;
-    std::string transmittance = "ratio";
-    std::string controlExtinction = "none";
+    // The settings of session::settingTable() registered here (addSetting), by option: the text
+    // given (or the Session's default), and the flags.
+    std::map<std::string, std::string, std::less<>> settings;
+    std::map<std::string, bool, std::less<>> flags;
     std::string traversal = "grid-dda", sampler = "grid", backend = "auto", grid = "auto";
-    int64_t kdLeaves = 4096, denseMaxMib = 2048;
     std::string subMajorants = scene::subMajorantsName(scene::StructureConfig{}.subMajorants);  // off | 2 | 4 | 8 | 16
     int64_t spp = 64;
     std::string size = "512x512";
     std::vector<double> camera;
-    double fov = 40;
-    int64_t seed = 1;
-    double densityScale = 1, g = 0;
     std::vector<double> ambient, background, lightDir, lightPoint;
     std::vector<double> crop, clip;  // --crop X0 Y0 Z0 X1 Y1 Z1, --clip PX PY PZ NX NY NZ (repeatable)
     bool legend = false;  // --legend, --legend-place, --legend-title, --legend-units, --legend-font
@@ -86,6 +82,9 @@ void addSeriesOptions(CLI::App& app, SeriesArgs& a);
 // Lighting, medium, camera, image size and seed from the options given on the command line, on top
 // of `base` (a session's settings or the defaults). Camera only when --camera was given.
 scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings base);
+// The settings of session::settingTable() that `app` registered, into `s`: each one given on the
+// command line, or (`all`) every one, its default included.
+void applySettingTable(const CLI::App& app, const PictureArgs& a, session::Session& s, bool all);
 
 // "WxH" with 1 <= W, H <= 16384.
 void parseSize(const std::string& option, const std::string& text, int& width, int& height);

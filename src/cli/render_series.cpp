@@ -22,6 +22,7 @@
 #include "gpu/shader_library.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "scene/tf_files.h"
 #include "scene/transfer_function.h"
 #include "session/legend_image.h"
 #include "session/orbit_camera.h"
@@ -410,7 +411,7 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
         } else {
             scene::RenderSettings rs = picture->renderer->settings();
             rs.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
-            picture->renderer->setSettings(rs);  // Picture::session() reads it from the renderer
+            picture->commit({.settings = rs});  // Picture::session() reads it from the renderer
         }
         const std::string detail = "frame " + std::to_string(k) + ": " + fs::path(input).filename().string();
         const Timer frameTimer;

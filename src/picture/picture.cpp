@@ -74,7 +74,7 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
                         hi.z, "): the picture shows only the background"));
     }
     // The renderer is linear inside: the TF's colours as albedo (scene/tf_colors.h).
-    const scene::TransferFunction tf = asRendered(fittedSession.tf, fittedSession.tfColors);
+    const scene::TransferFunction tf = scene::albedoOf(fittedSession.tf, fittedSession.tfColors);
     // A TF transparent over every value of the data shows nothing: said, not a silent black
     // picture (issue 52, point 7: a constant field or a one-cell data set under the fitted layers).
     if (!(tf.maxAlpha(volume->valueLo(), volume->valueHi()) > 0.0f))
@@ -144,15 +144,11 @@ session::Session Picture::session() const {
     return s;
 }
 
-scene::TransferFunction asRendered(const scene::TfChannels& tf, scene::TfColors colors) {
-    return scene::albedoOf(tf.merged(), colors);
-}
-
 void Picture::commit(const PictureEdit& e) {
     render::Edit r{.settings = e.settings};
     const scene::TfChannels& tf = e.tf ? *e.tf : described.tf;
     const scene::TfColors colors = e.tfColors.value_or(described.tfColors);
-    if (e.tf || colors != described.tfColors) r.tf = asRendered(tf, colors);
+    if (e.tf || colors != described.tfColors) r.tf = scene::albedoOf(tf, colors);
     if (e.structure) {
         r.structure = *e.structure;
         resolveStructure(renderer->context(), *r.structure);  // refused before anything changes
@@ -166,11 +162,6 @@ void Picture::commit(const PictureEdit& e) {
 void Picture::setTransferFunction(const scene::TfChannels& tf) { commit({.tf = tf}); }
 
 void Picture::setTfColors(scene::TfColors colors) { commit({.tfColors = colors}); }
-
-void Picture::setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved) {
-    renderer->setStructure(resolved);
-    described.structure = requested;
-}
 
 nlohmann::ordered_json autoChoiceJson(const render::AutoChoice& c) {
     using Json = nlohmann::ordered_json;

@@ -62,13 +62,12 @@ struct Picture {
     // The one way a picture changes: the parts of `e` applied to the renderer at once (a refused
     // edit changes nothing: validated and resolved first; a structure that fails to build is thrown
     // with the previous one kept), then recorded in `described`. The renderer gets the TF as
-    // rendered (asRendered: its colours under the session's tfColors).
+    // rendered (scene::albedoOf of its channels under the session's tfColors).
     void commit(const PictureEdit& e);
     // Commits of one part.
     void setTransferFunction(const scene::TfChannels& tf);
     // What the TF's colours mean (`--tf-colors`): the renderer's TF redone, the channels kept.
     void setTfColors(scene::TfColors colors);
-    void setStructure(const scene::StructureConfig& requested, const scene::StructureConfig& resolved);
     // Renders session().spp samples per pixel from scratch (progress(done, spp) after each batch).
     scene::RenderOutput render(const std::function<void(uint32_t, uint32_t)>& progress = {});
     // Renders from scratch until the image's noise (scene::meanRelativeError) is at most
@@ -81,10 +80,6 @@ struct Picture {
     // makePicture, changed only by the edits above.
     session::Session described;
 };
-
-// The TF the renderer takes for channels `tf` whose colours mean `colors` (linear albedo,
-// scene/tf_colors.h).
-scene::TransferFunction asRendered(const scene::TfChannels& tf, scene::TfColors colors);
 
 // The picture `d` describes over `volume`: the one door every front end opens a picture through.
 // The volume is the front end's to make, as only it knows when and from what: session::loadVolume

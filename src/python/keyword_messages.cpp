@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <iterator>
+#include <vector>
+
+#include "session/setting_table.h"
 
 namespace amrvk::python {
 
@@ -13,7 +16,8 @@ struct Rename {
     std::string_view keyword;  // as Python spells it (Renderer, Volume, TransferFunction keywords)
 };
 
-// Longest first where one option is a prefix of another (--nan drop before --nan).
+// The options that are not settings of session::settingTable(); longest first where one is a
+// prefix of another (--nan drop before --nan).
 constexpr Rename kRenames[] = {
     {"--nan drop", "nan='drop'"},
     {"--frames", "frames"},
@@ -23,20 +27,12 @@ constexpr Rename kRenames[] = {
     {"--legend-title", "legend_title"},
     {"--legend-units", "legend_units"},
     {"--legend", "legend"},
-    {"--density-scale", "density_scale"},
     {"--size", "size (width, height)"},
-    {"--mode", "mode"},
-    {"--transmittance", "transmittance"},
-    {"--control-extinction", "control_extinction"},
     {"--spp", "spp"},
-    {"--seed", "seed"},
-    {"--dt", "dt"},
-    {"--g", "g"},
     {"--ambient", "ambient"},
     {"--background", "background"},
     {"--light-dir", "lights (a directional light)"},
     {"--light-point", "lights (a point light)"},
-    {"--fov", "fov"},
     {"--camera", "camera"},
     {"--crop", "crop"},
     {"--clip", "clip"},
@@ -44,8 +40,6 @@ constexpr Rename kRenames[] = {
     {"--traversal", "traversal"},
     {"--sampler", "sampler"},
     {"--backend", "backend"},
-    {"--kd-leaves", "kd_leaves"},
-    {"--dense-max-mib", "dense_max_mib"},
     {"--device", "device"},
     {"--shader-dir", "shader_dir"},
     {"--gpu-timeout", "gpu_timeout"},
@@ -62,6 +56,17 @@ constexpr Rename kRenames[] = {
 
 bool optionChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
 
+// Every rename: the table's settings (session/setting_table.h), then the others above.
+const std::vector<Rename>& renames() {
+    static const std::vector<Rename> kAll = [] {
+        std::vector<Rename> all;
+        for (const session::Setting& st : session::settingTable()) all.push_back({st.option, st.keyword});
+        all.insert(all.end(), std::begin(kRenames), std::end(kRenames));
+        return all;
+    }();
+    return kAll;
+}
+
 }  // namespace
 
 std::string keywordMessage(std::string_view message) {
@@ -72,7 +77,7 @@ std::string keywordMessage(std::string_view message) {
         const bool tokenStart = message.compare(i, 2, "--") == 0 && (i == 0 || !optionChar(message[i - 1]));
         const Rename* hit = nullptr;
         if (tokenStart)
-            for (const Rename& r : kRenames) {
+            for (const Rename& r : renames()) {
                 const size_t end = i + r.option.size();
                 if (message.compare(i, r.option.size(), r.option) == 0 &&
                     (end == message.size() || !optionChar(message[end]))) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/limits.h"
 
 namespace amrvk::scene {
 
@@ -26,8 +27,7 @@ RayBasis makeRayBasis(const Camera& camera, int width, int height, const amr::Tr
     AMRVK_CHECK(glm::length(right) > 1e-12, "--camera: up vector is parallel to the view direction");
     right = glm::normalize(right);
     glm::dvec3 up = glm::cross(right, forward);
-    AMRVK_CHECK(camera.fovYDegrees > 0 && camera.fovYDegrees < 180, "--fov ", camera.fovYDegrees,
-                " is outside (0, 180)");
+    AMRVK_CHECK(validFov(camera.fovYDegrees), "--fov: ", camera.fovYDegrees, " is outside (0, ", kMaxFovDegrees, ")");
     double h = std::tan(glm::radians(camera.fovYDegrees) * 0.5);
     double w = h * double(width) / double(height);
     // World-space basis for pixel coordinates in [0, width] x [0, height], y down.

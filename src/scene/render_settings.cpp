@@ -61,7 +61,7 @@ void validateSettings(const RenderSettings& s) {
                     "radiance >= 0");
         AMRVK_CHECK(L.point || glm::length(L.posOrDir) > 0, "--light-dir: the direction 0 0 0 points nowhere");
     }
-    AMRVK_CHECK(validFov(s.camera.fovYDegrees), "--fov ", s.camera.fovYDegrees, " is outside (0, ", kMaxFovDegrees,
+    AMRVK_CHECK(validFov(s.camera.fovYDegrees), "--fov: ", s.camera.fovYDegrees, " is outside (0, ", kMaxFovDegrees,
                 ")");
     AMRVK_CHECK(finite(s.camera.eye) && finite(s.camera.target) && finite(s.camera.up),
                 "--camera: eye, target and up must be finite");

@@ -95,4 +95,6 @@ TransferFunction albedoOf(const TransferFunction& tf, TfColors colors) {
     return TransferFunction(positions, albedo, tf.name());
 }
 
+TransferFunction albedoOf(const TfChannels& tf, TfColors colors) { return albedoOf(tf.merged(), colors); }
+
 }  // namespace amrvk::scene

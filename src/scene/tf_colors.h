@@ -37,5 +37,9 @@ inline constexpr double kTfColorTolerance = 0.25 / 255.0;
 // Alpha is linear in the value as before (extra nodes carry mix(a0, a1, t)), so maxAlpha is
 // unchanged up to float rounding. Steps (nodes sharing a position) stay steps.
 TransferFunction albedoOf(const TransferFunction& tf, TfColors colors);
+// The TF a picture renders for colour and opacity channels `tf` whose colours mean `colors`:
+// albedoOf(tf.merged(), colors). The one place channels become the renderer's TF (the picture,
+// the bench, the PNG legend).
+TransferFunction albedoOf(const TfChannels& tf, TfColors colors);
 
 }  // namespace amrvk::scene

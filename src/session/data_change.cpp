@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/strings.h"
+#include "scene/tf_presets.h"
 #include "session/tf_editor.h"
 
 namespace fs = std::filesystem;

@@ -56,7 +56,7 @@ int labelWidth(const Font& font, const Metrics& m, const LegendTick& t) {
 
 LegendContent legendContent(const Session& s, const std::string& fieldUnits) {
     LegendContent c;
-    c.tf = scene::albedoOf(s.tf.merged(), s.tfColors);  // linear, as the picture: a PNG shows the map as given
+    c.tf = scene::albedoOf(s.tf, s.tfColors);  // linear, as the picture: a PNG shows the map as given
     c.lo = c.tf.firstPosition();
     c.hi = c.tf.lastPosition();
     c.logScale = s.read.scale == amr::FieldScale::Log;

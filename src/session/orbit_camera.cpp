@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "session/setting_table.h"
 
 namespace amrvk::session {
 
@@ -117,7 +118,7 @@ scene::Camera OrbitCamera::orbitedAbout(const scene::Camera& c, glm::dvec3 centr
 }
 
 void OrbitCamera::setFov(scene::Camera& c, double fov) {
-    AMRVK_CHECK(fov > 0 && fov < 180, "field of view ", fov, " degrees is outside (0, 180)");
+    checkSetting(settingForOption("--fov"), fov, "field of view");
     c.fovYDegrees = fov;
 }
 

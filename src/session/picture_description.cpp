@@ -8,6 +8,8 @@
 #include "core/strings.h"
 #include "scene/camera.h"
 #include "scene/command_line.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 
 namespace amrvk::session {
 

@@ -7,13 +7,14 @@
 #include <sstream>
 
 #include "accel/range_grid.h"
+#include "amr/model.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/strings.h"
-#include "scene/tf_colors.h"
-#include "amr/model.h"
 #include "scene/cut_away.h"
 #include "scene/render_settings.h"
+#include "scene/tf_colors.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 
 namespace amrvk::session {

@@ -1,12 +1,11 @@
 #include "session/session.h"
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <type_traits>
 #include <vector>
 
@@ -15,6 +14,8 @@
 #include "core/json_text.h"
 #include "core/strings.h"
 #include "scene/limits.h"
+#include "scene/tf_files.h"
+#include "session/setting_table.h"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -215,6 +216,45 @@ Key enumKey(const char* name, At at, Parse parse, NameOf nameOf, Write w = Write
             [=](const Reader& r, Session& s) { at(s) = r.named(name, fallback, parse); }};
 }
 
+// The key of a setting of settingTable() (session/setting_table.h): written as its kind, read with
+// the table's check (the words every front end uses after its own name), absent: the Session's own.
+Key settingKey(std::string_view option) {
+    const Setting& st = settingForOption(option);
+    const char* name = st.key.data();  // the table's keys are string literals
+    return {name,
+            [&st, name](const Session& s, Json& j) {
+                switch (st.kind) {
+                    case SettingKind::Choice:
+                        j[name] = st.name(s);
+                        return;
+                    case SettingKind::Flag:
+                        j[name] = st.number(s) != 0;
+                        return;
+                    case SettingKind::Integer:
+                        j[name] = int64_t(st.number(s));
+                        return;
+                    case SettingKind::Number:
+                        j[name] = st.number(s);
+                        return;
+                }
+            },
+            [&st, name](const Reader& r, Session& s) {
+                if (!r.has(name)) {
+                    copySetting(st, defaults(), s);
+                    return;
+                }
+                if (st.kind == SettingKind::Choice) {
+                    setSettingChoice(st, s, r.text(name), strCat(r.where(), ".", name));
+                } else if (st.kind == SettingKind::Flag) {
+                    st.setNumber(s, r.flag(name, false) ? 1 : 0);
+                } else {
+                    const double v = r.number(name);
+                    checkSetting(st, v, strCat(r.where(), ".", name));
+                    st.setNumber(s, v);
+                }
+            }};
+}
+
 // Three finite numbers; `nonNegative`: a radiance.
 glm::dvec3 readVector(const Reader& r, const char* name, bool nonNegative) {
     const glm::dvec3 v = r.vector(name);
@@ -262,31 +302,34 @@ const std::vector<Section>& sections() {
          {vectorKey("eye", AT(settings.camera.eye), true), vectorKey("target", AT(settings.camera.target), true),
           vectorKey("up", AT(settings.camera.up), true),
           // scene::validFov's open interval
-          numberKey("fovY", AT(settings.camera.fovYDegrees), {0, scene::kMaxFovDegrees, true, true})}},
+          settingKey("--fov")}},
         {"image",
          true,
          {integerKey("width", AT(settings.width), 1, scene::kMaxImageSide, true),
           integerKey("height", AT(settings.height), 1, scene::kMaxImageSide, true)}},
         {"render",
          false,
-         {enumKey("mode", AT(settings.mode), scene::parseMode, scene::modeName),
-          integerKey("spp", AT(spp), 0, scene::kMaxSpp), integerKey("seed", AT(settings.seed), 0, UINT32_MAX),
-          numberKey("densityScale", AT(settings.densityScale), {0, kInf}),
-          numberKey("g", AT(settings.g), {-1, 1}), vectorKey("ambient", AT(settings.ambient), false, true),
+         {settingKey("--mode"),
+          integerKey("spp", AT(spp), 0, scene::kMaxSpp),
+          settingKey("--seed"),
+          settingKey("--density-scale"),
+          settingKey("--g"),
+          vectorKey("ambient", AT(settings.ambient), false, true),
           {"background",  // three radiances, or "ambient": what escaping rays see (the default: black)
            [](const Session& s, Json& j) {
                j["background"] = s.settings.background ? vec3(*s.settings.background) : Json("ambient");
            },
            [](const Reader& r, Session& s) {
                if (!r.has("background")) return;
-               if (r.json().at("background") == "ambient") s.settings.background.reset();
-               else s.settings.background = readVector(r, "background", true);
+               if (r.json().at("background") == "ambient")
+                   s.settings.background.reset();
+               else
+                   s.settings.background = readVector(r, "background", true);
            }},
-          numberKey("dvrStep", AT(settings.dvrStep), {0, 64, true}),
-          flagKey("dvrShading", AT(settings.dvrShading)),
-          enumKey("transmittance", AT(settings.transmittance), scene::parseTransmittance, scene::transmittanceName),
-          enumKey("controlExtinction", AT(settings.controlExtinction), scene::parseControlExtinction,
-                  scene::controlExtinctionName)}},
+          settingKey("--dt"),
+          settingKey("--dvr-shading"),
+          settingKey("--transmittance"),
+          settingKey("--control-extinction")}},
         {"structure",
          false,
          {enumKey("traversal", AT(structure.traversal), scene::parseTraversal, scene::traversalName),
@@ -294,18 +337,14 @@ const std::vector<Section>& sections() {
           // A hand-written file without a back-end gets the one that fits the device.
           enumKey("backend", AT(structure.backend), scene::parseBackend, scene::backendName, Write::Always, "auto"),
           textKey("grid", AT(structure.grid)),
-          integerKey("kdLeaves", AT(structure.kdLeaves), 1, scene::kMaxKdLeaves),
+          settingKey("--kd-leaves"),
           {"subMajorants",  // "off", or the largest division "2", "4", "8" or "16" (scene/sub_majorants.h)
            [](const Session& s, Json& j) { j["subMajorants"] = scene::subMajorantsName(s.structure.subMajorants); },
            [](const Reader& r, Session& s) {
                s.structure.subMajorants = r.named("subMajorants", scene::subMajorantsName(s.structure.subMajorants),
                                                   [](const std::string& v) { return scene::parseSubMajorants(v, "value"); });
            }},
-          {"denseMaxMiB", [](const Session& s, Json& j) { j["denseMaxMiB"] = s.structure.denseMaxBytes >> 20; },
-           [](const Reader& r, Session& s) {
-               if (r.has("denseMaxMiB"))
-                   s.structure.denseMaxBytes = uint64_t(r.integer("denseMaxMiB", 1, scene::kMaxDenseMiB)) << 20;
-           }}},
+          settingKey("--dense-max-mib")},
          [](const Session&) { return true; },
          [](Session& s) { s.structure.validate(); }},
         {"legend",

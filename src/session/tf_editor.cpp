@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 
 namespace amrvk::session {
 

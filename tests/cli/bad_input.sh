@@ -38,7 +38,7 @@ expect "cannot write" -- convert good.cells -o /nonexistent-dir/out
 expect "input is required" -- info
 expect "unexpected argument 'extra'" -- info good.cells extra
 expect "--threshold: expects a value (T)" -- info good.cells --threshold
-expect "--dims: '0' is outside [1, 1048576]" -- info good.cells --dims 0 4 4
+expect "--dims: 0 is outside [1, 1048576]" -- info good.cells --dims 0 4 4
 expect "--field: At Most 1" -- info good.cells --field a --field b
 # info builds what each --traversal's plan lists, and refuses what render refuses.
 expect "--traversal 'warp': expected grid-dda|grid-bvh" -- info good.cells --traversal grid-dda,warp
@@ -55,7 +55,7 @@ assert {"samplerBvh", "traversalBoxes"} <= first and "abrs" not in first and "ma
 assert "supportRangeQuery" in second and "traversalBoxes" not in second, second
 assert "abrs" not in j and "macrocellDims" not in j, "no ABRs or macrocells were built"
 PY
-expect "--cells: '0' is outside" -- gen cloud --cells 0 -o x
+expect "--cells: 0 is outside" -- gen cloud --cells 0 -o x
 expect "--output is required" -- convert good.cells
 "$amrvk" info nan.cells --nan drop >/dev/null 2>&1 || { echo "FAIL: --nan drop"; fail=1; }
 
@@ -65,7 +65,7 @@ expect "unknown field 'a\nb\x1b[2J\x07'" -- info good.cells --field "$(printf 'a
 # MisleadingCameraAndLightErrors: NaN in --camera said "eye and target coincide", NaN in
 # --light-dir "direction is zero", --fov 0 "up vector is parallel"; each now names the option.
 expect "--camera: 'nan' is not a finite number" -- render good.cells --camera nan 0 0 0 0 1 0 1 0 -o x.png
-expect "--fov: 'inf' is not a finite number" -- render good.cells --fov inf -o x.png
+expect "--fov: inf is not a finite number" -- render good.cells --fov inf -o x.png
 expect "--light-dir: 'nan' is not a finite number" -- render good.cells --light-dir nan 0 0 1 1 1 -o x.png
 expect "--light-point: radiance -1 1 1 must be >= 0" -- render good.cells --light-point 0 0 0 -1 1 1 -o x.png
 expect "--background: 'inf' is not a finite number" -- render good.cells --background inf 0 0 -o x.png

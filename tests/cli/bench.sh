@@ -129,7 +129,7 @@ for r in runs:
 PY
 
 expect "--output is required" -- bench "$sample"
-expect "--frames: '1' is outside [2, 1048576]" -- bench "$sample" -o "$dir/x" --frames 1
+expect "--frames: 1 is outside [2, 1048576]" -- bench "$sample" -o "$dir/x" --frames 1
 expect "no such file" -- bench "$dir/nothing.cells" -o "$dir/x"
 expect "--traversal 'octree'" -- bench "$sample" -o "$dir/x" --traversals octree
 expect "--modes: dvr" -- bench "$sample" -o "$dir/x" --modes dvr

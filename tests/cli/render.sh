@@ -90,20 +90,20 @@ if "llvmpipe" in auto["device"]:
     assert all(p["config"].endswith("/sw") for p in auto["auto"]["probeDetails"]), auto["auto"]["probeDetails"]
 PY
 
-expect "--mode: xyz not in {ae,ss,ms,dvr}" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
+expect "--mode: 'xyz' is not one of ae|ss|ms|dvr" -- render "$sample" "${common[@]}" --mode xyz -o "$dir/x.png"
 expect "unknown image type" -- render "$sample" "${common[@]}" -o "$dir/x.bmp"
 expect "--size '0x3'" -- render "$sample" --size 0x3 -o "$dir/x.png"
 expect "--sampler: bvh not in {ext-brick,abr,grid,dense}" -- render "$sample" "${common[@]}" --sampler bvh -o "$dir/x.png"
 expect "--traversal: octree not in" -- render "$sample" "${common[@]}" --traversal octree -o "$dir/x.png"
 expect "--backend: cuda not in {sw,rq,auto}" -- render "$sample" "${common[@]}" --backend cuda -o "$dir/x.png"
-expect "--kd-leaves: '0' is outside [1, 16777215]" -- render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 0 -o "$dir/x.png"
+expect "--kd-leaves: 0 is outside [1, 16777215]" -- render "$sample" "${common[@]}" --traversal kdtree --kd-leaves 0 -o "$dir/x.png"
 expect "no such device" -- render "$sample" "${common[@]}" --device 99 -o "$dir/x.png"
-expect "--dt: '0' is outside (0, 64]" -- render "$sample" "${common[@]}" --mode dvr --dt 0 -o "$dir/x.png"
+expect "--dt: 0 is outside (0, 64]" -- render "$sample" "${common[@]}" --mode dvr --dt 0 -o "$dir/x.png"
 expect "--sampler dense needs --traversal grid-dda or grid-bvh" -- render "$sample" "${common[@]}" --sampler dense --traversal abr -o "$dir/x.png"
 expect "--dense-max-mib" -- render "$sample" "${common[@]}" --sampler dense --dense-max-mib 0 -o "$dir/x.png"
 expect "cannot write" -- render "$sample" "${common[@]}" -o "$dir/missing-dir/x.png"
 expect "--ambient: 'nan' is not a finite number" -- render "$sample" "${common[@]}" --ambient nan 1 1 -o "$dir/x.png"
-expect "--fov: '0' is outside (0, 180)" -- render "$sample" "${common[@]}" --fov 0 -o "$dir/x.png"
+expect "--fov: 0 is outside (0, 180)" -- render "$sample" "${common[@]}" --fov 0 -o "$dir/x.png"
 expect "--light-dir: radiance" -- render "$sample" "${common[@]}" --light-dir 1 0 0 -1 1 1 -o "$dir/x.png"
 expect "unknown option '--bogus'" -- render "$sample" "${common[@]}" --bogus -o "$dir/x.png"
 expect "--json $dir: is a directory" -- render "$sample" "${common[@]}" --json "$dir" -o "$dir/x.png"
@@ -160,7 +160,7 @@ PY
 "$amrvk" render "$sample" --size 16x12 --spp 2 --scale log -o "$dir/log.png" --json "$dir/logr.json" >/dev/null || fail=1
 check test -s "$dir/log.png"
 expect "--scale: ln not in {auto,linear,log}" -- render "$sample" --scale ln -o "$dir/x.png"
-expect "--log-floor: '-1' is outside" -- render "$sample" --scale log --log-floor -1 -o "$dir/x.png"
+expect "--log-floor: -1 is outside" -- render "$sample" --scale log --log-floor -1 -o "$dir/x.png"
 # A long structure build states the memory it is about to take and shows progress (issue 34,
 # point 8): a 170^3 raw volume's dense grid (4.9M samples, 19 MiB) with progress forced on.
 /usr/bin/python3 -c 'import numpy as np, sys; (np.arange(170**3) % 251).astype(np.uint8).tofile(sys.argv[1])' \
@@ -276,7 +276,7 @@ assert (s3["mode"], s3["spp"]) == ("ms", 3), (s3["mode"], s3["spp"])
 PY
 expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --spp" -- render "$sample" --first-frame --spp 8 -o "$dir/x.png"
 expect "--first-frame chooses the mode (dvr), the samples (2) and the step; leave out --mode" -- render "$sample" --first-frame --mode ms -o "$dir/x.png"
-expect "--until-error: '0' is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
+expect "--until-error: 0 is outside (0, 1]" -- render "$sample" --until-error 0 -o "$dir/x.png"
 expect "--until-error needs --spp of at least 2" -- render "$sample" --spp 1 --until-error 0.1 -o "$dir/x.png"
 # The other long builds alike (issue 34, point 8): bricks (an upper bound first, a bar over the
 # cells, the bricks and memory after), macrocell value ranges (their memory, a bar over the

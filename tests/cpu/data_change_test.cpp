@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "model_fixtures.h"
+#include "scene/tf_presets.h"
 #include "session/tf_editor.h"
 
 using namespace amrvk;

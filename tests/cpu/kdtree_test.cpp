@@ -16,6 +16,7 @@
 #include "amr/synthetic.h"
 #include "core/error.h"
 #include "model_fixtures.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "test_data.h"
 

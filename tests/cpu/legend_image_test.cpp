@@ -11,6 +11,7 @@
 
 #include "core/font.h"
 #include "core/image_io.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

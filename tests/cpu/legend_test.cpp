@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scene/tf_presets.h"
 #include "session/picture_description.h"
 #include "session/session.h"
 

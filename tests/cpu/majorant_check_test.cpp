@@ -2,10 +2,11 @@
 // an analytic field, and the exhaustive majorant check (scene/majorant_check.*): every traversal's
 // boxes pass on real and synthetic data, and planted defects (no GPU padding, no position
 // margin, a majorant too small) are caught.
+#include "scene/majorant_check.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cmath>
 #include <limits>
 #include <random>
@@ -15,7 +16,7 @@
 #include "amr/exact_range.h"
 #include "amr/sampler.h"
 #include "model_fixtures.h"
-#include "scene/majorant_check.h"
+#include "scene/tf_presets.h"
 #include "scene/volume.h"
 
 namespace amrvk {

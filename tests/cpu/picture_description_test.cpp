@@ -3,6 +3,8 @@
 // --tf-range or a series' range, files untouched; the same TF from a data-parallel part that holds
 // the whole's percentiles (summed counts of the cells each part owns); and a saved session
 // renders the same TF without the data being fitted again.
+#include "session/picture_description.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -10,9 +12,10 @@
 #include "amr/space_partition.h"
 #include "amr/value_percentiles.h"
 #include "model_fixtures.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
-#include "session/picture_description.h"
 #include "session/session.h"
 #include "test_data.h"
 

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "model_fixtures.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
 #include "session/picture_description.h"

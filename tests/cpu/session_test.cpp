@@ -1,11 +1,13 @@
 // Session files: every field round-trips; a relative input is taken relative to the file; every
 // bad value gives one line naming the file and the key; the file is written atomically.
+#include "session/session.h"
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "scene/invalidation.h"
+#include "scene/tf_presets.h"
 #include "session/picture_description.h"
-#include "session/session.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -170,7 +172,7 @@ TEST(Session, BadValuesNameTheFileAndTheKey) {
         {with("\"tfColors\": \"linear\"", "\"tfColors\": \"gamma\""), {"/tmp/s.json.tfColors", "--tf-colors", "gamma"}},
         {with("\"fovY\": 33.0", "\"fovY\": 0.0"), {"camera.fovY", "(0, 180)"}},
         {with("\"width\": 320", "\"width\": 0"), {"image.width", "[1, 16384]"}},
-        {with("\"mode\": \"ss\"", "\"mode\": \"xx\""), {"--mode", "xx"}},
+        {with("\"mode\": \"ss\"", "\"mode\": \"xx\""), {"render.mode", "'xx' is not one of ae|ss|ms|dvr"}},
         {with("\"densityScale\": 0.05", "\"densityScale\": -1"), {"render.densityScale"}},
         {with("\"g\": -0.3", "\"g\": \"a\""), {"render.g", "expected a number"}},
         {with("\"type\": \"point\"", "\"type\": \"spot\""), {"lights[1].type", "spot"}},

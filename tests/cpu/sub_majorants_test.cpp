@@ -5,6 +5,8 @@
 // integral; the budget is kept, the loosest macrocells come first and a smooth TF refines none.
 // Power: the macrocell's own range is wider than the exact sub-box range on most sub-boxes (so the
 // tightness check would reject it), and a q one step lower fails the bound somewhere.
+#include "scene/sub_majorants.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,7 +19,7 @@
 #include "amr/exact_range.h"
 #include "amr/synthetic.h"
 #include "model_fixtures.h"
-#include "scene/sub_majorants.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
 #include "scene/volume_scene.h"

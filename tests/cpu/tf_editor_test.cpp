@@ -3,10 +3,13 @@
 // maps positions, ParaView JSON written by it reads back to the same TF, every preset of a
 // ParaView file is listed (unusable ones skipped with a reason), undo/redo restore whole TFs, and
 // the edited TF is the caller's (no second copy).
+#include "session/tf_editor.h"
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "session/tf_editor.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

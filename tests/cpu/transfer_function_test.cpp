@@ -2,6 +2,8 @@
 // force, presets (range-fixed, and fitted to the data's percentiles: known distributions, plateaus,
 // a synthetic cloud and Enzo against the range-fixed ones), ParaView JSON and both `.xf` formats,
 // and every malformed input.
+#include "scene/transfer_function.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,9 +16,10 @@
 #include "core/error.h"
 #include "core/strings.h"
 #include "model_fixtures.h"
-#include "shared/render_params.h"
-#include "scene/transfer_function.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "scene/volume.h"
+#include "shared/render_params.h"
 #include "test_data.h"
 
 using namespace amrvk;

@@ -1,17 +1,19 @@
 // amr::VolumeHistogram (amr/volume_histogram.h) against volumes counted by hand (cells of three
 // levels, a finest level above 0, values at the range's ends and NaN), parts that sum to the
 // whole (data-parallel MPI), the typical histogram of a series (shares averaged over outputs on the
-// union range, by hand), and the layers preset it sizes (scene/transfer_function.h): a layer
+// union range, by hand), and the layers preset it sizes (scene/tf_presets.h): a layer
 // gets alpha 0.15 / (share x chord), capped at 1, so a slab of one layer's apex value across the
 // data has optical depth 0.15 along a chord.
+#include "amr/volume_histogram.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "amr/volume_histogram.h"
 #include "model_fixtures.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "scene/volume.h"
 

@@ -1,9 +1,10 @@
-// ParaView colour-map JSON (src/scene/transfer_function.cpp): parseParaViewPreset on the text
+// ParaView colour-map JSON (src/scene/tf_files.cpp): parseParaViewPreset on the text
 // (a session's "transferFunction"), and loadParaViewPreset / loadParaViewPresets on it as a file.
 // Input: the JSON text. A TF that loads is merged, evaluated and written back.
 #include <cmath>
 
 #include "fuzz_common.h"
+#include "scene/tf_files.h"
 #include "scene/transfer_function.h"
 
 using namespace amrvk;

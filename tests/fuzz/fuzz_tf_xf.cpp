@@ -1,8 +1,9 @@
-// `.xf` transfer functions (src/scene/transfer_function.cpp loadXf, and loadTransferFunction's
+// `.xf` transfer functions (src/scene/tf_files.cpp loadXf, and loadTransferFunction's
 // detection by magic). Input: the file's bytes. A TF that loads is evaluated at a few values.
 #include <cmath>
 
 #include "fuzz_common.h"
+#include "scene/tf_files.h"
 #include "scene/transfer_function.h"
 
 using namespace amrvk;

@@ -15,10 +15,12 @@
 #include <vector>
 
 #include "accel/bricks.h"
-#include "amrex_synthetic.h"
-#include "ramses_synthetic.h"
 #include "amr/model.h"
+#include "amrex_synthetic.h"
 #include "fuzz_common.h"
+#include "ramses_synthetic.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 #include "session/session.h"
 

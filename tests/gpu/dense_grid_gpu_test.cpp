@@ -9,11 +9,12 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
-#include "kernels.h"
 #include "image_compare.h"
+#include "kernels.h"
 #include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
+#include "scene/tf_presets.h"
 
 using namespace amrvk;
 

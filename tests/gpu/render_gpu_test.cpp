@@ -10,11 +10,12 @@
 #include "amr/synthetic.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
-#include "scene/reference_integrator.h"
+#include "model_fixtures.h"
 #include "render/display_pass.h"
 #include "render/renderer.h"
-#include "model_fixtures.h"
 #include "render_fixtures.h"
+#include "scene/reference_integrator.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

@@ -15,6 +15,8 @@
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "scene/camera.h"
+#include "scene/tf_files.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

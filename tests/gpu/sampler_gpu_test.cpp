@@ -10,9 +10,10 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
 #include "kernels.h"
-#include "render/renderer.h"
 #include "model_fixtures.h"
+#include "render/renderer.h"
 #include "render_fixtures.h"
+#include "scene/tf_presets.h"
 #include "shared/render_params.h"
 #include "test_data.h"
 

@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "scene/camera.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

@@ -11,6 +11,7 @@
 #include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

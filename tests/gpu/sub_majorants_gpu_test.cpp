@@ -14,6 +14,7 @@
 #include "render/renderer.h"
 #include "render_fixtures.h"
 #include "scene/reference_integrator.h"
+#include "scene/tf_presets.h"
 #include "test_data.h"
 
 using namespace amrvk;

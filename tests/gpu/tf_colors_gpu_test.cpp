@@ -19,6 +19,7 @@
 #include "render_fixtures.h"
 #include "scene/camera.h"
 #include "scene/tf_colors.h"
+#include "scene/tf_files.h"
 #include "test_data.h"
 
 using namespace amrvk;

@@ -16,11 +16,12 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu_fixture.h"
 #include "kernels.h"
-#include "shared/test_push.h"
 #include "model_fixtures.h"
 #include "render/renderer.h"
 #include "render_fixtures.h"
+#include "scene/tf_presets.h"
 #include "shared/render_params.h"
+#include "shared/test_push.h"
 
 using namespace amrvk;
 

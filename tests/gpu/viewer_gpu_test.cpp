@@ -29,6 +29,7 @@
 #include "image_compare.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "scene/tf_presets.h"
 #include "session/cut_handles.h"
 #include "session/data_change.h"
 #include "session/session.h"

@@ -37,7 +37,7 @@ expect_fault() {
   else echo "FAIL: $name: rc=$rc, ${took} ms, out.png $( [ -e "$dir/out.png" ] && echo written || echo absent ), stderr($lines lines): $(cat "$dir/$name.err")"; fail=1; fi
 }
 
-expect_fault every-rank "--spp: '0' is outside" "(every rank of 3)" -- \
+expect_fault every-rank "--spp: 0 is outside" "(every rank of 3)" -- \
   "${mpi[@]}" -n 3 "$amrvk" render "$cloud" --spp 0 -o "$dir/out.png"
 expect_fault cannot-read "rank 1 of 3" "truncated.cells" "not a multiple of the 16-byte cell record" -- \
   "${mpi[@]}" -n 1 "$amrvk" render "$cloud" "${small[@]}" -o "$dir/out.png" \

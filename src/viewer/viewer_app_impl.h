@@ -1,0 +1,195 @@
+#pragma once
+// The viewer's application object (internal to src/viewer): the state of one `amrvk view` run and
+// its frame loop. Its members are defined by concern: viewer_app.cpp (the picture, its edits and
+// the frame loop), viewer_input.cpp (keys and mouse), viewer_script.cpp (frame-numbered script
+// actions), viewer_capture.cpp (screenshots and window captures), viewer_report.cpp (--stats and
+// --state-file) and viewer_session_io.cpp (session files and copy-as-command).
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/font.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "picture/picture.h"
+#include "render/display_pass.h"
+#include "session/file_watcher.h"
+#include "session/frame_budget.h"
+#include "session/histogram.h"
+#include "session/orbit_camera.h"
+#include "session/script.h"
+#include "session/session.h"
+#include "session/tf_editor.h"
+#include "session/viewer_layout.h"
+#include "viewer/imgui_layer.h"
+#include "viewer/panels.h"
+#include "viewer/swapchain.h"
+#include "viewer/viewer_app.h"
+#include "viewer/window.h"
+
+namespace amrvk::viewer {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Frame times and the time from each change to the first complete full-resolution sample.
+struct Timings {
+    std::vector<double> interactiveFrames, idleFrames, toFirstFullSample;
+    static double percentile(std::vector<double> v, double p) {
+        if (v.empty()) return 0.0;
+        std::sort(v.begin(), v.end());
+        return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+    }
+    static double mean(const std::vector<double>& v) {
+        return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+    }
+};
+
+class ViewerApp {
+public:
+    ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume> volume);
+    int run();
+
+private:
+    void load();
+    void createWindowResources();
+    bool frame();
+    void runScript();
+    // One script action at its frame; errors name the script line.
+    void runAction(const session::ScriptAction& a);
+    // The panels' copy of the picture, validated and applied part by part (structure, TF,
+    // settings): a rejected part leaves the state as it was and shows why.
+    void applyPanelEdits(PanelRequests& req);
+    void pollShaders();
+    void reloadShaders();
+    void handleInput();
+    void handleKey(int code, double h, double step);
+    void applyEdits();
+    void trace();  // within the frame budget
+    void present();
+    void recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D extent);
+    void saveCapture(VkExtent2D extent);
+    void updateStatistics(double frameSeconds);
+    // The one way the viewer changes the picture: the parts of `e` committed at once beside the
+    // event loop (mPicture.commit: one majorant pass and at most one build, however many parts),
+    // then taken into the state; on an error nothing changes and it is thrown.
+    void commit(const picture::PictureEdit& e);
+    // Validates `next` (back-end resolved for the device) and builds it; on an error nothing
+    // changes (the renderer keeps the previous structures) and the error is thrown.
+    void setStructure(const scene::StructureConfig& next) { commit({.structure = next}); }
+    // The renderer takes mState.tf (majorants), the histogram follows its range.
+    void setTransferFunction() { commit({.tf = mState.tf, .tfColors = mState.tfColors}); }
+    // The data read again with `next.read` (another scale or log floor) beside the event loop, and
+    // a renderer made for it with next's camera, settings, structure and TF (refitTf: an unedited
+    // fitted preset fitted again, any other TF's shape moved onto the new field range:
+    // session::tfOnNewScale). On an error nothing changes and it is thrown.
+    void reloadData(const session::Session& next, bool refitTf);
+    // The field's scale and log floor of `read`: on another scale the data is read again (true, the
+    // TF refitted), else the floor is only recorded (false).
+    bool setReadScale(const amr::ReadOptions& read);
+    // What load() and reloadData() give makePicture: the shader library, notes on stderr.
+    picture::Options pictureOptions() const;
+    // A ready picture becomes the state: its renderer and session, the TF in the editor's form (the
+    // undo history starting with it), the histogram over the TF's range.
+    void adoptPicture(picture::Picture&& p);
+    // The histogram under the TF editor, recomputed when the editor's value range differs from it.
+    void updateHistogram();
+    // Where the panel and the picture are this frame (framebuffer size, panel width, image size).
+    void updateLayout();
+    // Runs a long CPU/GPU rebuild on a worker thread while this (the main) thread keeps handling
+    // window events, so closing (the window button, q or Esc) works during it: the window is
+    // hidden at once and the viewer ends when the build returns. Other input during it is dropped.
+    void whileResponsive(const std::function<void()>& work);
+    void noteReset(const std::string& what);
+    void screenshot(const fs::path& file);
+    // The state as a session: the camera and TF as shown, the input path absolute (so the file and
+    // the command line work from any directory). What save-session and copy-as-command write.
+    session::Session currentSession() const;
+    void saveSessionFile(const fs::path& file);
+    void loadSessionFile(const fs::path& file);
+    void copyCommand();
+    void finishSample();
+    void writeStats() const;
+    // The live state for programs that drive the window (--state-file, docs/viewer.md): after
+    // every frame and when a rebuild starts beside the event loop.
+    void writeState() const;
+
+    ViewerOptions mOpt;
+    std::unique_ptr<Window> mWindow;
+    std::unique_ptr<gpu::Context> mCtx;
+    std::unique_ptr<Swapchain> mSwapchain;
+    std::unique_ptr<ImGuiLayer> mImGui;
+    std::unique_ptr<render::DisplayPass> mDisplayPass;
+    gpu::Buffer mDisplay;  // the window's pixels (B, G, R, A), copied into the swapchain image
+    int mDisplayWidth = 0, mDisplayHeight = 0;
+    session::PixelRect mDisplayRect;  // where the display buffer's picture was drawn
+    session::ViewerLayout mLayout;    // this frame's panel and picture rectangles
+
+    std::shared_ptr<const scene::Volume> mVolume;
+    // The picture: its renderer and its description, edited only through mPicture.commit (one
+    // commit per edit, however many parts it changes).
+    picture::Picture mPicture;
+
+    // The picture: the one copy of every setting (full resolution), the camera and the TF; the
+    // camera control and the TF editor edit it in place, the panels edit a copy that is validated.
+    session::Session mState;
+    session::OrbitCamera mOrbit;  // the data's box: framing and zoom limits
+    session::TfHistory mTfHistory;
+    session::FrameBudget mBudget;
+    std::optional<session::Histogram> mHistogram;
+    std::vector<session::ScriptAction> mScript;
+    size_t mScriptAt = 0;
+    std::optional<session::FileWatcher> mWatcher;
+    Clock::time_point mLastShaderPoll = Clock::now();
+    std::vector<scene::TfChannels> mColorMaps;
+
+    PanelState mPanel;
+    Statistics mStats;
+    Timings mTimings;
+    uint64_t mFrame = 0;
+    bool mQuit = false;
+    bool mInteracting = false;                       // a change or a drag this frame: preview
+    bool mNeedPreview = true;                        // nothing on screen for the current picture yet: preview first
+    bool mPreviewing = false;                        // this frame traces a preview (ray-marched, one sample)
+    int mPreviewScale = 1;                           // the renderer's current size is full / scale
+    std::map<std::string, uint64_t> mPreviewFrames;  // preview frames traced, by mode (--stats)
+    bool mDisplayFresh = false;                      // the display buffer holds an image worth showing
+    std::optional<Clock::time_point> mChangedAt;     // since the last change, until the first full sample
+    double mTraceSeconds = 0;                        // wall seconds spent in trace() in all
+    uint64_t mValidationBefore = 0;
+    scene::RenderSettings mApplied;  // what the renderer was last given
+    int mDragButton = -1;            // the mouse button that started the current drag, or -1
+    int mCutFace = -1;               // the crop-box face whose handle is being dragged, or -1
+    bool mDragPans = false;          // the drag began as shift+left: pan
+    std::string mCapturePath;        // the next presented frame is saved there (UI included)
+    struct Reset {
+        uint64_t frame;
+        std::string what;
+        uint32_t samplesLeft;  // samples of the old picture still in the image right after (must be 0)
+    };
+    std::vector<Reset> mResets;
+    gpu::Buffer mCaptureBuffer;
+    double mLastX = 0, mLastY = 0;
+    // Input events handleInput has taken so far, by kind, and the mouse buttons they leave held
+    // (bit i: GLFW button i): what a driving program waits on (--state-file).
+    struct InputSeen {
+        uint64_t keys = 0, buttons = 0, cursor = 0, scroll = 0;
+        unsigned held = 0;
+    } mInputSeen;
+    bool mBuilding = false;             // whileResponsive is running a rebuild beside the event loop
+    std::unique_ptr<Font> mLegendFont;  // the PNG legend's font, opened at the first screenshot with the legend
+    std::string mLegendFontFile;        // the legend.font it was opened for
+};
+
+}  // namespace amrvk::viewer

@@ -1,0 +1,135 @@
+// What the viewer reports: the statistics panel, --stats at exit and --state-file after every frame.
+
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "amr/readers.h"
+#include "core/file_io.h"
+#include "gpu/context.h"
+#include "render/renderer.h"
+#include "session/viewer_layout.h"
+#include "viewer/viewer_app_impl.h"
+#include "viewer/window.h"
+
+namespace amrvk::viewer {
+
+namespace {
+
+nlohmann::ordered_json rectJson(const session::PixelRect& r) {
+    return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
+}
+
+// JSON with one member a line, objects of objects opened the same way, every other value on its
+// member's line: still JSON, and a shell script can read a member with grep (--state-file).
+std::string memberPerLine(const nlohmann::ordered_json& j, const std::string& indent = "") {
+    std::string text = "{\n";
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        bool nested = it->is_object() && !it->empty();
+        if (nested)
+            for (const auto& m : *it) nested = nested && m.is_object();
+        text += indent + "  " + nlohmann::ordered_json(it.key()).dump() + ": " +
+                (nested ? memberPerLine(*it, indent + "  ") : it->dump()) + (std::next(it) == j.end() ? "\n" : ",\n");
+    }
+    return text + indent + "}";
+}
+
+}  // namespace
+
+void ViewerApp::updateStatistics(double frameSeconds) {
+    Statistics& st = mStats;
+    st.frameMilliseconds =
+        st.frameMilliseconds > 0 ? 0.9 * st.frameMilliseconds + 0.1 * frameSeconds * 1e3 : frameSeconds * 1e3;
+    st.framesPerSecond = st.frameMilliseconds > 0 ? 1e3 / st.frameMilliseconds : 0;
+    const scene::RenderStats& stats = mPicture.renderer->stats();
+    const double paths = double(stats.paths);
+    const auto& c = stats.counters;
+    st.mPathsPerSecond = stats.gpuSeconds > 0 ? paths / stats.gpuSeconds * 1e-6 : 0;
+    st.lookupsPerPath = paths > 0 ? double(c[shared::kCounterDensityLookups]) / paths : 0;
+    const double real = double(c[shared::kCounterRealCollisions]);
+    st.nullPerReal = real > 0 ? double(c[shared::kCounterNullCollisions]) / real : 0;
+    st.violations = c[shared::kCounterMajorantViolations];
+    st.trackingCapHits = c[shared::kCounterTrackingCapHits];
+    st.nanSamples = c[shared::kCounterNanSamples];
+    st.spp = mPicture.renderer->accumulatedSpp();
+    st.sppLimit = mState.spp;
+    st.rowsDone = mPicture.renderer->rowsDone();
+    st.height = uint32_t(mPicture.renderer->settings().height);
+    st.previewScale = mPreviewScale;
+    st.deviceBytes = mCtx->memory().currentBytes();
+}
+
+void ViewerApp::writeStats() const {
+    nlohmann::ordered_json j;
+    j["device"] = mStats.device;
+    j["frames"] = mFrame;
+    j["frameBudgetSeconds"] = mBudget.budgetSeconds();
+    auto summary = [](const std::vector<double>& v) {
+        return nlohmann::ordered_json{{"count", v.size()},
+                                      {"meanSeconds", Timings::mean(v)},
+                                      {"medianSeconds", Timings::percentile(v, 0.5)},
+                                      {"p95Seconds", Timings::percentile(v, 0.95)}};
+    };
+    j["interactiveFrames"] = summary(mTimings.interactiveFrames);
+    j["idleFrames"] = summary(mTimings.idleFrames);
+    j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
+    j["previewFrames"] = mPreviewFrames;  // by mode: dvr (the preview is always ray-marched)
+    j["spp"] = mPicture.renderer->accumulatedSpp();
+    j["resets"] = nlohmann::ordered_json::array();
+    for (const Reset& r : mResets)
+        j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
+    j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
+    // What the edits cost the renderer (render::UpdateCounts): device copies and majorant passes.
+    const render::UpdateCounts u = mPicture.renderer->updateCounts();
+    j["updates"] = {{"deviceScenes", u.deviceScenes}, {"majorantPasses", u.majorantDispatches}};
+    // The field's scale and the histogram under the TF editor (the range it spans, cells counted).
+    j["scale"] = amr::fieldScaleName(mState.read.scale);
+    if (mHistogram) {
+        double inRange = 0;  // counts of cells: whole numbers, exact in double
+        for (double c : mHistogram->counts) inRange += c;
+        const double cells = inRange + mHistogram->below + mHistogram->above + mHistogram->nan;
+        j["histogram"] = {{"lo", mHistogram->lo},
+                          {"hi", mHistogram->hi},
+                          {"bins", mHistogram->counts.size()},
+                          {"inRange", inRange},
+                          {"cells", cells}};
+    }
+    // The last frame's layout (framebuffer pixels, session/viewer_layout.h); with a window only.
+    if (mWindow)
+        j["layout"] = {{"window", rectJson(mLayout.window)},
+                       {"panel", rectJson(mLayout.panel)},
+                       {"area", rectJson(mLayout.area)},
+                       {"picture", rectJson(mLayout.picture)}};
+    writeFileAtomic(mOpt.statsJson, j.dump(2) + "\n");
+}
+
+void ViewerApp::writeState() const {
+    nlohmann::ordered_json j;
+    j["frame"] = mFrame;  // frames completed (input, trace, present)
+    j["building"] = mBuilding;
+    j["spp"] = mPicture.renderer ? mPicture.renderer->accumulatedSpp() : 0u;  // complete full-resolution samples
+    j["previewScale"] = mPreviewScale;                                        // > 1: the last frame showed a preview
+    j["image"] = {{"width", mState.settings.width}, {"height", mState.settings.height}};  // pixels
+    j["imageFollowsPicture"] = mPanel.imageFollowsWindow;
+    const scene::Camera& c = mState.settings.camera;  // world space
+    auto vec = [](const glm::dvec3& v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
+    j["camera"] = {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fovY", c.fovYDegrees}};
+    if (mWindow) {
+        // The last cursor position taken (window coordinates, rounded) and the buttons held.
+        j["pointer"] = {{"x", std::lround(mLastX)}, {"y", std::lround(mLastY)}, {"held", mInputSeen.held}};
+        j["events"] = {{"keys", mInputSeen.keys},
+                       {"buttons", mInputSeen.buttons},
+                       {"cursor", mInputSeen.cursor},
+                       {"scroll", mInputSeen.scroll}};
+        // This frame's layout and the panel's named widgets on screen (framebuffer pixels).
+        j["layout"] = {{"window", rectJson(mLayout.window)},
+                       {"panel", rectJson(mLayout.panel)},
+                       {"area", rectJson(mLayout.area)},
+                       {"picture", rectJson(mLayout.picture)}};
+        nlohmann::ordered_json widgets = nlohmann::ordered_json::object();
+        for (const auto& [name, r] : mPanel.widgets) widgets[name] = rectJson(r);
+        j["widgets"] = widgets;
+    }
+    writeFileAtomic(mOpt.stateJson, memberPerLine(j) + "\n");
+}
+
+}  // namespace amrvk::viewer
