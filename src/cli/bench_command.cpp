@@ -266,7 +266,7 @@ bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::v
     o.denseMaxBytes = given.structure.denseMaxBytes;
     o.autoSelect = a.autoSelect;
     AMRVK_CHECK(!world || !a.autoSelect, "--auto: not under mpirun (its timed pick can differ between ranks)");
-    o.base = pictureSettings(app, a.pic, scene::RenderSettings{});
+    o.base = pictureSettings(app, a.pic, given.settings);
     o.fovDegrees = o.base.camera.fovYDegrees;
     if (app.count("--camera")) o.camera = o.base.camera;
     o.commandLine = "amrvk bench";

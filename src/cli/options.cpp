@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/checked_size.h"
@@ -24,9 +25,10 @@ CLI::Validator interval(double lo, double hi, bool openLo, bool openHi) {
     const std::string text = (openLo ? "(" : "[") + bound(lo) + ", " + bound(hi) + (openHi ? ")" : "]");
     return CLI::Validator(
         [=](std::string& s) -> std::string {
-            char* end = nullptr;
-            const double v = std::strtod(s.c_str(), &end);
-            if (s.empty() || !end || *end != '\0') return "'" + s + "' is not a number";
+            std::string why;
+            const std::optional<double> parsed = session::numberInText(s, why);
+            if (!parsed) return why;
+            const double v = *parsed;
             if (!std::isfinite(v)) return "'" + s + "' is not a finite number";
             const bool inside = (openLo ? v > lo : v >= lo) && (openHi ? v < hi : v <= hi);
             return inside ? std::string() : s + " is outside " + text;  // as session::settingRangeError words it
@@ -144,10 +146,9 @@ void addSetting(CLI::App& app, PictureArgs& a, std::string_view option) {
     }
     o->check(CLI::Validator(
                  [&st](std::string& text) -> std::string {
-                     char* end = nullptr;
-                     const double v = std::strtod(text.c_str(), &end);
-                     if (text.empty() || !end || *end != '\0') return "'" + text + "' is not a number";
-                     return session::settingRangeError(st, v);
+                     std::string why;
+                     const std::optional<double> v = session::numberInText(text, why);
+                     return v ? session::settingRangeError(st, *v) : why;
                  },
                  session::settingLimits(st)))
         ->type_name(std::string(st.valueName));
@@ -482,12 +483,6 @@ void parseSize(const std::string& option, const std::string& text, int& width, i
 scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings s) {
     const bool all = !given(app, "--session");
     auto use = [&](const char* name) { return (all && app.get_option_no_throw(name)) || given(app, name); };
-    {  // the table's settings (the structure's are taken by describePicture)
-        session::Session withSettings;
-        withSettings.settings = s;
-        applySettingTable(app, a, withSettings, all);
-        s = withSettings.settings;
-    }
     if (use("--size")) parseSize("--size", a.size, s.width, s.height);
     if (given(app, "--ambient")) s.ambient = vec3At(a.ambient, 0);
     if (given(app, "--background")) s.background = vec3At(a.background, 0);
@@ -533,12 +528,7 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (use("--threshold")) s.read.rawThreshold = read.threshold;
     if (given(app, "--field")) s.field = read.fields.front();
     s.settings = pictureSettings(app, a, fromSession ? s.settings : session::Session{}.settings);
-    {  // the table's structure settings (pictureSettings took the rest)
-        session::Session withStructure;
-        withStructure.structure = s.structure;
-        applySettingTable(app, a, withStructure, all);
-        s.structure = withStructure.structure;
-    }
+    applySettingTable(app, a, s, all);
     if (use("--spp")) s.spp = uint32_t(a.spp);
     // The TF: the session's unless --tf or --tf-preset is given; --tf-range maps either.
     if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))

@@ -79,8 +79,9 @@ struct SeriesArgs {
 // --series-range, --orbit, --frames, --fps, --frames-dir.
 void addSeriesOptions(CLI::App& app, SeriesArgs& a);
 
-// Lighting, medium, camera, image size and seed from the options given on the command line, on top
-// of `base` (a session's settings or the defaults). Camera only when --camera was given.
+// Lights, ambient, background, camera vectors, cut-away and image size from the options given on
+// the command line, on top of `base` (a session's settings or the defaults); camera only when
+// --camera was given. The table's settings (mode, fov, seed, medium, ...) are applySettingTable's.
 scene::RenderSettings pictureSettings(const CLI::App& app, const PictureArgs& a, scene::RenderSettings base);
 // The settings of session::settingTable() that `app` registered, into `s`: each one given on the
 // command line, or (`all`) every one, its default included.

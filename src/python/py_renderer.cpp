@@ -86,11 +86,10 @@ public:
         session::Session given;
         setSettingFromPython(st, o, given);  // checked before anything changes
         if (st.section == "structure") {
-            session::Session next = open().described;
+            session::Session next;
+            next.structure = open().described.structure;
             copySetting(st, given, next);
-            scene::StructureConfig resolved = next.structure;
-            picture::resolveStructure(*mCtx, resolved);  // refused before the device lock is taken
-            locked([&] { mPicture.commit({.structure = next.structure}); });
+            commitStructure(next.structure);
             return;
         }
         editSettings([&](scene::RenderSettings& rs) {
@@ -110,8 +109,12 @@ public:
         if (grid) c.grid = *grid;
         if (kdLeaves) c.kdLeaves = *kdLeaves;
         if (subMajorants) c.subMajorants = scene::parseSubMajorants(*subMajorants, "sub_majorants");
+        commitStructure(c);
+    }
+    // The structure as requested, refused (resolved for the device) before the device lock is taken.
+    void commitStructure(const scene::StructureConfig& c) {
         scene::StructureConfig resolved = c;
-        picture::resolveStructure(*mCtx, resolved);  // refused before the device lock is taken
+        picture::resolveStructure(*mCtx, resolved);
         locked([&] { mPicture.commit({.structure = c}); });
     }
     py::dict structure() const {

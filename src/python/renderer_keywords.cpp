@@ -42,13 +42,9 @@ const char* const kKnown[] = {"width",
                               "tf_colors"};
 
 // What a Choice setting takes, as a TypeError says it: "'ratio' or 'ubrm'", "one of 'ae', 'ss', ...".
-std::string choicesText(std::string_view choices) {
+std::string choicesText(const session::Setting& st) {
     std::vector<std::string> names;
-    for (size_t at = 0; at <= choices.size();) {
-        const size_t bar = std::min(choices.find('|', at), choices.size());
-        names.push_back("'" + std::string(choices.substr(at, bar - at)) + "'");
-        at = bar + 1;
-    }
+    for (std::string_view c : session::settingChoices(st)) names.push_back("'" + std::string(c) + "'");
     if (names.size() == 2) return names[0] + " or " + names[1];
     std::string text = "one of ";
     for (size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + names[i];
@@ -151,8 +147,8 @@ void setSettingFromPython(const session::Setting& st, const py::handle& o, sessi
             st.setNumber(s, keywordArg<bool>(o, keyword.c_str(), "True or False") ? 1 : 0);
             return;
         case session::SettingKind::Choice: {
-            session::setSettingChoice(
-                st, s, keywordArg<std::string>(o, keyword.c_str(), choicesText(st.choices).c_str()), keyword);
+            session::setSettingChoice(st, s, keywordArg<std::string>(o, keyword.c_str(), choicesText(st).c_str()),
+                                      keyword);
             return;
         }
     }

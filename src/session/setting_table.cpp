@@ -227,12 +227,19 @@ void checkSetting(const Setting& s, double v, std::string_view name) {
     AMRVK_CHECK(why.empty(), name, ": ", why);
 }
 
-std::string settingChoiceError(const Setting& s, std::string_view value) {
+std::vector<std::string_view> settingChoices(const Setting& s) {
+    std::vector<std::string_view> out;
     for (size_t at = 0; at <= s.choices.size();) {
         const size_t bar = std::min(s.choices.find('|', at), s.choices.size());
-        if (s.choices.substr(at, bar - at) == value) return "";
+        out.push_back(s.choices.substr(at, bar - at));
         at = bar + 1;
     }
+    return out;
+}
+
+std::string settingChoiceError(const Setting& s, std::string_view value) {
+    const std::vector<std::string_view> choices = settingChoices(s);
+    if (std::find(choices.begin(), choices.end(), value) != choices.end()) return "";
     return strCat("'", value, "' is not one of ", s.choices);
 }
 
@@ -240,6 +247,16 @@ void setSettingChoice(const Setting& s, Session& session, const std::string& val
     const std::string why = settingChoiceError(s, value);
     AMRVK_CHECK(why.empty(), name, ": ", why);
     s.setName(session, value);
+}
+
+std::optional<double> numberInText(const std::string& text, std::string& why) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || !end || *end != '\0') {
+        why = "'" + text + "' is not a number";
+        return std::nullopt;
+    }
+    return v;
 }
 
 std::string settingDefault(const Setting& s) {
@@ -259,11 +276,11 @@ void setSettingFromText(const Setting& s, Session& session, const std::string& t
         s.setNumber(session, text == "true" ? 1 : 0);
         return;
     }
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    AMRVK_CHECK(!text.empty() && end && *end == '\0', name, ": '", text, "' is not a number");
-    checkSetting(s, v, name);
-    s.setNumber(session, v);
+    std::string why;
+    const std::optional<double> v = numberInText(text, why);
+    AMRVK_CHECK(v, name, ": ", why);
+    checkSetting(s, *v, name);
+    s.setNumber(session, *v);
 }
 
 void copySetting(const Setting& s, const Session& from, Session& to) {

@@ -9,6 +9,7 @@
 // Adding a setting: a row here, and the code that uses its value (docs/architecture.md).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,10 +58,15 @@ std::string settingLimits(const Setting& s);
 std::string settingRangeError(const Setting& s, double v);
 // Throws "<name>: <settingRangeError>" unless `v` is a value of `s`.
 void checkSetting(const Setting& s, double v, std::string_view name);
+// A Choice's values, in the order of `choices` ("ae|ss|ms|dvr" -> ae, ss, ms, dvr).
+std::vector<std::string_view> settingChoices(const Setting& s);
 // A Choice's words: "" when `value` is one of its choices, else "'pt' is not one of ae|ss|ms|dvr".
 std::string settingChoiceError(const Setting& s, std::string_view value);
 // Sets Choice `s` in `session` to `value`, or throws "<name>: <settingChoiceError>".
 void setSettingChoice(const Setting& s, Session& session, const std::string& value, std::string_view name);
+// `text` as a number (strtod, the whole text), or nullopt with `why` = "'x' is not a number": the
+// command line's words for any numeric option.
+std::optional<double> numberInText(const std::string& text, std::string& why);
 // The value a Session starts with, as --help shows it ("1", "ms", "off").
 std::string settingDefault(const Setting& s);
 // Sets `s` in `session` from text as the command line gives it (a number, or a choice's name),
