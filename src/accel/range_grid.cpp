@@ -16,6 +16,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "core/strings.h"
 
 namespace amrvk::accel {
 
@@ -41,24 +42,43 @@ glm::ivec3 autoGridDims(const amr::Box3l& bounds, int longest, uint64_t maxMacro
     return dims;
 }
 
-glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds, uint64_t leafCells) {
-    if (text == "auto") return autoGridDims(bounds, 128, leafCells * kAutoMacrocellsPerCell);
+namespace {
+
+// "auto" -> nullopt dims and n = 0; "N" -> n; "NxMxK" -> dims; else `why`.
+struct GridText {
+    int n = 0;
+    glm::ivec3 dims{0};
+    std::string why;
+};
+
+GridText readGridText(const std::string& text) {
+    GridText g;
+    if (text == "auto") return g;
     int x = 0, y = 0, z = 0;
     char c1 = 0, c2 = 0, tail = 0;
-    glm::ivec3 dims;
-    if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &x, &c1, &y, &c2, &z, &tail) == 5 && c1 == 'x' &&
-        c2 == 'x') {
-        dims = {x, y, z};
+    if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &x, &c1, &y, &c2, &z, &tail) == 5 && c1 == 'x' && c2 == 'x') {
+        g.dims = {x, y, z};
+        for (int a = 0; a < 3; ++a)
+            if (g.dims[a] < 1 || g.dims[a] > 4096)
+                g.why = strCat("macrocells per axis must be in [1, 4096] (got ", text, ")");
     } else if (std::sscanf(text.c_str(), "%d%c", &x, &tail) == 1) {
-        AMRVK_CHECK(x >= 1 && x <= 4096, "--grid ", text, ": macrocells must be in [1, 4096]");
-        return autoGridDims(bounds, x);
+        g.n = x;
+        if (x < 1 || x > 4096) g.why = strCat("macrocells must be in [1, 4096] (got ", text, ")");
     } else {
-        AMRVK_CHECK(false, "--grid '", text, "': expected auto, N or NxMxK");
+        g.why = strCat("expected auto, N or NxMxK (got '", text, "')");
     }
-    for (int a = 0; a < 3; ++a)
-        AMRVK_CHECK(dims[a] >= 1 && dims[a] <= 4096, "--grid ", text,
-                    ": macrocells per axis must be in [1, 4096]");
-    return dims;
+    return g;
+}
+
+}  // namespace
+
+std::string gridTextError(const std::string& text) { return readGridText(text).why; }
+
+glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds, uint64_t leafCells) {
+    const GridText g = readGridText(text);
+    AMRVK_CHECK(g.why.empty(), "--grid: ", g.why);
+    if (text == "auto") return autoGridDims(bounds, 128, leafCells * kAutoMacrocellsPerCell);
+    return g.n > 0 ? autoGridDims(bounds, g.n) : g.dims;
 }
 
 MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims) {

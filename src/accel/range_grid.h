@@ -10,9 +10,9 @@
 // macrocell spans at most a few cells, its range is exact for the blend too: f's range over the
 // lattice of every brick's breakpoints, shared by neighbouring macrocells (range_grid.cpp).
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "accel/bricks.h"
@@ -59,6 +59,9 @@ inline constexpr uint64_t kAutoMacrocellsPerCell = 2;
 // Parses "auto", "N" (N on the longest axis) or "NxMxK". Throws on anything else or N outside [1, 4096].
 // "auto" is autoGridDims(bounds) capped at kAutoMacrocellsPerCell x leafCells (no cap when 0).
 glm::ivec3 parseGridDims(const std::string& text, const amr::Box3l& bounds, uint64_t leafCells = 0);
+// "" when `text` is auto, N or NxMxK with every count in [1, 4096]; else why not ("expected auto, N or
+// NxMxK (got 'x')"), the words --grid, the session's structure.grid and Python's grid= all use.
+std::string gridTextError(const std::string& text);
 
 // The grid's dims, origin and macrocell size over `bounds`, with no ranges yet.
 MacrocellLayout macrocellLayout(const amr::Box3l& bounds, glm::ivec3 dims);

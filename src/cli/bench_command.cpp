@@ -67,7 +67,7 @@ namespace {
 // The bench command's options, bound by addBenchOptions.
 struct BenchArgs {
     std::vector<std::string> inputs;
-    std::string outDir, tfs = "spiky,foggy", tfColors = "srgb", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
+    std::string outDir, tfs = "spiky,foggy", modes = "ms", traversals, samplers, backends, dvrSteps, gridSweep;
     std::string subMajorants = "off,8", transmittances = "ratio", controls = "none";
     int64_t frames = 100, warmup = 10, refSpp = 0;
     double targetRmse = 0;
@@ -84,12 +84,6 @@ void addProtocolOptions(CLI::App& app, BenchArgs& a) {
                    "over its percentiles, as render fits them) unless --tf-range fixes them")
         ->capture_default_str()
         ->type_name("LIST");
-    app.add_option("--tf-colors", a.tfColors,
-                   "what the TFs' colours mean, as render's --tf-colors: srgb (display colours, decoded to linear "
-                   "albedo) or linear (albedo as given); the references are keyed by it")
-        ->check(CLI::IsMember({"srgb", "linear"}))
-        ->capture_default_str()
-        ->type_name("srgb|linear");
     app.add_option("--modes", a.modes, "unbiased modes of the matrix: ae,ss,ms")
         ->capture_default_str()
         ->type_name("LIST");
@@ -251,7 +245,6 @@ bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::v
     o.datasets = benchDatasets(a.inputs, a.read);
     o.read = readOptions(a.read);
     parseMatrix(app, a, o);
-    o.tfColors = scene::parseTfColors(a.tfColors, "--tf-colors");
     if (app.count("--size")) parseSize("--size", a.pic.size, o.width, o.height);
     o.frames = uint32_t(a.frames);
     o.warmup = uint32_t(a.warmup);
@@ -260,7 +253,8 @@ bench::BenchOptions benchOptions(const CLI::App& app, BenchArgs& a, const std::v
     parseSweeps(app, a, o);
     session::Session given;  // the table's settings bench takes (session/setting_table.h)
     applySettingTable(app, a.pic, given, true);
-    o.grid = a.pic.grid;
+    o.tfColors = given.tfColors;  // the references are keyed by it
+    o.grid = given.structure.grid;
     o.kdLeaves = given.structure.kdLeaves;
     o.dense = !a.noDense;
     o.denseMaxBytes = given.structure.denseMaxBytes;

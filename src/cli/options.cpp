@@ -107,13 +107,6 @@ public:
     }
 };
 
-std::vector<std::string> traversalChoices() {  // every traversal, then auto
-    std::vector<std::string> out;
-    for (scene::TraversalKind t : scene::allTraversals()) out.push_back(scene::traversalName(t));
-    out.push_back("auto");
-    return out;
-}
-
 glm::dvec3 vec3At(const std::vector<double>& v, size_t at) { return {v[at], v[at + 1], v[at + 2]}; }
 
 // Lights given as repeated 6-number options.
@@ -131,6 +124,7 @@ void addLights(std::vector<scene::Light>& out, const std::vector<double>& values
 // Session's default; kept as text (or a flag) in `a` until applySettingTable.
 void addSetting(CLI::App& app, PictureArgs& a, std::string_view option) {
     const session::Setting& st = session::settingForOption(option);
+    AMRVK_CHECK(st.kind != session::SettingKind::Compound, "internal: ", option, " is a compound (addCompound)");
     const std::string name(option);
     if (st.kind == session::SettingKind::Flag) {
         app.add_flag(name, a.flags[name], std::string(st.help));
@@ -138,10 +132,11 @@ void addSetting(CLI::App& app, PictureArgs& a, std::string_view option) {
     }
     std::string& value = a.settings[name] = session::settingDefault(st);
     CLI::Option* o = app.add_option(name, value, std::string(st.help))->capture_default_str();
-    if (st.kind == session::SettingKind::Choice) {
-        o->check(CLI::Validator([&st](std::string& text) { return session::settingChoiceError(st, text); },
-                                "{" + std::string(st.choices) + "}"))
-            ->type_name(std::string(st.choices));
+    if (st.kind == session::SettingKind::Choice || st.kind == session::SettingKind::Text) {
+        const bool choice = st.kind == session::SettingKind::Choice;
+        o->check(CLI::Validator([&st](std::string& text) { return session::settingTextError(st, text); },
+                                choice ? "{" + std::string(st.choices) + "}" : "TEXT"))
+            ->type_name(std::string(choice && st.valueName.empty() ? st.choices : st.valueName));
         return;
     }
     o->check(CLI::Validator(
@@ -154,12 +149,23 @@ void addSetting(CLI::App& app, PictureArgs& a, std::string_view option) {
         ->type_name(std::string(st.valueName));
 }
 
+// A compound setting of session::settingTable() (several values, parsed here): its help and value
+// names from the row, bound to `target`.
+template <typename T>
+CLI::Option* addCompound(CLI::App& app, std::string_view option, T& target) {
+    const session::Setting& st = session::settingForOption(option);
+    AMRVK_CHECK(st.kind == session::SettingKind::Compound, "internal: ", option, " is not a compound");
+    return app.add_option(std::string(option), target, std::string(st.help))->type_name(std::string(st.valueName));
+}
+
 }  // namespace
 
 void applySettingTable(const CLI::App& app, const PictureArgs& a, session::Session& s, bool all) {
     for (const session::Setting& st : session::settingTable()) {
         const std::string name(st.option);
-        if (!app.get_option_no_throw(name) || !(all || given(app, name))) continue;
+        if (st.kind == session::SettingKind::Compound || !app.get_option_no_throw(name) || !(all || given(app, name)))
+            continue;
+        if (!st.request.empty() && a.settings.at(name) == st.request) continue;  // the description resolves it
         if (st.kind == session::SettingKind::Flag)
             st.setNumber(s, a.flags.at(name) ? 1 : 0);
         else
@@ -265,120 +271,43 @@ void addStartOptions(CLI::App& app, PictureArgs& a) {
                    "override it")
         ->check(CLI::ExistingFile)
         ->type_name("FILE");
-    app.add_option("--tf", a.tf,
-                   "transfer function: ParaView preset JSON, .xf, or a preset fitted to the data: layers (eight "
-                   "semi-transparent layers over the field's range, each as opaque as the space its values fill "
-                   "allows: about 0.15 optical depth per layer across the data); ramp, grey, constant, empty over "
-                   "the field's range; spiky (alpha-1 peaks at the 75th, 90th and 97th percentiles of the cell "
-                   "values) and foggy (alpha 0 up to the median value, rising to 0.05 at the maximum) over the "
-                   "field's percentiles by cell count")
-        ->capture_default_str()
-        ->type_name("FILE|PRESET");
-    app.add_option("--tf-preset", a.tfPreset, "preset name inside a ParaView JSON file (default: the first)")
-        ->type_name("NAME");
-    app.add_option("--tf-colors", a.tfColors,
-                   "what the TF's colours mean: srgb, display colours as ParaView, matplotlib and yt mean them "
-                   "(decoded to linear albedo, the colour map interpolated as given), or linear albedo as given "
-                   "(amrvk before sessions of version 2)")
-        ->check(CLI::IsMember({"srgb", "linear"}))
-        ->capture_default_str()
-        ->type_name("srgb|linear");
+    addCompound(app, "--tf", a.tf)->capture_default_str();
+    addCompound(app, "--tf-preset", a.tfPreset);
 }
 
 // How the picture is made: the estimator, its majorant traversal, sampler and back-end, and the
 // samples per pixel.
 void addMethodOptions(CLI::App& app, PictureArgs& a) {
-    for (const char* option : {"--mode", "--dt", "--dvr-shading", "--transmittance", "--control-extinction"})
+    for (const char* option : {"--mode", "--dt", "--dvr-shading", "--transmittance", "--control-extinction",
+                               "--traversal", "--sampler", "--backend", "--spp"})
         addSetting(app, a, option);
-    app.add_option("--traversal", a.traversal,
-                   "majorant traversal: macrocell DDA, BVH over non-empty macrocells, ABRs, "
-                   "brick bounds, brick "
-                   "domains, the TF-specific kd-tree; auto = probe each traversal and sampler "
-                   "briefly, predict the other combinations from their counts, and take the "
-                   "most efficient (options given explicitly stay fixed; --json lists the probes)")
-        ->check(CLI::IsMember(traversalChoices()))
-        ->capture_default_str()
-        ->type_name("NAME");
-    app.add_option("--sampler", a.sampler,
-                   "sample reconstruction: BVH over brick domains, BVH over ABRs, grid = per-macrocell "
-                   "brick lists (--grid; no tree descent, ext-brick's values), or dense = the field "
-                   "resampled to the finest uniform grid (trilinear, a grid traversal only; the cost floor)")
-        ->check(CLI::IsMember({"ext-brick", "abr", "grid", "dense"}))
-        ->capture_default_str()
-        ->type_name("ext-brick|abr|grid|dense");
-    app.add_option("--backend", a.backend,
-                   "box hierarchies: software BVH or VK_KHR_ray_query; auto = sw, which was measured faster on CPU "
-                   "devices (rq is not measured faster on a GPU yet); the choice and its reason go to stderr and --json")
-        ->check(CLI::IsMember({"sw", "rq", "auto"}))
-        ->capture_default_str()
-        ->type_name("sw|rq|auto");
-    app.add_option("--spp", a.spp, "samples per pixel")
-        ->check(interval(1, scene::kMaxSpp))
-        ->capture_default_str()
-        ->type_name("N");
 }
 
 // The colour legend drawn into PNG images.
 void addLegendOptions(CLI::App& app, PictureArgs& a) {
-    app.add_flag("--legend", a.legend,
-                 "draw a colour legend into the PNG (render -o, the viewer's screenshots): the TF's colour bar with "
-                 "its opacity, ticks (decades for --scale log), the field's name and its units; the viewer "
-                 "shows it over the picture");
-    app.add_option("--legend-place", a.legendPlace,
-                   "side: in a strip right of the picture (the PNG gets wider, no data hidden); overlay: over the "
-                   "picture's lower right corner on a backdrop")
-        ->check(CLI::IsMember({"side", "overlay"}))
-        ->capture_default_str()
-        ->type_name("side|overlay");
-    app.add_option("--legend-title", a.legendTitle, "the legend's title (default: the field's name)")
-        ->type_name("TEXT");
-    app.add_option("--legend-units", a.legendUnits,
-                   "units shown under the title, e.g. 'g/cm^3' (default: the field's own, as amrvk info says, "
-                   "e.g. Enzo's and RAMSES's 'code units (1 = X g/cm^3)'; none where the data do not say)")
-        ->type_name("TEXT");
-    app.add_option("--legend-font", a.legendFont,
-                   "TrueType/OpenType font of the legend's text (default: Debian's "
-                   "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf)")
-        ->type_name("FILE");
+    for (const char* option : {"--legend", "--legend-place", "--legend-title", "--legend-units", "--legend-font"})
+        addSetting(app, a, option);
 }
 
-// The TF's value range.
+// The TF's value range and what its colours mean (bench too: its references are keyed by them).
 void addTfRangeOption(CLI::App& app, PictureArgs& a) {
-    app.add_option("--tf-range", a.tfRange,
-                   "map the TF's node range onto [LO, HI]; presets then ignore the data and take their range-fixed "
-                   "shape over [LO, HI] (spiky: one alpha-1 peak at the middle, 1% half width; foggy: alpha 0.05 -> "
-                   "0.2 everywhere). Default: presets fitted to the data (--tf)")
-        ->expected(2)
-        ->check(kFinite)
-        ->type_name("LO HI");
+    addCompound(app, "--tf-range", a.tfRange)->expected(2)->check(kFinite);
+    addSetting(app, a, "--tf-colors");
 }
 
 // The structures' sizes: macrocell grid, kd-tree leaves, sub-majorants (not for bench, whose
 // --sub-majorants is a list of matrix rows), dense grid.
 void addStructureOptions(CLI::App& app, PictureArgs& a, bool subset) {
-    app.add_option("--grid", a.grid, "macrocell grid of grid-dda, grid-bvh and the grid sampler (auto: 128 on the longest axis, fewer for small data: at most 2 macrocells per leaf cell)")
-        ->capture_default_str()
-        ->type_name("auto|N|NxMxK");
+    addSetting(app, a, "--grid");
     addSetting(app, a, "--kd-leaves");
-    if (!subset)
-        app.add_option("--sub-majorants", a.subMajorants,
-                       "grid-dda, grid-bvh: split each macrocell that the TF makes loose (a narrow TF peak in its "
-                       "value range) into at most N^3 sub-boxes with majorants of their own, rebuilt per TF, so that "
-                       "collisions they decide skip their lookup (the same picture, fewer lookups; nothing is "
-                       "built where the TF has no narrow peak; docs/benchmarks.md)")
-            ->check(CLI::IsMember({"off", "2", "4", "8", "16"}))
-            ->capture_default_str()
-            ->type_name("off|N");
+    if (!subset) addSetting(app, a, "--sub-majorants");
     addSetting(app, a, "--dense-max-mib");
 }
 
 // The image and its camera, and the random seed.
 void addViewOptions(CLI::App& app, PictureArgs& a) {
-    app.add_option("--size", a.size, strCat("image size, 1..", scene::kMaxImageSide, " per side"))->capture_default_str()->type_name("WxH");
-    app.add_option("--camera", a.camera, "eye, target and up in world space (default: a three-quarter view)")
-        ->expected(9)
-        ->check(kFinite)
-        ->type_name("EX EY EZ TX TY TZ UX UY UZ");
+    addCompound(app, "--size", a.size)->capture_default_str();
+    addCompound(app, "--camera", a.camera)->expected(9)->check(kFinite);
     addSetting(app, a, "--fov");
     addSetting(app, a, "--seed");
 }
@@ -387,42 +316,16 @@ void addViewOptions(CLI::App& app, PictureArgs& a) {
 void addMediumOptions(CLI::App& app, PictureArgs& a) {
     addSetting(app, a, "--density-scale");
     addSetting(app, a, "--g");
-    app.add_option("--ambient", a.ambient, "uniform environment radiance (default 1 1 1)")
-        ->expected(3)
-        ->check(interval(0, INFINITY, false, true))
-        ->type_name("R G B");
-    app.add_option("--background", a.background, "radiance seen by primary rays that escape (default 0 0 0: the data, lit by the ambient, on black)")
-        ->expected(3)
-        ->check(interval(0, INFINITY, false, true))
-        ->type_name("R G B");
-    app.add_option("--light-dir", a.lightDir,
-                   "directional light towards X Y Z (world) with radiance R G B (repeatable)")
-        ->expected(6)
-        ->take_all()
-        ->check(kFinite)
-        ->type_name("X Y Z R G B");
-    app.add_option("--light-point", a.lightPoint, "point light at X Y Z (world) with intensity R G B (repeatable)")
-        ->expected(6)
-        ->take_all()
-        ->check(kFinite)
-        ->type_name("X Y Z R G B");
+    addCompound(app, "--ambient", a.ambient)->expected(3)->check(interval(0, INFINITY, false, true));
+    addCompound(app, "--background", a.background)->expected(3)->check(interval(0, INFINITY, false, true));
+    addCompound(app, "--light-dir", a.lightDir)->expected(6)->take_all()->check(kFinite);
+    addCompound(app, "--light-point", a.lightPoint)->expected(6)->take_all()->check(kFinite);
 }
 
 // Cut-aways: a crop box and clip planes.
 void addCutAwayOptions(CLI::App& app, PictureArgs& a) {
-    app.add_option("--crop", a.crop,
-                   "cut-away: keep only the medium inside the box X0 Y0 Z0 .. X1 Y1 Z1 (world space); the rest is "
-                   "empty, the field inside is reconstructed as before (docs/cut-aways.md)")
-        ->expected(6)
-        ->check(kFinite)
-        ->type_name("X0 Y0 Z0 X1 Y1 Z1");
-    app.add_option("--clip", a.clip,
-                   "cut-away: remove the half-space in front of the plane through PX PY PZ with normal NX NY NZ "
-                   "(world space; the side the normal points to is removed; repeatable, at most 4)")
-        ->expected(6)
-        ->take_all()
-        ->check(kFinite)
-        ->type_name("PX PY PZ NX NY NZ");
+    addCompound(app, "--crop", a.crop)->expected(6)->check(kFinite);
+    addCompound(app, "--clip", a.clip)->expected(6)->take_all()->check(kFinite);
 }
 
 }  // namespace
@@ -529,33 +432,18 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
     if (given(app, "--field")) s.field = read.fields.front();
     s.settings = pictureSettings(app, a, fromSession ? s.settings : session::Session{}.settings);
     applySettingTable(app, a, s, all);
-    if (use("--spp")) s.spp = uint32_t(a.spp);
     // The TF: the session's unless --tf or --tf-preset is given; --tf-range maps either.
     if (!fromSession || given(app, "--tf") || given(app, "--tf-preset"))
         d.tfSource = session::TfSource{.name = a.tf, .preset = a.tfPreset};
     if (given(app, "--tf-range")) d.tfRange = std::make_pair(float(a.tfRange[0]), float(a.tfRange[1]));
-    if (use("--tf-colors")) s.tfColors = scene::parseTfColors(a.tfColors);
     d.fitCamera = !fromSession && !given(app, "--camera");
-    const bool autoTraversal = a.traversal == "auto" && given(app, "--traversal");
+    const bool autoTraversal = given(app, "--traversal") && a.settings.at("--traversal") == "auto";
     d.fit = autoTraversal                                   ? session::StructureFit::Probe
             : !given(app, "--traversal") && !fromSession ? session::StructureFit::Data
                                                             : session::StructureFit::None;
-    d.samplerGiven = given(app, "--sampler");
-    d.backendGiven = given(app, "--backend");
-    d.gridGiven = given(app, "--grid");
-    d.subMajorantsGiven = given(app, "--sub-majorants");
-    if (use("--traversal") && a.traversal != "auto") s.structure.traversal = scene::parseTraversal(a.traversal);
-    if (use("--sampler")) s.structure.sampler = scene::parseSampler(a.sampler);
-    if (use("--backend")) s.structure.backend = scene::parseBackend(a.backend);
-    if (use("--grid")) s.structure.grid = a.grid;
-    if (use("--sub-majorants")) s.structure.subMajorants = scene::parseSubMajorants(a.subMajorants);
+    for (const session::Setting& st : session::settingTable())
+        if (st.section == "structure" && given(app, std::string(st.option))) d.given.insert(std::string(st.key));
     if (!autoTraversal) s.structure.validate();
-    if (use("--legend")) s.legend.show = a.legend;
-    if (use("--legend-place")) s.legend.place = session::parseLegendPlace(a.legendPlace);
-    if (given(app, "--legend-title")) s.legend.title = a.legendTitle;
-    if (given(app, "--legend-units")) s.legend.units = a.legendUnits;
-    if (given(app, "--legend-font")) s.legend.font = a.legendFont;
-    session::checkLegendText(s.legend);
     return d;
 }
 
@@ -568,9 +456,10 @@ std::vector<NamedPath> pictureInputs(const CLI::App& app, const std::string& inp
     if (given(app, "--tf") && std::filesystem::exists(a.tf, ec)) in.push_back({"--tf", a.tf});
     if (given(app, "--legend-font")) {
         // Said before the outputs are checked against it ("-o lies inside the input --legend-font").
-        AMRVK_CHECK(!std::filesystem::is_directory(a.legendFont, ec), "--legend-font ", a.legendFont,
+        const std::string& font = a.settings.at("--legend-font");
+        AMRVK_CHECK(!std::filesystem::is_directory(font, ec), "--legend-font ", font,
                     ": not a font file (a directory)");
-        in.push_back({"--legend-font", a.legendFont});
+        in.push_back({"--legend-font", font});
     }
     return in;
 }

@@ -47,22 +47,17 @@ void addDeviceOptions(CLI::App& app, DeviceArgs& a);
 // The options that make a picture (render, view; bench takes a subset).
 struct PictureArgs {
     std::string session;
-    std::string tf = "layers", tfPreset;
-    std::string tfColors = "srgb";  // scene/tf_colors.h
-    std::vector<double> tfRange;
     // The settings of session::settingTable() registered here (addSetting), by option: the text
     // given (or the Session's default), and the flags.
     std::map<std::string, std::string, std::less<>> settings;
     std::map<std::string, bool, std::less<>> flags;
-    std::string traversal = "grid-dda", sampler = "grid", backend = "auto", grid = "auto";
-    std::string subMajorants = scene::subMajorantsName(scene::StructureConfig{}.subMajorants);  // off | 2 | 4 | 8 | 16
-    int64_t spp = 64;
+    // The table's compound settings, parsed here (pictureSettings, describePicture).
+    std::string tf = "layers", tfPreset;
+    std::vector<double> tfRange;
     std::string size = "512x512";
     std::vector<double> camera;
     std::vector<double> ambient, background, lightDir, lightPoint;
     std::vector<double> crop, clip;  // --crop X0 Y0 Z0 X1 Y1 Z1, --clip PX PY PZ NX NY NZ (repeatable)
-    bool legend = false;  // --legend, --legend-place, --legend-title, --legend-units, --legend-font
-    std::string legendPlace = "side", legendTitle, legendUnits, legendFont;
 };
 // Every picture option; bench passes subset = true to leave out what it sets per run (mode, TF,
 // structure, spp, session, dt, dvr shading).

@@ -90,10 +90,10 @@ Picture makePicture(gpu::Context& ctx, std::shared_ptr<const scene::Volume> volu
         p.renderer = std::make_unique<render::Renderer>(ctx, volume, start, options.shaders);
         render::AutoConstraints constraints;
         const scene::StructureConfig& given = fittedSession.structure;
-        if (d.samplerGiven) constraints.sampler = given.sampler;
-        if (d.backendGiven && given.backend != scene::Backend::Auto) constraints.backend = given.backend;
-        if (d.gridGiven) constraints.grid = given.grid;
-        if (d.subMajorantsGiven) constraints.subMajorants = given.subMajorants;
+        if (d.isGiven("sampler")) constraints.sampler = given.sampler;
+        if (d.isGiven("backend") && given.backend != scene::Backend::Auto) constraints.backend = given.backend;
+        if (d.isGiven("grid")) constraints.grid = given.grid;
+        if (d.isGiven("subMajorants")) constraints.subMajorants = given.subMajorants;
         constraints.kdLeaves = given.kdLeaves;
         {
             ProgressStage stage("--traversal auto: probing structure combinations");

@@ -27,23 +27,6 @@ long long wholeArg(const py::handle& o, const char* name, long long lo, long lon
     return v;
 }
 
-uint32_t subMajorantsArg(const py::handle& o) {
-    if (py::isinstance<py::bool_>(o) && !o.cast<bool>()) return 0;
-    std::string text;
-    if (py::isinstance<py::str>(o))
-        text = o.cast<std::string>();
-    else if (py::isinstance<py::int_>(o) && !py::isinstance<py::bool_>(o))
-        text = std::to_string(wholeArg(o, "sub_majorants", 0, 16));
-    else
-        throw py::type_error(strCat("sub_majorants: expected 'off', 2, 4, 8 or 16, got ", shortRepr(o)));
-    if (text == "0") return 0;
-    try {
-        return scene::parseSubMajorants(text, "sub_majorants");
-    } catch (const Error& e) {
-        throw py::value_error(e.what());
-    }
-}
-
 uint32_t countArg(const py::handle& o, const char* name) { return uint32_t(wholeArg(o, name, 1, scene::kMaxSpp)); }
 
 WholeNumber wholeElement(const py::array& a, py::ssize_t i, py::ssize_t k) {

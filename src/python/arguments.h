@@ -34,9 +34,6 @@ std::string shortRepr(const py::handle& o);
 // line naming the keyword and the value (not pybind11's list of signatures).
 long long wholeArg(const py::handle& o, const char* name, long long lo, long long hi);
 
-// sub_majorants: 'off' or False (0), or 2, 4, 8, 16 (a number or its string), as --sub-majorants.
-uint32_t subMajorantsArg(const py::handle& o);
-
 // A count from Python (spp, n): a whole number in [1, 2^24], the CLI's --spp range.
 uint32_t countArg(const py::handle& o, const char* name);
 

@@ -16,30 +16,17 @@ struct Rename {
     std::string_view keyword;  // as Python spells it (Renderer, Volume, TransferFunction keywords)
 };
 
-// The options that are not settings of session::settingTable(); longest first where one is a
-// prefix of another (--nan drop before --nan).
+// The options that are not settings of session::settingTable(), and those of its settings that
+// Python names by more than their keyword; longest first where one is a prefix of another (--nan
+// drop before --nan).
 constexpr Rename kRenames[] = {
     {"--nan drop", "nan='drop'"},
     {"--frames", "frames"},
     {"--orbit", "orbit"},
     {"--series-range", "tf_range"},
-    {"--legend-place", "legend_place"},
-    {"--legend-title", "legend_title"},
-    {"--legend-units", "legend_units"},
-    {"--legend", "legend"},
     {"--size", "size (width, height)"},
-    {"--spp", "spp"},
-    {"--ambient", "ambient"},
-    {"--background", "background"},
     {"--light-dir", "lights (a directional light)"},
     {"--light-point", "lights (a point light)"},
-    {"--camera", "camera"},
-    {"--crop", "crop"},
-    {"--clip", "clip"},
-    {"--tf-range", "tf_range"},
-    {"--traversal", "traversal"},
-    {"--sampler", "sampler"},
-    {"--backend", "backend"},
     {"--device", "device"},
     {"--shader-dir", "shader_dir"},
     {"--gpu-timeout", "gpu_timeout"},
@@ -60,7 +47,12 @@ bool optionChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || 
 const std::vector<Rename>& renames() {
     static const std::vector<Rename> kAll = [] {
         std::vector<Rename> all;
-        for (const session::Setting& st : session::settingTable()) all.push_back({st.option, st.keyword});
+        for (const session::Setting& st : session::settingTable()) {
+            const bool said = std::any_of(std::begin(kRenames), std::end(kRenames),
+                                          [&](const Rename& r) { return r.option == st.option; });
+            if (!said && !st.keyword.empty() && st.keyword.find('|') == std::string_view::npos)
+                all.push_back({st.option, st.keyword});
+        }
         all.insert(all.end(), std::begin(kRenames), std::end(kRenames));
         return all;
     }();

@@ -99,17 +99,13 @@ public:
             rs = now.settings;
         });
     }
-    void setStructure(const std::optional<std::string>& traversal, const std::optional<std::string>& sampler,
-                      const std::optional<std::string>& backend, const std::optional<std::string>& grid,
-                      std::optional<uint32_t> kdLeaves, const std::optional<std::string>& subMajorants) {
-        scene::StructureConfig c = open().described.structure;
-        if (traversal) c.traversal = scene::parseTraversal(*traversal);
-        if (sampler) c.sampler = scene::parseSampler(*sampler);
-        if (backend) c.backend = scene::parseBackend(*backend);
-        if (grid) c.grid = *grid;
-        if (kdLeaves) c.kdLeaves = *kdLeaves;
-        if (subMajorants) c.subMajorants = scene::parseSubMajorants(*subMajorants, "sub_majorants");
-        commitStructure(c);
+    // Structure settings of session::settingTable() by keyword (None: as they are), committed at once.
+    void setStructure(const std::vector<std::pair<const char*, py::object>>& given) {
+        session::Session next;
+        next.structure = open().described.structure;
+        for (const auto& [keyword, o] : given)
+            if (!o.is_none()) setSettingFromPython(*session::settingForKeyword(keyword), o, next);
+        commitStructure(next.structure);
     }
     // The structure as requested, refused (resolved for the device) before the device lock is taken.
     void commitStructure(const scene::StructureConfig& c) {
@@ -511,19 +507,12 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
             "set_structure",
             [](PyRenderer& r, const py::object& traversal, const py::object& sampler, const py::object& backend,
                const py::object& grid, const py::object& kdLeaves, const py::object& subMajorants) {
-                auto text = [](const py::object& o, const char* name) {
-                    return o.is_none() ? std::nullopt
-                                       : std::optional<std::string>(keywordArg<std::string>(o, name, kText));
-                };
-                r.setStructure(
-                    text(traversal, "traversal"), text(sampler, "sampler"), text(backend, "backend"),
-                    text(grid, "grid"),
-                    kdLeaves.is_none()
-                        ? std::nullopt
-                        : std::optional<uint32_t>(uint32_t(wholeArg(kdLeaves, "kd_leaves", 1, scene::kMaxKdLeaves))),
-                    subMajorants.is_none()
-                        ? std::nullopt
-                        : std::optional<std::string>(scene::subMajorantsName(subMajorantsArg(subMajorants))));
+                r.setStructure({{"traversal", traversal},
+                                {"sampler", sampler},
+                                {"backend", backend},
+                                {"grid", grid},
+                                {"kd_leaves", kdLeaves},
+                                {"sub_majorants", subMajorants}});
             },
             py::arg("traversal") = py::none(), py::arg("sampler") = py::none(), py::arg("backend") = py::none(),
             py::arg("grid") = py::none(), py::arg("kd_leaves") = py::none(), py::arg("sub_majorants") = py::none())
@@ -542,11 +531,13 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
 // Renderer: the picture's settings as properties (each edit through editSettings).
 void bindRendererSettings(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) {
     // Every setting of session::settingTable() as a property of its keyword, with its help.
-    for (const session::Setting& st : session::settingTable())
+    for (const session::Setting& st : session::settingTable()) {
+        if (!st.pythonProperty || st.kind == session::SettingKind::Compound) continue;  // a property of its own
         c.def_property(
             std::string(st.keyword).c_str(), [&st](const PyRenderer& r) { return r.setting(st); },
             [&st](PyRenderer& r, const py::object& o) { r.setSetting(st, o); },
             strCat(st.help, st.unit.empty() ? "" : strCat(" (", st.unit, ")"), "; as ", st.option).c_str());
+    }
     c.def_property(
          "size", [](const PyRenderer& r) { return py::make_tuple(r.settings().width, r.settings().height); },
          [](PyRenderer& r, const py::object& o) {

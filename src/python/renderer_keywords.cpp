@@ -12,34 +12,10 @@ namespace amrvk::python {
 
 namespace {
 
-// The keywords Renderer(...) takes besides those of session::settingTable(); any other is a
-// TypeError naming it.
-const char* const kKnown[] = {"width",
-                              "height",
-                              "spp",
-                              "ambient",
-                              "background",
-                              "lights",
-                              "traversal",
-                              "sampler",
-                              "backend",
-                              "grid",
-                              "sub_majorants",
-                              "device",
-                              "validation",
-                              "shader_dir",
-                              "gpu_timeout",
-                              "samples_per_invocation",
-                              "path_regeneration",
-                              "quiet",
-                              "tf_range",
-                              "crop",
-                              "clip",
-                              "legend",
-                              "legend_place",
-                              "legend_title",
-                              "legend_units",
-                              "tf_colors"};
+// The keywords Renderer(...) takes besides the picture settings of session::settingTable(): the
+// device's and the console's. Any other is a TypeError naming it.
+const char* const kDeviceKeywords[] = {
+    "device", "validation", "shader_dir", "gpu_timeout", "samples_per_invocation", "path_regeneration", "quiet"};
 
 // What a Choice setting takes, as a TypeError says it: "'ratio' or 'ubrm'", "one of 'ae', 'ss', ...".
 std::string choicesText(const session::Setting& st) {
@@ -68,65 +44,43 @@ session::PictureDescription describe(const PyVolume& v, const std::optional<PyTf
     };
     for (const auto& item : kw) {
         const std::string key = py::str(item.first);
-        const bool inTable = std::any_of(session::settingTable().begin(), session::settingTable().end(),
-                                         [&](const session::Setting& st) { return st.keyword == key; });
-        if (!inTable && std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown))
+        if (!session::settingForKeyword(key) &&
+            std::find(std::begin(kDeviceKeywords), std::end(kDeviceKeywords), key) == std::end(kDeviceKeywords))
             throw py::type_error("Renderer() got an unexpected keyword argument '" + key + "'");
     }
+    // The table's compound settings, parsed here.
     if (auto o = take("width")) rs.width = int(wholeArg(*o, "width", 1, scene::kMaxImageSide));
     if (auto o = take("height")) rs.height = int(wholeArg(*o, "height", 1, scene::kMaxImageSide));
-    if (auto o = take("spp")) s.spp = countArg(*o, "spp");
     if (auto o = take("ambient")) rs.ambient = vec3(keywordArg<std::vector<double>>(*o, "ambient", kThree), "ambient");
     if (auto o = take("background"))
         rs.background = vec3(keywordArg<std::vector<double>>(*o, "background", kThree), "background");
     if (auto o = take("lights")) rs.lights = keywordArg<std::vector<scene::Light>>(*o, "lights", kLights);
-    for (const session::Setting& st : session::settingTable())  // before the camera: fov is one of them
-        if (auto o = take(std::string(st.keyword).c_str())) setSettingFromPython(st, *o, s);
     if (auto o = take("crop")) rs.cut.crop = cropOf(*o);
     if (auto o = take("clip")) rs.cut.clips = clipsOf(*o);
-    if (auto o = take("legend")) s.legend.show = keywordArg<bool>(*o, "legend", "True or False");
-    if (auto o = take("legend_place"))
-        s.legend.place = forKeyword("legend_place", [&] {
-            return session::parseLegendPlace(keywordArg<std::string>(*o, "legend_place", "'side' or 'overlay'"));
-        });
-    if (auto o = take("legend_title")) s.legend.title = keywordArg<std::string>(*o, "legend_title", kText);
-    if (auto o = take("legend_units")) s.legend.units = keywordArg<std::string>(*o, "legend_units", kText);
-    session::checkLegendText(s.legend);
     if (camera) rs.camera = *camera;
     d.fitCamera = !camera;
     if (tf)
         s.tf = tf->channels;
     else
         d.tfSource = session::TfSource{};  // ramp over the field's range, as amrvk render
-    if (auto o = take("tf_range")) {
-        const auto r = keywordArg<std::pair<float, float>>(*o, "tf_range", "(lo, hi): two numbers");
-        d.tfRange = r;
+    if (auto o = take("tf_range"))
+        d.tfRange = keywordArg<std::pair<float, float>>(*o, "tf_range", "(lo, hi): two numbers");
+    // The others, each as its row says (fov after the camera: it is one of them).
+    bool probe = false;
+    for (const session::Setting& st : session::settingTable()) {
+        if (st.kind == session::SettingKind::Compound) continue;
+        const std::optional<py::object> o = take(std::string(st.keyword).c_str());
+        if (!o) continue;
+        if (!st.request.empty() && py::isinstance<py::str>(*o) && o->cast<std::string>() == st.request) {
+            probe = true;  // traversal 'auto': the picture probes
+            continue;
+        }
+        setSettingFromPython(st, *o, s);
+        if (st.section == "structure") d.given.insert(std::string(st.key));
     }
-    if (auto o = take("tf_colors"))
-        s.tfColors = scene::parseTfColors(keywordArg<std::string>(*o, "tf_colors", "'srgb' or 'linear'"), "tf_colors");
-    const std::optional<py::object> traversal = take("traversal");
-    const std::string t = traversal ? keywordArg<std::string>(*traversal, "traversal", kText) : "";
-    d.fit = t == "auto" ? session::StructureFit::Probe
-            : t.empty() ? session::StructureFit::Data
-                        : session::StructureFit::None;
-    if (!t.empty() && t != "auto") s.structure.traversal = scene::parseTraversal(t);
-    if (auto o = take("sampler")) {
-        s.structure.sampler = scene::parseSampler(keywordArg<std::string>(*o, "sampler", kText));
-        d.samplerGiven = true;
-    }
-    s.structure.backend = scene::Backend::Auto;
-    if (auto o = take("backend")) {
-        s.structure.backend = scene::parseBackend(keywordArg<std::string>(*o, "backend", kText));
-        d.backendGiven = true;
-    }
-    if (auto o = take("grid")) {
-        s.structure.grid = keywordArg<std::string>(*o, "grid", kText);
-        d.gridGiven = true;
-    }
-    if (auto o = take("sub_majorants")) {
-        s.structure.subMajorants = subMajorantsArg(*o);
-        d.subMajorantsGiven = true;
-    }
+    d.fit = probe                    ? session::StructureFit::Probe
+            : d.isGiven("traversal") ? session::StructureFit::None
+                                     : session::StructureFit::Data;
     scene::validateSettings(rs);
     return d;
 }
@@ -147,13 +101,21 @@ void setSettingFromPython(const session::Setting& st, const py::handle& o, sessi
             st.setNumber(s, keywordArg<bool>(o, keyword.c_str(), "True or False") ? 1 : 0);
             return;
         case session::SettingKind::Choice: {
-            session::setSettingChoice(st, s, keywordArg<std::string>(o, keyword.c_str(), choicesText(st).c_str()),
-                                      keyword);
+            // A choice named by a number also takes the number (sub_majorants=8).
+            const bool number = py::isinstance<py::int_>(o) && !py::isinstance<py::bool_>(o);
+            const std::string text =
+                number ? std::string(py::str(o)) : keywordArg<std::string>(o, keyword.c_str(), choicesText(st).c_str());
+            session::setSettingChoice(st, s, text, keyword);
             return;
         }
+        case session::SettingKind::Text:
+            session::setSettingChoice(st, s, keywordArg<std::string>(o, keyword.c_str(), kText), keyword);
+            return;
+        case session::SettingKind::Compound:
+            break;
     }
+    throw std::logic_error("internal: " + keyword + " is parsed by describe()");
 }
-
 py::object settingToPython(const session::Setting& st, const session::Session& s) {
     switch (st.kind) {
         case session::SettingKind::Number:
@@ -163,9 +125,12 @@ py::object settingToPython(const session::Setting& st, const session::Session& s
         case session::SettingKind::Flag:
             return py::bool_(st.number(s) != 0);
         case session::SettingKind::Choice:
+        case session::SettingKind::Text:
+            return py::str(st.name(s));
+        case session::SettingKind::Compound:
             break;
     }
-    return py::str(st.name(s));
+    throw std::logic_error("internal: " + std::string(st.keyword) + " has no single value");
 }
 
 void bindSettingTable(py::module_& m) {
@@ -174,7 +139,7 @@ void bindSettingTable(py::module_& m) {
         [] {
             py::list rows;
             for (const session::Setting& st : session::settingTable()) {
-                static const char* const kKinds[] = {"number", "integer", "choice", "flag"};
+                static const char* const kKinds[] = {"number", "integer", "choice", "flag", "text", "compound"};
                 py::dict d;
                 d["option"] = std::string(st.option);
                 d["keyword"] = std::string(st.keyword);
@@ -187,7 +152,12 @@ void bindSettingTable(py::module_& m) {
                 d["lo_open"] = st.loOpen;
                 d["hi_open"] = st.hiOpen;
                 d["choices"] = std::string(st.choices);
-                d["default"] = settingToPython(st, session::Session{});
+                d["default"] = st.kind == session::SettingKind::Compound ? py::object(py::none())
+                                                                         : settingToPython(st, session::Session{});
+                d["value_name"] = std::string(st.valueName);
+                d["zero"] = std::string(st.zero);
+                d["request"] = std::string(st.request);
+                d["python_property"] = st.pythonProperty && st.kind != session::SettingKind::Compound;
                 d["invalidates"] = scene::describe(st.invalidates);
                 rows.append(d);
             }

@@ -88,7 +88,7 @@ Session resolvePicture(const PictureDescription& d, const scene::Volume& v, std:
         s.structure.traversal = scene::fittingTraversal(v.summary.leafVolume, v.bounds().volume(), &why);
         // Over sparse data the grid sampler's macrocells would list many far-apart bricks; with the
         // abr traversal the abr sampler needs no lookup at all.
-        if (!d.samplerGiven && s.structure.traversal == scene::TraversalKind::Abr) {
+        if (!d.isGiven("sampler") && s.structure.traversal == scene::TraversalKind::Abr) {
             s.structure.sampler = scene::SamplerKind::Abr;
             if (why.rfind("traversal abr", 0) == 0) why.insert(13, " and sampler abr");
         }

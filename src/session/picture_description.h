@@ -7,7 +7,9 @@
 // ready renderer. Vulkan-free.
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -52,8 +54,11 @@ struct PictureDescription {
     std::optional<amr::VolumeHistogram> dataHistogram;  // with dataPercentiles only
     bool fitCamera = false;           // frame the data with the default view (session fov kept)
     StructureFit fit = StructureFit::None;
-    // What Data and Probe keep as given (Probe: the constraints; Data: the sampler).
-    bool samplerGiven = false, backendGiven = false, gridGiven = false, subMajorantsGiven = false;
+    // The structure settings the front end was given, by their session key in settingTable()
+    // ("sampler", "backend", "grid", "subMajorants"): what Data and Probe keep (Probe: the
+    // constraints; Data: the sampler).
+    std::set<std::string, std::less<>> given;
+    bool isGiven(std::string_view key) const { return given.count(key) > 0; }
 };
 
 // Reads the data a session names (its input, read options and field; only that field is loaded

@@ -196,13 +196,6 @@ Key textKey(const char* name, At at, Write w = Write::Always) {
             [=](const Reader& r, Session& s) { at(s) = r.text(name, fallback); }};
 }
 
-template <typename At>
-Key flagKey(const char* name, At at) {
-    const bool fallback = at(defaults());
-    return {name, [=](const Session& s, Json& j) { j[name] = at(s); },
-            [=](const Reader& r, Session& s) { at(s) = r.flag(name, fallback); }};
-}
-
 // A name of an enum: `parse` reads it (its error names the key), `nameOf` writes it; absent:
 // `fallback`, by default the Session's own.
 template <typename At, typename Parse, typename NameOf>
@@ -225,7 +218,11 @@ Key settingKey(std::string_view option) {
             [&st, name](const Session& s, Json& j) {
                 switch (st.kind) {
                     case SettingKind::Choice:
+                    case SettingKind::Text:
                         j[name] = st.name(s);
+                        return;
+                    case SettingKind::Compound:
+                        AMRVK_CHECK(false, "internal: ", st.option, " has keys of its own");
                         return;
                     case SettingKind::Flag:
                         j[name] = st.number(s) != 0;
@@ -243,13 +240,14 @@ Key settingKey(std::string_view option) {
                     copySetting(st, defaults(), s);
                     return;
                 }
-                if (st.kind == SettingKind::Choice) {
+                if (st.kind == SettingKind::Choice || st.kind == SettingKind::Text) {
                     setSettingChoice(st, s, r.text(name), strCat(r.where(), ".", name));
                 } else if (st.kind == SettingKind::Flag) {
                     st.setNumber(s, r.flag(name, false) ? 1 : 0);
                 } else {
                     const double v = r.number(name);
-                    checkSetting(st, v, strCat(r.where(), ".", name));
+                    if (!(v == 0 && !st.zero.empty()))
+                        checkSetting(st, v, strCat(r.where(), ".", name));  // 0: no limit
                     st.setNumber(s, v);
                 }
             }};
@@ -310,7 +308,7 @@ const std::vector<Section>& sections() {
         {"render",
          false,
          {settingKey("--mode"),
-          integerKey("spp", AT(spp), 0, scene::kMaxSpp),
+          settingKey("--spp"),
           settingKey("--seed"),
           settingKey("--density-scale"),
           settingKey("--g"),
@@ -332,25 +330,14 @@ const std::vector<Section>& sections() {
           settingKey("--control-extinction")}},
         {"structure",
          false,
-         {enumKey("traversal", AT(structure.traversal), scene::parseTraversal, scene::traversalName),
-          enumKey("sampler", AT(structure.sampler), scene::parseSampler, scene::samplerName),
-          // A hand-written file without a back-end gets the one that fits the device.
-          enumKey("backend", AT(structure.backend), scene::parseBackend, scene::backendName, Write::Always, "auto"),
-          textKey("grid", AT(structure.grid)),
-          settingKey("--kd-leaves"),
-          {"subMajorants",  // "off", or the largest division "2", "4", "8" or "16" (scene/sub_majorants.h)
-           [](const Session& s, Json& j) { j["subMajorants"] = scene::subMajorantsName(s.structure.subMajorants); },
-           [](const Reader& r, Session& s) {
-               s.structure.subMajorants = r.named("subMajorants", scene::subMajorantsName(s.structure.subMajorants),
-                                                  [](const std::string& v) { return scene::parseSubMajorants(v, "value"); });
-           }},
-          settingKey("--dense-max-mib")},
+         {settingKey("--traversal"), settingKey("--sampler"), settingKey("--backend"), settingKey("--grid"),
+          settingKey("--kd-leaves"), settingKey("--sub-majorants"), settingKey("--dense-max-mib")},
          [](const Session&) { return true; },
          [](Session& s) { s.structure.validate(); }},
         {"legend",
          false,
-         {flagKey("show", AT(legend.show)), enumKey("place", AT(legend.place), parseLegendPlace, legendPlaceName),
-          textKey("title", AT(legend.title)), textKey("units", AT(legend.units)), textKey("font", AT(legend.font))},
+         {settingKey("--legend"), settingKey("--legend-place"), settingKey("--legend-title"),
+          settingKey("--legend-units"), settingKey("--legend-font")},
          [](const Session& s) { return !(s.legend == Legend{}); }},
     };
     return kSections;
@@ -424,7 +411,7 @@ std::string sessionJson(const Session& s) {
     if (!s.settings.cut.empty()) j["cut"] = cutJson(s.settings.cut);
     writeSection(sectionNamed("structure"), s, j);
     j["transferFunction"] = Json::parse(scene::paraViewPresetJson(s.tf)).at(0);
-    j["tfColors"] = scene::tfColorsName(s.tfColors);
+    settingKey("--tf-colors").write(s, j);
     writeSection(sectionNamed("legend"), s, j);
     return j.dump(2) + "\n";
 }
@@ -531,8 +518,10 @@ Session parseSession(const std::string& text, const fs::path& path) {
     // One ParaView preset object, read by the same code as preset files.
     s.tf = scene::parseParaViewPreset(top.child("transferFunction").json().dump(), file + ".transferFunction");
     // Version 1 knew only linear colours; a later file without the key means the default.
-    s.tfColors = top.named("tfColors", version == 1 ? "linear" : "srgb",
-                           [](std::string_view t) { return scene::parseTfColors(t); });
+    if (version == 1 && !top.has("tfColors"))
+        s.tfColors = scene::TfColors::Linear;
+    else
+        settingKey("--tf-colors").read(top, s);
     return s;
 }
 

@@ -38,7 +38,12 @@ struct Session {
         return r;
     }();
     uint32_t spp = 64;               // render: samples per pixel; viewer: stop accumulating there (0: run on)
-    scene::StructureConfig structure;  // backend may be Auto
+    // the structure asked for; the back-end starts as auto (resolved for the device by the picture)
+    scene::StructureConfig structure = [] {
+        scene::StructureConfig c;
+        c.backend = scene::Backend::Auto;
+        return c;
+    }();
     scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)
     scene::TfColors tfColors = scene::TfColors::Srgb;  // what tf's colours mean (scene/tf_colors.h)
     Legend legend;                   // the colour legend (session/legend.h)

@@ -33,7 +33,7 @@ expect "non-finite" -- info nan.cells
 expect "unknown field 'rho'" -- info good.cells --field rho
 expect "unknown option '--bogus'" -- info good.cells --bogus
 expect "'x' is not a number" -- info good.cells --grid 4 --threshold x
-expect "--grid 'big'" -- info good.cells --grid big
+expect "--grid: expected auto, N or NxMxK (got 'big')" -- info good.cells --grid big
 expect "cannot write" -- convert good.cells -o /nonexistent-dir/out
 expect "input is required" -- info
 expect "unexpected argument 'extra'" -- info good.cells extra
@@ -69,7 +69,7 @@ expect "--fov: inf is not a finite number" -- render good.cells --fov inf -o x.p
 expect "--light-dir: 'nan' is not a finite number" -- render good.cells --light-dir nan 0 0 1 1 1 -o x.png
 expect "--light-point: radiance -1 1 1 must be >= 0" -- render good.cells --light-point 0 0 0 -1 1 1 -o x.png
 expect "--background: 'inf' is not a finite number" -- render good.cells --background inf 0 0 -o x.png
-expect "--tf-colors: gamma not in {srgb,linear}" -- render good.cells --tf-colors gamma -o x.png
+expect "--tf-colors: 'gamma' is not one of srgb|linear" -- render good.cells --tf-colors gamma -o x.png
 # AnImageTooLargeForMemoryIsRefusedByName (--size 16384x16384 used to start allocating 17 GB).
 AMRVK_MEMORY_BUDGET=1000000 expect "--size 512x512: the image: needs 9437184 bytes, more than the memory budget" \
   -- render good.cells --size 512x512 -o x.png

@@ -123,7 +123,7 @@ TEST_F(PictureGpu, WhatTheDescriptionLeavesOpenIsFittedOnceAndReported) {
     EXPECT_EQ(tf.firstPosition(), v->valueLo());
     EXPECT_EQ(tf.lastPosition(), v->valueHi());
     // A sampler given stays; nothing is fitted for a description that fixes everything.
-    d.samplerGiven = true;
+    d.given.insert("sampler");
     EXPECT_EQ(picture::makePicture(ctx(), v, d).session().structure.sampler, scene::SamplerKind::ExtBrick);
     d.fit = session::StructureFit::None;
     d.session.structure.backend = scene::Backend::Sw;
