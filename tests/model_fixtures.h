@@ -8,6 +8,7 @@
 #include <random>
 
 #include "accel/abrs.h"
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
 #include "amr/model.h"
 #include "amr/readers.h"

@@ -1,10 +1,10 @@
 #pragma once
 // Bricks: full, single-level boxes of leaf cells (exabrick-reference.md 2.1). Every leaf cell is
-// in exactly one brick; values are stored in brick order (x fastest inside a brick).
+// in exactly one brick; values are stored in brick order (x fastest inside a brick). Made by the
+// brick build (accel/brick_build.h) or read from a .bricks file (accel/bricks_file.h).
 #include <glm/glm.hpp>
 
 #include <cstdint>
-#include <filesystem>
 #include <vector>
 
 #include "amr/model.h"
@@ -41,34 +41,6 @@ struct BrickSet {
         return bricks.size() * sizeof(Brick) + cellIds.size() * sizeof(uint32_t);
     }
 };
-
-// Builds bricks with the exaBuilder SAH-alike kd split: partition at coarse-cell planes where the
-// level set or fullness changes, minimising halfArea(L) * volume(L) * levels(L) + same(R); a node
-// becomes a brick when it is one level, completely filled, and at most kMaxBrickCells per axis.
-// Reorders model.cells and every field, in place, into brick order (x fastest inside a brick), so
-// no per-cell copy is made and cellIds stays empty. Finds overlapping cells on the way (cells in
-// different bricks lie in disjoint kd regions; within a brick two cells on one slot, or a node
-// inside one cell of its own) and throws "SOURCE: overlapping cells: (lower ..) lies inside (..)";
-// the model is then some permutation of itself. The order is a function of the set of cells, so
-// building again (or from any file order) gives the same model and bricks.
-//
-// Where a node's cube grid (its cells' statistics per coarsest cell) decides its top levels, the
-// build plans them on the grid and moves the cells once (a multi-way partition) instead of once per
-// level; the bricks and the order are the same either way.
-struct BrickBuildTuning {
-    size_t planCells = size_t{1} << 16;  // nodes of at least this many cells are planned; SIZE_MAX: never
-};
-// `known`: the model's summary where the caller has it (scene::makeVolume), which saves the
-// build's first pass over the cells; it must be summarize(model).
-BrickSet buildBricks(amr::Model& model, const BrickBuildTuning& tuning = {}, const amr::ModelSummary* known = nullptr);
-
-// Reads a .bricks file of the ExaBrick builders (records: int3 size, int3 lower, int level,
-// int cellId[size]) and checks it against the model: every cell id valid and used once, ids -1
-// are empty slots, every brick slot at the position of the cell it names.
-BrickSet readBricksFile(const std::filesystem::path& path, const amr::Model& model);
-
-// Writes bricks in the same .bricks format (empty slots as -1), atomically.
-void writeBricksFile(const std::filesystem::path& path, const BrickSet& bricks);
 
 // Values of `field` in brick order (NaN for empty slots); a copy of the field after buildBricks.
 std::vector<float> brickOrderValues(const BrickSet& bricks, const amr::Field& field);

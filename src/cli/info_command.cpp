@@ -8,6 +8,7 @@
 
 #include "accel/abrs.h"
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "accel/majorant_bounds.h"
 #include "amr/readers.h"
 #include "cli/commands.h"

@@ -1,5 +1,6 @@
 #include "scene/volume.h"
 
+#include "accel/brick_build.h"
 #include "core/error.h"
 #include "core/progress.h"
 

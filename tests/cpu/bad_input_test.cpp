@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
 #include "amr/readers.h"
 #include "core/error.h"

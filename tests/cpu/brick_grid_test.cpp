@@ -7,6 +7,7 @@
 #include <random>
 
 #include "accel/abrs.h"
+#include "accel/brick_build.h"
 #include "accel/brick_grid.h"
 #include "accel/brick_sampler.h"
 #include "accel/range_grid.h"

@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
 #include "accel/majorant_bounds.h"
 #include "accel/range_grid.h"

@@ -10,6 +10,7 @@
 #include <future>
 
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "amr/readers.h"
 #include "core/error.h"
 #include "core/stats.h"

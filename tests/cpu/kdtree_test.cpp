@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
 #include "accel/majorant_bounds.h"
 #include "accel/support_range.h"

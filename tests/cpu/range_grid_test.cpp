@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "accel/brick_build.h"
 #include "accel/brick_grid.h"
 #include "accel/brick_sampler.h"
 #include "accel/majorant_bounds.h"

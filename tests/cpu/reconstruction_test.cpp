@@ -5,6 +5,7 @@
 #include <random>
 
 #include "accel/abrs.h"
+#include "accel/brick_build.h"
 #include "accel/brick_sampler.h"
 #include "accel/bricks.h"
 #include "amr/sampler.h"

@@ -9,8 +9,10 @@
 #include <tuple>
 
 #include "accel/abrs.h"
+#include "accel/brick_build.h"
 #include "accel/brick_sampler.h"
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "accel/majorant_bounds.h"
 #include "accel/range_grid.h"
 #include "accel/support_range.h"

@@ -12,8 +12,9 @@
 #include <random>
 
 #include "accel/abrs.h"
-#include "accel/majorant_bounds.h"
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
+#include "accel/majorant_bounds.h"
 #include "amr/readers.h"
 #include "amr/sampler.h"
 #include "amr/synthetic.h"

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "core/error.h"
 #include "model_fixtures.h"
 #include "scene/structure_plan.h"

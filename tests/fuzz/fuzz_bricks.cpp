@@ -1,8 +1,10 @@
-// ExaBrick `.bricks` files (src/accel/bricks.cpp readBricksFile), as `amrvk info --bricks` reads
+// ExaBrick `.bricks` files (src/accel/bricks_file.cpp readBricksFile), as `amrvk info --bricks` reads
 // them: against the model of a .cells/.scalars pair. Input, joined by fuzz_common.h kSeparator:
 //   <cells bytes>, <scalars bytes>, <bricks bytes>
 // When the model is valid, the bricks built from it (buildBricks) are checked too.
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "amr/readers.h"
 #include "fuzz_common.h"
 

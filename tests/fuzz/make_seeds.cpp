@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "accel/brick_build.h"
 #include "accel/bricks.h"
+#include "accel/bricks_file.h"
 #include "amr/model.h"
 #include "amrex_synthetic.h"
 #include "fuzz_common.h"
