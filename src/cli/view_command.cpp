@@ -9,7 +9,7 @@
 #include "core/file_io.h"
 #include "session/legend_image.h"
 #include "session/picture_description.h"
-#include "session/script.h"
+#include "viewer/logic/script.h"
 #include "viewer/viewer_app.h"
 
 namespace amrvk::cli {

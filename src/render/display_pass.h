@@ -1,8 +1,8 @@
 #pragma once
 // The display pass: the renderer's accumulated mean as 8-bit sRGB pixels for a window
 // (passes/display.comp), scaled bilinearly into a rectangle of the window (the viewer's picture
-// area, session/viewer_layout.h) so a smaller preview fills it; the window's other pixels get one
-// colour. Recorded into the caller's command buffer, before the copy into the swapchain image.
+// area, viewer/logic/viewer_layout.h) so a smaller preview fills it; the window's other pixels get
+// one colour. Recorded into the caller's command buffer, before the copy into the swapchain image.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>

@@ -9,8 +9,8 @@
 // wider by the strip; every picture pixel is kept as it is); Overlay puts it over the picture's
 // lower right corner on a backdrop of opacity 0.8 (the image keeps its size).
 // Sizes follow the picture's height: the font is H / 22 pixels (9 to 48).
-#include <glm/glm.hpp>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,8 +19,8 @@
 #include "core/image_io.h"
 #include "scene/transfer_function.h"
 #include "session/legend.h"
+#include "session/pixel_rect.h"
 #include "session/session.h"
-#include "session/viewer_layout.h"  // PixelRect
 
 namespace amrvk::session {
 

@@ -1,6 +1,6 @@
 #include "viewer/cut_overlay.h"
 
-#include "session/cut_handles.h"
+#include "viewer/logic/cut_handles.h"
 
 namespace amrvk::viewer {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The crop box over the picture (docs/cut-aways.md): its 12 edges and a handle at the centre of each
-// face, projected with the renderer's camera rays (session/cut_handles.h), drawn with ImGui's
+// face, projected with the renderer's camera rays (viewer/logic/cut_handles.h), drawn with ImGui's
 // background draw list (over the picture, under the panels). Dragging a handle (ViewerApp's
 // input) moves that face along its normal.
 #include <imgui.h>

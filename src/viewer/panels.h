@@ -1,6 +1,6 @@
 #pragma once
 // The viewer's ImGui panels, in one side panel docked at the window's right edge (its rectangle
-// from session/viewer_layout.h, so it never covers the picture; the user may drag its left edge):
+// from viewer/logic/viewer_layout.h, so it never covers the picture; the user may drag its left edge):
 // statistics, transfer-function editor (colour map, draggable opacity curve over the field
 // histogram, log scale, value range, density), render settings and lights, structures, camera,
 // files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and raise
@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "session/histogram.h"
 #include "session/orbit_camera.h"
 #include "session/session.h"
-#include "session/tf_editor.h"
-#include "session/viewer_layout.h"
+#include "viewer/logic/histogram.h"
+#include "viewer/logic/tf_editor.h"
+#include "viewer/logic/viewer_layout.h"
 
 namespace amrvk::viewer {
 

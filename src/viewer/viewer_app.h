@@ -5,7 +5,8 @@
 // interacts it renders a preview small enough for one sample to fit the frame budget, and when
 // they stop it refines at full resolution in time-budgeted bands of rows, so the UI stays
 // responsive whatever one sample costs. Window, swapchain and ImGui code live in src/viewer only;
-// the state and its rules (session, camera, TF editor, scripts, frame budget) are in src/session.
+// the state and its rules are window-free: the session and camera in src/session, the TF editor,
+// scripts, frame budget and layout in src/viewer/logic.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -21,7 +22,7 @@ struct ViewerOptions {
     bool headless = false;                  // no window: automation and tests
     uint64_t frames = 0;                    // stop after this many frames (0: until the window closes)
     std::filesystem::path screenshot;       // at exit: the accumulated linear image (.png, .exr, .pfm), no UI
-    std::filesystem::path script;           // frame-numbered actions (session/script.h)
+    std::filesystem::path script;           // frame-numbered actions (viewer/logic/script.h)
     std::filesystem::path shaderDir;        // watched: a saved edit recompiles and swaps the pipeline
     std::filesystem::path statsJson;        // at exit: frame times, times to the first full sample, resets
     std::filesystem::path stateJson;        // after every frame: the live state (frame, camera, layout, input seen)

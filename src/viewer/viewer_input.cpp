@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-#include "session/cut_handles.h"
-#include "session/viewer_layout.h"
 #include "viewer/cut_overlay.h"
+#include "viewer/logic/cut_handles.h"
+#include "viewer/logic/viewer_layout.h"
 #include "viewer/viewer_app_impl.h"
 #include "viewer/window.h"
 

@@ -7,7 +7,7 @@
 #include "core/file_io.h"
 #include "gpu/context.h"
 #include "render/renderer.h"
-#include "session/viewer_layout.h"
+#include "viewer/logic/viewer_layout.h"
 #include "viewer/viewer_app_impl.h"
 #include "viewer/window.h"
 
@@ -93,7 +93,7 @@ void ViewerApp::writeStats() const {
                           {"inRange", inRange},
                           {"cells", cells}};
     }
-    // The last frame's layout (framebuffer pixels, session/viewer_layout.h); with a window only.
+    // The last frame's layout (framebuffer pixels, viewer/logic/viewer_layout.h); with a window only.
     if (mWindow)
         j["layout"] = {{"window", rectJson(mLayout.window)},
                        {"panel", rectJson(mLayout.panel)},

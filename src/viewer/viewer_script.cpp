@@ -1,4 +1,4 @@
-// The viewer's frame-numbered script actions (session/script.h), each at its frame; errors name the line.
+// The viewer's frame-numbered script actions (viewer/logic/script.h), each at its frame; errors name the line.
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "core/strings.h"
 #include "gpu/shader_compiler.h"
 #include "scene/tf_presets.h"
-#include "session/script.h"
+#include "viewer/logic/script.h"
 #include "viewer/viewer_app_impl.h"
 #include "viewer/window.h"
 

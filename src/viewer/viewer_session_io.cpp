@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "picture/picture.h"
-#include "session/data_change.h"
+#include "viewer/logic/data_change.h"
 #include "viewer/viewer_app_impl.h"
 #include "viewer/window.h"
 

@@ -1,12 +1,12 @@
-// The crop box's handles (session/cut_handles.h): projection agrees with the renderer's camera ray
+// The crop box's handles (viewer/logic/cut_handles.h): projection agrees with the renderer's camera ray
 // through the projected pixel (the ray passes through the point), picking takes the nearest handle
 // within the radius, and a drag moves the face as far as the pointer moved along the face normal's
 // screen direction, measured on an axis-aligned camera where the answer is known in closed form.
+#include "viewer/logic/cut_handles.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "session/cut_handles.h"
 
 using namespace amrvk;
 using session::CutHandles;

@@ -1,10 +1,10 @@
-// What a session change means for the viewer's data (session/data_change.*): only read.scale and
+// What a session change means for the viewer's data (viewer/logic/data_change.*): only read.scale and
 // read.logFloor are a rescale (read again, camera kept); another input, field or read option is
 // refused with a reason naming it and both values; a TF refitted to the new field range keeps its
 // shape (every node at the same relative position, checked against the hand-computed positions);
 // on a new scale an unedited fitted preset is fitted again (its nodes at the logs of the linear
 // ones: the same cells), every other TF keeps its shape.
-#include "session/data_change.h"
+#include "viewer/logic/data_change.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "model_fixtures.h"
 #include "scene/tf_presets.h"
-#include "session/tf_editor.h"
+#include "viewer/logic/tf_editor.h"
 
 using namespace amrvk;
 using session::DataChange;

@@ -1,10 +1,11 @@
 // The shader-source watcher reports edits (size or time), new and deleted sources, and ignores
 // other files.
+#include "viewer/logic/file_watcher.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "session/file_watcher.h"
 #include "test_data.h"
 
 using namespace amrvk;

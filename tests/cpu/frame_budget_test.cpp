@@ -1,6 +1,6 @@
 // The frame budget: previews shrink until a sample fits the budget, tiles are as many rows as fit,
 // and the estimate follows the measured cost.
-#include "session/frame_budget.h"
+#include "viewer/logic/frame_budget.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,10 @@
 // Field histograms: counts per bin by cells or by volume (8^level per cell), values outside the
 // range and NaN counted apart, the top value in the last bin.
+#include "viewer/logic/histogram.h"
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "session/histogram.h"
 
 using namespace amrvk;
 

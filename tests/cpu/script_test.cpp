@@ -1,10 +1,11 @@
 // Viewer scripts: actions with frames, quoted arguments, comments; one-line errors naming the
 // file and line, before frame 0, for unknown actions, wrong argument counts, bad numbers and
 // values, frames going back, combinations that cannot run and shader edits outside --shader-dir.
+#include "viewer/logic/script.h"
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "session/script.h"
 #include "test_data.h"
 
 using namespace amrvk;

@@ -3,7 +3,7 @@
 // maps positions, ParaView JSON written by it reads back to the same TF, every preset of a
 // ParaView file is listed (unusable ones skipped with a reason), undo/redo restore whole TFs, and
 // the edited TF is the caller's (no second copy).
-#include "session/tf_editor.h"
+#include "viewer/logic/tf_editor.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// The viewer's layout (session/viewer_layout.*): at the sizes people use and at tiny ones, the
+// The viewer's layout (viewer/logic/viewer_layout.*): at the sizes people use and at tiny ones, the
 // panel and the picture never share a pixel (checked pixel by pixel, not only with overlaps()),
 // both lie in the window, the picture keeps the image's aspect and fills its area on one axis,
 // and the panel width a user drags to is kept within its limits.
-#include "session/viewer_layout.h"
+#include "viewer/logic/viewer_layout.h"
 
 #include <gtest/gtest.h>
 

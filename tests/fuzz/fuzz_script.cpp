@@ -1,8 +1,8 @@
-// Viewer scripts (src/session/script.cpp): parseScript on the text, then checkScript with a shader
+// Viewer scripts (src/viewer/logic/script.cpp): parseScript on the text, then checkScript with a shader
 // directory (so edit-shader paths are resolved and confined) as `amrvk view --script` does before
 // frame 0. Input: the script text.
 #include "fuzz_common.h"
-#include "session/script.h"
+#include "viewer/logic/script.h"
 
 using namespace amrvk;
 

@@ -30,10 +30,10 @@
 #include "picture/picture.h"
 #include "render/renderer.h"
 #include "scene/tf_presets.h"
-#include "session/cut_handles.h"
-#include "session/data_change.h"
 #include "session/session.h"
 #include "test_data.h"
+#include "viewer/logic/cut_handles.h"
+#include "viewer/logic/data_change.h"
 
 using namespace amrvk;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "session/tf_editor.h"
+#include "viewer/logic/tf_editor.h"
 
 #include <algorithm>
 #include <cmath>

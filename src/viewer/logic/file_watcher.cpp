@@ -1,4 +1,4 @@
-#include "session/file_watcher.h"
+#include "viewer/logic/file_watcher.h"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-#include "session/data_change.h"
+#include "viewer/logic/data_change.h"
 
 #include <cmath>
 #include <filesystem>
@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/strings.h"
 #include "scene/tf_presets.h"
-#include "session/tf_editor.h"
+#include "viewer/logic/tf_editor.h"
 
 namespace fs = std::filesystem;
 

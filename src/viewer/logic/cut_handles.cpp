@@ -1,4 +1,4 @@
-#include "session/cut_handles.h"
+#include "viewer/logic/cut_handles.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "session/viewer_layout.h"
+#include "viewer/logic/viewer_layout.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,21 +13,6 @@ namespace {
 constexpr int kDefaultMinHeight = 600;
 
 }  // namespace
-
-bool PixelRect::contains(double px, double py) const {
-    return !empty() && px >= double(x) && px < double(right()) && py >= double(y) && py < double(bottom());
-}
-
-bool overlaps(const PixelRect& a, const PixelRect& b) {
-    if (a.empty() || b.empty()) return false;
-    return a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom();
-}
-
-bool inside(const PixelRect& inner, const PixelRect& outer) {
-    if (inner.empty()) return true;
-    return inner.x >= outer.x && inner.y >= outer.y && inner.right() <= outer.right() &&
-           inner.bottom() <= outer.bottom();
-}
 
 ViewerLayout viewerLayout(int windowWidth, int windowHeight, int panelWidth, int imageWidth, int imageHeight) {
     AMRVK_CHECK(imageWidth >= 1 && imageHeight >= 1, "internal: image size ", imageWidth, "x", imageHeight,

@@ -1,4 +1,4 @@
-#include "session/histogram.h"
+#include "viewer/logic/histogram.h"
 
 #include <algorithm>
 #include <cmath>

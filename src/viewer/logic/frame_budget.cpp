@@ -1,4 +1,4 @@
-#include "session/frame_budget.h"
+#include "viewer/logic/frame_budget.h"
 
 #include <algorithm>
 #include <cmath>

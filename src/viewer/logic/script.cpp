@@ -1,4 +1,4 @@
-#include "session/script.h"
+#include "viewer/logic/script.h"
 
 #include <algorithm>
 #include <charconv>

@@ -6,21 +6,9 @@
 // origin at the window's top-left, y down, half-open: [x, x + width) x [y, y + height).
 // The viewer takes the picture rectangle from here for the display pass, mouse control and any
 // overlay drawn over the picture (e.g. a colour legend).
-namespace amrvk::session {
+#include "session/pixel_rect.h"
 
-struct PixelRect {
-    int x = 0, y = 0, width = 0, height = 0;
-    bool empty() const { return width <= 0 || height <= 0; }
-    int right() const { return x + width; }    // one past the last column
-    int bottom() const { return y + height; }  // one past the last row
-    // Whether pixel (px, py) (a cursor position in pixels: floor of it) lies inside.
-    bool contains(double px, double py) const;
-    bool operator==(const PixelRect&) const = default;
-};
-// Whether a and b share a pixel (empty rectangles share none).
-bool overlaps(const PixelRect& a, const PixelRect& b);
-// Whether `inner` lies in `outer` (an empty inner lies anywhere).
-bool inside(const PixelRect& inner, const PixelRect& outer);
+namespace amrvk::session {
 
 // Panel widths in pixels: the default, the narrowest a user may drag it to (its labels still fit),
 // and the least width the picture area keeps beside it.
