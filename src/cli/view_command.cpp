@@ -110,7 +110,7 @@ int runView(const std::vector<std::string>& argv) {
     if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on
     // Checked before anything is read: a bad script line is one line naming it (the viewer checks
     // what needs its structures and shader directory again before frame 0).
-    if (!script.empty()) session::loadScript(script);
+    if (!script.empty()) viewer::loadScript(script);
     // Read before a window opens: a bad data set is one line, not a window that closes.
     std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
     checkAgainst(inputFilesRead());  // and none is a file the data set was read from

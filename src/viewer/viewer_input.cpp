@@ -78,7 +78,7 @@ void ViewerApp::handleInput() {
                 if (e.action == GLFW_PRESS && e.code == GLFW_MOUSE_BUTTON_LEFT && mDragButton < 0 && !uiMouse &&
                     overPicture(e.x, e.y) && rs.cut.crop) {
                     const double radius = kCutHandleRadius * toImageX;
-                    mCutFace = session::CutHandles::pick(rs.camera, rs.width, rs.height, *rs.cut.crop,
+                    mCutFace = viewer::CutHandles::pick(rs.camera, rs.width, rs.height, *rs.cut.crop,
                                                          inImage(e.x, e.y), radius);
                     if (mCutFace >= 0) {
                         mDragButton = e.code;
@@ -103,7 +103,7 @@ void ViewerApp::handleInput() {
                     const glm::dvec2 delta = inImage(e.x, e.y) - inImage(mLastX, mLastY);
                     const glm::dvec3 lo = mVolume->worldMin(), hi = mVolume->worldMax();
                     scene::CropBox& box = *mState.settings.cut.crop;
-                    box = session::CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta,
+                    box = viewer::CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta,
                                                     glm::min(lo, box.lo), glm::max(hi, box.hi),
                                                     1e-3 * glm::length(hi - lo));
                     mInteracting = true;

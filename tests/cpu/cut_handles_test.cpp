@@ -9,7 +9,7 @@
 #include <cmath>
 
 using namespace amrvk;
-using session::CutHandles;
+using viewer::CutHandles;
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include "viewer/logic/tf_editor.h"
 
 using namespace amrvk;
-using session::DataChange;
+using viewer::DataChange;
 
 namespace {
 
@@ -32,26 +32,26 @@ session::Session shown() {
 
 TEST(DataChange, OnlyTheScaleAndItsFloorAreARescale) {
     session::Session next = shown();
-    EXPECT_EQ(session::dataChange(shown(), next).kind, DataChange::None);
+    EXPECT_EQ(viewer::dataChange(shown(), next).kind, DataChange::None);
     next.settings.densityScale = 7;  // not data
     next.settings.camera.eye = {1, 2, 3};
-    EXPECT_EQ(session::dataChange(shown(), next).kind, DataChange::None);
+    EXPECT_EQ(viewer::dataChange(shown(), next).kind, DataChange::None);
     next.read.scale = amr::FieldScale::Log;
-    EXPECT_EQ(session::dataChange(shown(), next).kind, DataChange::Rescale);
+    EXPECT_EQ(viewer::dataChange(shown(), next).kind, DataChange::Rescale);
     session::Session logShown = shown();
     logShown.read.scale = amr::FieldScale::Log;
     session::Session floorOnly = logShown;
     floorOnly.read.logFloor = 1e-3;
-    EXPECT_EQ(session::dataChange(logShown, floorOnly).kind, DataChange::Rescale);
+    EXPECT_EQ(viewer::dataChange(logShown, floorOnly).kind, DataChange::Rescale);
     // On the linear scale the floor changes no value: nothing to read.
     session::Session linearFloor = shown();
     linearFloor.read.logFloor = 1e-3;
-    EXPECT_EQ(session::dataChange(shown(), linearFloor).kind, DataChange::None);
-    EXPECT_EQ(session::dataChange(floorOnly, linearFloor).kind, DataChange::Rescale) << "log -> linear";
+    EXPECT_EQ(viewer::dataChange(shown(), linearFloor).kind, DataChange::None);
+    EXPECT_EQ(viewer::dataChange(floorOnly, linearFloor).kind, DataChange::Rescale) << "log -> linear";
     // The same file written another way is the same data.
     session::Session dotted = shown();
     dotted.input = "/data/enzo/./DD0018/../DD0018/DD0018";
-    EXPECT_EQ(session::dataChange(shown(), dotted).kind, DataChange::None);
+    EXPECT_EQ(viewer::dataChange(shown(), dotted).kind, DataChange::None);
 }
 
 TEST(DataChange, OtherDataIsRefusedWithItsReason) {
@@ -78,7 +78,7 @@ TEST(DataChange, OtherDataIsRefusedWithItsReason) {
         session::Session next = shown();
         c.edit(next);
         next.read.scale = amr::FieldScale::Log;  // a scale change beside it does not make it a rescale
-        const session::DataChangeCheck check = session::dataChange(shown(), next);
+        const viewer::DataChangeCheck check = viewer::dataChange(shown(), next);
         EXPECT_EQ(check.kind, DataChange::Other) << c.what;
         EXPECT_NE(check.reason.find(c.inReason), std::string::npos) << c.what << ": " << check.reason;
     }
@@ -92,7 +92,7 @@ TEST(DataChange, TheTfKeepsItsShapeOnTheNewRange) {
     tf.alphas = {0, 0.5f, 2, 0.25f};
     tf.colorPositions = {0, 4};
     tf.colors = {{1, 0, 0}, {0, 0, 1}};
-    const scene::TfChannels out = session::refitTfRange(tf, -2, 2);
+    const scene::TfChannels out = viewer::refitTfRange(tf, -2, 2);
     ASSERT_EQ(out.opacityPositions.size(), 4u);
     const float expected[] = {-2, -1, 1, 2};
     for (size_t i = 0; i < 4; ++i) {
@@ -102,11 +102,11 @@ TEST(DataChange, TheTfKeepsItsShapeOnTheNewRange) {
     EXPECT_EQ(out.colors, tf.colors);
     EXPECT_EQ(out.name, "mine");
     // A constant field: one unit above its value.
-    const scene::TfChannels flat = session::refitTfRange(tf, 3, 3);
+    const scene::TfChannels flat = viewer::refitTfRange(tf, 3, 3);
     EXPECT_FLOAT_EQ(flat.opacityPositions.front(), 3.0f);
     EXPECT_FLOAT_EQ(flat.opacityPositions.back(), 4.0f);
-    EXPECT_THROW(session::refitTfRange(tf, 2, 1), Error);
-    EXPECT_THROW(session::refitTfRange(tf, 0, INFINITY), Error);
+    EXPECT_THROW(viewer::refitTfRange(tf, 2, 1), Error);
+    EXPECT_THROW(viewer::refitTfRange(tf, 0, INFINITY), Error);
 }
 
 TEST(DataChange, AnUneditedFittedPresetIsFittedAgainOnTheNewScale) {
@@ -119,14 +119,14 @@ TEST(DataChange, AnUneditedFittedPresetIsFittedAgainOnTheNewScale) {
         SCOPED_TRACE(name);
         const scene::TfChannels tf =
             scene::TfChannels::split(scene::makePreset(name, linear->percentiles, linear->volumeHistogram));
-        const scene::TfChannels onLog = session::tfOnNewScale(tf, *linear, *log);
+        const scene::TfChannels onLog = viewer::tfOnNewScale(tf, *linear, *log);
         EXPECT_EQ(onLog, scene::TfChannels::split(scene::makePreset(name, log->percentiles, log->volumeHistogram)));
         // The old rule (the shape moved linearly onto the log range) puts the nodes elsewhere.
-        EXPECT_NE(onLog, session::refitTfRange(tf, log->valueLo(), log->valueHi()));
+        EXPECT_NE(onLog, viewer::refitTfRange(tf, log->valueLo(), log->valueHi()));
         // Back on the linear scale: the TF it started from.
-        EXPECT_EQ(session::tfOnNewScale(onLog, *log, *linear), tf);
+        EXPECT_EQ(viewer::tfOnNewScale(onLog, *log, *linear), tf);
         // The editor's form of the same TF (the viewer's panels hold it so) is the same preset.
-        EXPECT_EQ(session::tfOnNewScale(session::TfEditor::editable(tf), *linear, *log), onLog);
+        EXPECT_EQ(viewer::tfOnNewScale(viewer::TfEditor::editable(tf), *linear, *log), onLog);
         if (std::string(name) == "layers") continue;  // layers sit at fractions of the range, not percentiles
         // spiky and foggy mark the same cells: every node at the log10 of its linear value
         // (percentiles of the logs are the logs of the percentiles).
@@ -144,7 +144,7 @@ TEST(DataChange, AnyOtherTfKeepsItsShapeOnTheNewScale) {
     amr::applyFieldScale(logModel, amr::FieldScale::Log);
     const std::shared_ptr<const scene::Volume> log = scene::makeVolume(std::move(logModel));
     auto keepsShape = [&](const scene::TfChannels& tf, const char* what) {
-        EXPECT_EQ(session::tfOnNewScale(tf, *linear, *log), session::refitTfRange(tf, log->valueLo(), log->valueHi()))
+        EXPECT_EQ(viewer::tfOnNewScale(tf, *linear, *log), viewer::refitTfRange(tf, log->valueLo(), log->valueHi()))
             << what;
     };
     scene::TfChannels edited =

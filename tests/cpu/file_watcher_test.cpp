@@ -18,7 +18,7 @@ TEST(FileWatcher, ReportsEditedNewAndDeletedSources) {
     test::writeAll(root / "a.comp", "void main() {}\n");
     test::writeAll(root / "lib" / "b.glsl", "// b\n");
     test::writeAll(root / "notes.txt", "x");
-    session::FileWatcher w({root});
+    viewer::FileWatcher w({root});
     EXPECT_TRUE(w.poll().empty());
     test::writeAll(root / "lib" / "b.glsl", "// b, edited\n");  // size changes
     test::writeAll(root / "notes.txt", "xy");                     // not a shader source

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-using amrvk::session::FrameBudget;
+using amrvk::viewer::FrameBudget;
 
 TEST(FrameBudget, PreviewAndTilesFitTheBudget) {
     FrameBudget b(0.05);

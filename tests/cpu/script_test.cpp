@@ -11,7 +11,7 @@
 using namespace amrvk;
 
 TEST(Script, ParsesActionsFramesAndQuotes) {
-    const auto actions = session::parseScript(R"(# warm up first
+    const auto actions = viewer::parseScript(R"(# warm up first
 0 mode ae
 10 orbit 120 -40   # a drag
 10 tf-range 0 3.5
@@ -70,7 +70,7 @@ TEST(Script, ErrorsNameTheFileAndLine) {
         {"0 tf-colors gamma", {"s.txt:1", "tf-colors 'gamma': expected linear|srgb"}},
     };
     for (const auto& c : cases) {
-        const std::string e = test::errorOf([&] { session::parseScript(c.text, "s.txt"); });
+        const std::string e = test::errorOf([&] { viewer::parseScript(c.text, "s.txt"); });
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
         for (const auto& f : c.fragments) EXPECT_NE(e.find(f), std::string::npos) << "'" << f << "' not in: " << e;
     }
@@ -86,34 +86,34 @@ TEST(Script, TheContextIsCheckedBeforeFrameZero) {
     test::writeAll(dir / "shaders/lib/tf.glsl", "// tf\n");
     test::writeAll(dir / "victim.txt", "precious\n");
     fs::create_symlink(dir / "victim.txt", dir / "shaders/lib/link.glsl");
-    session::ScriptContext ctx{dir / "shaders/passes", {}};
+    viewer::ScriptContext ctx{dir / "shaders/passes", {}};
 
     // A combination that cannot run, reached by two lines: the second is named.
     std::string e = test::errorOf([&] {
-        session::checkScript(session::parseScript("0 traversal abr\n5 sampler dense\n", "s.txt"), ctx);
+        viewer::checkScript(viewer::parseScript("0 traversal abr\n5 sampler dense\n", "s.txt"), ctx);
     });
     EXPECT_NE(e.find("s.txt:2"), std::string::npos) << e;
     EXPECT_NE(e.find("grid-dda or grid-bvh"), std::string::npos) << e;
     // ... and the same lines in the other order are fine (dense under grid-dda, then back to grid).
-    EXPECT_NO_THROW(session::checkScript(
-        session::parseScript("0 sampler dense\n1 sampler grid\n2 traversal abr\n", "s.txt"), ctx));
+    EXPECT_NO_THROW(viewer::checkScript(
+        viewer::parseScript("0 sampler dense\n1 sampler grid\n2 traversal abr\n", "s.txt"), ctx));
 
     // Shader edits: inside the sources (also through ..), never outside, never through a link out.
-    EXPECT_NO_THROW(session::checkScript(session::parseScript("0 edit-shader path_trace.comp a b\n"
+    EXPECT_NO_THROW(viewer::checkScript(viewer::parseScript("0 edit-shader path_trace.comp a b\n"
                                                               "1 edit-shader ../lib/tf.glsl a b\n", "s.txt"), ctx));
     for (const char* file : {"../../victim.txt", "../lib/link.glsl", "../lib/missing.glsl"}) {
         e = test::errorOf([&] {
-            session::checkScript(session::parseScript(std::string("3 edit-shader ") + file + " a b\n", "s.txt"), ctx);
+            viewer::checkScript(viewer::parseScript(std::string("3 edit-shader ") + file + " a b\n", "s.txt"), ctx);
         });
         EXPECT_NE(e.find("s.txt:1"), std::string::npos) << e;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
     }
     EXPECT_NE(test::errorOf([&] {
-                  session::checkScript(session::parseScript("0 edit-shader ../../victim.txt a b\n", "s.txt"), ctx);
+                  viewer::checkScript(viewer::parseScript("0 edit-shader ../../victim.txt a b\n", "s.txt"), ctx);
               }).find("leads outside the shader sources"),
               std::string::npos);
     e = test::errorOf([&] {
-        session::checkScript(session::parseScript("0 edit-shader path_trace.comp a b\n", "s.txt"), {{}, {}});
+        viewer::checkScript(viewer::parseScript("0 edit-shader path_trace.comp a b\n", "s.txt"), {{}, {}});
     });
     EXPECT_NE(e.find("needs --shader-dir"), std::string::npos) << e;
     EXPECT_EQ(test::readAll(dir / "victim.txt"), "precious\n");

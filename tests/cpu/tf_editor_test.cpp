@@ -13,7 +13,7 @@
 #include "test_data.h"
 
 using namespace amrvk;
-using session::TfEditor;
+using viewer::TfEditor;
 
 namespace {
 void expectSameTf(const scene::TransferFunction& a, const scene::TransferFunction& b, float tol) {
@@ -118,7 +118,7 @@ TEST(TfEditor, RangeColourMapAndErrors) {
     EXPECT_NEAR(e.transferFunction().evaluate(15.0f).a, alphaMid, 1e-6f);
     // Many range changes there and back leave the nodes where they were (to float rounding).
     e.addNode(0.3f, 0.7f);
-    const std::vector<session::OpacityNode> before = e.opacity();
+    const std::vector<viewer::OpacityNode> before = e.opacity();
     for (int i = 0; i < 100; ++i) {
         e.setRange(-1000.0f, 3.0f);
         e.setRange(10.0f, 20.0f);
@@ -154,7 +154,7 @@ TEST(TfEditor, ParaViewJsonRoundTripAndPresetLists) {
 
 TEST(TfEditor, UndoAndRedoRestoreWholeStates) {
     scene::TfChannels tf = TfEditor::preset("grey", 0.0f, 1.0f);
-    session::TfHistory h(tf);
+    viewer::TfHistory h(tf);
     EXPECT_FALSE(h.canUndo());
     TfEditor e(tf);
     e.addNode(0.5f, 2.0f);

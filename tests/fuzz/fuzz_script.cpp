@@ -14,11 +14,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fuzz::writeFile(dir / "shaders/lib/tf.glsl", "// tf\n");
     fuzz::writeFile(dir / "outside.txt", "precious\n");
     fuzz::expectOnlyAmrvkErrors("script", [&] {
-        const std::vector<session::ScriptAction> actions = session::parseScript(text, "fuzz.txt");
-        session::checkScript(actions, {dir / "shaders/passes", {}});
-        for (const session::ScriptAction& a : actions)
+        const std::vector<viewer::ScriptAction> actions = viewer::parseScript(text, "fuzz.txt");
+        viewer::checkScript(actions, {dir / "shaders/passes", {}});
+        for (const viewer::ScriptAction& a : actions)
             if (a.name == "edit-shader") {
-                const std::filesystem::path p = session::confinedShaderPath(dir / "shaders/passes", a.args[0]);
+                const std::filesystem::path p = viewer::confinedShaderPath(dir / "shaders/passes", a.args[0]);
                 if (p.filename() == "outside.txt") std::abort();  // escaped the shader sources
             }
     });

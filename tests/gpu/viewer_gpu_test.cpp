@@ -345,8 +345,8 @@ TEST_F(ViewerGpu, DraggingACropHandleMovesItsFaceNotTheCamera) {
     const scene::Camera cam = scene::defaultCamera(m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.lower)),
                                                    m.voxelToWorld.toWorld(glm::dvec3(sum.bounds.upper)));
     const scene::CropBox box{{100, 100, 100}, {400, 400, 400}};
-    const auto handle = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1));
-    const auto further = session::CutHandles::project(cam, 64, 48, session::CutHandles::faceCentre(box, 1) + glm::dvec3(1, 0, 0));
+    const auto handle = viewer::CutHandles::project(cam, 64, 48, viewer::CutHandles::faceCentre(box, 1));
+    const auto further = viewer::CutHandles::project(cam, 64, 48, viewer::CutHandles::faceCentre(box, 1) + glm::dvec3(1, 0, 0));
     ASSERT_TRUE(handle && further);
     const glm::dvec2 along = glm::normalize(*further - *handle);
     const long dx = std::lround(40 * along.x), dy = std::lround(40 * along.y);
@@ -710,7 +710,7 @@ TEST_F(ViewerGpu, LogScaleFitsAnUneditedPresetAgain) {
     // The peaks sit at the log's percentiles (the same cells), not at the linear shape moved onto the log range.
     expectTf(session::loadSession(dir / "log.json").tf, log, "log");
     const scene::TfChannels moved =
-        session::refitTfRange(linear, log.opacityPositions.front(), log.opacityPositions.back());
+        viewer::refitTfRange(linear, log.opacityPositions.front(), log.opacityPositions.back());
     EXPECT_GT(std::abs(moved.opacityPositions[2] - log.opacityPositions[2]),
               0.01 * (log.opacityPositions.back() - log.opacityPositions.front()))
         << "the test has no power: moving the shape would put the first apex where fitting does";
@@ -733,7 +733,7 @@ TEST_F(ViewerGpu, ASessionLoadBuildsOnceAndRunsOneMajorantPass) {
     session::Session s = session::loadSession(dir / "saved.json");
     s.structure.traversal = scene::TraversalKind::GridBvh;
     s.structure.grid = "8";
-    s.tf = session::refitTfRange(s.tf, 0.2f, 1.0f);
+    s.tf = viewer::refitTfRange(s.tf, 0.2f, 1.0f);
     s.settings.controlExtinction = scene::ControlExtinction::Minorant;
     session::saveSession(dir / "other.json", s);
 

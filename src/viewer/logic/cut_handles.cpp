@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 std::optional<glm::dvec2> CutHandles::project(const scene::Camera& camera, int width, int height, glm::dvec3 world) {
     // The renderer's ray through pixel (x, y) is eye + s (dir00 + x du + y dv); solve for (s, s x, s y).
@@ -69,4 +69,4 @@ scene::CropBox CutHandles::drag(const scene::Camera& camera, int width, int heig
     return out;
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -12,7 +12,7 @@
 #include "scene/camera.h"
 #include "scene/cut_away.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 struct CutHandles {
     // Picture position of a world point; nullopt when it lies behind the eye (or on its plane).
@@ -37,4 +37,4 @@ struct CutHandles {
                                glm::dvec2 pixelDelta, glm::dvec3 lo, glm::dvec3 hi, double minWidth);
 };
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

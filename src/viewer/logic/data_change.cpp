@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 namespace {
 
@@ -23,7 +23,7 @@ std::string dimsText(glm::ivec3 d) {
 
 }  // namespace
 
-DataChangeCheck dataChange(const Session& shown, const Session& next) {
+DataChangeCheck dataChange(const session::Session& shown, const session::Session& next) {
     auto other = [](std::string why) { return DataChangeCheck{DataChange::Other, std::move(why)}; };
     const fs::path a = fs::absolute(shown.input).lexically_normal(), b = fs::absolute(next.input).lexically_normal();
     if (a != b) return other("another data set: " + b.string() + " (this viewer shows " + a.string() + ")");
@@ -64,4 +64,4 @@ scene::TfChannels tfOnNewScale(const scene::TfChannels& tf, const scene::Volume&
     return refitTfRange(tf, next.valueLo(), next.valueHi());
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -10,7 +10,7 @@
 #include "scene/volume.h"
 #include "session/session.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 enum class DataChange { None, Rescale, Other };
 
@@ -22,7 +22,7 @@ struct DataChangeCheck {
 // How `next` (a session to load, or the viewer's state after a panel or script edit) differs
 // from `shown` in what is read. Inputs are compared as absolute, normalised paths; the log floor
 // counts on the log scale only.
-DataChangeCheck dataChange(const Session& shown, const Session& next);
+DataChangeCheck dataChange(const session::Session& shown, const session::Session& next);
 
 // `tf` with its value range moved onto [lo, hi] (the shape kept: every node at the same relative
 // position); lo == hi (a constant field) gives [lo, lo + 1]. Throws for non-finite or lo > hi.
@@ -37,4 +37,4 @@ scene::TfChannels refitTfRange(const scene::TfChannels& tf, float lo, float hi);
 // over a given range) keeps its shape over the new range (refitTfRange).
 scene::TfChannels tfOnNewScale(const scene::TfChannels& tf, const scene::Volume& shown, const scene::Volume& next);
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

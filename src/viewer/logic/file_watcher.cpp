@@ -2,7 +2,7 @@
 
 namespace fs = std::filesystem;
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 FileWatcher::FileWatcher(std::vector<fs::path> roots) : mRoots(std::move(roots)) { mStamps = scan(); }
 
@@ -37,4 +37,4 @@ std::vector<fs::path> FileWatcher::poll() {
     return changed;
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 class FileWatcher {
 public:
@@ -28,4 +28,4 @@ private:
     std::map<std::filesystem::path, Stamp> mStamps;
 };
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 void FrameBudget::record(double seconds, uint64_t pixelSamples) {
     if (!(seconds > 0) || pixelSamples == 0) return;
@@ -52,4 +52,4 @@ uint32_t FrameBudget::rowsPerFrame(int width, int height, uint32_t firstRow) con
     return std::max(r - firstRow, 1u);
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 class FrameBudget {
 public:
@@ -44,4 +44,4 @@ private:
     std::vector<double> mRowCost;  // s per row, last measured; 0 = not measured
 };
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 double Histogram::maxCount() const { return counts.empty() ? 0.0 : *std::max_element(counts.begin(), counts.end()); }
 
@@ -32,4 +32,4 @@ Histogram fieldHistogram(const amr::Model& model, const amr::Field& field, float
     return h;
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

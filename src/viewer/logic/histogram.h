@@ -7,7 +7,7 @@
 
 #include "amr/model.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 enum class HistogramWeight { Cells, Volume };
 
@@ -22,4 +22,4 @@ struct Histogram {
 Histogram fieldHistogram(const amr::Model& model, const amr::Field& field, float lo, float hi, int bins,
                          HistogramWeight weight = HistogramWeight::Cells);
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -17,7 +17,7 @@
 #include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 namespace {
 
@@ -208,4 +208,4 @@ std::vector<ScriptAction> loadScript(const std::filesystem::path& path) {
     return parseScript(readTextFile(path), path.string());
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

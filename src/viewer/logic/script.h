@@ -5,7 +5,7 @@
 //   orbit DX DY | pan DX DY          mouse drags in pixels
 //   zoom STEPS                       wheel steps (> 0 closer)
 //   tf-preset NAME | tf-range LO HI | density SCALE
-//   scale linear|log | log-floor V   the field's scale (read again; the TF as session::tfOnNewScale)
+//   scale linear|log | log-floor V   the field's scale (read again; the TF as viewer::tfOnNewScale)
 //   mode ae|ss|ms|dvr | traversal T | sampler S | backend B | grid G
 //   edit-shader FILE FIND REPLACE    replace the first FIND in FILE (under --shader-dir) and save it
 //   reload                           recompile the shaders now (the watcher also does on a save)
@@ -28,7 +28,7 @@
 
 #include "scene/structure_config.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 struct ScriptAction {
     uint64_t frame = 0;
@@ -58,4 +58,4 @@ void checkScript(const std::vector<ScriptAction>& actions, const ScriptContext& 
 // script must not edit ~/.bashrc).
 std::filesystem::path confinedShaderPath(const std::filesystem::path& dir, const std::string& file);
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

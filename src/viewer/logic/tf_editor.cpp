@@ -7,7 +7,7 @@
 #include "scene/tf_files.h"
 #include "scene/tf_presets.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 namespace {
 
@@ -193,4 +193,4 @@ const scene::TfChannels& TfHistory::redo() {
     return mStates[mAt];
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

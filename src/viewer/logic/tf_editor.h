@@ -13,7 +13,7 @@
 
 #include "scene/transfer_function.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 struct OpacityNode {
     float x = 0;      // position in [0, 1] of the value range
@@ -84,4 +84,4 @@ private:
     static constexpr size_t kMaxStates = 256;
 };
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 namespace {
 
@@ -39,4 +39,4 @@ void defaultWindowSize(int imageWidth, int imageHeight, int& windowWidth, int& w
     windowHeight = std::max(imageHeight, kDefaultMinHeight);
 }
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer

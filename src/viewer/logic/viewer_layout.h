@@ -8,7 +8,7 @@
 // overlay drawn over the picture (e.g. a colour legend).
 #include "session/pixel_rect.h"
 
-namespace amrvk::session {
+namespace amrvk::viewer {
 
 // Panel widths in pixels: the default, the narrowest a user may drag it to (its labels still fit),
 // and the least width the picture area keeps beside it.
@@ -17,10 +17,10 @@ constexpr int kPanelMinWidth = 300;
 constexpr int kPictureMinWidth = 160;
 
 struct ViewerLayout {
-    PixelRect window;   // the whole framebuffer
-    PixelRect panel;    // the docked side panel: right edge, full height
-    PixelRect area;     // what the panel leaves: left of it, full height
-    PixelRect picture;  // the image shown: inside area, the image's aspect, centred
+    session::PixelRect window;   // the whole framebuffer
+    session::PixelRect panel;    // the docked side panel: right edge, full height
+    session::PixelRect area;     // what the panel leaves: left of it, full height
+    session::PixelRect picture;  // the image shown: inside area, the image's aspect, centred
 };
 
 // The layout of a window of windowWidth x windowHeight pixels with a panel asked to be
@@ -33,4 +33,4 @@ ViewerLayout viewerLayout(int windowWidth, int windowHeight, int panelWidth, int
 // viewer's window when --window is not given (the image then shows pixel for pixel).
 void defaultWindowSize(int imageWidth, int imageHeight, int& windowWidth, int& windowHeight);
 
-}  // namespace amrvk::session
+}  // namespace amrvk::viewer
