@@ -2,7 +2,8 @@
 # Usage: tools/same_images.sh OLD_AMRVK NEW_AMRVK [DATA_DIR]. A refactor's check (issue 54, point 6):
 # the same pictures rendered by two builds of amrvk, compared byte for byte (same seed, same
 # samples: a change that claims no behaviour change must give identical files). Covers the modes,
-# both shadow estimators, the control extinction, dvr with shading, a kd-tree, the first frame and
+# both shadow estimators, the control extinction, dvr with shading, a kd-tree, the structure options
+# (sampler, back-end, grid, sub-majorants), the first frame and
 # the Enzo sample where DATA_DIR (default ../shared/data/amr) has it. Exits 1 naming each case that
 # differs. An ASan build may be the old side (ASAN_OPTIONS=detect_leaks=0 is set for it).
 set -uo pipefail
@@ -19,6 +20,8 @@ cases=("$s --size 48x32 --spp 8 --seed 3"
        "$s --size 48x32 --spp 4 --mode dvr --dt 0.25 --dvr-shading"
        "$s --size 48x32 --spp 8 --traversal kdtree --kd-leaves 512 --g 0.5 --fov 30"
        "$s --size 48x32 --spp 8 --mode ae --transmittance ubrm --tf-colors linear"
+       "$s --size 48x32 --spp 8 --sampler abr --backend sw --grid 12x10x8 --sub-majorants off --traversal grid-bvh"
+       "$s --size 48x32 --spp 8 --sampler ext-brick --grid 16 --sub-majorants 4 --tf spiky"
        "$s --size 48x32 --first-frame")
 enzo=$data/enzo_tiny_cosmology/DD0018/DD0018
 [ -e "$enzo" ] && cases+=("$enzo --size 48x32 --spp 4 --mode ss --light-dir 1 1 1 2 2 2")

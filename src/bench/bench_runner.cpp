@@ -87,9 +87,9 @@ private:
     void finishGroup(size_t first, double target);
     AutoResult autoGroup(size_t first, Mode mode);
     void measureMode(Mode mode);  // the reference, every combination, the grid sweep and auto of one mode
-    // The data set's renderer switched to `config` (resolved); made through picture::makePicture
-    // on first use (the old device copy is freed before each new one).
-    render::Renderer& rendererFor(const StructureConfig& config);
+    // The data set's picture switched to `config` (resolved) by a commit; made by
+    // picture::makePicture on first use (the old device copy is freed before each new one).
+    picture::Picture& pictureFor(const StructureConfig& config);
     // Renderer::render, or BenchOptions::render when set (sample-parallel MPI).
     scene::RenderOutput renderAll(render::Renderer& renderer, const scene::RenderSettings& rs, uint32_t spp,
                                   const std::function<void(uint32_t, uint32_t)>& progress,
@@ -106,9 +106,9 @@ private:
     const BenchDataset* mDs = nullptr;
     std::shared_ptr<const scene::Volume> mVolume;
     session::PictureDescription mDesc;  // the data set's picture under the current TF (mode, structure per run)
-    std::unique_ptr<render::Renderer> mRenderer;  // one per data set, switched from run to run
-    std::optional<scene::TransferFunction> mTf,
-        mOtherTf;  // the albedo the renderer gets (scene::albedoOf of the channels)
+    std::optional<picture::Picture> mPicture;         // one per data set, edited from run to run by commits
+    std::optional<scene::TransferFunction> mTf;       // the albedo the renderer gets (scene::albedoOf of mTfChannels)
+    scene::TfChannels mTfChannels, mOtherTfChannels;  // the TF of the runs, and the one the timed edit leaves
     std::string mTfName;
     scene::RenderSettings mSettings;  // resolved: the camera framed
     ReferenceImage mRef;
@@ -202,7 +202,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
     if (mOpt.all) info.cached = mOpt.all(info.cached);
     if (!info.cached) {
         tick("reference " + name + " (" + std::to_string(spp) + " spp)");
-        mRenderer.reset();  // one renderer's device memory at a time
+        mPicture.reset();  // one renderer's device memory at a time
         picture::Picture p = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
         scene::RenderOutput out = renderAll(*p.renderer, p.renderer->settings(), p.described.spp,
                                             [&](uint32_t done, uint32_t total) {
@@ -256,13 +256,14 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
                        (mode == Mode::Dvr ? " dt " + fmt(dvrStep) : "") + estimatorLabel(transmittance, control);
     tick(what + " (build)");
     const uint64_t validationBefore = mCtx.validationErrors();
-    render::Renderer* rendererOf = nullptr;
+    picture::Picture* pictureOf = nullptr;
     const scene::RenderSettings rs = settingsFor(mode, dvrStep, transmittance, control);
     try {
         StructureConfig resolved = config;
         picture::resolveStructure(mCtx, resolved);
         mCtx.memory().resetPeak();
-        render::Renderer& renderer = rendererFor(resolved);
+        picture::Picture& picture = pictureFor(resolved);
+        const render::Renderer& renderer = *picture.renderer;
         // Build time of every structure this combination uses, whether built now or kept from an
         // earlier run (the kd-tree is built per TF: it is part of tfStructureSeconds instead).
         r.buildSeconds = renderer.scene().combinationBuildSeconds();
@@ -272,12 +273,12 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         }
         for (const auto& hb : renderer.scene().hostBytes()) r.hostBytes.push_back(hb);
         // The settings first: the minorants of a control extinction are made with the TF's majorants.
-        renderer.setSettings(rs);
+        picture.commit({.settings = rs});
         AMRVK_CHECK(renderer.controlExtinctionOff().empty(), "--control-extinction minorant is off: ",
                     renderer.controlExtinctionOff());
-        renderer.setTransferFunction(*mOtherTf);
+        picture.commit({.tf = mOtherTfChannels});
         Timer tfTimer;
-        renderer.setTransferFunction(*mTf);  // the TF edit that is timed
+        picture.commit({.tf = mTfChannels});  // the TF edit that is timed, as the viewer makes it
         r.tfUpdateWallSeconds = tfTimer.seconds();
         r.majorantSeconds = renderer.majorantSeconds();
         r.tfStructureSeconds = renderer.structureUpdateSeconds();
@@ -285,16 +286,16 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
         r.deviceBytesAfterBuild = mCtx.memory().currentBytes();
         for (const auto& [name, usage] : mCtx.memory().perResource())
             if (usage.current > 0) r.deviceBytesPerResource.emplace_back(name, usage.current);
-        rendererOf = &renderer;
+        pictureOf = &picture;
     } catch (const Error& e) {
         r.error = e.what();
     }
     if (mOpt.agree) r.error = mOpt.agree(r.error);  // every rank renders, or none does
     if (r.error.empty()) try {
-        render::Renderer& renderer = *rendererOf;
-        if (mOpt.warmup > 0) {
-            tick(what + " (warm-up)");
-            renderer.render(rs, mOpt.warmup);
+            render::Renderer& renderer = *pictureOf->renderer;  // rendering only: the picture is committed
+            if (mOpt.warmup > 0) {
+                tick(what + " (warm-up)");
+                renderer.render(rs, mOpt.warmup);
         }
         scene::RenderOutput out = renderAll(
             renderer, rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
@@ -347,15 +348,15 @@ scene::RenderOutput Runner::renderAll(render::Renderer& renderer, const scene::R
     return renderer.render(rs, spp, progress, snapshotSpp, snapshot);
 }
 
-render::Renderer& Runner::rendererFor(const StructureConfig& config) {
-    if (!mRenderer) {
+picture::Picture& Runner::pictureFor(const StructureConfig& config) {
+    if (!mPicture) {
         session::PictureDescription d = mDesc;
         d.session.structure = config;
-        mRenderer = std::move(picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders}).renderer);
+        mPicture = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
     } else {
-        mRenderer->setStructure(config);
+        mPicture->commit({.structure = config});
     }
-    return *mRenderer;
+    return *mPicture;
 }
 
 // Target time and dense cost ratio for the runs of one group (same data set, TF and mode).
@@ -389,7 +390,10 @@ AutoResult Runner::autoGroup(size_t first, Mode mode) {
     render::AutoConstraints constraints;
     if (mOpt.backends.size() == 1) constraints.backend = mOpt.backends.front();
     StructureConfig start{.backend = Backend::Sw, .grid = mOpt.grid};
-    a.choice = render::autoSelect(rendererFor(start), *mTf, rs, constraints, {}, [&](const std::string& p) { tick("auto probe " + p); });
+    picture::Picture& picture = pictureFor(start);
+    a.choice = render::autoSelect(*picture.renderer, *mTf, rs, constraints, {},
+                                  [&](const std::string& p) { tick("auto probe " + p); });
+    picture.commit({.structure = a.choice.config});  // what the probes left built, recorded
     const StructureConfig& c = a.choice.config;
     auto comparable = [](const RunResult& r) { return r.kind != "dense" && r.error.empty(); };
     // The same structures: traversal, sampler, back-end, and the grid and sub-majorants where used,
@@ -507,12 +511,13 @@ BenchResults Runner::run() {
             const session::Session resolved = session::resolvePicture(mDesc, volume, nullptr);
             mSettings = resolved.settings;
             mDesc.session.settings.camera = mSettings.camera;  // framed once: runs and references agree
+            mTfChannels = resolved.tf;
             mTf = scene::albedoOf(resolved.tf, resolved.tfColors);  // as the references render it
             // The timed TF edit comes from another preset, so every majorant really changes.
             session::PictureDescription other = mDesc;
             other.tfSource = session::TfSource{.name = tfName == "foggy" ? "spiky" : "foggy"};
             const session::Session o = session::resolvePicture(other, volume, nullptr);
-            mOtherTf = scene::albedoOf(o.tf, o.tfColors);
+            mOtherTfChannels = o.tf;
             mTfName = tfName;
             for (Mode mode : mOpt.modes) measureMode(mode);
             if (!mOpt.dvrSteps.empty()) {
@@ -525,7 +530,7 @@ BenchResults Runner::run() {
                 finishGroup(first, mOpt.targetRmse);
             }
         }
-        mRenderer.reset();
+        mPicture.reset();
         mVolume.reset();
     }
     return mRes;

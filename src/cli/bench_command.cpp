@@ -294,10 +294,11 @@ void makeOutputDirectory(const bench::BenchOptions& o) {
 void shareOverRanks(mpi::World* world, bool speaks, bench::BenchOptions& o, gpu::ContextOptions& co) {
     co.spread = uint32_t(world->localRank());
     o.writesFiles = speaks;
-    o.render = [world](render::Renderer& r, const scene::RenderSettings& rs, uint32_t spp,
-                       const std::function<void(uint32_t, uint32_t)>& progress, const std::vector<uint32_t>& marks,
+    o.render = [world](render::Renderer& r, const scene::RenderSettings& /*held by r: committed by the runner*/,
+                       uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+                       const std::vector<uint32_t>& marks,
                        const std::function<void(const scene::RenderOutput&)>& snapshot) {
-        return mpi::renderSamples(*world, r, rs, spp, progress, marks, snapshot).out;
+        return mpi::renderSamples(*world, r, spp, progress, marks, snapshot).out;
     };
     o.agree = [world](const std::string& error) {
         mpi::Failure f = world->agree(error, {}, 20, false);

@@ -163,8 +163,9 @@ CLI::Option* addCompound(CLI::App& app, std::string_view option, T& target) {
 void applySettingTable(const CLI::App& app, const PictureArgs& a, session::Session& s, bool all) {
     for (const session::Setting& st : session::settingTable()) {
         const std::string name(st.option);
-        if (st.kind == session::SettingKind::Compound || !app.get_option_no_throw(name) || !(all || given(app, name)))
-            continue;
+        // Only the rows addSetting registered: bench's --sub-majorants is a list of its own.
+        const bool registered = a.settings.count(name) > 0 || a.flags.count(name) > 0;
+        if (st.kind == session::SettingKind::Compound || !registered || !(all || given(app, name))) continue;
         if (!st.request.empty() && a.settings.at(name) == st.request) continue;  // the description resolves it
         if (st.kind == session::SettingKind::Flag)
             st.setNumber(s, a.flags.at(name) ? 1 : 0);

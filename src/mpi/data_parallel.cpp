@@ -95,14 +95,12 @@ DataParallelResult renderDataParallel(World& world, picture::Picture& p, const D
                                       const std::function<void(uint32_t, uint32_t)>& progress) {
     render::Renderer& renderer = *p.renderer;
     gpu::Context& ctx = renderer.context();
-    const scene::RenderSettings& rs = renderer.settings();
     // Every rank must cut the same data the same way and trace the same paths.
     std::string census = strCat(part.census.cells, "|", part.census.binWidth);
     for (const amr::Box3l& b : part.owned)
         for (int a = 0; a < 3; ++a) census += strCat("|", b.lower[a], ",", b.upper[a]);  // GCC 12: no false -Wrestrict
     world.requireSame(std::hash<std::string>{}(census), "the data set (census and partition)");
     world.requireSame(pictureFingerprint(p.session()), "the picture (options or fitted choices)");
-    renderer.setSettings(rs);
     renderer.resetAccumulation();
 
     // The exchange between the ranks: the nearest collision with its owner's colour, and the

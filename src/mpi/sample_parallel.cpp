@@ -50,8 +50,8 @@ nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json ra
     return ranks;
 }
 
-SampleShare renderSamples(World& world, render::Renderer& renderer, const scene::RenderSettings& settings,
-                          uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+SampleShare renderSamples(World& world, render::Renderer& renderer, uint32_t spp,
+                          const std::function<void(uint32_t, uint32_t)>& progress,
                           const std::vector<uint32_t>& snapshotSpp,
                           const std::function<void(const scene::RenderOutput&)>& snapshot) {
     AMRVK_CHECK(spp >= 1, "--spp must be at least 1");
@@ -69,7 +69,6 @@ SampleShare renderSamples(World& world, render::Renderer& renderer, const scene:
         std::string error;
         const Timer render;
         try {
-            renderer.setSettings(settings);
             renderer.setFirstSample(done + share.first);
             renderer.accumulate(share.count, [&](uint32_t d, uint32_t) {
                 if (progress) progress(std::min(mark, done + d * uint32_t(world.size())), spp);
@@ -110,7 +109,7 @@ SampleParallelResult renderSampleParallel(World& world, picture::Picture& p, nlo
     world.requireSame(pictureFingerprint(p.session()), "the picture (data, options or fitted choices)");
     world.requireSame(p.volume->model.cellCount(), "the data set (cell count)");
     render::Renderer& renderer = *p.renderer;
-    SampleShare share = renderSamples(world, renderer, renderer.settings(), p.described.spp, progress);
+    SampleShare share = renderSamples(world, renderer, p.described.spp, progress);
     rankInfo["firstSample"] = share.firstSample;
     rankInfo["samples"] = share.samples;
     rankInfo["paths"] = share.mine.paths;

@@ -34,7 +34,8 @@ scene::RenderStats statsOverRanks(World& world, const scene::RenderStats& mine, 
 nlohmann::ordered_json gatherRankReports(World& world, nlohmann::ordered_json rankInfo, gpu::Context& ctx,
                                          uint64_t& moved);
 
-// Renderer::render (settings, from scratch, snapshots at snapshotSpp) with the samples split over
+// Renderer::render of the picture the renderer holds (its settings committed by the caller through
+// picture::Picture; from scratch, snapshots at snapshotSpp) with the samples split over
 // the ranks at each step between snapshots: every rank gets the image of all samples so far at each
 // snapshot and at the end (the sums added on every rank), so every rank takes the same decisions
 // after it. Collective: every rank calls it for the same picture. A rank's error fails the call on
@@ -47,7 +48,7 @@ struct SampleShare {
     double renderSeconds = 0, reduceSeconds = 0;
     uint64_t bytesSent = 0;  // what this rank contributed to the reductions
 };
-SampleShare renderSamples(World& world, render::Renderer& renderer, const scene::RenderSettings& settings, uint32_t spp,
+SampleShare renderSamples(World& world, render::Renderer& renderer, uint32_t spp,
                           const std::function<void(uint32_t, uint32_t)>& progress,
                           const std::vector<uint32_t>& snapshotSpp = {},
                           const std::function<void(const scene::RenderOutput&)>& snapshot = {});

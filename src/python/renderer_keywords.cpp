@@ -101,8 +101,9 @@ void setSettingFromPython(const session::Setting& st, const py::handle& o, sessi
             st.setNumber(s, keywordArg<bool>(o, keyword.c_str(), "True or False") ? 1 : 0);
             return;
         case session::SettingKind::Choice: {
-            // A choice named by a number also takes the number (sub_majorants=8).
-            const bool number = py::isinstance<py::int_>(o) && !py::isinstance<py::bool_>(o);
+            // A choice named by a number also takes the number (sub_majorants=8); any other is a TypeError.
+            const bool number = py::isinstance<py::int_>(o) && !py::isinstance<py::bool_>(o) &&
+                                session::settingChoiceError(st, std::string(py::str(o))).empty();
             const std::string text =
                 number ? std::string(py::str(o)) : keywordArg<std::string>(o, keyword.c_str(), choicesText(st).c_str());
             session::setSettingChoice(st, s, text, keyword);

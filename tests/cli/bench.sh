@@ -138,7 +138,7 @@ expect "--control-extinction 'mean': expected none|minorant" -- bench "$sample" 
 expect "--sub-majorants '3': expected off, 2, 4, 8 or 16" -- bench "$sample" -o "$dir/x" --sub-majorants off,3
 expect "--dvr-steps: '0' is not in (0, 64]" -- bench "$sample" -o "$dir/x" --dvr-steps 0
 expect "--traversals: empty list" -- bench "$sample" -o "$dir/x" --traversals ''
-expect "--tf-colors: gamma not in {srgb,linear}" -- bench "$sample" -o "$dir/x" --tf-colors gamma
+expect "--tf-colors: 'gamma' is not one of srgb|linear" -- bench "$sample" -o "$dir/x" --tf-colors gamma
 check test ! -e "$dir/x"  # nothing is created before every option is checked
 expect "unknown field 'rho'" -- bench "$sample" -o "$dir/x" --field rho   # --field reaches the reader
 exit $fail

@@ -147,9 +147,9 @@ script_case "sc.txt:1: mode: --mode 'pt'" "0 mode pt"
 script_case "sc.txt:1: traversal: --traversal 'octree'" "0 traversal octree"
 script_case "sc.txt:1: sampler: --sampler 'cube'" "0 sampler cube"
 script_case "sc.txt:1: backend: --backend 'cuda'" "0 backend cuda"
-script_case "sc.txt:1: grid: --grid 'huge'" "0 grid huge"
-script_case "sc.txt:1: grid: --grid 5000" "0 grid 5000"
-script_case "sc.txt:1: grid: --grid 0x4x4" "0 grid 0x4x4"
+script_case "sc.txt:1: grid: --grid: expected auto, N or NxMxK (got 'huge')" "0 grid huge"
+script_case "sc.txt:1: grid: --grid: macrocells must be in [1, 4096] (got 5000)" "0 grid 5000"
+script_case "sc.txt:1: grid: --grid: macrocells per axis must be in [1, 4096] (got 0x4x4)" "0 grid 0x4x4"
 script_case "sc.txt:1: tf-preset" "0 tf-preset rainbow"
 script_case "sc.txt:1: tf-range: LO 2 must be below HI 1" "0 tf-range 2 1"
 script_case "sc.txt:1: tf-range: LO 1 must be below HI 1" "0 tf-range 1 1"
@@ -249,7 +249,7 @@ expect1 "at most 8 lights" -- render --session lights9.json -o x.png
 sess lightsobj.json 's["lights"] = {"type": "point"}'
 expect1 "lightsobj.json.lights: expected an array" -- render --session lightsobj.json -o x.png
 sess trav.json 's["structure"]["traversal"] = "octree"'
-expect1 "trav.json.structure.traversal: --traversal 'octree'" -- render --session trav.json -o x.png
+expect1 "trav.json.structure.traversal: 'octree' is not one of" -- render --session trav.json -o x.png
 sess densabr.json 's["structure"]["traversal"] = "abr"; s["structure"]["sampler"] = "dense"'
 expect1 "--sampler dense needs --traversal grid-dda or grid-bvh" -- render --session densabr.json -o x.png
 sess kd.json 's["structure"]["kdLeaves"] = 16777216'
@@ -257,7 +257,7 @@ expect1 "kd.json.structure.kdLeaves: 16777216 is outside [1, 16777215]" -- rende
 sess mib.json 's["structure"]["denseMaxMiB"] = 0'
 expect1 "mib.json.structure.denseMaxMiB" -- render --session mib.json -o x.png
 sess grid.json 's["structure"]["grid"] = "0"'
-expect1 "--grid 0" -- render --session grid.json -o x.png
+expect1 "grid.json.structure.grid: macrocells must be in [1, 4096] (got 0)" -- render --session grid.json -o x.png
 sess notf.json 'del s["transferFunction"]'
 expect1 'notf.json: missing "transferFunction"' -- render --session notf.json -o x.png
 sess tfnan.json 's["transferFunction"]["Points"][1] = "x"'
@@ -335,7 +335,7 @@ expect1 "--spp: 16777217 is outside [1, 16777216]" -- render good.cells --spp 16
 expect1 "--size '16385x8': expected WxH with 1 <= W, H <= 16384" -- render good.cells --size 16385x8 -o x.png
 expect1 "--size '0x8'" -- render good.cells --size 0x8 -o x.png
 expect1 "--size '8x'" -- render good.cells --size 8x -o x.png
-expect1 "--grid 4097" -- render good.cells --size 8x8 --grid 4097 -o x.png
+expect1 "--grid: macrocells must be in [1, 4096] (got 4097)" -- render good.cells --size 8x8 --grid 4097 -o x.png
 expect1 "--dense-max-mib: 0 is outside [1, 1048576]" -- render good.cells --dense-max-mib 0 -o x.png
 expect1 "--samples-per-invocation: 65 is outside [0, 64]" -- render good.cells --samples-per-invocation 65 -o x.png
 expect1 "--dt: 0 is outside (0, 64]" -- render good.cells --dt 0 -o x.png

@@ -89,7 +89,7 @@ echo "not a font" >"$dir/bad.ttf"
 expect "not a font FreeType can read" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/bad.ttf" -o "$dir/x.png"
 expect "--legend: only PNG images get a legend" -- render "$sample" "${common[@]}" --legend -o "$dir/x.exr"
 expect "is too small for a legend" -- render "$sample" --size 16x12 --spp 1 --legend -o "$dir/x.png"
-expect "--legend-place: corner not in {side,overlay}" -- render "$sample" "${common[@]}" --legend --legend-place corner -o "$dir/x.png"
+expect "--legend-place: 'corner' is not one of side|overlay" -- render "$sample" "${common[@]}" --legend --legend-place corner -o "$dir/x.png"
 cp "$dir/bad.ttf" "$dir/font.png"  # a font that is not to be overwritten by the output it names
 expect "is the input --legend-font $dir/font.png" -- render "$sample" "${common[@]}" --legend --legend-font "$dir/font.png" -o "$dir/font.png"
 expect "--legend: /nonexistent/font.ttf: no such file" -- view "$sample" "${common[@]}" --headless --frames 1 --legend \
