@@ -13,12 +13,12 @@ void drawCutOverlay(const session::Session& s, ImVec2 pictureMin, ImVec2 picture
     auto toScreen = [&](glm::dvec2 p) { return ImVec2(pictureMin.x + float(p.x) * sx, pictureMin.y + float(p.y) * sy); };
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
     dl->PushClipRect(pictureMin, pictureMax, true);
-    for (const auto& e : viewer::CutHandles::edges(*crop)) {
-        const auto a = viewer::CutHandles::project(cam, w, h, e[0]), b = viewer::CutHandles::project(cam, w, h, e[1]);
+    for (const auto& e : CutHandles::edges(*crop)) {
+        const auto a = CutHandles::project(cam, w, h, e[0]), b = CutHandles::project(cam, w, h, e[1]);
         if (a && b) dl->AddLine(toScreen(*a), toScreen(*b), IM_COL32(255, 255, 255, 140), 1.0f);
     }
     for (int f = 0; f < 6; ++f) {
-        const auto p = viewer::CutHandles::project(cam, w, h, viewer::CutHandles::faceCentre(*crop, f));
+        const auto p = CutHandles::project(cam, w, h, CutHandles::faceCentre(*crop, f));
         if (!p) continue;
         const ImVec2 c = toScreen(*p);
         const ImU32 fill = f == activeFace ? IM_COL32(255, 210, 60, 255) : IM_COL32(240, 240, 240, 200);

@@ -119,7 +119,7 @@ void statisticsPanel(const Statistics& s) {
 // The opacity curve over the histogram and the colour map; nodes are dragged (left), added
 // (double click) and removed (right click).
 void tfCanvas(PanelState& p, PanelRequests& r) {
-    viewer::TfEditor tf(p.edit.tf);
+    TfEditor tf(p.edit.tf);
     const float width = std::max(120.0f, ImGui::GetContentRegionAvail().x);
     const ImVec2 size(width, 150.0f);
     const ImVec2 o = ImGui::GetCursorScreenPos();
@@ -141,7 +141,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
                               ImVec2(o.x + float(i + 1) * bw, o.y + size.y), IM_COL32(90, 90, 100, 255));
         }
     }
-    const std::vector<viewer::OpacityNode> nodes = tf.opacity();
+    const std::vector<OpacityNode> nodes = tf.opacity();
     for (size_t i = 0; i + 1 < nodes.size(); ++i)
         dl->AddLine(toScreen(nodes[i].x, nodes[i].alpha), toScreen(nodes[i + 1].x, nodes[i + 1].alpha),
                     IM_COL32(255, 255, 255, 255), 2.0f);
@@ -170,7 +170,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
     }
     if (p.draggingNode >= 0) {
         if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-            const viewer::OpacityNode n = tf.opacity()[size_t(p.draggingNode)];
+            const OpacityNode n = tf.opacity()[size_t(p.draggingNode)];
             if (n.x != mx || n.alpha != ma) {
                 tf.moveNode(size_t(p.draggingNode), mx, ma);
                 r.tfChanged = true;
@@ -194,7 +194,7 @@ void tfCanvas(PanelState& p, PanelRequests& r) {
 }
 
 void transferFunctionPanel(PanelState& p, PanelRequests& r) {
-    viewer::TfEditor tf(p.edit.tf);
+    TfEditor tf(p.edit.tf);
     if (!p.colorMapNames.empty()) {
         std::string name = p.colorMapNames[size_t(std::clamp(p.colorMapChoice, 0, int(p.colorMapNames.size()) - 1))];
         if (namedCombo("colour map", name, p.colorMapNames)) {
@@ -216,7 +216,7 @@ void transferFunctionPanel(PanelState& p, PanelRequests& r) {
                           "(decoded to linear albedo); off: linear albedo as given (--tf-colors linear)");
     ImGui::SameLine();
     // The field's scale: the data is read again (docs/viewer.md), the TF fitted again or moved onto
-    // the new range (viewer::tfOnNewScale).
+    // the new range (tfOnNewScale).
     bool logScale = p.edit.read.scale == amr::FieldScale::Log;
     if (ImGui::Checkbox("log scale", &logScale))
         p.edit.read.scale = logScale ? amr::FieldScale::Log : amr::FieldScale::Linear;
@@ -413,8 +413,8 @@ void drawPanels(PanelState& p, PanelRequests& r) {
         ImGui::SetNextWindowSize(ImVec2(float(pr.width) / sx, height), ImGuiCond_Always);
         p.panelPlaced = pr;
     }
-    // Its left edge can be dragged; the app clamps the width (viewer::viewerLayout).
-    ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(viewer::kPanelMinWidth, pr.width)) / sx, height),
+    // Its left edge can be dragged; the app clamps the width (viewerLayout).
+    ImGui::SetNextWindowSizeConstraints(ImVec2(float(std::min(kPanelMinWidth, pr.width)) / sx, height),
                                         ImVec2(float(pr.right()) / sx, height));
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;

@@ -46,7 +46,7 @@ struct PanelRequests {
 struct PanelState {
     const Statistics* stats = nullptr;
     session::Session edit;  // this frame's copy of the picture: the panels edit it, the app applies it
-    const viewer::Histogram* histogram = nullptr;
+    const Histogram* histogram = nullptr;
     bool canUndo = false, canRedo = false;
     std::vector<std::string> colorMapNames;  // built-in ones, then those of a loaded file
     int colorMapChoice = 0;
@@ -61,7 +61,7 @@ struct PanelState {
     std::string gridText;                          // the macrocell grid as typed, applied on Enter
     int draggingNode = -1;                         // opacity node under a drag, between frames
     session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)
-    int panelWidth = viewer::kPanelDefaultWidth;  // out: the width the user dragged the panel to
+    int panelWidth = kPanelDefaultWidth;           // out: the width the user dragged the panel to
     session::PixelRect panelPlaced;                // the rectangle last handed to ImGui (a user's drag is kept between)
     glm::dvec3 worldLo{0.0}, worldHi{1.0};         // the data's world bounds (cut-away ranges and handles)
     std::optional<scene::CropBox> cropMemory;      // the crop box while it is switched off (not lost)

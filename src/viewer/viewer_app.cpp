@@ -82,10 +82,10 @@ void ViewerApp::adoptPicture(picture::Picture&& p) {
     mPicture = std::move(p);
     mPicture.renderer->setSubMajorantsInBackground(true);  // a TF edit does not wait for them
     // The editor's form of the TF: the same function, with both channels spanning its range.
-    const scene::TfChannels editable = viewer::TfEditor::editable(mPicture.described.tf);
+    const scene::TfChannels editable = TfEditor::editable(mPicture.described.tf);
     if (!(editable == mPicture.described.tf)) mPicture.commit({.tf = editable});
     mState = mPicture.session();
-    mTfHistory = viewer::TfHistory(mState.tf);
+    mTfHistory = TfHistory(mState.tf);
     mStats.combination = mPicture.renderer->config().labelWithGrid();
     mPanel.gridText = mState.structure.grid;
     mHistogram.reset();  // the data may be new
@@ -94,9 +94,9 @@ void ViewerApp::adoptPicture(picture::Picture&& p) {
 
 void ViewerApp::updateHistogram() {
     // The histogram depends on the value range only: colour and opacity drags do not recompute it.
-    const viewer::TfEditor editor(mState.tf);
+    const TfEditor editor(mState.tf);
     if (!mHistogram || mHistogram->lo != editor.lo() || mHistogram->hi != editor.hi())
-        mHistogram = viewer::fieldHistogram(mVolume->model, mVolume->field(), editor.lo(), editor.hi(), 128);
+        mHistogram = fieldHistogram(mVolume->model, mVolume->field(), editor.lo(), editor.hi(), 128);
 }
 
 void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
@@ -109,7 +109,7 @@ void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
     Timer t;
     whileResponsive([&] {
         volume = session::loadVolume(d.session);
-        if (refitTf) d.session.tf = viewer::tfOnNewScale(d.session.tf, *mVolume, *volume);
+        if (refitTf) d.session.tf = tfOnNewScale(d.session.tf, *mVolume, *volume);
         p = picture::makePicture(*mCtx, volume, d, pictureOptions());
     });
     // Frames in flight may still read the old accumulation: wait before it goes.
@@ -131,7 +131,7 @@ bool ViewerApp::setReadScale(const amr::ReadOptions& read) {
     session::Session next = mState;
     next.read.scale = read.scale;
     next.read.logFloor = read.logFloor;
-    if (viewer::dataChange(mState, next).kind == viewer::DataChange::Rescale) {
+    if (dataChange(mState, next).kind == DataChange::Rescale) {
         reloadData(next, true);
         return true;
     }
@@ -142,7 +142,7 @@ bool ViewerApp::setReadScale(const amr::ReadOptions& read) {
 void ViewerApp::updateLayout() {
     int w = 0, h = 0;
     if (mWindow) mWindow->framebufferSize(w, h);
-    mLayout = viewer::viewerLayout(w, h, mPanel.panelWidth, mState.settings.width, mState.settings.height);
+    mLayout = viewerLayout(w, h, mPanel.panelWidth, mState.settings.width, mState.settings.height);
 }
 
 void ViewerApp::createWindowResources() {
@@ -220,7 +220,7 @@ int ViewerApp::run() {
     if (!mOpt.headless) {
         // Default: the image pixel for pixel beside the panel.
         int w = mOpt.windowWidth, h = mOpt.windowHeight;
-        if (w <= 0 || h <= 0) viewer::defaultWindowSize(mState.settings.width, mState.settings.height, w, h);
+        if (w <= 0 || h <= 0) defaultWindowSize(mState.settings.width, mState.settings.height, w, h);
         mWindow = std::make_unique<Window>(w, h, "amrvk view - " + fs::path(mState.input).filename().string());
         co.instanceExtensions = Window::requiredInstanceExtensions();
         co.createSurface = [this](VkInstance instance) { return mWindow->createSurface(instance); };
@@ -233,8 +233,8 @@ int ViewerApp::run() {
     mColorMaps.push_back(mState.tf);  // the starting colour map first
     for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
     if (!mOpt.script.empty()) {
-        mScript = viewer::loadScript(mOpt.script);
-        viewer::checkScript(mScript, {mOpt.shaderDir, mState.structure});  // every line before frame 0
+        mScript = loadScript(mOpt.script);
+        checkScript(mScript, {mOpt.shaderDir, mState.structure});  // every line before frame 0
     }
     if (mWindow) {
         createWindowResources();
@@ -327,24 +327,24 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     if (req.undo) e.tf = mTfHistory.undo();
     if (req.redo) e.tf = mTfHistory.redo();
     if (req.resetRange) {
-        e.tf = viewer::refitTfRange(e.tf, mVolume->valueLo(), mVolume->valueHi());
+        e.tf = refitTfRange(e.tf, mVolume->valueLo(), mVolume->valueHi());
         req.tfCommitted = true;
     }
     if (req.applyColorMap && mPanel.colorMapChoice >= 0 && size_t(mPanel.colorMapChoice) < mColorMaps.size()) {
-        viewer::TfEditor(e.tf).setColorMap(mColorMaps[size_t(mPanel.colorMapChoice)]);
+        TfEditor(e.tf).setColorMap(mColorMaps[size_t(mPanel.colorMapChoice)]);
         req.tfCommitted = true;
     }
     if (req.loadTfFile) {
         const scene::ParaViewPresets p = scene::loadParaViewPresets(mPanel.tfPath);
         AMRVK_CHECK(!p.presets.empty(), mPanel.tfPath, ": no usable preset");
         for (const scene::TfChannels& c : p.presets) mColorMaps.push_back(c);
-        viewer::TfEditor(e.tf).setPreset(p.presets.front());
+        TfEditor(e.tf).setPreset(p.presets.front());
         mPanel.message = "loaded " + std::to_string(p.presets.size()) + " preset(s) from " + mPanel.tfPath +
                          (p.skipped.empty() ? "" : " (" + std::to_string(p.skipped.size()) + " skipped)");
         req.tfCommitted = true;
     }
     if (req.saveTfFile) {
-        writeFileAtomic(mPanel.tfPath, viewer::TfEditor(e.tf).toParaViewJson(fs::path(mPanel.tfPath).stem().string()));
+        writeFileAtomic(mPanel.tfPath, TfEditor(e.tf).toParaViewJson(fs::path(mPanel.tfPath).stem().string()));
         mPanel.message = "saved " + mPanel.tfPath;
     }
     if (req.resetView) mOrbit.reset(e.settings.camera);

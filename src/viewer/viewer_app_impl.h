@@ -67,7 +67,7 @@ private:
     bool frame();
     void runScript();
     // One script action at its frame; errors name the script line.
-    void runAction(const viewer::ScriptAction& a);
+    void runAction(const ScriptAction& a);
     // The panels' copy of the picture, validated and applied part by part (structure, TF,
     // settings): a rejected part leaves the state as it was and shows why.
     void applyPanelEdits(PanelRequests& req);
@@ -93,7 +93,7 @@ private:
     // The data read again with `next.read` (another scale or log floor) beside the event loop, and
     // a renderer made for it with next's camera, settings, structure and TF (refitTf: an unedited
     // fitted preset fitted again, any other TF's shape moved onto the new field range:
-    // viewer::tfOnNewScale). On an error nothing changes and it is thrown.
+    // tfOnNewScale). On an error nothing changes and it is thrown.
     void reloadData(const session::Session& next, bool refitTf);
     // The field's scale and log floor of `read`: on another scale the data is read again (true, the
     // TF refitted), else the floor is only recorded (false).
@@ -134,7 +134,7 @@ private:
     gpu::Buffer mDisplay;  // the window's pixels (B, G, R, A), copied into the swapchain image
     int mDisplayWidth = 0, mDisplayHeight = 0;
     session::PixelRect mDisplayRect;  // where the display buffer's picture was drawn
-    viewer::ViewerLayout mLayout;    // this frame's panel and picture rectangles
+    ViewerLayout mLayout;             // this frame's panel and picture rectangles
 
     std::shared_ptr<const scene::Volume> mVolume;
     // The picture: its renderer and its description, edited only through mPicture.commit (one
@@ -145,12 +145,12 @@ private:
     // camera control and the TF editor edit it in place, the panels edit a copy that is validated.
     session::Session mState;
     session::OrbitCamera mOrbit;  // the data's box: framing and zoom limits
-    viewer::TfHistory mTfHistory;
-    viewer::FrameBudget mBudget;
-    std::optional<viewer::Histogram> mHistogram;
-    std::vector<viewer::ScriptAction> mScript;
+    TfHistory mTfHistory;
+    FrameBudget mBudget;
+    std::optional<Histogram> mHistogram;
+    std::vector<ScriptAction> mScript;
     size_t mScriptAt = 0;
-    std::optional<viewer::FileWatcher> mWatcher;
+    std::optional<FileWatcher> mWatcher;
     Clock::time_point mLastShaderPoll = Clock::now();
     std::vector<scene::TfChannels> mColorMaps;
 

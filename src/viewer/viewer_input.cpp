@@ -78,8 +78,8 @@ void ViewerApp::handleInput() {
                 if (e.action == GLFW_PRESS && e.code == GLFW_MOUSE_BUTTON_LEFT && mDragButton < 0 && !uiMouse &&
                     overPicture(e.x, e.y) && rs.cut.crop) {
                     const double radius = kCutHandleRadius * toImageX;
-                    mCutFace = viewer::CutHandles::pick(rs.camera, rs.width, rs.height, *rs.cut.crop,
-                                                         inImage(e.x, e.y), radius);
+                    mCutFace =
+                        CutHandles::pick(rs.camera, rs.width, rs.height, *rs.cut.crop, inImage(e.x, e.y), radius);
                     if (mCutFace >= 0) {
                         mDragButton = e.code;
                         mLastX = e.x;
@@ -103,9 +103,8 @@ void ViewerApp::handleInput() {
                     const glm::dvec2 delta = inImage(e.x, e.y) - inImage(mLastX, mLastY);
                     const glm::dvec3 lo = mVolume->worldMin(), hi = mVolume->worldMax();
                     scene::CropBox& box = *mState.settings.cut.crop;
-                    box = viewer::CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta,
-                                                    glm::min(lo, box.lo), glm::max(hi, box.hi),
-                                                    1e-3 * glm::length(hi - lo));
+                    box = CutHandles::drag(rs.camera, rs.width, rs.height, box, mCutFace, delta, glm::min(lo, box.lo),
+                                           glm::max(hi, box.hi), 1e-3 * glm::length(hi - lo));
                     mInteracting = true;
                 } else if (mDragButton >= 0) {
                     const double dx = e.x - mLastX, dy = e.y - mLastY;

@@ -17,7 +17,7 @@ namespace amrvk::viewer {
 
 void ViewerApp::runScript() {
     while (!mQuit && mScriptAt < mScript.size() && mScript[mScriptAt].frame <= mFrame) {
-        const viewer::ScriptAction& a = mScript[mScriptAt++];
+        const ScriptAction& a = mScript[mScriptAt++];
         try {
             runAction(a);
         } catch (const gpu::ShaderCompileError&) {
@@ -30,7 +30,7 @@ void ViewerApp::runScript() {
     }
 }
 
-void ViewerApp::runAction(const viewer::ScriptAction& a) {
+void ViewerApp::runAction(const ScriptAction& a) {
     const std::string& n = a.name;
     scene::Camera& camera = mState.settings.camera;
     const double height = double(mState.settings.height);
@@ -51,7 +51,7 @@ void ViewerApp::runAction(const viewer::ScriptAction& a) {
         AMRVK_CHECK(glm::length(forward) > 0, "eye and target coincide");
         camera = moved;
     } else if (n == "tf-preset" || n == "tf-range") {
-        viewer::TfEditor editor(mState.tf);
+        TfEditor editor(mState.tf);
         if (n == "tf-preset")
             editor.setPreset(scene::builtInChannels(a.args[0]));
         else
@@ -92,7 +92,7 @@ void ViewerApp::runAction(const viewer::ScriptAction& a) {
         if (n == "grid") structure.grid = a.args[0];
         if (!(structure == mState.structure)) setStructure(structure);
     } else if (n == "edit-shader") {
-        const fs::path file = viewer::confinedShaderPath(mOpt.shaderDir, a.args[0]);
+        const fs::path file = confinedShaderPath(mOpt.shaderDir, a.args[0]);
         std::string text = readTextFile(file);
         const size_t at = text.find(a.args[1]);
         AMRVK_CHECK(at != std::string::npos, "'", a.args[1], "' not found in ", file.string());

@@ -24,19 +24,19 @@ void ViewerApp::saveSessionFile(const fs::path& file) {
 
 void ViewerApp::loadSessionFile(const fs::path& file) {
     session::Session s = session::loadSession(file);
-    const viewer::DataChangeCheck change = viewer::dataChange(mState, s);
-    AMRVK_CHECK(change.kind != viewer::DataChange::Other, file.string(), ": ", change.reason,
+    const DataChangeCheck change = dataChange(mState, s);
+    AMRVK_CHECK(change.kind != DataChange::Other, file.string(), ": ", change.reason,
                 "; open it with amrvk view --session ", file.string());
     scene::validateSettings(s.settings);
     s.input = mState.input;  // the same data set (compared as absolute paths)
-    if (change.kind == viewer::DataChange::Rescale) {
+    if (change.kind == DataChange::Rescale) {
         // Read again on the session's scale, with its structure, settings and TF (in that scale's
         // units) at once: when anything fails nothing of the session is taken.
         reloadData(s, false);
     } else {
         // Structure, TF (with the meaning its colours were saved with) and settings in one commit:
         // one build and one majorant pass; when the structure cannot be built nothing is taken.
-        picture::PictureEdit e{.tf = viewer::TfEditor::editable(s.tf), .tfColors = s.tfColors, .settings = s.settings};
+        picture::PictureEdit e{.tf = TfEditor::editable(s.tf), .tfColors = s.tfColors, .settings = s.settings};
         if (!(s.structure == mState.structure)) e.structure = s.structure;
         commit(e);
         mState.spp = s.spp;
@@ -49,7 +49,7 @@ void ViewerApp::copyCommand() {
     const session::Session s = currentSession();
     // The TF beside the session file's default place, so the command does not depend on the viewer.
     const fs::path tfFile = fs::absolute(mPanel.tfPath);
-    writeFileAtomic(tfFile, viewer::TfEditor(mState.tf).toParaViewJson(tfFile.stem().string()));
+    writeFileAtomic(tfFile, TfEditor(mState.tf).toParaViewJson(tfFile.stem().string()));
     const std::string line = session::renderCommandLine(s, tfFile.string(), "amrvk.png");
     if (mWindow) mWindow->setClipboard(line);
     std::printf("%s\n", line.c_str());

@@ -5,7 +5,7 @@
 //   orbit DX DY | pan DX DY          mouse drags in pixels
 //   zoom STEPS                       wheel steps (> 0 closer)
 //   tf-preset NAME | tf-range LO HI | density SCALE
-//   scale linear|log | log-floor V   the field's scale (read again; the TF as viewer::tfOnNewScale)
+//   scale linear|log | log-floor V   the field's scale (read again; the TF as tfOnNewScale)
 //   mode ae|ss|ms|dvr | traversal T | sampler S | backend B | grid G
 //   edit-shader FILE FIND REPLACE    replace the first FIND in FILE (under --shader-dir) and save it
 //   reload                           recompile the shaders now (the watcher also does on a save)
