@@ -296,7 +296,7 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
             if (mOpt.warmup > 0) {
                 tick(what + " (warm-up)");
                 renderer.render(rs, mOpt.warmup);
-        }
+            }
         scene::RenderOutput out = renderAll(
             renderer, rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
             powersOfTwoUpTo(mOpt.frames), [&](const scene::RenderOutput& partial) {
