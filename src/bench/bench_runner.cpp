@@ -90,8 +90,9 @@ private:
     // The data set's picture switched to `config` (resolved) by a commit; made by
     // picture::makePicture on first use (the old device copy is freed before each new one).
     picture::Picture& pictureFor(const StructureConfig& config);
-    // Renderer::render, or BenchOptions::render when set (sample-parallel MPI).
-    scene::RenderOutput renderAll(render::Renderer& renderer, const scene::RenderSettings& rs, uint32_t spp,
+    // Renderer::render of the picture as committed, or BenchOptions::render when set
+    // (sample-parallel MPI).
+    scene::RenderOutput renderAll(render::Renderer& renderer, uint32_t spp,
                                   const std::function<void(uint32_t, uint32_t)>& progress,
                                   const std::vector<uint32_t>& snapshotSpp,
                                   const std::function<void(const scene::RenderOutput&)>& snapshot);
@@ -204,7 +205,7 @@ ReferenceImage Runner::reference(const BenchDataset& ds, const std::string& tfNa
         tick("reference " + name + " (" + std::to_string(spp) + " spp)");
         mPicture.reset();  // one renderer's device memory at a time
         picture::Picture p = picture::makePicture(mCtx, mVolume, d, {.shaders = mOpt.shaders});
-        scene::RenderOutput out = renderAll(*p.renderer, p.renderer->settings(), p.described.spp,
+        scene::RenderOutput out = renderAll(*p.renderer, p.described.spp,
                                             [&](uint32_t done, uint32_t total) {
             tick("reference " + name + " " + std::to_string(done) + "/" + std::to_string(total) + " spp");
         }, {}, {});
@@ -292,13 +293,13 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     }
     if (mOpt.agree) r.error = mOpt.agree(r.error);  // every rank renders, or none does
     if (r.error.empty()) try {
-            render::Renderer& renderer = *pictureOf->renderer;  // rendering only: the picture is committed
-            if (mOpt.warmup > 0) {
-                tick(what + " (warm-up)");
-                renderer.render(rs, mOpt.warmup);
-            }
+        render::Renderer& renderer = *pictureOf->renderer;  // rendering only: the picture is committed
+        if (mOpt.warmup > 0) {
+            tick(what + " (warm-up)");
+            renderer.render(rs, mOpt.warmup);
+        }
         scene::RenderOutput out = renderAll(
-            renderer, rs, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
+            renderer, mOpt.frames, [&](uint32_t d, uint32_t t) { tick(what + " frame " + std::to_string(d) + "/" + std::to_string(t)); },
             powersOfTwoUpTo(mOpt.frames), [&](const scene::RenderOutput& partial) {
                 ImageError e = imageError(partial.mean, mRef);
                 r.curve.push_back({partial.spp, partial.stats.gpuSeconds, e.rmse(), e.relMse});
@@ -340,12 +341,12 @@ RunResult Runner::measure(const std::string& kind, Mode mode, const StructureCon
     return r;
 }
 
-scene::RenderOutput Runner::renderAll(render::Renderer& renderer, const scene::RenderSettings& rs, uint32_t spp,
+scene::RenderOutput Runner::renderAll(render::Renderer& renderer, uint32_t spp,
                                      const std::function<void(uint32_t, uint32_t)>& progress,
                                      const std::vector<uint32_t>& snapshotSpp,
                                      const std::function<void(const scene::RenderOutput&)>& snapshot) {
-    if (mOpt.render) return mOpt.render(renderer, rs, spp, progress, snapshotSpp, snapshot);
-    return renderer.render(rs, spp, progress, snapshotSpp, snapshot);
+    if (mOpt.render) return mOpt.render(renderer, spp, progress, snapshotSpp, snapshot);
+    return renderer.render(renderer.settings(), spp, progress, snapshotSpp, snapshot);
 }
 
 picture::Picture& Runner::pictureFor(const StructureConfig& config) {

@@ -72,14 +72,15 @@ struct BenchOptions {
     gpu::ShaderLibrary shaders;             // --shader-dir (default: the embedded shaders)
 
     // Sample-parallel MPI (mpi::sampleParallelBench): every rank runs the same protocol and these
-    // hooks make its renders shared. `render` renders spp samples from scratch as Renderer::render
-    // does (snapshots at snapshotSpp), with the samples split over the ranks; `agree` is called by
+    // hooks make its renders shared. `render` renders spp samples of the picture the renderer holds
+    // (committed by the runner) from scratch as Renderer::render does (snapshots at snapshotSpp), with
+    // the samples split over the ranks; `agree` is called by
     // every rank once per run, between building and rendering, with this rank's error (empty: none)
     // and returns the first failing rank's; `all` is a logical and over the ranks (a reference is
     // taken from the cache only when every rank has it); only a process with `writesFiles` writes
     // the reference cache. Empty hooks: one process.
     using RenderFn = std::function<scene::RenderOutput(
-        render::Renderer&, const scene::RenderSettings&, uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+        render::Renderer&, uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
         const std::vector<uint32_t>& snapshotSpp, const std::function<void(const scene::RenderOutput&)>& snapshot)>;
     RenderFn render;
     std::function<std::string(const std::string&)> agree;

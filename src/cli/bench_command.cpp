@@ -294,8 +294,7 @@ void makeOutputDirectory(const bench::BenchOptions& o) {
 void shareOverRanks(mpi::World* world, bool speaks, bench::BenchOptions& o, gpu::ContextOptions& co) {
     co.spread = uint32_t(world->localRank());
     o.writesFiles = speaks;
-    o.render = [world](render::Renderer& r, const scene::RenderSettings& /*held by r: committed by the runner*/,
-                       uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
+    o.render = [world](render::Renderer& r, uint32_t spp, const std::function<void(uint32_t, uint32_t)>& progress,
                        const std::vector<uint32_t>& marks,
                        const std::function<void(const scene::RenderOutput&)>& snapshot) {
         return mpi::renderSamples(*world, r, spp, progress, marks, snapshot).out;

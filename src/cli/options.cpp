@@ -438,7 +438,8 @@ session::PictureDescription describePicture(const CLI::App& app, const std::stri
         d.tfSource = session::TfSource{.name = a.tf, .preset = a.tfPreset};
     if (given(app, "--tf-range")) d.tfRange = std::make_pair(float(a.tfRange[0]), float(a.tfRange[1]));
     d.fitCamera = !fromSession && !given(app, "--camera");
-    const bool autoTraversal = given(app, "--traversal") && a.settings.at("--traversal") == "auto";
+    const bool autoTraversal =
+        given(app, "--traversal") && a.settings.at("--traversal") == session::settingForOption("--traversal").request;
     d.fit = autoTraversal                                   ? session::StructureFit::Probe
             : !given(app, "--traversal") && !fromSession ? session::StructureFit::Data
                                                             : session::StructureFit::None;

@@ -106,17 +106,18 @@ void setSettingFromPython(const session::Setting& st, const py::handle& o, sessi
                                 session::settingChoiceError(st, std::string(py::str(o))).empty();
             const std::string text =
                 number ? std::string(py::str(o)) : keywordArg<std::string>(o, keyword.c_str(), choicesText(st).c_str());
-            session::setSettingChoice(st, s, text, keyword);
+            session::setSettingName(st, s, text, keyword);
             return;
         }
         case session::SettingKind::Text:
-            session::setSettingChoice(st, s, keywordArg<std::string>(o, keyword.c_str(), kText), keyword);
+            session::setSettingName(st, s, keywordArg<std::string>(o, keyword.c_str(), kText), keyword);
             return;
         case session::SettingKind::Compound:
             break;
     }
     throw std::logic_error("internal: " + keyword + " is parsed by describe()");
 }
+
 py::object settingToPython(const session::Setting& st, const session::Session& s) {
     switch (st.kind) {
         case session::SettingKind::Number:

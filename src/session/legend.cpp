@@ -176,11 +176,16 @@ std::string legendUnits(const Legend& legend, const std::string& fieldUnits) {
     return legend.units.empty() ? fieldUnits : legend.units;
 }
 
+std::string legendTextError(const std::string& text) {
+    return text.size() <= kMaxLegendTextBytes ? "" : strCat(text.size(), " bytes (at most ", kMaxLegendTextBytes, ")");
+}
+
 void checkLegendText(const Legend& legend) {
     for (const auto& [text, option] :
-         {std::pair{&legend.title, "--legend-title"}, std::pair{&legend.units, "--legend-units"}})
-        AMRVK_CHECK(text->size() <= kMaxLegendTextBytes, option, ": ", text->size(), " bytes (at most ",
-                    kMaxLegendTextBytes, ")");
+         {std::pair{&legend.title, "--legend-title"}, std::pair{&legend.units, "--legend-units"}}) {
+        const std::string why = legendTextError(*text);
+        AMRVK_CHECK(why.empty(), option, ": ", why);
+    }
 }
 
 }  // namespace amrvk::session

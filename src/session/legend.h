@@ -52,6 +52,9 @@ std::string tickLabel(double value, double step, double magnitude = 0);
 
 // The longest title or units text a legend takes, in bytes.
 inline constexpr size_t kMaxLegendTextBytes = 256;
+// "" when `text` fits a title or units (at most kMaxLegendTextBytes), else why not ("300 bytes (at
+// most 256)"): the words of every front end (session/setting_table.cpp's rows).
+std::string legendTextError(const std::string& text);
 // Throws one line naming --legend-title or --legend-units (Python: legend_title, legend_units) when
 // either is longer than kMaxLegendTextBytes: said where it is set, not when a picture is drawn.
 void checkLegendText(const Legend& legend);

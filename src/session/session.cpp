@@ -241,7 +241,7 @@ Key settingKey(std::string_view option) {
                     return;
                 }
                 if (st.kind == SettingKind::Choice || st.kind == SettingKind::Text) {
-                    setSettingChoice(st, s, r.text(name), strCat(r.where(), ".", name));
+                    setSettingName(st, s, r.text(name), strCat(r.where(), ".", name));
                 } else if (st.kind == SettingKind::Flag) {
                     st.setNumber(s, r.flag(name, false) ? 1 : 0);
                 } else {

@@ -42,11 +42,6 @@ Setting text(Setting s, At at, std::function<std::string(const std::string&)> ch
     return s;
 }
 
-// A legend text's check: at most kMaxLegendTextBytes.
-std::string legendTextError(const std::string& t) {
-    return t.size() <= kMaxLegendTextBytes ? "" : strCat(t.size(), " bytes (at most ", kMaxLegendTextBytes, ")");
-}
-
 // A compound setting's row: names, help and invalidation (each front end parses its parts).
 Setting compound(Setting s) {
     s.kind = SettingKind::Compound;
@@ -547,7 +542,7 @@ std::string settingTextError(const Setting& s, const std::string& text) {
     return s.kind == SettingKind::Text && s.check ? s.check(text) : "";
 }
 
-void setSettingChoice(const Setting& s, Session& session, const std::string& value, std::string_view name) {
+void setSettingName(const Setting& s, Session& session, const std::string& value, std::string_view name) {
     const std::string why = settingTextError(s, value);
     AMRVK_CHECK(why.empty(), name, ": ", why);
     try {
@@ -578,7 +573,7 @@ std::string settingDefault(const Setting& s) {
 void setSettingFromText(const Setting& s, Session& session, const std::string& text, std::string_view name) {
     AMRVK_CHECK(s.kind != SettingKind::Compound, "internal: ", s.option, " is parsed by its front end");
     if (s.kind == SettingKind::Choice || s.kind == SettingKind::Text) {
-        setSettingChoice(s, session, text, name);
+        setSettingName(s, session, text, name);
         return;
     }
     if (s.kind == SettingKind::Flag) {

@@ -83,8 +83,8 @@ void checkSetting(const Setting& s, double v, std::string_view name);
 std::vector<std::string_view> settingChoices(const Setting& s);
 // A Choice's words: "" when `value` is one of its choices, else "'pt' is not one of ae|ss|ms|dvr".
 std::string settingChoiceError(const Setting& s, std::string_view value);
-// Sets Choice `s` in `session` to `value`, or throws "<name>: <settingChoiceError>".
-void setSettingChoice(const Setting& s, Session& session, const std::string& value, std::string_view name);
+// Sets Choice or Text `s` in `session` to `value`, or throws "<name>: <settingTextError>".
+void setSettingName(const Setting& s, Session& session, const std::string& value, std::string_view name);
 // `text` as a number (strtod, the whole text), or nullopt with `why` = "'x' is not a number": the
 // command line's words for any numeric option.
 std::optional<double> numberInText(const std::string& text, std::string& why);
