@@ -170,6 +170,22 @@ std::vector<uint8_t> readAll(const fs::path& path) {
 
 }  // namespace
 
+Image scaledBilinear(const Image& src, int width, int height) {
+    AMRVK_CHECK(width > 0 && height > 0 && src.width > 0 && src.height > 0, "internal: scaling a ", src.width, "x",
+                src.height, " image to ", width, "x", height);
+    auto at = [&](int x, int y) { return src.at(std::clamp(x, 0, src.width - 1), std::clamp(y, 0, src.height - 1)); };
+    Image out(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const double sx = (x + 0.5) * src.width / width - 0.5, sy = (y + 0.5) * src.height / height - 0.5;
+            const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+            const float fx = float(sx - x0), fy = float(sy - y0);
+            out.at(x, y) = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                                    glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+        }
+    return out;
+}
+
 uint8_t encodeSrgb8(float linear) {
     const double c = linear > 0.0f ? (linear < 1.0f ? double(linear) : 1.0) : 0.0;
     const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;

@@ -32,6 +32,10 @@ struct Image8 {
 // sRGB encoding of a linear value clamped to [0, 1] (NaN -> 0), rounded to 8 bits.
 uint8_t encodeSrgb8(float linear);
 
+// `src` scaled to width x height (> 0) bilinearly, pixel centres mapped onto pixel centres and
+// edges clamped: what the viewer's display pass shows of a smaller preview (passes/display.comp).
+Image scaledBilinear(const Image& src, int width, int height);
+
 // Writes by extension (case-insensitive):
 //   .png  8-bit sRGB RGBA: each linear channel clamped to [0, 1], sRGB curve, alpha 255;
 //   .pfm  linear float RGB, little-endian (scale -1), rows bottom to top as the format requires;

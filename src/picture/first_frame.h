@@ -13,11 +13,12 @@
 
 #include "core/image_io.h"
 #include "render/renderer.h"
+#include "scene/preview_hold.h"
 
 namespace amrvk::picture {
 
 inline constexpr uint32_t kFirstFrameSpp = 2;         // samples per pixel: two, so its noise is known
-inline constexpr double kFirstFrameNoise = 0.05;      // mean relative standard error: no visible grain
+inline constexpr double kFirstFrameNoise = scene::kNoVisibleNoise;  // mean relative standard error: no visible grain
 // Every frame's GPU time together (dt / 2^k is predicted at 2^k the last frame's time) may reach
 // kFirstFrameBudgetFactor times the first frame's, within [kFirstFrameGpuSeconds,
 // kFirstFrameMaxGpuSeconds]: the budget follows the data and the image size through that first

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "core/error.h"
+#include "core/strings.h"
 #include "scene/limits.h"
 
 namespace amrvk::viewer {
@@ -87,6 +90,16 @@ void wrapped(const ImVec4* color, const std::string& text) {
     ImGui::PopTextWrapPos();
 }
 
+namespace {
+
+std::string g3(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.3g", v);
+    return text;
+}
+
+}  // namespace
+
 void statisticsPanel(const Statistics& s) {
     wrapped(nullptr, s.device);
     wrapped(nullptr, s.combination);
@@ -102,6 +115,12 @@ void statisticsPanel(const Statistics& s) {
     if (s.rowsDone > 0 && s.previewScale == 1) {
         ImGui::SameLine();
         ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
+    }
+    if (s.previewScale == 1 && s.shown == scene::Shown::Preview) {
+        // The kept preview is on screen until the estimate is as clean (scene/preview_hold.h).
+        const std::string estimate = s.estimateNoise >= 0 ? strCat("noise ", g3(s.estimateNoise)) : "not measured";
+        wrapped(nullptr, strCat("showing the preview (noise ", g3(s.previewNoise), ") until the estimate (", estimate,
+                                ") reaches ", g3(s.noiseToReach)));
     }
     ImGui::Text("%.2f lookups/path, %.2f null/real", s.lookupsPerPath, s.nullPerReal);
     if (s.violations > 0)

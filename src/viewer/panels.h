@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/preview_hold.h"
 #include "session/orbit_camera.h"
 #include "session/session.h"
 #include "viewer/logic/histogram.h"
@@ -28,6 +29,8 @@ struct Statistics {
     uint64_t violations = 0, trackingCapHits = 0, nanSamples = 0;
     uint32_t spp = 0, sppLimit = 0, rowsDone = 0, height = 0;
     int previewScale = 1;  // > 1: showing a preview rendered at 1/scale of the size
+    scene::Shown shown = scene::Shown::Nothing;                      // on screen: the kept preview or the estimate
+    double previewNoise = -1, estimateNoise = -1, noiseToReach = 0;  // -1: not measured
     uint64_t deviceBytes = 0;
     double tfEditSeconds = 0, structureSeconds = 0;  // last TF edit, last structure change (wall)
 };

@@ -22,9 +22,11 @@
 #include "gpu/context.h"
 #include "gpu/shader_compiler.h"
 #include "gpu/shader_library.h"
+#include "picture/first_frame.h"
 #include "picture/picture.h"
 #include "render/display_pass.h"
 #include "render/renderer.h"
+#include "scene/render_output.h"
 #include "scene/tf_files.h"
 #include "scene/tf_presets.h"
 #include "session/legend_image.h"
@@ -189,6 +191,7 @@ void ViewerApp::noteReset(const std::string& what) {
     mResets.push_back(
         {mFrame, what, mPicture.renderer ? mPicture.renderer->accumulatedSpp() + mPicture.renderer->rowsDone() : 0});
     mNeedPreview = true;
+    mHold.reset();  // the new picture's preview is made, then beaten
     mChangedAt = Clock::now();
 }
 
@@ -423,8 +426,11 @@ void ViewerApp::applyEdits() {
     if (!changes.empty() && mFrame > 0) mInteracting = true;
     scene::RenderSettings s = full;
     if (mInteracting) mNeedPreview = true;
+    // A still picture's preview continues at its scale to its second sample (keepPreview); a new
+    // scale would restart it.
+    const bool continuing = mNeedPreview && mPreviewing && !mInteracting;
     mPreviewing = mNeedPreview;
-    mPreviewScale = mNeedPreview ? mBudget.previewScale(full.width, full.height) : 1;
+    if (!continuing) mPreviewScale = mNeedPreview ? mBudget.previewScale(full.width, full.height) : 1;
     s.width = std::max(1, full.width / mPreviewScale);
     s.height = std::max(1, full.height / mPreviewScale);
     // The preview (the first frame of a picture, and every frame while interacting) is the same
@@ -442,6 +448,7 @@ void ViewerApp::trace() {
     const uint32_t limit = mState.spp;
     const bool done = !mPreviewing && limit > 0 && mPicture.renderer->accumulatedSpp() >= limit;
     if (done) {
+        updateShown();
         if (mWindow) mWindow->waitEvents(0.03);  // converged: wait for the user instead of spinning
         return;
     }
@@ -451,7 +458,11 @@ void ViewerApp::trace() {
         ++mPreviewFrames[scene::modeName(s.mode)];
         mPicture.renderer->accumulate(1);
         mBudget.record(mPicture.renderer->stats().gpuSeconds - gpuBefore, pixels);
-        mNeedPreview = mInteracting;  // shown once: refine at full resolution when the user stops
+        // While the user interacts every frame shows a new preview; when they stop it gets its
+        // second sample (its noise measured) and stays on screen until the estimate is as clean.
+        mNeedPreview = mInteracting || mPicture.renderer->accumulatedSpp() < picture::kFirstFrameSpp;
+        if (!mNeedPreview) keepPreview();
+        mShown = scene::Shown::Preview;
     } else {
         const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mPicture.renderer->rowsDone());
         if (rows >= uint32_t(s.height) && mPicture.renderer->rowsDone() == 0) {
@@ -470,8 +481,60 @@ void ViewerApp::trace() {
             mTimings.toFirstFullSample.push_back(secondsSince(*mChangedAt));
             mChangedAt.reset();
         }
+        updateShown();
     }
-    mDisplayFresh = mPreviewing || mPicture.renderer->accumulatedSpp() >= 1;
+    mDisplayFresh = mShown != scene::Shown::Nothing;
+}
+
+void ViewerApp::keepPreview() {
+    const scene::RenderOutput out = mPicture.renderer->output();
+    mHold.reset();
+    mHold.previewReady(scene::meanRelativeError(out));
+    mPreviewImage = out.mean;
+    if (!mWindow) return;
+    // The display pass reads sums and a count per pixel: the mean times the samples.
+    std::vector<shared::AccumPixelGpu> accum(out.mean.pixels.size(), shared::AccumPixelGpu{});
+    const float n = float(out.spp);
+    for (size_t i = 0; i < accum.size(); ++i) accum[i].sumHi = glm::vec4(glm::vec3(out.mean.pixels[i]) * n, n);
+    const uint64_t bytes = accum.size() * sizeof(shared::AccumPixelGpu);
+    vkQueueWaitIdle(mCtx->queue());  // a frame in flight may still read the last preview
+    if (!mPreviewAccum.valid() || mPreviewAccum.size() != bytes)
+        mPreviewAccum = gpu::Buffer(*mCtx, bytes, gpu::MemoryKind::Device, "previewShown");
+    mPreviewAccum.upload(accum.data(), bytes);
+}
+
+void ViewerApp::updateShown() {
+    if (mPreviewing) {  // the renderer holds the preview, not the estimate
+        mShown = scene::Shown::Preview;
+        return;
+    }
+    render::Renderer& r = *mPicture.renderer;
+    const uint32_t spp = r.accumulatedSpp();
+    if (r.rowsDone() == 0 && mHold.wantsMeasure(spp)) mHold.estimateMeasured(spp, scene::meanRelativeError(r.output()));
+    const scene::Shown was = mShown;
+    mShown = mHold.shown(spp, mState.spp);
+    if (was == scene::Shown::Preview && mShown == scene::Shown::Estimate && mHold.hasPreview())
+        mEstimateShown = EstimateShown{mFrame, spp, mHold.estimateNoise().value_or(-1), mHold.threshold(),
+                                       mState.spp > 0 && spp >= mState.spp};
+}
+
+void ViewerApp::finishPreview() {
+    if (mHold.hasPreview()) return;
+    const scene::RenderSettings& full = mState.settings;
+    if (!mPreviewing) mPreviewScale = mBudget.previewScale(full.width, full.height);
+    scene::RenderSettings s = full;
+    s.width = std::max(1, full.width / mPreviewScale);
+    s.height = std::max(1, full.height / mPreviewScale);
+    s.mode = scene::Mode::Dvr;
+    mPicture.commit({.settings = s});
+    const uint32_t have = mPicture.renderer->accumulatedSpp();
+    if (have < picture::kFirstFrameSpp) mPicture.renderer->accumulate(picture::kFirstFrameSpp - have);
+    ++mPreviewFrames[scene::modeName(s.mode)];
+    keepPreview();
+    mPreviewing = true;    // the renderer holds the preview
+    mNeedPreview = false;  // the next frame starts the estimate
+    mShown = scene::Shown::Preview;
+    mDisplayFresh = true;
 }
 
 void ViewerApp::present() {
@@ -487,17 +550,22 @@ void ViewerApp::present() {
         }
         mDisplay.fillZero();
         mDisplayRect = picture;
-        mDisplayFresh = mPreviewing || mPicture.renderer->accumulatedSpp() >= 1;
+        mDisplayFresh = mShown != scene::Shown::Nothing;
     }
     // The swapchain can lag the layout by a frame while the window is resized: draw only a
     // rectangle that lies in it.
     const bool drawable = !picture.empty() && picture.right() <= mDisplayWidth && picture.bottom() <= mDisplayHeight;
+    // The picture on screen: the preview in progress (mPreviewing), the kept preview the estimate
+    // has not beaten yet, or the estimate.
     const scene::RenderSettings& s = mPicture.renderer->settings();
+    const bool kept = !mPreviewing && mShown == scene::Shown::Preview && mPreviewAccum.valid();
+    const uint64_t source = kept ? mPreviewAccum.address() : mPicture.renderer->accumulationAddress();
+    const int sourceWidth = kept ? mPreviewImage.width : s.width, sourceHeight = kept ? mPreviewImage.height : s.height;
     const bool ok = mSwapchain->frame([&](VkCommandBuffer cmd, VkImage image, VkFramebuffer framebuffer) {
         // Until the first full-resolution sample is complete the last picture stays on screen.
         if (mDisplayFresh && drawable)
             mDisplayPass->record(
-                cmd, mPicture.renderer->accumulationAddress(), s.width, s.height, mDisplay,
+                cmd, source, sourceWidth, sourceHeight, mDisplay,
                 {mDisplayWidth, mDisplayHeight, picture.x, picture.y, picture.width, picture.height, kLetterboxColor});
         // display pass (compute) -> copy into the swapchain image -> the UI's render pass.
         const gpu::ImageUse copyDst{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,

@@ -20,10 +20,12 @@
 #include <vector>
 
 #include "core/font.h"
+#include "core/image_io.h"
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "picture/picture.h"
 #include "render/display_pass.h"
+#include "scene/preview_hold.h"
 #include "session/orbit_camera.h"
 #include "session/session.h"
 #include "viewer/imgui_layer.h"
@@ -120,6 +122,14 @@ private:
     void loadSessionFile(const fs::path& file);
     void copyCommand();
     void finishSample();
+    // The still picture's preview completed (kFirstFrameSpp samples at mPreviewScale): its noise
+    // measured, kept on the device for the display and on the host for screenshots.
+    void keepPreview();
+    // The estimate's noise measured where mHold asks for it; mShown updated.
+    void updateShown();
+    // Traces the current picture's preview to completion now (a screenshot of what the screen will
+    // show right after an edit), unless it has one.
+    void finishPreview();
     void writeStats() const;
     // The live state for programs that drive the window (--state-file, docs/viewer.md): after
     // every frame and when a rebuild starts beside the event loop.
@@ -165,6 +175,21 @@ private:
     int mPreviewScale = 1;                           // the renderer's current size is full / scale
     std::map<std::string, uint64_t> mPreviewFrames;  // preview frames traced, by mode (--stats)
     bool mDisplayFresh = false;                      // the display buffer holds an image worth showing
+    // Never a worse picture than the one it replaces (scene/preview_hold.h): the still picture's
+    // preview stays on screen until the estimate is as clean. mPreviewAccum holds the preview's
+    // accumulation (AccumPixelGpu, mPreviewImage's size) for the display, mPreviewImage its mean
+    // (linear, at the preview's size) for screenshots.
+    scene::PreviewHold mHold;
+    scene::Shown mShown = scene::Shown::Nothing;  // what the last frame put on screen
+    gpu::Buffer mPreviewAccum;
+    Image mPreviewImage;
+    struct EstimateShown {
+        uint64_t frame;
+        uint32_t spp;
+        double noise, threshold;  // the estimate's last measured noise, and what it had to reach
+        bool atLimit;             // shown because it reached the session's spp
+    };
+    std::optional<EstimateShown> mEstimateShown;     // when the last kept preview gave way (--stats)
     std::optional<Clock::time_point> mChangedAt;     // since the last change, until the first full sample
     double mTraceSeconds = 0;                        // wall seconds spent in trace() in all
     uint64_t mValidationBefore = 0;

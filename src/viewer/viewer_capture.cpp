@@ -6,10 +6,22 @@
 #include "core/strings.h"
 #include "gpu/buffer.h"
 #include "gpu/context.h"
+#include "render/renderer.h"
+#include "scene/render_output.h"
 #include "session/legend_image.h"
 #include "viewer/viewer_app_impl.h"
 
 namespace amrvk::viewer {
+
+namespace {
+
+std::string g3(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.3g", v);
+    return text;
+}
+
+}  // namespace
 
 // The presented image (UI included) into a host buffer: present layout -> copy -> present layout.
 void ViewerApp::recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D e) {
@@ -43,19 +55,37 @@ void ViewerApp::saveCapture(VkExtent2D e) {
 }
 
 void ViewerApp::screenshot(const fs::path& file) {
-    finishSample();
+    // What the screen shows: the preview until the estimate is as clean (scene/preview_hold.h),
+    // then the estimate with at least one complete sample. Right after an edit that is the new
+    // picture's preview, made now.
+    finishPreview();
+    updateShown();
+    Image image;
+    std::string which;
+    const auto noise = [](std::optional<double> n) { return n ? g3(*n) : std::string("not measured"); };
+    if (mShown == scene::Shown::Preview) {
+        image = scaledBilinear(mPreviewImage, mState.settings.width, mState.settings.height);
+        which = "the ray-marched preview (" + std::to_string(mPreviewImage.width) + "x" +
+                std::to_string(mPreviewImage.height) + ", noise " + noise(mHold.previewNoise()) +
+                "; the estimate, at " + std::to_string(mPreviewing ? 0u : mPicture.renderer->accumulatedSpp()) +
+                " spp with noise " + noise(mHold.estimateNoise()) + ", has not reached " + g3(mHold.threshold()) + ")";
+    } else {
+        finishSample();
+        const scene::RenderOutput out = mPicture.renderer->output();
+        image = out.mean;
+        which = "the path-traced estimate (" + std::to_string(out.spp) + " spp" +
+                (out.spp >= 2 ? ", noise " + g3(scene::meanRelativeError(out)) : std::string()) + ")";
+    }
     if (mState.legend.show && toLower(file.extension().string()) == ".png") {
         if (!mLegendFont || mLegendFontFile != mState.legend.font) {
             mLegendFont = session::openLegendFont(mState.legend);
             mLegendFontFile = mState.legend.font;
         }
         const session::LegendContent legend = session::legendContent(mState, mVolume->field().units);
-        writeImage(file,
-                   session::drawLegend(mPicture.renderer->output().mean, legend, mState.legend.place, *mLegendFont));
-    } else {
-        writeImage(file, mPicture.renderer->output().mean);
+        image = session::drawLegend(image, legend, mState.legend.place, *mLegendFont);
     }
-    mPanel.message = "saved " + file.string() + " (" + std::to_string(mPicture.renderer->accumulatedSpp()) + " spp)";
+    writeImage(file, image);
+    mPanel.message = "saved " + file.string() + ": " + which;
     std::fprintf(stderr, "amrvk view: %s\n", oneLineMessage(mPanel.message).c_str());
 }
 

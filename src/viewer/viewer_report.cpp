@@ -15,6 +15,8 @@ namespace amrvk::viewer {
 
 namespace {
 
+nlohmann::ordered_json optionalJson(std::optional<double> v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
+
 nlohmann::ordered_json rectJson(const session::PixelRect& r) {
     return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
 }
@@ -55,6 +57,10 @@ void ViewerApp::updateStatistics(double frameSeconds) {
     st.rowsDone = mPicture.renderer->rowsDone();
     st.height = uint32_t(mPicture.renderer->settings().height);
     st.previewScale = mPreviewScale;
+    st.shown = mShown;
+    st.previewNoise = mHold.previewNoise().value_or(-1);
+    st.estimateNoise = mHold.estimateNoise().value_or(-1);
+    st.noiseToReach = mHold.threshold();
     st.deviceBytes = mCtx->memory().currentBytes();
 }
 
@@ -74,6 +80,18 @@ void ViewerApp::writeStats() const {
     j["timeToFirstFullSample"] = summary(mTimings.toFirstFullSample);
     j["previewFrames"] = mPreviewFrames;  // by mode: dvr (the preview is always ray-marched)
     j["spp"] = mPicture.renderer->accumulatedSpp();
+    j["shown"] = scene::shownName(mShown);  // on screen at exit: the preview or the estimate
+    j["previewNoise"] = optionalJson(mHold.previewNoise());
+    j["estimateNoise"] = optionalJson(mHold.estimateNoise());
+    // The last time a kept preview gave way: at which frame and spp, the estimate's noise then and
+    // the noise it had to reach, or that it reached the session's spp (atLimit).
+    j["estimateShown"] = nullptr;
+    if (mEstimateShown)
+        j["estimateShown"] = {{"frame", mEstimateShown->frame},
+                              {"spp", mEstimateShown->spp},
+                              {"noise", mEstimateShown->noise},
+                              {"threshold", mEstimateShown->threshold},
+                              {"atLimit", mEstimateShown->atLimit}};
     j["resets"] = nlohmann::ordered_json::array();
     for (const Reset& r : mResets)
         j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
@@ -108,6 +126,12 @@ void ViewerApp::writeState() const {
     j["building"] = mBuilding;
     j["spp"] = mPicture.renderer ? mPicture.renderer->accumulatedSpp() : 0u;  // complete full-resolution samples
     j["previewScale"] = mPreviewScale;                                        // > 1: the last frame showed a preview
+    // What is on screen (scene/preview_hold.h): "preview" until the estimate is as clean, then
+    // "estimate"; the noises compared (mean relative standard error), null until measured.
+    j["shown"] = scene::shownName(mShown);
+    j["previewNoise"] = optionalJson(mHold.previewNoise());
+    j["estimateNoise"] = optionalJson(mHold.estimateNoise());
+    j["estimateNoiseSpp"] = mHold.estimateSpp();
     j["image"] = {{"width", mState.settings.width}, {"height", mState.settings.height}};  // pixels
     j["imageFollowsPicture"] = mPanel.imageFollowsWindow;
     const scene::Camera& c = mState.settings.camera;  // world space

@@ -231,3 +231,24 @@ TEST(ImageIo, MalformedFilesAreRejected) {
     std::filesystem::resize_file(dir / "cut.exr", 40);  // inside the header
     expectError([&] { readExr(dir / "cut.exr"); }, {"cut.exr", "bad OpenEXR header"});
 }
+
+TEST(ImageIo, ScaledBilinearKeepsRampsAndConstants) {
+    // A ramp linear in x sampled at pixel centres (value = centre's x) scaled 4x: every inner
+    // output pixel is the ramp at its own centre in source pixels; the edges clamp.
+    Image ramp(4, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) ramp.at(x, y) = glm::vec4(float(x), 1.0f, 2.0f, 1.0f);
+    const Image big = scaledBilinear(ramp, 16, 8);
+    ASSERT_EQ(big.width, 16);
+    ASSERT_EQ(big.height, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const double s = (x + 0.5) / 4.0 - 0.5;  // the output centre in source pixel coordinates
+            EXPECT_NEAR(big.at(x, y).r, std::clamp(s, 0.0, 3.0), 1e-6) << x << "," << y;
+            EXPECT_FLOAT_EQ(big.at(x, y).g, 1.0f);
+            EXPECT_FLOAT_EQ(big.at(x, y).b, 2.0f);
+        }
+    // The same size: the image itself.
+    const Image same = scaledBilinear(ramp, 4, 2);
+    for (size_t i = 0; i < same.pixels.size(); ++i) EXPECT_EQ(same.pixels[i], ramp.pixels[i]);
+}

@@ -29,6 +29,7 @@
 #include "image_compare.h"
 #include "picture/picture.h"
 #include "render/renderer.h"
+#include "scene/preview_hold.h"
 #include "scene/tf_presets.h"
 #include "session/session.h"
 #include "test_data.h"
@@ -155,6 +156,58 @@ TEST_F(ViewerGpu, HeadlessScreenshotEqualsRenderOfTheSameSession) {
                        dir, "view");
     ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
     expectSameAsRender(dir, "viewer-headless");
+}
+
+// Never a worse picture than the one it replaces (scene/preview_hold.h): in a scattering haze the
+// ray-marched preview stays on screen (a screenshot saves it, and says so) until the estimate's
+// measured noise is as low, then the estimate shows. The preview is told from the estimate by its
+// picture: dvr's (no scattered light) where the estimate converges to ms's, 15-50x apart here.
+TEST_F(ViewerGpu, ThePreviewStaysUntilTheEstimateIsAsClean) {
+    const fs::path dir = test::scratchDir() / "viewer-preview-hold";
+    fs::create_directories(dir);
+    test::writeAll(dir / "script.txt", "1 screenshot " + (dir / "early.pfm").string() + "\n");
+    const std::string picture =
+        " --size 48x32 --scale linear --tf ramp --tf-range 0 1.2 --grid 16 --mode ms"
+        " --light-dir 1 -1 2 3 3 3 --background 0 0 0 --backend sw";
+    const int rc =
+        run(amrvkBinary() + " view " + sample() + picture + " --headless --frames 150 --script " +
+                (dir / "script.txt").string() + " --stats " + (dir / "stats.json").string() + " --screenshot " +
+                (dir / "final.pfm").string() + " --save-session " + (dir / "final.json").string() + " --validation",
+            dir, "view");
+    const std::string err = test::readAll(dir / "view.err");
+    ASSERT_EQ(rc, 0) << err;
+    EXPECT_NE(err.find("early.pfm: the ray-marched preview"), std::string::npos) << err;
+    EXPECT_NE(err.find("final.pfm: the path-traced estimate"), std::string::npos) << err;
+    const nlohmann::json stats = readJson(dir / "stats.json");
+    ASSERT_EQ(stats["shown"], "estimate") << stats.dump();
+    const nlohmann::json& shown = stats["estimateShown"];
+    ASSERT_TRUE(shown.is_object()) << stats.dump();
+    EXPECT_FALSE(shown["atLimit"].get<bool>());
+    // It gave way only once measured as clean as the preview (and the preview was grainier than
+    // the no-grain level, so the wait was the preview's).
+    const double previewNoise = stats["previewNoise"].get<double>();
+    EXPECT_GT(previewNoise, scene::kNoVisibleNoise);
+    EXPECT_LE(shown["noise"].get<double>(), previewNoise);
+    EXPECT_GT(shown["spp"].get<uint32_t>(), 16u) << "an ms estimate at a few spp is far grainier than the preview";
+
+    session::Session s = session::loadSession(dir / "final.json");
+    s.spp = 1024;
+    const scene::RenderOutput ms = renderSession(ctx(), s, 1000, 1.0);
+    s.settings.mode = scene::Mode::Dvr;
+    s.spp = 64;
+    const scene::RenderOutput dvr = renderSession(ctx(), s, 1000, 1.0);
+    auto meanAbsDiff = [](const Image& a, const Image& b) {
+        double sum = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) sum += std::abs(double(a.pixels[i][c]) - double(b.pixels[i][c]));
+        return sum / double(3 * a.pixels.size());
+    };
+    const Image early = readPfm(dir / "early.pfm"), final = readPfm(dir / "final.pfm");
+    ASSERT_EQ(early.width, 48);
+    ASSERT_EQ(early.height, 32);
+    EXPECT_LT(meanAbsDiff(early, dvr.mean), 0.25 * meanAbsDiff(early, ms.mean))
+        << "the early screenshot is the preview";
+    EXPECT_LT(meanAbsDiff(final, ms.mean), 0.25 * meanAbsDiff(final, dvr.mean)) << "the final one is the estimate";
 }
 
 TEST_F(ViewerGpu, WindowUnderXvfbEqualsRenderOfTheSameSession) {
