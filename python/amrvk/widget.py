@@ -2,10 +2,13 @@
 image and orbits it with sliders: ``amrvk.Widget(renderer, spp=256)`` as a cell's last expression.
 
 Where the renderer holds no sample it first shows the renderer's first frame (the picture
-ray-marched; Renderer.first_frame). A background thread adds `batch` samples per pixel at a time
-until the image has `spp`, showing the image (the PNG that ``renderer.png()`` makes, legend
-included where the renderer has one) and the samples and mean standard error so far after each
-batch. Moving a slider sets the renderer's
+ray-marched; Renderer.first_frame), and again after each slider move. A background thread adds
+`batch` samples per pixel at a time until the image has `spp`; the first frame stays on screen until
+the path-traced image's noise (mean relative standard error) is as low as the first frame's, or
+below 0.05 where the first frame's is lower, or the image has `spp` (never a grainier picture
+than the one it replaces); from then on the image (the PNG that ``renderer.png()`` makes, legend
+included where the renderer has one) and the samples and mean standard error so far are shown
+after each batch. Moving a slider sets the renderer's
 camera from the camera it had when the widget was made: turned by `azimuth` degrees about the
 target around the up vector, then by `elevation` degrees over the view's right vector, then
 `zoom` times closer (Camera.orbit, Camera.zoom); the estimate restarts and refines again. Only
@@ -57,11 +60,12 @@ class Widget:
             slider.observe(self._moved, names="value")
         self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
         self.first_frame = None  # the PNG shown before any sample: the renderer's dvr first frame
+        self.shown = None  # what the image is: "first frame" or "estimate"
         self._shown_spp = 0  # the samples of the image shown
+        self._hold = renderer.spp == 0  # the first frame stays until the estimate is as clean
+        self._restarted = False  # a slider restarted the estimate: a first frame of the new view next
         if renderer.spp == 0:  # shown at once, while the first batch runs
-            self.first_frame = self.image.value = renderer.png()
-            f = renderer.first_frame
-            self.status.value = f"first frame (dvr, {f['spp']} spp, dt {f['dt']:g}, noise {f['noise']:.3g}); path tracing"
+            self._show_first_frame()
         else:  # the samples it has, shown at once (issue 52, point 12: with spp already reached it stayed blank)
             self._show()
         self._wake = threading.Event()
@@ -82,7 +86,18 @@ class Widget:
     def _moved(self, change):
         self._idle.clear()
         self.renderer.camera = self.camera()  # restarts the estimate
+        self._restarted = True
         self._wake.set()
+
+    def _show_first_frame(self):
+        png = self.renderer.png()  # without a sample: the first frame, made now
+        f = self.renderer.first_frame
+        if f is None:  # another call added samples meanwhile: those are shown next
+            return
+        self.first_frame = self.image.value = png
+        self.shown = "first frame"
+        self._hold = True
+        self.status.value = f"first frame (dvr, {f['spp']} spp, dt {f['dt']:g}, noise {f['noise']:.3g}); path tracing"
 
     def _refine(self):
         r = self.renderer
@@ -90,7 +105,13 @@ class Widget:
             while not self._stop and not r.closed:
                 if r.spp < self.spp:
                     self._idle.clear()
-                    r.accumulate(min(self.batch, self.spp - r.spp))
+                    if self._restarted:
+                        self._restarted = False
+                        if r.spp == 0:
+                            self._show_first_frame()
+                    left = self.spp - r.spp  # another call may have added samples meanwhile
+                    if left > 0:
+                        r.accumulate(min(self.batch, left))
                     self._show()
                 else:
                     if r.spp != self._shown_spp:  # another call (a long render) changed the image
@@ -111,17 +132,24 @@ class Widget:
         if r.closed:
             return
         try:
-            spp, png, error = r._snapshot()  # (0, None, None) without a sample, no first frame made
+            s = r._shown(self.spp, self._hold)  # the first frame until the estimate is as clean
         except ValueError:
             if r.closed:
                 return
             raise
-        if spp == 0:  # no sample yet, or a slider restarted the estimate meanwhile
+        if s["spp"] == 0:  # no sample yet, or a slider restarted the estimate meanwhile
             return
-        self._shown_spp = spp
-        self.image.value = png
-        noise = f", mean standard error {error:.4g}" if error is not None else ""
-        self.status.value = f"{spp}/{self.spp} spp{noise}"
+        self._shown_spp = s["spp"]
+        if s["shown"] == "first frame":
+            noise = "not measured" if s["noise"] is None else f"noise {s['noise']:.3g}"
+            self.status.value = (f"first frame (dvr, noise {s['first_frame_noise']:.3g}) shown until the estimate is "
+                                 f"as clean: {s['spp']}/{self.spp} spp, {noise}")
+            return
+        self._hold = False  # shown once, the estimate stays until a slider restarts it
+        self.shown = "estimate"
+        self.image.value = s["png"]
+        noise = f", mean standard error {s['error']:.4g}" if s["error"] is not None else ""
+        self.status.value = f"{s['spp']}/{self.spp} spp{noise}"
 
     def wait(self, timeout=None):
         """Blocks until the image has `spp` samples per pixel and is shown (True), or `timeout` seconds

@@ -28,6 +28,8 @@
 #include "python/renderer_keywords.h"
 #include "scene/camera.h"
 #include "scene/limits.h"
+#include "scene/preview_hold.h"
+#include "scene/render_output.h"
 #include "session/legend_image.h"
 #include "session/picture_description.h"
 #include "session/session.h"
@@ -285,6 +287,38 @@ public:
         const std::vector<uint8_t> bytes = pngBytes(pictureOf(out, legendWanted(legend)));
         return py::make_tuple(out.spp, py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
                               out.spp >= 2 ? py::object(py::float_(meanStandardError(out))) : py::object(py::none()));
+    }
+    // What a front end that keeps the first frame on screen shows (scene/preview_hold.h: the
+    // widget): the estimate once its noise is as low as this picture's first frame's (or below the
+    // no-grain level, or at `limit` spp), else the first frame. hold=False: the estimate whenever it
+    // has a sample. A dict: spp, png (None with nothing to show), error (mean standard error),
+    // noise (mean relative standard error, None below 2 spp), shown ("estimate", "first frame" or
+    // None) and first_frame_noise (None without a first frame of this picture).
+    py::dict shown(uint32_t limit, bool hold, const py::object& legend) const {
+        const scene::RenderOutput out = output();
+        scene::PreviewHold rule;
+        py::dict d;
+        d["first_frame_noise"] = py::none();
+        if (hold && firstFrameCurrent()) {
+            rule.previewReady(mFirstFrame->frame.noise);
+            d["first_frame_noise"] = mFirstFrame->frame.noise;
+        }
+        const double noise = out.spp >= 2 ? scene::meanRelativeError(out) : -1;
+        if (noise >= 0 && rule.hasPreview()) rule.estimateMeasured(out.spp, noise);
+        const scene::Shown shown = rule.shown(out.spp, limit);
+        d["spp"] = out.spp;
+        d["noise"] = noise >= 0 ? py::object(py::float_(noise)) : py::object(py::none());
+        d["error"] = out.spp >= 2 ? py::object(py::float_(meanStandardError(out))) : py::object(py::none());
+        d["shown"] = py::none();
+        d["png"] = py::none();
+        if (shown == scene::Shown::Nothing) return d;
+        d["shown"] = shown == scene::Shown::Preview ? "first frame" : "estimate";
+        // pictureOf shows the first frame for an output without samples.
+        const Image image =
+            pictureOf(shown == scene::Shown::Preview ? scene::RenderOutput{} : out, legendWanted(legend));
+        const std::vector<uint8_t> bytes = pngBytes(image);
+        d["png"] = py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        return d;
     }
     py::bytes png(const py::object& legend) const {
         const std::vector<uint8_t> bytes = pngBytes(picture(legendWanted(legend)));
@@ -595,6 +629,9 @@ void bindRendererOutput(py::class_<PyRenderer, std::shared_ptr<PyRenderer>>& c) 
         .def("_snapshot", &PyRenderer::snapshot, py::arg("legend") = py::none(),
              "(spp, png bytes, mean standard error or None) of one state of the image (the widget's status); "
              "(0, None, None) without a sample")
+        .def("_shown", &PyRenderer::shown, py::arg("limit"), py::arg("hold") = true, py::arg("legend") = py::none(),
+             "what the widget shows: the first frame until the estimate is as clean (or at limit spp), then the "
+             "estimate; a dict: spp, png, error, noise, shown, first_frame_noise")
         .def("png", &PyRenderer::png, py::arg("legend") = py::none(),
              "the image so far as PNG bytes (what save writes to a .png)")
         .def("close", &PyRenderer::close, "free the device memory; every later call raises ValueError")

@@ -170,6 +170,40 @@ def test_the_widget_refines_and_orbits(amrvk):
         amrvk.Widget(r, spp=0)
 
 
+def test_the_first_frame_stays_until_the_estimate_is_as_clean(amrvk):
+    # Issue 53, point 7: the widget replaced the clean first frame with the grainy estimate after its
+    # first batch. Now the first frame stays until the estimate's noise is as low as the first
+    # frame's (or 0.05), or the widget's spp is reached; a scattering haze is far grainier at 4 spp.
+    pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
+    r = amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), mode="ms", **SMALL)
+    first = r.png()
+    first_noise = r.first_frame["noise"]
+    at_once = r._shown(64)
+    assert at_once["shown"] == "first frame" and at_once["png"] == first and at_once["spp"] == 0
+    r.accumulate(4)
+    held = r._shown(64)
+    assert held["shown"] == "first frame" and held["png"] == first and held["spp"] == 4
+    assert held["first_frame_noise"] == first_noise and held["noise"] > max(first_noise, 0.05)
+    # The rule's other ends: the spp asked for, and no hold, show the estimate.
+    assert r._shown(4)["shown"] == "estimate" and r._shown(4)["png"] == r.png() != first
+    assert r._shown(64, hold=False)["shown"] == "estimate"
+    # As the estimate converges it takes over exactly when its noise reaches the threshold.
+    while r.spp < 4096:
+        s = r._shown(1 << 20)
+        assert (s["shown"] == "estimate") == (s["noise"] <= max(first_noise, 0.05)), s
+        if s["shown"] == "estimate":
+            break
+        r.accumulate(r.spp)
+    assert s["shown"] == "estimate", f"the estimate never got as clean as the first frame ({s['noise']} at {r.spp})"
+    # The widget: at its spp it shows the estimate, and says so.
+    w = amrvk.Widget(amrvk.Renderer(amrvk.Volume(str(SAMPLE), scale="linear"), mode="ms", **SMALL), spp=8, batch=4)
+    try:
+        assert w.shown == "first frame"
+        assert w.wait(120) and w.shown == "estimate" and w.status.value.startswith("8/8 spp")
+    finally:
+        w.close()
+
+
 def test_a_long_call_yields_to_the_widget_and_the_count_is_the_images(amrvk):
     # Issue 52, point 15: r.render(spp=4096) held the renderer for the whole call (the widget and
     # its sliders froze), and the status counted samples in one call and showed another's image.
