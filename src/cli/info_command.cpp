@@ -11,6 +11,7 @@
 #include "accel/bricks_file.h"
 #include "accel/majorant_bounds.h"
 #include "amr/readers.h"
+#include "amr/step_time.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "core/error.h"
@@ -282,6 +283,10 @@ void printInfoJson(const InfoData& d) {
     j["buildSeconds"] = seconds;
     j["peakResidentBytes"] = peakResidentBytes();
     j["attributes"] = attributes;
+    // When the data set is (amr/step_time.h): {"redshift": z} or {"time": t}, null without one.
+    j["when"] = nullptr;
+    if (const std::optional<amr::StepTime> t = amr::stepTimeOf(model.attributes))
+        j["when"] = {{t->kind == amr::StepTime::Kind::Redshift ? "redshift" : "time", t->value}};
     std::printf("%s\n", j.dump(2).c_str());
 }
 
@@ -309,6 +314,9 @@ void printInfoText(const InfoData& d) {
     std::printf("format        %s\n", model.format.c_str());
     for (const auto& [k, val] : model.attributes)
         std::printf("  %-11s %s\n", oneLineMessage(k).c_str(), oneLineMessage(val).c_str());
+    if (const std::optional<amr::StepTime> t = amr::stepTimeOf(model.attributes))
+        std::printf("when          %s%s\n", amr::describe(*t).c_str(),
+                    t->kind == amr::StepTime::Kind::Time ? " (code units)" : "");
     std::printf("fields        %s\n", oneLineMessage(join(model.availableFields, ", ")).c_str());
     std::printf("voxel bounds  [%lld %lld %lld] - [%lld %lld %lld)  (finest-level units)\n",
                 (long long)summary.bounds.lower.x, (long long)summary.bounds.lower.y, (long long)summary.bounds.lower.z,
