@@ -99,38 +99,6 @@ std::string recipeOf(const session::PictureDescription& base, const std::vector<
     return j.dump();
 }
 
-// The union of every output's field range: each read alone (one in memory at a time) with the
-// series' read options; `field` (empty: each output's default, then the first's for the rest) is
-// set to the field read.
-std::pair<float, float> unionRange(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
-                                   std::string& field, amr::Percentiles& pooled, amr::VolumeHistogram& pooledVolumes) {
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    std::vector<amr::Percentiles> parts;
-    std::vector<amr::VolumeHistogram> volumes;
-    ProgressBar bar("series range", "outputs");
-    for (size_t i = 0; i < inputs.size(); ++i) {
-        amr::ReadOptions ro = read;
-        if (!field.empty()) ro.fields = {field};
-        const amr::Model model = amr::readModel(inputs[i], ro);
-        const amr::Field& f = field.empty() ? model.defaultField() : model.field(field);
-        if (field.empty()) field = f.name;
-        const amr::FieldStats st = amr::computeFieldStats(model, f);
-        lo = std::min(lo, st.minValue);
-        hi = std::max(hi, st.maxValue);
-        parts.push_back(amr::percentilesOf(f.values));
-        if (parts.back().count > 0) {  // as scene::makeVolume makes it
-            const amr::ModelSummary summary = amr::summarize(model);
-            volumes.push_back(amr::volumeHistogramOf(model.cells, f.values, st.minValue, st.maxValue, summary.minLevel,
-                                                     summary.bounds.volume()));
-        }
-        bar.update(i + 1, inputs.size(), inputs[i]);
-    }
-    bar.finish();
-    pooled = amr::pooledPercentiles(parts);
-    pooledVolumes = amr::pooledVolumeHistograms(volumes);
-    return {lo, hi};
-}
-
 // One series, carried from phase to phase of renderSeries.
 struct Series {
     // The frames (planSeriesFrames).
@@ -318,11 +286,10 @@ void resolveRange(Series& s) {
     s.rangeOfFirst = s.rangeFrom == RangeFrom::First || (s.rangeFrom == RangeFrom::Union && s.inputs.size() == 1);
     if (!s.resolved && s.rangeFrom == RangeFrom::Union && !s.rangeOfFirst) {
         std::string field = s.base.session.field;
-        amr::Percentiles pooled;
-        amr::VolumeHistogram volumes;
-        s.manifest.tfRange = unionRange(s.inputs, s.base.session.read, field, pooled, volumes);
-        s.manifest.tfPercentiles = pooled;
-        if (!volumes.empty()) s.manifest.tfHistogram = volumes;
+        session::SeriesStatistics pooled = session::seriesStatistics(s.inputs, s.base.session.read, field);
+        s.manifest.tfRange = pooled.range;
+        s.manifest.tfPercentiles = pooled.percentiles;
+        if (!pooled.volumes.empty()) s.manifest.tfHistogram = pooled.volumes;
         s.base.session.field = field;
     }
     if (!s.resolved && s.rangeFrom == RangeFrom::Given) s.manifest.tfRange = s.base.tfRange;

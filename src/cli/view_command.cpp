@@ -9,7 +9,9 @@
 #include "core/file_io.h"
 #include "session/legend_image.h"
 #include "session/picture_description.h"
+#include "session/series.h"
 #include "viewer/logic/script.h"
+#include "viewer/logic/series_player.h"
 #include "viewer/viewer_app.h"
 
 namespace amrvk::cli {
@@ -30,12 +32,32 @@ const char* kViewHelp =
     "amrvk render --session. --headless runs with no window (no display needed), for scripts and "
     "tests.";
 
+// One TF for the whole series, as amrvk render fixes a series' (--series-range): one scale (the
+// first output decides an auto scale for all), and a fitted preset laid over every output's pooled
+// distribution (union) or the first output's (first, as it is read); a given --tf-range or a
+// session's TF as they are.
+void fixSeriesTf(const std::vector<std::string>& series, const std::string& range, session::PictureDescription& d) {
+    if (d.session.read.scale == amr::FieldScale::Auto) {
+        amr::ReadOptions ro = d.session.read;
+        if (!d.session.field.empty()) ro.fields = {d.session.field};
+        d.session.read.scale = amr::resolvedScale(series.front(), ro);
+    }
+    if (d.tfRange || !d.tfSource || session::parseSeriesRange(range) == session::SeriesRange::First) return;
+    std::string field = d.session.field;
+    session::SeriesStatistics pooled = session::seriesStatistics(series, d.session.read, field);
+    d.session.field = field;
+    d.dataPercentiles = pooled.percentiles;
+    if (!pooled.volumes.empty()) d.dataHistogram = pooled.volumes;
+}
+
 }  // namespace
 
 int runView(const std::vector<std::string>& argv) {
     CLI::App app(kViewHelp, "amrvk view");
     setUpCommand(app);
-    std::string input;
+    std::vector<std::string> inputArgs;  // one data set, or a series: several, or a glob pattern
+    std::string seriesRange = "union";
+    double seriesAheadMib = 1024;
     ReadArgs read;
     PictureArgs pic;
     DeviceArgs dev;
@@ -44,7 +66,10 @@ int runView(const std::vector<std::string>& argv) {
     int64_t frames = 0;
     double budgetMs = 50;
     std::string window;
-    app.add_option("input", input, "the data set (as amrvk render; optional with --session)")->type_name("INPUT");
+    app.add_option("input", inputArgs,
+                   "the data set (as amrvk render; optional with --session), or a time series: several data sets or "
+                   "a quoted glob pattern ('out_*.cells'), in natural order, stepped with a time slider")
+        ->type_name("INPUT...");
     addReadOptions(app, read, false);
     addPictureOptions(app, pic);
     app.get_option("--spp")->description("stop accumulating at N samples per pixel (default: run on)")->default_str("");
@@ -73,7 +98,29 @@ int runView(const std::vector<std::string>& argv) {
         ->capture_default_str()
         ->type_name("MS");
     app.add_option("--window", window, "window size (default: --size)")->type_name("WxH");
+    app.add_option("--series-range", seriesRange,
+                   "a time series: one TF over the first output's field range, or the union of every output's (a "
+                   "reading pass first), as amrvk render --series-range")
+        ->check(CLI::IsMember({"first", "union"}))
+        ->capture_default_str()
+        ->type_name("first|union");
+    app.add_option("--series-fps", vo.seriesFps, "a time series: steps per second while playing (space)")
+        ->check(interval(0, viewer::kSeriesMaxFps, true))
+        ->capture_default_str()
+        ->type_name("F");
+    app.add_option("--series-ahead-mib", seriesAheadMib,
+                   "a time series: host memory for the steps next to the shown one, read ahead beside the event loop "
+                   "(0: none)")
+        ->check(interval(0, 1 << 24))
+        ->capture_default_str()
+        ->type_name("MIB");
     if (!parseCommandLine(app, argv)) return 0;
+    const std::vector<std::string> series = inputArgs.empty() ? inputArgs : session::expandInputs(inputArgs);
+    const std::string input = series.empty() ? std::string() : series.front();
+    AMRVK_CHECK(series.size() > 1 ||
+                    (!given(app, "--series-range") && !given(app, "--series-fps") && !given(app, "--series-ahead-mib")),
+                "--series-range, --series-fps and --series-ahead-mib are for a time series (several inputs or a "
+                "pattern)");
 
     AMRVK_CHECK(!vo.headless || frames > 0 || !script.empty(),
                 "--headless needs --frames N or a --script that quits (it has no window to close)");
@@ -86,6 +133,7 @@ int runView(const std::vector<std::string>& argv) {
     const std::vector<NamedPath> outputs = {
         {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}, {"--state-file", state}};
     std::vector<NamedPath> inputs = pictureInputs(app, input, pic, {{"--script", script}});
+    for (size_t k = 1; k < series.size(); ++k) inputs.push_back({"input", series[k]});
     // Saving the session back where it came from is the ordinary Save (it was read whole before the
     // window opens and is written atomically): --save-session may name the --session file, which
     // every other output is still checked against.
@@ -102,6 +150,9 @@ int runView(const std::vector<std::string>& argv) {
     };
     checkAgainst(inputs);
     vo.start = describePicture(app, input, read, pic);
+    if (series.size() > 1) fixSeriesTf(series, seriesRange, vo.start);
+    vo.series = series.size() > 1 ? series : std::vector<std::string>{};
+    vo.seriesAheadBytes = uint64_t(seriesAheadMib * double(1 << 20));
     // A PNG screenshot with the legend needs its font: checked before anything is read.
     if (vo.start.session.legend.show && std::filesystem::path(screenshot).extension() == ".png")
         session::openLegendFont(vo.start.session.legend);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <system_error>
 
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/json_text.h"
+#include "core/progress.h"
 
 namespace fs = std::filesystem;
 
@@ -90,6 +92,33 @@ SeriesRange parseSeriesRange(std::string_view name) {
     if (name == "first") return SeriesRange::First;
     if (name == "union") return SeriesRange::Union;
     throw Error(strCat("--series-range: '", name, "' is not first or union"));
+}
+
+SeriesStatistics seriesStatistics(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
+                                  std::string& field) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    std::vector<amr::Percentiles> parts;
+    std::vector<amr::VolumeHistogram> volumes;
+    ProgressBar bar("series range", "outputs");
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        amr::ReadOptions ro = read;
+        if (!field.empty()) ro.fields = {field};
+        const amr::Model model = amr::readModel(inputs[i], ro);
+        const amr::Field& f = field.empty() ? model.defaultField() : model.field(field);
+        if (field.empty()) field = f.name;
+        const amr::FieldStats st = amr::computeFieldStats(model, f);
+        lo = std::min(lo, st.minValue);
+        hi = std::max(hi, st.maxValue);
+        parts.push_back(amr::percentilesOf(f.values));
+        if (parts.back().count > 0) {  // as scene::makeVolume makes it
+            const amr::ModelSummary summary = amr::summarize(model);
+            volumes.push_back(amr::volumeHistogramOf(model.cells, f.values, st.minValue, st.maxValue, summary.minLevel,
+                                                     summary.bounds.volume()));
+        }
+        bar.update(i + 1, inputs.size(), inputs[i]);
+    }
+    bar.finish();
+    return {{lo, hi}, amr::pooledPercentiles(parts), amr::pooledVolumeHistograms(volumes)};
 }
 
 std::vector<std::string> planFrames(const std::vector<std::string>& inputs, std::optional<uint32_t> frames,

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "amr/readers.h"
 #include "amr/value_percentiles.h"
 #include "amr/volume_histogram.h"
 #include "scene/camera.h"
@@ -38,6 +39,18 @@ bool isInputPattern(const std::string& arg);
 // (amr::pooledVolumeHistograms).
 enum class SeriesRange : uint8_t { First, Union };
 SeriesRange parseSeriesRange(std::string_view name);  // "first" | "union"
+
+// Every output's field statistics pooled, for one TF over a series (--series-range union): the
+// union of their ranges, their pooled percentiles (spiky, foggy) and volume histograms (layers).
+// Each output is read alone (one in memory at a time) with `read`; `field` (empty: each output's
+// default, then the first's for the rest) is set to the field read. Progress on stderr.
+struct SeriesStatistics {
+    std::pair<float, float> range;
+    amr::Percentiles percentiles;
+    amr::VolumeHistogram volumes;  // empty where no output has a positive-volume value
+};
+SeriesStatistics seriesStatistics(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
+                                  std::string& field);
 
 // The input of each frame: one frame per input, or `frames` frames of a single input (a
 // turntable). One-line errors: --frames with several inputs, --orbit over one input without

@@ -417,6 +417,31 @@ UiRect toUi(const session::PixelRect& r) {
     return {float(r.x) / s.x, float(r.y) / s.y, float(r.width) / s.x, float(r.height) / s.y};
 }
 
+namespace {
+
+// A time series: the time slider, play/pause, steps per second, what the step is, read ahead.
+void seriesPanel(PanelState& p, PanelRequests& r) {
+    int step = int(p.seriesStep);
+    if (ImGui::SliderInt("step", &step, 0, int(p.seriesSteps) - 1)) r.seriesStep = size_t(step);
+    noteWidget(p, "seriesStep");
+    if (ImGui::Button(p.seriesPlaying ? "pause (space)" : "play (space)")) r.seriesPlayToggle = true;
+    noteWidget(p, "seriesPlay");
+    ImGui::SameLine();
+    if (ImGui::Button("<")) r.seriesStep = (p.seriesStep + p.seriesSteps - 1) % p.seriesSteps;
+    ImGui::SameLine();
+    if (ImGui::Button(">")) r.seriesStep = (p.seriesStep + 1) % p.seriesSteps;
+    float fps = float(p.seriesFps);
+    if (ImGui::SliderFloat("steps/s", &fps, 0.25f, 30.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) r.seriesFps = fps;
+    wrapped(nullptr, p.seriesLabel);
+    const Statistics& s = *p.stats;
+    std::string ahead;
+    for (size_t k : s.seriesAhead) ahead += (ahead.empty() ? "" : ", ") + std::to_string(k);
+    wrapped(nullptr, strCat("read ahead: ", ahead.empty() ? std::string("none") : ahead, " (", s.seriesAheadBytes >> 20,
+                            " of ", p.seriesAheadBudget >> 20, " MiB); last step built in ", g3(s.stepSeconds), " s"));
+}
+
+}  // namespace
+
 void drawPanels(PanelState& p, PanelRequests& r) {
     // The layout is in framebuffer pixels, ImGui in window coordinates (they differ on HiDPI screens).
     const ImVec2 scale = framebufferScale();
@@ -444,6 +469,7 @@ void drawPanels(PanelState& p, PanelRequests& r) {
         const float labels = ImGui::CalcTextSize("stop at spp (0: never)").x + style.ItemInnerSpacing.x * 2;
         ImGui::PushItemWidth(-labels);
         if (section(p, "statistics", ImGuiTreeNodeFlags_DefaultOpen)) statisticsPanel(*p.stats);
+        if (p.seriesSteps > 1 && section(p, "time series", ImGuiTreeNodeFlags_DefaultOpen)) seriesPanel(p, r);
         if (section(p, "transfer function", ImGuiTreeNodeFlags_DefaultOpen)) transferFunctionPanel(p, r);
         if (section(p, "render")) renderPanel(p);
         if (section(p, "cut-away")) cutAwayPanel(p);

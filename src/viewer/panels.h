@@ -33,6 +33,10 @@ struct Statistics {
     double previewNoise = -1, estimateNoise = -1, noiseToReach = 0;  // -1: not measured
     uint64_t deviceBytes = 0;
     double tfEditSeconds = 0, structureSeconds = 0;  // last TF edit, last structure change (wall)
+    // A time series: the steps read ahead (and their host bytes), the last step's build (wall).
+    std::vector<size_t> seriesAhead;
+    uint64_t seriesAheadBytes = 0;
+    double stepSeconds = 0;
 };
 
 struct PanelRequests {
@@ -44,6 +48,9 @@ struct PanelRequests {
     bool resetView = false;
     bool screenshot = false, saveSession = false, loadSession = false, copyCommand = false;
     bool loadTfFile = false, saveTfFile = false, applyColorMap = false;
+    std::optional<size_t> seriesStep;  // the time slider moved to a step
+    bool seriesPlayToggle = false;
+    std::optional<double> seriesFps;
 };
 
 struct PanelState {
@@ -61,6 +68,13 @@ struct PanelState {
     std::string screenshotPath = "amrvk-view.png";
     std::string sessionPath = "amrvk-session.json";
     std::string tfPath = "amrvk-tf.json";
+    // A time series (none: seriesSteps 0): the step shown, playing, steps per second, and what the
+    // step is ("out_2.cells, t = 0.15") and the read-ahead budget.
+    size_t seriesSteps = 0, seriesStep = 0;
+    bool seriesPlaying = false;
+    double seriesFps = 4;
+    std::string seriesLabel;
+    uint64_t seriesAheadBudget = 0;
     std::string gridText;                          // the macrocell grid as typed, applied on Enter
     int draggingNode = -1;                         // opacity node under a drag, between frames
     session::PixelRect panelRect;                  // where the panel goes (framebuffer pixels; the app's layout)

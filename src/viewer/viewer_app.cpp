@@ -125,6 +125,7 @@ void ViewerApp::reloadData(const session::Session& next, bool refitTf) {
     mPanel.structureError.clear();
     mDisplayFresh = false;
     noteReset("scale");
+    scheduleAhead();  // the steps read ahead were read on the old scale
     std::fprintf(stderr, "amrvk view: %s scale, field range [%g, %g]\n", amr::fieldScaleName(mState.read.scale),
                  double(mVolume->valueLo()), double(mVolume->valueHi()));
 }
@@ -233,6 +234,7 @@ int ViewerApp::run() {
     mStats.device = mCtx->deviceReport().name;
     if (!mOpt.shaderDir.empty()) mWatcher.emplace(std::vector<fs::path>{gpu::shaderSourceRoot(mOpt.shaderDir)});
     load();
+    startSeries();
     mColorMaps.push_back(mState.tf);  // the starting colour map first
     for (const std::string& name : scene::presetNames()) mColorMaps.push_back(scene::builtInChannels(name));
     if (!mOpt.script.empty()) {
@@ -289,6 +291,7 @@ bool ViewerApp::frame() {
     mInteracting = false;
     runScript();
     if (mQuit) return false;  // a quit action, or closed during a rebuild an action started
+    playSeries();
     pollShaders();
     if (mWindow) {
         updateLayout();
@@ -301,6 +304,14 @@ bool ViewerApp::frame() {
         mPanel.worldHi = mVolume->worldMax();
         mPanel.canUndo = mTfHistory.canUndo();
         mPanel.canRedo = mTfHistory.canRedo();
+        if (mPlayer) {
+            mPanel.seriesSteps = mPlayer->steps();
+            mPanel.seriesStep = mPlayer->step();
+            mPanel.seriesPlaying = mPlayer->playing();
+            mPanel.seriesFps = mPlayer->fps();
+            mPanel.seriesLabel = stepLabel();
+            mPanel.seriesAheadBudget = mOpt.seriesAheadBytes;
+        }
         mPanel.colorMapNames.clear();
         for (const scene::TfChannels& c : mColorMaps) mPanel.colorMapNames.push_back(c.name);
         PanelRequests req;
@@ -351,6 +362,12 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
         mPanel.message = "saved " + mPanel.tfPath;
     }
     if (req.resetView) mOrbit.reset(e.settings.camera);
+    if (mPlayer && req.seriesPlayToggle) mPlayer->setPlaying(!mPlayer->playing());
+    if (mPlayer && req.seriesFps) mPlayer->setFps(*req.seriesFps);
+    if (mPlayer && req.seriesStep) {  // another step: this frame's other edits were made on this one's state
+        showStep(*req.seriesStep);
+        return;
+    }
     if (req.gridEntered) e.structure.grid = mPanel.gridText;
     if (mPanel.imageFollowsWindow && !mLayout.area.empty())
         std::tie(e.settings.width, e.settings.height) = std::pair(mLayout.area.width, mLayout.area.height);

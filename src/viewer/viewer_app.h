@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "gpu/context.h"
 #include "scene/volume.h"
@@ -30,6 +31,11 @@ struct ViewerOptions {
     gpu::ContextOptions context;            // with validation, any validation error makes the exit status 1
     double frameBudgetSeconds = 0.05;       // target frame time; path tracing gets what the UI leaves of it
     int windowWidth = 0, windowHeight = 0;  // 0: the session's image size
+    // A time series (several inputs, a glob): every step's input in natural order, start's input
+    // the first (its TF range already fixed for the series: --series-range). Empty: one data set.
+    std::vector<std::string> series;
+    double seriesFps = 4;                           // steps per second while playing
+    uint64_t seriesAheadBytes = uint64_t(1) << 30;  // host memory for the steps read ahead
 };
 
 // Shows `volume` (read with options.start's input, read options and field: session::loadVolume)

@@ -33,6 +33,7 @@
 #include "viewer/logic/frame_budget.h"
 #include "viewer/logic/histogram.h"
 #include "viewer/logic/script.h"
+#include "viewer/logic/series_player.h"
 #include "viewer/logic/tf_editor.h"
 #include "viewer/logic/viewer_layout.h"
 #include "viewer/panels.h"
@@ -61,6 +62,7 @@ struct Timings {
 class ViewerApp {
 public:
     ViewerApp(const ViewerOptions& o, std::shared_ptr<const scene::Volume> volume);
+    ~ViewerApp();  // viewer_series.cpp: stops the read-ahead worker
     int run();
 
 private:
@@ -134,6 +136,34 @@ private:
     // The live state for programs that drive the window (--state-file, docs/viewer.md): after
     // every frame and when a rebuild starts beside the event loop.
     void writeState() const;
+
+    // A time series (viewer_series.cpp): the player, the steps read ahead beside the event loop
+    // (a worker thread reading the nearest steps within mOpt.seriesAheadBytes), and stepping:
+    // another step's data under the same camera, TF, settings and structure.
+    void startSeries();
+    void stopSeries();
+    // Shows step k: its volume read ahead, or read now beside the event loop, then built; the
+    // camera, TF (its undo history too), settings and structure kept. Errors name the step.
+    void showStep(size_t k);
+    // Once a frame: the shown step's picture on screen, the next step when playing makes it due.
+    void playSeries();
+    // The steps to read ahead of the shown one handed to the worker; the others dropped.
+    void scheduleAhead();
+    // "step 2 of 8: out_2.cells, t = 0.15" (the time as amrvk info reads it).
+    std::string stepLabel() const;
+    std::shared_ptr<const scene::Volume> takeAhead(size_t k);
+    struct ReadAhead;
+    struct ReadAheadDelete {
+        void operator()(ReadAhead* a) const;  // viewer_series.cpp, where ReadAhead is complete
+    };
+    std::unique_ptr<ReadAhead, ReadAheadDelete> mAhead;
+    std::optional<SeriesPlayer> mPlayer;
+    struct StepTiming {
+        size_t step;
+        double seconds;  // from the request to a picture ready to trace (wall)
+        bool wasAhead;   // its volume had been read ahead
+    };
+    std::vector<StepTiming> mStepTimings;  // --stats
 
     ViewerOptions mOpt;
     std::unique_ptr<Window> mWindow;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "viewer/cut_overlay.h"
 #include "viewer/logic/cut_handles.h"
 #include "viewer/logic/viewer_layout.h"
@@ -12,7 +13,8 @@
 namespace amrvk::viewer {
 
 // A key the panels did not take: arrows orbit by `step` of a picture `h` pixels high, +/- and
-// page up/down zoom, r resets the view, q and Esc quit.
+// page up/down zoom, r resets the view, q and Esc quit; in a time series space plays or pauses and
+// comma and period step back and on.
 void ViewerApp::handleKey(int code, double h, double step) {
     switch (code) {
         case GLFW_KEY_LEFT:
@@ -35,6 +37,18 @@ void ViewerApp::handleKey(int code, double h, double step) {
             break;
         case GLFW_KEY_R:
             mOrbit.reset(mState.settings.camera);
+            break;
+        case GLFW_KEY_SPACE:  // a time series: play or pause, step back or on
+            if (mPlayer) mPlayer->setPlaying(!mPlayer->playing());
+            break;
+        case GLFW_KEY_COMMA:
+        case GLFW_KEY_PERIOD:
+            if (!mPlayer) break;
+            try {
+                showStep(mPlayer->stepOn(code == GLFW_KEY_COMMA ? -1 : 1));
+            } catch (const Error& e) {  // a step that cannot be read: said, the shown one kept
+                mPanel.message = std::string("error: ") + e.what();
+            }
             break;
         case GLFW_KEY_Q:
         case GLFW_KEY_ESCAPE:

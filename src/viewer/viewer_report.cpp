@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "amr/readers.h"
+#include "amr/step_time.h"
 #include "core/file_io.h"
 #include "gpu/context.h"
 #include "render/renderer.h"
@@ -95,6 +96,13 @@ void ViewerApp::writeStats() const {
     j["resets"] = nlohmann::ordered_json::array();
     for (const Reset& r : mResets)
         j["resets"].push_back({{"frame", r.frame}, {"what", r.what}, {"samplesLeft", r.samplesLeft}});
+    // A time series: each step shown (in order), the wall seconds from the request to a picture
+    // ready, and whether its data had been read ahead.
+    if (mPlayer) {
+        j["steps"] = nlohmann::ordered_json::array();
+        for (const StepTiming& t : mStepTimings)
+            j["steps"].push_back({{"step", t.step}, {"seconds", t.seconds}, {"wasAhead", t.wasAhead}});
+    }
     j["secondsPerPixelSample"] = mBudget.secondsPerPixelSample();
     // What the edits cost the renderer (render::UpdateCounts): device copies and majorant passes.
     const render::UpdateCounts u = mPicture.renderer->updateCounts();
@@ -134,6 +142,18 @@ void ViewerApp::writeState() const {
     j["estimateNoiseSpp"] = mHold.estimateSpp();
     j["image"] = {{"width", mState.settings.width}, {"height", mState.settings.height}};  // pixels
     j["imageFollowsPicture"] = mPanel.imageFollowsWindow;
+    // A time series: the step shown (from 0) of how many, its input, when it is (amrvk info's
+    // "when"), playing, steps per second, and the steps read ahead.
+    if (mPlayer) {
+        const std::optional<amr::StepTime> when = amr::stepTimeOf(mVolume->model.attributes);
+        j["series"] = {{"step", mPlayer->step()},
+                       {"steps", mPlayer->steps()},
+                       {"input", mOpt.series[mPlayer->step()]},
+                       {"when", when ? amr::describe(*when) : std::string()},
+                       {"playing", mPlayer->playing()},
+                       {"fps", mPlayer->fps()},
+                       {"ahead", mStats.seriesAhead}};
+    }
     const scene::Camera& c = mState.settings.camera;  // world space
     auto vec = [](const glm::dvec3& v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
     j["camera"] = {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fovY", c.fovYDegrees}};

@@ -111,6 +111,11 @@ void ViewerApp::runAction(const ScriptAction& a) {
     } else if (n == "tf-colors") {
         mState.tfColors = scene::parseTfColors(a.args[0], "tf-colors");
         setTransferFunction();
+    } else if (n == "step" || n == "play" || n == "pause" || n == "series-fps") {
+        AMRVK_CHECK(mPlayer, "'", n, "' needs a time series (several inputs or a pattern)");
+        if (n == "step") showStep(size_t(a.number(0)));
+        if (n == "play" || n == "pause") mPlayer->setPlaying(n == "play");
+        if (n == "series-fps") mPlayer->setFps(a.number(0));
     } else if (n == "capture-window") {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {

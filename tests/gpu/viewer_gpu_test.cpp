@@ -210,6 +210,58 @@ TEST_F(ViewerGpu, ThePreviewStaysUntilTheEstimateIsAsClean) {
     EXPECT_LT(meanAbsDiff(final, ms.mean), 0.25 * meanAbsDiff(final, dvr.mean)) << "the final one is the estimate";
 }
 
+// A time series in the viewer (issue 53, point 3): stepping shows each step's picture (the
+// screenshot at step k equals render of the session saved there, whose input is step k's; the
+// z-test rejects another step's picture), the steps next to the shown one are read ahead, and the
+// step says when it is (amrvk info's time of each Chombo output).
+TEST_F(ViewerGpu, SteppingASeriesShowsEachStepsPicture) {
+    const fs::path dir = test::scratchDir() / "viewer-series";
+    fs::create_directories(dir);
+    for (const auto& [name, time] :
+         std::vector<std::pair<std::string, std::string>>{{"1", "0"}, {"2", "0.4"}, {"10", "0.8"}})
+        ASSERT_EQ(run(amrvkBinary() + " gen cloud --cells 3000 --seed 3 --time " + time + " -o " +
+                          (dir / ("out_" + name)).string(),
+                      dir, "gen"),
+                  0)
+            << test::readAll(dir / "gen.err");
+    auto at = [&](const std::string& f) { return (dir / f).string(); };
+    test::writeAll(dir / "script.txt", "0 step 2\n40 screenshot " + at("s2.pfm") + "\n40 save-session " +
+                                           at("s2.json") + "\n41 step 0\n80 screenshot " + at("s0.pfm") +
+                                           "\n80 save-session " + at("s0.json") + "\n81 quit\n");
+    const int rc =
+        run(amrvkBinary() + " view '" + at("out_*.cells") + "'" + kPicture + " --spp 64 --headless --script " +
+                at("script.txt") + " --stats " + at("stats.json") + " --validation",
+            dir, "view");
+    ASSERT_EQ(rc, 0) << test::readAll(dir / "view.err");
+    const session::Session s2 = session::loadSession(dir / "s2.json"), s0 = session::loadSession(dir / "s0.json");
+    EXPECT_EQ(fs::path(s2.input).filename(), "out_10.cells") << "step 2 in natural order";
+    EXPECT_EQ(fs::path(s0.input).filename(), "out_1.cells");
+    EXPECT_TRUE(s2.tf == s0.tf) << "one TF over the series";
+    const scene::RenderOutput ref2 = renderSession(ctx(), s2, 1000, 1.0), ref0 = renderSession(ctx(), s0, 1000, 1.0);
+    const scene::RenderOutput shot2 = withVarianceOf(readPfm(dir / "s2.pfm"), ref2);
+    const scene::RenderOutput shot0 = withVarianceOf(readPfm(dir / "s0.pfm"), ref0);
+    test::expectSameImage(shot2, ref2, 16, "series step 2", 1e-4);
+    test::expectSameImage(shot0, ref0, 16, "series step 0", 1e-4);
+    EXPECT_GT(test::countDifferingTiles(shot2, ref0, 16, 1e-4, 1e-6), 0) << "power: step 2 is not step 0's picture";
+    // Step 0 came after step 2: its neighbour, read ahead meanwhile.
+    const nlohmann::json stats = readJson(dir / "stats.json");
+    ASSERT_EQ(stats["steps"].size(), 2u) << stats.dump();
+    EXPECT_EQ(stats["steps"][1]["step"], 0);
+    EXPECT_TRUE(stats["steps"][1]["wasAhead"].get<bool>()) << stats["steps"].dump();
+
+    // When each step is: Chombo's two outputs of the mushy layer record their times.
+    const fs::path chombo = test::dataDir() / "chombo_mushy_layer_2d";
+    test::writeAll(dir / "when.txt", "1 step 1\n3 quit\n");
+    ASSERT_EQ(run(amrvkBinary() + " view '" + (chombo / "plt*.2d.hdf5").string() +
+                      "' --size 16x16 --headless --script " + at("when.txt") + " --state-file " + at("state.json"),
+                  dir, "when"),
+              0)
+        << test::readAll(dir / "when.err");
+    const nlohmann::json state = readJson(dir / "state.json");
+    EXPECT_EQ(state["series"]["step"], 1);
+    EXPECT_EQ(state["series"]["when"], "t = 0.0494106");  // plt025000's time attribute: 0.0494105884 (h5py)
+}
+
 TEST_F(ViewerGpu, WindowUnderXvfbEqualsRenderOfTheSameSession) {
     if (!onPath("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
     const fs::path dir = test::scratchDir() / "viewer-window";

@@ -28,14 +28,35 @@ struct Signature {
 };
 
 const std::map<std::string, Signature>& signatures() {
-    static const std::map<std::string, Signature> table = {
-        {"orbit", {2, {0, 1}}},   {"pan", {2, {0, 1}}},      {"zoom", {1, {0}}},    {"tf-preset", {1, {}}},
-        {"tf-range", {2, {0, 1}}}, {"density", {1, {0}}},    {"mode", {1, {}}},     {"traversal", {1, {}}},
-        {"sampler", {1, {}}},     {"backend", {1, {}}},      {"grid", {1, {}}},     {"edit-shader", {3, {}}},
-        {"reload", {0, {}}},      {"screenshot", {1, {}}},   {"capture-window", {1, {}}}, {"save-session", {1, {}}},   {"quit", {0, {}}},
-        {"scale", {1, {}}},       {"log-floor", {1, {0}}},   {"load-session", {1, {}}},
-        {"crop", {6, {0, 1, 2, 3, 4, 5}}}, {"clip", {6, {0, 1, 2, 3, 4, 5}}}, {"cut-off", {0, {}}},
-        {"legend", {1, {}}},      {"tf-colors", {1, {}}}};
+    static const std::map<std::string, Signature> table = {{"orbit", {2, {0, 1}}},
+                                                           {"pan", {2, {0, 1}}},
+                                                           {"zoom", {1, {0}}},
+                                                           {"tf-preset", {1, {}}},
+                                                           {"tf-range", {2, {0, 1}}},
+                                                           {"density", {1, {0}}},
+                                                           {"mode", {1, {}}},
+                                                           {"traversal", {1, {}}},
+                                                           {"sampler", {1, {}}},
+                                                           {"backend", {1, {}}},
+                                                           {"grid", {1, {}}},
+                                                           {"edit-shader", {3, {}}},
+                                                           {"reload", {0, {}}},
+                                                           {"screenshot", {1, {}}},
+                                                           {"capture-window", {1, {}}},
+                                                           {"save-session", {1, {}}},
+                                                           {"quit", {0, {}}},
+                                                           {"scale", {1, {}}},
+                                                           {"log-floor", {1, {0}}},
+                                                           {"load-session", {1, {}}},
+                                                           {"crop", {6, {0, 1, 2, 3, 4, 5}}},
+                                                           {"clip", {6, {0, 1, 2, 3, 4, 5}}},
+                                                           {"cut-off", {0, {}}},
+                                                           {"legend", {1, {}}},
+                                                           {"tf-colors", {1, {}}},
+                                                           {"step", {1, {0}}},
+                                                           {"play", {0, {}}},
+                                                           {"pause", {0, {}}},
+                                                           {"series-fps", {1, {0}}}};
     return table;
 }
 
@@ -113,6 +134,11 @@ void checkValues(const ScriptAction& a) {
     }
     else if (n == "legend") AMRVK_CHECK(a.args[0] == "on" || a.args[0] == "off", "'", a.args[0], "': expected on or off");
     else if (n == "tf-colors") scene::parseTfColors(a.args[0], "tf-colors");
+    else if (n == "step")
+        AMRVK_CHECK(a.number(0) >= 0 && a.number(0) == std::floor(a.number(0)), "step ", a.args[0],
+                    " must be a whole number >= 0");
+    else if (n == "series-fps")
+        AMRVK_CHECK(a.number(0) > 0 && a.number(0) <= 120, "series-fps ", a.args[0], " is outside (0, 120]");
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");

@@ -16,6 +16,8 @@
 //                                    again), else refused with the reason
 //   legend on|off                    the colour legend over the picture and in PNG screenshots
 //   tf-colors srgb|linear            what the TF's colours mean (the "sRGB colours" checkbox)
+//   step K | play | pause            a time series: show step K (from 0), play or pause (space)
+//   series-fps F                     a time series: steps per second while playing
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,
