@@ -50,13 +50,13 @@ int main(int argc, char** argv) {
         const std::pair<const char*, int (*)(const std::vector<std::string>&)> commands[] = {
             {"info", runInfo},       {"gen", runGen},     {"convert", runConvert}, {"render", runRender},
             {"view", runView},       {"devices", runDevices}, {"bench", runBench}, {"shaders", runShaders}};
-        // Under mpirun only render and bench split their work; any other command would run N times over.
+        // Under mpirun only render, bench and view split their work; any other command would run N times over.
         const int ranks = amrvk::launchedJobSize();
-        if (ranks > 1 && command != "render" && command != "bench") {
+        if (ranks > 1 && command != "render" && command != "bench" && command != "view") {
             if (amrvk::launchedRank() == 0)  // one line for the job
                 std::fprintf(stderr,
-                             "amrvk %s: error: started by an MPI launcher with %d processes; only 'amrvk render' and "
-                             "'amrvk bench' run on several ranks (docs/mpi.md)\n",
+                             "amrvk %s: error: started by an MPI launcher with %d processes; only 'amrvk render', "
+                             "'amrvk bench' and 'amrvk view' run on several ranks (docs/mpi.md)\n",
                              command.c_str(), ranks);
             return 1;
         }

@@ -5,6 +5,8 @@
 #include "amr/readers.h"
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "cli/ranks.h"
+#include "cli/view_ranks.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "session/legend_image.h"
@@ -115,67 +117,72 @@ int runView(const std::vector<std::string>& argv) {
         ->capture_default_str()
         ->type_name("MIB");
     if (!parseCommandLine(app, argv)) return 0;
-    const std::vector<std::string> series = inputArgs.empty() ? inputArgs : session::expandInputs(inputArgs);
-    const std::string input = series.empty() ? std::string() : series.front();
-    AMRVK_CHECK(series.size() > 1 ||
-                    (!given(app, "--series-range") && !given(app, "--series-fps") && !given(app, "--series-ahead-mib")),
-                "--series-range, --series-fps and --series-ahead-mib are for a time series (several inputs or a "
-                "pattern)");
+    // Under mpirun every rank runs this command: rank 0 the viewer, the others follow it
+    // (viewRanks, cli/view_ranks.cpp); errors agreed and reported once.
+    return runOnRanks("view", [&](mpi::World* world) -> int {
+        const std::vector<std::string> series = inputArgs.empty() ? inputArgs : session::expandInputs(inputArgs);
+        const std::string input = series.empty() ? std::string() : series.front();
+        AMRVK_CHECK(series.size() > 1 || (!given(app, "--series-range") && !given(app, "--series-fps") &&
+                                          !given(app, "--series-ahead-mib")),
+                    "--series-range, --series-fps and --series-ahead-mib are for a time series (several inputs or a "
+                    "pattern)");
 
-    AMRVK_CHECK(!vo.headless || frames > 0 || !script.empty(),
-                "--headless needs --frames N or a --script that quits (it has no window to close)");
-    if (!screenshot.empty()) {
-        const std::string ext = std::filesystem::path(screenshot).extension().string();
-        AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
-                    ": unknown image type (use .png, .exr or .pfm)");
-    }
-    // Every output checked before any work: writable, distinct, none of them an input.
-    const std::vector<NamedPath> outputs = {
-        {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}, {"--state-file", state}};
-    std::vector<NamedPath> inputs = pictureInputs(app, input, pic, {{"--script", script}});
-    for (size_t k = 1; k < series.size(); ++k) inputs.push_back({"input", series[k]});
-    // Saving the session back where it came from is the ordinary Save (it was read whole before the
-    // window opens and is written atomically): --save-session may name the --session file, which
-    // every other output is still checked against.
-    std::error_code same;
-    const bool saveBack =
-        !saveSession.empty() && app.count("--session") && std::filesystem::equivalent(saveSession, pic.session, same);
-    const std::vector<NamedPath> others = {outputs[0], outputs[2], outputs[3]};
-    auto checkAgainst = [&](std::vector<NamedPath> sources) {
-        if (!saveBack) return checkOutputs(outputs, sources);
-        checkOutputs(others, sources);
-        std::erase_if(sources,
-                      [&](const NamedPath& in) { return std::filesystem::equivalent(in.path, pic.session, same); });
-        checkOutputs(outputs, sources);
-    };
-    checkAgainst(inputs);
-    vo.start = describePicture(app, input, read, pic);
-    if (series.size() > 1) fixSeriesTf(series, seriesRange, vo.start);
-    vo.series = series.size() > 1 ? series : std::vector<std::string>{};
-    vo.seriesAheadBytes = uint64_t(seriesAheadMib * double(1 << 20));
-    // A PNG screenshot with the legend needs its font: checked before anything is read.
-    if (vo.start.session.legend.show && std::filesystem::path(screenshot).extension() == ".png")
-        session::openLegendFont(vo.start.session.legend);
-    AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
-                "--traversal auto is for amrvk render (the viewer switches structures live)");
-    if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on
-    // Checked before anything is read: a bad script line is one line naming it (the viewer checks
-    // what needs its structures and shader directory again before frame 0).
-    if (!script.empty()) viewer::loadScript(script);
-    // Read before a window opens: a bad data set is one line, not a window that closes.
-    std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
-    checkAgainst(inputFilesRead());  // and none is a file the data set was read from
-    vo.frames = uint64_t(frames);
-    vo.screenshot = screenshot;
-    vo.script = script;
-    vo.statsJson = stats;
-    vo.stateJson = state;
-    vo.saveSession = saveSession;
-    vo.shaderDir = dev.shaderDir;
-    vo.context = dev.context;
-    vo.frameBudgetSeconds = budgetMs * 1e-3;
-    if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
-    return viewer::runViewer(vo, std::move(volume));
+        AMRVK_CHECK(!vo.headless || frames > 0 || !script.empty(),
+                    "--headless needs --frames N or a --script that quits (it has no window to close)");
+        if (!screenshot.empty()) {
+            const std::string ext = std::filesystem::path(screenshot).extension().string();
+            AMRVK_CHECK(ext == ".png" || ext == ".exr" || ext == ".pfm", "--screenshot ", screenshot,
+                        ": unknown image type (use .png, .exr or .pfm)");
+        }
+        // Every output checked before any work: writable, distinct, none of them an input.
+        const std::vector<NamedPath> outputs = {
+            {"--screenshot", screenshot}, {"--save-session", saveSession}, {"--stats", stats}, {"--state-file", state}};
+        std::vector<NamedPath> inputs = pictureInputs(app, input, pic, {{"--script", script}});
+        for (size_t k = 1; k < series.size(); ++k) inputs.push_back({"input", series[k]});
+        // Saving the session back where it came from is the ordinary Save (it was read whole before the
+        // window opens and is written atomically): --save-session may name the --session file, which
+        // every other output is still checked against.
+        std::error_code same;
+        const bool saveBack = !saveSession.empty() && app.count("--session") &&
+                              std::filesystem::equivalent(saveSession, pic.session, same);
+        const std::vector<NamedPath> others = {outputs[0], outputs[2], outputs[3]};
+        auto checkAgainst = [&](std::vector<NamedPath> sources) {
+            if (!saveBack) return checkOutputs(outputs, sources);
+            checkOutputs(others, sources);
+            std::erase_if(sources,
+                          [&](const NamedPath& in) { return std::filesystem::equivalent(in.path, pic.session, same); });
+            checkOutputs(outputs, sources);
+        };
+        checkAgainst(inputs);
+        vo.start = describePicture(app, input, read, pic);
+        if (series.size() > 1) fixSeriesTf(series, seriesRange, vo.start);
+        vo.series = series.size() > 1 ? series : std::vector<std::string>{};
+        vo.seriesAheadBytes = uint64_t(seriesAheadMib * double(1 << 20));
+        // A PNG screenshot with the legend needs its font: checked before anything is read.
+        if (vo.start.session.legend.show && std::filesystem::path(screenshot).extension() == ".png")
+            session::openLegendFont(vo.start.session.legend);
+        AMRVK_CHECK(vo.start.fit != session::StructureFit::Probe,
+                    "--traversal auto is for amrvk render (the viewer switches structures live)");
+        if (!app.count("--spp") && app.count("--session") == 0) vo.start.session.spp = 0;  // run on
+        // Checked before anything is read: a bad script line is one line naming it (the viewer checks
+        // what needs its structures and shader directory again before frame 0).
+        if (!script.empty()) viewer::loadScript(script);
+        // Read before a window opens: a bad data set is one line, not a window that closes.
+        std::shared_ptr<const scene::Volume> volume = session::loadVolume(vo.start.session);
+        checkAgainst(inputFilesRead());  // and none is a file the data set was read from
+        vo.frames = uint64_t(frames);
+        vo.screenshot = screenshot;
+        vo.script = script;
+        vo.statsJson = stats;
+        vo.stateJson = state;
+        vo.saveSession = saveSession;
+        vo.shaderDir = dev.shaderDir;
+        vo.context = dev.context;
+        vo.frameBudgetSeconds = budgetMs * 1e-3;
+        if (!window.empty()) parseSize("--window", window, vo.windowWidth, vo.windowHeight);
+        if (world) return viewOnRanks(*world, vo, std::move(volume));
+        return viewer::runViewer(vo, std::move(volume));
+    });
 }
 
 }  // namespace amrvk::cli

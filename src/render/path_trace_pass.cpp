@@ -109,6 +109,30 @@ void PathTracePass::addSamples(uint32_t n, const scene::RenderStats& stats) {
     for (size_t k = 0; k < mStats.counters.size(); ++k) mStats.counters[k] += stats.counters[k];
 }
 
+void PathTracePass::addSums(const scene::AccumulatedSums& add, uint32_t n, const scene::RenderStats& stats) {
+    const size_t pixels = size_t(mWidth) * size_t(mHeight);
+    AMRVK_CHECK(add.width == mWidth && add.height == mHeight && add.values.size() == pixels * add.kPerPixel &&
+                    mRowsDone == 0 && mAccum.valid(),
+                "internal: adding ", add.width, "x", add.height, " sums to a ", mWidth, "x", mHeight, " accumulation (",
+                mRowsDone, " rows of a sample traced)");
+    std::vector<shared::AccumPixelGpu> accum(pixels);
+    mAccum.download(accum.data(), accum.size() * sizeof(shared::AccumPixelGpu));
+    // Each sum as hi + lo floats again (lo the rounding error of hi, as the shader keeps them).
+    auto split = [](double v, float& hi, float& lo) {
+        hi = float(v);
+        lo = float(v - double(hi));
+    };
+    for (size_t i = 0; i < pixels; ++i) {
+        shared::AccumPixelGpu& a = accum[i];
+        const double* v = &add.values[i * scene::AccumulatedSums::kPerPixel];
+        for (int c = 0; c < 4; ++c) split(double(a.sumHi[c]) + double(a.sumLo[c]) + v[c], a.sumHi[c], a.sumLo[c]);
+        for (int c = 0; c < 3; ++c)
+            split(double(a.sumSqHi[c]) + double(a.sumSqLo[c]) + v[4 + c], a.sumSqHi[c], a.sumSqLo[c]);
+    }
+    mAccum.upload(accum.data(), accum.size() * sizeof(shared::AccumPixelGpu));
+    addSamples(n, stats);
+}
+
 double PathTracePass::rows(const gpu::ComputePipeline& pipeline, uint64_t paramsAddress, uint32_t rows) {
     AMRVK_CHECK(mAccum.valid(), "internal: rows() before resize()");
     const uint32_t first = mRowsDone, count = std::min(rows, uint32_t(mHeight) - first);

@@ -94,6 +94,10 @@ public:
     // Counts n samples per pixel that another pass added to the accumulation (render/staged_pass.h)
     // with their statistics.
     void addSamples(uint32_t n, const scene::RenderStats& stats);
+    // Adds sums another process traced at this size (n samples per pixel; the caller keeps their
+    // sample indices apart from this accumulation's) and their statistics: what rank 0 of the MPI
+    // viewer adds of the other ranks' samples. Between whole samples only.
+    void addSums(const scene::AccumulatedSums& add, uint32_t n, const scene::RenderStats& stats);
     // The mean so far (downloads the accumulation buffer).
     scene::RenderOutput read() const;
     // The sums behind it, in double (downloads the accumulation buffer).

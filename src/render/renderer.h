@@ -119,6 +119,12 @@ public:
     scene::RenderOutput output() const { return mPathTrace.read(); }
     // The double sums behind output() (what ranks add up).
     scene::AccumulatedSums sums() const { return mPathTrace.readSums(); }
+    // Adds another renderer's sums of n samples at this size, with their statistics (the MPI
+    // viewer's rank 0: the other ranks' samples of each pass; their indices kept apart by the
+    // caller, mpi/view_link.h).
+    void addSums(const scene::AccumulatedSums& add, uint32_t n, const scene::RenderStats& stats) {
+        mPathTrace.addSums(add, n, stats);
+    }
     // The counters and GPU time of every path in the current image (no download).
     const scene::RenderStats& stats() const { return mPathTrace.stats(); }
     // One image from scratch: setSettings, reset, accumulate `spp`. `snapshot(out)` additionally

@@ -104,6 +104,8 @@ void statisticsPanel(const Statistics& s) {
     wrapped(nullptr, s.device);
     wrapped(nullptr, s.combination);
     ImGui::Text("%.1f frames/s (%.1f ms)", s.framesPerSecond, s.frameMilliseconds);
+    if (s.firstPictureSeconds >= 0) ImGui::Text("first picture after %.2f s", s.firstPictureSeconds);
+    if (s.ranks > 1) ImGui::Text("%d ranks, each a share of every pass", s.ranks);
     ImGui::Text("%.3f M paths/s", s.mPathsPerSecond);
     if (s.previewScale > 1) {
         ImGui::Text("preview 1/%d", s.previewScale);

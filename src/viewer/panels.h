@@ -32,6 +32,8 @@ struct Statistics {
     scene::Shown shown = scene::Shown::Nothing;                      // on screen: the kept preview or the estimate
     double previewNoise = -1, estimateNoise = -1, noiseToReach = 0;  // -1: not measured
     uint64_t deviceBytes = 0;
+    int ranks = 1;                    // processes tracing each pass (mpirun -n N amrvk view)
+    double firstPictureSeconds = -1;  // from the command's start to the first picture on screen (-1: none yet)
     double tfEditSeconds = 0, structureSeconds = 0;  // last TF edit, last structure change (wall)
     // A time series: the steps read ahead (and their host bytes), the last step's build (wall).
     std::vector<size_t> seriesAhead;

@@ -71,6 +71,7 @@ void ViewerApp::load() {
     // the device, the structures built, TF and settings applied.
     picture::Picture p;
     whileResponsive([&] { p = picture::makePicture(*mCtx, mVolume, mOpt.start, pictureOptions()); });
+    if (mOpt.ranks) mOpt.ranks->start(p);  // every rank made the same picture (before the editor's form of its TF)
     adoptPicture(std::move(p));
     noteReset("picture");
 }
@@ -482,7 +483,16 @@ void ViewerApp::trace() {
         mShown = scene::Shown::Preview;
     } else {
         const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mPicture.renderer->rowsDone());
-        if (rows >= uint32_t(s.height) && mPicture.renderer->rowsDone() == 0) {
+        if (mOpt.ranks && mPicture.renderer->rowsDone() == 0) {
+            // An MPI job: whole samples, every rank a share of each pass (as many as fit rank 0's budget).
+            const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
+            uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
+            const uint32_t ranks = uint32_t(mOpt.ranks->ranks());
+            if (limit > 0) n = std::max(1u, std::min(n, (limit - mPicture.renderer->accumulatedSpp()) / ranks));
+            const Clock::time_point passStart = Clock::now();
+            mOpt.ranks->pass(mPicture, n);
+            mBudget.record(secondsSince(passStart), pixels * n);
+        } else if (rows >= uint32_t(s.height) && mPicture.renderer->rowsDone() == 0) {
             // Fast device: whole samples, as many as fit.
             const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
             uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
@@ -501,6 +511,7 @@ void ViewerApp::trace() {
         updateShown();
     }
     mDisplayFresh = mShown != scene::Shown::Nothing;
+    if (mStats.firstPictureSeconds < 0 && mDisplayFresh) mStats.firstPictureSeconds = secondsSince(mOpt.startedAt);
 }
 
 void ViewerApp::keepPreview() {

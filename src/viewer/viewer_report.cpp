@@ -63,6 +63,7 @@ void ViewerApp::updateStatistics(double frameSeconds) {
     st.estimateNoise = mHold.estimateNoise().value_or(-1);
     st.noiseToReach = mHold.threshold();
     st.deviceBytes = mCtx->memory().currentBytes();
+    st.ranks = mOpt.ranks ? mOpt.ranks->ranks() : 1;
 }
 
 void ViewerApp::writeStats() const {
@@ -70,6 +71,8 @@ void ViewerApp::writeStats() const {
     j["device"] = mStats.device;
     j["frames"] = mFrame;
     j["frameBudgetSeconds"] = mBudget.budgetSeconds();
+    j["ranks"] = mStats.ranks;  // processes tracing each pass of the estimate (mpirun -n N amrvk view)
+    j["timeToFirstPicture"] = mStats.firstPictureSeconds;  // seconds from the command's start (-1: none)
     auto summary = [](const std::vector<double>& v) {
         return nlohmann::ordered_json{{"count", v.size()},
                                       {"meanSeconds", Timings::mean(v)},
@@ -132,6 +135,8 @@ void ViewerApp::writeState() const {
     nlohmann::ordered_json j;
     j["frame"] = mFrame;  // frames completed (input, trace, present)
     j["building"] = mBuilding;
+    j["ranks"] = mStats.ranks;
+    j["firstPictureSeconds"] = mStats.firstPictureSeconds;
     j["spp"] = mPicture.renderer ? mPicture.renderer->accumulatedSpp() : 0u;  // complete full-resolution samples
     j["previewScale"] = mPreviewScale;                                        // > 1: the last frame showed a preview
     // What is on screen (scene/preview_hold.h): "preview" until the estimate is as clean, then

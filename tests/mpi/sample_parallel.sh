@@ -83,7 +83,7 @@ expect_line() {  # FRAGMENT -- ARGS: exit 1 with exactly one stderr line contain
     echo "ok: $(cat "$dir/line.err")"; else echo "FAIL: rc=$rc: $(cat "$dir/line.err")"; fail=1; fi
 }
 expect_line "--auto: not under mpirun" -- "${mpi[@]}" -n 2 "$amrvk" bench "$cloud" -o "$dir/bench3" "${tiny[@]}" --auto
-expect_line "only 'amrvk render' and 'amrvk bench' run on several ranks" -- "${mpi[@]}" -n 2 "$amrvk" info "$cloud"
+expect_line "only 'amrvk render', 'amrvk bench' and 'amrvk view' run on several ranks" -- "${mpi[@]}" -n 2 "$amrvk" info "$cloud"
 rm -rf "$dir/bench3"
 
 # Nothing but the named outputs (no temporaries, no per-rank files).
