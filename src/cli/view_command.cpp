@@ -59,6 +59,7 @@ int runView(const std::vector<std::string>& argv) {
     setUpCommand(app);
     std::vector<std::string> inputArgs;  // one data set, or a series: several, or a glob pattern
     std::string seriesRange = "union";
+    std::string distribute = "samples";
     double seriesAheadMib = 1024;
     ReadArgs read;
     PictureArgs pic;
@@ -100,6 +101,11 @@ int runView(const std::vector<std::string>& argv) {
         ->capture_default_str()
         ->type_name("MS");
     app.add_option("--window", window, "window size (default: --size)")->type_name("WxH");
+    app.add_option("--distribute", distribute,
+                   "under mpirun: samples (every rank holds the data and traces a share of each pass); data-parallel "
+                   "viewing is not built yet (render --distribute data renders it in batch)")
+        ->check(CLI::IsMember({"samples", "data"}))
+        ->capture_default_str();
     app.add_option("--series-range", seriesRange,
                    "a time series: one TF over the first output's field range, or the union of every output's (a "
                    "reading pass first), as amrvk render --series-range")
@@ -120,7 +126,12 @@ int runView(const std::vector<std::string>& argv) {
     // Under mpirun every rank runs this command: rank 0 the viewer, the others follow it
     // (viewRanks, cli/view_ranks.cpp); errors agreed and reported once.
     return runOnRanks("view", [&](mpi::World* world) -> int {
-        const std::vector<std::string> series = inputArgs.empty() ? inputArgs : session::expandInputs(inputArgs);
+        AMRVK_CHECK(world || !given(app, "--distribute"),
+                "--distribute: only under an MPI launcher (mpirun -n N amrvk view ...; docs/mpi.md)");
+    AMRVK_CHECK(distribute == "samples",
+                "--distribute data: the viewer runs sample-parallel only (every rank holds the whole data); "
+                "data-parallel pictures are rendered in batch: mpirun -n N amrvk render --distribute data");
+    const std::vector<std::string> series = inputArgs.empty() ? inputArgs : session::expandInputs(inputArgs);
         const std::string input = series.empty() ? std::string() : series.front();
         AMRVK_CHECK(series.size() > 1 || (!given(app, "--series-range") && !given(app, "--series-fps") &&
                                           !given(app, "--series-ahead-mib")),
