@@ -438,8 +438,9 @@ void seriesPanel(PanelState& p, PanelRequests& r) {
     const Statistics& s = *p.stats;
     std::string ahead;
     for (size_t k : s.seriesAhead) ahead += (ahead.empty() ? "" : ", ") + std::to_string(k);
-    wrapped(nullptr, strCat("read ahead: ", ahead.empty() ? std::string("none") : ahead, " (", s.seriesAheadBytes >> 20,
-                            " of ", p.seriesAheadBudget >> 20, " MiB); last step built in ", g3(s.stepSeconds), " s"));
+    wrapped(nullptr, strCat("read ahead: ", ahead.empty() ? std::string("none") : ahead, " (",
+                            g3(double(s.seriesAheadBytes) / double(1 << 20)), " of ", p.seriesAheadBudget >> 20,
+                            " MiB); last step built in ", g3(s.stepSeconds), " s"));
 }
 
 }  // namespace

@@ -157,6 +157,7 @@ private:
         void operator()(ReadAhead* a) const;  // viewer_series.cpp, where ReadAhead is complete
     };
     std::unique_ptr<ReadAhead, ReadAheadDelete> mAhead;
+    uint64_t mAheadStepBytes = 0;  // host bytes of a step (the shown one's cells, fields and bricks)
     std::optional<SeriesPlayer> mPlayer;
     struct StepTiming {
         size_t step;

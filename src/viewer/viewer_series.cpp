@@ -102,9 +102,7 @@ void ViewerApp::scheduleAhead() {
     std::erase_if(mAhead->ready, [&](const auto& kv) {
         return std::find(mAhead->wanted.begin(), mAhead->wanted.end(), kv.first) == mAhead->wanted.end();
     });
-    mStats.seriesAhead.clear();
-    for (const auto& [k, v] : mAhead->ready) mStats.seriesAhead.push_back(k);
-    mStats.seriesAheadBytes = uint64_t(mStats.seriesAhead.size()) * perStep;
+    mAheadStepBytes = perStep;
     mAhead->changed.notify_all();
 }
 
@@ -175,6 +173,7 @@ void ViewerApp::playSeries() {
         mStats.seriesAhead.clear();
         for (const auto& [k, v] : mAhead->ready) mStats.seriesAhead.push_back(k);
     }
+    mStats.seriesAheadBytes = uint64_t(mStats.seriesAhead.size()) * mAheadStepBytes;
 }
 
 }  // namespace amrvk::viewer
