@@ -17,10 +17,13 @@ sliders: orbiting by mouse drag needs a browser-side event widget (ipyevents) th
 the order they come, so using it from the notebook while the widget refines is safe: a long
 ``r.render(spp=4096)`` yields to the widget between its quarter-second chunks, and a slider moved
 meanwhile restarts that call's count (it returns the samples it was asked for, of the new view).
-Works with ipywidgets 6 (Debian 12), 7 and 8: it uses Image, FloatSlider, Label, Layout, HBox and
-VBox and ``observe(names="value")``, which all three have.
+With `series` (a glob or a list of paths) a step slider shows each data set of a time series with
+the same camera, TF and settings (``Renderer.input``), its first frame first.
+Works with ipywidgets 6 (Debian 12), 7 and 8: it uses Image, FloatSlider, IntSlider, Label, Layout,
+HBox and VBox and ``observe(names="value")``, which all three have.
 """
 import math
+import os
 import threading
 import time
 
@@ -32,7 +35,7 @@ from .one_line_errors import _shown  # a value in a message: one short line
 
 
 class Widget:
-    def __init__(self, renderer, spp=256, batch=4):
+    def __init__(self, renderer, spp=256, batch=4, series=None):
         try:
             import ipywidgets
         except ImportError:
@@ -58,7 +61,27 @@ class Widget:
         self.status = w.Label(layout=w.Layout(width="auto"))  # the whole line, not cut to 72 px
         for slider in (self.azimuth, self.elevation, self.zoom):
             slider.observe(self._moved, names="value")
-        self.box = w.VBox([self.image, w.HBox([self.azimuth, self.elevation, self.zoom]), self.status])
+        rows = [self.image, w.HBox([self.azimuth, self.elevation, self.zoom])]
+        # A time series: a step slider over the data sets (a glob or a list of paths, natural order);
+        # a step shows that data set with the same camera, TF and settings (Renderer.input).
+        self.series = None
+        if series is not None:
+            if isinstance(series, (str, os.PathLike)):
+                series = [series]
+            if not isinstance(series, (list, tuple)) or not all(isinstance(p, (str, os.PathLike)) for p in series):
+                raise TypeError(f"series: expected a glob or a list of paths, got {type(series).__name__}")
+            if renderer.input is None:
+                raise ValueError("series: the renderer shows arrays or yt data, not a file a step can replace")
+            self.series = _amrvk._expand_inputs([os.fspath(p) for p in series])
+            shown = os.path.abspath(renderer.input)
+            at = next((k for k, p in enumerate(self.series) if os.path.abspath(p) == shown), None)
+            if at is None:
+                renderer.input, at = self.series[0], 0
+            self.step = w.IntSlider(value=at, min=0, max=len(self.series) - 1, step=1, description="step")
+            self.step_label = w.Label(value=os.path.basename(self.series[at]))
+            self.step.observe(self._stepped, names="value")
+            rows.append(w.HBox([self.step, self.step_label]))
+        self.box = w.VBox(rows + [self.status])
         self.first_frame = None  # the PNG shown before any sample: the renderer's dvr first frame
         self.shown = None  # what the image is: "first frame" or "estimate"
         self._shown_spp = 0  # the samples of the image shown
@@ -86,6 +109,14 @@ class Widget:
     def _moved(self, change):
         self._idle.clear()
         self.renderer.camera = self.camera()  # restarts the estimate
+        self._restarted = True
+        self._wake.set()
+
+    def _stepped(self, change):
+        self._idle.clear()
+        path = self.series[self.step.value]
+        self.renderer.input = path  # read and built; the estimate starts again
+        self.step_label.value = os.path.basename(path)
         self._restarted = True
         self._wake.set()
 

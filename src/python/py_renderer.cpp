@@ -54,6 +54,33 @@ public:
 
     // ---- the picture ----
     session::Session session() const { return open().session(); }
+    // The data set shown (its path as given); None for a volume made from arrays or yt.
+    py::object input() const {
+        const std::string in = session().input;
+        return in.empty() ? py::object(py::none()) : py::object(py::str(in));
+    }
+    // Another data set shown (a series step: the widget's time slider): read with the picture's
+    // read options and field, and built, the camera, TF, settings and structure kept; the image
+    // starts again. A renderer over arrays or yt has no file to replace (ValueError).
+    void setInput(const py::object& value) {
+        if (session().input.empty())
+            throw py::value_error("input: this renderer's volume was made from arrays or yt, not read from a file");
+        if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__"))
+            throw py::type_error(
+                strCat("input: expected a path, got ", std::string(py::str(py::type::of(value).attr("__name__")))));
+        session::PictureDescription d;
+        d.session = session();
+        d.session.input = py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+        onDevice([&](render::Renderer& r) {
+            InputFileRecorder recorder;
+            std::shared_ptr<const scene::Volume> volume = session::loadVolume(d.session);
+            std::vector<NamedPath> files = recorder.files("the volume's data");
+            picture::Picture p = picture::makePicture(*mCtx, std::move(volume), d, {.shaders = r.shaders()});
+            mPicture = std::move(p);  // r is gone from here on
+            mDataFiles = std::move(files);
+            mFirstFrame.reset();
+        });
+    }
     const scene::RenderSettings& settings() const { return open().renderer->settings(); }
     scene::Camera camera() const { return settings().camera; }
     void setCamera(const scene::Camera& c) {
@@ -514,6 +541,9 @@ py::class_<PyRenderer, std::shared_ptr<PyRenderer>> bindRenderer(py::module_& m)
                                                                "a path-traced picture of a volume on a Vulkan device")
         .def(py::init(&makeRenderer), py::arg("volume"), py::arg("tf") = py::none(), py::arg("camera") = py::none(),
              "options: amrvk render's, with underscores (docs/python.md)")
+        .def_property("input", &PyRenderer::input, &PyRenderer::setInput,
+                      "the data set shown (None for arrays or yt); set another of a series (a path) to show it with "
+                      "the same camera, TF, settings and structure (the image starts again)")
         .def_static("from_session", &rendererFromSession, py::arg("path"),
                     "the picture a session file describes (amrvk view's, amrvk render --session's)")
         .def("render", &PyRenderer::render, py::arg("spp") = py::none(), py::arg("progress") = py::none(),

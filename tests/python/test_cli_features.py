@@ -2,13 +2,15 @@
 (_repr_png_) and render, drawn by the CLI's own code; matplotlib colormaps by name; camera orbit,
 zoom and conversion from and to yt's camera; and the Jupyter widget that refines and orbits."""
 import math
+import os
+import tempfile
 import threading
 import time
 
 import numpy as np
 import pytest
 
-from conftest import ENZO, SAMPLE, need, run_cli
+from conftest import DATA, ENZO, SAMPLE, need, run_cli
 
 SMALL = dict(width=96, height=64, density_scale=3.0, tf_range=(0.3, 2.0), grid="16", quiet=True, seed=7)
 
@@ -202,6 +204,36 @@ def test_the_first_frame_stays_until_the_estimate_is_as_clean(amrvk):
         assert w.wait(120) and w.shown == "estimate" and w.status.value.startswith("8/8 spp")
     finally:
         w.close()
+
+
+def test_the_widget_steps_a_series(amrvk):
+    # Issue 53, point 5: a step slider over a time series (Chombo's two mushy-layer outputs); each
+    # step is that data set with the camera and TF kept, and its picture is the one a renderer made
+    # for that data set with the same session gives (the same samples: equal to float rounding).
+    pytest.importorskip("ipywidgets", reason="Debian: python3-ipywidgets")
+    chombo = need(DATA / "chombo_mushy_layer_2d")
+    steps = sorted(str(p) for p in chombo.glob("plt*.2d.hdf5"))
+    r = amrvk.Renderer(amrvk.Volume(steps[0]), width=32, height=32, quiet=True, seed=3)
+    camera, tf = r.camera, r.tf
+    w = amrvk.Widget(r, spp=4, batch=2, series=str(chombo / "plt*.2d.hdf5"))
+    try:
+        assert w.series == steps and w.step.value == 0 and w.wait(120)
+        first = r.image()
+        w.step.value = 1
+        assert r.input == steps[1] and w.step_label.value == "plt025000.2d.hdf5"
+        assert w.wait(120) and r.spp == 4
+        np.testing.assert_allclose(r.camera.eye, camera.eye, rtol=1e-12)
+        assert repr(r.tf.nodes) == repr(tf.nodes), "one TF over the series"
+        second = r.image()
+        assert np.abs(second - first).max() > 0.01, "step 1 is another picture"
+        with tempfile.TemporaryDirectory() as d:
+            r.save_session(os.path.join(d, "s.json"))
+            alone = amrvk.Renderer.from_session(os.path.join(d, "s.json"), quiet=True)
+            np.testing.assert_allclose(alone.render(spp=4), second, rtol=1e-4, atol=1e-6)
+    finally:
+        w.close()
+    with pytest.raises(TypeError, match="^series: expected a glob or a list of paths, got int$"):
+        amrvk.Widget(r, series=3)
 
 
 def test_a_long_call_yields_to_the_widget_and_the_count_is_the_images(amrvk):
