@@ -397,6 +397,20 @@ Json cutJson(const scene::CutAway& cut) {
     return out;
 }
 
+// "cameraPath": the fps and each keyframe's frame and camera, the camera with the keys of the
+// session's own "camera" (the same table entries write them).
+Json cameraPathJson(const CameraPath& path) {
+    Json keys = Json::array();
+    for (const Keyframe& k : path.keyframes()) {
+        Session holder;
+        holder.settings.camera = k.camera;
+        Json key = {{"frame", k.frame}};
+        writeSection(sectionNamed("camera"), holder, key);
+        keys.push_back(std::move(key));
+    }
+    return {{"fps", path.fps()}, {"keyframes", std::move(keys)}};
+}
+
 }  // namespace
 
 std::string sessionJson(const Session& s) {
@@ -413,6 +427,7 @@ std::string sessionJson(const Session& s) {
     j["transferFunction"] = Json::parse(scene::paraViewPresetJson(s.tf)).at(0);
     settingKey("--tf-colors").write(s, j);
     writeSection(sectionNamed("legend"), s, j);
+    if (!s.cameraPath.empty()) j["cameraPath"] = cameraPathJson(s.cameraPath);  // absent: the file as before
     return j.dump(2) + "\n";
 }
 
@@ -489,6 +504,40 @@ scene::CutAway readCut(const Reader& cut) {
     return c;
 }
 
+// "cameraPath": every value checked, each keyframe's camera read by the session camera's own keys.
+CameraPath readCameraPath(const Reader& r) {
+    AMRVK_CHECK(r.json().is_object(), r.where(), ": expected an object with \"fps\" and \"keyframes\"");
+    r.onlyKeys({"fps", "keyframes"});
+    CameraPath path;
+    if (r.has("fps")) {
+        const double fps = r.number("fps");
+        AMRVK_CHECK(fps > 0 && fps <= kMaxPathFps, r.where(), ".fps: ", formatDouble(fps), " is outside (0, ",
+                    kMaxPathFps, "]");
+        path.setFps(fps);
+    }
+    const Reader keys = r.child("keyframes");
+    AMRVK_CHECK(keys.json().is_array(), keys.where(), ": expected an array, found ", keys.json().type_name());
+    AMRVK_CHECK(!keys.json().empty(), keys.where(), ": no keyframes (leave \"cameraPath\" out for no path)");
+    AMRVK_CHECK(keys.json().size() <= kMaxKeyframes, keys.where(), ": at most ", kMaxKeyframes, " keyframes (got ",
+                keys.json().size(), ")");
+    for (size_t i = 0; i < keys.json().size(); ++i) {
+        const Reader k(keys.json()[i], keys.where() + "[" + std::to_string(i) + "]");
+        AMRVK_CHECK(k.json().is_object(), k.where(), ": expected an object with \"frame\" and \"camera\"");
+        k.onlyKeys({"frame", "camera"});
+        const auto frame = uint32_t(k.integer("frame", 0, kMaxPathFrames - 1));
+        AMRVK_CHECK(!path.hasKeyframe(frame), k.where(), ".frame: ", frame,
+                    " is another keyframe's frame (one keyframe a frame)");
+        Session holder;
+        readSection(sectionNamed("camera"), k, holder);
+        try {
+            path.add(frame, holder.settings.camera);
+        } catch (const Error& e) {
+            throw Error(k.where() + ".camera: " + e.what());
+        }
+    }
+    return path;
+}
+
 }  // namespace
 
 Session parseSession(const std::string& text, const fs::path& path) {
@@ -501,7 +550,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
     AMRVK_CHECK(version >= 1 && version <= kVersion, file, ": session version ", version,
                 " (this amrvk reads versions 1 to ", kVersion, ")");
     top.onlyKeys({"amrvk", "version", "input", "read", "field", "camera", "image", "render", "lights", "cut",
-                  "structure", "transferFunction", "tfColors", "legend"});
+                  "structure", "transferFunction", "tfColors", "legend", "cameraPath"});
 
     Session s;
     s.input = top.text("input");
@@ -522,6 +571,7 @@ Session parseSession(const std::string& text, const fs::path& path) {
         s.tfColors = scene::TfColors::Linear;
     else
         settingKey("--tf-colors").read(top, s);
+    if (top.has("cameraPath")) s.cameraPath = readCameraPath(top.child("cameraPath"));
     return s;
 }
 

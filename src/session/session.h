@@ -2,7 +2,8 @@
 // A session: everything that makes a picture, in one JSON file that both the viewer (save/load)
 // and `amrvk render --session` read, so a picture explored interactively renders the same offline.
 // Schema (docs/sessions.md): {"amrvk": "session", "version": 3, "input", "read", "field",
-// "camera", "image", "render", "lights", "structure", "transferFunction", "tfColors", "legend"}.
+// "camera", "image", "render", "lights", "structure", "transferFunction", "tfColors", "legend",
+// "cameraPath"}; "cameraPath" only when the session has one (keyframes: session/camera_path.h).
 // Older files load with the meaning they were saved with: version 1 (before "tfColors") linear
 // colours; versions 1-2 (before the auto scale and the black background) a missing read.scale is
 // linear and a missing render.background the ambient. The input path is
@@ -16,6 +17,7 @@
 #include "scene/structure_config.h"
 #include "scene/tf_colors.h"
 #include "scene/transfer_function.h"
+#include "session/camera_path.h"
 #include "session/legend.h"
 
 namespace amrvk::session {
@@ -47,6 +49,7 @@ struct Session {
     scene::TfChannels tf;            // field units (colour and opacity apart, as ParaView keeps them)
     scene::TfColors tfColors = scene::TfColors::Srgb;  // what tf's colours mean (scene/tf_colors.h)
     Legend legend;                   // the colour legend (session/legend.h)
+    CameraPath cameraPath;  // keyframed cameras of a movie (empty: none); the picture's camera is `settings.camera`
 };
 
 // The JSON text of a session (pretty, keys in schema order).

@@ -3,16 +3,20 @@
 // stops the camera at every keyframe (finite differences, against an uneased path that does not);
 // a half orbit keeps the eye's distance to the target where a straight line from eye to eye passes
 // through the target (the same check refuses it); distances interpolate geometrically; degenerate
-// input is refused or falls back without NaN; the frame-to-step rule.
+// input is refused or falls back without NaN; the frame-to-step rule; the session's
+// "cameraPath" round trip and its one-line errors.
 #include "session/camera_path.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "core/error.h"
+#include "scene/tf_presets.h"
+#include "session/session.h"
 #include "test_data.h"
 
 using namespace amrvk;
@@ -241,4 +245,65 @@ TEST(CameraPath, FramesShowTheStepsInOrder) {
     for (uint32_t k = 0; k < 5; ++k) EXPECT_EQ(session::stepOfFrame(k, 5, 5), k);
     EXPECT_EQ(session::stepOfFrame(4, 5, 1), 0u);
     EXPECT_EQ(session::stepOfFrame(99999, 100000, 100000), 99999u);  // no overflow (64-bit product)
+}
+
+TEST(CameraPath, SessionsKeepThePathAndNameBadValues) {
+    session::Session s;
+    s.input = "/data/x.cells";
+    s.tf = scene::TfChannels::split(scene::makePreset("ramp", 0.0f, 1.0f));
+    s.cameraPath = threeKeys();
+    s.cameraPath.setFps(12.5);
+    const std::string text = session::sessionJson(s);
+    const session::Session t = session::parseSession(text, "/tmp/s.json");
+    EXPECT_EQ(t.cameraPath, s.cameraPath);
+    EXPECT_EQ(session::sessionJson(t), text);
+    // No path: no key, the file as before.
+    session::Session none = s;
+    none.cameraPath = CameraPath();
+    EXPECT_EQ(session::sessionJson(none).find("cameraPath"), std::string::npos);
+    EXPECT_TRUE(session::parseSession(session::sessionJson(none), "/tmp/s.json").cameraPath.empty());
+    auto with = [&](const std::string& from, const std::string& to) {
+        std::string r = text;
+        const size_t at = r.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) r.replace(at, from.size(), to);
+        return r;
+    };
+    const struct {
+        std::string text;
+        std::string fragment;
+    } cases[] = {
+        {with("\"frame\": 10", "\"frame\": 4"),
+         "/tmp/s.json.cameraPath.keyframes[2].frame: 4 is another keyframe's frame"},
+        {with("\"frame\": 10", "\"frame\": 1.5"),
+         "/tmp/s.json.cameraPath.keyframes[2].frame: 1.5 is not an integer in [0, 99999]"},
+        {with("\"frame\": 10", "\"frame\": 100000"), "keyframes[2].frame: 100000 is not an integer"},
+        {with("\"fps\": 12.5", "\"fps\": 0"), "/tmp/s.json.cameraPath.fps: 0 is outside (0, 1000]"},
+        {with("\"fps\": 12.5", "\"fps\": 12.5, \"loop\": true"), "/tmp/s.json.cameraPath.loop: unknown key"},
+        {with("\"frame\": 4,", "\"frame\": 4, \"ease\": 1,"), "/tmp/s.json.cameraPath.keyframes[1].ease: unknown key"},
+        {with("\"fovY\": 30.0", "\"fovY\": 190"), "/tmp/s.json.cameraPath.keyframes[1].camera.fovY"},
+        {with("\"fovY\": 30.0", "\"fov\": 30"), "keyframes[1].camera.fov: unknown key"},
+        {with("\"keyframes\": [", "\"keyframes\": [], \"x\": ["), "cameraPath.x: unknown key"},
+    };
+    for (const auto& c : cases) {
+        const std::string e = test::errorOf([&] { session::parseSession(c.text, "/tmp/s.json"); });
+        EXPECT_NE(e.find(c.fragment), std::string::npos) << "'" << c.fragment << "' not in: " << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+    // Edited as JSON: not an object, no keyframes, and a keyframe whose eye is its target.
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
+    j["cameraPath"] = 5;
+    const std::string five = test::errorOf([&] { session::parseSession(j.dump(), "/tmp/s.json"); });
+    EXPECT_NE(five.find("/tmp/s.json.cameraPath: expected an object"), std::string::npos) << five;
+    j = nlohmann::ordered_json::parse(text);
+    j["cameraPath"]["keyframes"] = nlohmann::ordered_json::array();
+    const std::string none0 = test::errorOf([&] { session::parseSession(j.dump(), "/tmp/s.json"); });
+    EXPECT_NE(none0.find("/tmp/s.json.cameraPath.keyframes: no keyframes"), std::string::npos) << none0;
+    j = nlohmann::ordered_json::parse(text);
+    j["cameraPath"]["keyframes"][1]["camera"]["eye"] = j["cameraPath"]["keyframes"][1]["camera"]["target"];
+    const std::string same = test::errorOf([&] { session::parseSession(j.dump(), "/tmp/s.json"); });
+    EXPECT_NE(same.find("/tmp/s.json.cameraPath.keyframes[1].camera: camera path keyframe at frame 4: eye and target "
+                        "coincide"),
+              std::string::npos)
+        << same;
 }
