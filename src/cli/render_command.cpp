@@ -175,6 +175,16 @@ PicturePlan planPicture(const CLI::App& app, const RenderArgs& a, bool speaks) {
     p.outputs = {{"-o", a.output}, {"--json", a.jsonFile}, {"--variance", a.varianceFile}};
     checkOutputs(p.outputs, pictureInputs(app, p.input, a.pic));
     p.description = describePicture(app, p.input, a.read, a.pic);
+    // A session's camera path describes a movie: one picture is its frame 0 (--camera: that camera).
+    const session::CameraPath& path = p.description.session.cameraPath;
+    if (!path.empty() && app.count("--camera") == 0) {
+        p.description.session.settings.camera = path.cameraAt(0);
+        if (speaks)
+            std::fprintf(stderr,
+                         "amrvk: the session's camera path has %u frames: rendering its frame 0 (-o movie.mp4 or "
+                         "-o frames/f_%%04d.png renders them all)\n",
+                         path.frameCount());
+    }
     AMRVK_CHECK(a.varianceFile.empty() || p.description.session.spp >= 2, "--variance needs --spp of at least 2 (got ",
                 p.description.session.spp, ")");
     // The legend's own options draw nothing without a legend (issue 52, point 9: they were ignored).

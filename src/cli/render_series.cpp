@@ -24,6 +24,7 @@
 #include "render/renderer.h"
 #include "scene/tf_files.h"
 #include "scene/transfer_function.h"
+#include "session/camera_path.h"
 #include "session/legend_image.h"
 #include "session/orbit_camera.h"
 #include "session/series.h"
@@ -95,6 +96,15 @@ std::string recipeOf(const session::PictureDescription& base, const std::vector<
     j["inputs"] = in;
     j["frames"] = frames;
     j["orbitDegrees"] = orbit;
+    if (!d.session.cameraPath.empty()) {  // every keyframe exactly: another path renders every frame anew
+        Json keys = Json::array();
+        for (const session::Keyframe& k : d.session.cameraPath.keyframes()) {
+            const scene::Camera& c = k.camera;
+            keys.push_back({k.frame, c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
+                            c.up.z, c.fovYDegrees});
+        }
+        j["cameraPath"] = keys;
+    }
     j["range"] = rangeFromName(range);
     return j.dump();
 }
@@ -107,6 +117,8 @@ struct Series {
     std::vector<std::string> frameInputs;  // frame k's input
     uint32_t n = 0;                        // the frame count
     double orbit = 0;                      // degrees turned over the frames
+    const session::CameraPath* path = nullptr;  // the session's camera path (frame k: its camera), or none
+    double fps = 24;                            // the movie's frames per second
     RangeFrom rangeFrom = RangeFrom::Given;
     // Where they go (planOutputs, addFrameOutputs, openLegend).
     bool movie = false;                    // -o MOVIE.mp4
@@ -128,8 +140,33 @@ struct Series {
     std::string deviceName;          // empty: nothing rendered
 };
 
+// The frames of the session's camera path: its frame count, frame k seen from its cameraAt(k) and
+// showing output stepOfFrame(k) of the series (one input: that one in every frame). The options
+// that would move the camera otherwise or count the frames contradict it: refused.
+void planPathFrames(const CLI::App& app, Series& s) {
+    s.path = &s.base.session.cameraPath;
+    s.n = s.path->frameCount();
+    const std::string has = "the session's camera path (" + std::to_string(s.n) + " frames)";
+    AMRVK_CHECK(!given(app, "--orbit"), "--orbit: ", has, " moves the camera; leave out --orbit");
+    AMRVK_CHECK(!given(app, "--frames"), "--frames: ", has, " sets the frame count; leave out --frames");
+    AMRVK_CHECK(!given(app, "--camera"), "--camera: ", has,
+                " sets every frame's camera; leave out --camera (one picture: -o x.png --camera ...)");
+    AMRVK_CHECK(s.inputs.size() <= s.n, s.inputs.size(), " inputs over ", has,
+                ": some outputs would show in no frame (add frames to the path, or give fewer inputs)");
+    for (uint32_t k = 0; k < s.n; ++k)
+        s.frameInputs.push_back(s.inputs[session::stepOfFrame(k, s.n, uint32_t(s.inputs.size()))]);
+}
+
+// Frame k's camera once the series is resolved: the camera path's at frame k, or the series'
+// camera turned to the frame's azimuth.
+scene::Camera frameCamera(const Series& s, uint32_t k) {
+    if (s.path) return s.path->cameraAt(double(k));
+    return session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre,
+                                              session::frameAzimuth(k, s.n, s.orbit));
+}
+
 // The frames: inputs in natural order (none given: the session's), one frame each or --frames of
-// one, the orbit, and where the TF's range comes from.
+// one (or the session's camera path's frames), the orbit, and where the TF's range comes from.
 void planSeriesFrames(const CLI::App& app, const SeriesRequest& request, const ReadArgs& read, const PictureArgs& pic,
                       const SeriesArgs& series, Series& s) {
     s.inputs = request.inputs.empty() ? std::vector<std::string>{} : session::expandInputs(request.inputs);
@@ -146,9 +183,14 @@ void planSeriesFrames(const CLI::App& app, const SeriesRequest& request, const R
     const bool orbitGiven = given(app, "--orbit");
     const std::optional<uint32_t> frameCount =
         given(app, "--frames") ? std::optional(uint32_t(series.frames)) : std::nullopt;
-    s.frameInputs = session::planFrames(s.inputs, frameCount, orbitGiven);
-    s.n = uint32_t(s.frameInputs.size());
-    s.orbit = orbitGiven ? series.orbit : 0.0;
+    if (!s.base.session.cameraPath.empty()) {
+        planPathFrames(app, s);
+    } else {
+        s.frameInputs = session::planFrames(s.inputs, frameCount, orbitGiven);
+        s.n = uint32_t(s.frameInputs.size());
+        s.orbit = orbitGiven ? series.orbit : 0.0;
+    }
+    s.fps = given(app, "--fps") || !s.path ? series.fps : s.path->fps();
     s.rangeFrom = s.base.tfRange                                                           ? RangeFrom::Given
                   : !s.base.tfSource                                                       ? RangeFrom::Session
                   : session::parseSeriesRange(series.range) == session::SeriesRange::First ? RangeFrom::First
@@ -295,19 +337,20 @@ void resolveRange(Series& s) {
     if (!s.resolved && s.rangeFrom == RangeFrom::Given) s.manifest.tfRange = s.base.tfRange;
 }
 
-// Frame k's picture on `ctx`, read from its input (the caller released the last one): the series'
-// camera turned to `azimuth` once resolved; the first frame made (frame 0) resolves the field,
+// Frame k's picture on `ctx`, read from its input (the caller released the last one): frameCamera
+// once resolved (a camera path's from the start); the first frame made (frame 0) resolves the field,
 // camera and centre, and the range when it is the first output's. No file read is an output
 // (`readsChecked`: the inputFilesRead() entries checked already).
 picture::Picture framePicture(Series& s, gpu::Context& ctx, const gpu::ShaderLibrary& shaders, uint32_t k,
-                              double azimuth, size_t& readsChecked,
-                              const std::function<void(const std::string&)>& note) {
+                              size_t& readsChecked, const std::function<void(const std::string&)>& note) {
     session::PictureDescription d = s.base;
     d.session.input = s.frameInputs[k];
     if (s.resolved) {
         d.session.field = s.manifest.field;
         d.fitCamera = false;
-        d.session.settings.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+        d.session.settings.camera = frameCamera(s, k);
+    } else if (s.path) {
+        d.session.settings.camera = s.path->cameraAt(double(k));  // a session's: never fitted
     }
     // Each frame is one picture and nothing after it reads the cells (the histogram and ranges are
     // made with the bricks): they go once the bricks exist, as for one render (issue 31, point 7);
@@ -369,15 +412,14 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
     std::string pictureInput;
     for (const uint32_t k : s.todo) {
         const std::string& input = s.frameInputs[k];
-        const double azimuth = session::frameAzimuth(k, s.n, s.orbit);
         if (!picture || pictureInput != input) {
             picture.reset();  // released before the next output is read
             bar.finish();
-            picture = framePicture(s, ctx, shaders, k, azimuth, readsChecked, note);
+            picture = framePicture(s, ctx, shaders, k, readsChecked, note);
             pictureInput = input;
         } else {
             scene::RenderSettings rs = picture->renderer->settings();
-            rs.camera = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+            rs.camera = frameCamera(s, k);
             picture->commit({.settings = rs});  // Picture::session() reads it from the renderer
         }
         const std::string detail = "frame " + std::to_string(k) + ": " + fs::path(input).filename().string();
@@ -402,8 +444,9 @@ void renderFrames(Series& s, const DeviceArgs& dev, const std::function<void(con
     bar.finish();
 }
 
-// --json's report of every frame: its file (null for a movie's temporary frames), input, azimuth,
-// whether it was rendered now, its camera once resolved, and its statistics when rendered now.
+// --json's report of every frame: its file (null for a movie's temporary frames), input, azimuth
+// (a camera path: its frame), whether it was rendered now, its camera once resolved (a camera
+// path's always), and its statistics when rendered now.
 Json frameReports(const Series& s) {
     Json reports = Json::array();
     for (uint32_t k = 0; k < s.n; ++k) {
@@ -415,8 +458,9 @@ Json frameReports(const Series& s) {
                        {"input", s.frameInputs[k]},
                        {"azimuthDegrees", azimuth},
                        {"rendered", s.stats.count(k) > 0}};
-        if (s.resolved) {
-            const scene::Camera c = session::OrbitCamera::orbitedAbout(s.manifest.camera, s.manifest.centre, azimuth);
+        if (s.path) report["pathFrame"] = k;
+        if (s.resolved || s.path) {
+            const scene::Camera c = frameCamera(s, k);
             report["camera"] = {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
                                 {"target", {c.target.x, c.target.y, c.target.z}},
                                 {"up", {c.up.x, c.up.y, c.up.z}},
@@ -431,10 +475,10 @@ Json frameReports(const Series& s) {
 // -o MOVIE.mp4: encoded from the frames. Frames that were only the movie's are then removed with
 // their manifest, and so is their directory when amrvk made it (`madeDirectory`: now, or the run
 // whose manifest was there) and nothing else is in it.
-void finishMovie(const Series& s, const std::string& output, const SeriesArgs& series, bool madeDirectory) {
+void finishMovie(const Series& s, const std::string& output, bool madeDirectory) {
     {
         ProgressStage stage("encoding " + output + " with ffmpeg");
-        encodeMp4(s.frames.pattern, s.n, series.fps, output);
+        encodeMp4(s.frames.pattern, s.n, s.fps, output);
     }
     if (s.keepFrames) return;
     std::error_code ec;
@@ -459,6 +503,8 @@ void writeSeriesJson(const std::string& file, const Series& s, const std::string
     j["tfPercentiles"] = s.manifest.tfPercentiles ? Json(s.manifest.tfPercentiles->values) : Json(nullptr);
     j["transferFunction"] = s.tf ? Json::parse(scene::paraViewPresetJson(*s.tf)).at(0) : Json(nullptr);
     j["orbitDegrees"] = s.orbit;
+    j["cameraPath"] = s.path ? Json{{"frames", s.n}, {"fps", s.path->fps()}} : Json(nullptr);
+    j["fps"] = s.movie ? Json(s.fps) : Json(nullptr);
     j["orbitCentre"] =
         s.resolved ? Json::array({s.manifest.centre.x, s.manifest.centre.y, s.manifest.centre.z}) : Json(nullptr);
     j["movie"] = s.movie ? Json(output) : Json(nullptr);
@@ -516,7 +562,7 @@ int renderSeries(const CLI::App& app, const SeriesRequest& request, const ReadAr
     }
     directory.dismiss();
     Json reports = frameReports(s);
-    if (s.movie) finishMovie(s, request.output, series, directory.made());
+    if (s.movie) finishMovie(s, request.output, directory.made());
     if (!request.jsonFile.empty()) writeSeriesJson(request.jsonFile, s, request.output, std::move(reports), wall);
     const std::string where = s.movie ? request.output : s.frames.pattern;
     const size_t rendered = s.todo.size();
