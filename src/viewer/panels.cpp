@@ -403,6 +403,35 @@ void cameraPanel(PanelState& p, PanelRequests& r) {
     ImGui::PopStyleColor();
 }
 
+// Keyframes of the current camera at a frame (add, delete, move), the path's fps, the frame slider
+// (shows that frame's camera) and play/stop; the app carries the requests out.
+void cameraPathPanel(PanelState& p, PanelRequests& r) {
+    const session::CameraPath& path = p.edit.cameraPath;
+    PathRequests& q = r.path;
+    const int last = int(session::kMaxPathFrames) - 1;
+    ImGui::InputInt("keyframe frame", &p.keyframeFrame);
+    p.keyframeFrame = std::clamp(p.keyframeFrame, 0, last);
+    if (ImGui::Button("add at current camera (K)")) q.add = uint32_t(p.keyframeFrame);
+    ImGui::SameLine();
+    if (ImGui::Button("delete keyframe")) q.remove = uint32_t(p.keyframeFrame);
+    ImGui::InputInt("move it to frame", &p.keyframeTo);
+    p.keyframeTo = std::clamp(p.keyframeTo, 0, last);
+    if (ImGui::Button("move keyframe")) q.move = std::pair(uint32_t(p.keyframeFrame), uint32_t(p.keyframeTo));
+    float fps = float(path.fps());
+    if (ImGui::InputFloat("frames per second", &fps, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue)) q.fps = fps;
+    if (path.empty()) {
+        wrapped(nullptr, "no keyframes: set the view, then add one (K adds after the last)");
+        return;
+    }
+    std::string frames;
+    for (const session::Keyframe& k : path.keyframes())
+        frames += (frames.empty() ? "" : ", ") + std::to_string(k.frame);
+    wrapped(nullptr, "keyframes at " + frames + " (" + std::to_string(path.frameCount()) + " frames)");
+    int frame = std::clamp(p.pathFrame, 0, int(path.frameCount()) - 1);
+    if (ImGui::SliderInt("path frame", &frame, 0, int(path.frameCount()) - 1)) q.show = uint32_t(frame);
+    if (ImGui::Button(p.pathPlaying ? "stop (P)" : "play (P)")) (p.pathPlaying ? q.stop : q.play) = true;
+}
+
 void filesPanel(PanelState& p, PanelRequests& r) {
     ImGui::InputText("image", &p.screenshotPath);
     if (ImGui::Button("save image")) r.screenshot = true;
@@ -478,6 +507,7 @@ void drawPanels(PanelState& p, PanelRequests& r) {
         if (section(p, "cut-away")) cutAwayPanel(p);
         if (section(p, "structures")) structurePanel(p, r);
         if (section(p, "camera")) cameraPanel(p, r);
+        if (section(p, "camera path")) cameraPathPanel(p, r);
         if (section(p, "files")) filesPanel(p, r);
         if (!p.shaderError.empty()) wrapped(&kRed, "shader: " + p.shaderError);
         if (!p.message.empty()) wrapped(nullptr, p.message);

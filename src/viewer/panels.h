@@ -3,10 +3,11 @@
 // from viewer/logic/viewer_layout.h, so it never covers the picture; the user may drag its left edge):
 // statistics, transfer-function editor (colour map, draggable opacity curve over the field
 // histogram, log scale, value range, density), render settings and lights, structures, camera,
-// files (screenshot, session, TF). They edit a copy of the picture (PanelState::edit) and raise
-// requests; the app validates the copy and applies what changed, so a rejected edit never reaches
-// its state or a session. Widgets leave a label column as wide as the widest label, so no label is
-// cut off at the panel's minimum width. All ImGui widget code is here.
+// camera path (keyframes, preview), files (screenshot, session, TF). They edit a copy of the
+// picture (PanelState::edit) and raise requests; the app validates the copy and applies what
+// changed, so a rejected edit never reaches its state or a session. Widgets leave a label column as
+// wide as the widest label, so no label is cut off at the panel's minimum width. All ImGui widget
+// code is here.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -41,6 +42,16 @@ struct Statistics {
     double stepSeconds = 0;
 };
 
+// The camera path section's requests (the app carries them out: viewer_camera_path.cpp).
+struct PathRequests {
+    std::optional<uint32_t> add;                        // a keyframe of the current camera at this frame
+    std::optional<uint32_t> remove;                     // delete the keyframe at this frame
+    std::optional<std::pair<uint32_t, uint32_t>> move;  // from, to
+    std::optional<uint32_t> show;                       // the path frame whose camera to show (the slider)
+    std::optional<double> fps;
+    bool play = false, stop = false;
+};
+
 struct PanelRequests {
     bool tfChanged = false;    // the editor state changed this frame (live)
     bool tfCommitted = false;  // an edit finished (push to the undo history)
@@ -53,6 +64,7 @@ struct PanelRequests {
     std::optional<size_t> seriesStep;  // the time slider moved to a step
     bool seriesPlayToggle = false;
     std::optional<double> seriesFps;
+    PathRequests path;
 };
 
 struct PanelState {
@@ -85,6 +97,9 @@ struct PanelState {
     glm::dvec3 worldLo{0.0}, worldHi{1.0};         // the data's world bounds (cut-away ranges and handles)
     std::optional<scene::CropBox> cropMemory;      // the crop box while it is switched off (not lost)
     bool imageFollowsWindow = false;               // the image size follows the picture area (camera aspect included)
+    int keyframeFrame = 0, keyframeTo = 0;         // the camera path section's frame fields
+    int pathFrame = -1;                            // the path frame shown (-1: none; the slider's value)
+    bool pathPlaying = false;                      // the path's preview is playing
     // out: where the section headers ("camera header", ...) and the "image size = picture area"
     // checkbox were drawn this frame, those on screen only (framebuffer pixels; --state-file).
     std::vector<std::pair<std::string, session::PixelRect>> widgets;

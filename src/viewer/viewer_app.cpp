@@ -293,6 +293,7 @@ bool ViewerApp::frame() {
     runScript();
     if (mQuit) return false;  // a quit action, or closed during a rebuild an action started
     playSeries();
+    advancePathPreview();
     pollShaders();
     if (mWindow) {
         updateLayout();
@@ -411,6 +412,7 @@ void ViewerApp::applyPanelEdits(PanelRequests& req) {
     }
     mState.spp = e.spp;
     mState.legend = e.legend;  // drawn over the picture and into PNG screenshots; the picture is unchanged
+    applyPathRequests(req.path);
     if (req.screenshot) screenshot(mPanel.screenshotPath);
     if (req.saveSession) saveSessionFile(mPanel.sessionPath);
     if (req.loadSession) loadSessionFile(mPanel.sessionPath);

@@ -3,7 +3,8 @@
 // its frame loop. Its members are defined by concern: viewer_app.cpp (the picture, its edits and
 // the frame loop), viewer_input.cpp (keys and mouse), viewer_script.cpp (frame-numbered script
 // actions), viewer_capture.cpp (screenshots and window captures), viewer_report.cpp (--stats and
-// --state-file) and viewer_session_io.cpp (session files and copy-as-command).
+// --state-file), viewer_session_io.cpp (session files and copy-as-command) and
+// viewer_camera_path.cpp (the camera path's keyframes and preview).
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
@@ -136,6 +137,19 @@ private:
     // The live state for programs that drive the window (--state-file, docs/viewer.md): after
     // every frame and when a rebuild starts beside the event loop.
     void writeState() const;
+    // The camera path (viewer_camera_path.cpp): keyframes edited in mState.cameraPath; the preview
+    // sets mState.settings.camera to the path's camera of a frame, a camera edit like an orbit.
+    void runPathAction(const ScriptAction& a);      // keyframe-* and path-* script actions
+    void applyPathRequests(const PathRequests& r);  // the camera path section's requests
+    void handlePathKey(int code);                   // K adds a keyframe, P plays or stops
+    // Each frame (after the script): while playing, the next path frame, one a viewer frame and at
+    // most fps a second (the frame waits for its time); after the last frame the preview stops.
+    void advancePathPreview();
+    void showPathFrame(uint32_t k);  // the camera := cameraAt(k), recorded in mPathPreview.shown
+    void playPath();                 // from frame 0, shown at once
+    void stopPath();
+    // The path frame whose camera the camera is now (none once the camera was moved, or no path).
+    std::optional<uint32_t> shownPathFrame() const;
 
     // A time series (viewer_series.cpp): the player, the steps read ahead beside the event loop
     // (a worker thread reading the nearest steps within mOpt.seriesAheadBytes), and stepping:
@@ -243,6 +257,15 @@ private:
         uint64_t keys = 0, buttons = 0, cursor = 0, scroll = 0;
         unsigned held = 0;
     } mInputSeen;
+    // The camera path's preview (viewer_camera_path.cpp).
+    struct PathPreview {
+        bool playing = false;
+        std::optional<uint32_t> frame;  // the last path frame shown
+        uint64_t shownOnFrame = 0;      // the viewer frame (mFrame) it was shown on
+        Clock::time_point shownAt;      // and when: playing shows the next 1/fps later at the earliest
+        // Every path frame shown and its camera, in order (--stats "pathFramesShown").
+        std::vector<std::pair<uint32_t, scene::Camera>> shown;
+    } mPathPreview;
     bool mBuilding = false;             // whileResponsive is running a rebuild beside the event loop
     std::unique_ptr<Font> mLegendFont;  // the PNG legend's font, opened at the first screenshot with the legend
     std::string mLegendFontFile;        // the legend.font it was opened for

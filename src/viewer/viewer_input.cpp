@@ -14,7 +14,7 @@ namespace amrvk::viewer {
 
 // A key the panels did not take: arrows orbit by `step` of a picture `h` pixels high, +/- and
 // page up/down zoom, r resets the view, q and Esc quit; in a time series space plays or pauses and
-// comma and period step back and on.
+// comma and period step back and on; k and p edit and play the camera path.
 void ViewerApp::handleKey(int code, double h, double step) {
     switch (code) {
         case GLFW_KEY_LEFT:
@@ -55,6 +55,7 @@ void ViewerApp::handleKey(int code, double h, double step) {
             mQuit = true;
             break;
         default:
+            handlePathKey(code);  // K, P
             break;
     }
 }

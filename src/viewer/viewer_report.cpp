@@ -112,6 +112,15 @@ void ViewerApp::writeStats() const {
     j["updates"] = {{"deviceScenes", u.deviceScenes}, {"majorantPasses", u.majorantDispatches}};
     // The field's scale and the histogram under the TF editor (the range it spans, cells counted).
     j["scale"] = amr::fieldScaleName(mState.read.scale);
+    // Every camera path frame the preview showed, in order, with the camera it set (world space).
+    j["pathFramesShown"] = nlohmann::ordered_json::array();
+    for (const auto& [k, c] : mPathPreview.shown)
+        j["pathFramesShown"].push_back({{"frame", k},
+                                        {"camera",
+                                         {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                                          {"target", {c.target.x, c.target.y, c.target.z}},
+                                          {"up", {c.up.x, c.up.y, c.up.z}},
+                                          {"fovY", c.fovYDegrees}}}});
     if (mHistogram) {
         double inRange = 0;  // counts of cells: whole numbers, exact in double
         for (double c : mHistogram->counts) inRange += c;
@@ -162,6 +171,13 @@ void ViewerApp::writeState() const {
     const scene::Camera& c = mState.settings.camera;  // world space
     auto vec = [](const glm::dvec3& v) { return nlohmann::ordered_json::array({v.x, v.y, v.z}); };
     j["camera"] = {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fovY", c.fovYDegrees}};
+    // The camera path: its keyframes and frames, the path frame whose camera the camera is (null
+    // when none), whether its preview plays.
+    const std::optional<uint32_t> shown = shownPathFrame();
+    j["path"] = {{"keyframes", mState.cameraPath.keyframes().size()},
+                 {"frames", mState.cameraPath.frameCount()},
+                 {"frame", shown ? nlohmann::ordered_json(*shown) : nlohmann::ordered_json(nullptr)},
+                 {"playing", mPathPreview.playing}};
     if (mWindow) {
         // The last cursor position taken (window coordinates, rounded) and the buttons held.
         j["pointer"] = {{"x", std::lround(mLastX)}, {"y", std::lround(mLastY)}, {"held", mInputSeen.held}};

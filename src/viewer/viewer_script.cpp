@@ -120,6 +120,8 @@ void ViewerApp::runAction(const ScriptAction& a) {
         if (mWindow) mCapturePath = a.args[0];
     } else if (n == "quit") {
         mQuit = true;
+    } else if (n.starts_with("keyframe-") || n.starts_with("path-")) {
+        runPathAction(a);
     } else {
         AMRVK_CHECK(false, "the viewer has no action '", n, "'");
     }

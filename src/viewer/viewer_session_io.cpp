@@ -40,8 +40,11 @@ void ViewerApp::loadSessionFile(const fs::path& file) {
         if (!(s.structure == mState.structure)) e.structure = s.structure;
         commit(e);
         mState.spp = s.spp;
+        mState.cameraPath = s.cameraPath;  // (a rescale takes it with the rest of s)
         mTfHistory.push(mState.tf);
     }
+    stopPath();
+    mPathPreview.frame.reset();
     mPanel.message = "loaded " + file.string();
 }
 

@@ -359,6 +359,8 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
                    "0 mode ss\n0 traversal grid-bvh\n0 sampler abr\n0 backend sw\n0 grid 8\n"
                    "0 clip 1 2 3 0 0 1\n0 cut-off\n0 crop 0 0 0 512 512 400\n0 clip 256 256 256 0 1 0\n"
                    "0 edit-shader path_trace.comp \"void main() {\" \"void main() { // edited\"\n0 reload\n0 legend on\n0 tf-colors linear\n"
+                   "0 keyframe-add 0\n0 keyframe-add 5\n0 keyframe-move 5 6\n0 keyframe-add 3\n0 keyframe-delete 3\n"
+                   "0 path-fps 12\n0 path-frame 2\n0 path-play\n0 path-stop\n"
                    "0 screenshot " + (dir / "shot.pfm").string() + "\n0 save-session " + (dir / "s.json").string() +
                    "\n0 scale log\n0 log-floor 0.01\n0 load-session " + (dir / "s.json").string() +
                    "\n0 capture-window " + (dir / "w.png").string() + "\n1 quit\n");
@@ -378,6 +380,9 @@ TEST_F(ViewerGpu, EveryScriptActionRunsAtFrameZeroAndAFailingLineIsNamed) {
     EXPECT_TRUE(s.legend.show);
     EXPECT_EQ(s.tfColors, scene::TfColors::Linear);
     EXPECT_FLOAT_EQ(s.tf.merged().lastPosition(), 1.5f);
+    ASSERT_EQ(s.cameraPath.keyframes().size(), 2u);
+    EXPECT_EQ(s.cameraPath.keyframes()[1].frame, 6u) << "keyframe-move 5 6";
+    EXPECT_EQ(s.cameraPath.fps(), 12.0);
     ASSERT_TRUE(s.settings.cut.crop.has_value());
     EXPECT_EQ(s.settings.cut.crop->hi.z, 400.0);
     ASSERT_EQ(s.settings.cut.clips.size(), 1u) << "cut-off removed the first plane";

@@ -16,6 +16,7 @@
 #include "scene/tf_colors.h"
 #include "scene/tf_presets.h"
 #include "scene/transfer_function.h"
+#include "session/camera_path.h"
 
 namespace amrvk::viewer {
 
@@ -56,7 +57,14 @@ const std::map<std::string, Signature>& signatures() {
                                                            {"step", {1, {0}}},
                                                            {"play", {0, {}}},
                                                            {"pause", {0, {}}},
-                                                           {"series-fps", {1, {0}}}};
+                                                           {"series-fps", {1, {0}}},
+                                                           {"keyframe-add", {1, {0}}},
+                                                           {"keyframe-delete", {1, {0}}},
+                                                           {"keyframe-move", {2, {0, 1}}},
+                                                           {"path-frame", {1, {0}}},
+                                                           {"path-play", {0, {}}},
+                                                           {"path-stop", {0, {}}},
+                                                           {"path-fps", {1, {0}}}};
     return table;
 }
 
@@ -139,6 +147,11 @@ void checkValues(const ScriptAction& a) {
                     " must be a whole number >= 0");
     else if (n == "series-fps")
         AMRVK_CHECK(a.number(0) > 0 && a.number(0) <= 120, "series-fps ", a.args[0], " is outside (0, 120]");
+    else if (n == "keyframe-add" || n == "keyframe-delete" || n == "keyframe-move" || n == "path-frame")
+        for (size_t i = 0; i < a.args.size(); ++i) pathFrameArgument(a, i);
+    else if (n == "path-fps")
+        AMRVK_CHECK(a.number(0) > 0 && a.number(0) <= session::kMaxPathFps, "fps ", a.args[0], " is outside (0, ",
+                    session::kMaxPathFps, "]");
     else if (n == "edit-shader") {
         AMRVK_CHECK(!a.args[0].empty() && std::filesystem::path(a.args[0]).is_relative(), "'", a.args[0],
                     "' must be a path relative to --shader-dir");
@@ -147,6 +160,13 @@ void checkValues(const ScriptAction& a) {
 }
 
 }  // namespace
+
+uint32_t pathFrameArgument(const ScriptAction& a, size_t i) {
+    const double f = a.number(i);
+    AMRVK_CHECK(f >= 0 && f < session::kMaxPathFrames && f == std::floor(f), "frame ", a.args[i],
+                " is not a whole number in [0, ", session::kMaxPathFrames - 1, "]");
+    return uint32_t(f);
+}
 
 double ScriptAction::number(size_t i) const {
     double v = 0;

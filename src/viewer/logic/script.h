@@ -18,12 +18,19 @@
 //   tf-colors srgb|linear            what the TF's colours mean (the "sRGB colours" checkbox)
 //   step K | play | pause            a time series: show step K (from 0), play or pause (space)
 //   series-fps F                     a time series: steps per second while playing
+//   keyframe-add F | keyframe-delete F | keyframe-move F TO
+//                                    the camera path: a keyframe of the current camera at path frame F,
+//                                    deleted, moved (frames whole numbers in [0, 99999])
+//   path-frame K | path-play | path-stop | path-fps FPS
+//                                    show path frame K's camera; play the path from frame 0 (one path
+//                                    frame a viewer frame, at most FPS a second); stop; the path's fps
 //   quit
 // Parsing checks every action's name, argument count and value (numbers finite, names of modes,
 // structures and presets known, tf-range LO < HI, density >= 0, image types by extension,
 // edit-shader paths relative); checkScript then checks what needs the viewer's context (the
 // structure combination each line leads to, edit-shader files inside --shader-dir). All before
 // frame 0, one line per error naming the file and line.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -39,6 +46,9 @@ struct ScriptAction {
     std::string where;              // "FILE:LINE" for messages
     double number(size_t i) const;  // args[i] as a number (checked when parsed)
 };
+
+// Argument i of a keyframe-* or path-frame action: a path frame, checked (one-line error).
+uint32_t pathFrameArgument(const ScriptAction& a, size_t i);
 
 // Actions in file order; frames must not decrease.
 std::vector<ScriptAction> parseScript(const std::string& text, const std::string& fileName);
