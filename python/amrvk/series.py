@@ -69,8 +69,28 @@ def _range(tf_range, volume_of, order):
     return lo, hi, None
 
 
+def _path_cameras(camera_path, camera, frames, orbit):
+    """The camera of every frame and the path's fps (None: a list gives none) from `camera_path`: a
+    session file with a "cameraPath" (each frame's camera as amrvk render takes it) or a list of
+    amrvk.Camera, one per frame."""
+    for name, value in (("camera", camera), ("frames", frames), ("orbit", orbit)):
+        if value is not None:
+            raise TypeError(f"{name}: not with camera_path (the path gives every frame's camera and the frame count)")
+    if isinstance(camera_path, (str, os.PathLike)):
+        path = _amrvk._session_camera_path(os.fspath(camera_path))
+        if path is None:
+            raise ValueError(f"camera_path: {os.fspath(camera_path)} has no cameraPath (keyframes saved by the viewer)")
+        return list(path[0]), path[1]
+    if not isinstance(camera_path, (list, tuple)) or not all(isinstance(c, _amrvk.Camera) for c in camera_path):
+        raise TypeError("camera_path: expected a session file or a list of amrvk.Camera (one per frame), got "
+                        f"{_shown(camera_path)}")
+    if not camera_path:
+        raise ValueError("camera_path: an empty list (one amrvk.Camera per frame)")
+    return list(camera_path), None
+
+
 def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range="first", spp=None, camera=None,
-                  frames=None, orbit=None, fps=24.0, progress=None, **options):
+                  frames=None, orbit=None, camera_path=None, fps=None, progress=None, **options):
     """Renders a series and returns its frames: a list of float32 (H, W, 4) arrays when `out` is
     None, else the files written (numbered frames: ``"frames/f_%04d.png"`` or a directory), or
     ``[out]`` for an MP4 (``"movie.mp4"``, at `fps` frames per second).
@@ -81,6 +101,11 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
     frames, orbit: a turntable of one data set, `frames` frames over `orbit` degrees; with a series,
       `orbit` degrees spread over its frames.
     camera: every frame's (before its orbit); default: the view that frames the first data set.
+    camera_path: a session file whose "cameraPath" gives frame k's camera (as `amrvk render --session
+      FILE -o movie.mp4` renders it: the same cameras, the same frame count, its fps unless `fps` is
+      given), or a list of amrvk.Camera, one per frame; not with camera, frames or orbit. Over a
+      series of S data sets, frame k of N shows data set floor(k * S / N).
+    fps: the movie's frames per second (default: the session path's, else 24).
     options: Renderer's (width, height, mode, density_scale, legend, ...); `legend` draws into PNGs.
     progress: callable(frame, frames) after each frame.
     """
@@ -88,6 +113,9 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
         raise TypeError(f"orbit: expected degrees (a number), got {_shown(orbit)}")
     if frames is not None and (isinstance(frames, bool) or not isinstance(frames, int)):
         raise TypeError(f"frames: expected a whole number, got {_shown(frames)}")
+    path_cameras, path_fps = _path_cameras(camera_path, camera, frames, orbit) if camera_path is not None else (None, None)
+    if fps is None:
+        fps = path_fps if path_fps is not None else 24.0
     movie = out is not None and os.fspath(out).lower().endswith(".mp4")
     if movie:  # before any frame is rendered (issue 52, point 17: refused after all of them)
         if isinstance(fps, bool) or not isinstance(fps, numbers.Real):
@@ -97,8 +125,14 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
     sources, from_yt = _sources(inputs)
     # A DatasetSeries is indexed (ts[i] loads data set i when asked), never loaded whole.
     names = [str(i) for i in range(len(sources))] if from_yt else sources
-    plan = _amrvk._plan_frames(names, frames, orbit is not None)  # the CLI's checks and turntables
-    order = [names.index(p) for p in plan]  # the input of each frame
+    if path_cameras is None:
+        plan = _amrvk._plan_frames(names, frames, orbit is not None)  # the CLI's checks and turntables
+        order = [names.index(p) for p in plan]  # the input of each frame
+    else:  # as amrvk render plans a camera path's frames
+        if len(names) > len(path_cameras):
+            raise ValueError(f"camera_path: {len(names)} data sets over {len(path_cameras)} frames: some would show in "
+                             "no frame")
+        order = [_amrvk._step_of_frame(k, len(path_cameras), len(names)) for k in range(len(path_cameras))]
     count = len(order)
     scratch = tempfile.TemporaryDirectory(prefix="amrvk-movie-") if movie else None
     created, written, done = [], [], False
@@ -127,10 +161,13 @@ def render_series(inputs, out=None, *, field=None, log=False, tf=None, tf_range=
                 tf = preset(name, lo, hi)
         elif not isinstance(tf, _amrvk.TransferFunction):
             raise TypeError(f"tf: expected None, a preset or colormap name or an amrvk.TransferFunction, got {_shown(tf)}")
-        first = camera if camera is not None else _amrvk.Camera.frame(volume_of(order[0]))
+        first = camera if camera is not None or path_cameras is not None else _amrvk.Camera.frame(volume_of(order[0]))
         images = []
         for k in range(count):
-            view = first.orbit(_amrvk._frame_azimuth(k, count, float(orbit))) if orbit else first
+            if path_cameras is not None:
+                view = path_cameras[k]
+            else:
+                view = first.orbit(_amrvk._frame_azimuth(k, count, float(orbit))) if orbit else first
             with _amrvk.Renderer(volume_of(order[k]), tf, view, **{"quiet": True, **options}) as r:
                 image = r.render(spp=spp) if spp is not None else r.render()
                 if files is None:

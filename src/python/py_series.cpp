@@ -8,12 +8,15 @@
 #include "python/py_transfer_function.h"
 #include "python/py_volume.h"
 #include "scene/tf_presets.h"
+#include "session/camera_path.h"
 #include "session/series.h"
+#include "session/session.h"
 
 namespace amrvk::python {
 
 // The series planning of `amrvk render` (session/series.h), for python/amrvk/series.py: which
-// inputs in which order, the frames of a turntable, each frame's azimuth and file, and MP4s.
+// inputs in which order, the frames of a turntable, each frame's azimuth and file, a session's
+// camera path (session/camera_path.h) and the output of each of its frames, and MP4s.
 void bindSeries(py::module_& m) {
     m.def("_expand_inputs", &session::expandInputs, py::arg("inputs"),
           "paths as they are, glob patterns expanded; all in natural order (output_2 before output_10)");
@@ -24,6 +27,20 @@ void bindSeries(py::module_& m) {
         },
         py::arg("inputs"), py::arg("frames"), py::arg("orbit_given"));
     m.def("_frame_azimuth", &session::frameAzimuth, py::arg("k"), py::arg("n"), py::arg("degrees"));
+    // A session's camera path as amrvk render takes it: the camera of every frame (cameraAt(k)) and
+    // the fps; None when the session has no path.
+    m.def(
+        "_session_camera_path",
+        [](const fs::path& file) -> py::object {
+            const session::Session s = session::loadSession(file);
+            if (s.cameraPath.empty()) return py::none();
+            std::vector<scene::Camera> cameras;
+            for (uint32_t k = 0; k < s.cameraPath.frameCount(); ++k)
+                cameras.push_back(s.cameraPath.cameraAt(double(k)));
+            return py::make_tuple(cameras, s.cameraPath.fps());
+        },
+        py::arg("session"));
+    m.def("_step_of_frame", &session::stepOfFrame, py::arg("frame"), py::arg("frames"), py::arg("steps"));
     m.def(
         "_frame_files",
         [](const std::string& text, uint32_t count) {

@@ -1,5 +1,6 @@
 """Series and movies from Python (issue 33, point 3): a glob, a list or a yt DatasetSeries in, frames
 (arrays, numbered files or an MP4) out, one TF range for all, the command line's order and checks."""
+import json
 import shutil
 
 import numpy as np
@@ -149,3 +150,58 @@ def test_a_yt_dataset_series(amrvk, yt):
                                  height=16)
     assert len(frames) == 2 and frames[0].shape == (16, 16, 4)
     assert not np.array_equal(frames[0], frames[1]), "the second frame is turned by 90 degrees"
+
+
+def test_a_camera_path_from_a_session_or_a_list(amrvk, series, tmp_path):
+    """Issue 53: camera_path= takes frame k's camera from a session's cameraPath (the frames the
+    path's, each keyframe's camera exactly at its frame, orbiting about the target in between) or
+    from a list of cameras, one per frame; each frame is the Renderer's picture of its camera;
+    contradicting keywords and bad values are one line."""
+    one = str(series / "s_1.cells")
+    vol = amrvk.Volume(one, scale="linear")
+    tf = amrvk.TransferFunction.preset("ramp", vol)
+    start = amrvk.Camera.frame(vol)
+    keys = [(0, start), (4, start.orbit(170))]
+
+    def picture(camera):
+        with amrvk.Renderer(vol, tf, camera, quiet=True, **SMALL) as r:
+            return r.render(spp=1)
+
+    session, plain = tmp_path / "path.json", tmp_path / "plain.json"
+    with amrvk.Renderer(vol, tf, start, quiet=True, **SMALL) as r:
+        r.save_session(str(plain))
+    s = json.loads(plain.read_text())
+    s["cameraPath"] = {"fps": 6, "keyframes": [
+        {"frame": f, "camera": {"eye": c.eye, "target": c.target, "up": c.up, "fovY": c.fov}} for f, c in keys]}
+    session.write_text(json.dumps(s))
+    cameras, fps = amrvk._amrvk._session_camera_path(str(session))
+    assert len(cameras) == 5 and fps == 6
+    assert cameras[0] == start and cameras[4] == keys[1][1]
+    r0 = np.linalg.norm(np.subtract(start.eye, start.target))
+    for c in cameras:  # about the target, at the keyframes' distance
+        assert abs(np.linalg.norm(np.subtract(c.eye, c.target)) / r0 - 1) < 1e-9, c
+    frames = amrvk.render_series(one, camera_path=str(session), tf="ramp", spp=1, **SMALL)
+    assert len(frames) == 5
+    for k in (0, 2, 4):
+        np.testing.assert_allclose(frames[k], picture(cameras[k]), atol=1e-5)
+    assert np.abs(frames[2] - frames[0]).mean() > 1e-3 and np.abs(frames[2] - frames[4]).mean() > 1e-3
+    # A list: one frame per camera.
+    listed = amrvk.render_series(one, camera_path=[start.orbit(90), start], tf="ramp", spp=1, **SMALL)
+    assert len(listed) == 2
+    np.testing.assert_allclose(listed[0], picture(start.orbit(90)), atol=1e-5)
+    np.testing.assert_allclose(listed[1], frames[0], atol=1e-5)
+    cases = [
+        (dict(camera_path=3), TypeError, "^camera_path: expected a session file or a list of amrvk.Camera"),
+        (dict(camera_path=[start, "x"]), TypeError, "^camera_path: expected a session file"),
+        (dict(camera_path=[]), ValueError, "^camera_path: an empty list"),
+        (dict(camera_path=str(plain)), ValueError, "^camera_path: .*plain.json has no cameraPath"),
+        (dict(camera_path=[start], camera=start), TypeError, "^camera: not with camera_path"),
+        (dict(camera_path=[start], frames=2), TypeError, "^frames: not with camera_path"),
+        (dict(camera_path=[start], orbit=90), TypeError, "^orbit: not with camera_path"),
+        (dict(inputs=str(series / "s_*.cells"), camera_path=[start, start]), ValueError,
+         "^camera_path: 3 data sets over 2 frames"),
+    ]
+    for kw, kind, pattern in cases:
+        with pytest.raises(kind, match=pattern) as e:
+            amrvk.render_series(**{"inputs": one, **SMALL, "spp": 1, **kw})
+        assert "\n" not in str(e.value)
