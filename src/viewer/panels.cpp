@@ -104,7 +104,12 @@ void statisticsPanel(const Statistics& s) {
     wrapped(nullptr, s.device);
     wrapped(nullptr, s.combination);
     ImGui::Text("%.1f frames/s (%.1f ms)", s.framesPerSecond, s.frameMilliseconds);
-    if (s.firstPictureSeconds >= 0) ImGui::Text("first picture after %.2f s", s.firstPictureSeconds);
+    // Every line here is always drawn, one line each: a line that came and went would move the
+    // headers below it between a frame and the next (a click aimed at one would hit another).
+    if (s.firstPictureSeconds >= 0)
+        ImGui::Text("first picture after %.2f s", s.firstPictureSeconds);
+    else
+        ImGui::TextUnformatted("first picture: not yet");
     if (s.ranks > 1) ImGui::Text("%d ranks, each a share of every pass", s.ranks);
     ImGui::Text("%.3f M paths/s", s.mPathsPerSecond);
     if (s.previewScale > 1) {
@@ -118,11 +123,13 @@ void statisticsPanel(const Statistics& s) {
         ImGui::SameLine();
         ImGui::ProgressBar(float(s.rowsDone) / float(std::max(1u, s.height)), ImVec2(120, 0));
     }
-    if (s.previewScale == 1 && s.shown == scene::Shown::Preview) {
-        // The kept preview is on screen until the estimate is as clean (scene/preview_hold.h).
-        const std::string estimate = s.estimateNoise >= 0 ? strCat("noise ", g3(s.estimateNoise)) : "not measured";
-        wrapped(nullptr, strCat("showing the preview (noise ", g3(s.previewNoise), ") until the estimate (", estimate,
-                                ") reaches ", g3(s.noiseToReach)));
+    // The kept preview is on screen until the estimate is as clean (scene/preview_hold.h).
+    if (s.previewScale == 1 && s.shown == scene::Shown::Preview && s.previewNoise >= 0) {
+        const std::string estimate = s.estimateNoise >= 0 ? g3(s.estimateNoise) : "-";
+        ImGui::Text("shown: preview, noise %s (estimate %s > %s)", g3(s.previewNoise).c_str(), estimate.c_str(),
+                    g3(s.noiseToReach).c_str());
+    } else {
+        ImGui::Text("shown: %s", s.previewScale > 1 || s.shown == scene::Shown::Preview ? "preview" : "estimate");
     }
     ImGui::Text("%.2f lookups/path, %.2f null/real", s.lookupsPerPath, s.nullPerReal);
     if (s.violations > 0)
