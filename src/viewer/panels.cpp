@@ -14,6 +14,12 @@
 
 namespace amrvk::viewer {
 
+std::string g3(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.3g", v);
+    return text;
+}
+
 namespace {
 
 const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
@@ -89,16 +95,6 @@ void wrapped(const ImVec4* color, const std::string& text) {
         ImGui::TextUnformatted(text.c_str());
     ImGui::PopTextWrapPos();
 }
-
-namespace {
-
-std::string g3(double v) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.3g", v);
-    return text;
-}
-
-}  // namespace
 
 void statisticsPanel(const Statistics& s) {
     wrapped(nullptr, s.device);

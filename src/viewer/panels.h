@@ -52,6 +52,10 @@ struct PathRequests {
     bool play = false, stop = false;
 };
 
+// `v` to three significant digits ("0.0887", "1.2e+03"): the noises and seconds the panel and
+// the screenshot's line show.
+std::string g3(double v);
+
 struct PanelRequests {
     bool tfChanged = false;    // the editor state changed this frame (live)
     bool tfCommitted = false;  // an edit finished (push to the undo history)

@@ -9,19 +9,10 @@
 #include "render/renderer.h"
 #include "scene/render_output.h"
 #include "session/legend_image.h"
+#include "viewer/panels.h"
 #include "viewer/viewer_app_impl.h"
 
 namespace amrvk::viewer {
-
-namespace {
-
-std::string g3(double v) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.3g", v);
-    return text;
-}
-
-}  // namespace
 
 // The presented image (UI included) into a host buffer: present layout -> copy -> present layout.
 void ViewerApp::recordCapture(VkCommandBuffer cmd, VkImage image, VkExtent2D e) {
