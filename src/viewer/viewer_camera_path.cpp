@@ -85,6 +85,9 @@ void ViewerApp::handlePathKey(int code) {
 
 void ViewerApp::showPathFrame(uint32_t k) {
     mState.settings.camera = mState.cameraPath.cameraAt(double(k));
+    // Over a time series, frame k shows the step render --session shows in it (session::stepOfFrame),
+    // the camera above included in the step's picture.
+    if (mPlayer) showStep(session::stepOfFrame(k, mState.cameraPath.frameCount(), uint32_t(mPlayer->steps())));
     mPathPreview.frame = k;
     mPathPreview.shownOnFrame = mFrame;
     mPathPreview.shownAt = Clock::now();

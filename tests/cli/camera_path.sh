@@ -6,7 +6,7 @@
 # frames apart; a frame's image equals a single `render --camera` of its camera (same seed, spp and
 # code path: the same samples, so to 1e-6; a neighbouring frame does not); one picture of the
 # session is the path's frame 0; a series of three outputs over the path (output floor(3k/7) in
-# frame k); the movie at the path's fps and at --fps, its frame count; a re-run renders nothing, an
+# frame k), by render and by the viewer playing the path; the movie at the path's fps and at --fps, its frame count; a re-run renders nothing, an
 # edited path everything; contradicting options and bad script lines are one-line errors.
 set -u
 amrvk="$1"; dir="$2"
@@ -115,6 +115,16 @@ import json, os
 j = json.load(open("s.json"))
 names = [os.path.basename(f["input"]) for f in j["frames"]]
 assert names == ["out_1.cells"] * 3 + ["out_2.cells"] * 2 + ["out_3.cells"] * 2, names'
+# The viewer over the same series plays the same path with the same step per frame: the session's
+# path, played, and the steps it showed (--stats "steps") are those render showed (0 first).
+printf '1 path-play\n14 quit\n' >series-path.txt
+"$amrvk" view --session path.json 'out_*.cells' --headless --script series-path.txt --stats series-stats.json \
+  >series-view.out 2>series-view.err || { echo "FAIL: viewer over the series: $(tail -2 series-view.err)"; fail=1; }
+check "$py" -c '
+import json
+j = json.load(open("series-stats.json"))
+assert [f["frame"] for f in j["pathFramesShown"]] == list(range(7)), j["pathFramesShown"]
+assert [s["step"] for s in j["steps"]] == [1, 2], j["steps"]  # frames 3 and 5: floor(3k/7) goes 0 -> 1 -> 2'
 
 # ---- movies: the path's fps, or --fps; the frame count ----
 if command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null; then
