@@ -175,11 +175,8 @@ void planSeriesFrames(const CLI::App& app, const SeriesRequest& request, const R
     s.base.session.input = s.inputs.front();
     // Several outputs share one scale: the first output decides an auto scale for all of them, so
     // one TF range means the same on every frame.
-    if (s.inputs.size() > 1 && s.base.session.read.scale == amr::FieldScale::Auto) {
-        amr::ReadOptions ro = s.base.session.read;
-        if (!s.base.session.field.empty()) ro.fields = {s.base.session.field};
-        s.base.session.read.scale = amr::resolvedScale(s.inputs.front(), ro);
-    }
+    if (s.inputs.size() > 1)
+        s.base.session.read.scale = session::seriesScale(s.inputs, s.base.session.read, s.base.session.field);
     const bool orbitGiven = given(app, "--orbit");
     const std::optional<uint32_t> frameCount =
         given(app, "--frames") ? std::optional(uint32_t(series.frames)) : std::nullopt;

@@ -109,11 +109,7 @@ void addViewSeriesOptions(CLI::App& app, ViewSeriesArgs& a) {
 // distribution (union) or the first output's (first, as it is read); a given --tf-range or a
 // session's TF as they are.
 void fixSeriesTf(const std::vector<std::string>& series, const std::string& range, session::PictureDescription& d) {
-    if (d.session.read.scale == amr::FieldScale::Auto) {
-        amr::ReadOptions ro = d.session.read;
-        if (!d.session.field.empty()) ro.fields = {d.session.field};
-        d.session.read.scale = amr::resolvedScale(series.front(), ro);
-    }
+    d.session.read.scale = session::seriesScale(series, d.session.read, d.session.field);
     if (d.tfRange || !d.tfSource || session::parseSeriesRange(range) == session::SeriesRange::First) return;
     std::string field = d.session.field;
     session::SeriesStatistics pooled = session::seriesStatistics(series, d.session.read, field);

@@ -125,21 +125,21 @@ void ViewLink::pass(const picture::Picture& p, uint32_t perRank) {
     const double grace = kViewAnswerSeconds + 4.0 * mine.seconds() + (changed ? 4.0 * p.report.buildSeconds : 0.0);
     const Clock::time_point deadline =
         Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace));
+    const auto silent = [&](int r) {
+        mWorld.abort(strCat("amrvk view: error: rank ", r, " of ", mWorld.size(), " did not answer within ",
+                            int(grace + 0.5), " s (hung, or its device stopped); every rank ends"));
+    };
     std::string failure;
     for (int r = 1; r < mWorld.size(); ++r) {
         std::vector<char> header;
-        if (!receive(r, kAnswerTag, MPI_CHAR, header, deadline))
-            mWorld.abort(strCat("amrvk view: error: rank ", r, " of ", mWorld.size(), " did not answer within ",
-                                int(grace + 0.5), " s (hung, or its device stopped); every rank ends"));
+        if (!receive(r, kAnswerTag, MPI_CHAR, header, deadline)) silent(r);
         const Json h = Json::parse(text(header));
         if (h.contains("error")) {
             if (failure.empty()) failure = h["error"].get<std::string>();
             continue;
         }
         std::vector<double> values;
-        if (!receive(r, kSumsTag, MPI_DOUBLE, values, deadline))
-            mWorld.abort(strCat("amrvk view: error: rank ", r, " of ", mWorld.size(), " did not answer within ",
-                                int(grace + 0.5), " s (hung, or its device stopped); every rank ends"));
+        if (!receive(r, kSumsTag, MPI_DOUBLE, values, deadline)) silent(r);
         if (!failure.empty()) continue;
         scene::RenderStats stats;
         stats.paths = h["paths"].get<uint64_t>();

@@ -94,6 +94,14 @@ SeriesRange parseSeriesRange(std::string_view name) {
     throw Error(strCat("--series-range: '", name, "' is not first or union"));
 }
 
+amr::FieldScale seriesScale(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
+                            const std::string& field) {
+    if (read.scale != amr::FieldScale::Auto || inputs.empty()) return read.scale;
+    amr::ReadOptions ro = read;
+    if (!field.empty()) ro.fields = {field};
+    return amr::resolvedScale(inputs.front(), ro);
+}
+
 SeriesStatistics seriesStatistics(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
                                   std::string& field) {
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;

@@ -40,6 +40,11 @@ bool isInputPattern(const std::string& arg);
 enum class SeriesRange : uint8_t { First, Union };
 SeriesRange parseSeriesRange(std::string_view name);  // "first" | "union"
 
+// The one scale of a series: `read`'s, or where it is auto the scale the first output decides
+// (read with `field`, empty: its default), so one TF range means the same on every output.
+amr::FieldScale seriesScale(const std::vector<std::string>& inputs, const amr::ReadOptions& read,
+                            const std::string& field);
+
 // Every output's field statistics pooled, for one TF over a series (--series-range union): the
 // union of their ranges, their pooled percentiles (spiky, foggy) and volume histograms (layers).
 // Each output is read alone (one in memory at a time) with `read`; `field` (empty: each output's

@@ -485,10 +485,14 @@ void ViewerApp::trace() {
         mShown = scene::Shown::Preview;
     } else {
         const uint32_t rows = mBudget.rowsPerFrame(s.width, s.height, mPicture.renderer->rowsDone());
+        // Whole samples that fit the budget, 1 to 64.
+        const auto samplesThatFit = [&] {
+            const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
+            return uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
+        };
         if (mOpt.ranks && mPicture.renderer->rowsDone() == 0) {
             // An MPI job: whole samples, every rank a share of each pass (as many as fit rank 0's budget).
-            const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
-            uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
+            uint32_t n = samplesThatFit();
             const uint32_t ranks = uint32_t(mOpt.ranks->ranks());
             if (limit > 0) n = std::max(1u, std::min(n, (limit - mPicture.renderer->accumulatedSpp()) / ranks));
             const Clock::time_point passStart = Clock::now();
@@ -496,8 +500,7 @@ void ViewerApp::trace() {
             mBudget.record(secondsSince(passStart), pixels * n);
         } else if (rows >= uint32_t(s.height) && mPicture.renderer->rowsDone() == 0) {
             // Fast device: whole samples, as many as fit.
-            const double perSample = std::max(mBudget.secondsPerPixelSample() * double(pixels), 1e-9);
-            uint32_t n = uint32_t(std::clamp(mBudget.budgetSeconds() / perSample, 1.0, 64.0));
+            uint32_t n = samplesThatFit();
             if (limit > 0) n = std::min(n, limit - mPicture.renderer->accumulatedSpp());
             mPicture.renderer->accumulate(n);
             mBudget.record(mPicture.renderer->stats().gpuSeconds - gpuBefore, pixels * n);
